@@ -1,0 +1,197 @@
+/*
+ * Stratum C ABI.
+ *
+ * The only interface between the native path tracer and its hosts (the Blender add-on via
+ * ctypes, the native CLI, the tests). Rules:
+ *   - opaque handles, plain structs, status codes; no C++ type or exception crosses it;
+ *   - every input is validated here: a bad value returns STRATUM_ERROR_INVALID_ARGUMENT and
+ *     stratum_last_error() names the value; nothing aborts the host process;
+ *   - matrices are 4x4, row-major, object-to-world, as Blender's Matrix (m[row*4 + col]);
+ *   - render settings are named values; an unknown name is an error, so a host setting and its
+ *     native meaning cannot drift apart silently.
+ */
+#ifndef STRATUM_STRATUM_H
+#define STRATUM_STRATUM_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#if defined(_WIN32)
+#define STRATUM_API __declspec(dllexport)
+#else
+#define STRATUM_API __attribute__((visibility("default")))
+#endif
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef enum StratumStatus {
+    STRATUM_OK = 0,
+    STRATUM_ERROR_INVALID_ARGUMENT = 1, /* a value was rejected; see stratum_last_error() */
+    STRATUM_ERROR_INVALID_STATE = 2,    /* e.g. a setting changed while rendering */
+    STRATUM_ERROR_OUT_OF_MEMORY = 3,
+    STRATUM_ERROR_INTERNAL = 4, /* a library (Embree, OIIO) failed; message says which */
+    STRATUM_ERROR_IO = 5        /* a file could not be read or written */
+} StratumStatus;
+
+/* Message of the last failed call made on the calling thread ("" if none). Valid until the
+ * next Stratum call on this thread. */
+STRATUM_API const char* stratum_last_error(void);
+STRATUM_API const char* stratum_version(void);
+
+/* ---- registries (samplers, filters, integrators) -------------------------------------- */
+
+typedef enum StratumRegistry {
+    STRATUM_REGISTRY_SAMPLER = 0,
+    STRATUM_REGISTRY_FILTER = 1,
+    STRATUM_REGISTRY_INTEGRATOR = 2
+} StratumRegistry;
+
+/* Number of entries of a registry, or -1 for an unknown registry. */
+STRATUM_API int32_t stratum_registry_count(int32_t registry);
+/* Stable name ("random"), short label ("Random (PCG32)") and one-line description of entry
+ * `index`. The strings are static. */
+STRATUM_API StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char** name,
+                                                 const char** label, const char** description);
+
+/* ---- scene ----------------------------------------------------------------------------- */
+
+typedef struct StratumScene StratumScene;
+
+STRATUM_API StratumStatus stratum_scene_create(StratumScene** out_scene);
+STRATUM_API void stratum_scene_destroy(StratumScene* scene);
+
+typedef enum StratumMaterialModel {
+    STRATUM_MATERIAL_DIFFUSE = 0,        /* Lambertian (Cycles' Diffuse BSDF, roughness 0) */
+    STRATUM_MATERIAL_PRINCIPLED_V1 = 1,  /* Cycles 3.x Principled: Burley diffuse + GGX */
+    STRATUM_MATERIAL_PRINCIPLED_V2 = 2,  /* Cycles 4.x Principled: Lambert + layered GGX */
+    STRATUM_MATERIAL_EMISSION = 3        /* pure emitter, no reflection */
+} StratumMaterialModel;
+
+typedef struct StratumMaterialDesc {
+    int32_t model;          /* StratumMaterialModel */
+    float base_color[3];    /* linear RGB reflectance, each in [0,1] */
+    float roughness;        /* [0,1], Principled/Disney convention (alpha = roughness^2) */
+    float metallic;         /* [0,1] */
+    float specular;         /* v1: "Specular" [0,inf); v2: "Specular IOR Level" [0,inf) */
+    float ior;              /* v2: index of refraction of the dielectric coat, > 0 */
+    float emission[3];      /* emitted radiance (colour x strength), each >= 0 */
+} StratumMaterialDesc;
+
+/* Adds a material; its id (0, 1, 2, ... in order) is written to out_id. */
+STRATUM_API StratumStatus stratum_scene_add_material(StratumScene* scene,
+                                                     const StratumMaterialDesc* material,
+                                                     uint32_t* out_id);
+
+typedef struct StratumMeshDesc {
+    const float* positions;          /* 3 floats per vertex, object space; required */
+    uint32_t vertex_count;
+    const uint32_t* triangles;       /* 3 vertex indices per triangle; required */
+    uint32_t triangle_count;
+    const float* corner_normals;     /* optional: 9 floats per triangle (3 corners) */
+    const float* corner_uvs;         /* optional: 6 floats per triangle (3 corners) */
+    const uint32_t* material_ids;    /* 1 scene material id per triangle; required */
+} StratumMeshDesc;
+
+/* Adds a mesh (copied); its id (0, 1, 2, ...) is written to out_id. A mesh is drawn only
+ * through instances. */
+STRATUM_API StratumStatus stratum_scene_add_mesh(StratumScene* scene, const StratumMeshDesc* mesh,
+                                                 uint32_t* out_id);
+/* Places mesh `mesh_id` with an object-to-world transform (16 floats, row-major). */
+STRATUM_API StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id,
+                                                     const float transform[16]);
+
+typedef enum StratumLightType {
+    STRATUM_LIGHT_POINT = 0,   /* power in W (Blender's), radius in m */
+    STRATUM_LIGHT_SUN = 1,     /* strength = irradiance W/m^2, angle = angular diameter (rad) */
+    STRATUM_LIGHT_AREA_RECTANGLE = 2, /* power in W, size_x * size_y (square: equal sizes) */
+    STRATUM_LIGHT_AREA_ELLIPSE = 3    /* power in W, diameters size_x, size_y (disk: equal) */
+} StratumLightType;
+
+typedef struct StratumLightDesc {
+    int32_t type;           /* StratumLightType */
+    float color[3];         /* linear RGB, >= 0 */
+    float strength;         /* power (W) or, for the sun, irradiance (W/m^2); >= 0 */
+    float radius;           /* point: sphere radius, >= 0 */
+    float angle;            /* sun: angular diameter in radians, [0, pi] */
+    float size_x, size_y;   /* area: extent along local x and y, > 0 */
+    float transform[16];    /* light-to-world, row-major; lights point down local -Z */
+} StratumLightDesc;
+
+STRATUM_API StratumStatus stratum_scene_add_light(StratumScene* scene, const StratumLightDesc* light);
+
+typedef enum StratumSensorFit {
+    STRATUM_SENSOR_FIT_AUTO = 0,
+    STRATUM_SENSOR_FIT_HORIZONTAL = 1,
+    STRATUM_SENSOR_FIT_VERTICAL = 2
+} StratumSensorFit;
+
+typedef struct StratumCameraDesc {
+    float lens_mm;          /* focal length, > 0 */
+    float sensor_width_mm;  /* > 0 */
+    float sensor_height_mm; /* > 0 */
+    int32_t sensor_fit;     /* StratumSensorFit */
+    float shift_x, shift_y; /* in units of the fitted sensor dimension, as Blender */
+    float clip_start, clip_end; /* 0 < clip_start < clip_end */
+    float transform[16];    /* camera-to-world, row-major; looks down local -Z, +Y up */
+} StratumCameraDesc;
+
+STRATUM_API StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraDesc* camera);
+/* Constant background radiance (Blender world colour x strength). */
+STRATUM_API StratumStatus stratum_scene_set_background(StratumScene* scene, const float rgb[3]);
+
+/* Writes / reads a captured scene (JSON) for the native CLI and for bug reports. */
+STRATUM_API StratumStatus stratum_scene_save(const StratumScene* scene, const char* path);
+STRATUM_API StratumStatus stratum_scene_load(const char* path, StratumScene** out_scene);
+
+/* ---- rendering --------------------------------------------------------------------------- */
+
+typedef struct StratumRenderer StratumRenderer;
+
+/* Copies what it needs from the scene: the scene may be destroyed afterwards. */
+STRATUM_API StratumStatus stratum_renderer_create(const StratumScene* scene, StratumRenderer** out);
+STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
+
+/* Named settings (see README "Render settings"):
+ *   int:    width, height, samples, max_bounces, seed, threads (0 = all cores)
+ *   float:  filter_width (pixels)
+ *   string: sampler (registry name), filter_type ("box", "blackman_harris"),
+ *           integrator (registry name)
+ * Setting a name of the wrong kind or an unknown name is STRATUM_ERROR_INVALID_ARGUMENT. */
+STRATUM_API StratumStatus stratum_renderer_set_int(StratumRenderer* r, const char* name, int64_t value);
+STRATUM_API StratumStatus stratum_renderer_set_float(StratumRenderer* r, const char* name, double value);
+STRATUM_API StratumStatus stratum_renderer_set_string(StratumRenderer* r, const char* name,
+                                                      const char* value);
+
+/* Starts rendering on native worker threads and returns at once. Builds the BVH on first start. */
+STRATUM_API StratumStatus stratum_renderer_start(StratumRenderer* r);
+/* Asks the render to stop; returns at once. Pixels keep the samples finished so far. */
+STRATUM_API StratumStatus stratum_renderer_cancel(StratumRenderer* r);
+/* Waits up to timeout_ms for the render to end; *out_done = 1 when it has ended. */
+STRATUM_API StratumStatus stratum_renderer_wait(StratumRenderer* r, int32_t timeout_ms, int32_t* out_done);
+
+typedef struct StratumProgress {
+    int32_t done;              /* 1 when the render has ended (finished or cancelled) */
+    int32_t cancelled;
+    int32_t samples_done;      /* samples that every pixel has */
+    int32_t samples_total;
+    uint32_t update_serial;    /* increases whenever new pixels are available */
+    double rays;               /* rays traced so far (camera, bounce and shadow rays) */
+    double build_seconds;      /* BVH build time */
+    double render_seconds;     /* path-tracing time, without the BVH build */
+} StratumProgress;
+
+STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);
+
+/* Copies the current image: width*height*4 floats (linear RGBA), rows bottom to top as
+ * Blender's render result. `count` is the number of floats the buffer holds. */
+STRATUM_API StratumStatus stratum_renderer_read_pixels(const StratumRenderer* r, float* rgba, size_t count);
+/* Writes the current image (EXR linear, or PNG/other by extension via OpenImageIO). */
+STRATUM_API StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif
