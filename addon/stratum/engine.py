@@ -1,0 +1,183 @@
+"""The Stratum RenderEngine: export, native render on worker threads, progressive results.
+
+render() never lets an exception escape: export errors, native errors and a missing library
+are reported with self.report({'ERROR'}, ...) and the render ends cleanly.
+"""
+
+from __future__ import annotations
+
+import time
+import traceback
+from typing import Any
+
+import bpy
+import numpy as np
+
+from . import native, properties
+from .export import ExportCancelled, ExportError, ExportSummary, export_scene
+
+ENGINE_ID = "STRATUM"
+POLL_MS = 100
+
+
+def render_size(scene: Any) -> tuple[int, int]:
+    r = scene.render
+    scale = r.resolution_percentage / 100.0
+    return max(int(r.resolution_x * scale), 1), max(int(r.resolution_y * scale), 1)
+
+
+def renderer_settings(scene: Any) -> dict[str, int | float | str]:
+    """Native settings from scene.stratum and the output resolution (name -> value; the
+    Python type selects set_int / set_float / set_string)."""
+    s = scene.stratum
+    width, height = render_size(scene)
+    return {
+        "width": width,
+        "height": height,
+        "samples": int(s.samples),
+        "max_bounces": int(s.max_bounces),
+        "seed": int(s.seed),
+        "threads": int(s.threads),
+        "filter_width": float(s.filter_width),
+        "sampler": str(s.sampler),
+        "filter_type": str(s.filter_type),
+    }
+
+
+def format_stats(progress: native.Progress, elapsed: float) -> str:
+    rate = progress.rays / progress.render_seconds if progress.render_seconds > 0 else 0.0
+    if rate >= 1e6:
+        rays = f"{rate / 1e6:.2f}M"
+    elif rate >= 1e3:
+        rays = f"{rate / 1e3:.1f}k"
+    else:
+        rays = f"{rate:.0f}"
+    return (f"Sample {progress.samples_done}/{progress.samples_total} | {elapsed:.1f}s | "
+            f"{rays} rays/s")
+
+
+class PixelWriter:
+    """Copies renderer pixels into a render result pass: one read_pixels into a preallocated
+    float32 buffer, one foreach_set. 3.x/4.0 want an (N, 4) array, 4.1+ a flat one."""
+
+    def __init__(self, width: int, height: int) -> None:
+        self.buffer = np.zeros(width * height * 4, dtype=np.float32)
+        self._flat: bool = bpy.app.version >= (4, 1, 0)
+
+    def write(self, renderer: native.Renderer, render_pass: Any) -> None:
+        renderer.read_pixels(self.buffer)
+        data = self.buffer if self._flat else self.buffer.reshape(-1, 4)
+        try:
+            render_pass.rect.foreach_set(data)
+        except (TypeError, ValueError, RuntimeError):
+            self._flat = not self._flat
+            data = self.buffer if self._flat else self.buffer.reshape(-1, 4)
+            render_pass.rect.foreach_set(data)
+
+
+def combined_pass(result: Any) -> Any:
+    layer = result.layers[0]
+    passes = layer.passes
+    found = passes.get("Combined") if hasattr(passes, "get") else None
+    if found is None:
+        found = passes.find_by_name("Combined", "")
+    return found
+
+
+class StratumRenderEngine(bpy.types.RenderEngine):
+    bl_idname = ENGINE_ID
+    bl_label = "Stratum"
+    bl_use_preview = False
+    bl_use_postprocess = True
+    # Show Blender's standard shader nodes (Principled, Diffuse, Emission...) in the node
+    # editor: Stratum reads those node trees.
+    bl_use_shading_nodes_custom = False
+
+    # Reports of the most recent render (level, message): for tests and the CLI, because
+    # background renders do not always surface RenderEngine.report().
+    last_reports: list[tuple[str, str]] = []
+    last_summary: ExportSummary | None = None
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)  # required in Blender 4.4+
+
+    def _report(self, level: str, message: str) -> None:
+        type(self).last_reports.append((level, message))
+        try:
+            self.report({level}, message)
+        except Exception:  # noqa: BLE001 - reporting must never fail a render
+            print(f"Stratum {level}: {message}")
+
+    def render(self, depsgraph: Any) -> None:
+        type(self).last_reports = []
+        type(self).last_summary = None
+        try:
+            self._render(depsgraph)
+        except ExportCancelled:
+            pass
+        except (ExportError, native.StratumError) as exc:
+            self._report("ERROR", f"Stratum: {exc}")
+        except Exception as exc:  # noqa: BLE001 - nothing may crash Blender
+            traceback.print_exc()
+            self._report("ERROR", f"Stratum internal error: {type(exc).__name__}: {exc}")
+
+    def _render(self, depsgraph: Any) -> None:
+        scene = depsgraph.scene
+        if properties.load_error:
+            # The library failed at register time; try again (it may exist now).
+            native.load_library()
+        settings = renderer_settings(scene)
+        width, height = int(settings["width"]), int(settings["height"])
+
+        self.update_stats("", "Exporting scene")
+        with native.Scene() as native_scene:
+            summary = export_scene(depsgraph, native_scene, should_stop=self.test_break)
+            type(self).last_summary = summary
+            for warning in summary.warnings:
+                self._report("WARNING", warning)
+            renderer = native.Renderer(native_scene)
+        with renderer:
+            for name, value in settings.items():
+                renderer.set(name, value)
+            self._progressive(renderer, width, height)
+
+    def _progressive(self, renderer: native.Renderer, width: int, height: int) -> None:
+        writer = PixelWriter(width, height)
+        result = self.begin_result(0, 0, width, height)
+        try:
+            render_pass = combined_pass(result)
+            started = time.perf_counter()
+            self.update_stats("", "Building BVH / starting")
+            renderer.start()
+            last_serial: int | None = None
+            cancelled_at: float | None = None
+            while True:
+                done = renderer.wait(POLL_MS)
+                if cancelled_at is None and self.test_break():
+                    renderer.cancel()
+                    cancelled_at = time.perf_counter()
+                progress = renderer.progress()
+                if progress.update_serial != last_serial:
+                    last_serial = progress.update_serial
+                    writer.write(renderer, render_pass)
+                    self.update_result(result)
+                total = max(progress.samples_total, 1)
+                self.update_progress(min(progress.samples_done / total, 1.0))
+                self.update_stats("", format_stats(progress, time.perf_counter() - started))
+                if done or progress.done:
+                    break
+                if cancelled_at is not None and time.perf_counter() - cancelled_at > 30.0:
+                    self._report("ERROR", "Stratum: the renderer did not stop after cancel")
+                    break
+            # Final pixels (also the partial image after Esc).
+            writer.write(renderer, render_pass)
+        finally:
+            self.end_result(result)
+
+
+def register() -> None:
+    bpy.utils.register_class(StratumRenderEngine)
+
+
+def unregister() -> None:
+    bpy.utils.unregister_class(StratumRenderEngine)

@@ -1,0 +1,90 @@
+"""Shared pieces of the exporter: errors, summary, matrix conversion, node-tree helpers."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Any
+
+import numpy as np
+
+
+class ExportError(RuntimeError):
+    """The scene cannot be exported; the message names the object and the problem."""
+
+
+class ExportCancelled(RuntimeError):
+    """The user pressed Esc during export."""
+
+
+@dataclass
+class ExportSummary:
+    """What export_scene sent to the native scene (used by the engine and the tests)."""
+
+    materials: int = 0
+    meshes: int = 0  # unique meshes sent (deduplicated evaluated data)
+    instances: int = 0  # mesh instances placed
+    triangles: int = 0  # triangles of the unique meshes
+    instanced_triangles: int = 0  # triangles over all instances
+    lights: int = 0
+    object_triangles: dict[str, int] = field(default_factory=dict)  # evaluated, per object
+    object_instances: dict[str, int] = field(default_factory=dict)  # instances per object
+    warnings: list[str] = field(default_factory=list)
+    export_seconds: float = 0.0
+
+    def warn(self, message: str) -> None:
+        if message not in self.warnings:
+            self.warnings.append(message)
+
+
+def matrix_to_array(matrix: Any) -> np.ndarray:
+    """A Blender 4x4 Matrix as 16 float32, row-major (m[row*4 + col]), as the C ABI wants."""
+    return np.ascontiguousarray(np.array(matrix, dtype=np.float32).reshape(16))
+
+
+def linked_from(socket: Any) -> Any | None:
+    """The node feeding `socket`, following reroute nodes; None if unlinked."""
+    seen = 0
+    while socket is not None and socket.is_linked and seen < 64:
+        link = socket.links[0]
+        if getattr(link, "is_muted", False) or not getattr(link, "is_valid", True):
+            return None
+        node = link.from_node
+        if node.bl_idname == "NodeReroute":
+            socket = node.inputs[0]
+            seen += 1
+            continue
+        return node
+    return None
+
+
+def active_output(node_tree: Any, idname: str) -> Any | None:
+    """The active output node (target ALL or CYCLES) of a shader node tree."""
+    getter = getattr(node_tree, "get_output_node", None)
+    if getter is not None:
+        try:
+            node = getter("CYCLES")
+        except (TypeError, RuntimeError):
+            node = None
+        if node is not None and node.bl_idname == idname:
+            return node
+    candidates = [n for n in node_tree.nodes if n.bl_idname == idname]
+    for node in candidates:
+        if getattr(node, "is_active_output", False) and getattr(node, "target", "ALL") in {
+            "ALL",
+            "CYCLES",
+        }:
+            return node
+    return candidates[0] if candidates else None
+
+
+def socket_value(node: Any, name: str) -> Any | None:
+    """default_value of input `name`, or None if the node has no such input."""
+    socket = node.inputs.get(name)
+    if socket is None:
+        return None
+    return socket.default_value
+
+
+def rgb(value: Any) -> tuple[float, float, float]:
+    v = tuple(float(x) for x in value)
+    return (v[0], v[1], v[2])

@@ -1,0 +1,133 @@
+"""Evaluated Blender geometry -> native meshes, with numpy foreach_get (no per-element loops)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from .common import ExportError
+
+# Object types that to_mesh() can turn into triangles.
+GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "FONT", "META"}
+
+
+@dataclass
+class MeshArrays:
+    positions: np.ndarray  # (N, 3) float32
+    triangles: np.ndarray  # (T, 3) uint32
+    material_index: np.ndarray  # (T,) int32, the object's material slot per triangle
+    corner_normals: np.ndarray | None  # (T, 3, 3) float32
+    corner_uvs: np.ndarray | None  # (T, 3, 2) float32
+
+
+def _get(collection: Any, attr: str, count: int, width: int, dtype: Any) -> np.ndarray:
+    out = np.empty(count * width, dtype=dtype)
+    if count:
+        collection.foreach_get(attr, out)
+    return out.reshape(count, width) if width > 1 else out
+
+
+def _corner_normals(mesh: Any, n_loops: int) -> np.ndarray:
+    """Per-loop (corner) normals, (L, 3)."""
+    if hasattr(mesh, "corner_normals"):  # 4.1+
+        return _get(mesh.corner_normals, "vector", n_loops, 3, np.float32)
+    # Before 4.1: split normals honour use_auto_smooth (sharp edges) and smooth/flat faces.
+    mesh.calc_normals_split()
+    return _get(mesh.loops, "normal", n_loops, 3, np.float32)
+
+
+def _corner_uvs(mesh: Any, n_loops: int) -> np.ndarray | None:
+    layer = mesh.uv_layers.active
+    if layer is None:
+        return None
+    if hasattr(layer, "uv"):  # 3.5+
+        return _get(layer.uv, "vector", n_loops, 2, np.float32)
+    return _get(layer.data, "uv", n_loops, 2, np.float32)
+
+
+def mesh_arrays(mesh: Any, object_name: str) -> MeshArrays:
+    """Triangulated arrays of an evaluated mesh; ExportError naming the object on bad data."""
+    mesh.calc_loop_triangles()
+    n_vert = len(mesh.vertices)
+    n_loops = len(mesh.loops)
+    n_tri = len(mesh.loop_triangles)
+
+    positions = _get(mesh.vertices, "co", n_vert, 3, np.float32)
+    finite = np.isfinite(positions)
+    if not finite.all():
+        bad = int(np.flatnonzero(~finite.all(axis=1))[0])
+        value = tuple(float(v) for v in positions[bad])
+        raise ExportError(
+            f"Object '{object_name}' has a non-finite vertex position (NaN or Inf): "
+            f"vertex {bad} = {value}"
+        )
+
+    loops = _get(mesh.loop_triangles, "loops", n_tri, 3, np.uint32)
+    triangles = _get(mesh.loop_triangles, "vertices", n_tri, 3, np.uint32)
+    material_index = _get(mesh.loop_triangles, "material_index", n_tri, 1, np.int32)
+
+    normals = None
+    if n_tri:
+        per_loop = _corner_normals(mesh, n_loops)
+        normals = per_loop[loops]  # (T, 3, 3)
+        if not np.isfinite(normals).all():
+            normals = None  # degenerate faces; let the renderer use geometric normals
+    uvs = None
+    if n_tri:
+        per_loop_uv = _corner_uvs(mesh, n_loops)
+        if per_loop_uv is not None:
+            uvs = per_loop_uv[loops]  # (T, 3, 2)
+            if not np.isfinite(uvs).all():
+                raise ExportError(f"Object '{object_name}' has non-finite UV coordinates")
+    return MeshArrays(positions, triangles, material_index, normals, uvs)
+
+
+def object_mesh_arrays(ob: Any, depsgraph: Any) -> MeshArrays | None:
+    """Evaluated, triangulated geometry of an object (None if it has no surface)."""
+    ob_eval = ob.evaluated_get(depsgraph) if depsgraph is not None else ob
+    try:
+        mesh = ob_eval.to_mesh()
+    except RuntimeError as exc:
+        raise ExportError(f"Object '{ob.name}': cannot convert to a mesh: {exc}") from exc
+    if mesh is None:
+        return None
+    try:
+        return mesh_arrays(mesh, ob.name)
+    finally:
+        ob_eval.to_mesh_clear()
+
+
+def mesh_key(ob: Any, slot_ids: tuple[int, ...]) -> tuple[Any, ...]:
+    """Deduplication key: the original mesh data (plus materials) when the object has no
+    modifiers, otherwise the original object (its evaluated geometry is its own)."""
+    original = getattr(ob, "original", None) or ob
+    data = getattr(original, "data", None)
+    if ob.type == "MESH" and data is not None and len(ob.modifiers) == 0:
+        return ("data", data.as_pointer(), slot_ids)
+    return ("object", original.as_pointer(), slot_ids)
+
+
+def slot_material_ids(ob: Any, id_for: Any) -> np.ndarray:
+    """Scene material id per material slot of `ob` (at least one entry: the default)."""
+    slots = [slot.material for slot in ob.material_slots]
+    if not slots:
+        return np.array([id_for(None)], dtype=np.uint32)
+    return np.array([id_for(m) for m in slots], dtype=np.uint32)
+
+
+def triangle_material_ids(material_index: np.ndarray, slot_ids: np.ndarray) -> np.ndarray:
+    idx = np.clip(material_index, 0, len(slot_ids) - 1)
+    return np.ascontiguousarray(slot_ids.take(idx), dtype=np.uint32)
+
+
+__all__ = [
+    "GEOMETRY_TYPES",
+    "MeshArrays",
+    "mesh_arrays",
+    "mesh_key",
+    "object_mesh_arrays",
+    "slot_material_ids",
+    "triangle_material_ids",
+]

@@ -1,0 +1,661 @@
+"""ctypes binding of the Stratum C ABI (native/include/stratum/stratum.h).
+
+This is the ONLY module that knows the C ABI. Everything above it (export, engine, cli) talks
+to `Scene`, `Renderer` and `registry()`. Every native call goes through `_check`, so a non-OK
+status becomes a `StratumError` carrying stratum_last_error()'s text; nothing here can abort
+the host process on bad input, because the library validates every value.
+
+The library is loaded lazily (first use), from $STRATUM_LIBRARY or stratum/lib/libstratum.so,
+with RTLD_LOCAL | RTLD_DEEPBIND on Linux: Blender (and the bpy wheel) carry their own Embree,
+OIIO and TBB, and deep binding keeps our library bound to the copies it was linked with.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import sys
+import threading
+from collections.abc import Mapping, Sequence
+from dataclasses import asdict, dataclass, is_dataclass
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+
+# ---- status codes and enums (mirror stratum.h) --------------------------------------------
+
+OK = 0
+ERROR_INVALID_ARGUMENT = 1
+ERROR_INVALID_STATE = 2
+ERROR_OUT_OF_MEMORY = 3
+ERROR_INTERNAL = 4
+ERROR_IO = 5
+
+STATUS_NAMES: dict[int, str] = {
+    OK: "OK",
+    ERROR_INVALID_ARGUMENT: "invalid argument",
+    ERROR_INVALID_STATE: "invalid state",
+    ERROR_OUT_OF_MEMORY: "out of memory",
+    ERROR_INTERNAL: "internal error",
+    ERROR_IO: "I/O error",
+}
+
+REGISTRY_SAMPLER = 0
+REGISTRY_FILTER = 1
+REGISTRY_INTEGRATOR = 2
+REGISTRIES: dict[str, int] = {
+    "sampler": REGISTRY_SAMPLER,
+    "filter": REGISTRY_FILTER,
+    "integrator": REGISTRY_INTEGRATOR,
+}
+
+MATERIAL_DIFFUSE = 0
+MATERIAL_PRINCIPLED_V1 = 1
+MATERIAL_PRINCIPLED_V2 = 2
+MATERIAL_EMISSION = 3
+
+LIGHT_POINT = 0
+LIGHT_SUN = 1
+LIGHT_AREA_RECTANGLE = 2
+LIGHT_AREA_ELLIPSE = 3
+
+SENSOR_FIT_AUTO = 0
+SENSOR_FIT_HORIZONTAL = 1
+SENSOR_FIT_VERTICAL = 2
+SENSOR_FITS: dict[str, int] = {
+    "AUTO": SENSOR_FIT_AUTO,
+    "HORIZONTAL": SENSOR_FIT_HORIZONTAL,
+    "VERTICAL": SENSOR_FIT_VERTICAL,
+}
+
+
+class StratumError(RuntimeError):
+    """A native call failed (status != OK) or the library could not be loaded."""
+
+    def __init__(self, status: int, message: str) -> None:
+        self.status = status
+        self.message = message
+        super().__init__(message or STATUS_NAMES.get(status, f"status {status}"))
+
+
+class LibraryLoadError(StratumError):
+    """libstratum.so is missing or cannot be loaded."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(ERROR_INTERNAL, message)
+
+
+# ---- C structs -------------------------------------------------------------------------------
+
+_c_float3 = ctypes.c_float * 3
+_c_float16 = ctypes.c_float * 16
+
+
+class _MaterialDesc(ctypes.Structure):
+    _fields_ = [
+        ("model", ctypes.c_int32),
+        ("base_color", _c_float3),
+        ("roughness", ctypes.c_float),
+        ("metallic", ctypes.c_float),
+        ("specular", ctypes.c_float),
+        ("ior", ctypes.c_float),
+        ("emission", _c_float3),
+    ]
+
+
+class _MeshDesc(ctypes.Structure):
+    _fields_ = [
+        ("positions", ctypes.POINTER(ctypes.c_float)),
+        ("vertex_count", ctypes.c_uint32),
+        ("triangles", ctypes.POINTER(ctypes.c_uint32)),
+        ("triangle_count", ctypes.c_uint32),
+        ("corner_normals", ctypes.POINTER(ctypes.c_float)),
+        ("corner_uvs", ctypes.POINTER(ctypes.c_float)),
+        ("material_ids", ctypes.POINTER(ctypes.c_uint32)),
+    ]
+
+
+class _LightDesc(ctypes.Structure):
+    _fields_ = [
+        ("type", ctypes.c_int32),
+        ("color", _c_float3),
+        ("strength", ctypes.c_float),
+        ("radius", ctypes.c_float),
+        ("angle", ctypes.c_float),
+        ("size_x", ctypes.c_float),
+        ("size_y", ctypes.c_float),
+        ("transform", _c_float16),
+    ]
+
+
+class _CameraDesc(ctypes.Structure):
+    _fields_ = [
+        ("lens_mm", ctypes.c_float),
+        ("sensor_width_mm", ctypes.c_float),
+        ("sensor_height_mm", ctypes.c_float),
+        ("sensor_fit", ctypes.c_int32),
+        ("shift_x", ctypes.c_float),
+        ("shift_y", ctypes.c_float),
+        ("clip_start", ctypes.c_float),
+        ("clip_end", ctypes.c_float),
+        ("transform", _c_float16),
+    ]
+
+
+class _Progress(ctypes.Structure):
+    _fields_ = [
+        ("done", ctypes.c_int32),
+        ("cancelled", ctypes.c_int32),
+        ("samples_done", ctypes.c_int32),
+        ("samples_total", ctypes.c_int32),
+        ("update_serial", ctypes.c_uint32),
+        ("rays", ctypes.c_double),
+        ("build_seconds", ctypes.c_double),
+        ("render_seconds", ctypes.c_double),
+    ]
+
+
+# ---- Python-side descriptions ---------------------------------------------------------------
+
+
+@dataclass
+class Material:
+    model: int = MATERIAL_DIFFUSE
+    base_color: tuple[float, float, float] = (0.8, 0.8, 0.8)
+    roughness: float = 0.5
+    metallic: float = 0.0
+    specular: float = 0.5
+    ior: float = 1.5
+    emission: tuple[float, float, float] = (0.0, 0.0, 0.0)
+
+
+@dataclass
+class Light:
+    type: int = LIGHT_POINT
+    color: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    strength: float = 10.0
+    radius: float = 0.0
+    angle: float = 0.0
+    size_x: float = 1.0
+    size_y: float = 1.0
+    transform: Sequence[float] | np.ndarray = tuple(np.eye(4, dtype=np.float32).ravel())
+
+
+@dataclass
+class Camera:
+    lens_mm: float = 50.0
+    sensor_width_mm: float = 36.0
+    sensor_height_mm: float = 24.0
+    sensor_fit: int | str = SENSOR_FIT_AUTO
+    shift_x: float = 0.0
+    shift_y: float = 0.0
+    clip_start: float = 0.1
+    clip_end: float = 1000.0
+    transform: Sequence[float] | np.ndarray = tuple(np.eye(4, dtype=np.float32).ravel())
+
+
+@dataclass(frozen=True)
+class Progress:
+    done: bool
+    cancelled: bool
+    samples_done: int
+    samples_total: int
+    update_serial: int
+    rays: float
+    build_seconds: float
+    render_seconds: float
+
+
+@dataclass(frozen=True)
+class RegistryEntry:
+    name: str
+    label: str
+    description: str
+
+    def __iter__(self):  # noqa: ANN204 - lets callers unpack (name, label, description)
+        return iter((self.name, self.label, self.description))
+
+
+# ---- library loading ------------------------------------------------------------------------
+
+_lib: ctypes.CDLL | None = None
+_lib_lock = threading.Lock()
+
+
+def default_library_path() -> Path:
+    """$STRATUM_LIBRARY, else stratum/lib/libstratum.so next to this module."""
+    env = os.environ.get("STRATUM_LIBRARY")
+    if env:
+        return Path(env)
+    return Path(__file__).resolve().parent / "lib" / "libstratum.so"
+
+
+def _declare(lib: ctypes.CDLL) -> None:
+    c_int32, c_uint32, c_int64 = ctypes.c_int32, ctypes.c_uint32, ctypes.c_int64
+    p_char = ctypes.c_char_p
+    p_void = ctypes.c_void_p
+    pp_void = ctypes.POINTER(ctypes.c_void_p)
+    pp_char = ctypes.POINTER(ctypes.c_char_p)
+    p_u32 = ctypes.POINTER(ctypes.c_uint32)
+    p_i32 = ctypes.POINTER(ctypes.c_int32)
+    p_float = ctypes.POINTER(ctypes.c_float)
+    signatures: dict[str, tuple[Any, list[Any]]] = {
+        "stratum_last_error": (p_char, []),
+        "stratum_version": (p_char, []),
+        "stratum_registry_count": (c_int32, [c_int32]),
+        "stratum_registry_entry": (c_int32, [c_int32, c_int32, pp_char, pp_char, pp_char]),
+        "stratum_scene_create": (c_int32, [pp_void]),
+        "stratum_scene_destroy": (None, [p_void]),
+        "stratum_scene_add_material": (c_int32, [p_void, ctypes.POINTER(_MaterialDesc), p_u32]),
+        "stratum_scene_add_mesh": (c_int32, [p_void, ctypes.POINTER(_MeshDesc), p_u32]),
+        "stratum_scene_add_instance": (c_int32, [p_void, c_uint32, p_float]),
+        "stratum_scene_add_light": (c_int32, [p_void, ctypes.POINTER(_LightDesc)]),
+        "stratum_scene_set_camera": (c_int32, [p_void, ctypes.POINTER(_CameraDesc)]),
+        "stratum_scene_set_background": (c_int32, [p_void, p_float]),
+        "stratum_scene_save": (c_int32, [p_void, p_char]),
+        "stratum_scene_load": (c_int32, [p_char, pp_void]),
+        "stratum_renderer_create": (c_int32, [p_void, pp_void]),
+        "stratum_renderer_destroy": (None, [p_void]),
+        "stratum_renderer_set_int": (c_int32, [p_void, p_char, c_int64]),
+        "stratum_renderer_set_float": (c_int32, [p_void, p_char, ctypes.c_double]),
+        "stratum_renderer_set_string": (c_int32, [p_void, p_char, p_char]),
+        "stratum_renderer_start": (c_int32, [p_void]),
+        "stratum_renderer_cancel": (c_int32, [p_void]),
+        "stratum_renderer_wait": (c_int32, [p_void, c_int32, p_i32]),
+        "stratum_renderer_progress": (c_int32, [p_void, ctypes.POINTER(_Progress)]),
+        "stratum_renderer_read_pixels": (c_int32, [p_void, p_float, ctypes.c_size_t]),
+        "stratum_renderer_write_image": (c_int32, [p_void, p_char]),
+    }
+    for name, (restype, argtypes) in signatures.items():
+        try:
+            fn = getattr(lib, name)
+        except AttributeError as exc:
+            raise LibraryLoadError(f"{lib._name}: missing symbol {name}") from exc
+        fn.restype = restype
+        fn.argtypes = argtypes
+
+
+def load_library(path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
+    """Loads (once) and returns the library; raises LibraryLoadError with the reason."""
+    global _lib
+    with _lib_lock:
+        if _lib is not None:
+            return _lib
+        lib_path = Path(path) if path is not None else default_library_path()
+        if not lib_path.is_file():
+            raise LibraryLoadError(
+                f"Stratum native library not found at {lib_path} "
+                "(build it with `make build`, or set STRATUM_LIBRARY)"
+            )
+        mode = ctypes.RTLD_LOCAL
+        if sys.platform.startswith("linux"):
+            mode = os.RTLD_LOCAL | os.RTLD_DEEPBIND
+        try:
+            lib = ctypes.CDLL(str(lib_path), mode=mode)
+        except OSError as exc:
+            raise LibraryLoadError(f"cannot load Stratum native library {lib_path}: {exc}") from exc
+        _declare(lib)
+        _lib = lib
+        return lib
+
+
+def library_available() -> bool:
+    try:
+        load_library()
+    except StratumError:
+        return False
+    return True
+
+
+def _last_error(lib: ctypes.CDLL) -> str:
+    raw = lib.stratum_last_error()
+    return raw.decode("utf-8", "replace") if raw else ""
+
+
+def _check(lib: ctypes.CDLL, status: int, what: str) -> None:
+    if status != OK:
+        message = _last_error(lib) or f"{what} failed: {STATUS_NAMES.get(status, status)}"
+        raise StratumError(int(status), message)
+
+
+def version() -> str:
+    lib = load_library()
+    raw = lib.stratum_version()
+    return raw.decode("utf-8", "replace") if raw else ""
+
+
+def registry(kind: str) -> list[RegistryEntry]:
+    """Entries of the 'sampler', 'filter' or 'integrator' registry, as (name, label, desc)."""
+    if kind not in REGISTRIES:
+        raise ValueError(f"unknown registry {kind!r}; expected one of {sorted(REGISTRIES)}")
+    lib = load_library()
+    reg = REGISTRIES[kind]
+    count = lib.stratum_registry_count(reg)
+    if count < 0:
+        raise StratumError(ERROR_INVALID_ARGUMENT, _last_error(lib) or f"unknown registry {kind}")
+    entries: list[RegistryEntry] = []
+    for i in range(count):
+        name, label, desc = ctypes.c_char_p(), ctypes.c_char_p(), ctypes.c_char_p()
+        status = lib.stratum_registry_entry(
+            reg, i, ctypes.byref(name), ctypes.byref(label), ctypes.byref(desc)
+        )
+        _check(lib, status, "stratum_registry_entry")
+        entries.append(
+            RegistryEntry(
+                (name.value or b"").decode(),
+                (label.value or b"").decode(),
+                (desc.value or b"").decode(),
+            )
+        )
+    return entries
+
+
+# ---- helpers ---------------------------------------------------------------------------------
+
+
+def _float_ptr(arr: np.ndarray) -> Any:
+    return arr.ctypes.data_as(ctypes.POINTER(ctypes.c_float))
+
+
+def _uint_ptr(arr: np.ndarray) -> Any:
+    return arr.ctypes.data_as(ctypes.POINTER(ctypes.c_uint32))
+
+
+def _fields(value: Any) -> dict[str, Any]:
+    if is_dataclass(value) and not isinstance(value, type):
+        return asdict(value)
+    if isinstance(value, Mapping):
+        return dict(value)
+    raise TypeError(f"expected a dict or dataclass, got {type(value).__name__}")
+
+
+def _set_struct(struct: ctypes.Structure, values: Mapping[str, Any], what: str) -> None:
+    known = {name for name, _ in struct._fields_}
+    for key, value in values.items():
+        if key not in known:
+            raise ValueError(f"{what}: unknown field {key!r} (known: {sorted(known)})")
+        current = getattr(struct, key)
+        if isinstance(current, ctypes.Array):
+            seq = np.asarray(value, dtype=np.float64).ravel()
+            if seq.size != len(current):
+                raise ValueError(f"{what}.{key}: expected {len(current)} values, got {seq.size}")
+            for i, v in enumerate(seq):
+                current[i] = float(v)
+        else:
+            setattr(struct, key, value)
+
+
+def _matrix16(matrix: Any, what: str) -> np.ndarray:
+    m = np.ascontiguousarray(np.asarray(matrix, dtype=np.float32).reshape(-1))
+    if m.size != 16:
+        raise ValueError(f"{what}: expected a 4x4 matrix (16 floats), got {m.size} values")
+    return m
+
+
+class _Handle:
+    """Owns one native handle and frees it exactly once (close / context manager / __del__)."""
+
+    _destroy_name = ""
+
+    def __init__(self) -> None:
+        self._lib = load_library()
+        self._ptr = ctypes.c_void_p()
+
+    @property
+    def handle(self) -> ctypes.c_void_p:
+        if not self._ptr:
+            raise StratumError(ERROR_INVALID_STATE, f"{type(self).__name__} is closed")
+        return self._ptr
+
+    def close(self) -> None:
+        ptr = getattr(self, "_ptr", None)
+        if ptr:
+            getattr(self._lib, self._destroy_name)(ptr)
+            self._ptr = ctypes.c_void_p()
+
+    @property
+    def closed(self) -> bool:
+        return not self._ptr
+
+    def __enter__(self):  # noqa: ANN204 - returns the concrete subclass
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def __del__(self) -> None:
+        try:
+            self.close()
+        except Exception:  # noqa: BLE001 - never raise from a finalizer
+            pass
+
+
+# ---- Scene -----------------------------------------------------------------------------------
+
+
+class Scene(_Handle):
+    """A native scene under construction: materials, meshes, instances, lights, camera."""
+
+    _destroy_name = "stratum_scene_destroy"
+
+    def __init__(self, _adopt: ctypes.c_void_p | None = None) -> None:
+        super().__init__()
+        if _adopt is not None:
+            self._ptr = _adopt
+        else:
+            _check(self._lib, self._lib.stratum_scene_create(ctypes.byref(self._ptr)),
+                   "stratum_scene_create")
+
+    @classmethod
+    def load(cls, path: str | os.PathLike[str]) -> Scene:
+        lib = load_library()
+        ptr = ctypes.c_void_p()
+        _check(lib, lib.stratum_scene_load(os.fsencode(path), ctypes.byref(ptr)),
+               "stratum_scene_load")
+        return cls(_adopt=ptr)
+
+    def save(self, path: str | os.PathLike[str]) -> None:
+        _check(self._lib, self._lib.stratum_scene_save(self.handle, os.fsencode(path)),
+               "stratum_scene_save")
+
+    def add_material(self, material: Mapping[str, Any] | Material) -> int:
+        desc = _MaterialDesc()
+        defaults = asdict(Material())
+        defaults.update(_fields(material))
+        _set_struct(desc, defaults, "material")
+        out = ctypes.c_uint32()
+        _check(self._lib,
+               self._lib.stratum_scene_add_material(self.handle, ctypes.byref(desc),
+                                                    ctypes.byref(out)),
+               "stratum_scene_add_material")
+        return int(out.value)
+
+    def add_mesh(
+        self,
+        positions: np.ndarray,
+        triangles: np.ndarray,
+        material_ids: np.ndarray,
+        corner_normals: np.ndarray | None = None,
+        corner_uvs: np.ndarray | None = None,
+    ) -> int:
+        """positions (N,3) float32, triangles (T,3) uint32, material_ids (T,) uint32,
+        corner_normals (T,3,3) float32, corner_uvs (T,3,2) float32. Arrays already of the
+        right dtype and contiguous are passed without a copy."""
+        pos = np.ascontiguousarray(positions, dtype=np.float32)
+        tri = np.ascontiguousarray(triangles, dtype=np.uint32)
+        mat = np.ascontiguousarray(material_ids, dtype=np.uint32)
+        if pos.size % 3:
+            raise ValueError(f"positions: size {pos.size} is not a multiple of 3")
+        if tri.size % 3:
+            raise ValueError(f"triangles: size {tri.size} is not a multiple of 3")
+        n_vert, n_tri = pos.size // 3, tri.size // 3
+        if mat.size != n_tri:
+            raise ValueError(f"material_ids: {mat.size} values for {n_tri} triangles")
+        desc = _MeshDesc()
+        desc.positions = _float_ptr(pos)
+        desc.vertex_count = n_vert
+        desc.triangles = _uint_ptr(tri)
+        desc.triangle_count = n_tri
+        desc.material_ids = _uint_ptr(mat)
+        nrm = uvs = None
+        if corner_normals is not None:
+            nrm = np.ascontiguousarray(corner_normals, dtype=np.float32)
+            if nrm.size != n_tri * 9:
+                raise ValueError(f"corner_normals: {nrm.size} floats for {n_tri} triangles "
+                                 f"(expected {n_tri * 9})")
+            desc.corner_normals = _float_ptr(nrm)
+        if corner_uvs is not None:
+            uvs = np.ascontiguousarray(corner_uvs, dtype=np.float32)
+            if uvs.size != n_tri * 6:
+                raise ValueError(f"corner_uvs: {uvs.size} floats for {n_tri} triangles "
+                                 f"(expected {n_tri * 6})")
+            desc.corner_uvs = _float_ptr(uvs)
+        out = ctypes.c_uint32()
+        status = self._lib.stratum_scene_add_mesh(self.handle, ctypes.byref(desc),
+                                                  ctypes.byref(out))
+        # keep the arrays alive until the (copying) call has returned
+        del pos, tri, mat, nrm, uvs
+        _check(self._lib, status, "stratum_scene_add_mesh")
+        return int(out.value)
+
+    def add_instance(self, mesh_id: int, matrix: Any) -> None:
+        m = _matrix16(matrix, "instance transform")
+        _check(self._lib,
+               self._lib.stratum_scene_add_instance(self.handle, int(mesh_id), _float_ptr(m)),
+               "stratum_scene_add_instance")
+
+    def add_light(self, light: Mapping[str, Any] | Light | None = None, **fields: Any) -> None:
+        values = asdict(Light())
+        if light is not None:
+            values.update(_fields(light))
+        values.update(fields)
+        values["transform"] = _matrix16(values["transform"], "light transform")
+        desc = _LightDesc()
+        _set_struct(desc, values, "light")
+        _check(self._lib, self._lib.stratum_scene_add_light(self.handle, ctypes.byref(desc)),
+               "stratum_scene_add_light")
+
+    def set_camera(self, camera: Mapping[str, Any] | Camera | None = None,
+                   **fields: Any) -> None:
+        values = asdict(Camera())
+        if camera is not None:
+            values.update(_fields(camera))
+        values.update(fields)
+        fit = values["sensor_fit"]
+        if isinstance(fit, str):
+            if fit not in SENSOR_FITS:
+                raise ValueError(f"camera: unknown sensor_fit {fit!r}")
+            values["sensor_fit"] = SENSOR_FITS[fit]
+        values["transform"] = _matrix16(values["transform"], "camera transform")
+        desc = _CameraDesc()
+        _set_struct(desc, values, "camera")
+        _check(self._lib, self._lib.stratum_scene_set_camera(self.handle, ctypes.byref(desc)),
+               "stratum_scene_set_camera")
+
+    def set_background(self, rgb: Sequence[float] | np.ndarray) -> None:
+        c = np.ascontiguousarray(np.asarray(rgb, dtype=np.float32).reshape(-1)[:3])
+        if c.size != 3:
+            raise ValueError("background: expected 3 floats (linear RGB)")
+        _check(self._lib, self._lib.stratum_scene_set_background(self.handle, _float_ptr(c)),
+               "stratum_scene_set_background")
+
+
+# ---- Renderer --------------------------------------------------------------------------------
+
+
+class Renderer(_Handle):
+    """Renders a copy of a Scene on native worker threads."""
+
+    _destroy_name = "stratum_renderer_destroy"
+
+    def __init__(self, scene: Scene, **settings: int | float | str) -> None:
+        super().__init__()
+        _check(self._lib,
+               self._lib.stratum_renderer_create(scene.handle, ctypes.byref(self._ptr)),
+               "stratum_renderer_create")
+        self._width = 0
+        self._height = 0
+        for name, value in settings.items():
+            self.set(name, value)
+
+    def close(self) -> None:
+        # A render still running must stop before its handle is freed.
+        ptr = getattr(self, "_ptr", None)
+        if ptr:
+            done = ctypes.c_int32(0)
+            self._lib.stratum_renderer_cancel(ptr)
+            self._lib.stratum_renderer_wait(ptr, 60000, ctypes.byref(done))
+        super().close()
+
+    def set(self, name: str, value: int | float | str) -> None:
+        """Sets a named setting; the C function is chosen by the Python type of value."""
+        key = name.encode()
+        if isinstance(value, bool | int | np.integer):
+            status = self._lib.stratum_renderer_set_int(self.handle, key, int(value))
+            if name == "width":
+                self._width = int(value)
+            elif name == "height":
+                self._height = int(value)
+        elif isinstance(value, float | np.floating):
+            status = self._lib.stratum_renderer_set_float(self.handle, key, float(value))
+        elif isinstance(value, str):
+            status = self._lib.stratum_renderer_set_string(self.handle, key, value.encode())
+        else:
+            raise TypeError(f"setting {name!r}: unsupported type {type(value).__name__}")
+        _check(self._lib, status, f"setting {name}")
+
+    @property
+    def width(self) -> int:
+        return self._width
+
+    @property
+    def height(self) -> int:
+        return self._height
+
+    def start(self) -> None:
+        _check(self._lib, self._lib.stratum_renderer_start(self.handle), "stratum_renderer_start")
+
+    def cancel(self) -> None:
+        _check(self._lib, self._lib.stratum_renderer_cancel(self.handle),
+               "stratum_renderer_cancel")
+
+    def wait(self, timeout_ms: int) -> bool:
+        """Waits up to timeout_ms; True when the render has ended."""
+        done = ctypes.c_int32(0)
+        _check(self._lib,
+               self._lib.stratum_renderer_wait(self.handle, int(timeout_ms), ctypes.byref(done)),
+               "stratum_renderer_wait")
+        return bool(done.value)
+
+    def progress(self) -> Progress:
+        p = _Progress()
+        _check(self._lib, self._lib.stratum_renderer_progress(self.handle, ctypes.byref(p)),
+               "stratum_renderer_progress")
+        return Progress(
+            done=bool(p.done),
+            cancelled=bool(p.cancelled),
+            samples_done=int(p.samples_done),
+            samples_total=int(p.samples_total),
+            update_serial=int(p.update_serial),
+            rays=float(p.rays),
+            build_seconds=float(p.build_seconds),
+            render_seconds=float(p.render_seconds),
+        )
+
+    def read_pixels(self, out: np.ndarray | None = None) -> np.ndarray:
+        """Copies the current image (linear RGBA, rows bottom to top) into `out` (a contiguous
+        float32 array of width*height*4 values, any shape) with one native copy."""
+        if out is None:
+            out = np.empty(self._width * self._height * 4, dtype=np.float32)
+        if out.dtype != np.float32 or not out.flags.c_contiguous or not out.flags.writeable:
+            raise ValueError("read_pixels: out must be a writeable C-contiguous float32 array")
+        _check(self._lib,
+               self._lib.stratum_renderer_read_pixels(self.handle, _float_ptr(out), out.size),
+               "stratum_renderer_read_pixels")
+        return out
+
+    def write_image(self, path: str | os.PathLike[str]) -> None:
+        _check(self._lib,
+               self._lib.stratum_renderer_write_image(self.handle, os.fsencode(path)),
+               "stratum_renderer_write_image")

@@ -1,0 +1,134 @@
+"""Render-properties panels (laid out like Cycles') and reuse of Blender's own panels."""
+
+from __future__ import annotations
+
+import bpy
+
+ENGINE_ID = "STRATUM"
+
+# Contexts whose built-in panels Stratum reuses.
+REUSED_CONTEXTS = {"material", "world", "data", "object"}
+# Built-in panels written for EEVEE that a Stratum user needs: material slots and the
+# node-based Surface view of material and world (Cycles' own surface panels live in the
+# Cycles add-on, which may be absent, and show Cycles-only settings).
+EXTRA_PANELS = (
+    "EEVEE_MATERIAL_PT_context_material",
+    "EEVEE_MATERIAL_PT_surface",
+    "EEVEE_WORLD_PT_surface",
+)
+# Panels that draw Cycles-only properties (scene.cycles, light.cycles, ...).
+SKIP_PREFIXES = ("CYCLES_", "NODE_CYCLES_")
+
+_patched: list[type] = []
+
+
+class StratumButtonsPanel:
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "render"
+    COMPAT_ENGINES = {ENGINE_ID}
+
+    @classmethod
+    def poll(cls, context: bpy.types.Context) -> bool:
+        return context.engine in cls.COMPAT_ENGINES
+
+
+class STRATUM_RENDER_PT_sampling(StratumButtonsPanel, bpy.types.Panel):
+    bl_label = "Sampling"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.stratum
+        col = layout.column(align=True)
+        col.prop(settings, "samples", text="Samples")
+        col = layout.column()
+        col.prop(settings, "sampler", text="Sampler")
+        col.prop(settings, "seed", text="Seed")
+
+
+class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
+    bl_label = "Light Paths"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        col = layout.column(align=True)
+        col.prop(context.scene.stratum, "max_bounces", text="Total")
+
+
+class STRATUM_RENDER_PT_film(StratumButtonsPanel, bpy.types.Panel):
+    bl_label = "Film"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.stratum
+        col = layout.column()
+        col.prop(settings, "filter_type", text="Pixel Filter")
+        col.prop(settings, "filter_width", text="Width")
+
+
+class STRATUM_RENDER_PT_performance(StratumButtonsPanel, bpy.types.Panel):
+    bl_label = "Performance"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        col = layout.column()
+        col.prop(context.scene.stratum, "threads", text="Threads")
+
+
+classes: tuple[type, ...] = (
+    STRATUM_RENDER_PT_sampling,
+    STRATUM_RENDER_PT_light_paths,
+    STRATUM_RENDER_PT_film,
+    STRATUM_RENDER_PT_performance,
+)
+
+
+def compatible_builtin_panels() -> list[type]:
+    """Blender's panels (material, light, world, camera, object data, object) to show for
+    Stratum: the generic ones written for any engine (they list BLENDER_RENDER or CYCLES),
+    minus Cycles' own, plus the node-based surface panels."""
+    panels: list[type] = []
+    for name in dir(bpy.types):
+        if name.startswith(SKIP_PREFIXES):
+            continue
+        panel = getattr(bpy.types, name, None)
+        if not isinstance(panel, type) or not issubclass(panel, bpy.types.Panel):
+            continue
+        engines = getattr(panel, "COMPAT_ENGINES", None)
+        if not isinstance(engines, set):
+            continue
+        if getattr(panel, "bl_context", "") not in REUSED_CONTEXTS:
+            continue
+        if name in EXTRA_PANELS or "BLENDER_RENDER" in engines or "CYCLES" in engines:
+            panels.append(panel)
+    return panels
+
+
+def register() -> None:
+    for cls in classes:
+        bpy.utils.register_class(cls)
+    for panel in compatible_builtin_panels():
+        if ENGINE_ID not in panel.COMPAT_ENGINES:
+            panel.COMPAT_ENGINES.add(ENGINE_ID)
+            _patched.append(panel)
+
+
+def unregister() -> None:
+    while _patched:
+        panel = _patched.pop()
+        if hasattr(panel, "COMPAT_ENGINES"):
+            panel.COMPAT_ENGINES.discard(ENGINE_ID)
+    for cls in reversed(classes):
+        if getattr(cls, "is_registered", True):
+            bpy.utils.unregister_class(cls)
