@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from typing import Any
 
+import bpy
 import numpy as np
 
 
@@ -34,6 +35,16 @@ class ExportSummary:
     def warn(self, message: str) -> None:
         if message not in self.warnings:
             self.warnings.append(message)
+
+
+def uses_nodes(idblock: Any) -> bool:
+    """True when a material/world is shaded by its node tree. Blender 5.0 deprecates
+    use_nodes (node trees are always used), so it is only read before 5.0."""
+    if getattr(idblock, "node_tree", None) is None:
+        return False
+    if bpy.app.version >= (5, 0, 0):
+        return True
+    return bool(getattr(idblock, "use_nodes", True))
 
 
 def matrix_to_array(matrix: Any) -> np.ndarray:

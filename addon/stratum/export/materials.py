@@ -8,7 +8,14 @@ from typing import Any
 import bpy
 
 from .. import native
-from .common import ExportSummary, active_output, linked_from, rgb, socket_value
+from .common import (
+    ExportSummary,
+    active_output,
+    linked_from,
+    rgb,
+    socket_value,
+    uses_nodes,
+)
 
 DEFAULT_GREY = (0.8, 0.8, 0.8)
 
@@ -98,11 +105,11 @@ def convert_material(material: Any | None) -> tuple[native.Material, list[str]]:
     issues: list[str] = []
     if material is None:
         return native.Material(model=native.MATERIAL_DIFFUSE, base_color=DEFAULT_GREY), issues
-    node_tree = getattr(material, "node_tree", None)
-    if node_tree is None or not getattr(material, "use_nodes", True):
+    if not uses_nodes(material):
         color = _clamp01(rgb(material.diffuse_color))
         return native.Material(model=native.MATERIAL_DIFFUSE, base_color=color), issues
 
+    node_tree = material.node_tree
     output = active_output(node_tree, "ShaderNodeOutputMaterial")
     surface = output.inputs.get("Surface") if output is not None else None
     node = linked_from(surface) if surface is not None else None

@@ -4,16 +4,23 @@ from __future__ import annotations
 
 from typing import Any
 
-from .common import ExportSummary, active_output, linked_from, rgb, socket_value
+from .common import (
+    ExportSummary,
+    active_output,
+    linked_from,
+    rgb,
+    socket_value,
+    uses_nodes,
+)
 
 
 def convert_world(scene: Any, summary: ExportSummary) -> tuple[float, float, float]:
     world = scene.world
     if world is None:
         return (0.0, 0.0, 0.0)
-    node_tree = getattr(world, "node_tree", None)
-    if node_tree is None or not getattr(world, "use_nodes", True):
+    if not uses_nodes(world):
         return rgb(world.color)
+    node_tree = world.node_tree
     output = active_output(node_tree, "ShaderNodeOutputWorld")
     surface = output.inputs.get("Surface") if output is not None else None
     node = linked_from(surface) if surface is not None else None

@@ -1,0 +1,188 @@
+"""Fixtures for the Blender tests (Blender 3.4 via run_in_blender.py, and the bpy 5.0 wheel).
+
+The same files run in both: scenes are built through bpy.data (no context-dependent
+operators), and everything version-specific is feature-tested.
+"""
+
+from __future__ import annotations
+
+import math
+import sys
+from collections.abc import Callable, Iterator
+from pathlib import Path
+from typing import Any
+
+import numpy as np
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+ADDON_DIR = REPO / "addon"
+if str(ADDON_DIR) not in sys.path:
+    sys.path.insert(0, str(ADDON_DIR))
+
+bpy = pytest.importorskip("bpy")
+
+
+@pytest.fixture(scope="session")
+def stratum_addon() -> Iterator[Any]:
+    """The registered add-on (registered once per session)."""
+    import stratum
+
+    stratum.register()
+    yield stratum
+    stratum.unregister()
+
+
+@pytest.fixture(scope="session")
+def library(stratum_addon: Any) -> Any:
+    """stratum.native with the native library loaded; skips when it is not built yet."""
+    from stratum import native
+
+    try:
+        native.load_library()
+    except native.StratumError as exc:
+        pytest.skip(f"native library not available: {exc}")
+    return native
+
+
+class RecordingScene:
+    """Stands in for native.Scene in export tests: records what the exporter sends, so the
+    exporter is tested without the native library."""
+
+    def __init__(self) -> None:
+        self.materials: list[Any] = []
+        self.meshes: list[dict[str, np.ndarray | None]] = []
+        self.instances: list[tuple[int, np.ndarray]] = []
+        self.lights: list[Any] = []
+        self.camera: Any = None
+        self.background: Any = None
+
+    def add_material(self, material: Any) -> int:
+        self.materials.append(material)
+        return len(self.materials) - 1
+
+    def add_mesh(self, positions: np.ndarray, triangles: np.ndarray, material_ids: np.ndarray,
+                 corner_normals: np.ndarray | None = None,
+                 corner_uvs: np.ndarray | None = None) -> int:
+        self.meshes.append({
+            "positions": np.array(positions), "triangles": np.array(triangles),
+            "material_ids": np.array(material_ids),
+            "corner_normals": None if corner_normals is None else np.array(corner_normals),
+            "corner_uvs": None if corner_uvs is None else np.array(corner_uvs),
+        })
+        return len(self.meshes) - 1
+
+    def add_instance(self, mesh_id: int, matrix: Any) -> None:
+        self.instances.append((mesh_id, np.array(matrix, dtype=np.float32).reshape(4, 4)))
+
+    def add_light(self, light: Any) -> None:
+        self.lights.append(light)
+
+    def set_camera(self, camera: Any) -> None:
+        self.camera = camera
+
+    def set_background(self, rgb: Any) -> None:
+        self.background = tuple(rgb)
+
+
+CUBE_VERTS = [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
+              (-1, -1, 1), (1, -1, 1), (1, 1, 1), (-1, 1, 1)]
+CUBE_FACES = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6),
+              (3, 0, 4, 7)]
+
+
+class SceneBuilder:
+    """Small scenes built with bpy.data only."""
+
+    def __init__(self) -> None:
+        bpy.ops.wm.read_factory_settings(use_empty=True)
+        self.scene = bpy.context.scene
+        self.scene.render.engine = "STRATUM"
+        self.set_resolution(32, 32)
+        self.scene.stratum.samples = 4
+
+    def set_resolution(self, width: int, height: int) -> None:
+        r = self.scene.render
+        r.resolution_x, r.resolution_y, r.resolution_percentage = width, height, 100
+
+    def link(self, ob: Any) -> Any:
+        self.scene.collection.objects.link(ob)
+        return ob
+
+    def camera(self, location: tuple[float, float, float] = (0.0, -6.0, 0.0)) -> Any:
+        cam = bpy.data.objects.new("Camera", bpy.data.cameras.new("Camera"))
+        cam.location = location
+        cam.rotation_euler = (math.pi / 2, 0.0, 0.0)  # look along +Y
+        self.link(cam)
+        self.scene.camera = cam
+        return cam
+
+    def mesh_data(self, name: str = "Cube") -> Any:
+        me = bpy.data.meshes.new(name)
+        me.from_pydata(CUBE_VERTS, [], CUBE_FACES)
+        me.update()
+        return me
+
+    def mesh_object(self, name: str = "Cube", data: Any = None,
+                    location: tuple[float, float, float] = (0.0, 0.0, 0.0),
+                    material: Any = None) -> Any:
+        ob = bpy.data.objects.new(name, data if data is not None else self.mesh_data(name))
+        ob.location = location
+        if material is not None:
+            ob.data.materials.append(material)
+        return self.link(ob)
+
+    def point_light(self, energy: float = 500.0,
+                    location: tuple[float, float, float] = (0.0, -3.0, 3.0)) -> Any:
+        light = bpy.data.lights.new("Light", "POINT")
+        light.energy = energy
+        ob = bpy.data.objects.new("Light", light)
+        ob.location = location
+        return self.link(ob)
+
+    def world(self, color: tuple[float, float, float] = (0.05, 0.05, 0.05)) -> Any:
+        world = bpy.data.worlds.new("World")
+        world.color = color
+        if world.node_tree is not None:
+            bg = world.node_tree.nodes.get("Background")
+            if bg is not None:
+                bg.inputs["Color"].default_value = (*color, 1.0)
+                bg.inputs["Strength"].default_value = 1.0
+        self.scene.world = world
+        return world
+
+    def basic(self) -> SceneBuilder:
+        """Camera, a cube, a light, a dim grey world."""
+        self.camera()
+        self.mesh_object("Cube")
+        self.point_light()
+        self.world()
+        return self
+
+    def depsgraph(self) -> Any:
+        dg = bpy.context.evaluated_depsgraph_get()
+        dg.update()
+        return dg
+
+
+@pytest.fixture
+def scene_builder(stratum_addon: Any) -> Callable[[], SceneBuilder]:
+    """Returns a factory: each call resets Blender to an empty factory scene."""
+    return SceneBuilder
+
+
+@pytest.fixture
+def recording_scene() -> RecordingScene:
+    return RecordingScene()
+
+
+def read_image_pixels(path: Path) -> np.ndarray:
+    """RGBA float pixels (h, w, 4) of an image file, through Blender's image loader."""
+    image = bpy.data.images.load(str(path), check_existing=False)
+    try:
+        w, h = image.size
+        buf = np.empty(w * h * image.channels, dtype=np.float32)
+        image.pixels.foreach_get(buf)
+        return buf.reshape(h, w, image.channels)
+    finally:
+        bpy.data.images.remove(image)
