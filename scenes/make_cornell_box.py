@@ -26,7 +26,6 @@ import os
 import sys
 
 import bpy
-from mathutils import Matrix
 
 EMISSION_STRENGTH = 15.0  # radiance of the light quad (W/(sr m^2) in Blender's convention)
 LIGHT_HALF = 0.25  # the light quad is 0.5 x 0.5 m

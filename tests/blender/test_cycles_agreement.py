@@ -1,0 +1,382 @@
+"""Stratum against a peer: the Cornell box rendered by Cycles and by Stratum must agree.
+
+Runs in Blender 3.4 (`blender -b --factory-startup --python tests/blender/run_in_blender.py --
+tests/blender`) and under the bpy wheel (`.venv/bin/python -m pytest tests/blender`).
+
+What is compared
+----------------
+scenes/cornell_box.blend at RES x RES, both renderers CPU, MAX_BOUNCES total bounces (Cycles'
+diffuse/glossy/transmission limits set to the same number so only the total applies), the same
+pixel filter (Blackman-Harris, 1.5 px), no denoising, no adaptive sampling, no clamping, no
+glossy blur (Cycles' "Filter Glossy" would change the estimand), and Cycles' probabilistic
+light-sample termination off. Both images are linear float EXRs read back with
+bpy.data.images.load + pixels.foreach_get. Asserted, per RGB channel c:
+
+    |mean(S_c) - mean(C_c)|            <= 2% of mean(C_c)                    (image mean)
+    |block(S_c) - block(C_c)|          <= 5% of block(C_c)  for every 16x16 block whose
+                                                           Cycles mean is >= 0.01
+
+Statistical reasoning (why these tolerances are tests of the model, not of the noise)
+--------------------------------------------------------------------------------------
+Each renderer renders the scene twice, with seeds 1 and 2, at SPP_PER_SEED samples; the image
+compared is the average of the two (2 * SPP_PER_SEED = N samples per pixel), and the half
+difference of the two is a pure-noise image with the signal removed:
+
+    X = (A1 + A2) / 2,  Var[X_p] = sigma_p^2 / N  and  E[((A1_p - A2_p) / 2)^2] = Var[X_p],
+
+where sigma_p is the standard deviation of one path sample of pixel p. Pixels are independent
+(Cycles importance-samples the pixel filter, so a sample lands in one pixel only), so a block
+mean over n = 256 pixels and the image mean over RES^2 pixels have
+
+    Var[block(X)] = sum_p Var[X_p] / n^2,   Var[image(X)] = sum_p Var[X_p] / RES^4,
+
+estimated by plugging in ((A1_p - A2_p)/2)^2. Should a renderer correlate neighbouring pixels
+(e.g. splatting samples into several pixels), the independence estimate is too small; the
+test checks it against the observed spread of the block means of the half-difference image
+(their z-scores must have unit variance) and inflates sigma by sqrt(mean z^2) when that is
+above 1. The difference D = block(S) - block(C) has Var[D] = Var[block(S)] + Var[block(C)].
+
+Measured on this scene (Blender 3.4 Cycles, 64 x 64, two seeds of 256 spp): the standard
+deviation of one path sample relative to the pixel mean, averaged over the image, is r ~ 1.3
+per channel; per 16x16 block it is r_b ~ 0.4..3.7 (3.7 in the corner blocks that are half
+black border and half dark wall; ~0.45 on the lit floor). With N = 2048 samples per pixel:
+
+    block:  sigma_rel(D) = sqrt(2) * r_b / sqrt(256 * N) = sqrt(2) * 3.7 / 724 = 0.72%
+            4 sigma = 2.9% < 5%  (worst block; 1.2% for r_b = 1.5, the typical block)
+    image:  sigma_rel(D) = sqrt(2) * 1.3 / sqrt(64^2 * N) = 0.06%,  4 sigma = 0.25% << 2%
+
+(assuming Stratum's noise is no larger than Cycles'; it is measured, not assumed, below).
+So a disagreement beyond tolerance has a probability < 1e-4 per compared value of being
+noise, i.e. it is a difference of models. test_noise_level_allows_comparison asserts exactly
+this with the measured sigmas of the actual renders (4 sigma_D below the tolerance for the
+image means and for every compared block), and fails with the numbers if the noise would make
+the comparison meaningless (e.g. someone lowers SPP, or a renderer is much noisier).
+
+Cost: 64 x 64 x 2048 = 8.4 M paths per renderer, ~16 s for Cycles 3.4 on 2 cores.
+
+Human-readable output in out/agreement/: cycles.exr, stratum.exr, cycles.png, stratum.png,
+difference.png (red: Stratum brighter, blue: Stratum darker, x DIFF_GAIN), report.txt.
+"""
+
+from __future__ import annotations
+
+import time
+from pathlib import Path
+
+import bpy
+import numpy as np
+import pytest
+
+REPO = Path(__file__).resolve().parents[2]
+SCENE = REPO / "scenes" / "cornell_box.blend"
+OUT = REPO / "out" / "agreement"
+
+RES = 64
+SPP_PER_SEED = 1024  # two seeds -> N = 2048 samples per pixel in each compared image
+SEEDS = (1, 2)
+MAX_BOUNCES = 8
+FILTER_WIDTH = 1.5
+BLOCK = 16
+IMAGE_TOL = 0.02  # relative, per channel
+BLOCK_TOL = 0.05  # relative, per channel and block
+DARK_BLOCK = 0.01  # blocks whose Cycles mean is below this are not compared
+K_SIGMA = 4.0
+DIFF_GAIN = 4.0
+CHANNELS = "RGB"
+
+
+# ---- rendering -----------------------------------------------------------------------------
+
+
+def _open_scene() -> bpy.types.Scene:
+    bpy.ops.wm.open_mainfile(filepath=str(SCENE), load_ui=False)
+    scene = bpy.context.scene
+    r = scene.render
+    r.resolution_x = r.resolution_y = RES
+    r.resolution_percentage = 100
+    r.use_border = False
+    r.film_transparent = False
+    r.threads_mode = "AUTO"
+    settings = r.image_settings
+    settings.file_format = "OPEN_EXR"
+    settings.color_depth = "32"
+    settings.color_mode = "RGBA"
+    settings.exr_codec = "ZIP"
+    return scene
+
+
+def _configure_cycles(scene: bpy.types.Scene, seed: int) -> None:
+    scene.render.engine = "CYCLES"
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = SPP_PER_SEED
+    c.seed = seed
+    c.use_animated_seed = False
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.max_bounces = MAX_BOUNCES
+    c.diffuse_bounces = MAX_BOUNCES
+    c.glossy_bounces = MAX_BOUNCES
+    c.transmission_bounces = MAX_BOUNCES
+    c.volume_bounces = 0
+    c.sample_clamp_direct = 0.0
+    c.sample_clamp_indirect = 0.0
+    c.blur_glossy = 0.0
+    c.light_sampling_threshold = 0.0
+    c.pixel_filter_type = "BLACKMAN_HARRIS"
+    c.filter_width = FILTER_WIDTH
+    if hasattr(c, "use_layer_samples"):
+        c.use_layer_samples = "IGNORE"
+
+
+def _configure_stratum(scene: bpy.types.Scene, seed: int) -> None:
+    scene.render.engine = "STRATUM"
+    s = scene.stratum
+    s.samples = SPP_PER_SEED
+    s.seed = seed
+    s.max_bounces = MAX_BOUNCES
+    s.filter_type = "blackman_harris"
+    s.filter_width = FILTER_WIDTH
+    s.threads = 0
+
+
+def _render_exr(scene: bpy.types.Scene, path: Path) -> tuple[np.ndarray, float]:
+    """Renders the scene to a linear EXR and returns (RES x RES x 3 float64, seconds)."""
+    path.parent.mkdir(parents=True, exist_ok=True)
+    if path.exists():
+        path.unlink()
+    scene.render.filepath = str(path)
+    t0 = time.perf_counter()
+    bpy.ops.render.render(write_still=True)
+    seconds = time.perf_counter() - t0
+    assert path.is_file(), f"render did not write {path}"
+    return _load_exr(path), seconds
+
+
+def _load_exr(path: Path) -> np.ndarray:
+    image = bpy.data.images.load(str(path), check_existing=False)
+    try:
+        w, h = image.size
+        assert (w, h) == (RES, RES), f"{path}: size {w}x{h}, expected {RES}x{RES}"
+        buf = np.empty(w * h * image.channels, dtype=np.float32)
+        image.pixels.foreach_get(buf)
+        rgba = buf.reshape(h, w, image.channels)
+    finally:
+        bpy.data.images.remove(image)
+    return rgba[..., :3].astype(np.float64)  # rows bottom to top, as Blender stores them
+
+
+class Renders:
+    """Two seeds of one renderer: their mean (the compared image) and noise estimates."""
+
+    def __init__(self, name: str, images: list[np.ndarray], seconds: list[float]) -> None:
+        a, b = images
+        self.name = name
+        self.seconds = seconds
+        self.mean = (a + b) / 2.0
+        half = (a - b) / 2.0
+        self.half_diff = half
+        self.pixel_var = half**2  # unbiased estimate of Var[mean_p] per pixel and channel
+        self.inflation = 1.0  # >1 when pixels are correlated (see module docstring)
+
+    def block_mean(self) -> np.ndarray:
+        return _blocks(self.mean).mean(axis=(1, 3))
+
+    def block_var(self) -> np.ndarray:
+        n = BLOCK * BLOCK
+        return _blocks(self.pixel_var).sum(axis=(1, 3)) / n**2 * self.inflation**2
+
+    def image_var(self) -> np.ndarray:
+        return self.pixel_var.sum(axis=(0, 1)) / (RES * RES) ** 2 * self.inflation**2
+
+    def calibrate(self) -> float:
+        """sqrt(mean z^2) of the block means of the half-difference image (1 if pixels are
+        independent); sigmas are inflated by it when it is above 1."""
+        n = BLOCK * BLOCK
+        hb = _blocks(self.half_diff).mean(axis=(1, 3))
+        vb = _blocks(self.pixel_var).sum(axis=(1, 3)) / n**2
+        ok = vb > 0
+        ratio = float(np.sqrt(np.mean(hb[ok] ** 2 / vb[ok]))) if ok.any() else 1.0
+        self.inflation = max(1.0, ratio)
+        return ratio
+
+
+def _blocks(img: np.ndarray) -> np.ndarray:
+    nb = RES // BLOCK
+    return img.reshape(nb, BLOCK, nb, BLOCK, img.shape[-1])
+
+
+def _render_two_seeds(name: str, configure) -> Renders:
+    images, seconds = [], []
+    for seed in SEEDS:
+        scene = _open_scene()
+        configure(scene, seed)
+        img, sec = _render_exr(scene, OUT / f"{name}_seed{seed}.exr")
+        images.append(img)
+        seconds.append(sec)
+    renders = Renders(name, images, seconds)
+    renders.calibrate()
+    return renders
+
+
+def _stratum_available() -> str:
+    """'' when the STRATUM engine can render, else the reason it cannot."""
+    try:
+        import stratum  # noqa: F401
+        from stratum import native
+    except ImportError as exc:
+        return f"stratum add-on not importable: {exc}"
+    if not native.library_available():
+        try:
+            native.load_library()
+        except native.StratumError as exc:
+            return str(exc)
+    if not any(getattr(cls, "bl_idname", "") == "STRATUM"
+               for cls in bpy.types.RenderEngine.__subclasses__()):
+        return "STRATUM render engine is not registered"
+    return ""
+
+
+# ---- fixtures ------------------------------------------------------------------------------
+
+
+@pytest.fixture(scope="module")
+def cycles() -> Renders:
+    return _render_two_seeds("cycles", _configure_cycles)
+
+
+@pytest.fixture(scope="module")
+def stratum_renders(library) -> Renders:
+    reason = _stratum_available()
+    if reason:
+        pytest.skip(reason)
+    return _render_two_seeds("stratum", _configure_stratum)
+
+
+# ---- output for humans -----------------------------------------------------------------------
+
+
+def _save_png(name: str, rgb: np.ndarray, *, linear_to_srgb: bool) -> None:
+    """Writes rgb (rows bottom to top, linear unless told) as an 8-bit PNG in OUT."""
+    OUT.mkdir(parents=True, exist_ok=True)
+    x = np.clip(rgb, 0.0, 1.0)
+    if linear_to_srgb:  # the 'Standard' view transform: plain sRGB encoding
+        x = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
+    rgba = np.concatenate([x, np.ones(x.shape[:2] + (1,))], axis=-1).astype(np.float32)
+    image = bpy.data.images.new(name, RES, RES, alpha=True)  # byte buffer: stored as is
+    try:
+        image.pixels.foreach_set(rgba.ravel())
+        image.filepath_raw = str(OUT / f"{name}.png")
+        image.file_format = "PNG"
+        image.save()
+    finally:
+        bpy.data.images.remove(image)
+
+
+def _difference_image(s: np.ndarray, c: np.ndarray) -> np.ndarray:
+    d = (s - c).mean(axis=-1) * DIFF_GAIN
+    out = np.zeros(s.shape)
+    out[..., 0] = np.maximum(d, 0.0)
+    out[..., 2] = np.maximum(-d, 0.0)
+    return out
+
+
+def _fmt3(v: np.ndarray, fmt: str = "{:.4f}") -> str:
+    return " ".join(f"{ch}={fmt.format(x)}" for ch, x in zip(CHANNELS, v))
+
+
+# ---- tests -----------------------------------------------------------------------------------
+
+
+def test_cycles_noise_level_allows_comparison(cycles: Renders) -> None:
+    """Cycles alone (runs before Stratum exists): with Stratum's noise taken equal to
+    Cycles', 4 sigma of the difference must be below both tolerances."""
+    _save_png("cycles", cycles.mean, linear_to_srgb=True)
+    c_img = cycles.mean.mean(axis=(0, 1))
+    assert (c_img > 0.05).all(), f"Cycles image too dark to compare: means {_fmt3(c_img)}"
+    sd_img = np.sqrt(2.0 * cycles.image_var())
+    assert (K_SIGMA * sd_img < 0.5 * IMAGE_TOL * c_img).all(), (
+        f"image-mean noise too high: 4 sigma_D = {_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}"
+        f" of the mean, tolerance {IMAGE_TOL:.0%}; raise SPP_PER_SEED")
+    cb = cycles.block_mean()
+    lit = cb >= DARK_BLOCK
+    rel = K_SIGMA * np.sqrt(2.0 * cycles.block_var()) / np.maximum(cb, 1e-12)
+    worst = float(rel[lit].max())
+    print(f"\nCycles {cycles.seconds} s; image 4 sigma_D (Stratum noise = Cycles') "
+          f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}; blocks 4 sigma_D median "
+          f"{float(np.median(rel[lit])):.2%}, worst {worst:.2%}; correlation factor "
+          f"{cycles.inflation:.2f}")
+    assert worst < BLOCK_TOL, (
+        f"block noise too high: worst 4 sigma_D = {worst:.2%} of the block mean, tolerance "
+        f"{BLOCK_TOL:.0%} (pixel correlation factor {cycles.inflation:.2f}); raise SPP_PER_SEED")
+
+
+def test_noise_level_allows_comparison(cycles: Renders, stratum_renders: Renders) -> None:
+    """With both renderers' measured noise: 4 sigma_D below the tolerances, everywhere."""
+    c_img = cycles.mean.mean(axis=(0, 1))
+    sd_img = np.sqrt(cycles.image_var() + stratum_renders.image_var())
+    assert (K_SIGMA * sd_img < 0.5 * IMAGE_TOL * c_img).all(), (
+        f"image-mean noise too high for a {IMAGE_TOL:.0%} test: 4 sigma_D = "
+        f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}")
+    cb = cycles.block_mean()
+    lit = cb >= DARK_BLOCK
+    rel = K_SIGMA * np.sqrt(cycles.block_var() + stratum_renders.block_var()) / np.maximum(cb, 1e-12)
+    bad = np.argwhere(lit & (rel >= BLOCK_TOL))
+    assert bad.size == 0, (
+        f"{len(bad)} blocks too noisy for a {BLOCK_TOL:.0%} test (4 sigma_D >= tolerance); worst "
+        f"{float(rel[lit].max()):.2%}; Stratum correlation factor "
+        f"{stratum_renders.inflation:.2f}, Cycles {cycles.inflation:.2f}; raise SPP_PER_SEED")
+
+
+def test_stratum_agrees_with_cycles(cycles: Renders, stratum_renders: Renders) -> None:
+    s, c = stratum_renders.mean, cycles.mean
+    _save_png("cycles", c, linear_to_srgb=True)
+    _save_png("stratum", s, linear_to_srgb=True)
+    _save_png("difference", _difference_image(s, c), linear_to_srgb=False)
+
+    c_img, s_img = c.mean(axis=(0, 1)), s.mean(axis=(0, 1))
+    img_rel = (s_img - c_img) / c_img
+    img_sigma = np.sqrt(cycles.image_var() + stratum_renders.image_var()) / c_img
+    cb, sb = cycles.block_mean(), stratum_renders.block_mean()
+    sigma_b = np.sqrt(cycles.block_var() + stratum_renders.block_var())
+    lit = cb >= DARK_BLOCK
+    blk_rel = np.where(lit, (sb - cb) / np.maximum(cb, 1e-12), 0.0)
+    bad = np.argwhere(lit & (np.abs(blk_rel) > BLOCK_TOL))
+
+    nb = RES // BLOCK
+    lines = [
+        (f"Cornell box {RES}x{RES}, {2 * SPP_PER_SEED} spp ({len(SEEDS)} seeds x {SPP_PER_SEED}),"
+        f" max_bounces {MAX_BOUNCES}, Blender {bpy.app.version_string}"),
+        f"render seconds: cycles {cycles.seconds}, stratum {stratum_renders.seconds}",
+        f"image mean cycles : {_fmt3(c_img)}",
+        f"image mean stratum: {_fmt3(s_img)}",
+        f"relative diff     : {_fmt3(img_rel, '{:+.3%}')}   (tolerance {IMAGE_TOL:.0%})",
+        f"1 sigma of diff   : {_fmt3(img_sigma, '{:.3%}')}",
+        (f"pixel-correlation factors: cycles {cycles.inflation:.2f}, "
+        f"stratum {stratum_renders.inflation:.2f}"),
+        (f"blocks ({BLOCK}x{BLOCK}, row 0 = top), relative diff per channel"
+        f" (tolerance {BLOCK_TOL:.0%}; '.' = dark, not compared):"),
+    ]
+    for by in reversed(range(nb)):  # print top row first
+        row = []
+        for bx in range(nb):
+            if not lit[by, bx].all():
+                row.append("        .        ")
+            else:
+                row.append("/".join(f"{100 * v:+5.1f}" for v in blk_rel[by, bx]))
+        lines.append("  " + "  ".join(row))
+    order = np.argsort(-np.abs(blk_rel).max(axis=-1).ravel())[:5]
+    lines.append("worst blocks (row from top, col): rel diff, z = diff / sigma")
+    for flat in order:
+        by, bx = divmod(int(flat), nb)
+        z = (sb[by, bx] - cb[by, bx]) / np.maximum(sigma_b[by, bx], 1e-12)
+        lines.append(f"  ({nb - 1 - by},{bx}) cycles {_fmt3(cb[by, bx])}  "
+                     f"rel {_fmt3(blk_rel[by, bx], '{:+.2%}')}  z {_fmt3(z, '{:+.1f}')}")
+    report = "\n".join(lines)
+    (OUT / "report.txt").write_text(report + "\n")
+    print(report)
+
+    assert (np.abs(img_rel) <= IMAGE_TOL).all(), (
+        f"image means differ beyond {IMAGE_TOL:.0%}:\n{report}\nsee {OUT}")
+    assert bad.size == 0, (
+        f"{len(bad)} block/channel values differ beyond {BLOCK_TOL:.0%}:\n{report}\nsee {OUT}")
