@@ -1,0 +1,177 @@
+"""Rendering through the engine (needs the native library; skipped until it is built)."""
+
+from __future__ import annotations
+
+import math
+import time
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+import bpy
+import numpy as np
+import pytest
+from stratum.engine import StratumRenderEngine
+
+from conftest import REPO, read_image_pixels
+
+CORNELL = REPO / "scenes" / "cornell_box.blend"
+
+
+def _render_to_exr(scene: Any, path: Path) -> np.ndarray:
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.filepath = str(path)
+    scene.render.use_file_extension = False
+    bpy.ops.render.render(write_still=True)
+    errors = [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
+    assert not errors, errors
+    assert path.is_file(), f"render did not write {path}"
+    return read_image_pixels(path)
+
+
+def _errors() -> list[str]:
+    return [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
+
+
+def test_render_small_scene(library: Any, scene_builder: Any, tmp_path: Path) -> None:
+    b = scene_builder().basic()
+    b.scene.stratum.samples = 4
+    pixels = _render_to_exr(b.scene, tmp_path / "small.exr")
+    assert pixels.shape[:2] == (32, 32)
+    assert np.isfinite(pixels).all()
+    assert pixels[..., :3].max() > 0.0
+    summary = StratumRenderEngine.last_summary
+    assert summary is not None and summary.instances == 1
+
+
+def test_nan_vertex_render_reports_error(library: Any, scene_builder: Any) -> None:
+    b = scene_builder().basic()
+    broken = b.mesh_object("BrokenMesh", location=(3.0, 0.0, 0.0))
+    broken.data.vertices[2].co = (0.0, math.inf, 0.0)
+    message = ""
+    try:  # background renders raise RuntimeError on an ERROR report in some versions
+        bpy.ops.render.render()
+    except RuntimeError as exc:
+        message = str(exc)
+    errors = _errors()
+    assert errors, "the engine did not report an error"
+    assert "BrokenMesh" in errors[0]
+    if message:
+        assert "BrokenMesh" in message
+
+
+def test_missing_library_is_reported(stratum_addon: Any, scene_builder: Any,
+                                     monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    from stratum import native
+
+    scene_builder().basic()
+    monkeypatch.setattr(native, "_lib", None)
+    monkeypatch.setenv("STRATUM_LIBRARY", str(tmp_path / "missing" / "libstratum.so"))
+    try:
+        bpy.ops.render.render()
+    except RuntimeError:
+        pass
+    errors = _errors()
+    assert errors and "libstratum.so" in errors[0]
+
+
+class FakeRenderPass:
+    def __init__(self, n: int) -> None:
+        self.pixels = np.zeros(n, dtype=np.float32)
+        self.rect = self
+
+    def foreach_set(self, data: np.ndarray) -> None:
+        self.pixels[:] = np.asarray(data, dtype=np.float32).reshape(-1)
+
+
+class FakeEngine:
+    """Duck-typed RenderEngine for driving StratumRenderEngine._progressive directly."""
+
+    def __init__(self, width: int, height: int, break_after_updates: int | None) -> None:
+        self.render_pass = FakeRenderPass(width * height * 4)
+        self.break_after = break_after_updates
+        self.updates = 0
+        self.break_time: float | None = None
+        self.ended = False
+        self.reports: list[tuple[str, str]] = []
+
+    def begin_result(self, x: int, y: int, w: int, h: int) -> Any:
+        layer = SimpleNamespace(passes={"Combined": self.render_pass})
+        return SimpleNamespace(layers=[layer])
+
+    def update_result(self, result: Any) -> None:
+        self.updates += 1
+
+    def end_result(self, result: Any) -> None:
+        self.ended = True
+
+    def test_break(self) -> bool:
+        if self.break_after is not None and self.updates >= self.break_after:
+            if self.break_time is None:
+                self.break_time = time.perf_counter()
+            return True
+        return False
+
+    def update_progress(self, value: float) -> None:
+        assert 0.0 <= value <= 1.0
+
+    def update_stats(self, a: str, b: str) -> None:
+        pass
+
+    def _report(self, level: str, message: str) -> None:
+        self.reports.append((level, message))
+
+
+def _native_renderer(native: Any, b: Any, samples: int, size: int) -> Any:
+    from stratum.export import export_scene
+
+    with native.Scene() as scene:
+        export_scene(b.depsgraph(), scene)
+        renderer = native.Renderer(scene)
+    for name, value in {"width": size, "height": size, "samples": samples, "seed": 0,
+                        "max_bounces": 4}.items():
+        renderer.set(name, value)
+    return renderer
+
+
+def test_progressive_updates(library: Any, scene_builder: Any) -> None:
+    b = scene_builder().basic()
+    engine = FakeEngine(16, 16, None)
+    with _native_renderer(library, b, 8, 16) as renderer:
+        StratumRenderEngine._progressive(engine, renderer, 16, 16)
+        assert renderer.progress().samples_done == 8
+    assert engine.ended and engine.updates >= 1 and not engine.reports
+    assert np.isfinite(engine.render_pass.pixels).all()
+    assert engine.render_pass.pixels.max() > 0.0
+
+
+def test_cancel_through_engine_loop(library: Any, scene_builder: Any) -> None:
+    """Esc (test_break) must stop the render within 0.5 s and keep the partial image."""
+    b = scene_builder().basic()
+    engine = FakeEngine(64, 64, break_after_updates=1)
+    with _native_renderer(library, b, 1_000_000, 64) as renderer:
+        StratumRenderEngine._progressive(engine, renderer, 64, 64)
+        stopped = time.perf_counter()
+        progress = renderer.progress()
+    assert engine.break_time is not None
+    assert stopped - engine.break_time < 0.5, f"stopped {stopped - engine.break_time:.3f}s late"
+    assert progress.done and progress.cancelled
+    assert 0 < progress.samples_done < 1_000_000
+    assert np.isfinite(engine.render_pass.pixels).all()
+    assert engine.render_pass.pixels.max() > 0.0
+
+
+def test_cornell_box(library: Any, stratum_addon: Any, tmp_path: Path) -> None:
+    if not CORNELL.is_file():
+        pytest.skip(f"{CORNELL} does not exist yet")
+    bpy.ops.wm.open_mainfile(filepath=str(CORNELL))
+    scene = bpy.context.scene
+    scene.render.engine = "STRATUM"
+    scene.render.resolution_x = scene.render.resolution_y = 32
+    scene.render.resolution_percentage = 100
+    scene.stratum.samples = 4
+    pixels = _render_to_exr(scene, tmp_path / "cornell.exr")
+    assert np.isfinite(pixels).all()
+    assert pixels[..., :3].mean() > 0.0
+    summary = StratumRenderEngine.last_summary
+    assert summary is not None and summary.instances >= summary.meshes >= 1

@@ -1,0 +1,45 @@
+"""Fixtures for the native-binding and CLI tests (plain Python, no bpy)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+
+
+@pytest.fixture(scope="session")
+def native() -> Any:
+    """stratum.native with the library loaded; skips until libstratum.so is built."""
+    from stratum import native as mod
+
+    try:
+        mod.load_library()
+    except mod.StratumError as exc:
+        pytest.skip(f"native library not available: {exc}")
+    return mod
+
+
+def look_at_origin_from(z: float) -> np.ndarray:
+    """Camera-to-world transform: camera at (0, 0, z) looking down -Z (row-major 4x4)."""
+    m = np.eye(4, dtype=np.float32)
+    m[2, 3] = z
+    return m
+
+
+@pytest.fixture
+def tiny_scene(native: Any) -> Any:
+    """A lit quad in front of the camera, with a grey background."""
+    scene = native.Scene()
+    grey = scene.add_material({"model": native.MATERIAL_DIFFUSE, "base_color": (0.8, 0.8, 0.8)})
+    positions = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float32)
+    triangles = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
+    mesh = scene.add_mesh(positions, triangles, np.full(2, grey, dtype=np.uint32))
+    scene.add_instance(mesh, np.eye(4, dtype=np.float32))
+    light = np.eye(4, dtype=np.float32)
+    light[2, 3] = 2.0
+    scene.add_light(type=native.LIGHT_POINT, strength=100.0, radius=0.1, transform=light)
+    scene.set_camera(native.Camera(transform=look_at_origin_from(4.0)))
+    scene.set_background((0.1, 0.1, 0.1))
+    yield scene
+    scene.close()

@@ -1,0 +1,175 @@
+"""The ctypes binding against the real library: registries, validation errors, rendering."""
+
+from __future__ import annotations
+
+import os
+import subprocess
+import sys
+import time
+from typing import Any
+
+import numpy as np
+import pytest
+
+
+def test_import_without_bpy() -> None:
+    code = ("import sys, stratum, stratum.native, stratum.cli; "
+            "assert 'bpy' not in sys.modules, 'bpy imported'")
+    subprocess.run([sys.executable, "-c", code], check=True)
+
+
+def test_missing_library_raises_named_error(tmp_path: Any) -> None:
+    missing = tmp_path / "libstratum.so"
+    code = ("from stratum import native\n"
+            "try:\n    native.registry('sampler')\n"
+            "except native.LibraryLoadError as e:\n    print('ERR', e)\n")
+    env = dict(os.environ, STRATUM_LIBRARY=str(missing))
+    out = subprocess.run([sys.executable, "-c", code], env=env, capture_output=True,
+                         text=True, check=True).stdout
+    assert out.startswith("ERR") and str(missing) in out
+
+
+@pytest.mark.parametrize("kind", ["sampler", "filter", "integrator"])
+def test_registries_not_empty(native: Any, kind: str) -> None:
+    entries = native.registry(kind)
+    assert entries
+    for name, label, description in entries:
+        assert name and label and description
+    names = [e.name for e in entries]
+    assert len(set(names)) == len(names)
+
+
+def test_filters_are_the_documented_ones(native: Any) -> None:
+    assert {e.name for e in native.registry("filter")} >= {"box", "blackman_harris"}
+
+
+def test_version(native: Any) -> None:
+    assert native.version()
+
+
+def test_nan_position_is_rejected_naming_the_value(native: Any) -> None:
+    with native.Scene() as scene:
+        mat = scene.add_material({"model": native.MATERIAL_DIFFUSE})
+        positions = np.array([[0, 0, 0], [1, 0, 0], [0, np.nan, 0]], dtype=np.float32)
+        with pytest.raises(native.StratumError) as info:
+            scene.add_mesh(positions, np.array([[0, 1, 2]], dtype=np.uint32),
+                           np.array([mat], dtype=np.uint32))
+        assert info.value.status == native.ERROR_INVALID_ARGUMENT
+        assert "nan" in str(info.value).lower()
+
+
+def test_out_of_range_index_is_rejected_naming_the_value(native: Any) -> None:
+    with native.Scene() as scene:
+        mat = scene.add_material({"model": native.MATERIAL_DIFFUSE})
+        positions = np.zeros((3, 3), dtype=np.float32)
+        with pytest.raises(native.StratumError) as info:
+            scene.add_mesh(positions, np.array([[0, 1, 7]], dtype=np.uint32),
+                           np.array([mat], dtype=np.uint32))
+        assert info.value.status == native.ERROR_INVALID_ARGUMENT
+        assert "7" in str(info.value)
+
+
+def test_unknown_material_id_is_rejected(native: Any) -> None:
+    with native.Scene() as scene:
+        positions = np.eye(3, dtype=np.float32)
+        with pytest.raises(native.StratumError, match="42"):
+            scene.add_mesh(positions, np.array([[0, 1, 2]], dtype=np.uint32),
+                           np.array([42], dtype=np.uint32))
+
+
+def test_unknown_setting_is_rejected_naming_it(native: Any, tiny_scene: Any) -> None:
+    with native.Renderer(tiny_scene) as renderer:
+        with pytest.raises(native.StratumError, match="no_such_setting"):
+            renderer.set("no_such_setting", 3)
+        with pytest.raises(native.StratumError, match="not_a_sampler"):
+            renderer.set("sampler", "not_a_sampler")
+        with pytest.raises(native.StratumError):
+            renderer.set("samples", "sixty-four")  # wrong kind
+
+
+def test_tiny_scene_renders_finite_pixels(native: Any, tiny_scene: Any) -> None:
+    with native.Renderer(tiny_scene, width=16, height=12, samples=4, seed=1,
+                         max_bounces=2) as renderer:
+        renderer.start()
+        deadline = time.monotonic() + 60
+        while not renderer.wait(100):
+            assert time.monotonic() < deadline, "render did not finish"
+        progress = renderer.progress()
+        assert progress.done and not progress.cancelled
+        assert progress.samples_done == progress.samples_total == 4
+        assert progress.rays > 0
+        pixels = np.empty(16 * 12 * 4, dtype=np.float32)
+        out = renderer.read_pixels(pixels)
+        assert out is pixels
+    assert np.isfinite(pixels).all()
+    assert pixels.reshape(-1, 4)[:, :3].max() > 0.0
+
+
+def test_read_pixels_rejects_a_wrong_buffer(native: Any, tiny_scene: Any) -> None:
+    with native.Renderer(tiny_scene, width=8, height=8, samples=1) as renderer:
+        with pytest.raises(ValueError):
+            renderer.read_pixels(np.empty(8 * 8 * 4, dtype=np.float64))
+        with pytest.raises(native.StratumError):
+            renderer.read_pixels(np.empty(10, dtype=np.float32))  # too small: native check
+
+
+@pytest.mark.parametrize("sampler", ["first", "last"])
+def test_every_sampler_renders(native: Any, tiny_scene: Any, sampler: str) -> None:
+    entries = native.registry("sampler")
+    name = entries[0].name if sampler == "first" else entries[-1].name
+    with native.Renderer(tiny_scene, width=8, height=8, samples=2, sampler=name) as renderer:
+        renderer.start()
+        while not renderer.wait(100):
+            pass
+        pixels = renderer.read_pixels()
+    assert np.isfinite(pixels).all()
+
+
+def test_cancel_stops_quickly_and_keeps_partial_image(native: Any, tiny_scene: Any) -> None:
+    with native.Renderer(tiny_scene, width=64, height=64, samples=1_000_000) as renderer:
+        renderer.start()
+        deadline = time.monotonic() + 30
+        while renderer.progress().samples_done < 1:
+            assert time.monotonic() < deadline
+            renderer.wait(10)
+        t0 = time.perf_counter()
+        renderer.cancel()
+        while not renderer.wait(10):
+            assert time.perf_counter() - t0 < 5
+        elapsed = time.perf_counter() - t0
+        progress = renderer.progress()
+        pixels = renderer.read_pixels()
+    assert elapsed < 0.5, f"cancel took {elapsed:.3f}s"
+    assert progress.cancelled and 1 <= progress.samples_done < 1_000_000
+    assert np.isfinite(pixels).all() and pixels.max() > 0.0
+
+
+def test_save_and_load_roundtrip(native: Any, tiny_scene: Any, tmp_path: Any) -> None:
+    path = tmp_path / "scene.json"
+    tiny_scene.save(path)
+    assert path.stat().st_size > 0
+    with (native.Scene.load(path) as loaded,
+          native.Renderer(loaded, width=8, height=8, samples=1) as renderer):
+        renderer.start()
+        while not renderer.wait(100):
+            pass
+        assert np.isfinite(renderer.read_pixels()).all()
+
+
+def test_handles_are_freed_deterministically(native: Any) -> None:
+    scene = native.Scene()
+    assert not scene.closed
+    scene.close()
+    assert scene.closed
+    scene.close()  # idempotent
+    with pytest.raises(native.StratumError, match="closed"):
+        scene.add_material({})
+
+
+def test_write_image(native: Any, tiny_scene: Any, tmp_path: Any) -> None:
+    with native.Renderer(tiny_scene, width=8, height=8, samples=1) as renderer:
+        renderer.start()
+        while not renderer.wait(100):
+            pass
+        renderer.write_image(tmp_path / "out.exr")
+    assert (tmp_path / "out.exr").stat().st_size > 0
