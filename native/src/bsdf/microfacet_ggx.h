@@ -1,0 +1,67 @@
+// GGX (Trowbridge-Reitz) microfacet building blocks shared by the Principled models, plus the
+// directional-albedo tables the energy-conserving (4.x-style) layering needs.
+//
+// | symbol       | formula                                                          | reference            |
+// |--------------|------------------------------------------------------------------|----------------------|
+// | alpha        | roughness^2 (clamped to kGgxMinAlpha)                            | Burley 2012          |
+// | D(h)         | alpha^2 / (pi (cos^2(h) (alpha^2 - 1) + 1)^2)                    | Walter 2007, eq. 33  |
+// | Lambda(w)    | (-1 + sqrt(1 + alpha^2 tan^2(w))) / 2                            | Heitz 2014, eq. 72   |
+// | G1(w)        | 1 / (1 + Lambda(w))                                              | Heitz 2014           |
+// | G2 separable | G1(wo) G1(wi)            (Cycles 3.x)                            | Walter 2007, eq. 23  |
+// | G2 height    | 1 / (1 + Lambda(wo) + Lambda(wi))   (Cycles 4.x)                 | Heitz 2014, eq. 99   |
+// | f_spec       | F D G2 / (4 |wo.z| |wi.z|)                                        | Walter 2007, eq. 20  |
+// | pdf (VNDF)   | G1(wo) D(h) / (4 wo.z), wi = reflect(wo, h)                      | Heitz 2018, eq. 17   |
+// | F dielectric | unpolarised exact Fresnel for relative IOR eta                   | Walter 2007, eq. 22  |
+//
+// The tables are computed by this code at first use (thread-safe static), never copied.
+#pragma once
+
+#include "core/math.h"
+
+namespace stratum {
+
+// Below this alpha the lobe is a near-mirror; clamping keeps D finite in float and lets the
+// lobe stay a regular density that NEE and MIS can evaluate.
+inline constexpr float kGgxMinAlpha = 1e-3f;
+
+inline float ggx_alpha_from_roughness(float roughness) {
+    return std::max(sqr(std::clamp(roughness, 0.0f, 1.0f)), kGgxMinAlpha);
+}
+
+float ggx_d(Vec3 h, float alpha);
+float ggx_lambda(Vec3 w, float alpha);
+inline float ggx_g1(Vec3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
+inline float ggx_g2_separable(Vec3 wo, Vec3 wi, float alpha) { return ggx_g1(wo, alpha) * ggx_g1(wi, alpha); }
+inline float ggx_g2_height_correlated(Vec3 wo, Vec3 wi, float alpha) {
+    return 1.0f / (1.0f + ggx_lambda(wo, alpha) + ggx_lambda(wi, alpha));
+}
+
+// Solid-angle density of wi = reflect(wo, h) when h is drawn from the visible normals of wo.
+float ggx_reflection_pdf(Vec3 wo, Vec3 wi, float alpha);
+// Draws wi by VNDF sampling; returns false when the reflected direction falls below the horizon.
+bool ggx_sample_reflection(Vec3 wo, float alpha, Vec2 u, Vec3* wi);
+
+// Exact unpolarised Fresnel reflectance at a dielectric interface, relative IOR eta (> 0).
+float fresnel_dielectric(float cos_i, float eta);
+// Normal-incidence reflectance ((eta-1)/(eta+1))^2 and its inverse (clamped as Cycles does, F0 <= 0.99).
+inline float f0_from_ior(float eta) { return sqr((eta - 1.0f) / (eta + 1.0f)); }
+inline float ior_from_f0(float f0) {
+    const float s = std::sqrt(std::clamp(f0, 0.0f, 0.99f));
+    return (1.0f + s) / (1.0f - s);
+}
+// Schlick 1994: F0 + (1 - F0)(1 - cos)^5.
+inline float schlick_weight(float cos_i) {
+    const float m = std::clamp(1.0f - cos_i, 0.0f, 1.0f);
+    return (m * m) * (m * m) * m;
+}
+
+// Directional albedo of the single-scattering GGX lobe (height-correlated G2) with F = 1:
+// E(mu_o) = integral of D G2 / (4 mu_o) over wi. Its cosine-weighted average E_avg = 2 int E mu dmu.
+float ggx_albedo_unit_fresnel(float cos_o, float roughness);
+float ggx_average_albedo_unit_fresnel(float roughness);
+// Same lobe with the exact dielectric Fresnel F(wi.h, eta), eta >= 1.
+float ggx_albedo_dielectric(float cos_o, float roughness, float eta);
+// Hemispherical (cosine-weighted) average of the dielectric Fresnel: 2 int F(mu, eta) mu dmu.
+float fresnel_dielectric_average(float eta);
+
+}  // namespace stratum

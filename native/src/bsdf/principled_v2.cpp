@@ -1,0 +1,116 @@
+#include "bsdf/principled_v2.h"
+
+#include "bsdf/microfacet_ggx.h"
+#include "sampling/warps.h"
+
+namespace stratum {
+
+namespace {
+
+struct LobesV2 {
+    float metallic;
+    float roughness, alpha;
+    bool has_specular;       // dielectric layer present (eta != 1)
+    float eta;               // relative IOR of the dielectric layer
+    float specular_scale;    // multiple-scattering compensation c(cos_o) of the dielectric lobe
+    float specular_albedo;   // A_spec(cos_o)
+    Rgb metal_f0, metal_scale;
+    float probability_metal, probability_specular;  // the diffuse lobe takes the rest
+};
+
+// Kulla & Conty 2017: with single-scattering albedo E(mu) and average E_avg, the missing energy
+// (1 - E)/E, reflected again with the average multi-bounce Fresnel F_ms.
+float multiscatter_scale(float e, float e_avg, float f_avg) {
+    const float f_ms = f_avg * e_avg / (1.0f - f_avg * (1.0f - e_avg));
+    return 1.0f + f_ms * (1.0f - e) / e;
+}
+
+float specular_eta(const Material& m) {
+    const float ior = std::max(m.ior, 1e-5f);
+    const float level = std::max(m.specular, 0.0f);
+    // Cycles 4.x: F0 scaled by 2 level, IOR recomputed from it; reflection from outside sees
+    // the same F0 for ior and 1/ior, so the relative eta is taken >= 1.
+    const float eta = level == 0.5f ? ior : ior_from_f0(f0_from_ior(ior) * 2.0f * level);
+    return std::max(eta, 1.0f / eta);
+}
+
+LobesV2 setup(const Material& m, Vec3 wo) {
+    LobesV2 l;
+    l.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
+    l.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+    l.alpha = ggx_alpha_from_roughness(l.roughness);
+    l.eta = specular_eta(m);
+    l.has_specular = l.eta > 1.0f;
+    const float e = std::max(ggx_albedo_unit_fresnel(wo.z, l.roughness), 1e-4f);
+    const float e_avg = ggx_average_albedo_unit_fresnel(l.roughness);
+    l.specular_scale = 1.0f, l.specular_albedo = 0.0f;
+    if (l.has_specular) {
+        l.specular_scale = multiscatter_scale(e, e_avg, fresnel_dielectric_average(l.eta));
+        l.specular_albedo = std::min(ggx_albedo_dielectric(wo.z, l.roughness, l.eta) * l.specular_scale, 1.0f);
+    }
+    l.metal_f0 = Rgb(std::clamp(m.base_color.r, 0.0f, 1.0f), std::clamp(m.base_color.g, 0.0f, 1.0f),
+                     std::clamp(m.base_color.b, 0.0f, 1.0f));
+    // Schlick's hemispherical average: F0 + (1 - F0)/21.
+    const Rgb f_avg_metal = l.metal_f0 + (Rgb(1.0f) - l.metal_f0) * (1.0f / 21.0f);
+    l.metal_scale = Rgb(multiscatter_scale(e, e_avg, f_avg_metal.r), multiscatter_scale(e, e_avg, f_avg_metal.g),
+                        multiscatter_scale(e, e_avg, f_avg_metal.b));
+    // Lobe selection proportional to each lobe's albedo estimate for this wo.
+    const float sw = schlick_weight(wo.z);
+    const float weight_metal = l.metallic * (l.metal_f0 * (1.0f - sw) + Rgb(sw)).average();
+    const float weight_specular = (1.0f - l.metallic) * l.specular_albedo;
+    const float weight_diffuse =
+        (1.0f - l.metallic) * (1.0f - l.specular_albedo) * std::max(m.base_color.average(), 0.0f);
+    const float total = weight_metal + weight_specular + weight_diffuse;
+    l.probability_metal = total > 0.0f ? weight_metal / total : 0.0f;
+    l.probability_specular = total > 0.0f ? weight_specular / total : 0.0f;
+    return l;
+}
+
+BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi) {
+    const float probability_diffuse = std::max(1.0f - l.probability_metal - l.probability_specular, 0.0f);
+    BsdfEval e{m.base_color * ((1.0f - l.metallic) * (1.0f - l.specular_albedo) * kInvPi * wi.z),
+               probability_diffuse * cosine_hemisphere_pdf(wi.z)};
+    if (l.probability_metal > 0.0f || l.probability_specular > 0.0f) {
+        const Vec3 h = normalize(wo + wi);
+        const float cos_ih = dot(wi, h);
+        // D G2 / (4 cos_o) = f cos_i without Fresnel.
+        const float microfacet = ggx_d(h, l.alpha) * ggx_g2_height_correlated(wo, wi, l.alpha) / (4.0f * wo.z);
+        const float microfacet_pdf = ggx_reflection_pdf(wo, wi, l.alpha);
+        if (l.metallic > 0.0f) {
+            const float sw = schlick_weight(cos_ih);
+            e.value += (l.metal_f0 * (1.0f - sw) + Rgb(sw)) * l.metal_scale * (l.metallic * microfacet);
+        }
+        if (l.has_specular) {
+            e.value += Rgb((1.0f - l.metallic) * fresnel_dielectric(cos_ih, l.eta) * l.specular_scale * microfacet);
+        }
+        e.pdf += (l.probability_metal + l.probability_specular) * microfacet_pdf;
+    }
+    return e;
+}
+
+}  // namespace
+
+BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi) {
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return {Rgb(), 0.0f};
+    return eval_lobes(setup(m, wo), m, wo, wi);
+}
+
+bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out) {
+    if (wo.z <= 0.0f) return false;
+    const LobesV2 l = setup(m, wo);
+    const float probability_microfacet = l.probability_metal + l.probability_specular;
+    Vec3 wi;
+    // Metal and dielectric share D and G, so one VNDF draw serves both microfacet lobes.
+    if (u_lobe < probability_microfacet) {
+        if (!ggx_sample_reflection(wo, l.alpha, u, &wi)) return false;
+    } else {
+        wi = sample_cosine_hemisphere(u);
+        if (wi.z <= 0.0f) return false;
+    }
+    const BsdfEval e = eval_lobes(l, m, wo, wi);
+    if (e.pdf <= 0.0f) return false;
+    *out = {wi, e.value / e.pdf, e.pdf};
+    return true;
+}
+
+}  // namespace stratum

@@ -1,0 +1,31 @@
+// Principled BSDF in the manner of Cycles 4.x (Blender 4.0-5.0), reflection part, default
+// distribution "Multiscatter GGX", Diffuse Roughness 0, tints white, no coat/sheen/transmission.
+// Reference: Cycles 4.x `svm/closure.h` (Principled: metal, then dielectric specular layer whose
+// albedo attenuates the diffuse below), `closure/bsdf_microfacet.h`; Heitz 2014 (height-correlated
+// Smith), Kulla & Conty 2017 (multiple-scattering energy compensation), Hoffman 2023 (F82 tint).
+//
+// | parameter  | meaning                                                                  |
+// |------------|--------------------------------------------------------------------------|
+// | base_color | Lambert albedo under the specular layer; metal F0                        |
+// | roughness  | GGX alpha = roughness^2 for both microfacet lobes                        |
+// | metallic   | mix: metallic f_metal + (1 - metallic) (f_spec + f_diffuse)              |
+// | specular   | Specular IOR Level: F0 = F0(ior) 2 level, ior re-derived (0.5 = unchanged) |
+// | ior        | dielectric IOR of the specular layer (default 1.5)                       |
+//
+// f_spec  = F(wi.h, eta) D G2 / (4 cos_o cos_i) * c(cos_o),   A_spec(cos_o) its directional albedo
+// f_diff  = (1 - A_spec(cos_o)) base / pi          (energy-conserving layering, as Cycles)
+// f_metal = F_schlick(wi.h, base) D G2 / (4 cos_o cos_i) * c_metal(cos_o)   (F82 tint = white)
+// c = 1 + F_ms (1 - E(cos_o)) / E(cos_o), F_ms = F_avg E_avg / (1 - F_avg (1 - E_avg)): the energy
+// lost by single scattering, returned with the average multi-bounce Fresnel. E, E_avg, A_spec and
+// F_avg come from tables this code computes once (microfacet_ggx.cpp).
+// The layering factors depend on wo only, so, like Cycles, this model is not reciprocal.
+#pragma once
+
+#include "bsdf/bsdf.h"
+
+namespace stratum {
+
+BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi);
+bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out);
+
+}  // namespace stratum
