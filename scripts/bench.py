@@ -1,0 +1,277 @@
+"""Stratum vs Cycles on the Cornell box: same resolution, samples, bounces, filter, threads.
+
+    blender -b --factory-startup --python scripts/bench.py [-- --samples 64 --res 256]
+
+(also runs under the bpy wheel: .venv/bin/python scripts/bench.py). Prints a table and writes
+it to out/bench.txt. Reported:
+
+* Cycles: total F12 time (bpy.ops.render.render) and its split into scene synchronisation
+  (everything before the first "Sample" status line) and path tracing, parsed from the status
+  lines Blender prints in background mode (captured from file descriptor 1 during the render);
+* Stratum, through the add-on's exporter and stratum.native.Renderer directly: export time
+  (depsgraph -> native scene), BVH build time and path-tracing time as reported by the native
+  library (progress().build_seconds / render_seconds), and the wall time start -> done;
+* Stratum total F12 time through the engine, comparable with Cycles' F12 time;
+* the ratios Stratum / Cycles (total, and path tracing alone), measured in this one run.
+
+Exit status: 0 when both renderers ran, 2 when Stratum is not available (Cycles numbers are
+still printed), 1 on an error.
+"""
+
+from __future__ import annotations
+
+import argparse
+import os
+import re
+import sys
+import tempfile
+import time
+import traceback
+from pathlib import Path
+from typing import Self
+
+import bpy
+
+REPO = Path(__file__).resolve().parents[1]
+SCENE = REPO / "scenes" / "cornell_box.blend"
+OUT = REPO / "out"
+ADDON_DIR = REPO / "addon"
+
+MAX_BOUNCES = 8
+FILTER_WIDTH = 1.5
+
+
+# Inside the Blender executable sys.argv is Blender's; under the bpy wheel it is the script's.
+IN_BLENDER = Path(sys.argv[0]).name.startswith("blender")
+
+
+def parse_args() -> argparse.Namespace:
+    if IN_BLENDER:
+        argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
+    else:
+        argv = sys.argv[1:]
+    p = argparse.ArgumentParser(prog="bench.py")
+    p.add_argument("--samples", type=int, default=64)
+    p.add_argument("--res", type=int, default=256)
+    p.add_argument("--threads", type=int, default=0, help="0 = all cores")
+    p.add_argument("--scene", type=Path, default=SCENE)
+    return p.parse_args(argv)
+
+
+def open_scene(args: argparse.Namespace) -> bpy.types.Scene:
+    bpy.ops.wm.open_mainfile(filepath=str(args.scene), load_ui=False)
+    scene = bpy.context.scene
+    r = scene.render
+    r.resolution_x = r.resolution_y = args.res
+    r.resolution_percentage = 100
+    if args.threads > 0:
+        r.threads_mode = "FIXED"
+        r.threads = args.threads
+    else:
+        r.threads_mode = "AUTO"
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = args.samples
+    c.use_adaptive_sampling = False
+    c.use_denoising = False
+    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = MAX_BOUNCES
+    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
+    c.blur_glossy = 0.0
+    c.pixel_filter_type = "BLACKMAN_HARRIS"
+    c.filter_width = FILTER_WIDTH
+    return scene
+
+
+def configure_stratum(scene: bpy.types.Scene, args: argparse.Namespace) -> None:
+    scene.render.engine = "STRATUM"
+    s = scene.stratum
+    s.samples = args.samples
+    s.max_bounces = MAX_BOUNCES
+    s.filter_type = "blackman_harris"
+    s.filter_width = FILTER_WIDTH
+    s.threads = args.threads
+
+
+class CaptureStdout:
+    """Captures what native code writes to file descriptor 1 (Blender's status lines)."""
+
+    def __enter__(self) -> Self:
+        sys.stdout.flush()
+        self._tmp = tempfile.TemporaryFile(mode="w+b")
+        self._saved = os.dup(1)
+        os.dup2(self._tmp.fileno(), 1)
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        sys.stdout.flush()
+        try:
+            import ctypes
+
+            ctypes.CDLL(None).fflush(None)  # flush C stdio buffers into the capture
+        except (OSError, AttributeError) as err:  # best effort: lines may be lost, not numbers
+            print(f"bench: could not flush C stdio: {err}", file=sys.stderr)
+        os.dup2(self._saved, 1)
+        os.close(self._saved)
+        self._tmp.seek(0)
+        self.text = self._tmp.read().decode("utf-8", "replace")
+        self._tmp.close()
+
+
+_TIME = re.compile(r"Time:\s*(\d+):(\d+(?:\.\d+)?)")
+
+
+def cycles_split(log: str) -> tuple[float | None, float | None]:
+    """(seconds before the first 'Sample' status line, seconds at the last status line)."""
+    first_sample = last = None
+    for line in log.splitlines():
+        m = _TIME.search(line)
+        if not m:
+            continue
+        t = int(m.group(1)) * 60 + float(m.group(2))
+        if "| Sample " in line and first_sample is None:
+            first_sample = t
+        if line.startswith("Fra:"):
+            last = t
+    return first_sample, last
+
+
+def bench_cycles(args: argparse.Namespace) -> dict[str, float | None]:
+    scene = open_scene(args)
+    scene.render.engine = "CYCLES"
+    with CaptureStdout() as cap:
+        t0 = time.perf_counter()
+        bpy.ops.render.render()
+        total = time.perf_counter() - t0
+    sync, last = cycles_split(cap.text)
+    trace = (last - sync) if (sync is not None and last is not None) else None
+    return {"total": total, "sync": sync, "trace": trace}
+
+
+def stratum_reason() -> str:
+    """'' when Stratum can render here, else why not."""
+    if str(ADDON_DIR) not in sys.path:
+        sys.path.insert(0, str(ADDON_DIR))
+    try:
+        import stratum
+        from stratum import native
+    except ImportError as exc:
+        return f"add-on not importable: {exc}"
+    try:
+        native.load_library()
+    except native.StratumError as exc:
+        return str(exc)
+    stratum.register()
+    return ""
+
+
+def bench_stratum_direct(args: argparse.Namespace) -> dict[str, float]:
+    from stratum import native
+    from stratum.engine import renderer_settings
+    from stratum.export import export_scene
+
+    scene = open_scene(args)
+    configure_stratum(scene, args)
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    depsgraph.update()
+    t0 = time.perf_counter()
+    with native.Scene() as native_scene:
+        export_scene(depsgraph, native_scene)
+        t_export = time.perf_counter() - t0
+        renderer = native.Renderer(native_scene)
+    with renderer:
+        for name, value in renderer_settings(scene).items():
+            renderer.set(name, value)
+        t1 = time.perf_counter()
+        renderer.start()
+        while not renderer.wait(50):
+            pass
+        wall = time.perf_counter() - t1
+        p = renderer.progress()
+    return {"export": t_export, "build": p.build_seconds, "trace": p.render_seconds,
+            "wall": wall, "rays": p.rays, "samples_done": p.samples_done}
+
+
+def bench_stratum_engine(args: argparse.Namespace) -> float:
+    scene = open_scene(args)
+    configure_stratum(scene, args)
+    t0 = time.perf_counter()
+    bpy.ops.render.render()
+    total = time.perf_counter() - t0
+    from stratum.engine import StratumRenderEngine
+
+    errors = [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
+    if errors:
+        raise RuntimeError("; ".join(errors))
+    return total
+
+
+def fmt(x: float | None) -> str:
+    return "n/a" if x is None else f"{x:8.3f}"
+
+
+def ratio(a: float | None, b: float | None) -> str:
+    return "n/a" if not a or not b else f"{a / b:6.2f}x"
+
+
+def main() -> int:
+    args = parse_args()
+    cores = os.cpu_count()
+    lines = [
+        (f"Stratum vs Cycles: {args.scene.name}, {args.res}x{args.res}, {args.samples} spp, "
+        f"max_bounces {MAX_BOUNCES}, threads {args.threads or f'all ({cores})'}, "
+        f"Blender {bpy.app.version_string}"),
+        "",
+    ]
+    cyc = bench_cycles(args)
+    reason = stratum_reason()
+    st = None
+    st_total = None
+    if not reason:
+        try:
+            st = bench_stratum_direct(args)
+            st_total = bench_stratum_engine(args)
+        except Exception as exc:  # noqa: BLE001 - report, keep the Cycles numbers
+            traceback.print_exc()
+            reason = f"Stratum failed: {type(exc).__name__}: {exc}"
+
+    lines += [
+        f"{'':28s}{'seconds':>10s}",
+        f"{'Cycles  sync (pre-sampling)':28s}{fmt(cyc['sync']):>10s}",
+        f"{'Cycles  path tracing':28s}{fmt(cyc['trace']):>10s}",
+        f"{'Cycles  total (F12)':28s}{fmt(cyc['total']):>10s}",
+    ]
+    if st is not None:
+        rays_per_s = st["rays"] / st["trace"] if st["trace"] > 0 else 0.0
+        lines += [
+            f"{'Stratum export':28s}{fmt(st['export']):>10s}",
+            f"{'Stratum BVH build':28s}{fmt(st['build']):>10s}",
+            (f"{'Stratum path tracing':28s}{fmt(st['trace']):>10s}"
+            f"   ({rays_per_s / 1e6:.2f} M rays/s)"),
+            f"{'Stratum start->done':28s}{fmt(st['wall']):>10s}",
+            f"{'Stratum total (F12)':28s}{fmt(st_total):>10s}",
+            "",
+            f"ratio Stratum/Cycles, total (F12):    {ratio(st_total, cyc['total'])}",
+            f"ratio Stratum/Cycles, path tracing:   {ratio(st['trace'], cyc['trace'])}",
+        ]
+    else:
+        lines += ["", f"Stratum: not measured ({reason})"]
+    table = "\n".join(lines)
+    print(table)
+    OUT.mkdir(parents=True, exist_ok=True)
+    (OUT / "bench.txt").write_text(table + "\n")
+    print(f"written {OUT / 'bench.txt'}")
+    return 0 if st is not None else 2
+
+
+if __name__ == "__main__":
+    code = 1
+    try:
+        code = main()
+    except Exception:  # noqa: BLE001
+        traceback.print_exc()
+    finally:
+        sys.stdout.flush()
+        sys.stderr.flush()
+    if IN_BLENDER:  # Blender's --python does not propagate sys.exit codes reliably
+        os._exit(code)
+    sys.exit(code)
