@@ -1,0 +1,254 @@
+// Warps against their densities. Each direction warp is checked by a chi-square goodness-of-fit
+// test: bins in (theta, phi) over the whole sphere, theta edges at quantiles of the warp's own
+// density (so expected counts are roughly equal), expected counts integrated from the density
+// (midpoint rule in (theta, phi), where p sin(theta) is smooth for every warp here), bins with
+// an expected count below 5 pooled, samples outside the support counted against zero mass.
+//
+// Significance: the file runs kChiSquareTests tests; to keep the chance of any false failure at
+// alpha = 1% we reject each at alpha / kChiSquareTests (Bonferroni: P(any) <= sum of P(each)).
+// Seeds are fixed, so a run is reproducible; the threshold says how surprising a failure is.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "sampling/warps.h"
+
+namespace stratum {
+namespace {
+
+constexpr int kChiSquareTests = 10;
+constexpr double kSignificance = 0.01 / kChiSquareTests;
+constexpr int kSampleCount = 1'000'000;
+
+// Regularised upper incomplete gamma Q(a, x): series for x < a + 1, Lentz continued fraction
+// otherwise (Abramowitz & Stegun 6.5.29 and 6.5.31). The chi-square p-value is Q(dof/2, x/2).
+double upper_incomplete_gamma(double a, double x) {
+    if (x <= 0.0) return 1.0;
+    const double log_prefactor = -x + a * std::log(x) - std::lgamma(a);
+    if (x < a + 1.0) {
+        double term = 1.0 / a, sum = term;
+        for (int n = 1; n < 1000 && std::abs(term) > 1e-15 * std::abs(sum); ++n) {
+            term *= x / (a + n);
+            sum += term;
+        }
+        return 1.0 - sum * std::exp(log_prefactor);
+    }
+    const double tiny = 1e-300;
+    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+    for (int i = 1; i < 1000; ++i) {
+        const double an = -i * (i - a);
+        b += 2.0;
+        d = an * d + b;
+        d = std::abs(d) < tiny ? tiny : d;
+        c = b + an / c;
+        c = std::abs(c) < tiny ? tiny : c;
+        d = 1.0 / d;
+        const double delta = d * c;
+        h *= delta;
+        if (std::abs(delta - 1.0) < 1e-15) break;
+    }
+    return std::exp(log_prefactor) * h;
+}
+
+struct ChiSquare {
+    double statistic = 0;
+    int dof = 0;
+    double p_value = 0;
+    double density_mass = 0;  // integral of the density over the sphere (should be <= 1)
+};
+
+// Pearson's test of observed against expected counts, pooling bins with expected < 5.
+ChiSquare pearson(const std::vector<double>& observed, const std::vector<double>& expected) {
+    ChiSquare r;
+    double pooled_observed = 0, pooled_expected = 0;
+    int bins = 0;
+    for (size_t i = 0; i < observed.size(); ++i) {
+        if (expected[i] < 5.0) {
+            pooled_observed += observed[i];
+            pooled_expected += expected[i];
+            continue;
+        }
+        r.statistic += sqr(float(observed[i] - expected[i])) / expected[i];
+        ++bins;
+    }
+    if (pooled_expected > 0.0 || pooled_observed > 0.0) {
+        r.statistic += pooled_expected > 0.0 ? sqr(float(pooled_observed - pooled_expected)) / pooled_expected
+                                             : std::numeric_limits<double>::infinity();
+        ++bins;
+    }
+    r.dof = bins - 1;
+    r.p_value = upper_incomplete_gamma(0.5 * r.dof, 0.5 * r.statistic);
+    return r;
+}
+
+using DirectionSampler = std::function<bool(Vec2, Vec3*)>;
+using DirectionDensity = std::function<float(Vec3)>;
+
+ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionDensity& density, uint64_t seed) {
+    constexpr int kThetaFine = 512, kPhiFine = 200, kThetaBins = 12, kPhiBins = 20;
+    const double dtheta = kPi / kThetaFine, dphi = 2.0 * kPi / kPhiFine;
+    std::vector<double> fine(kThetaFine * kPhiFine), theta_mass(kThetaFine, 0.0);
+    double total = 0;
+    for (int i = 0; i < kThetaFine; ++i) {
+        const double theta = (i + 0.5) * dtheta;
+        for (int j = 0; j < kPhiFine; ++j) {
+            const double phi = (j + 0.5) * dphi;
+            const Vec3 w(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
+                         float(std::cos(theta)));
+            const double m = density(w) * std::sin(theta) * dtheta * dphi;
+            fine[i * kPhiFine + j] = m;
+            theta_mass[i] += m;
+            total += m;
+        }
+    }
+    // Theta bin edges at quantiles of the density's theta marginal.
+    std::vector<int> theta_bin(kThetaFine);
+    double cumulative = 0;
+    for (int i = 0; i < kThetaFine; ++i) {
+        theta_bin[i] = std::min(int(cumulative / total * kThetaBins), kThetaBins - 1);
+        cumulative += theta_mass[i];
+    }
+    const int outside = kThetaBins * kPhiBins;  // failed samples: mass 1 - total
+    std::vector<double> expected(outside + 1, 0.0), observed(outside + 1, 0.0);
+    for (int i = 0; i < kThetaFine; ++i)
+        for (int j = 0; j < kPhiFine; ++j)
+            expected[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] += fine[i * kPhiFine + j] * kSampleCount;
+    expected[outside] = std::max(1.0 - total, 0.0) * kSampleCount;
+
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+    for (int s = 0; s < kSampleCount; ++s) {
+        Vec3 w;
+        if (!sample({uniform(rng), uniform(rng)}, &w)) {
+            observed[outside] += 1;
+            continue;
+        }
+        const double theta = std::acos(std::clamp(double(w.z), -1.0, 1.0));
+        double phi = std::atan2(double(w.y), double(w.x));
+        if (phi < 0) phi += 2.0 * kPi;
+        const int i = std::min(int(theta / dtheta), kThetaFine - 1), j = std::min(int(phi / dphi), kPhiFine - 1);
+        observed[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] += 1;
+    }
+    ChiSquare r = pearson(observed, expected);
+    r.density_mass = total;
+    return r;
+}
+
+void expect_fits(const ChiSquare& r, double expected_mass = 1.0) {
+    EXPECT_GT(r.p_value, kSignificance) << "chi2 = " << r.statistic << ", dof = " << r.dof;
+    // Midpoint rule on pi/512 theta rows: exact to ~1e-5 for smooth densities, but a density
+    // with a jump (the cone's rim) misplaces up to half a row of mass, ~3e-3 for the caps here.
+    EXPECT_NEAR(r.density_mass, expected_mass, 5e-3);
+}
+
+TEST(Warps, CosineHemisphere) {
+    expect_fits(chi_square_directions([](Vec2 u, Vec3* w) { *w = sample_cosine_hemisphere(u); return true; },
+                                      [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 1));
+}
+
+TEST(Warps, ConcentricDiskLiftsToCosineHemisphere) {
+    // Malley: the disk is uniform iff its lift (x, y, sqrt(1 - r^2)) has density cos/pi.
+    expect_fits(chi_square_directions(
+        [](Vec2 u, Vec3* w) {
+            const Vec2 d = sample_uniform_disk_concentric(u);
+            const float r2 = d.x * d.x + d.y * d.y;
+            if (r2 > 1.0f + 1e-6f) return false;
+            *w = Vec3(d.x, d.y, safe_sqrt(1.0f - r2));
+            return true;
+        },
+        [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 2));
+}
+
+TEST(Warps, UniformHemisphere) {
+    expect_fits(chi_square_directions([](Vec2 u, Vec3* w) { *w = sample_uniform_hemisphere(u); return true; },
+                                      [](Vec3 w) { return w.z >= 0 ? uniform_hemisphere_pdf() : 0.0f; }, 3));
+}
+
+TEST(Warps, UniformAnglesHemisphere) {
+    expect_fits(chi_square_directions(
+        [](Vec2 u, Vec3* w) { *w = sample_uniform_angles_hemisphere(u); return true; },
+        [](Vec3 w) { return uniform_angles_hemisphere_pdf(w.z); }, 4));
+}
+
+TEST(Warps, UniformSphere) {
+    expect_fits(chi_square_directions([](Vec2 u, Vec3* w) { *w = sample_uniform_sphere(u); return true; },
+                                      [](Vec3) { return uniform_sphere_pdf(); }, 5));
+}
+
+TEST(Warps, UniformCone) {
+    for (const float cos_max : {0.8f, -0.3f}) {
+        expect_fits(chi_square_directions(
+            [cos_max](Vec2 u, Vec3* w) { *w = sample_uniform_cone(u, cos_max); return true; },
+            [cos_max](Vec3 w) { return uniform_cone_pdf(w.z, cos_max); }, 6));
+    }
+}
+
+TEST(Warps, GgxVisibleNormals) {
+    // D_wo(h) = G1(wo) max(0, wo.h) D(h) / wo.z with the GGX D and Smith G1 (Heitz 2018, eq. 3).
+    struct Case {
+        float alpha, theta_o;
+    };
+    for (const Case c : {Case{0.3f, 1.05f}, Case{1.0f, 0.2f}, Case{0.1f, 1.4f}}) {
+        const Vec3 wo(std::sin(c.theta_o), 0.0f, std::cos(c.theta_o));
+        const auto d = [&](Vec3 h) {
+            if (h.z <= 0) return 0.0f;
+            const float a2 = c.alpha * c.alpha, t = h.z * h.z * (a2 - 1) + 1;
+            return a2 / (kPi * t * t);
+        };
+        const float tan2 = (1 - wo.z * wo.z) / (wo.z * wo.z);
+        const float g1 = 2.0f / (1.0f + std::sqrt(1.0f + c.alpha * c.alpha * tan2));
+        expect_fits(chi_square_directions(
+            [&](Vec2 u, Vec3* h) { *h = sample_ggx_visible_normal(wo, c.alpha, u); return true; },
+            [&](Vec3 h) { return g1 * std::max(dot(wo, h), 0.0f) * d(h) / wo.z; }, 7));
+    }
+}
+
+TEST(Warps, UniformTriangleBarycentrics) {
+    // Bins on the (b1, b2) unit square; expected mass = area(bin within b1 + b2 <= 1) / (1/2).
+    constexpr int kGrid = 20, kSteps = 2000;
+    std::vector<double> expected(kGrid * kGrid + 1, 0.0), observed(kGrid * kGrid + 1, 0.0);
+    for (int i = 0; i < kGrid; ++i) {
+        for (int j = 0; j < kGrid; ++j) {
+            const double x0 = double(i) / kGrid, y0 = double(j) / kGrid, h = 1.0 / kGrid;
+            double area = 0;
+            for (int s = 0; s < kSteps; ++s) {
+                const double x = x0 + (s + 0.5) * h / kSteps;
+                area += std::clamp(1.0 - x - y0, 0.0, h) * h / kSteps;
+            }
+            expected[i * kGrid + j] = 2.0 * area * kSampleCount;
+        }
+    }
+    std::mt19937_64 rng(8);
+    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+    for (int s = 0; s < kSampleCount; ++s) {
+        const Vec3 b = sample_uniform_triangle({uniform(rng), uniform(rng)});
+        ASSERT_NEAR(b.x + b.y + b.z, 1.0f, 1e-6f);
+        ASSERT_GE(b.x, -1e-6f);
+        const int i = std::min(int(b.y * kGrid), kGrid - 1), j = std::min(int(b.z * kGrid), kGrid - 1);
+        observed[i * kGrid + j] += 1;
+    }
+    const ChiSquare r = pearson(observed, expected);
+    EXPECT_GT(r.p_value, kSignificance) << "chi2 = " << r.statistic << ", dof = " << r.dof;
+}
+
+TEST(Warps, ChiSquareRejectsAWrongDensity) {
+    // The test must have power: uniform hemisphere samples do not fit the cosine density.
+    const ChiSquare r =
+        chi_square_directions([](Vec2 u, Vec3* w) { *w = sample_uniform_hemisphere(u); return true; },
+                              [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 9);
+    EXPECT_LT(r.p_value, 1e-12);
+}
+
+TEST(Warps, PdfFunctionsMatchTheirClosedForms) {
+    EXPECT_FLOAT_EQ(cosine_hemisphere_pdf(0.5f), 0.5f / kPi);
+    EXPECT_FLOAT_EQ(cosine_hemisphere_pdf(-0.5f), 0.0f);
+    EXPECT_FLOAT_EQ(uniform_angles_hemisphere_pdf(0.0f), 1.0f / (kPi * kPi));
+    EXPECT_FLOAT_EQ(uniform_cone_pdf(0.9f, 0.8f), 1.0f / (2.0f * kPi * 0.2f));
+    EXPECT_FLOAT_EQ(uniform_cone_pdf(0.7f, 0.8f), 0.0f);
+}
+
+}  // namespace
+}  // namespace stratum
