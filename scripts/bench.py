@@ -240,6 +240,8 @@ def main() -> int:
         f"{'Cycles  path tracing':28s}{fmt(cyc['trace']):>10s}",
         f"{'Cycles  total (F12)':28s}{fmt(cyc['total']):>10s}",
     ]
+    if cyc["trace"] is None:
+        lines.append("  (Cycles split n/a: no status lines printed; the bpy module prints none)")
     if st is not None:
         rays_per_s = st["rays"] / st["trace"] if st["trace"] > 0 else 0.0
         lines += [
