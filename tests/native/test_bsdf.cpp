@@ -1,0 +1,365 @@
+// BSDFs against their own densities and against physics: chi-square of bsdf_sample against
+// bsdf_eval's pdf, weight == value/pdf, white furnace (directional albedo <= 1 within 4 standard
+// errors), reciprocity of the symmetric models, Lambert's exact albedo, and the albedo of the
+// Principled models against Cycles renders measured in docs/cycles_models.md.
+//
+// Chi-square binning as in test_warps.cpp. Significance: alpha = 1% over the kChiSquareTests
+// chi-square tests of this file, alpha / kChiSquareTests each (Bonferroni).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <random>
+#include <vector>
+
+#include "bsdf/bsdf.h"
+
+namespace stratum {
+namespace {
+
+constexpr int kChiSquareTests = 30;  // 10 materials x 3 view directions
+constexpr double kSignificance = 0.01 / kChiSquareTests;
+constexpr int kSampleCount = 400'000;
+
+// Regularised upper incomplete gamma Q(a, x): series for x < a + 1, Lentz continued fraction
+// otherwise (Abramowitz & Stegun 6.5.29 and 6.5.31). The chi-square p-value is Q(dof/2, x/2).
+double upper_incomplete_gamma(double a, double x) {
+    if (x <= 0.0) return 1.0;
+    const double log_prefactor = -x + a * std::log(x) - std::lgamma(a);
+    if (x < a + 1.0) {
+        double term = 1.0 / a, sum = term;
+        for (int n = 1; n < 1000 && std::abs(term) > 1e-15 * std::abs(sum); ++n) {
+            term *= x / (a + n);
+            sum += term;
+        }
+        return 1.0 - sum * std::exp(log_prefactor);
+    }
+    const double tiny = 1e-300;
+    double b = x + 1.0 - a, c = 1.0 / tiny, d = 1.0 / b, h = d;
+    for (int i = 1; i < 1000; ++i) {
+        const double an = -i * (i - a);
+        b += 2.0;
+        d = an * d + b;
+        d = std::abs(d) < tiny ? tiny : d;
+        c = b + an / c;
+        c = std::abs(c) < tiny ? tiny : c;
+        d = 1.0 / d;
+        const double delta = d * c;
+        h *= delta;
+        if (std::abs(delta - 1.0) < 1e-15) break;
+    }
+    return std::exp(log_prefactor) * h;
+}
+
+struct ChiSquare {
+    double statistic = 0;
+    int dof = 0;
+    double p_value = 0;
+    double density_mass = 0;  // integral of the density over the sphere (should be <= 1)
+};
+
+// Pearson's test of observed against expected counts, pooling bins with expected < 5.
+ChiSquare pearson(const std::vector<double>& observed, const std::vector<double>& expected) {
+    ChiSquare r;
+    double pooled_observed = 0, pooled_expected = 0;
+    int bins = 0;
+    for (size_t i = 0; i < observed.size(); ++i) {
+        if (expected[i] < 5.0) {
+            pooled_observed += observed[i];
+            pooled_expected += expected[i];
+            continue;
+        }
+        r.statistic += sqr(float(observed[i] - expected[i])) / expected[i];
+        ++bins;
+    }
+    if (pooled_expected > 0.0 || pooled_observed > 0.0) {
+        r.statistic += pooled_expected > 0.0 ? sqr(float(pooled_observed - pooled_expected)) / pooled_expected
+                                             : std::numeric_limits<double>::infinity();
+        ++bins;
+    }
+    r.dof = bins - 1;
+    r.p_value = upper_incomplete_gamma(0.5 * r.dof, 0.5 * r.statistic);
+    return r;
+}
+
+using DirectionSampler = std::function<bool(Vec2, float, Vec3*)>;
+using DirectionDensity = std::function<float(Vec3)>;
+
+ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionDensity& density, uint64_t seed) {
+    constexpr int kThetaFine = 1024, kPhiFine = 800, kThetaBins = 12, kPhiBins = 20;
+    const double dtheta = kPi / kThetaFine, dphi = 2.0 * kPi / kPhiFine;
+    std::vector<double> fine(kThetaFine * kPhiFine), theta_mass(kThetaFine, 0.0);
+    double total = 0;
+    for (int i = 0; i < kThetaFine; ++i) {
+        const double theta = (i + 0.5) * dtheta;
+        for (int j = 0; j < kPhiFine; ++j) {
+            const double phi = (j + 0.5) * dphi;
+            const Vec3 w(float(std::sin(theta) * std::cos(phi)), float(std::sin(theta) * std::sin(phi)),
+                         float(std::cos(theta)));
+            const double m = density(w) * std::sin(theta) * dtheta * dphi;
+            fine[i * kPhiFine + j] = m;
+            theta_mass[i] += m;
+            total += m;
+        }
+    }
+    // Theta bin edges at quantiles of the density's theta marginal.
+    std::vector<int> theta_bin(kThetaFine);
+    double cumulative = 0;
+    for (int i = 0; i < kThetaFine; ++i) {
+        theta_bin[i] = std::min(int(cumulative / total * kThetaBins), kThetaBins - 1);
+        cumulative += theta_mass[i];
+    }
+    const int outside = kThetaBins * kPhiBins;  // failed samples: mass 1 - total
+    std::vector<double> expected(outside + 1, 0.0), observed(outside + 1, 0.0);
+    for (int i = 0; i < kThetaFine; ++i)
+        for (int j = 0; j < kPhiFine; ++j)
+            expected[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] += fine[i * kPhiFine + j] * kSampleCount;
+    expected[outside] = std::max(1.0 - total, 0.0) * kSampleCount;
+
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+    for (int s = 0; s < kSampleCount; ++s) {
+        Vec3 w;
+        if (!sample({uniform(rng), uniform(rng)}, uniform(rng), &w)) {
+            observed[outside] += 1;
+            continue;
+        }
+        const double theta = std::acos(std::clamp(double(w.z), -1.0, 1.0));
+        double phi = std::atan2(double(w.y), double(w.x));
+        if (phi < 0) phi += 2.0 * kPi;
+        const int i = std::min(int(theta / dtheta), kThetaFine - 1), j = std::min(int(phi / dphi), kPhiFine - 1);
+        observed[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] += 1;
+    }
+    ChiSquare r = pearson(observed, expected);
+    r.density_mass = total;
+    return r;
+}
+
+
+Material lambert(Rgb c) { return {MaterialModel::Diffuse, c, 0, 0, 0, 1.5f, Rgb()}; }
+Material v1(Rgb c, float roughness, float metallic, float specular) {
+    return {MaterialModel::PrincipledV1, c, roughness, metallic, specular, 1.45f, Rgb()};
+}
+Material v2(Rgb c, float roughness, float metallic, float level, float ior) {
+    return {MaterialModel::PrincipledV2, c, roughness, metallic, level, ior, Rgb()};
+}
+
+std::vector<Material> test_materials() {
+    return {lambert(Rgb(0.8f, 0.5f, 0.2f)),
+            v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f),
+            v1(Rgb(0.8f), 0.5f, 0.0f, 0.5f),
+            v1(Rgb(0.9f, 0.6f, 0.3f), 0.3f, 1.0f, 0.5f),
+            v1(Rgb(0.5f), 0.2f, 0.3f, 1.0f),
+            v2(Rgb(0.8f), 0.5f, 0.0f, 0.5f, 1.5f),
+            v2(Rgb(0.8f, 0.3f, 0.1f), 0.25f, 0.0f, 0.5f, 1.5f),
+            v2(Rgb(0.9f, 0.6f, 0.3f), 0.4f, 1.0f, 0.5f, 1.5f),
+            v2(Rgb(0.5f), 0.2f, 0.5f, 1.0f, 1.5f),
+            v2(Rgb(1.0f), 1.0f, 0.0f, 0.0f, 1.5f)};
+}
+
+Vec3 direction(float theta, float phi) {
+    return {std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+}
+// 10, 50, 70 degrees. The reference integrals are midpoint rules on fixed grids, which resolve a
+// lobe only if it spans several cells; at 80 degrees the lobes of alpha < 0.05 get too thin.
+const float kViewThetas[] = {0.17f, 0.87f, 1.22f};
+
+TEST(Bsdf, SamplingMatchesPdfChiSquare) {
+    uint64_t seed = 100;
+    for (const Material& m : test_materials()) {
+        for (const float theta : kViewThetas) {
+            const Vec3 wo = direction(theta, 0.3f);
+            const ChiSquare r = chi_square_directions(
+                [&](Vec2 u, float u_lobe, Vec3* wi) {
+                    BsdfSample s;
+                    if (!bsdf_sample(m, wo, u_lobe, u, &s)) return false;
+                    *wi = s.wi;
+                    return true;
+                },
+                [&](Vec3 wi) { return bsdf_eval(m, wo, wi).pdf; }, seed++);
+            EXPECT_GT(r.p_value, kSignificance) << "model " << int(m.model) << " roughness " << m.roughness
+                                                << " theta_o " << theta << ": chi2 " << r.statistic << ", dof "
+                                                << r.dof;
+            EXPECT_LE(r.density_mass, 1.0 + 5e-3);
+        }
+    }
+}
+
+TEST(Bsdf, WeightIsValueOverPdfAndPdfMatchesEval) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+    for (const Material& m : test_materials()) {
+        for (const float theta : kViewThetas) {
+            const Vec3 wo = direction(theta, 1.1f);
+            for (int i = 0; i < 2000; ++i) {
+                BsdfSample s;
+                if (!bsdf_sample(m, wo, uniform(rng), {uniform(rng), uniform(rng)}, &s)) continue;
+                const BsdfEval e = bsdf_eval(m, wo, s.wi);
+                ASSERT_GT(s.pdf, 0.0f);
+                EXPECT_NEAR(s.pdf, e.pdf, 1e-4f * e.pdf);
+                EXPECT_NEAR(s.weight.r, e.value.r / e.pdf, 1e-4f * (1.0f + s.weight.r));
+                EXPECT_NEAR(s.weight.b, e.value.b / e.pdf, 1e-4f * (1.0f + s.weight.b));
+            }
+        }
+    }
+}
+
+struct Albedo {
+    Rgb mean;
+    Rgb standard_error;
+};
+
+// Directional albedo by sampling: mean of weight (0 for absorbed samples) and its standard error.
+Albedo sampled_albedo(const Material& m, Vec3 wo, int n, uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+    Rgb sum, sum_sq;
+    for (int i = 0; i < n; ++i) {
+        BsdfSample s;
+        if (!bsdf_sample(m, wo, uniform(rng), {uniform(rng), uniform(rng)}, &s)) continue;
+        sum += s.weight;
+        sum_sq += s.weight * s.weight;
+    }
+    const Rgb mean = sum / float(n);
+    const Rgb var = sum_sq / float(n) - mean * mean;
+    return {mean, Rgb(std::sqrt(std::max(var.r, 0.0f) / n), std::sqrt(std::max(var.g, 0.0f) / n),
+                      std::sqrt(std::max(var.b, 0.0f) / n))};
+}
+
+// Directional albedo by deterministic quadrature of bsdf_eval's value (midpoint in cos, phi).
+Rgb quadrature_albedo(const Material& m, Vec3 wo) {
+    constexpr int kCos = 800, kPhi = 800;
+    double sum[3] = {0, 0, 0};  // double: 640k float terms would lose ~1e-4
+    for (int i = 0; i < kCos; ++i) {
+        const float c = (i + 0.5f) / kCos, s = std::sqrt(1 - c * c);
+        for (int j = 0; j < kPhi; ++j) {
+            const float phi = 2 * kPi * (j + 0.5f) / kPhi;
+            const Rgb v = bsdf_eval(m, wo, Vec3(s * std::cos(phi), s * std::sin(phi), c)).value;
+            sum[0] += v.r, sum[1] += v.g, sum[2] += v.b;
+        }
+    }
+    const double scale = 2 * kPi / (double(kCos) * kPhi);
+    return Rgb(float(sum[0] * scale), float(sum[1] * scale), float(sum[2] * scale));
+}
+
+TEST(Bsdf, LambertAlbedoIsBaseColorExactly) {
+    // Every weight is exactly rho; only directions on the horizon itself (a disk point with
+    // r = 1 in float) are dropped, a set of measure zero that float rounding makes ~1e-4.
+    const Material m = lambert(Rgb(0.8f, 0.5f, 0.2f));
+    std::mt19937_64 rng(3);
+    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+    int absorbed = 0;
+    for (int i = 0; i < 100000; ++i) {
+        BsdfSample s;
+        if (!bsdf_sample(m, direction(0.7f, 0.0f), uniform(rng), {uniform(rng), uniform(rng)}, &s)) {
+            ++absorbed;
+            continue;
+        }
+        ASSERT_EQ(s.weight.r, 0.8f);
+        ASSERT_EQ(s.weight.g, 0.5f);
+        ASSERT_EQ(s.weight.b, 0.2f);
+    }
+    EXPECT_LT(absorbed, 100);
+    EXPECT_NEAR(quadrature_albedo(m, direction(0.7f, 0.0f)).r, 0.8f, 1e-4f);
+}
+
+TEST(Bsdf, WhiteFurnaceEnergyConservingModels) {
+    // Lambert and V2 (white base, every roughness, metallic 0 and 1) reflect at most what arrives.
+    for (const float roughness : {0.05f, 0.3f, 0.7f, 1.0f}) {
+        for (const float metallic : {0.0f, 1.0f}) {
+            for (const Material& m : {lambert(Rgb(1.0f)), v2(Rgb(1.0f), roughness, metallic, 0.5f, 1.5f),
+                                      v2(Rgb(1.0f), roughness, metallic, 1.0f, 2.5f)}) {
+                for (const float theta : {0.0f, 0.6f, 1.2f, 1.5f}) {
+                    const Albedo a = sampled_albedo(m, direction(theta, 0.0f), 100000, 11);
+                    EXPECT_LE(a.mean.r, 1.0f + 4.0f * a.standard_error.r + 1e-5f)
+                        << "model " << int(m.model) << " roughness " << roughness << " metallic " << metallic
+                        << " theta " << theta;
+                }
+            }
+        }
+    }
+    // A white V2 metal with multiscatter compensation loses (almost) nothing: albedo ~ 1.
+    const Albedo metal = sampled_albedo(v2(Rgb(1.0f), 0.8f, 1.0f, 0.5f, 1.5f), direction(0.5f, 0), 200000, 12);
+    EXPECT_NEAR(metal.mean.r, 1.0f, 4.0f * metal.standard_error.r + 0.01f);
+}
+
+TEST(Bsdf, SampledAlbedoMatchesQuadratureOfEval) {
+    uint64_t seed = 40;
+    for (const Material& m : test_materials()) {
+        for (const float theta : kViewThetas) {
+            const Vec3 wo = direction(theta, 0.0f);
+            const Albedo a = sampled_albedo(m, wo, 200000, seed++);
+            const Rgb q = quadrature_albedo(m, wo);
+            // 4 sigma of the estimate plus the quadrature's error on peaked lobes.
+            EXPECT_NEAR(a.mean.r, q.r, 4.0f * a.standard_error.r + 3e-3f) << int(m.model) << " " << theta;
+        }
+    }
+}
+
+TEST(Bsdf, ReciprocityOfSymmetricModels) {
+    std::mt19937_64 rng(5);
+    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+    for (const Material& m : {lambert(Rgb(0.7f)), v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f), v1(Rgb(0.8f), 0.5f, 0.0f, 0.5f),
+                              v1(Rgb(0.9f, 0.6f, 0.3f), 0.3f, 1.0f, 0.5f)}) {
+        for (int i = 0; i < 1000; ++i) {
+            const Vec3 wo = direction(1.5f * uniform(rng), 2 * kPi * uniform(rng));
+            const Vec3 wi = direction(1.5f * uniform(rng), 2 * kPi * uniform(rng));
+            const Rgb f_oi = bsdf_eval(m, wo, wi).value / wi.z, f_io = bsdf_eval(m, wi, wo).value / wo.z;
+            EXPECT_NEAR(f_oi.r, f_io.r, 1e-4f * (1.0f + f_oi.r));
+            EXPECT_NEAR(f_oi.b, f_io.b, 1e-4f * (1.0f + f_oi.b));
+        }
+    }
+}
+
+TEST(Bsdf, EmissionDoesNotScatter) {
+    const Material m{MaterialModel::Emission, Rgb(1.0f), 0.5f, 0, 0.5f, 1.5f, Rgb(3.0f)};
+    BsdfSample s;
+    EXPECT_FALSE(bsdf_sample(m, Vec3(0, 0, 1), 0.5f, {0.5f, 0.5f}, &s));
+    EXPECT_TRUE(bsdf_eval(m, Vec3(0, 0, 1), Vec3(0, 0, 1)).value.is_black());
+}
+
+// Cycles renders of a plane under a uniform white sky seen at angle theta_o (docs/cycles_models.md,
+// 1024 pixels x 256 spp, base colour 0.8, sky 0.05): pixel = 0.05 x directional albedo.
+TEST(Bsdf, DirectionalAlbedoMatchesCycles) {
+    struct Case {
+        Material m;
+        float theta_o, cycles_pixel;
+    };
+    const Case cases[] = {
+        {v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f), 0.0f, 0.04143f},               // Blender 3.4, rough 1, spec 0
+        {v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f), kPi / 3, 0.04228f},            // same, 60 degrees
+        {v1(Rgb(0.8f), 0.5f, 0.0f, 0.5f), 0.0f, 0.04212f},               // Blender 3.4 default node
+        {v2(Rgb(0.8f), 1.0f, 0.0f, 0.0f, 1.5f), 0.0f, 0.04000f},         // Blender 5.0, level 0
+        {v2(Rgb(0.8f), 0.5f, 0.0f, 0.5f, 1.5f), 0.0f, 0.04035f},         // Blender 5.0 default node
+    };
+    for (const Case& c : cases) {
+        const Rgb q = quadrature_albedo(c.m, direction(c.theta_o, 0.0f));
+        // Cycles' own noise (~0.1%) and 5-digit output: 0.4% relative.
+        EXPECT_NEAR(0.05f * q.r, c.cycles_pixel, 0.004f * c.cycles_pixel)
+            << "model " << int(c.m.model) << " theta " << c.theta_o << " albedo " << q.r;
+    }
+}
+
+// The "9% brighter" effect: Cycles 3.x Principled (roughness 1, specular 0) has a larger
+// cosine-weighted hemispherical albedo than Lambert of the same colour, and a closed room
+// multiplies the difference like an integrating sphere (textbook 3.18: M = k/(1 - k)).
+TEST(Bsdf, PrincipledV1OutshinesLambertInAClosedRoom) {
+    const Material burley = v1(Rgb(1.0f), 1.0f, 0.0f, 0.0f);
+    constexpr int kCos = 64;
+    double hemispherical = 0;  // 2 int albedo(mu) mu dmu, albedo per unit base colour
+    for (int i = 0; i < kCos; ++i) {
+        const float mu = (i + 0.5f) / kCos;
+        hemispherical += 2.0 * quadrature_albedo(burley, Vec3(std::sqrt(1 - mu * mu), 0, mu)).r * mu / kCos;
+    }
+    // Wall reflectance rho: Lambert room radiance ~ 1/(1 - rho), Burley room ~ 1/(1 - k rho).
+    const double k = hemispherical, rho = 0.6;
+    const double room_ratio = (1 - rho) / (1 - k * rho);
+    std::printf("Burley (roughness 1) hemispherical albedo / Lambert = %.4f; room ratio at rho 0.6 = %.4f\n", k,
+                room_ratio);
+    EXPECT_GT(k, 1.02);
+    EXPECT_LT(k, 1.10);
+    EXPECT_GT(room_ratio, 1.04);
+}
+
+}  // namespace
+}  // namespace stratum
