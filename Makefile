@@ -1,0 +1,71 @@
+# Stratum: the two commands of the README (`make render`, `make test`) and their parts.
+# Every target installs what it needs first (scripts/setup.sh is idempotent).
+
+BUILD      ?= build
+VENV       := .venv
+PY         := $(VENV)/bin/python
+BLENDER    ?= blender
+BLENDER_BG := $(BLENDER) -b --factory-startup -noaudio
+CMAKE_ARGS ?= -DCMAKE_BUILD_TYPE=Release -DSTRATUM_WERROR=ON
+LIB        := addon/stratum/lib/libstratum.so
+
+.PHONY: all setup build test test-native test-python test-blender test-blender-3 test-blender-wheel \
+        lint render bench sanitize format clean
+
+all: build
+
+setup:
+	bash scripts/setup.sh
+
+build: setup
+	cmake -S . -B $(BUILD) -G Ninja $(CMAKE_ARGS) > $(BUILD).configure.log || (cat $(BUILD).configure.log; false)
+	cmake --build $(BUILD)
+	mkdir -p addon/stratum/lib
+	cp -f $(BUILD)/libstratum.so $(LIB)
+
+test: build lint test-native test-python test-blender
+
+test-native: build
+	cd $(BUILD) && ctest --output-on-failure -j2
+
+test-python: build
+	$(PY) -m pytest tests/python -q
+
+# The same Blender tests in Blender 3.4 (Debian, `blender -b`) and in the bpy wheel (4.5/5.0).
+test-blender: test-blender-3 test-blender-wheel
+
+test-blender-3: build
+	$(BLENDER_BG) --python tests/blender/run_in_blender.py -- tests/blender -q
+
+test-blender-wheel: build
+	$(PY) -m pytest tests/blender -q
+
+lint: setup
+	$(VENV)/bin/ruff check addon tests scenes scripts
+	clang-format --dry-run -Werror $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
+
+format: setup
+	clang-format -i $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
+	$(VENV)/bin/ruff format addon tests scenes scripts
+
+# Renders the bundled Cornell box with Stratum through Blender in background mode.
+render: build
+	bash scripts/install_addon.sh
+	mkdir -p out
+	$(BLENDER) -b scenes/cornell_box.blend --addons stratum -E STRATUM \
+		--python scripts/render_to_files.py -- out/cornell_box
+	@echo "Stratum rendered the Cornell box: $(CURDIR)/out/cornell_box.png (display) and $(CURDIR)/out/cornell_box.exr (linear)"
+
+bench: build
+	bash scripts/install_addon.sh
+	mkdir -p out
+	$(BLENDER_BG) --python scripts/bench.py
+
+# ASan/UBSan build of the core and its tests.
+sanitize: setup
+	cmake -S . -B $(BUILD)-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATUM_SANITIZE=ON > /dev/null
+	cmake --build $(BUILD)-asan
+	cd $(BUILD)-asan && ctest --output-on-failure -j2
+
+clean:
+	rm -rf $(BUILD) $(BUILD)-asan $(BUILD).configure.log addon/stratum/lib out

@@ -1,0 +1,184 @@
+#include "api/scene_file.h"
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+namespace stratum {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr const char* kFormat = "stratum-scene";
+constexpr int kVersion = 1;
+
+json rgb(Rgb c) { return json::array({c.r, c.g, c.b}); }
+json matrix(const Transform& t) {
+    json m = json::array();
+    for (float v : t.m) m.push_back(v);
+    for (float v : {0.0f, 0.0f, 0.0f, 1.0f}) m.push_back(v);
+    return m;
+}
+
+template <typename T, size_t N>
+void read_floats(const json& j, T (&out)[N]) {
+    if (!j.is_array() || j.size() != N) throw std::runtime_error("expected " + std::to_string(N) + " numbers");
+    for (size_t i = 0; i < N; ++i) out[i] = j[i].get<T>();
+}
+
+}  // namespace
+
+std::string save_scene_file(const Scene& scene, const char* path) {
+    json j;
+    j["format"] = kFormat;
+    j["version"] = kVersion;
+    j["materials"] = json::array();
+    for (const Material& m : scene.materials) {
+        j["materials"].push_back({{"model", static_cast<int>(m.model)},
+                                  {"base_color", rgb(m.base_color)},
+                                  {"roughness", m.roughness},
+                                  {"metallic", m.metallic},
+                                  {"specular", m.specular},
+                                  {"ior", m.ior},
+                                  {"emission", rgb(m.emission)}});
+    }
+    j["meshes"] = json::array();
+    for (const Mesh& mesh : scene.meshes) {
+        json pos = json::array(), tri = json::array(), nrm = json::array(), uv = json::array();
+        for (Vec3 p : mesh.positions) pos.insert(pos.end(), {p.x, p.y, p.z});
+        for (const auto& t : mesh.triangles) tri.insert(tri.end(), {t[0], t[1], t[2]});
+        for (Vec3 n : mesh.corner_normals) nrm.insert(nrm.end(), {n.x, n.y, n.z});
+        for (Vec2 c : mesh.corner_uvs) uv.insert(uv.end(), {c.x, c.y});
+        j["meshes"].push_back({{"positions", pos},
+                               {"triangles", tri},
+                               {"corner_normals", nrm},
+                               {"corner_uvs", uv},
+                               {"material_ids", mesh.material_ids}});
+    }
+    j["instances"] = json::array();
+    for (const Instance& i : scene.instances) {
+        j["instances"].push_back({{"mesh", i.mesh_id}, {"transform", matrix(i.object_to_world)}});
+    }
+    j["lights"] = json::array();
+    for (const LightParams& l : scene.lights) {
+        j["lights"].push_back({{"type", static_cast<int>(l.type)},
+                               {"color", rgb(l.color)},
+                               {"strength", l.strength},
+                               {"radius", l.radius},
+                               {"angle", l.angle},
+                               {"size", {l.size_x, l.size_y}},
+                               {"transform", matrix(l.light_to_world)}});
+    }
+    if (scene.camera) {
+        const CameraParams& c = *scene.camera;
+        j["camera"] = {{"lens_mm", c.lens_mm},
+                       {"sensor_mm", {c.sensor_width_mm, c.sensor_height_mm}},
+                       {"sensor_fit", static_cast<int>(c.fit)},
+                       {"shift", {c.shift_x, c.shift_y}},
+                       {"clip", {c.clip_start, c.clip_end}},
+                       {"transform", matrix(c.camera_to_world)}};
+    }
+    j["background"] = rgb(scene.background);
+    std::ofstream out(path, std::ios::binary);
+    if (!out) return std::string("cannot open '") + path + "' for writing";
+    out << j.dump();
+    return out.good() ? std::string() : std::string("cannot write '") + path + "'";
+}
+
+StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string* error) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) {
+        *error = "cannot open the file";
+        return STRATUM_ERROR_IO;
+    }
+    json j;
+    try {
+        j = json::parse(in);
+    } catch (const json::exception& e) {
+        *error = std::string("not valid JSON: ") + e.what();
+        return STRATUM_ERROR_IO;
+    }
+    // Failures of the entry points below carry their own message in stratum_last_error().
+    const auto entry_point_failed = [&](StratumStatus status) {
+        *error = stratum_last_error();
+        return status;
+    };
+    try {
+        if (j.value("format", "") != kFormat || j.value("version", 0) != kVersion) {
+            *error = std::string("not a ") + kFormat + " version " + std::to_string(kVersion) + " file";
+            return STRATUM_ERROR_IO;
+        }
+        StratumStatus status = STRATUM_OK;
+        for (const json& m : j.at("materials")) {
+            StratumMaterialDesc d{};
+            d.model = m.at("model").get<int32_t>();
+            read_floats(m.at("base_color"), d.base_color);
+            d.roughness = m.at("roughness").get<float>();
+            d.metallic = m.at("metallic").get<float>();
+            d.specular = m.at("specular").get<float>();
+            d.ior = m.at("ior").get<float>();
+            read_floats(m.at("emission"), d.emission);
+            if ((status = stratum_scene_add_material(scene, &d, nullptr)) != STRATUM_OK) return entry_point_failed(status);
+        }
+        for (const json& m : j.at("meshes")) {
+            const auto pos = m.at("positions").get<std::vector<float>>();
+            const auto tri = m.at("triangles").get<std::vector<uint32_t>>();
+            const auto nrm = m.at("corner_normals").get<std::vector<float>>();
+            const auto uv = m.at("corner_uvs").get<std::vector<float>>();
+            const auto mat = m.at("material_ids").get<std::vector<uint32_t>>();
+            const size_t tris = tri.size() / 3;
+            if (pos.size() % 3 || tri.size() % 3 || mat.size() != tris || (!nrm.empty() && nrm.size() != 9 * tris) ||
+                (!uv.empty() && uv.size() != 6 * tris)) {
+                throw std::runtime_error("mesh arrays have inconsistent sizes");
+            }
+            const StratumMeshDesc d{pos.data(),  static_cast<uint32_t>(pos.size() / 3),
+                                    tri.data(),  static_cast<uint32_t>(tris),
+                                    nrm.empty() ? nullptr : nrm.data(),
+                                    uv.empty() ? nullptr : uv.data(),
+                                    mat.data()};
+            if ((status = stratum_scene_add_mesh(scene, &d, nullptr)) != STRATUM_OK) return entry_point_failed(status);
+        }
+        for (const json& i : j.at("instances")) {
+            float t[16];
+            read_floats(i.at("transform"), t);
+            if ((status = stratum_scene_add_instance(scene, i.at("mesh").get<uint32_t>(), t)) != STRATUM_OK) {
+                return entry_point_failed(status);
+            }
+        }
+        for (const json& l : j.at("lights")) {
+            StratumLightDesc d{};
+            d.type = l.at("type").get<int32_t>();
+            read_floats(l.at("color"), d.color);
+            d.strength = l.at("strength").get<float>();
+            d.radius = l.at("radius").get<float>();
+            d.angle = l.at("angle").get<float>();
+            d.size_x = l.at("size").at(0).get<float>();
+            d.size_y = l.at("size").at(1).get<float>();
+            read_floats(l.at("transform"), d.transform);
+            if ((status = stratum_scene_add_light(scene, &d)) != STRATUM_OK) return entry_point_failed(status);
+        }
+        if (j.contains("camera")) {
+            const json& c = j["camera"];
+            StratumCameraDesc d{};
+            d.lens_mm = c.at("lens_mm").get<float>();
+            d.sensor_width_mm = c.at("sensor_mm").at(0).get<float>();
+            d.sensor_height_mm = c.at("sensor_mm").at(1).get<float>();
+            d.sensor_fit = c.at("sensor_fit").get<int32_t>();
+            d.shift_x = c.at("shift").at(0).get<float>();
+            d.shift_y = c.at("shift").at(1).get<float>();
+            d.clip_start = c.at("clip").at(0).get<float>();
+            d.clip_end = c.at("clip").at(1).get<float>();
+            read_floats(c.at("transform"), d.transform);
+            if ((status = stratum_scene_set_camera(scene, &d)) != STRATUM_OK) return entry_point_failed(status);
+        }
+        float bg[3];
+        read_floats(j.at("background"), bg);
+        if ((status = stratum_scene_set_background(scene, bg)) != STRATUM_OK) return entry_point_failed(status);
+        return STRATUM_OK;
+    } catch (const std::exception& e) {
+        *error = std::string("malformed scene: ") + e.what();
+        return STRATUM_ERROR_IO;
+    }
+}
+
+}  // namespace stratum

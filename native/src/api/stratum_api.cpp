@@ -1,0 +1,292 @@
+// The C entry points. Every input is validated here, every exception stops here: nothing
+// that crosses this file can throw or abort the host (Blender) process.
+#include "stratum/stratum.h"
+
+#include <cmath>
+#include <cstring>
+#include <memory>
+#include <new>
+#include <sstream>
+#include <string>
+
+#include "api/scene_file.h"
+#include "api/validation.h"
+#include "integrators/integrator.h"
+#include "render/image_output.h"
+#include "render/pixel_filter.h"
+#include "render/renderer.h"
+#include "sampling/sampler_registry.h"
+#include "scene/scene.h"
+
+struct StratumScene {
+    stratum::Scene scene;
+};
+
+struct StratumRenderer {
+    explicit StratumRenderer(stratum::Scene s) : renderer(std::move(s)) {}
+    stratum::Renderer renderer;
+};
+
+namespace {
+
+using stratum::ValidationError;
+
+thread_local std::string g_last_error;
+
+StratumStatus fail(StratumStatus status, std::string message) {
+    g_last_error = std::move(message);
+    return status;
+}
+
+// Runs `body`, turning every exception into a status and a message.
+template <typename F>
+StratumStatus guarded(const char* function, F&& body) {
+    try {
+        g_last_error.clear();
+        return body();
+    } catch (const ValidationError& e) {
+        return fail(STRATUM_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + e.what());
+    } catch (const std::bad_alloc&) {
+        return fail(STRATUM_ERROR_OUT_OF_MEMORY, std::string(function) + ": out of memory");
+    } catch (const std::exception& e) {
+        return fail(STRATUM_ERROR_INTERNAL, std::string(function) + ": " + e.what());
+    } catch (...) {
+        return fail(STRATUM_ERROR_INTERNAL, std::string(function) + ": unknown internal error");
+    }
+}
+
+void require(bool condition, const std::string& message) {
+    if (!condition) throw ValidationError(message);
+}
+
+}  // namespace
+
+namespace {
+
+template <typename F>
+StratumStatus set_setting(const char* function, StratumRenderer* r, const char* name, F&& apply) {
+    return guarded(function, [&] {
+        require(r && name, "renderer or name is NULL");
+        if (r->renderer.running()) {
+            return fail(STRATUM_ERROR_INVALID_STATE,
+                        std::string(function) + ": cannot change '" + name + "' while rendering");
+        }
+        const std::string error = apply(r->renderer.settings());
+        require(error.empty(), error);
+        return STRATUM_OK;
+    });
+}
+
+}  // namespace
+
+extern "C" {
+
+const char* stratum_last_error(void) { return g_last_error.c_str(); }
+
+const char* stratum_version(void) { return "0.1.0"; }
+
+int32_t stratum_registry_count(int32_t registry) {
+    switch (registry) {
+        case STRATUM_REGISTRY_SAMPLER: return static_cast<int32_t>(stratum::sampler_registry().size());
+        case STRATUM_REGISTRY_FILTER: return static_cast<int32_t>(stratum::filter_registry().size());
+        case STRATUM_REGISTRY_INTEGRATOR: return static_cast<int32_t>(stratum::integrator_registry().size());
+        default: return -1;
+    }
+}
+
+StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char** name, const char** label,
+                                     const char** description) {
+    return guarded("stratum_registry_entry", [&] {
+        const int32_t count = stratum_registry_count(registry);
+        require(count >= 0, "unknown registry " + std::to_string(registry));
+        require(index >= 0 && index < count,
+                "index " + std::to_string(index) + " out of range [0, " + std::to_string(count) + ")");
+        const auto i = static_cast<size_t>(index);
+        const stratum::RegistryEntry& e = registry == STRATUM_REGISTRY_SAMPLER ? stratum::sampler_registry()[i].info
+                                          : registry == STRATUM_REGISTRY_FILTER
+                                              ? stratum::filter_registry()[i]
+                                              : stratum::integrator_registry()[i].info;
+        if (name) *name = e.name;
+        if (label) *label = e.label;
+        if (description) *description = e.description;
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_create(StratumScene** out_scene) {
+    return guarded("stratum_scene_create", [&] {
+        require(out_scene != nullptr, "out_scene is NULL");
+        *out_scene = new StratumScene();
+        return STRATUM_OK;
+    });
+}
+
+void stratum_scene_destroy(StratumScene* scene) { delete scene; }
+
+StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMaterialDesc* material, uint32_t* out_id) {
+    return guarded("stratum_scene_add_material", [&] {
+        require(scene && material, "scene or material is NULL");
+        const uint32_t id = static_cast<uint32_t>(scene->scene.materials.size());
+        scene->scene.materials.push_back(stratum::validate_material(*material));
+        if (out_id) *out_id = id;
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_add_mesh(StratumScene* scene, const StratumMeshDesc* mesh, uint32_t* out_id) {
+    return guarded("stratum_scene_add_mesh", [&] {
+        require(scene && mesh, "scene or mesh is NULL");
+        const uint32_t id = static_cast<uint32_t>(scene->scene.meshes.size());
+        scene->scene.meshes.push_back(
+            stratum::validate_mesh(*mesh, static_cast<uint32_t>(scene->scene.materials.size())));
+        if (out_id) *out_id = id;
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id, const float transform[16]) {
+    return guarded("stratum_scene_add_instance", [&] {
+        require(scene && transform, "scene or transform is NULL");
+        require(mesh_id < scene->scene.meshes.size(), "mesh_id " + std::to_string(mesh_id) + " out of range [0, " +
+                                                          std::to_string(scene->scene.meshes.size()) + ")");
+        scene->scene.instances.push_back({mesh_id, stratum::validate_transform(transform, "instance transform")});
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_add_light(StratumScene* scene, const StratumLightDesc* light) {
+    return guarded("stratum_scene_add_light", [&] {
+        require(scene && light, "scene or light is NULL");
+        scene->scene.lights.push_back(stratum::validate_light(*light));
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraDesc* camera) {
+    return guarded("stratum_scene_set_camera", [&] {
+        require(scene && camera, "scene or camera is NULL");
+        scene->scene.camera = stratum::validate_camera(*camera);
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_background(StratumScene* scene, const float rgb[3]) {
+    return guarded("stratum_scene_set_background", [&] {
+        require(scene && rgb, "scene or rgb is NULL");
+        scene->scene.background = stratum::validate_radiance(rgb, "background");
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_save(const StratumScene* scene, const char* path) {
+    return guarded("stratum_scene_save", [&] {
+        require(scene && path, "scene or path is NULL");
+        const std::string error = stratum::save_scene_file(scene->scene, path);
+        return error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_IO, "stratum_scene_save: " + error);
+    });
+}
+
+StratumStatus stratum_scene_load(const char* path, StratumScene** out_scene) {
+    return guarded("stratum_scene_load", [&] {
+        require(path && out_scene, "path or out_scene is NULL");
+        *out_scene = nullptr;
+        auto scene = std::make_unique<StratumScene>();
+        std::string error;
+        const StratumStatus status = stratum::load_scene_file(path, scene.get(), &error);
+        if (status != STRATUM_OK) return fail(status, "stratum_scene_load: " + std::string(path) + ": " + error);
+        *out_scene = scene.release();
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_renderer_create(const StratumScene* scene, StratumRenderer** out) {
+    return guarded("stratum_renderer_create", [&] {
+        require(scene && out, "scene or out is NULL");
+        *out = new StratumRenderer(scene->scene);
+        return STRATUM_OK;
+    });
+}
+
+void stratum_renderer_destroy(StratumRenderer* r) { delete r; }
+
+
+StratumStatus stratum_renderer_set_int(StratumRenderer* r, const char* name, int64_t value) {
+    return set_setting("stratum_renderer_set_int", r, name,
+                       [&](stratum::RenderSettings& s) { return stratum::set_int_setting(s, name, value); });
+}
+
+StratumStatus stratum_renderer_set_float(StratumRenderer* r, const char* name, double value) {
+    return set_setting("stratum_renderer_set_float", r, name,
+                       [&](stratum::RenderSettings& s) { return stratum::set_float_setting(s, name, value); });
+}
+
+StratumStatus stratum_renderer_set_string(StratumRenderer* r, const char* name, const char* value) {
+    return set_setting("stratum_renderer_set_string", r, name, [&](stratum::RenderSettings& s) {
+        require(value != nullptr, std::string("value of '") + name + "' is NULL");
+        return stratum::set_string_setting(s, name, value);
+    });
+}
+
+StratumStatus stratum_renderer_start(StratumRenderer* r) {
+    return guarded("stratum_renderer_start", [&] {
+        require(r != nullptr, "renderer is NULL");
+        const std::string error = r->renderer.start();
+        return error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_INVALID_STATE, "stratum_renderer_start: " + error);
+    });
+}
+
+StratumStatus stratum_renderer_cancel(StratumRenderer* r) {
+    return guarded("stratum_renderer_cancel", [&] {
+        require(r != nullptr, "renderer is NULL");
+        r->renderer.cancel();
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_renderer_wait(StratumRenderer* r, int32_t timeout_ms, int32_t* out_done) {
+    return guarded("stratum_renderer_wait", [&] {
+        require(r != nullptr, "renderer is NULL");
+        const bool done = r->renderer.wait(timeout_ms);
+        if (out_done) *out_done = done ? 1 : 0;
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out) {
+    return guarded("stratum_renderer_progress", [&] {
+        require(r && out, "renderer or out is NULL");
+        const stratum::RenderProgress p = r->renderer.progress();
+        *out = StratumProgress{p.done ? 1 : 0,      p.cancelled ? 1 : 0, static_cast<int32_t>(p.samples_done),
+                               static_cast<int32_t>(p.samples_total), p.update_serial, p.rays,
+                               p.build_seconds,      p.render_seconds};
+        // A failure inside the render thread is reported by the next progress call.
+        return p.error.empty() ? STRATUM_OK
+                               : fail(STRATUM_ERROR_INTERNAL, "render failed: " + p.error);
+    });
+}
+
+StratumStatus stratum_renderer_read_pixels(const StratumRenderer* r, float* rgba, size_t count) {
+    return guarded("stratum_renderer_read_pixels", [&] {
+        require(r && rgba, "renderer or rgba is NULL");
+        const size_t needed = static_cast<size_t>(r->renderer.width()) * r->renderer.height() * 4;
+        require(needed > 0, "nothing rendered yet: call stratum_renderer_start first");
+        require(count == needed, "buffer holds " + std::to_string(count) + " floats, the image needs " +
+                                     std::to_string(needed) + " (width*height*4)");
+        r->renderer.read_pixels(rgba);
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path) {
+    return guarded("stratum_renderer_write_image", [&] {
+        require(r && path, "renderer or path is NULL");
+        const size_t n = static_cast<size_t>(r->renderer.width()) * r->renderer.height() * 4;
+        require(n > 0, "nothing rendered yet: call stratum_renderer_start first");
+        std::vector<float> rgba(n);
+        r->renderer.read_pixels(rgba.data());
+        const std::string error = stratum::write_image(path, rgba, r->renderer.width(), r->renderer.height());
+        return error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_IO, "stratum_renderer_write_image: " + error);
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,155 @@
+#include "api/validation.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace stratum {
+
+namespace {
+
+std::string fmt(float v) {
+    std::ostringstream s;
+    s << v;
+    return s.str();
+}
+
+void check(bool ok, const std::string& message) {
+    if (!ok) throw ValidationError(message);
+}
+
+float finite_in(float v, float lo, float hi, const char* what) {
+    check(std::isfinite(v) && v >= lo && v <= hi,
+          std::string(what) + " = " + fmt(v) + " must be in [" + fmt(lo) + ", " + fmt(hi) + "]");
+    return v;
+}
+
+float finite_positive(float v, const char* what) {
+    check(std::isfinite(v) && v > 0.0f, std::string(what) + " = " + fmt(v) + " must be finite and > 0");
+    return v;
+}
+
+Rgb rgb_in(const float* c, float lo, float hi, const char* what) {
+    for (int i = 0; i < 3; ++i) {
+        check(std::isfinite(c[i]) && c[i] >= lo && c[i] <= hi, std::string(what) + "[" + std::to_string(i) +
+                                                                   "] = " + fmt(c[i]) + " must be in [" + fmt(lo) +
+                                                                   ", " + fmt(hi) + "]");
+    }
+    return {c[0], c[1], c[2]};
+}
+
+std::string triple(const float* v) { return "(" + fmt(v[0]) + ", " + fmt(v[1]) + ", " + fmt(v[2]) + ")"; }
+
+}  // namespace
+
+Rgb validate_radiance(const float* rgb, const char* what) {
+    return rgb_in(rgb, 0.0f, std::numeric_limits<float>::max(), what);
+}
+
+Transform validate_transform(const float* m, const char* what) {
+    for (int i = 0; i < 16; ++i) {
+        check(std::isfinite(m[i]), std::string(what) + " element " + std::to_string(i) + " = " + fmt(m[i]) +
+                                       " is not finite");
+    }
+    check(m[12] == 0.0f && m[13] == 0.0f && m[14] == 0.0f && m[15] == 1.0f,
+          std::string(what) + " is not affine: its last row must be (0, 0, 0, 1)");
+    return Transform::from_row_major(m);
+}
+
+Material validate_material(const StratumMaterialDesc& d) {
+    check(d.model >= STRATUM_MATERIAL_DIFFUSE && d.model <= STRATUM_MATERIAL_EMISSION,
+          "material model " + std::to_string(d.model) + " is not a StratumMaterialModel");
+    Material m{};
+    m.model = static_cast<MaterialModel>(d.model);
+    m.base_color = rgb_in(d.base_color, 0.0f, 1.0f, "material base_color");
+    m.roughness = finite_in(d.roughness, 0.0f, 1.0f, "material roughness");
+    m.metallic = finite_in(d.metallic, 0.0f, 1.0f, "material metallic");
+    m.specular = finite_in(d.specular, 0.0f, 1e6f, "material specular");
+    m.ior = finite_positive(d.ior, "material ior");
+    m.emission = validate_radiance(d.emission, "material emission");
+    return m;
+}
+
+Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
+    check(d.vertex_count > 0, "mesh vertex_count is 0");
+    check(d.triangle_count > 0, "mesh triangle_count is 0");
+    check(d.positions && d.triangles && d.material_ids, "mesh positions, triangles or material_ids is NULL");
+    Mesh mesh;
+    mesh.positions.resize(d.vertex_count);
+    for (uint32_t v = 0; v < d.vertex_count; ++v) {
+        const float* p = d.positions + 3 * static_cast<size_t>(v);
+        check(std::isfinite(p[0]) && std::isfinite(p[1]) && std::isfinite(p[2]),
+              "mesh vertex " + std::to_string(v) + " has a non-finite position " + triple(p));
+        mesh.positions[v] = {p[0], p[1], p[2]};
+    }
+    mesh.triangles.resize(d.triangle_count);
+    mesh.material_ids.resize(d.triangle_count);
+    for (uint32_t t = 0; t < d.triangle_count; ++t) {
+        for (int c = 0; c < 3; ++c) {
+            const uint32_t index = d.triangles[3 * static_cast<size_t>(t) + c];
+            check(index < d.vertex_count, "mesh triangle " + std::to_string(t) + " vertex index " +
+                                              std::to_string(index) + " out of range [0, " +
+                                              std::to_string(d.vertex_count) + ")");
+            mesh.triangles[t][c] = index;
+        }
+        check(d.material_ids[t] < material_count, "mesh triangle " + std::to_string(t) + " material id " +
+                                                      std::to_string(d.material_ids[t]) + " out of range [0, " +
+                                                      std::to_string(material_count) + ")");
+        mesh.material_ids[t] = d.material_ids[t];
+    }
+    if (d.corner_normals) {
+        mesh.corner_normals.resize(3 * static_cast<size_t>(d.triangle_count));
+        for (size_t k = 0; k < mesh.corner_normals.size(); ++k) {
+            const float* n = d.corner_normals + 3 * k;
+            check(std::isfinite(n[0]) && std::isfinite(n[1]) && std::isfinite(n[2]),
+                  "mesh corner normal " + std::to_string(k) + " is not finite " + triple(n));
+            mesh.corner_normals[k] = {n[0], n[1], n[2]};
+        }
+    }
+    if (d.corner_uvs) {
+        mesh.corner_uvs.resize(3 * static_cast<size_t>(d.triangle_count));
+        for (size_t k = 0; k < mesh.corner_uvs.size(); ++k) {
+            const float* uv = d.corner_uvs + 2 * k;
+            check(std::isfinite(uv[0]) && std::isfinite(uv[1]),
+                  "mesh corner uv " + std::to_string(k) + " is not finite (" + fmt(uv[0]) + ", " + fmt(uv[1]) + ")");
+            mesh.corner_uvs[k] = {uv[0], uv[1]};
+        }
+    }
+    return mesh;
+}
+
+LightParams validate_light(const StratumLightDesc& d) {
+    check(d.type >= STRATUM_LIGHT_POINT && d.type <= STRATUM_LIGHT_AREA_ELLIPSE,
+          "light type " + std::to_string(d.type) + " is not a StratumLightType");
+    LightParams l;
+    l.type = static_cast<LightType>(d.type);
+    l.color = validate_radiance(d.color, "light color");
+    l.strength = finite_in(d.strength, 0.0f, std::numeric_limits<float>::max(), "light strength");
+    l.radius = finite_in(d.radius, 0.0f, std::numeric_limits<float>::max(), "light radius");
+    l.angle = finite_in(d.angle, 0.0f, kPi, "light angle");
+    if (l.type == LightType::AreaRectangle || l.type == LightType::AreaEllipse) {
+        l.size_x = finite_positive(d.size_x, "area light size_x");
+        l.size_y = finite_positive(d.size_y, "area light size_y");
+    }
+    l.light_to_world = validate_transform(d.transform, "light transform");
+    return l;
+}
+
+CameraParams validate_camera(const StratumCameraDesc& d) {
+    CameraParams c;
+    c.lens_mm = finite_positive(d.lens_mm, "camera lens_mm");
+    c.sensor_width_mm = finite_positive(d.sensor_width_mm, "camera sensor_width_mm");
+    c.sensor_height_mm = finite_positive(d.sensor_height_mm, "camera sensor_height_mm");
+    check(d.sensor_fit >= STRATUM_SENSOR_FIT_AUTO && d.sensor_fit <= STRATUM_SENSOR_FIT_VERTICAL,
+          "camera sensor_fit " + std::to_string(d.sensor_fit) + " is not a StratumSensorFit");
+    c.fit = static_cast<SensorFit>(d.sensor_fit);
+    c.shift_x = finite_in(d.shift_x, -1e3f, 1e3f, "camera shift_x");
+    c.shift_y = finite_in(d.shift_y, -1e3f, 1e3f, "camera shift_y");
+    c.clip_start = finite_positive(d.clip_start, "camera clip_start");
+    c.clip_end = finite_positive(d.clip_end, "camera clip_end");
+    check(c.clip_start < c.clip_end,
+          "camera clip_start = " + fmt(c.clip_start) + " must be below clip_end = " + fmt(c.clip_end));
+    c.camera_to_world = validate_transform(d.transform, "camera transform");
+    return c;
+}
+
+}  // namespace stratum

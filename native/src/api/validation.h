@@ -1,0 +1,25 @@
+// Validation of every value the C ABI accepts. Each function converts a C description into
+// the core's type or throws ValidationError with a message that names the bad value.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+
+#include "scene/scene.h"
+#include "stratum/stratum.h"
+
+namespace stratum {
+
+class ValidationError : public std::invalid_argument {
+public:
+    using std::invalid_argument::invalid_argument;
+};
+
+Material validate_material(const StratumMaterialDesc& desc);
+Mesh validate_mesh(const StratumMeshDesc& desc, uint32_t material_count);
+LightParams validate_light(const StratumLightDesc& desc);
+CameraParams validate_camera(const StratumCameraDesc& desc);
+Transform validate_transform(const float* m, const char* what);
+Rgb validate_radiance(const float* rgb, const char* what);
+
+}  // namespace stratum

@@ -1,0 +1,39 @@
+// The integrator interface and registry: an integrator estimates the radiance arriving along
+// one camera ray, drawing every random number from the sampler at the named dimensions.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string_view>
+
+#include "sampling/sampler.h"
+#include "sampling/sampler_registry.h"
+#include "scene/camera.h"
+#include "scene/render_scene.h"
+
+namespace stratum {
+
+struct IntegratorSettings {
+    // Cycles' max_bounces: vertices 0..max_bounces are shaded (light sampling and scattering);
+    // the ray scattered at the last one still collects the emission it hits.
+    uint32_t max_bounces = 12;
+};
+
+class Integrator {
+public:
+    virtual ~Integrator() = default;
+    // `rays` is incremented by the number of rays traced.
+    virtual Rgb radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+                         const CameraRay& ray, uint64_t& rays) const = 0;
+};
+
+struct IntegratorEntry {
+    RegistryEntry info;
+    std::unique_ptr<Integrator> (*create)(const IntegratorSettings&);
+};
+
+std::span<const IntegratorEntry> integrator_registry();
+const IntegratorEntry* find_integrator(std::string_view name);
+
+}  // namespace stratum

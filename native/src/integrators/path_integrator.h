@@ -1,0 +1,28 @@
+// `path`: unidirectional path tracing with next-event estimation, multiple importance sampling
+// and Russian roulette (textbook §5: estimator 5.2 with NEE 5.7–5.16 and MIS §5.5; Veach 1997
+// ch. 9 power heuristic β = 2).
+//
+// | parameter   | meaning |
+// |-------------|---------|
+// | max_bounces | Cycles' meaning: vertices 0..max_bounces scatter; 0 = direct lighting only |
+//
+// Emission found by a scattered ray is weighted against light sampling with the power
+// heuristic; delta lights (point of radius 0, sun of angle 0) are reached only by light
+// sampling. Russian roulette from the 4th vertex on, survival = min(1, max throughput).
+#pragma once
+
+#include "integrators/integrator.h"
+
+namespace stratum {
+
+class PathIntegrator final : public Integrator {
+public:
+    explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
+    Rgb radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel, const CameraRay& ray,
+                 uint64_t& rays) const override;
+
+private:
+    IntegratorSettings settings_;
+};
+
+}  // namespace stratum

@@ -1,0 +1,48 @@
+#include "lights/area_light.h"
+
+#include "sampling/warps.h"
+
+namespace stratum {
+
+namespace {
+// Cycles evaluates area lights with strength · ¼ · (1/area) (docs/cycles_models.md).
+constexpr float kCyclesAreaLightFactor = 0.25f;
+}  // namespace
+
+AreaLight::AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power)
+    : center_(light_to_world.translation()),
+      axis_x_(light_to_world.vector(Vec3(0.5f * size_x, 0, 0))),
+      axis_y_(light_to_world.vector(Vec3(0, 0.5f * size_y, 0))),
+      ellipse_(ellipse),
+      power_(power) {
+    const Vec3 c = cross(axis_x_, axis_y_);
+    const float parallelogram = 4.0f * length(c);
+    area_ = ellipse ? parallelogram * (kPi / 4.0f) : parallelogram;
+    // Local −Z; in world the normal follows the handedness of the transform.
+    normal_ = normalize(light_to_world.normal(Vec3(0, 0, -1)));
+    radiance_ = power * (kCyclesAreaLightFactor / area_);
+}
+
+bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
+    float a, b;
+    if (ellipse_) {
+        const Vec2 d = sample_uniform_disk_concentric(u);
+        a = d.x;
+        b = d.y;
+    } else {
+        a = 2.0f * u.x - 1.0f;
+        b = 2.0f * u.y - 1.0f;
+    }
+    const Vec3 q = center_ + axis_x_ * a + axis_y_ * b;
+    const Vec3 to = q - p;
+    const float d2 = dot(to, to);
+    const float d = std::sqrt(d2);
+    if (!(d > 0.0f)) return false;
+    const Vec3 wi = to / d;
+    const float cos_light = -dot(wi, normal_);
+    if (cos_light <= 0.0f) return false;  // the back side does not emit
+    *out = {wi, d, radiance_, d2 / (area_ * cos_light), false};
+    return true;
+}
+
+}  // namespace stratum

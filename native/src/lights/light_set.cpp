@@ -1,0 +1,68 @@
+#include "lights/light_set.h"
+
+#include <algorithm>
+
+namespace stratum {
+
+uint32_t LightSet::add(Light light) {
+    lights_.push_back(std::move(light));
+    return static_cast<uint32_t>(lights_.size() - 1);
+}
+
+void LightSet::finalize(float scene_radius) {
+    std::vector<double> power(lights_.size());
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        power[i] = std::visit(
+            [&](const auto& l) -> double {
+                using T = std::decay_t<decltype(l)>;
+                // The sun's flux through the scene's cross-section.
+                if constexpr (std::is_same_v<T, SunLight>) {
+                    return l.irradiance().average() * kPi * scene_radius * scene_radius;
+                } else {
+                    return l.power();
+                }
+            },
+            lights_[i]);
+    }
+    double total = 0.0;
+    for (double p : power) total += p;
+    probability_.resize(lights_.size());
+    cdf_.resize(lights_.size());
+    double running = 0.0;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        // Lights of zero power are never chosen; if all are zero, choose uniformly.
+        const double p = total > 0.0 ? power[i] / total : 1.0 / static_cast<double>(lights_.size());
+        probability_[i] = static_cast<float>(p);
+        running += p;
+        cdf_[i] = static_cast<float>(running);
+    }
+    if (!cdf_.empty()) cdf_.back() = 1.0f;
+}
+
+bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const {
+    if (lights_.empty()) return false;
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u_choice);
+    const size_t index = std::min(static_cast<size_t>(it - cdf_.begin()), lights_.size() - 1);
+    const float choice = probability_[index];
+    if (!(choice > 0.0f)) return false;
+    const bool ok = std::visit(
+        [&](const auto& l) {
+            using T = std::decay_t<decltype(l)>;
+            if constexpr (std::is_same_v<T, SunLight>) {
+                return l.sample(u, out);
+            } else {
+                return l.sample(p, u, out);
+            }
+        },
+        lights_[index]);
+    if (!ok) return false;
+    out->pdf *= choice;
+    return true;
+}
+
+float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const {
+    const auto& tri = std::get<EmissiveTriangle>(lights_[index]);
+    return probability_[index] * tri.pdf(p, hit);
+}
+
+}  // namespace stratum

@@ -1,0 +1,65 @@
+#include "render/pixel_filter.h"
+
+#include <algorithm>
+#include <array>
+
+namespace stratum {
+
+namespace {
+
+constexpr size_t kTableSize = 1025;
+
+const std::array kFilters = {
+    RegistryEntry{"box", "Box", "Box filter: uniform offsets over a square of the filter width"},
+    RegistryEntry{"blackman_harris", "Blackman-Harris",
+                  "Blackman-Harris window, importance-sampled as in Cycles (support twice the filter width)"},
+};
+
+double profile(FilterType type, double x, double radius) {
+    if (type == FilterType::Box) return 1.0;
+    const double theta = 2.0 * 3.14159265358979323846 * (x / (2.0 * radius) + 0.5);
+    return 0.35875 - 0.48829 * std::cos(theta) + 0.14128 * std::cos(2 * theta) - 0.01168 * std::cos(3 * theta);
+}
+
+}  // namespace
+
+std::span<const RegistryEntry> filter_registry() { return kFilters; }
+
+bool parse_filter_type(std::string_view name, FilterType* out) {
+    if (name == "box") {
+        *out = FilterType::Box;
+    } else if (name == "blackman_harris") {
+        *out = FilterType::BlackmanHarris;
+    } else {
+        return false;
+    }
+    return true;
+}
+
+PixelFilter::PixelFilter(FilterType type, float width)
+    : radius_(type == FilterType::Box ? 0.5f * width : width), cdf_(kTableSize) {
+    // Trapezoid integration of the profile; the CDF is then piecewise linear, i.e. the pdf
+    // piecewise constant between table points, and inverting it is exact for that pdf.
+    const double step = 2.0 * radius_ / static_cast<double>(kTableSize - 1);
+    double sum = 0.0, prev = profile(type, -radius_, radius_);
+    std::vector<double> cdf(kTableSize, 0.0);
+    for (size_t i = 1; i < kTableSize; ++i) {
+        const double v = profile(type, -radius_ + step * static_cast<double>(i), radius_);
+        sum += 0.5 * (prev + v) * step;
+        cdf[i] = sum;
+        prev = v;
+    }
+    for (size_t i = 0; i < kTableSize; ++i) cdf_[i] = static_cast<float>(cdf[i] / sum);
+    cdf_.back() = 1.0f;
+}
+
+float PixelFilter::sample_1d(float u) const {
+    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+    const size_t i = std::clamp<size_t>(static_cast<size_t>(it - cdf_.begin()), 1, kTableSize - 1) - 1;
+    const float span = cdf_[i + 1] - cdf_[i];
+    const float t = span > 0.0f ? (u - cdf_[i]) / span : 0.5f;
+    const float step = 2.0f * radius_ / static_cast<float>(kTableSize - 1);
+    return -radius_ + step * (static_cast<float>(i) + t);
+}
+
+}  // namespace stratum

@@ -1,0 +1,93 @@
+#include "render/render_settings.h"
+
+#include <cmath>
+
+#include "integrators/integrator.h"
+#include "render/pixel_filter.h"
+#include "sampling/sampler_registry.h"
+
+namespace stratum {
+
+namespace {
+
+// Limits keep width*height*4 floats and sample indices far from 32-bit overflow.
+constexpr int64_t kMaxResolution = 65536;
+constexpr int64_t kMaxSamples = 1 << 24;
+constexpr int64_t kMaxBounces = 1024;
+
+std::string out_of_range(std::string_view name, int64_t value, int64_t lo, int64_t hi) {
+    return "setting '" + std::string(name) + "' = " + std::to_string(value) + " is out of range [" +
+           std::to_string(lo) + ", " + std::to_string(hi) + "]";
+}
+
+template <typename Registry>
+std::string registry_names(const Registry& registry) {
+    std::string names;
+    for (const auto& e : registry) names += (names.empty() ? "" : ", ") + std::string(e.info.name);
+    return names;
+}
+
+}  // namespace
+
+std::string set_int_setting(RenderSettings& s, std::string_view name, int64_t value) {
+    struct Field {
+        std::string_view name;
+        uint32_t RenderSettings::*member;
+        int64_t lo, hi;
+    };
+    static constexpr Field kFields[] = {
+        {"width", &RenderSettings::width, 1, kMaxResolution},
+        {"height", &RenderSettings::height, 1, kMaxResolution},
+        {"samples", &RenderSettings::samples, 1, kMaxSamples},
+        {"max_bounces", &RenderSettings::max_bounces, 0, kMaxBounces},
+        {"seed", &RenderSettings::seed, 0, 0xffffffffll},
+        {"threads", &RenderSettings::threads, 0, 1024},
+    };
+    for (const Field& f : kFields) {
+        if (f.name != name) continue;
+        if (value < f.lo || value > f.hi) return out_of_range(name, value, f.lo, f.hi);
+        s.*f.member = static_cast<uint32_t>(value);
+        return {};
+    }
+    return "unknown integer setting '" + std::string(name) + "'";
+}
+
+std::string set_float_setting(RenderSettings& s, std::string_view name, double value) {
+    if (name == "filter_width") {
+        if (!std::isfinite(value) || value < 0.01 || value > 100.0) {
+            return "setting 'filter_width' = " + std::to_string(value) + " must be in [0.01, 100] pixels";
+        }
+        s.filter_width = static_cast<float>(value);
+        return {};
+    }
+    return "unknown float setting '" + std::string(name) + "'";
+}
+
+std::string set_string_setting(RenderSettings& s, std::string_view name, std::string_view value) {
+    if (name == "sampler") {
+        if (!find_sampler(value)) {
+            return "unknown sampler '" + std::string(value) + "' (known: " + registry_names(sampler_registry()) + ")";
+        }
+        s.sampler = value;
+        return {};
+    }
+    if (name == "integrator") {
+        if (!find_integrator(value)) {
+            return "unknown integrator '" + std::string(value) + "' (known: " + registry_names(integrator_registry()) +
+                   ")";
+        }
+        s.integrator = value;
+        return {};
+    }
+    if (name == "filter_type") {
+        FilterType type;
+        if (!parse_filter_type(value, &type)) {
+            return "unknown filter_type '" + std::string(value) + "' (known: box, blackman_harris)";
+        }
+        s.filter_type = value;
+        return {};
+    }
+    return "unknown string setting '" + std::string(name) + "'";
+}
+
+}  // namespace stratum

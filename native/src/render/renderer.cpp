@@ -1,0 +1,178 @@
+#include "render/renderer.h"
+
+#include <tbb/blocked_range2d.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "integrators/integrator.h"
+#include "render/pixel_filter.h"
+#include "sampling/dimensions.h"
+#include "sampling/sampler_registry.h"
+
+namespace stratum {
+
+namespace {
+
+constexpr uint32_t kTileSize = 16;
+constexpr uint32_t kMaxPassSamples = 64;
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point t0) {
+    return std::chrono::duration<double>(Clock::now() - t0).count();
+}
+
+}  // namespace
+
+Renderer::Renderer(Scene scene) : scene_(std::move(scene)) {}
+
+Renderer::~Renderer() {
+    cancel();
+    join();
+}
+
+void Renderer::join() {
+    if (worker_.joinable()) worker_.join();
+}
+
+std::string Renderer::start() {
+    if (running()) return "a render is already running";
+    join();
+    if (!scene_.camera) return "the scene has no camera";
+    if (!find_sampler(settings_.sampler)) return "unknown sampler '" + settings_.sampler + "'";
+    width_ = settings_.width;
+    height_ = settings_.height;
+    image_.assign(static_cast<size_t>(width_) * height_ * 4, 0.0f);
+    cancel_.store(false);
+    done_.store(false);
+    samples_done_.store(0);
+    samples_total_.store(settings_.samples);
+    rays_.store(0);
+    {
+        std::lock_guard lock(state_mutex_);
+        render_seconds_ = 0;
+        cancelled_ = false;
+        error_.clear();
+    }
+    worker_ = std::thread([this] { run(); });
+    return {};
+}
+
+void Renderer::run() {
+    const RenderSettings s = settings_;
+    std::string error;
+    try {
+        tbb::task_arena arena(s.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(s.threads));
+        if (!render_scene_) {
+            const auto t0 = Clock::now();
+            arena.execute([&] { render_scene_ = std::make_unique<RenderScene>(scene_); });
+            std::lock_guard lock(state_mutex_);
+            build_seconds_ = seconds_since(t0);
+        }
+        const auto t0 = Clock::now();
+        {
+            std::lock_guard lock(state_mutex_);
+            render_start_ = t0;
+            rendering_ = true;
+        }
+        const std::unique_ptr<Sampler> sampler =
+            find_sampler(s.sampler)->create(SamplerSettings{s.samples, s.seed, s.width, s.height});
+        const std::unique_ptr<Integrator> integrator =
+            find_integrator(s.integrator)->create(IntegratorSettings{s.max_bounces});
+        FilterType filter_type = FilterType::BlackmanHarris;
+        parse_filter_type(s.filter_type, &filter_type);
+        const PixelFilter filter(filter_type, s.filter_width);
+        const Camera camera(*scene_.camera, s.width, s.height);
+        std::vector<Rgb> sums(static_cast<size_t>(s.width) * s.height);
+        std::vector<uint32_t> counts(sums.size(), 0);
+
+        uint32_t begin = 0;
+        while (begin < s.samples && !cancel_.load()) {
+            const uint32_t end = std::min({s.samples, std::max(1u, 2 * begin), begin + kMaxPassSamples});
+            arena.execute([&] {
+                tbb::parallel_for(
+                    tbb::blocked_range2d<uint32_t>(0, s.height, kTileSize, 0, s.width, kTileSize),
+                    [&](const tbb::blocked_range2d<uint32_t>& tile) {
+                        uint64_t rays = 0;
+                        for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+                            for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+                                if (cancel_.load(std::memory_order_relaxed)) break;
+                                const size_t p = static_cast<size_t>(y) * s.width + x;
+                                Rgb sum = sums[p];
+                                for (uint32_t i = begin; i < end; ++i) {
+                                    const PixelSample ps{x, y, i};
+                                    const Vec2 offset = filter.sample(sampler->get_2d(ps, kDimFilter));
+                                    const CameraRay ray = camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
+                                                                              static_cast<float>(y) + 0.5f + offset.y);
+                                    const Rgb L = integrator->radiance(*render_scene_, *sampler, ps, ray, rays);
+                                    // A NaN or Inf sample would poison the pixel forever; it
+                                    // is a bug upstream, so it is dropped visibly (counted, 0).
+                                    if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) sum += L;
+                                }
+                                sums[p] = sum;
+                                counts[p] = end;
+                            }
+                        }
+                        rays_.fetch_add(rays, std::memory_order_relaxed);
+                        std::shared_lock lock(image_mutex_);
+                        for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
+                            for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
+                                const size_t p = static_cast<size_t>(y) * s.width + x;
+                                if (counts[p] == 0) continue;
+                                const Rgb v = sums[p] / static_cast<float>(counts[p]);
+                                float* px = &image_[4 * p];
+                                px[0] = v.r;
+                                px[1] = v.g;
+                                px[2] = v.b;
+                                px[3] = 1.0f;
+                            }
+                        }
+                        update_serial_.fetch_add(1);
+                    });
+            });
+            if (!cancel_.load()) samples_done_.store(end);
+            begin = end;
+        }
+        std::lock_guard lock(state_mutex_);
+        render_seconds_ = seconds_since(t0);
+    } catch (const std::exception& e) {
+        error = e.what();
+    }
+    std::lock_guard lock(state_mutex_);
+    rendering_ = false;
+    cancelled_ = cancel_.load();
+    error_ = error;
+    done_.store(true);
+    update_serial_.fetch_add(1);
+    done_cv_.notify_all();
+}
+
+bool Renderer::wait(int timeout_ms) {
+    std::unique_lock lock(state_mutex_);
+    return done_cv_.wait_for(lock, std::chrono::milliseconds(std::max(0, timeout_ms)), [&] { return done_.load(); });
+}
+
+RenderProgress Renderer::progress() const {
+    std::lock_guard lock(state_mutex_);
+    RenderProgress p;
+    p.done = done_.load();
+    p.cancelled = cancelled_;
+    p.samples_done = samples_done_.load();
+    p.samples_total = samples_total_.load();
+    p.update_serial = update_serial_.load();
+    p.rays = static_cast<double>(rays_.load());
+    p.build_seconds = build_seconds_;
+    p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;
+    p.error = error_;
+    return p;
+}
+
+void Renderer::read_pixels(float* rgba) const {
+    std::unique_lock lock(image_mutex_);
+    std::copy(image_.begin(), image_.end(), rgba);
+}
+
+}  // namespace stratum

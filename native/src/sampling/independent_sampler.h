@@ -1,0 +1,39 @@
+// `random`: independent uniform samples (textbook §4.1; pbrt-v4 IndependentSampler).
+//
+// | parameter | meaning |
+// |-----------|---------|
+// | seed      | mixed into the key of every value |
+//
+// Each value is the first output of a PCG32 stream whose state and stream are a 64-bit hash of
+// (pixel x, pixel y, sample index, dimension, seed), so values are independent across all four
+// and random access costs one hash and one PCG step.
+#pragma once
+
+#include "sampling/hash.h"
+#include "sampling/pcg32.h"
+#include "sampling/sampler.h"
+
+namespace stratum {
+
+class IndependentSampler final : public Sampler {
+public:
+    explicit IndependentSampler(const SamplerSettings& settings) : seed_(settings.seed) {}
+
+    float get_1d(const PixelSample& s, uint32_t dimension) const override {
+        return bits_to_unit_float(stream(s, dimension).next_u32());
+    }
+    Vec2 get_2d(const PixelSample& s, uint32_t dimension) const override {
+        Pcg32 rng = stream(s, dimension);
+        const float u = bits_to_unit_float(rng.next_u32());
+        return {u, bits_to_unit_float(rng.next_u32())};
+    }
+
+private:
+    Pcg32 stream(const PixelSample& s, uint32_t dimension) const {
+        const uint64_t key = hash_words(s.x, s.y, s.index, dimension, seed_);
+        return Pcg32(key, mix_bits(key ^ 0xda942042e4dd58b5ull));
+    }
+    uint32_t seed_;
+};
+
+}  // namespace stratum

@@ -1,0 +1,55 @@
+// The scene in render-ready form: instances flattened to world-space triangles in an Embree
+// BVH, emissive triangles and light objects in one LightSet, and the shading data a hit needs.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "accel/embree_scene.h"
+#include "lights/light_set.h"
+#include "scene/scene.h"
+
+namespace stratum {
+
+// Everything the integrator needs to know about a ray hit.
+struct SurfaceHit {
+    Vec3 position;
+    Vec3 geometric_normal;  // unit, oriented as the triangle's winding
+    Vec3 shading_normal;    // unit, interpolated corner normal (or the geometric normal)
+    const Material* material;
+    uint32_t emissive_light;  // index in the LightSet, or kNoLight
+};
+
+inline constexpr uint32_t kNoLight = 0xffffffffu;
+
+class RenderScene {
+public:
+    // Throws std::runtime_error with a readable message (caught at the C ABI).
+    explicit RenderScene(const Scene& scene);
+
+    bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, SurfaceHit* hit) const;
+    bool occluded(Vec3 origin, Vec3 direction, float t_min, float t_max) const {
+        return embree_.occluded(origin, direction, t_min, t_max);
+    }
+    const LightSet& lights() const { return lights_; }
+    Rgb background() const { return background_; }
+    size_t triangle_count() const { return triangle_count_; }
+
+private:
+    struct InstanceGeometry {
+        const Mesh* mesh;
+        std::vector<Vec3> positions;       // world space
+        std::vector<Vec3> corner_normals;  // world space, unit; empty if the mesh has none
+        std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive
+    };
+    std::vector<Material> materials_;
+    std::vector<InstanceGeometry> instances_;
+    EmbreeScene embree_;
+    LightSet lights_;
+    Rgb background_;
+    size_t triangle_count_ = 0;
+};
+
+}  // namespace stratum

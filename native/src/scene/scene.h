@@ -1,0 +1,50 @@
+// The scene as the host describes it (object space meshes, instances, materials, lights,
+// camera, world). Validated at the C ABI; turned into a render-ready form by RenderScene.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "bsdf/bsdf.h"
+#include "core/math.h"
+#include "scene/camera.h"
+
+namespace stratum {
+
+struct Mesh {
+    std::vector<Vec3> positions;
+    std::vector<std::array<uint32_t, 3>> triangles;
+    std::vector<Vec3> corner_normals;  // empty, or 3 per triangle
+    std::vector<Vec2> corner_uvs;      // empty, or 3 per triangle
+    std::vector<uint32_t> material_ids;  // 1 per triangle
+};
+
+struct Instance {
+    uint32_t mesh_id;
+    Transform object_to_world;
+};
+
+enum class LightType : int32_t { Point = 0, Sun = 1, AreaRectangle = 2, AreaEllipse = 3 };
+
+struct LightParams {
+    LightType type = LightType::Point;
+    Rgb color{1.0f};
+    float strength = 0.0f;  // W, or W/m^2 for the sun
+    float radius = 0.0f;
+    float angle = 0.0f;
+    float size_x = 1.0f, size_y = 1.0f;
+    Transform light_to_world;
+};
+
+struct Scene {
+    std::vector<Material> materials;
+    std::vector<Mesh> meshes;
+    std::vector<Instance> instances;
+    std::vector<LightParams> lights;
+    std::optional<CameraParams> camera;
+    Rgb background{0.0f};
+};
+
+}  // namespace stratum
