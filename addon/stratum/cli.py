@@ -148,7 +148,7 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("render", help="render a .blend with Stratum (runs Blender)")
     p.add_argument("scene", help="the .blend file")
     p.add_argument("-o", "--output", required=True, help="output image (PNG, EXR, ...)")
-    p.add_argument("--samples", type=int, help="samples per pixel")
+    p.add_argument("--samples", "--spp", dest="samples", type=int, help="samples per pixel")
     p.add_argument("--sampler", help="sampler name (see `stratum samplers`)")
     p.add_argument("--seed", type=int)
     p.add_argument("--max-bounces", dest="max_bounces", type=int)

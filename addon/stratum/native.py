@@ -576,13 +576,14 @@ class Renderer(_Handle):
                "stratum_renderer_create")
         self._width = 0
         self._height = 0
+        self._started = False
         for name, value in settings.items():
             self.set(name, value)
 
     def close(self) -> None:
         # A render still running must stop before its handle is freed.
         ptr = getattr(self, "_ptr", None)
-        if ptr:
+        if ptr and getattr(self, "_started", False):
             done = ctypes.c_int32(0)
             self._lib.stratum_renderer_cancel(ptr)
             self._lib.stratum_renderer_wait(ptr, 60000, ctypes.byref(done))
@@ -615,6 +616,7 @@ class Renderer(_Handle):
 
     def start(self) -> None:
         _check(self._lib, self._lib.stratum_renderer_start(self.handle), "stratum_renderer_start")
+        self._started = True
 
     def cancel(self) -> None:
         _check(self._lib, self._lib.stratum_renderer_cancel(self.handle),

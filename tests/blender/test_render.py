@@ -47,7 +47,7 @@ def test_render_small_scene(library: Any, scene_builder: Any, tmp_path: Path) ->
 def test_nan_vertex_render_reports_error(library: Any, scene_builder: Any) -> None:
     b = scene_builder().basic()
     broken = b.mesh_object("BrokenMesh", location=(3.0, 0.0, 0.0))
-    broken.data.vertices[2].co = (0.0, math.inf, 0.0)
+    broken.data.vertices[2].co = (0.0, math.nan, 0.0)  # (RNA clamps inf to FLT_MAX)
     message = ""
     try:  # background renders raise RuntimeError on an ERROR report in some versions
         bpy.ops.render.render()
