@@ -19,7 +19,7 @@ import threading
 from collections.abc import Mapping, Sequence
 from dataclasses import asdict, dataclass, is_dataclass
 from pathlib import Path
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
@@ -207,14 +207,12 @@ class Progress:
     render_seconds: float
 
 
-@dataclass(frozen=True)
-class RegistryEntry:
+class RegistryEntry(NamedTuple):
+    """(name, label, description) of a registry entry."""
+
     name: str
     label: str
     description: str
-
-    def __iter__(self):  # noqa: ANN204 - lets callers unpack (name, label, description)
-        return iter((self.name, self.label, self.description))
 
 
 # ---- library loading ------------------------------------------------------------------------
