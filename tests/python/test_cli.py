@@ -48,3 +48,24 @@ def test_render_missing_scene(native: Any, tmp_path: Path,
                               capsys: pytest.CaptureFixture[str]) -> None:
     assert cli.main(["render", str(tmp_path / "none.blend"), "-o", str(tmp_path / "o.png")]) != 0
     assert "none.blend" in capsys.readouterr().err
+
+
+def test_render_through_blender(native: Any, tmp_path: Path) -> None:
+    """End to end: `stratum render` runs Blender in the background with the add-on."""
+    scene = Path(__file__).resolve().parents[2] / "scenes" / "cornell_box.blend"
+    if not scene.is_file():
+        pytest.skip(f"{scene} does not exist yet")
+    if cli.blender_executable() is None:
+        pytest.skip("Blender not found (set STRATUM_BLENDER)")
+    out = tmp_path / "cornell.png"
+    sampler = native.registry("sampler")[0].name
+    proc = subprocess.run(
+        [sys.executable, "-m", "stratum.cli", "render", str(scene), "--samples", "2",
+         "--sampler", sampler, "--seed", "3", "--max-bounces", "2", "--resolution", "24x16",
+         "-o", str(out)],
+        capture_output=True, text=True, check=False, timeout=300)
+    assert proc.returncode == 0, proc.stderr[-2000:]
+    assert out.is_file() and out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    width, height = int.from_bytes(out.read_bytes()[16:20], "big"), int.from_bytes(
+        out.read_bytes()[20:24], "big")
+    assert (width, height) == (24, 16)
