@@ -48,8 +48,10 @@ bool is_integer(const std::string& s) {
 StratumStatus apply_setting(StratumRenderer* r, const std::string& arg) {
     const auto eq = arg.find('=');
     const std::string name = arg.substr(0, eq), value = eq == std::string::npos ? "" : arg.substr(eq + 1);
-    if (name == "filter_width") return stratum_renderer_set_float(r, name.c_str(), std::strtod(value.c_str(), nullptr));
-    if (is_integer(value)) return stratum_renderer_set_int(r, name.c_str(), std::strtoll(value.c_str(), nullptr, 10));
+    if (name == "filter_width")
+        return stratum_renderer_set_float(r, name.c_str(), std::strtod(value.c_str(), nullptr));
+    if (is_integer(value))
+        return stratum_renderer_set_int(r, name.c_str(), std::strtoll(value.c_str(), nullptr, 10));
     return stratum_renderer_set_string(r, name.c_str(), value.c_str());
 }
 
@@ -74,7 +76,8 @@ int render(int argc, char** argv) {
     if (code == 0 && stratum_renderer_write_image(renderer, argv[3]) != STRATUM_OK) code = failed("write");
     if (code == 0) {
         std::printf("%s: %d samples, build %.3f s, render %.3f s, %.3g rays/s\n", argv[3], p.samples_done,
-                    p.build_seconds, p.render_seconds, p.render_seconds > 0 ? p.rays / p.render_seconds : 0.0);
+                    p.build_seconds, p.render_seconds,
+                    p.render_seconds > 0 ? p.rays / p.render_seconds : 0.0);
     }
     stratum_renderer_destroy(renderer);
     return code;

@@ -85,7 +85,8 @@ ChiSquare pearson(const std::vector<double>& observed, const std::vector<double>
 using DirectionSampler = std::function<bool(Vec2, float, Vec3*)>;
 using DirectionDensity = std::function<float(Vec3)>;
 
-ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionDensity& density, uint64_t seed) {
+ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionDensity& density,
+                                uint64_t seed) {
     constexpr int kThetaFine = 1024, kPhiFine = 800, kThetaBins = 12, kPhiBins = 20;
     const double dtheta = kPi / kThetaFine, dphi = 2.0 * kPi / kPhiFine;
     std::vector<double> fine(kThetaFine * kPhiFine), theta_mass(kThetaFine, 0.0);
@@ -113,7 +114,8 @@ ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionD
     std::vector<double> expected(outside + 1, 0.0), observed(outside + 1, 0.0);
     for (int i = 0; i < kThetaFine; ++i)
         for (int j = 0; j < kPhiFine; ++j)
-            expected[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] += fine[i * kPhiFine + j] * kSampleCount;
+            expected[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] +=
+                fine[i * kPhiFine + j] * kSampleCount;
     expected[outside] = std::max(1.0 - total, 0.0) * kSampleCount;
 
     std::mt19937_64 rng(seed);
@@ -127,14 +129,14 @@ ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionD
         const double theta = std::acos(std::clamp(double(w.z), -1.0, 1.0));
         double phi = std::atan2(double(w.y), double(w.x));
         if (phi < 0) phi += 2.0 * kPi;
-        const int i = std::min(int(theta / dtheta), kThetaFine - 1), j = std::min(int(phi / dphi), kPhiFine - 1);
+        const int i = std::min(int(theta / dtheta), kThetaFine - 1),
+                  j = std::min(int(phi / dphi), kPhiFine - 1);
         observed[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] += 1;
     }
     ChiSquare r = pearson(observed, expected);
     r.density_mass = total;
     return r;
 }
-
 
 Material lambert(Rgb c) { return {MaterialModel::Diffuse, c, 0, 0, 0, 1.5f, Rgb()}; }
 Material v1(Rgb c, float roughness, float metallic, float specular) {
@@ -177,9 +179,9 @@ TEST(Bsdf, SamplingMatchesPdfChiSquare) {
                     return true;
                 },
                 [&](Vec3 wi) { return bsdf_eval(m, wo, wi).pdf; }, seed++);
-            EXPECT_GT(r.p_value, kSignificance) << "model " << int(m.model) << " roughness " << m.roughness
-                                                << " theta_o " << theta << ": chi2 " << r.statistic << ", dof "
-                                                << r.dof;
+            EXPECT_GT(r.p_value, kSignificance)
+                << "model " << int(m.model) << " roughness " << m.roughness << " theta_o " << theta
+                << ": chi2 " << r.statistic << ", dof " << r.dof;
             EXPECT_LE(r.density_mass, 1.0 + 5e-3);
         }
     }
@@ -222,8 +224,9 @@ Albedo sampled_albedo(const Material& m, Vec3 wo, int n, uint64_t seed) {
     }
     const Rgb mean = sum / float(n);
     const Rgb var = sum_sq / float(n) - mean * mean;
-    return {mean, Rgb(std::sqrt(std::max(var.r, 0.0f) / n), std::sqrt(std::max(var.g, 0.0f) / n),
-                      std::sqrt(std::max(var.b, 0.0f) / n))};
+    return {mean, Rgb(std::sqrt(std::max(var.r, 0.0f) / static_cast<float>(n)),
+                      std::sqrt(std::max(var.g, 0.0f) / static_cast<float>(n)),
+                      std::sqrt(std::max(var.b, 0.0f) / static_cast<float>(n)))};
 }
 
 // Directional albedo by deterministic quadrature of bsdf_eval's value (midpoint in cos, phi).
@@ -231,9 +234,9 @@ Rgb quadrature_albedo(const Material& m, Vec3 wo) {
     constexpr int kCos = 800, kPhi = 800;
     double sum[3] = {0, 0, 0};  // double: 640k float terms would lose ~1e-4
     for (int i = 0; i < kCos; ++i) {
-        const float c = (i + 0.5f) / kCos, s = std::sqrt(1 - c * c);
+        const float c = (static_cast<float>(i) + 0.5f) / static_cast<float>(kCos), s = std::sqrt(1 - c * c);
         for (int j = 0; j < kPhi; ++j) {
-            const float phi = 2 * kPi * (j + 0.5f) / kPhi;
+            const float phi = 2 * kPi * (static_cast<float>(j) + 0.5f) / static_cast<float>(kPhi);
             const Rgb v = bsdf_eval(m, wo, Vec3(s * std::cos(phi), s * std::sin(phi), c)).value;
             sum[0] += v.r, sum[1] += v.g, sum[2] += v.b;
         }
@@ -279,7 +282,8 @@ TEST(Bsdf, WhiteFurnaceEnergyConservingModels) {
         }
     }
     // A white V2 metal with multiscatter compensation loses (almost) nothing: albedo ~ 1.
-    const Albedo metal = sampled_albedo(v2(Rgb(1.0f), 0.8f, 1.0f, 0.5f, 1.5f), direction(0.5f, 0), 200000, 12);
+    const Albedo metal =
+        sampled_albedo(v2(Rgb(1.0f), 0.8f, 1.0f, 0.5f, 1.5f), direction(0.5f, 0), 200000, 12);
     EXPECT_NEAR(metal.mean.r, 1.0f, 4.0f * metal.standard_error.r + 0.01f);
 }
 
@@ -299,8 +303,8 @@ TEST(Bsdf, SampledAlbedoMatchesQuadratureOfEval) {
 TEST(Bsdf, ReciprocityOfSymmetricModels) {
     std::mt19937_64 rng(5);
     std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
-    for (const Material& m : {lambert(Rgb(0.7f)), v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f), v1(Rgb(0.8f), 0.5f, 0.0f, 0.5f),
-                              v1(Rgb(0.9f, 0.6f, 0.3f), 0.3f, 1.0f, 0.5f)}) {
+    for (const Material& m : {lambert(Rgb(0.7f)), v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f),
+                              v1(Rgb(0.8f), 0.5f, 0.0f, 0.5f), v1(Rgb(0.9f, 0.6f, 0.3f), 0.3f, 1.0f, 0.5f)}) {
         for (int i = 0; i < 1000; ++i) {
             const Vec3 wo = direction(1.5f * uniform(rng), 2 * kPi * uniform(rng));
             const Vec3 wi = direction(1.5f * uniform(rng), 2 * kPi * uniform(rng));
@@ -326,11 +330,11 @@ TEST(Bsdf, DirectionalAlbedoMatchesCycles) {
         float theta_o, cycles_pixel;
     };
     const Case cases[] = {
-        {v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f), 0.0f, 0.04143f},               // Blender 3.4, rough 1, spec 0
-        {v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f), kPi / 3, 0.04228f},            // same, 60 degrees
-        {v1(Rgb(0.8f), 0.5f, 0.0f, 0.5f), 0.0f, 0.04212f},               // Blender 3.4 default node
-        {v2(Rgb(0.8f), 1.0f, 0.0f, 0.0f, 1.5f), 0.0f, 0.04000f},         // Blender 5.0, level 0
-        {v2(Rgb(0.8f), 0.5f, 0.0f, 0.5f, 1.5f), 0.0f, 0.04035f},         // Blender 5.0 default node
+        {v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f), 0.0f, 0.04143f},        // Blender 3.4, rough 1, spec 0
+        {v1(Rgb(0.8f), 1.0f, 0.0f, 0.0f), kPi / 3, 0.04228f},     // same, 60 degrees
+        {v1(Rgb(0.8f), 0.5f, 0.0f, 0.5f), 0.0f, 0.04212f},        // Blender 3.4 default node
+        {v2(Rgb(0.8f), 1.0f, 0.0f, 0.0f, 1.5f), 0.0f, 0.04000f},  // Blender 5.0, level 0
+        {v2(Rgb(0.8f), 0.5f, 0.0f, 0.5f, 1.5f), 0.0f, 0.04035f},  // Blender 5.0 default node
     };
     for (const Case& c : cases) {
         const Rgb q = quadrature_albedo(c.m, direction(c.theta_o, 0.0f));
@@ -348,14 +352,14 @@ TEST(Bsdf, PrincipledV1OutshinesLambertInAClosedRoom) {
     constexpr int kCos = 64;
     double hemispherical = 0;  // 2 int albedo(mu) mu dmu, albedo per unit base colour
     for (int i = 0; i < kCos; ++i) {
-        const float mu = (i + 0.5f) / kCos;
+        const float mu = (static_cast<float>(i) + 0.5f) / static_cast<float>(kCos);
         hemispherical += 2.0 * quadrature_albedo(burley, Vec3(std::sqrt(1 - mu * mu), 0, mu)).r * mu / kCos;
     }
     // Wall reflectance rho: Lambert room radiance ~ 1/(1 - rho), Burley room ~ 1/(1 - k rho).
     const double k = hemispherical, rho = 0.6;
     const double room_ratio = (1 - rho) / (1 - k * rho);
-    std::printf("Burley (roughness 1) hemispherical albedo / Lambert = %.4f; room ratio at rho 0.6 = %.4f\n", k,
-                room_ratio);
+    std::printf("Burley (roughness 1) hemispherical albedo / Lambert = %.4f; room ratio at rho 0.6 = %.4f\n",
+                k, room_ratio);
     EXPECT_GT(k, 1.02);
     EXPECT_LT(k, 1.10);
     EXPECT_GT(room_ratio, 1.04);

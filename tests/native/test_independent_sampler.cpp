@@ -50,7 +50,8 @@ TEST(IndependentSampler, UniformMeanAndVarianceAndNoCorrelation) {
 TEST(IndependentSampler, SeedChangesEveryValue) {
     const IndependentSampler a({4, 1, 4, 4}), b({4, 2, 4, 4});
     int equal = 0;
-    for (uint32_t i = 0; i < 256; ++i) equal += a.get_1d({i % 4, i / 4 % 4, i / 16}, 0) == b.get_1d({i % 4, i / 4 % 4, i / 16}, 0);
+    for (uint32_t i = 0; i < 256; ++i)
+        equal += a.get_1d({i % 4, i / 4 % 4, i / 16}, 0) == b.get_1d({i % 4, i / 4 % 4, i / 16}, 0);
     EXPECT_LE(equal, 1);
 }
 

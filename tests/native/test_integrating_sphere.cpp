@@ -48,16 +48,21 @@ RenderOutput render_sphere(int32_t model, float k, float emission, int max_bounc
     EXPECT_EQ(stratum_scene_add_material(scene, &wall, &mat), STRATUM_OK);
     const SphereMesh sphere = make_sphere(1.0f, 12, 24);
     const std::vector<uint32_t> mats(sphere.triangles.size() / 3, mat);
-    const StratumMeshDesc mesh{sphere.positions.data(), static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(), static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr, nullptr, mats.data()};
+    const StratumMeshDesc mesh{sphere.positions.data(),
+                               static_cast<uint32_t>(sphere.positions.size() / 3),
+                               sphere.triangles.data(),
+                               static_cast<uint32_t>(sphere.triangles.size() / 3),
+                               nullptr,
+                               nullptr,
+                               mats.data()};
     uint32_t mesh_id = 0;
     EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, &mesh_id), STRATUM_OK);
     EXPECT_EQ(stratum_scene_add_instance(scene, mesh_id, kIdentity), STRATUM_OK);
     const StratumCameraDesc camera = camera_at(0.1f, -0.2f, 0.3f);
     EXPECT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK);
-    RenderOutput out = render(scene, {{"width", 16}, {"height", 16}, {"samples", 64}, {"max_bounces", max_bounces},
-                                      {"seed", seed}});
+    RenderOutput out = render(
+        scene,
+        {{"width", 16}, {"height", 16}, {"samples", 64}, {"max_bounces", max_bounces}, {"seed", seed}});
     stratum_scene_destroy(scene);
     return out;
 }
@@ -89,22 +94,30 @@ TEST(IntegratingSphere, HighReflectanceConvergesToGeometricSeries) {
 TEST(Determinism, SameSeedGivesBitIdenticalImagesForAnyThreadCount) {
     StratumScene* scene = nullptr;
     ASSERT_EQ(stratum_scene_create(&scene), STRATUM_OK);
-    const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {0.6f, 0.5f, 0.4f}, 1, 0, 0, 1.5f, {0.5f, 0.5f, 0.5f}};
+    const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {0.6f, 0.5f, 0.4f}, 1, 0, 0, 1.5f,
+                                   {0.5f, 0.5f, 0.5f}};
     uint32_t mat = 0;
     ASSERT_EQ(stratum_scene_add_material(scene, &wall, &mat), STRATUM_OK);
     const SphereMesh sphere = make_sphere(1.0f, 6, 12);
     const std::vector<uint32_t> mats(sphere.triangles.size() / 3, mat);
-    const StratumMeshDesc mesh{sphere.positions.data(), static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(), static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr, nullptr, mats.data()};
+    const StratumMeshDesc mesh{sphere.positions.data(),
+                               static_cast<uint32_t>(sphere.positions.size() / 3),
+                               sphere.triangles.data(),
+                               static_cast<uint32_t>(sphere.triangles.size() / 3),
+                               nullptr,
+                               nullptr,
+                               mats.data()};
     uint32_t mesh_id = 0;
     ASSERT_EQ(stratum_scene_add_mesh(scene, &mesh, &mesh_id), STRATUM_OK);
     ASSERT_EQ(stratum_scene_add_instance(scene, mesh_id, kIdentity), STRATUM_OK);
     const StratumCameraDesc camera = camera_at(0, 0, 0.5f);
     ASSERT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK);
-    const auto one = render(scene, {{"width", 40}, {"height", 24}, {"samples", 9}, {"threads", 1}, {"seed", 3}});
-    const auto two = render(scene, {{"width", 40}, {"height", 24}, {"samples", 9}, {"threads", 2}, {"seed", 3}});
-    const auto other = render(scene, {{"width", 40}, {"height", 24}, {"samples", 9}, {"threads", 2}, {"seed", 4}});
+    const auto one =
+        render(scene, {{"width", 40}, {"height", 24}, {"samples", 9}, {"threads", 1}, {"seed", 3}});
+    const auto two =
+        render(scene, {{"width", 40}, {"height", 24}, {"samples", 9}, {"threads", 2}, {"seed", 3}});
+    const auto other =
+        render(scene, {{"width", 40}, {"height", 24}, {"samples", 9}, {"threads", 2}, {"seed", 4}});
     stratum_scene_destroy(scene);
     ASSERT_EQ(one.rgba.size(), 40u * 24u * 4u);
     EXPECT_EQ(one.rgba, two.rgba);

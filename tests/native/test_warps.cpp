@@ -87,7 +87,8 @@ ChiSquare pearson(const std::vector<double>& observed, const std::vector<double>
 using DirectionSampler = std::function<bool(Vec2, Vec3*)>;
 using DirectionDensity = std::function<float(Vec3)>;
 
-ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionDensity& density, uint64_t seed) {
+ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionDensity& density,
+                                uint64_t seed) {
     constexpr int kThetaFine = 512, kPhiFine = 200, kThetaBins = 12, kPhiBins = 20;
     const double dtheta = kPi / kThetaFine, dphi = 2.0 * kPi / kPhiFine;
     std::vector<double> fine(kThetaFine * kPhiFine), theta_mass(kThetaFine, 0.0);
@@ -115,7 +116,8 @@ ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionD
     std::vector<double> expected(outside + 1, 0.0), observed(outside + 1, 0.0);
     for (int i = 0; i < kThetaFine; ++i)
         for (int j = 0; j < kPhiFine; ++j)
-            expected[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] += fine[i * kPhiFine + j] * kSampleCount;
+            expected[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] +=
+                fine[i * kPhiFine + j] * kSampleCount;
     expected[outside] = std::max(1.0 - total, 0.0) * kSampleCount;
 
     std::mt19937_64 rng(seed);
@@ -129,7 +131,8 @@ ChiSquare chi_square_directions(const DirectionSampler& sample, const DirectionD
         const double theta = std::acos(std::clamp(double(w.z), -1.0, 1.0));
         double phi = std::atan2(double(w.y), double(w.x));
         if (phi < 0) phi += 2.0 * kPi;
-        const int i = std::min(int(theta / dtheta), kThetaFine - 1), j = std::min(int(phi / dphi), kPhiFine - 1);
+        const int i = std::min(int(theta / dtheta), kThetaFine - 1),
+                  j = std::min(int(phi / dphi), kPhiFine - 1);
         observed[theta_bin[i] * kPhiBins + j * kPhiBins / kPhiFine] += 1;
     }
     ChiSquare r = pearson(observed, expected);
@@ -145,8 +148,12 @@ void expect_fits(const ChiSquare& r, double expected_mass = 1.0) {
 }
 
 TEST(Warps, CosineHemisphere) {
-    expect_fits(chi_square_directions([](Vec2 u, Vec3* w) { *w = sample_cosine_hemisphere(u); return true; },
-                                      [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 1));
+    expect_fits(chi_square_directions(
+        [](Vec2 u, Vec3* w) {
+            *w = sample_cosine_hemisphere(u);
+            return true;
+        },
+        [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 1));
 }
 
 TEST(Warps, ConcentricDiskLiftsToCosineHemisphere) {
@@ -163,25 +170,39 @@ TEST(Warps, ConcentricDiskLiftsToCosineHemisphere) {
 }
 
 TEST(Warps, UniformHemisphere) {
-    expect_fits(chi_square_directions([](Vec2 u, Vec3* w) { *w = sample_uniform_hemisphere(u); return true; },
-                                      [](Vec3 w) { return w.z >= 0 ? uniform_hemisphere_pdf() : 0.0f; }, 3));
+    expect_fits(chi_square_directions(
+        [](Vec2 u, Vec3* w) {
+            *w = sample_uniform_hemisphere(u);
+            return true;
+        },
+        [](Vec3 w) { return w.z >= 0 ? uniform_hemisphere_pdf() : 0.0f; }, 3));
 }
 
 TEST(Warps, UniformAnglesHemisphere) {
     expect_fits(chi_square_directions(
-        [](Vec2 u, Vec3* w) { *w = sample_uniform_angles_hemisphere(u); return true; },
+        [](Vec2 u, Vec3* w) {
+            *w = sample_uniform_angles_hemisphere(u);
+            return true;
+        },
         [](Vec3 w) { return uniform_angles_hemisphere_pdf(w.z); }, 4));
 }
 
 TEST(Warps, UniformSphere) {
-    expect_fits(chi_square_directions([](Vec2 u, Vec3* w) { *w = sample_uniform_sphere(u); return true; },
-                                      [](Vec3) { return uniform_sphere_pdf(); }, 5));
+    expect_fits(chi_square_directions(
+        [](Vec2 u, Vec3* w) {
+            *w = sample_uniform_sphere(u);
+            return true;
+        },
+        [](Vec3) { return uniform_sphere_pdf(); }, 5));
 }
 
 TEST(Warps, UniformCone) {
     for (const float cos_max : {0.8f, -0.3f}) {
         expect_fits(chi_square_directions(
-            [cos_max](Vec2 u, Vec3* w) { *w = sample_uniform_cone(u, cos_max); return true; },
+            [cos_max](Vec2 u, Vec3* w) {
+                *w = sample_uniform_cone(u, cos_max);
+                return true;
+            },
             [cos_max](Vec3 w) { return uniform_cone_pdf(w.z, cos_max); }, 6));
     }
 }
@@ -201,7 +222,10 @@ TEST(Warps, GgxVisibleNormals) {
         const float tan2 = (1 - wo.z * wo.z) / (wo.z * wo.z);
         const float g1 = 2.0f / (1.0f + std::sqrt(1.0f + c.alpha * c.alpha * tan2));
         expect_fits(chi_square_directions(
-            [&](Vec2 u, Vec3* h) { *h = sample_ggx_visible_normal(wo, c.alpha, u); return true; },
+            [&](Vec2 u, Vec3* h) {
+                *h = sample_ggx_visible_normal(wo, c.alpha, u);
+                return true;
+            },
             [&](Vec3 h) { return g1 * std::max(dot(wo, h), 0.0f) * d(h) / wo.z; }, 7));
     }
 }
@@ -236,9 +260,12 @@ TEST(Warps, UniformTriangleBarycentrics) {
 
 TEST(Warps, ChiSquareRejectsAWrongDensity) {
     // The test must have power: uniform hemisphere samples do not fit the cosine density.
-    const ChiSquare r =
-        chi_square_directions([](Vec2 u, Vec3* w) { *w = sample_uniform_hemisphere(u); return true; },
-                              [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 9);
+    const ChiSquare r = chi_square_directions(
+        [](Vec2 u, Vec3* w) {
+            *w = sample_uniform_hemisphere(u);
+            return true;
+        },
+        [](Vec3 w) { return cosine_hemisphere_pdf(w.z); }, 9);
     EXPECT_LT(r.p_value, 1e-12);
 }
 

@@ -63,35 +63,34 @@ STRATUM_API StratumStatus stratum_scene_create(StratumScene** out_scene);
 STRATUM_API void stratum_scene_destroy(StratumScene* scene);
 
 typedef enum StratumMaterialModel {
-    STRATUM_MATERIAL_DIFFUSE = 0,        /* Lambertian (Cycles' Diffuse BSDF, roughness 0) */
-    STRATUM_MATERIAL_PRINCIPLED_V1 = 1,  /* Cycles 3.x Principled: Burley diffuse + GGX */
-    STRATUM_MATERIAL_PRINCIPLED_V2 = 2,  /* Cycles 4.x Principled: Lambert + layered GGX */
-    STRATUM_MATERIAL_EMISSION = 3        /* pure emitter, no reflection */
+    STRATUM_MATERIAL_DIFFUSE = 0,       /* Lambertian (Cycles' Diffuse BSDF, roughness 0) */
+    STRATUM_MATERIAL_PRINCIPLED_V1 = 1, /* Cycles 3.x Principled: Burley diffuse + GGX */
+    STRATUM_MATERIAL_PRINCIPLED_V2 = 2, /* Cycles 4.x Principled: Lambert + layered GGX */
+    STRATUM_MATERIAL_EMISSION = 3       /* pure emitter, no reflection */
 } StratumMaterialModel;
 
 typedef struct StratumMaterialDesc {
-    int32_t model;          /* StratumMaterialModel */
-    float base_color[3];    /* linear RGB reflectance, each in [0,1] */
-    float roughness;        /* [0,1], Principled/Disney convention (alpha = roughness^2) */
-    float metallic;         /* [0,1] */
-    float specular;         /* v1: "Specular" [0,inf); v2: "Specular IOR Level" [0,inf) */
-    float ior;              /* v2: index of refraction of the dielectric coat, > 0 */
-    float emission[3];      /* emitted radiance (colour x strength), each >= 0 */
+    int32_t model;       /* StratumMaterialModel */
+    float base_color[3]; /* linear RGB reflectance, each in [0,1] */
+    float roughness;     /* [0,1], Principled/Disney convention (alpha = roughness^2) */
+    float metallic;      /* [0,1] */
+    float specular;      /* v1: "Specular" [0,inf); v2: "Specular IOR Level" [0,inf) */
+    float ior;           /* v2: index of refraction of the dielectric coat, > 0 */
+    float emission[3];   /* emitted radiance (colour x strength), each >= 0 */
 } StratumMaterialDesc;
 
 /* Adds a material; its id (0, 1, 2, ... in order) is written to out_id. */
-STRATUM_API StratumStatus stratum_scene_add_material(StratumScene* scene,
-                                                     const StratumMaterialDesc* material,
+STRATUM_API StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMaterialDesc* material,
                                                      uint32_t* out_id);
 
 typedef struct StratumMeshDesc {
-    const float* positions;          /* 3 floats per vertex, object space; required */
+    const float* positions; /* 3 floats per vertex, object space; required */
     uint32_t vertex_count;
-    const uint32_t* triangles;       /* 3 vertex indices per triangle; required */
+    const uint32_t* triangles; /* 3 vertex indices per triangle; required */
     uint32_t triangle_count;
-    const float* corner_normals;     /* optional: 9 floats per triangle (3 corners) */
-    const float* corner_uvs;         /* optional: 6 floats per triangle (3 corners) */
-    const uint32_t* material_ids;    /* 1 scene material id per triangle; required */
+    const float* corner_normals;  /* optional: 9 floats per triangle (3 corners) */
+    const float* corner_uvs;      /* optional: 6 floats per triangle (3 corners) */
+    const uint32_t* material_ids; /* 1 scene material id per triangle; required */
 } StratumMeshDesc;
 
 /* Adds a mesh (copied); its id (0, 1, 2, ...) is written to out_id. A mesh is drawn only
@@ -103,20 +102,21 @@ STRATUM_API StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32
                                                      const float transform[16]);
 
 typedef enum StratumLightType {
-    STRATUM_LIGHT_POINT = 0,   /* power in W (Blender's), radius in m */
-    STRATUM_LIGHT_SUN = 1,     /* strength = irradiance W/m^2, angle = angular diameter (rad) */
-    STRATUM_LIGHT_AREA_RECTANGLE = 2, /* power in W, size_x * size_y (square: equal sizes) */
+    STRATUM_LIGHT_POINT = 0,          /* power in W (Blender's), radius in m */
+    STRATUM_LIGHT_SUN = 1,            /* strength = irradiance W/m^2, angle = angular diameter (rad) */
+    STRATUM_LIGHT_AREA_RECTANGLE = 2, /* power P in W, size_x * size_y (square: equal sizes);
+                                         one-sided Lambertian, radiance P / (pi * area) */
     STRATUM_LIGHT_AREA_ELLIPSE = 3    /* power in W, diameters size_x, size_y (disk: equal) */
 } StratumLightType;
 
 typedef struct StratumLightDesc {
-    int32_t type;           /* StratumLightType */
-    float color[3];         /* linear RGB, >= 0 */
-    float strength;         /* power (W) or, for the sun, irradiance (W/m^2); >= 0 */
-    float radius;           /* point: sphere radius, >= 0 */
-    float angle;            /* sun: angular diameter in radians, [0, pi] */
-    float size_x, size_y;   /* area: extent along local x and y, > 0 */
-    float transform[16];    /* light-to-world, row-major; lights point down local -Z */
+    int32_t type;         /* StratumLightType */
+    float color[3];       /* linear RGB, >= 0 */
+    float strength;       /* power (W) or, for the sun, irradiance (W/m^2); >= 0 */
+    float radius;         /* point: sphere radius, >= 0 */
+    float angle;          /* sun: angular diameter in radians, [0, pi] */
+    float size_x, size_y; /* area: extent along local x and y, > 0 */
+    float transform[16];  /* light-to-world, row-major; lights point down local -Z */
 } StratumLightDesc;
 
 STRATUM_API StratumStatus stratum_scene_add_light(StratumScene* scene, const StratumLightDesc* light);
@@ -128,13 +128,13 @@ typedef enum StratumSensorFit {
 } StratumSensorFit;
 
 typedef struct StratumCameraDesc {
-    float lens_mm;          /* focal length, > 0 */
-    float sensor_width_mm;  /* > 0 */
-    float sensor_height_mm; /* > 0 */
-    int32_t sensor_fit;     /* StratumSensorFit */
-    float shift_x, shift_y; /* in units of the fitted sensor dimension, as Blender */
+    float lens_mm;              /* focal length, > 0 */
+    float sensor_width_mm;      /* > 0 */
+    float sensor_height_mm;     /* > 0 */
+    int32_t sensor_fit;         /* StratumSensorFit */
+    float shift_x, shift_y;     /* in units of the fitted sensor dimension, as Blender */
     float clip_start, clip_end; /* 0 < clip_start < clip_end */
-    float transform[16];    /* camera-to-world, row-major; looks down local -Z, +Y up */
+    float transform[16];        /* camera-to-world, row-major; looks down local -Z, +Y up */
 } StratumCameraDesc;
 
 STRATUM_API StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraDesc* camera);
@@ -172,14 +172,14 @@ STRATUM_API StratumStatus stratum_renderer_cancel(StratumRenderer* r);
 STRATUM_API StratumStatus stratum_renderer_wait(StratumRenderer* r, int32_t timeout_ms, int32_t* out_done);
 
 typedef struct StratumProgress {
-    int32_t done;              /* 1 when the render has ended (finished or cancelled) */
+    int32_t done; /* 1 when the render has ended (finished or cancelled) */
     int32_t cancelled;
-    int32_t samples_done;      /* samples that every pixel has */
+    int32_t samples_done; /* samples that every pixel has */
     int32_t samples_total;
-    uint32_t update_serial;    /* increases whenever new pixels are available */
-    double rays;               /* rays traced so far (camera, bounce and shadow rays) */
-    double build_seconds;      /* BVH build time */
-    double render_seconds;     /* path-tracing time, without the BVH build */
+    uint32_t update_serial; /* increases whenever new pixels are available */
+    double rays;            /* rays traced so far (camera, bounce and shadow rays) */
+    double build_seconds;   /* BVH build time */
+    double render_seconds;  /* path-tracing time, without the BVH build */
 } StratumProgress;
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);

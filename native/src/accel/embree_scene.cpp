@@ -20,7 +20,9 @@ namespace {
 void record_error(void* user, RTCError code, const char* message) {
     auto* impl = static_cast<EmbreeScene::Impl*>(user);
     std::lock_guard lock(impl->error_mutex);
-    if (impl->error.empty()) impl->error = "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
+    if (impl->error.empty())
+        impl->error =
+            "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
 }
 
 }  // namespace
@@ -35,7 +37,9 @@ EmbreeScene::~EmbreeScene() {
 
 std::string EmbreeScene::build(std::span<const TriangleGeometry> geometries) {
     impl_->device = rtcNewDevice(nullptr);
-    if (!impl_->device) return "Embree: cannot create a device (error " + std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")";
+    if (!impl_->device)
+        return "Embree: cannot create a device (error " +
+               std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")";
     rtcSetDeviceErrorFunction(impl_->device, &record_error, impl_);
     impl_->scene = rtcNewScene(impl_->device);
     // Robust traversal: watertight triangle tests, so rays do not leak through shared edges.
@@ -44,10 +48,10 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> geometries) {
     for (size_t i = 0; i < geometries.size(); ++i) {
         const TriangleGeometry& g = geometries[i];
         RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
-                                                                     3 * sizeof(float), g.positions.size()));
-        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
-                                                                       3 * sizeof(uint32_t), g.triangles.size()));
+        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+            geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), g.positions.size()));
+        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+            geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), g.triangles.size()));
         if (!vertices || !indices) {
             rtcReleaseGeometry(geom);
             break;

@@ -21,7 +21,7 @@ struct RayHit {
     float t;
     uint32_t geometry;  // index into the geometries given to build()
     uint32_t triangle;
-    float b1, b2;       // barycentrics of vertices 1 and 2
+    float b1, b2;  // barycentrics of vertices 1 and 2
 };
 
 class EmbreeScene {

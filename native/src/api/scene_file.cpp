@@ -22,7 +22,8 @@ json matrix(const Transform& t) {
 
 template <typename T, size_t N>
 void read_floats(const json& j, T (&out)[N]) {
-    if (!j.is_array() || j.size() != N) throw std::runtime_error("expected " + std::to_string(N) + " numbers");
+    if (!j.is_array() || j.size() != N)
+        throw std::runtime_error("expected " + std::to_string(N) + " numbers");
     for (size_t i = 0; i < N; ++i) out[i] = j[i].get<T>();
 }
 
@@ -118,7 +119,8 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.specular = m.at("specular").get<float>();
             d.ior = m.at("ior").get<float>();
             read_floats(m.at("emission"), d.emission);
-            if ((status = stratum_scene_add_material(scene, &d, nullptr)) != STRATUM_OK) return entry_point_failed(status);
+            if ((status = stratum_scene_add_material(scene, &d, nullptr)) != STRATUM_OK)
+                return entry_point_failed(status);
         }
         for (const json& m : j.at("meshes")) {
             const auto pos = m.at("positions").get<std::vector<float>>();
@@ -127,16 +129,19 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             const auto uv = m.at("corner_uvs").get<std::vector<float>>();
             const auto mat = m.at("material_ids").get<std::vector<uint32_t>>();
             const size_t tris = tri.size() / 3;
-            if (pos.size() % 3 || tri.size() % 3 || mat.size() != tris || (!nrm.empty() && nrm.size() != 9 * tris) ||
-                (!uv.empty() && uv.size() != 6 * tris)) {
+            if (pos.size() % 3 || tri.size() % 3 || mat.size() != tris ||
+                (!nrm.empty() && nrm.size() != 9 * tris) || (!uv.empty() && uv.size() != 6 * tris)) {
                 throw std::runtime_error("mesh arrays have inconsistent sizes");
             }
-            const StratumMeshDesc d{pos.data(),  static_cast<uint32_t>(pos.size() / 3),
-                                    tri.data(),  static_cast<uint32_t>(tris),
+            const StratumMeshDesc d{pos.data(),
+                                    static_cast<uint32_t>(pos.size() / 3),
+                                    tri.data(),
+                                    static_cast<uint32_t>(tris),
                                     nrm.empty() ? nullptr : nrm.data(),
                                     uv.empty() ? nullptr : uv.data(),
                                     mat.data()};
-            if ((status = stratum_scene_add_mesh(scene, &d, nullptr)) != STRATUM_OK) return entry_point_failed(status);
+            if ((status = stratum_scene_add_mesh(scene, &d, nullptr)) != STRATUM_OK)
+                return entry_point_failed(status);
         }
         for (const json& i : j.at("instances")) {
             float t[16];
@@ -155,7 +160,8 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.size_x = l.at("size").at(0).get<float>();
             d.size_y = l.at("size").at(1).get<float>();
             read_floats(l.at("transform"), d.transform);
-            if ((status = stratum_scene_add_light(scene, &d)) != STRATUM_OK) return entry_point_failed(status);
+            if ((status = stratum_scene_add_light(scene, &d)) != STRATUM_OK)
+                return entry_point_failed(status);
         }
         if (j.contains("camera")) {
             const json& c = j["camera"];
@@ -169,11 +175,13 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.clip_start = c.at("clip").at(0).get<float>();
             d.clip_end = c.at("clip").at(1).get<float>();
             read_floats(c.at("transform"), d.transform);
-            if ((status = stratum_scene_set_camera(scene, &d)) != STRATUM_OK) return entry_point_failed(status);
+            if ((status = stratum_scene_set_camera(scene, &d)) != STRATUM_OK)
+                return entry_point_failed(status);
         }
         float bg[3];
         read_floats(j.at("background"), bg);
-        if ((status = stratum_scene_set_background(scene, bg)) != STRATUM_OK) return entry_point_failed(status);
+        if ((status = stratum_scene_set_background(scene, bg)) != STRATUM_OK)
+            return entry_point_failed(status);
         return STRATUM_OK;
     } catch (const std::exception& e) {
         *error = std::string("malformed scene: ") + e.what();

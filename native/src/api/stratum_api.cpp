@@ -1,7 +1,5 @@
 // The C entry points. Every input is validated here, every exception stops here: nothing
 // that crosses this file can throw or abort the host (Blender) process.
-#include "stratum/stratum.h"
-
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -17,6 +15,7 @@
 #include "render/renderer.h"
 #include "sampling/sampler_registry.h"
 #include "scene/scene.h"
+#include "stratum/stratum.h"
 
 struct StratumScene {
     stratum::Scene scene;
@@ -87,10 +86,14 @@ const char* stratum_version(void) { return "0.1.0"; }
 
 int32_t stratum_registry_count(int32_t registry) {
     switch (registry) {
-        case STRATUM_REGISTRY_SAMPLER: return static_cast<int32_t>(stratum::sampler_registry().size());
-        case STRATUM_REGISTRY_FILTER: return static_cast<int32_t>(stratum::filter_registry().size());
-        case STRATUM_REGISTRY_INTEGRATOR: return static_cast<int32_t>(stratum::integrator_registry().size());
-        default: return -1;
+        case STRATUM_REGISTRY_SAMPLER:
+            return static_cast<int32_t>(stratum::sampler_registry().size());
+        case STRATUM_REGISTRY_FILTER:
+            return static_cast<int32_t>(stratum::filter_registry().size());
+        case STRATUM_REGISTRY_INTEGRATOR:
+            return static_cast<int32_t>(stratum::integrator_registry().size());
+        default:
+            return -1;
     }
 }
 
@@ -102,10 +105,10 @@ StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char
         require(index >= 0 && index < count,
                 "index " + std::to_string(index) + " out of range [0, " + std::to_string(count) + ")");
         const auto i = static_cast<size_t>(index);
-        const stratum::RegistryEntry& e = registry == STRATUM_REGISTRY_SAMPLER ? stratum::sampler_registry()[i].info
-                                          : registry == STRATUM_REGISTRY_FILTER
-                                              ? stratum::filter_registry()[i]
-                                              : stratum::integrator_registry()[i].info;
+        const stratum::RegistryEntry& e =
+            registry == STRATUM_REGISTRY_SAMPLER  ? stratum::sampler_registry()[i].info
+            : registry == STRATUM_REGISTRY_FILTER ? stratum::filter_registry()[i]
+                                                  : stratum::integrator_registry()[i].info;
         if (name) *name = e.name;
         if (label) *label = e.label;
         if (description) *description = e.description;
@@ -123,7 +126,8 @@ StratumStatus stratum_scene_create(StratumScene** out_scene) {
 
 void stratum_scene_destroy(StratumScene* scene) { delete scene; }
 
-StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMaterialDesc* material, uint32_t* out_id) {
+StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMaterialDesc* material,
+                                         uint32_t* out_id) {
     return guarded("stratum_scene_add_material", [&] {
         require(scene && material, "scene or material is NULL");
         const uint32_t id = static_cast<uint32_t>(scene->scene.materials.size());
@@ -147,9 +151,11 @@ StratumStatus stratum_scene_add_mesh(StratumScene* scene, const StratumMeshDesc*
 StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id, const float transform[16]) {
     return guarded("stratum_scene_add_instance", [&] {
         require(scene && transform, "scene or transform is NULL");
-        require(mesh_id < scene->scene.meshes.size(), "mesh_id " + std::to_string(mesh_id) + " out of range [0, " +
+        require(mesh_id < scene->scene.meshes.size(), "mesh_id " + std::to_string(mesh_id) +
+                                                          " out of range [0, " +
                                                           std::to_string(scene->scene.meshes.size()) + ")");
-        scene->scene.instances.push_back({mesh_id, stratum::validate_transform(transform, "instance transform")});
+        scene->scene.instances.push_back(
+            {mesh_id, stratum::validate_transform(transform, "instance transform")});
         return STRATUM_OK;
     });
 }
@@ -193,7 +199,8 @@ StratumStatus stratum_scene_load(const char* path, StratumScene** out_scene) {
         auto scene = std::make_unique<StratumScene>();
         std::string error;
         const StratumStatus status = stratum::load_scene_file(path, scene.get(), &error);
-        if (status != STRATUM_OK) return fail(status, "stratum_scene_load: " + std::string(path) + ": " + error);
+        if (status != STRATUM_OK)
+            return fail(status, "stratum_scene_load: " + std::string(path) + ": " + error);
         *out_scene = scene.release();
         return STRATUM_OK;
     });
@@ -209,15 +216,15 @@ StratumStatus stratum_renderer_create(const StratumScene* scene, StratumRenderer
 
 void stratum_renderer_destroy(StratumRenderer* r) { delete r; }
 
-
 StratumStatus stratum_renderer_set_int(StratumRenderer* r, const char* name, int64_t value) {
     return set_setting("stratum_renderer_set_int", r, name,
                        [&](stratum::RenderSettings& s) { return stratum::set_int_setting(s, name, value); });
 }
 
 StratumStatus stratum_renderer_set_float(StratumRenderer* r, const char* name, double value) {
-    return set_setting("stratum_renderer_set_float", r, name,
-                       [&](stratum::RenderSettings& s) { return stratum::set_float_setting(s, name, value); });
+    return set_setting("stratum_renderer_set_float", r, name, [&](stratum::RenderSettings& s) {
+        return stratum::set_float_setting(s, name, value);
+    });
 }
 
 StratumStatus stratum_renderer_set_string(StratumRenderer* r, const char* name, const char* value) {
@@ -231,7 +238,8 @@ StratumStatus stratum_renderer_start(StratumRenderer* r) {
     return guarded("stratum_renderer_start", [&] {
         require(r != nullptr, "renderer is NULL");
         const std::string error = r->renderer.start();
-        return error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_INVALID_STATE, "stratum_renderer_start: " + error);
+        return error.empty() ? STRATUM_OK
+                             : fail(STRATUM_ERROR_INVALID_STATE, "stratum_renderer_start: " + error);
     });
 }
 
@@ -256,12 +264,16 @@ StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgres
     return guarded("stratum_renderer_progress", [&] {
         require(r && out, "renderer or out is NULL");
         const stratum::RenderProgress p = r->renderer.progress();
-        *out = StratumProgress{p.done ? 1 : 0,      p.cancelled ? 1 : 0, static_cast<int32_t>(p.samples_done),
-                               static_cast<int32_t>(p.samples_total), p.update_serial, p.rays,
-                               p.build_seconds,      p.render_seconds};
+        *out = StratumProgress{p.done ? 1 : 0,
+                               p.cancelled ? 1 : 0,
+                               static_cast<int32_t>(p.samples_done),
+                               static_cast<int32_t>(p.samples_total),
+                               p.update_serial,
+                               p.rays,
+                               p.build_seconds,
+                               p.render_seconds};
         // A failure inside the render thread is reported by the next progress call.
-        return p.error.empty() ? STRATUM_OK
-                               : fail(STRATUM_ERROR_INTERNAL, "render failed: " + p.error);
+        return p.error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_INTERNAL, "render failed: " + p.error);
     });
 }
 

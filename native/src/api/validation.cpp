@@ -31,8 +31,8 @@ float finite_positive(float v, const char* what) {
 Rgb rgb_in(const float* c, float lo, float hi, const char* what) {
     for (int i = 0; i < 3; ++i) {
         check(std::isfinite(c[i]) && c[i] >= lo && c[i] <= hi, std::string(what) + "[" + std::to_string(i) +
-                                                                   "] = " + fmt(c[i]) + " must be in [" + fmt(lo) +
-                                                                   ", " + fmt(hi) + "]");
+                                                                   "] = " + fmt(c[i]) + " must be in [" +
+                                                                   fmt(lo) + ", " + fmt(hi) + "]");
     }
     return {c[0], c[1], c[2]};
 }
@@ -47,8 +47,8 @@ Rgb validate_radiance(const float* rgb, const char* what) {
 
 Transform validate_transform(const float* m, const char* what) {
     for (int i = 0; i < 16; ++i) {
-        check(std::isfinite(m[i]), std::string(what) + " element " + std::to_string(i) + " = " + fmt(m[i]) +
-                                       " is not finite");
+        check(std::isfinite(m[i]),
+              std::string(what) + " element " + std::to_string(i) + " = " + fmt(m[i]) + " is not finite");
     }
     check(m[12] == 0.0f && m[13] == 0.0f && m[14] == 0.0f && m[15] == 1.0f,
           std::string(what) + " is not affine: its last row must be (0, 0, 0, 1)");
@@ -91,9 +91,9 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
                                               std::to_string(d.vertex_count) + ")");
             mesh.triangles[t][c] = index;
         }
-        check(d.material_ids[t] < material_count, "mesh triangle " + std::to_string(t) + " material id " +
-                                                      std::to_string(d.material_ids[t]) + " out of range [0, " +
-                                                      std::to_string(material_count) + ")");
+        check(d.material_ids[t] < material_count,
+              "mesh triangle " + std::to_string(t) + " material id " + std::to_string(d.material_ids[t]) +
+                  " out of range [0, " + std::to_string(material_count) + ")");
         mesh.material_ids[t] = d.material_ids[t];
     }
     if (d.corner_normals) {
@@ -109,8 +109,9 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
         mesh.corner_uvs.resize(3 * static_cast<size_t>(d.triangle_count));
         for (size_t k = 0; k < mesh.corner_uvs.size(); ++k) {
             const float* uv = d.corner_uvs + 2 * k;
-            check(std::isfinite(uv[0]) && std::isfinite(uv[1]),
-                  "mesh corner uv " + std::to_string(k) + " is not finite (" + fmt(uv[0]) + ", " + fmt(uv[1]) + ")");
+            check(std::isfinite(uv[0]) && std::isfinite(uv[1]), "mesh corner uv " + std::to_string(k) +
+                                                                    " is not finite (" + fmt(uv[0]) + ", " +
+                                                                    fmt(uv[1]) + ")");
             mesh.corner_uvs[k] = {uv[0], uv[1]};
         }
     }

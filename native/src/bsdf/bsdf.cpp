@@ -8,20 +8,28 @@ namespace stratum {
 
 BsdfEval bsdf_eval(const Material& m, Vec3 wo, Vec3 wi) {
     switch (m.model) {
-        case MaterialModel::Diffuse: return lambert_eval(m, wo, wi);
-        case MaterialModel::PrincipledV1: return principled_v1_eval(m, wo, wi);
-        case MaterialModel::PrincipledV2: return principled_v2_eval(m, wo, wi);
-        case MaterialModel::Emission: break;  // emitters do not scatter
+        case MaterialModel::Diffuse:
+            return lambert_eval(m, wo, wi);
+        case MaterialModel::PrincipledV1:
+            return principled_v1_eval(m, wo, wi);
+        case MaterialModel::PrincipledV2:
+            return principled_v2_eval(m, wo, wi);
+        case MaterialModel::Emission:
+            break;  // emitters do not scatter
     }
     return {Rgb(), 0.0f};
 }
 
 bool bsdf_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out) {
     switch (m.model) {
-        case MaterialModel::Diffuse: return lambert_sample(m, wo, u, out);
-        case MaterialModel::PrincipledV1: return principled_v1_sample(m, wo, u_lobe, u, out);
-        case MaterialModel::PrincipledV2: return principled_v2_sample(m, wo, u_lobe, u, out);
-        case MaterialModel::Emission: break;
+        case MaterialModel::Diffuse:
+            return lambert_sample(m, wo, u, out);
+        case MaterialModel::PrincipledV1:
+            return principled_v1_sample(m, wo, u_lobe, u, out);
+        case MaterialModel::PrincipledV2:
+            return principled_v2_sample(m, wo, u_lobe, u, out);
+        case MaterialModel::Emission:
+            break;
     }
     return false;
 }

@@ -57,10 +57,10 @@ constexpr float kMinTableCos = 1e-3f;
 const float kMaxRootF0 = std::sqrt(0.99f);
 
 struct AlbedoTables {
-    std::array<float, kCosCount * kRoughnessCount> unit;                     // E(mu, r)
+    std::array<float, kCosCount * kRoughnessCount> unit;                       // E(mu, r)
     std::array<float, kCosCount * kRoughnessCount * kRootF0Count> dielectric;  // E_F(mu, r, s)
-    std::array<float, kRoughnessCount> unit_average;                         // E_avg(r)
-    std::array<float, kRootF0Count> fresnel_average;                         // F_avg(s)
+    std::array<float, kRoughnessCount> unit_average;                           // E_avg(r)
+    std::array<float, kRootF0Count> fresnel_average;                           // F_avg(s)
 };
 
 float eta_from_root_f0(float s) { return (1.0f + s) / (1.0f - s); }
@@ -68,7 +68,8 @@ float eta_from_root_f0(float s) { return (1.0f + s) / (1.0f - s); }
 std::unique_ptr<const AlbedoTables> build_albedo_tables() {
     auto t = std::make_unique<AlbedoTables>();
     std::array<float, kRootF0Count> eta{};
-    for (int k = 0; k < kRootF0Count; ++k) eta[k] = eta_from_root_f0(kMaxRootF0 * k / (kRootF0Count - 1));
+    for (int k = 0; k < kRootF0Count; ++k)
+        eta[k] = eta_from_root_f0(kMaxRootF0 * static_cast<float>(k) / static_cast<float>(kRootF0Count - 1));
     for (int j = 0; j < kRoughnessCount; ++j) {
         const float alpha = ggx_alpha_from_roughness(float(j) / (kRoughnessCount - 1));
         for (int i = 0; i < kCosCount; ++i) {
@@ -81,14 +82,16 @@ std::unique_ptr<const AlbedoTables> build_albedo_tables() {
             const float g1_o = ggx_g1(wo, alpha);
             for (int a = 0; a < kStrataPerAxis; ++a) {
                 for (int b = 0; b < kStrataPerAxis; ++b) {
-                    const Vec2 u{(a + 0.5f) / kStrataPerAxis, (b + 0.5f) / kStrataPerAxis};
+                    const Vec2 u{(static_cast<float>(a) + 0.5f) / static_cast<float>(kStrataPerAxis),
+                                 (static_cast<float>(b) + 0.5f) / static_cast<float>(kStrataPerAxis)};
                     const Vec3 h = sample_ggx_visible_normal(wo, alpha, u);
                     const float cos_oh = dot(wo, h);
                     const Vec3 wi = h * (2.0f * cos_oh) - wo;
                     if (wi.z <= 0.0f) continue;
                     const float w = ggx_g2_height_correlated(wo, wi, alpha) / g1_o;
                     unit_sum += w;
-                    for (int k = 0; k < kRootF0Count; ++k) dielectric_sum[k] += w * fresnel_dielectric(cos_oh, eta[k]);
+                    for (int k = 0; k < kRootF0Count; ++k)
+                        dielectric_sum[k] += w * fresnel_dielectric(cos_oh, eta[k]);
                 }
             }
             const double n = double(kStrataPerAxis) * kStrataPerAxis;
@@ -109,7 +112,7 @@ std::unique_ptr<const AlbedoTables> build_albedo_tables() {
     for (int k = 0; k < kRootF0Count; ++k) {
         double sum = 0.0;
         for (int i = 0; i < kFresnelSteps; ++i) {
-            const float mu = (i + 0.5f) / kFresnelSteps;
+            const float mu = (static_cast<float>(i) + 0.5f) / static_cast<float>(kFresnelSteps);
             sum += fresnel_dielectric(mu, eta[k]) * mu;
         }
         t->fresnel_average[k] = float(2.0 * sum / kFresnelSteps);
@@ -128,9 +131,9 @@ struct GridPos {
     float f;
 };
 GridPos grid_pos(float x, int n) {
-    const float p = std::clamp(x, 0.0f, 1.0f) * (n - 1);
+    const float p = std::clamp(x, 0.0f, 1.0f) * static_cast<float>(n - 1);
     const int i = std::min(int(p), n - 2);
-    return {i, p - i};
+    return {i, p - static_cast<float>(i)};
 }
 
 float bilinear(const float* table, GridPos mu, GridPos r) {
@@ -148,7 +151,8 @@ GridPos root_f0_pos(float eta) {
 }  // namespace
 
 float ggx_albedo_unit_fresnel(float cos_o, float roughness) {
-    return bilinear(albedo_tables().unit.data(), grid_pos(cos_o, kCosCount), grid_pos(roughness, kRoughnessCount));
+    return bilinear(albedo_tables().unit.data(), grid_pos(cos_o, kCosCount),
+                    grid_pos(roughness, kRoughnessCount));
 }
 
 float ggx_average_albedo_unit_fresnel(float roughness) {
@@ -162,7 +166,8 @@ float ggx_albedo_dielectric(float cos_o, float roughness, float eta) {
     const GridPos mu = grid_pos(cos_o, kCosCount), r = grid_pos(roughness, kRoughnessCount);
     const GridPos s = root_f0_pos(eta);
     constexpr int kSlice = kCosCount * kRoughnessCount;
-    return bilinear(table + s.i * kSlice, mu, r) * (1 - s.f) + bilinear(table + (s.i + 1) * kSlice, mu, r) * s.f;
+    return bilinear(table + s.i * kSlice, mu, r) * (1 - s.f) +
+           bilinear(table + (s.i + 1) * kSlice, mu, r) * s.f;
 }
 
 float fresnel_dielectric_average(float eta) {

@@ -10,10 +10,10 @@ namespace {
 struct LobesV2 {
     float metallic;
     float roughness, alpha;
-    bool has_specular;       // dielectric layer present (eta != 1)
-    float eta;               // relative IOR of the dielectric layer
-    float specular_scale;    // multiple-scattering compensation c(cos_o) of the dielectric lobe
-    float specular_albedo;   // A_spec(cos_o)
+    bool has_specular;      // dielectric layer present (eta != 1)
+    float eta;              // relative IOR of the dielectric layer
+    float specular_scale;   // multiple-scattering compensation c(cos_o) of the dielectric lobe
+    float specular_albedo;  // A_spec(cos_o)
     Rgb metal_f0, metal_scale;
     float probability_metal, probability_specular;  // the diffuse lobe takes the rest
 };
@@ -46,14 +46,16 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     l.specular_scale = 1.0f, l.specular_albedo = 0.0f;
     if (l.has_specular) {
         l.specular_scale = multiscatter_scale(e, e_avg, fresnel_dielectric_average(l.eta));
-        l.specular_albedo = std::min(ggx_albedo_dielectric(wo.z, l.roughness, l.eta) * l.specular_scale, 1.0f);
+        l.specular_albedo =
+            std::min(ggx_albedo_dielectric(wo.z, l.roughness, l.eta) * l.specular_scale, 1.0f);
     }
     l.metal_f0 = Rgb(std::clamp(m.base_color.r, 0.0f, 1.0f), std::clamp(m.base_color.g, 0.0f, 1.0f),
                      std::clamp(m.base_color.b, 0.0f, 1.0f));
     // Schlick's hemispherical average: F0 + (1 - F0)/21.
     const Rgb f_avg_metal = l.metal_f0 + (Rgb(1.0f) - l.metal_f0) * (1.0f / 21.0f);
-    l.metal_scale = Rgb(multiscatter_scale(e, e_avg, f_avg_metal.r), multiscatter_scale(e, e_avg, f_avg_metal.g),
-                        multiscatter_scale(e, e_avg, f_avg_metal.b));
+    l.metal_scale =
+        Rgb(multiscatter_scale(e, e_avg, f_avg_metal.r), multiscatter_scale(e, e_avg, f_avg_metal.g),
+            multiscatter_scale(e, e_avg, f_avg_metal.b));
     // Lobe selection proportional to each lobe's albedo estimate for this wo.
     const float sw = schlick_weight(wo.z);
     const float weight_metal = l.metallic * (l.metal_f0 * (1.0f - sw) + Rgb(sw)).average();
@@ -74,14 +76,16 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi) {
         const Vec3 h = normalize(wo + wi);
         const float cos_ih = dot(wi, h);
         // D G2 / (4 cos_o) = f cos_i without Fresnel.
-        const float microfacet = ggx_d(h, l.alpha) * ggx_g2_height_correlated(wo, wi, l.alpha) / (4.0f * wo.z);
+        const float microfacet =
+            ggx_d(h, l.alpha) * ggx_g2_height_correlated(wo, wi, l.alpha) / (4.0f * wo.z);
         const float microfacet_pdf = ggx_reflection_pdf(wo, wi, l.alpha);
         if (l.metallic > 0.0f) {
             const float sw = schlick_weight(cos_ih);
             e.value += (l.metal_f0 * (1.0f - sw) + Rgb(sw)) * l.metal_scale * (l.metallic * microfacet);
         }
         if (l.has_specular) {
-            e.value += Rgb((1.0f - l.metallic) * fresnel_dielectric(cos_ih, l.eta) * l.specular_scale * microfacet);
+            e.value +=
+                Rgb((1.0f - l.metallic) * fresnel_dielectric(cos_ih, l.eta) * l.specular_scale * microfacet);
         }
         e.pdf += (l.probability_metal + l.probability_specular) * microfacet_pdf;
     }

@@ -22,8 +22,18 @@ struct Vec3 {
     constexpr Vec3(float x_, float y_, float z_) : x(x_), y(y_), z(z_) {}
     constexpr float operator[](int i) const { return i == 0 ? x : (i == 1 ? y : z); }
     constexpr Vec3 operator-() const { return {-x, -y, -z}; }
-    constexpr Vec3& operator+=(Vec3 b) { x += b.x; y += b.y; z += b.z; return *this; }
-    constexpr Vec3& operator*=(float s) { x *= s; y *= s; z *= s; return *this; }
+    constexpr Vec3& operator+=(Vec3 b) {
+        x += b.x;
+        y += b.y;
+        z += b.z;
+        return *this;
+    }
+    constexpr Vec3& operator*=(float s) {
+        x *= s;
+        y *= s;
+        z *= s;
+        return *this;
+    }
 };
 constexpr Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 constexpr Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
@@ -48,9 +58,24 @@ struct Rgb {
     constexpr Rgb() = default;
     constexpr Rgb(float r_, float g_, float b_) : r(r_), g(g_), b(b_) {}
     constexpr explicit Rgb(float v) : r(v), g(v), b(v) {}
-    constexpr Rgb& operator+=(Rgb o) { r += o.r; g += o.g; b += o.b; return *this; }
-    constexpr Rgb& operator*=(Rgb o) { r *= o.r; g *= o.g; b *= o.b; return *this; }
-    constexpr Rgb& operator*=(float s) { r *= s; g *= s; b *= s; return *this; }
+    constexpr Rgb& operator+=(Rgb o) {
+        r += o.r;
+        g += o.g;
+        b += o.b;
+        return *this;
+    }
+    constexpr Rgb& operator*=(Rgb o) {
+        r *= o.r;
+        g *= o.g;
+        b *= o.b;
+        return *this;
+    }
+    constexpr Rgb& operator*=(float s) {
+        r *= s;
+        g *= s;
+        b *= s;
+        return *this;
+    }
     constexpr float max_component() const { return std::max(r, std::max(g, b)); }
     constexpr float average() const { return (r + g + b) * (1.0f / 3.0f); }
     constexpr bool is_black() const { return r == 0 && g == 0 && b == 0; }
@@ -71,7 +96,8 @@ struct Frame {
         const float sign = std::copysign(1.0f, n.z);
         const float a = -1.0f / (sign + n.z);
         const float b = n.x * n.y * a;
-        return {Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3(b, sign + n.y * n.y * a, -n.y), n};
+        return {Vec3(1.0f + sign * n.x * n.x * a, sign * b, -sign * n.x), Vec3(b, sign + n.y * n.y * a, -n.y),
+                n};
     }
     Vec3 to_local(Vec3 v) const { return {dot(v, s), dot(v, t), dot(v, n)}; }
     Vec3 to_world(Vec3 v) const { return s * v.x + t * v.y + n * v.z; }

@@ -37,15 +37,16 @@ Rgb PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, c
         if (!material.emission.is_black()) {
             float w = 1.0f;
             if (scatter_pdf > 0.0f && hit.emissive_light != kNoLight) {
-                w = power_heuristic(scatter_pdf, lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin,
-                                                                              hit.position));
+                w = power_heuristic(scatter_pdf, lights.emissive_triangle_pdf(hit.emissive_light,
+                                                                              scatter_origin, hit.position));
             }
             L += beta * material.emission * w;
         }
         if (vertex > settings_.max_bounces || material.model == MaterialModel::Emission) break;
 
         const Vec3 wo_world = -dir;
-        const Vec3 ng = dot(hit.geometric_normal, wo_world) < 0.0f ? -hit.geometric_normal : hit.geometric_normal;
+        const Vec3 ng =
+            dot(hit.geometric_normal, wo_world) < 0.0f ? -hit.geometric_normal : hit.geometric_normal;
         // The shading normal is flipped to the viewer's side along with the geometric one.
         const Vec3 ns = dot(hit.shading_normal, ng) < 0.0f ? -hit.shading_normal : hit.shading_normal;
         const Frame frame = Frame::from_normal(ns);
@@ -59,10 +60,12 @@ Rgb PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, c
             const BsdfEval f = bsdf_eval(material, wo, frame.to_local(ls.wi));
             if (!f.value.is_black()) {
                 const Vec3 o = offset_ray_origin(hit.position, ng);
+                const ShadowRay shadow = std::isinf(ls.distance)
+                                             ? ShadowRay{ls.wi, kInfinity}
+                                             : shadow_ray_to(o, hit.position + ls.wi * ls.distance);
                 ++rays;
-                const float shadow_max = std::isinf(ls.distance) ? kInfinity : ls.distance * kShadowRayShortening;
-                if (!scene.occluded(o, ls.wi, 0.0f, shadow_max)) {
-                    const float w = ls.delta ? 1.0f : power_heuristic(ls.pdf, f.pdf);
+                if (!scene.occluded(o, shadow.direction, 0.0f, shadow.t_max)) {
+                    const float w = ls.found_by_bsdf_rays ? power_heuristic(ls.pdf, f.pdf) : 1.0f;
                     L += beta * f.value * ls.radiance * (w / ls.pdf);
                 }
             }

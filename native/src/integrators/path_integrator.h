@@ -7,8 +7,9 @@
 // | max_bounces | Cycles' meaning: vertices 0..max_bounces scatter; 0 = direct lighting only |
 //
 // Emission found by a scattered ray is weighted against light sampling with the power
-// heuristic; delta lights (point of radius 0, sun of angle 0) are reached only by light
-// sampling. Russian roulette from the 4th vertex on, survival = min(1, max throughput).
+// heuristic; lights without geometry (point, sun, area lights, which Cycles also keeps out of
+// camera rays) are reached only by light sampling and take the full weight. Russian roulette from the 4th
+// vertex on, survival = min(1, max throughput).
 #pragma once
 
 #include "integrators/integrator.h"
@@ -18,8 +19,8 @@ namespace stratum {
 class PathIntegrator final : public Integrator {
 public:
     explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
-    Rgb radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel, const CameraRay& ray,
-                 uint64_t& rays) const override;
+    Rgb radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+                 const CameraRay& ray, uint64_t& rays) const override;
 
 private:
     IntegratorSettings settings_;

@@ -4,11 +4,6 @@
 
 namespace stratum {
 
-namespace {
-// Cycles evaluates area lights with strength · ¼ · (1/area) (docs/cycles_models.md).
-constexpr float kCyclesAreaLightFactor = 0.25f;
-}  // namespace
-
 AreaLight::AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power)
     : center_(light_to_world.translation()),
       axis_x_(light_to_world.vector(Vec3(0.5f * size_x, 0, 0))),
@@ -20,7 +15,7 @@ AreaLight::AreaLight(const Transform& light_to_world, float size_x, float size_y
     area_ = ellipse ? parallelogram * (kPi / 4.0f) : parallelogram;
     // Local −Z; in world the normal follows the handedness of the transform.
     normal_ = normalize(light_to_world.normal(Vec3(0, 0, -1)));
-    radiance_ = power * (kCyclesAreaLightFactor / area_);
+    radiance_ = power * (kInvPi / area_);
 }
 
 bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {

@@ -7,8 +7,9 @@
 // | size_x, size_y   | "Size" / "Size Y": side lengths, or diameters of disk and ellipse |
 // | shape            | rectangle (square is equal sides) or ellipse (disk is equal diameters) |
 //
-// Radiance L = P / (4 A), A the world-space area: Cycles' convention (area light eval factor
-// 1/4 · 1/A, see docs/cycles_models.md), not the physical P / (π A).
+// Radiance L = P / (π A), A the world-space area: a Lambertian emitter whose flux is P. This is
+// Cycles 4.x/5.x; Cycles 3.x used P / (4 A) (docs/cycles_models.md), and the add-on scales the
+// power of a 3.x scene by π/4 so both Blenders render what their Cycles renders.
 // Points are sampled uniformly in area (textbook 4.37 for the rectangle, concentric polar map
 // for the ellipse, 4.41), converted to solid angle: pdf = r² / (A |cos θ_light|).
 #pragma once

@@ -23,7 +23,7 @@ bool EmissiveTriangle::sample(Vec3 p, Vec2 u, LightSample* out) const {
     const Vec3 wi = to / d;
     const float cos_light = std::abs(dot(wi, normal_));
     if (cos_light <= 0.0f) return false;
-    *out = {wi, d, radiance_, d2 / (area_ * cos_light), false};
+    *out = {wi, d, radiance_, d2 / (area_ * cos_light), true};
     return true;
 }
 

@@ -8,11 +8,14 @@
 namespace stratum {
 
 struct LightSample {
-    Vec3 wi;          // unit direction from the shading point toward the light
-    float distance;   // to the sampled point; infinity for the sun
-    Rgb radiance;     // radiance arriving along -wi (delta lights: irradiance-like intensity term)
-    float pdf;        // solid-angle pdf of wi; for delta lights 1 (and `delta` is set)
-    bool delta;       // sampled with a Dirac distribution: no MIS with BSDF sampling
+    Vec3 wi;         // unit direction from the shading point toward the light
+    float distance;  // to the sampled point; infinity for the sun
+    Rgb radiance;    // radiance arriving along -wi; for delta lights the irradiance at normal incidence
+    float pdf;       // solid-angle pdf of wi; 1 for delta lights (point of radius 0, sun of angle 0)
+    // True when a BSDF-sampled ray can also find this light (emissive geometry), so the two
+    // strategies are combined by MIS; lights without geometry are found by light sampling only
+    // and take the full weight.
+    bool found_by_bsdf_rays;
 };
 
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();

@@ -14,7 +14,7 @@ bool PointLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
     if (!(d > 0.0f)) return false;
     const Vec3 axis = to_center / d;
     if (radius_ <= 0.0f) {
-        *out = {axis, d, intensity_ / d2, 1.0f, true};
+        *out = {axis, d, intensity_ / d2, 1.0f, false};
         return true;
     }
     if (d <= radius_) return false;  // inside the emitter: it emits outward only

@@ -17,7 +17,7 @@ SunLight::SunLight(Vec3 toward_sun, Rgb irradiance, float angle)
 
 bool SunLight::sample(Vec2 u, LightSample* out) const {
     if (cos_max_ >= 1.0f) {
-        *out = {frame_.n, kInfinity, irradiance_, 1.0f, true};
+        *out = {frame_.n, kInfinity, irradiance_, 1.0f, false};
         return true;
     }
     *out = {frame_.to_world(sample_uniform_cone(u, cos_max_)), kInfinity, radiance_, pdf_, false};

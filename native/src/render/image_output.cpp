@@ -25,7 +25,8 @@ float srgb_encode(float v) {
 
 }  // namespace
 
-std::string write_image(const std::string& path, const std::vector<float>& rgba, uint32_t width, uint32_t height) {
+std::string write_image(const std::string& path, const std::vector<float>& rgba, uint32_t width,
+                        uint32_t height) {
     auto out = OIIO::ImageOutput::create(path);
     if (!out) return "cannot write '" + path + "': " + OIIO::geterror();
     const bool linear = is_float_format(path);

@@ -9,6 +9,7 @@
 namespace stratum {
 
 // rgba: width*height*4 floats, rows bottom to top. Returns "" on success, else the error.
-std::string write_image(const std::string& path, const std::vector<float>& rgba, uint32_t width, uint32_t height);
+std::string write_image(const std::string& path, const std::vector<float>& rgba, uint32_t width,
+                        uint32_t height);
 
 }  // namespace stratum

@@ -18,7 +18,8 @@ const std::array kFilters = {
 double profile(FilterType type, double x, double radius) {
     if (type == FilterType::Box) return 1.0;
     const double theta = 2.0 * 3.14159265358979323846 * (x / (2.0 * radius) + 0.5);
-    return 0.35875 - 0.48829 * std::cos(theta) + 0.14128 * std::cos(2 * theta) - 0.01168 * std::cos(3 * theta);
+    return 0.35875 - 0.48829 * std::cos(theta) + 0.14128 * std::cos(2 * theta) -
+           0.01168 * std::cos(3 * theta);
 }
 
 }  // namespace

@@ -5,7 +5,8 @@
 // | filter          | profile on x ∈ [−R, R] | R (width w in pixels, Blender's filter_width) |
 // |-----------------|------------------------|------------------------------------------------|
 // | box             | 1                      | w / 2 |
-// | blackman_harris | 0.35875 − 0.48829 cos(θ) + 0.14128 cos(2θ) − 0.01168 cos(3θ), θ = 2π(x/(2R) + ½) | w (Cycles doubles the width of this filter) |
+// | blackman_harris | 0.35875 − 0.48829 cos(θ) + 0.14128 cos(2θ) − 0.01168 cos(3θ), θ = 2π(x/(2R) + ½) | w
+// (Cycles doubles the width of this filter) |
 //
 // Blackman-Harris window: Harris 1978, "On the use of windows for harmonic analysis with the
 // discrete Fourier transform", 4-term. The profile is tabulated and its CDF inverted.

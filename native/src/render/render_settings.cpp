@@ -66,15 +66,16 @@ std::string set_float_setting(RenderSettings& s, std::string_view name, double v
 std::string set_string_setting(RenderSettings& s, std::string_view name, std::string_view value) {
     if (name == "sampler") {
         if (!find_sampler(value)) {
-            return "unknown sampler '" + std::string(value) + "' (known: " + registry_names(sampler_registry()) + ")";
+            return "unknown sampler '" + std::string(value) +
+                   "' (known: " + registry_names(sampler_registry()) + ")";
         }
         s.sampler = value;
         return {};
     }
     if (name == "integrator") {
         if (!find_integrator(value)) {
-            return "unknown integrator '" + std::string(value) + "' (known: " + registry_names(integrator_registry()) +
-                   ")";
+            return "unknown integrator '" + std::string(value) +
+                   "' (known: " + registry_names(integrator_registry()) + ")";
         }
         s.integrator = value;
         return {};

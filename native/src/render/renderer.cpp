@@ -105,12 +105,15 @@ void Renderer::run() {
                                 for (uint32_t i = begin; i < end; ++i) {
                                     const PixelSample ps{x, y, i};
                                     const Vec2 offset = filter.sample(sampler->get_2d(ps, kDimFilter));
-                                    const CameraRay ray = camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
-                                                                              static_cast<float>(y) + 0.5f + offset.y);
-                                    const Rgb L = integrator->radiance(*render_scene_, *sampler, ps, ray, rays);
+                                    const CameraRay ray =
+                                        camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
+                                                            static_cast<float>(y) + 0.5f + offset.y);
+                                    const Rgb L =
+                                        integrator->radiance(*render_scene_, *sampler, ps, ray, rays);
                                     // A NaN or Inf sample would poison the pixel forever; it
                                     // is a bug upstream, so it is dropped visibly (counted, 0).
-                                    if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b)) sum += L;
+                                    if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b))
+                                        sum += L;
                                 }
                                 sums[p] = sum;
                                 counts[p] = end;
@@ -152,7 +155,8 @@ void Renderer::run() {
 
 bool Renderer::wait(int timeout_ms) {
     std::unique_lock lock(state_mutex_);
-    return done_cv_.wait_for(lock, std::chrono::milliseconds(std::max(0, timeout_ms)), [&] { return done_.load(); });
+    return done_cv_.wait_for(lock, std::chrono::milliseconds(std::max(0, timeout_ms)),
+                             [&] { return done_.load(); });
 }
 
 RenderProgress Renderer::progress() const {

@@ -3,15 +3,21 @@
 namespace stratum {
 
 Camera::Camera(const CameraParams& params, uint32_t width, uint32_t height)
-    : params_(params), inv_width_(1.0f / static_cast<float>(width)), inv_height_(1.0f / static_cast<float>(height)) {
+    : params_(params),
+      inv_width_(1.0f / static_cast<float>(width)),
+      inv_height_(1.0f / static_cast<float>(height)) {
     const float w = static_cast<float>(width), h = static_cast<float>(height);
     // Blender: AUTO fits sensor_width to the larger side; VERTICAL fits sensor_height to the
     // height; HORIZONTAL fits sensor_width to the width.
     bool fit_horizontal = true;
     float sensor = params.sensor_width_mm;
     switch (params.fit) {
-        case SensorFit::Auto: fit_horizontal = w >= h; break;
-        case SensorFit::Horizontal: fit_horizontal = true; break;
+        case SensorFit::Auto:
+            fit_horizontal = w >= h;
+            break;
+        case SensorFit::Horizontal:
+            fit_horizontal = true;
+            break;
         case SensorFit::Vertical:
             fit_horizontal = false;
             sensor = params.sensor_height_mm;
@@ -35,7 +41,8 @@ CameraRay Camera::generate_ray(float fx, float fy) const {
     const float inv_len = 1.0f / length(local);
     // Blender clips by depth along the view axis; along the ray that is depth / cos = depth*|local|.
     const Vec3 dir = normalize(params_.camera_to_world.vector(local));
-    return {params_.camera_to_world.translation(), dir, params_.clip_start / inv_len, params_.clip_end / inv_len};
+    return {params_.camera_to_world.translation(), dir, params_.clip_start / inv_len,
+            params_.clip_end / inv_len};
 }
 
 }  // namespace stratum

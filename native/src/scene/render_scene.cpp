@@ -33,8 +33,8 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
             if (m.emission.is_black()) continue;
             if (g.emissive_light.empty()) g.emissive_light.assign(mesh.triangles.size(), kNoLight);
             const auto& tri = mesh.triangles[t];
-            g.emissive_light[t] =
-                lights_.add(EmissiveTriangle(g.positions[tri[0]], g.positions[tri[1]], g.positions[tri[2]], m.emission));
+            g.emissive_light[t] = lights_.add(
+                EmissiveTriangle(g.positions[tri[0]], g.positions[tri[1]], g.positions[tri[2]], m.emission));
         }
     }
     for (const LightParams& l : scene.lights) {
@@ -48,7 +48,8 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
                 break;
             case LightType::AreaRectangle:
             case LightType::AreaEllipse:
-                lights_.add(AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse, power));
+                lights_.add(
+                    AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse, power));
                 break;
         }
     }
@@ -76,7 +77,8 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->shading_normal = hit->geometric_normal;
     if (!g.corner_normals.empty()) {
         const size_t k = 3 * static_cast<size_t>(h.triangle);
-        const Vec3 n = g.corner_normals[k] * b0 + g.corner_normals[k + 1] * h.b1 + g.corner_normals[k + 2] * h.b2;
+        const Vec3 n =
+            g.corner_normals[k] * b0 + g.corner_normals[k + 1] * h.b1 + g.corner_normals[k + 2] * h.b2;
         const float nl = length(n);
         if (nl > 0.0f) hit->shading_normal = n / nl;
     }

@@ -40,8 +40,8 @@ public:
 private:
     struct InstanceGeometry {
         const Mesh* mesh;
-        std::vector<Vec3> positions;       // world space
-        std::vector<Vec3> corner_normals;  // world space, unit; empty if the mesh has none
+        std::vector<Vec3> positions;           // world space
+        std::vector<Vec3> corner_normals;      // world space, unit; empty if the mesh has none
         std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive
     };
     std::vector<Material> materials_;
