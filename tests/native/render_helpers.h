@@ -83,4 +83,29 @@ inline StratumCameraDesc camera_at(float x, float y, float z) {
     return c;
 }
 
+inline StratumScene* make_sphere_interior(const StratumMaterialDesc& material, uint32_t rings, float x,
+                                          float y, float z) {
+    StratumScene* scene = nullptr;
+    if (stratum_scene_create(&scene) != STRATUM_OK) return nullptr;
+    uint32_t mat = 0, mesh_id = 0;
+    const SphereMesh sphere = make_sphere(1.0f, rings, 2 * rings);
+    const std::vector<uint32_t> mats(sphere.triangles.size() / 3, 0u);
+    const StratumMeshDesc mesh{sphere.positions.data(),
+                               static_cast<uint32_t>(sphere.positions.size() / 3),
+                               sphere.triangles.data(),
+                               static_cast<uint32_t>(sphere.triangles.size() / 3),
+                               nullptr,
+                               nullptr,
+                               mats.data()};
+    const StratumCameraDesc camera = camera_at(x, y, z);
+    if (stratum_scene_add_material(scene, &material, &mat) != STRATUM_OK ||
+        stratum_scene_add_mesh(scene, &mesh, &mesh_id) != STRATUM_OK ||
+        stratum_scene_add_instance(scene, mesh_id, kIdentity) != STRATUM_OK ||
+        stratum_scene_set_camera(scene, &camera) != STRATUM_OK) {
+        stratum_scene_destroy(scene);
+        return nullptr;
+    }
+    return scene;
+}
+
 }  // namespace stratum_test

@@ -13,26 +13,10 @@ using namespace stratum_test;
 namespace {
 
 StratumScene* lit_sphere_interior() {
-    StratumScene* scene = nullptr;
-    EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
     const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {0.7f, 0.7f, 0.7f}, 1, 0, 0, 1.5f,
                                    {0.3f, 0.3f, 0.3f}};
-    uint32_t mat = 0;
-    EXPECT_EQ(stratum_scene_add_material(scene, &wall, &mat), STRATUM_OK);
-    const SphereMesh sphere = make_sphere(1.0f, 8, 16);
-    const std::vector<uint32_t> mats(sphere.triangles.size() / 3, mat);
-    const StratumMeshDesc mesh{sphere.positions.data(),
-                               static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(),
-                               static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
-    uint32_t id = 0;
-    EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, &id), STRATUM_OK);
-    EXPECT_EQ(stratum_scene_add_instance(scene, id, kIdentity), STRATUM_OK);
-    const StratumCameraDesc camera = camera_at(0, 0, 0.2f);
-    EXPECT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK);
+    StratumScene* scene = make_sphere_interior(wall, 8, 0, 0, 0.2f);
+    EXPECT_NE(scene, nullptr) << stratum_last_error();
     return scene;
 }
 
