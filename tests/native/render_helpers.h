@@ -83,6 +83,8 @@ inline StratumCameraDesc camera_at(float x, float y, float z) {
     return c;
 }
 
+// A closed sphere of radius 1 whose wall has `material`, seen from inside by a camera at
+// (x, y, z); nullptr on failure. The caller destroys the scene.
 inline StratumScene* make_sphere_interior(const StratumMaterialDesc& material, uint32_t rings, float x,
                                           float y, float z) {
     StratumScene* scene = nullptr;
