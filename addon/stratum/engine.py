@@ -161,8 +161,7 @@ class StratumRenderEngine(bpy.types.RenderEngine):
                     last_serial = progress.update_serial
                     writer.write(renderer, render_pass)
                     self.update_result(result)
-                total = max(progress.samples_total, 1)
-                self.update_progress(min(progress.samples_done / total, 1.0))
+                self.update_progress(min(progress.fraction_done, 1.0))
                 self.update_stats("", format_stats(progress, time.perf_counter() - started))
                 if done or progress.done:
                     break

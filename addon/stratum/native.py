@@ -153,6 +153,7 @@ class _Progress(ctypes.Structure):
         ("rays", ctypes.c_double),
         ("build_seconds", ctypes.c_double),
         ("render_seconds", ctypes.c_double),
+        ("fraction_done", ctypes.c_double),
     ]
 
 
@@ -205,6 +206,7 @@ class Progress:
     rays: float
     build_seconds: float
     render_seconds: float
+    fraction_done: float
 
 
 class RegistryEntry(NamedTuple):
@@ -641,6 +643,7 @@ class Renderer(_Handle):
             rays=float(p.rays),
             build_seconds=float(p.build_seconds),
             render_seconds=float(p.render_seconds),
+            fraction_done=float(p.fraction_done),
         )
 
     def read_pixels(self, out: np.ndarray | None = None) -> np.ndarray:

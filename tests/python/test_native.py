@@ -97,6 +97,7 @@ def test_tiny_scene_renders_finite_pixels(native: Any, tiny_scene: Any) -> None:
         progress = renderer.progress()
         assert progress.done and not progress.cancelled
         assert progress.samples_done == progress.samples_total == 4
+        assert progress.fraction_done == 1.0
         assert progress.rays > 0
         pixels = np.empty(16 * 12 * 4, dtype=np.float32)
         out = renderer.read_pixels(pixels)

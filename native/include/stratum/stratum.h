@@ -180,6 +180,7 @@ typedef struct StratumProgress {
     double rays;            /* rays traced so far (camera, bounce and shadow rays) */
     double build_seconds;   /* BVH build time */
     double render_seconds;  /* path-tracing time, without the BVH build */
+    double fraction_done;   /* pixel samples finished / (width * height * samples), for progress bars */
 } StratumProgress;
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);

@@ -271,7 +271,8 @@ StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgres
                                p.update_serial,
                                p.rays,
                                p.build_seconds,
-                               p.render_seconds};
+                               p.render_seconds,
+                               p.fraction_done};
         // A failure inside the render thread is reported by the next progress call.
         return p.error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_INTERNAL, "render failed: " + p.error);
     });

@@ -51,6 +51,7 @@ std::string Renderer::start() {
     samples_done_.store(0);
     samples_total_.store(settings_.samples);
     rays_.store(0);
+    pixel_samples_done_.store(0);
     {
         std::lock_guard lock(state_mutex_);
         render_seconds_ = 0;
@@ -96,7 +97,7 @@ void Renderer::run() {
                 tbb::parallel_for(
                     tbb::blocked_range2d<uint32_t>(0, s.height, kTileSize, 0, s.width, kTileSize),
                     [&](const tbb::blocked_range2d<uint32_t>& tile) {
-                        uint64_t rays = 0;
+                        uint64_t rays = 0, pixel_samples = 0;
                         for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
                             for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                                 if (cancel_.load(std::memory_order_relaxed)) break;
@@ -117,9 +118,11 @@ void Renderer::run() {
                                 }
                                 sums[p] = sum;
                                 counts[p] = end;
+                                pixel_samples += end - begin;
                             }
                         }
                         rays_.fetch_add(rays, std::memory_order_relaxed);
+                        pixel_samples_done_.fetch_add(pixel_samples, std::memory_order_relaxed);
                         std::shared_lock lock(image_mutex_);
                         for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
                             for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
@@ -170,6 +173,9 @@ RenderProgress Renderer::progress() const {
     p.rays = static_cast<double>(rays_.load());
     p.build_seconds = build_seconds_;
     p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;
+    const double pixel_samples_total = static_cast<double>(width_) * height_ * p.samples_total;
+    p.fraction_done =
+        pixel_samples_total > 0 ? static_cast<double>(pixel_samples_done_.load()) / pixel_samples_total : 0.0;
     p.error = error_;
     return p;
 }

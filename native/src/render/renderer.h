@@ -28,6 +28,7 @@ struct RenderProgress {
     uint32_t samples_done = 0, samples_total = 0;
     uint32_t update_serial = 0;
     double rays = 0, build_seconds = 0, render_seconds = 0;
+    double fraction_done = 0;
     std::string error;  // a failure inside the render thread
 };
 
@@ -69,6 +70,7 @@ private:
     std::atomic<bool> cancel_{false}, done_{true};
     std::atomic<uint32_t> samples_done_{0}, samples_total_{0}, update_serial_{0};
     std::atomic<uint64_t> rays_{0};
+    std::atomic<uint64_t> pixel_samples_done_{0};
     mutable std::mutex state_mutex_;
     std::condition_variable done_cv_;
     double build_seconds_ = 0, render_seconds_ = 0;
