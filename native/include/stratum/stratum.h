@@ -45,7 +45,8 @@ STRATUM_API const char* stratum_version(void);
 typedef enum StratumRegistry {
     STRATUM_REGISTRY_SAMPLER = 0,
     STRATUM_REGISTRY_FILTER = 1,
-    STRATUM_REGISTRY_INTEGRATOR = 2
+    STRATUM_REGISTRY_INTEGRATOR = 2,
+    STRATUM_REGISTRY_HEMISPHERE = 3 /* distributions of diffuse/AO directions */
 } StratumRegistry;
 
 /* Number of entries of a registry, or -1 for an unknown registry. */
@@ -54,6 +55,29 @@ STRATUM_API int32_t stratum_registry_count(int32_t registry);
  * `index`. The strings are static. */
 STRATUM_API StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char** name,
                                                  const char** label, const char** description);
+
+/* ---- sampling, without a scene (for `stratum points` and studies) ----------------------- */
+
+/* Name of sample dimension `dimension` in the named layout ("filter.x", "bounce0.light_choice",
+ * "bounce1.bsdf.u", ...). Dimensions are unbounded (bounce blocks repeat); every index has a name. */
+STRATUM_API StratumStatus stratum_dimension_name(uint32_t dimension, const char** out_name);
+/* Dimensions before the first bounce block, and the size of each bounce block. */
+STRATUM_API uint32_t stratum_camera_dimensions(void);
+STRATUM_API uint32_t stratum_bounce_dimension_stride(void);
+
+/* The first `count` samples (indices 0..count-1) of pixel (pixel_x, pixel_y) of a
+ * width x height image rendered with `samples` samples per pixel and `seed`, in dimensions
+ * dim_a and dim_b: out_xy receives count pairs. dim_a, dim_b may be any dimensions; when
+ * dim_b == dim_a + 1 and dim_a is even the sampler's 2D pair is used, as the integrators do. */
+STRATUM_API StratumStatus stratum_sampler_points(const char* sampler, uint32_t samples, uint32_t seed,
+                                                 uint32_t width, uint32_t height, uint32_t pixel_x,
+                                                 uint32_t pixel_y, uint32_t dim_a, uint32_t dim_b,
+                                                 uint32_t count, float* out_xy);
+/* Maps count points of [0,1)^2 (uv, 2 floats each) through a hemisphere distribution
+ * (registry STRATUM_REGISTRY_HEMISPHERE): out_xyz receives unit vectors (z = normal) and
+ * out_pdf (optional) their solid-angle densities. */
+STRATUM_API StratumStatus stratum_warp_hemisphere(const char* distribution, const float* uv, uint32_t count,
+                                                  float* out_xyz, float* out_pdf);
 
 /* ---- scene ----------------------------------------------------------------------------- */
 
@@ -155,9 +179,9 @@ STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
 
 /* Named settings (see README "Render settings"):
  *   int:    width, height, samples, max_bounces, seed, threads (0 = all cores)
- *   float:  filter_width (pixels)
+ *   float:  filter_width (pixels), ao_distance (scene units, > 0)
  *   string: sampler (registry name), filter_type ("box", "blackman_harris"),
- *           integrator (registry name)
+ *           integrator (registry name), hemisphere (registry name)
  * Setting a name of the wrong kind or an unknown name is STRATUM_ERROR_INVALID_ARGUMENT. */
 STRATUM_API StratumStatus stratum_renderer_set_int(StratumRenderer* r, const char* name, int64_t value);
 STRATUM_API StratumStatus stratum_renderer_set_float(StratumRenderer* r, const char* name, double value);
