@@ -13,6 +13,7 @@
 #include "render/image_output.h"
 #include "render/pixel_filter.h"
 #include "render/renderer.h"
+#include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
 #include "scene/scene.h"
 #include "stratum/stratum.h"
@@ -92,6 +93,8 @@ int32_t stratum_registry_count(int32_t registry) {
             return static_cast<int32_t>(stratum::filter_registry().size());
         case STRATUM_REGISTRY_INTEGRATOR:
             return static_cast<int32_t>(stratum::integrator_registry().size());
+        case STRATUM_REGISTRY_HEMISPHERE:
+            return static_cast<int32_t>(stratum::hemisphere_registry().size());
         default:
             return -1;
     }
@@ -106,9 +109,10 @@ StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char
                 "index " + std::to_string(index) + " out of range [0, " + std::to_string(count) + ")");
         const auto i = static_cast<size_t>(index);
         const stratum::RegistryEntry& e =
-            registry == STRATUM_REGISTRY_SAMPLER  ? stratum::sampler_registry()[i].info
-            : registry == STRATUM_REGISTRY_FILTER ? stratum::filter_registry()[i]
-                                                  : stratum::integrator_registry()[i].info;
+            registry == STRATUM_REGISTRY_SAMPLER      ? stratum::sampler_registry()[i].info
+            : registry == STRATUM_REGISTRY_FILTER     ? stratum::filter_registry()[i]
+            : registry == STRATUM_REGISTRY_HEMISPHERE ? stratum::hemisphere_registry()[i]
+                                                      : stratum::integrator_registry()[i].info;
         if (name) *name = e.name;
         if (label) *label = e.label;
         if (description) *description = e.description;

@@ -7,6 +7,7 @@
 #include <span>
 #include <string_view>
 
+#include "sampling/hemisphere.h"
 #include "sampling/sampler.h"
 #include "sampling/sampler_registry.h"
 #include "scene/camera.h"
@@ -18,6 +19,10 @@ struct IntegratorSettings {
     // Cycles' max_bounces: vertices 0..max_bounces are shaded (light sampling and scattering);
     // the ray scattered at the last one still collects the emission it hits.
     uint32_t max_bounces = 12;
+    // `ao`: the distribution AO directions are drawn from, and the distance within which an
+    // obstacle occludes (scene units, > 0; infinity = unlimited).
+    HemisphereDistribution hemisphere = HemisphereDistribution::Cosine;
+    float ao_distance = 1.0f;
 };
 
 class Integrator {

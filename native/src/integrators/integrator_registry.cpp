@@ -1,5 +1,6 @@
 #include <array>
 
+#include "integrators/ao_integrator.h"
 #include "integrators/integrator.h"
 #include "integrators/path_integrator.h"
 
@@ -16,6 +17,11 @@ const std::array kIntegrators = {
     IntegratorEntry{{"path", "Path Tracing",
                      "Path tracing with next-event estimation, MIS (power heuristic) and Russian roulette"},
                     &make<PathIntegrator>},
+    IntegratorEntry{
+        {"ao", "Ambient Occlusion",
+         "Openness 1 - AO of the first hit (seed 000 eq. 20): 1 = unoccluded (white), 0 = occluded within "
+         "ao_distance; one ray per sample from the hemisphere setting's distribution; background 1"},
+        &make<AoIntegrator>},
 };
 
 }  // namespace

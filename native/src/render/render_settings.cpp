@@ -4,6 +4,7 @@
 
 #include "integrators/integrator.h"
 #include "render/pixel_filter.h"
+#include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
 
 namespace stratum {
@@ -60,6 +61,14 @@ std::string set_float_setting(RenderSettings& s, std::string_view name, double v
         s.filter_width = static_cast<float>(value);
         return {};
     }
+    if (name == "ao_distance") {
+        // +inf means unlimited (seed 000's d = infinity); NaN, 0 and negatives are rejected.
+        if (std::isnan(value) || value <= 0.0 || static_cast<float>(value) <= 0.0f) {
+            return "setting 'ao_distance' = " + std::to_string(value) + " must be > 0 (scene units)";
+        }
+        s.ao_distance = static_cast<float>(value);
+        return {};
+    }
     return "unknown float setting '" + std::string(name) + "'";
 }
 
@@ -80,6 +89,17 @@ std::string set_string_setting(RenderSettings& s, std::string_view name, std::st
         s.integrator = value;
         return {};
     }
+    if (name == "hemisphere") {
+        HemisphereDistribution d;
+        if (!parse_hemisphere(value, &d)) {
+            std::string names;
+            for (const RegistryEntry& e : hemisphere_registry())
+                names += (names.empty() ? "" : ", ") + std::string(e.name);
+            return "unknown hemisphere '" + std::string(value) + "' (known: " + names + ")";
+        }
+        s.hemisphere = value;
+        return {};
+    }
     if (name == "filter_type") {
         FilterType type;
         if (!parse_filter_type(value, &type)) {
@@ -89,6 +109,14 @@ std::string set_string_setting(RenderSettings& s, std::string_view name, std::st
         return {};
     }
     return "unknown string setting '" + std::string(name) + "'";
+}
+
+IntegratorSettings integrator_settings(const RenderSettings& s) {
+    IntegratorSettings out;
+    out.max_bounces = s.max_bounces;
+    parse_hemisphere(s.hemisphere, &out.hemisphere);
+    out.ao_distance = s.ao_distance;
+    return out;
 }
 
 }  // namespace stratum

@@ -82,7 +82,7 @@ void Renderer::run() {
         const std::unique_ptr<Sampler> sampler =
             find_sampler(s.sampler)->create(SamplerSettings{s.samples, s.seed, s.width, s.height});
         const std::unique_ptr<Integrator> integrator =
-            find_integrator(s.integrator)->create(IntegratorSettings{s.max_bounces});
+            find_integrator(s.integrator)->create(integrator_settings(s));
         FilterType filter_type = FilterType::BlackmanHarris;
         parse_filter_type(s.filter_type, &filter_type);
         const PixelFilter filter(filter_type, s.filter_width);
