@@ -7,6 +7,7 @@
 #include <sstream>
 #include <string>
 
+#include "api/abi_guard.h"
 #include "api/scene_file.h"
 #include "api/validation.h"
 #include "integrators/integrator.h"
@@ -29,35 +30,11 @@ struct StratumRenderer {
 
 namespace {
 
-using stratum::ValidationError;
-
-thread_local std::string g_last_error;
-
-StratumStatus fail(StratumStatus status, std::string message) {
-    g_last_error = std::move(message);
-    return status;
-}
-
-// Runs `body`, turning every exception into a status and a message.
-template <typename F>
-StratumStatus guarded(const char* function, F&& body) {
-    try {
-        g_last_error.clear();
-        return body();
-    } catch (const ValidationError& e) {
-        return fail(STRATUM_ERROR_INVALID_ARGUMENT, std::string(function) + ": " + e.what());
-    } catch (const std::bad_alloc&) {
-        return fail(STRATUM_ERROR_OUT_OF_MEMORY, std::string(function) + ": out of memory");
-    } catch (const std::exception& e) {
-        return fail(STRATUM_ERROR_INTERNAL, std::string(function) + ": " + e.what());
-    } catch (...) {
-        return fail(STRATUM_ERROR_INTERNAL, std::string(function) + ": unknown internal error");
-    }
-}
-
-void require(bool condition, const std::string& message) {
-    if (!condition) throw ValidationError(message);
-}
+// The shared error pattern of every entry point (api/abi_guard.h).
+using stratum::abi::fail;
+using stratum::abi::g_last_error;
+using stratum::abi::guarded;
+using stratum::abi::require;
 
 }  // namespace
 
