@@ -44,10 +44,12 @@ STATUS_NAMES: dict[int, str] = {
 REGISTRY_SAMPLER = 0
 REGISTRY_FILTER = 1
 REGISTRY_INTEGRATOR = 2
+REGISTRY_HEMISPHERE = 3
 REGISTRIES: dict[str, int] = {
     "sampler": REGISTRY_SAMPLER,
     "filter": REGISTRY_FILTER,
     "integrator": REGISTRY_INTEGRATOR,
+    "hemisphere": REGISTRY_HEMISPHERE,
 }
 
 MATERIAL_DIFFUSE = 0
@@ -245,6 +247,13 @@ def _declare(lib: ctypes.CDLL) -> None:
         "stratum_version": (p_char, []),
         "stratum_registry_count": (c_int32, [c_int32]),
         "stratum_registry_entry": (c_int32, [c_int32, c_int32, pp_char, pp_char, pp_char]),
+        "stratum_dimension_name": (c_int32, [c_uint32, pp_char]),
+        "stratum_camera_dimensions": (c_uint32, []),
+        "stratum_bounce_dimension_stride": (c_uint32, []),
+        "stratum_sampler_points": (c_int32, [p_char, c_uint32, c_uint32, c_uint32, c_uint32,
+                                             c_uint32, c_uint32, c_uint32, c_uint32, c_uint32,
+                                             p_float]),
+        "stratum_warp_hemisphere": (c_int32, [p_char, p_float, c_uint32, p_float, p_float]),
         "stratum_scene_create": (c_int32, [pp_void]),
         "stratum_scene_destroy": (None, [p_void]),
         "stratum_scene_add_material": (c_int32, [p_void, ctypes.POINTER(_MaterialDesc), p_u32]),
@@ -326,7 +335,8 @@ def version() -> str:
 
 
 def registry(kind: str) -> list[RegistryEntry]:
-    """Entries of the 'sampler', 'filter' or 'integrator' registry, as (name, label, desc)."""
+    """Entries of the 'sampler', 'filter', 'integrator' or 'hemisphere' registry, as
+    (name, label, description)."""
     if kind not in REGISTRIES:
         raise ValueError(f"unknown registry {kind!r}; expected one of {sorted(REGISTRIES)}")
     lib = load_library()
@@ -349,6 +359,76 @@ def registry(kind: str) -> list[RegistryEntry]:
             )
         )
     return entries
+
+
+# ---- sampling without a scene ------------------------------------------------------------------
+
+_UINT32_MAX = 0xFFFFFFFF
+
+
+def _uint32(value: Any, what: str) -> int:
+    """value as a C uint32_t, or ValueError naming it (ctypes would wrap negatives silently)."""
+    if isinstance(value, bool) or not isinstance(value, int | np.integer):
+        raise ValueError(f"{what} = {value!r} is not an integer")
+    if not 0 <= int(value) <= _UINT32_MAX:
+        raise ValueError(f"{what} = {value} is out of range [0, {_UINT32_MAX}]")
+    return int(value)
+
+
+def dimension_name(dimension: int) -> str:
+    """Name of a sample dimension in the layout ("filter.x", "bounce1.bsdf.u", ...)."""
+    lib = load_library()
+    name = ctypes.c_char_p()
+    _check(lib, lib.stratum_dimension_name(_uint32(dimension, "dimension"), ctypes.byref(name)),
+           "stratum_dimension_name")
+    return (name.value or b"").decode()
+
+
+def camera_dimensions() -> int:
+    """Dimensions before the first bounce block (filter, lens, time, ...)."""
+    return int(load_library().stratum_camera_dimensions())
+
+
+def bounce_dimension_stride() -> int:
+    """Dimensions per bounce block; bounce k's block starts at camera_dimensions() + k * stride."""
+    return int(load_library().stratum_bounce_dimension_stride())
+
+
+def sampler_points(sampler: str, samples: int, seed: int, width: int, height: int,
+                   pixel: tuple[int, int], dims: tuple[int, int], count: int) -> np.ndarray:
+    """The first `count` samples of one pixel in two dimensions, as a (count, 2) float32 array:
+    exactly what a render of width x height at `samples` spp with `seed` would read. When
+    dims = (2k, 2k + 1) the sampler's 2D pair is used, as the integrators do. Indices beyond
+    `samples` are allowed (every sampler is defined for any sample index)."""
+    lib = load_library()
+    px, py = pixel
+    da, db = dims
+    n = _uint32(count, "count")
+    out = np.empty((n, 2), dtype=np.float32)
+    status = lib.stratum_sampler_points(
+        sampler.encode(), _uint32(samples, "samples"), _uint32(seed, "seed"),
+        _uint32(width, "width"), _uint32(height, "height"), _uint32(px, "pixel x"),
+        _uint32(py, "pixel y"), _uint32(da, "dimension"), _uint32(db, "dimension"), n,
+        _float_ptr(out))
+    _check(lib, status, "stratum_sampler_points")
+    return out
+
+
+def warp_hemisphere(distribution: str, uv: Any) -> tuple[np.ndarray, np.ndarray]:
+    """Maps points of [0,1)^2 ((n, 2) array-like) through a hemisphere distribution (registry
+    'hemisphere'): returns unit vectors (n, 3) with z along the normal, and their solid-angle
+    densities (n,)."""
+    lib = load_library()
+    points = np.ascontiguousarray(np.asarray(uv, dtype=np.float32))
+    if points.ndim != 2 or points.shape[1] != 2:
+        raise ValueError(f"uv: expected an (n, 2) array, got shape {points.shape}")
+    n = _uint32(points.shape[0], "count")
+    xyz = np.empty((n, 3), dtype=np.float32)
+    pdf = np.empty(n, dtype=np.float32)
+    status = lib.stratum_warp_hemisphere(distribution.encode(), _float_ptr(points), n,
+                                         _float_ptr(xyz), _float_ptr(pdf))
+    _check(lib, status, "stratum_warp_hemisphere")
+    return xyz, pdf
 
 
 # ---- helpers ---------------------------------------------------------------------------------

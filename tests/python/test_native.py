@@ -29,7 +29,7 @@ def test_missing_library_raises_named_error(tmp_path: Any) -> None:
     assert out.startswith("ERR") and str(missing) in out
 
 
-@pytest.mark.parametrize("kind", ["sampler", "filter", "integrator"])
+@pytest.mark.parametrize("kind", ["sampler", "filter", "integrator", "hemisphere"])
 def test_registries_not_empty(native: Any, kind: str) -> None:
     entries = native.registry(kind)
     assert entries
@@ -174,3 +174,89 @@ def test_write_image(native: Any, tiny_scene: Any, tmp_path: Any) -> None:
             pass
         renderer.write_image(tmp_path / "out.exr")
     assert (tmp_path / "out.exr").stat().st_size > 0
+
+
+# ---- sampling without a scene ------------------------------------------------------------------
+
+
+def test_hemisphere_registry_has_the_three_distributions(native: Any) -> None:
+    assert [e.name for e in native.registry("hemisphere")] == ["uniform_angles", "uniform",
+                                                               "cosine"]
+
+
+def test_integrator_registry_has_path(native: Any) -> None:
+    assert "path" in {e.name for e in native.registry("integrator")}
+
+
+def test_dimension_layout(native: Any) -> None:
+    camera, stride = native.camera_dimensions(), native.bounce_dimension_stride()
+    assert camera >= 5 and stride >= 7
+    assert native.dimension_name(0) == "filter.x"
+    assert native.dimension_name(1) == "filter.y"
+    assert native.dimension_name(camera) == "bounce0.light_choice"
+    assert native.dimension_name(camera + stride) == "bounce1.light_choice"
+    names = [native.dimension_name(d) for d in range(camera, camera + stride)]
+    assert {"bounce0.bsdf.u", "bounce0.bsdf.v", "bounce0.light.u", "bounce0.light.v"} <= set(names)
+    with pytest.raises(ValueError, match="-1"):
+        native.dimension_name(-1)
+
+
+@pytest.mark.parametrize("dims", [(0, 1), (10, 11), (3, 17)])
+def test_sampler_points_are_deterministic_and_in_unit_square(native: Any,
+                                                             dims: tuple[int, int]) -> None:
+    for entry in native.registry("sampler"):
+        args = (entry.name, 16, 5, 32, 16, (7, 9), dims, 64)
+        first = native.sampler_points(*args)
+        again = native.sampler_points(*args)
+        assert first.shape == (64, 2) and first.dtype == np.float32
+        np.testing.assert_array_equal(first, again, err_msg=entry.name)
+        assert (first >= 0).all() and (first < 1).all(), entry.name
+        # the first points do not depend on how many are asked for
+        np.testing.assert_array_equal(native.sampler_points(*args[:-1], 8), first[:8],
+                                      err_msg=entry.name)
+
+
+def test_sampler_points_depend_on_seed_and_pixel(native: Any) -> None:
+    base = native.sampler_points("random", 16, 0, 8, 8, (1, 1), (0, 1), 16)
+    assert not np.array_equal(base, native.sampler_points("random", 16, 1, 8, 8, (1, 1), (0, 1),
+                                                          16))
+    assert not np.array_equal(base, native.sampler_points("random", 16, 0, 8, 8, (2, 1), (0, 1),
+                                                          16))
+
+
+def test_sampler_points_reject_bad_values_naming_them(native: Any) -> None:
+    with pytest.raises(native.StratumError, match="no_such_sampler") as info:
+        native.sampler_points("no_such_sampler", 4, 0, 8, 8, (0, 0), (0, 1), 4)
+    assert info.value.status == native.ERROR_INVALID_ARGUMENT
+    with pytest.raises(native.StratumError, match=r"\(8, 3\)"):
+        native.sampler_points("random", 4, 0, 8, 8, (8, 3), (0, 1), 4)
+    with pytest.raises(native.StratumError, match="samples = 0"):
+        native.sampler_points("random", 0, 0, 8, 8, (0, 0), (0, 1), 4)
+    with pytest.raises(ValueError, match="pixel x = -1"):
+        native.sampler_points("random", 4, 0, 8, 8, (-1, 0), (0, 1), 4)
+
+
+@pytest.mark.parametrize("distribution", ["uniform_angles", "uniform", "cosine"])
+def test_warp_hemisphere_unit_vectors_and_pdf(native: Any, distribution: str) -> None:
+    uv = native.sampler_points("random", 256, 0, 1, 1, (0, 0), (0, 1), 256)
+    xyz, pdf = native.warp_hemisphere(distribution, uv)
+    assert xyz.shape == (256, 3) and pdf.shape == (256,)
+    np.testing.assert_allclose(np.linalg.norm(xyz, axis=1), 1.0, atol=1e-5)
+    assert (xyz[:, 2] >= 0).all()
+    cos_theta = xyz[:, 2].astype(np.float64)
+    expected = {
+        "uniform_angles": 1.0 / (np.pi**2 * np.sqrt(np.maximum(1.0 - cos_theta**2, 1e-30))),
+        "uniform": np.full(256, 1.0 / (2.0 * np.pi)),
+        "cosine": cos_theta / np.pi,
+    }[distribution]
+    np.testing.assert_allclose(pdf, expected, rtol=1e-3)
+
+
+def test_warp_hemisphere_rejects_bad_points_naming_the_index(native: Any) -> None:
+    uv = np.array([[0.1, 0.2], [0.3, np.nan]], dtype=np.float32)
+    with pytest.raises(native.StratumError, match=r"uv\[1\]\.v = nan"):
+        native.warp_hemisphere("cosine", uv)
+    with pytest.raises(native.StratumError, match="spiral"):
+        native.warp_hemisphere("spiral", uv[:1])
+    with pytest.raises(ValueError, match="shape"):
+        native.warp_hemisphere("cosine", np.zeros(4, dtype=np.float32))
