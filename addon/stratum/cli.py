@@ -1,7 +1,9 @@
-"""`stratum` command line: list samplers, render a .blend through Blender with Stratum.
+"""`stratum` command line: list samplers, print or plot a sampler's points, render a .blend
+through Blender with Stratum.
 
 Works without bpy: `render` runs Blender ($STRATUM_BLENDER or `blender`) in the background
-with a small script that registers the add-on from this checkout and renders one frame.
+with a small script that registers the add-on from this checkout and renders one frame;
+`points` calls the native library directly (matplotlib only for --plot).
 """
 
 from __future__ import annotations
@@ -13,6 +15,8 @@ import shutil
 import subprocess
 import sys
 from pathlib import Path
+
+import numpy as np
 
 from . import native
 
@@ -84,6 +88,176 @@ def _cmd_samplers(_: argparse.Namespace) -> int:
     return 0
 
 
+UINT32_MAX = 0xFFFFFFFF
+
+
+def _parse_pair(text: str, what: str) -> tuple[int, int]:
+    parts = text.split(",")
+    try:
+        a, b = (int(v) for v in parts)
+    except ValueError as exc:
+        raise argparse.ArgumentTypeError(
+            f"bad {what} {text!r}; expected two integers A,B") from exc
+    return a, b
+
+
+def _parse_dims(text: str) -> tuple[int, int]:
+    return _parse_pair(text, "--dims")
+
+
+def _parse_pixel(text: str) -> tuple[int, int]:
+    return _parse_pair(text, "--pixel")
+
+
+class UsageError(Exception):
+    """A bad command-line value; the message names it."""
+
+
+def _registry_names(kind: str) -> list[str]:
+    return [e.name for e in native.registry(kind)]
+
+
+def _validate_points_args(ns: argparse.Namespace) -> None:
+    """Checks what the native call would reject, with messages in command-line terms."""
+    if ns.sampler is None:
+        raise UsageError("--sampler is required (see `stratum samplers`)")
+    samplers = _registry_names("sampler")
+    if ns.sampler not in samplers:
+        raise UsageError(f"unknown sampler {ns.sampler!r}; available: {', '.join(samplers)}")
+    if ns.count is None:
+        raise UsageError("--count is required")
+    if ns.count <= 0:
+        raise UsageError(f"--count {ns.count} must be > 0")
+    if ns.dims is None:
+        raise UsageError("--dims A,B is required (see `stratum points --list-dims`)")
+    for d in ns.dims:
+        if not 0 <= d <= UINT32_MAX:
+            raise UsageError(f"--dims: dimension {d} is out of range [0, {UINT32_MAX}]")
+    if ns.samples is not None and ns.samples <= 0:
+        raise UsageError(f"--samples {ns.samples} must be > 0")
+    if not 0 <= ns.seed <= UINT32_MAX:
+        raise UsageError(f"--seed {ns.seed} is out of range [0, {UINT32_MAX}]")
+    width, height = ns.resolution
+    x, y = ns.pixel
+    if not (0 <= x < width and 0 <= y < height):
+        raise UsageError(f"--pixel {x},{y} is outside the {width}x{height} image")
+    if ns.hemisphere is not None:
+        distributions = _registry_names("hemisphere")
+        if ns.hemisphere not in distributions:
+            raise UsageError(f"unknown hemisphere distribution {ns.hemisphere!r}; "
+                             f"available: {', '.join(distributions)}")
+
+
+def _list_dims() -> None:
+    camera = native.camera_dimensions()
+    stride = native.bounce_dimension_stride()
+    blocks = [("camera", 0, camera)] + [
+        (f"bounce {k}", camera + k * stride, stride) for k in range(2)]
+    for title, start, size in blocks:
+        print(f"{title} (dimensions {start}-{start + size - 1}):")
+        for d in range(start, start + size):
+            print(f"  {d:3d}  {native.dimension_name(d)}")
+    print(f"Bounce blocks repeat with stride {stride}: bounce k uses dimensions "
+          f"{camera} + {stride}*k .. {camera} + {stride}*k + {stride - 1}, named bounce<k>.*.")
+    print("Dimensions 0,1 are the pixel-filter pair; a pair (2j, 2j+1) is read as the "
+          "sampler's 2D point, as the integrators do.")
+
+
+def _plot_points(path: Path, points: np.ndarray, directions: np.ndarray | None,
+                 title: str, labels: tuple[str, str]) -> None:
+    """Scatter with marginal histograms: of the 2D points, or (with directions) of the unit
+    vectors projected onto the tangent plane, next to a side view (x, z)."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    n = len(points)
+    size = max(0.5, min(8.0, 4000.0 / max(n, 1)))
+    bins = max(10, min(64, int(np.sqrt(n))))
+    hemisphere = directions is not None
+    ratios = [4, 1, 0.7, 4] if hemisphere else [4, 1]  # hemisphere: spacer, side view
+    # Cells of equal width and height per ratio unit keep the scatter square, so the marginal
+    # histograms line up with its axes.
+    fig = plt.figure(figsize=(6.5 * sum(ratios) / 5.0, 6.5))
+    grid = fig.add_gridspec(2, len(ratios), width_ratios=ratios, height_ratios=[1, 4],
+                            wspace=0.08, hspace=0.08)
+    main = fig.add_subplot(grid[1, 0])
+    top = fig.add_subplot(grid[0, 0], sharex=main)
+    right = fig.add_subplot(grid[1, 1], sharey=main)
+    if hemisphere:
+        xs, ys = directions[:, 0], directions[:, 1]
+        lo, hi = -1.0, 1.0
+        main.add_patch(plt.Circle((0.0, 0.0), 1.0, fill=False, color="0.6", lw=0.8))
+        main.set_xlabel("x (tangent)")
+        main.set_ylabel("y (tangent)")
+    else:
+        xs, ys = points[:, 0], points[:, 1]
+        lo, hi = 0.0, 1.0
+        main.set_xlabel(labels[0])
+        main.set_ylabel(labels[1])
+    main.scatter(xs, ys, s=size, color="tab:blue", linewidths=0)
+    main.set_xlim(lo, hi)
+    main.set_ylim(lo, hi)
+    top.hist(xs, bins=bins, range=(lo, hi), color="tab:blue", alpha=0.7)
+    right.hist(ys, bins=bins, range=(lo, hi), orientation="horizontal", color="tab:blue",
+               alpha=0.7)
+    top.tick_params(labelbottom=False)
+    right.tick_params(labelleft=False)
+    if hemisphere:
+        side = fig.add_subplot(grid[:, 3])
+        side.scatter(directions[:, 0], directions[:, 2], s=size, color="tab:orange",
+                     linewidths=0)
+        theta = np.linspace(0.0, np.pi, 200)
+        side.plot(np.cos(theta), np.sin(theta), color="0.6", lw=0.8)
+        side.set_xlim(-1.0, 1.0)
+        side.set_ylim(0.0, 1.0)
+        side.set_aspect("equal")
+        side.set_xlabel("x")
+        side.set_ylabel("z (normal)")
+        side.set_title("side view (x, z)")
+    fig.suptitle(title)
+    fig.savefig(path, dpi=110)
+    plt.close(fig)
+
+
+def _cmd_points(ns: argparse.Namespace) -> int:
+    try:
+        if ns.list_dims:
+            _list_dims()
+            return 0
+        _validate_points_args(ns)
+        samples = ns.samples if ns.samples is not None else ns.count
+        width, height = ns.resolution
+        points = native.sampler_points(ns.sampler, samples, ns.seed, width, height, ns.pixel,
+                                       ns.dims, ns.count)
+        directions = None
+        if ns.hemisphere is not None:
+            directions, _ = native.warp_hemisphere(ns.hemisphere, points)
+    except (UsageError, native.StratumError, ValueError) as exc:
+        print(f"stratum points: {exc}", file=sys.stderr)
+        return 2
+    if ns.plot is not None:
+        names = (native.dimension_name(ns.dims[0]), native.dimension_name(ns.dims[1]))
+        title = (f"{ns.sampler}: {ns.count} points of pixel {ns.pixel[0]},{ns.pixel[1]}, "
+                 f"dims {ns.dims[0]} ({names[0]}), {ns.dims[1]} ({names[1]}), seed {ns.seed}")
+        if ns.hemisphere is not None:
+            title += f", hemisphere {ns.hemisphere}"
+        try:
+            _plot_points(Path(ns.plot), points, directions, title, names)
+        except ImportError as exc:
+            print(f"stratum points: --plot needs matplotlib ({exc})", file=sys.stderr)
+            return 2
+        except OSError as exc:
+            print(f"stratum points: cannot write {ns.plot}: {exc}", file=sys.stderr)
+            return 1
+        print(f"stratum: wrote {ns.plot}")
+        return 0
+    rows = directions if directions is not None else points
+    sys.stdout.write("".join(",".join(f"{float(v):.9g}" for v in row) + "\n" for row in rows))
+    return 0
+
+
 def blender_executable() -> str | None:
     exe = os.environ.get("STRATUM_BLENDER", "blender")
     return shutil.which(exe) or (exe if os.path.isfile(exe) else None)
@@ -144,6 +318,32 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = sub.add_parser("samplers", help="list the native samplers")
     p.set_defaults(func=_cmd_samplers)
+
+    p = sub.add_parser(
+        "points", help="print or plot a sampler's points for one pixel",
+        description="Prints the first --count samples of one pixel in two dimensions as CSV "
+        "('x,y' in [0,1), or unit vectors 'x,y,z' with --hemisphere), or plots them with their "
+        "marginal histograms (--plot). Sample indices beyond --samples are allowed.")
+    p.add_argument("--list-dims", action="store_true",
+                   help="print the named dimension layout and exit")
+    p.add_argument("--sampler", help="sampler name (see `stratum samplers`)")
+    p.add_argument("--count", type=int, help="number of points (sample indices 0..N-1)")
+    p.add_argument("--dims", type=_parse_dims, metavar="A,B",
+                   help="the two dimensions (see --list-dims); 0,1 = pixel filter")
+    p.add_argument("--pixel", type=_parse_pixel, default=(0, 0), metavar="X,Y",
+                   help="pixel (default 0,0)")
+    p.add_argument("--seed", type=int, default=0, help="sampler seed (default 0)")
+    p.add_argument("--samples", "--spp", dest="samples", type=int,
+                   help="samples per pixel the sampler is set up for (default: --count)")
+    p.add_argument("--resolution", type=_parse_resolution, default=(64, 64), metavar="WxH",
+                   help="image size the sampler is set up for (default 64x64)")
+    p.add_argument("--hemisphere", metavar="DIST",
+                   help="warp the points through a hemisphere distribution (uniform_angles, "
+                   "uniform, cosine) and print unit vectors")
+    out = p.add_mutually_exclusive_group()
+    out.add_argument("--csv", action="store_true", help="print CSV (the default)")
+    out.add_argument("--plot", metavar="FILE.png", help="draw the points to a PNG")
+    p.set_defaults(func=_cmd_points)
 
     p = sub.add_parser("render", help="render a .blend with Stratum (runs Blender)")
     p.add_argument("scene", help="the .blend file")
