@@ -41,6 +41,9 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
         "filter_width": float(s.filter_width),
         "sampler": str(s.sampler),
         "filter_type": str(s.filter_type),
+        "hemisphere": str(s.hemisphere),
+        "integrator": str(s.integrator),
+        "ao_distance": float(s.ao_distance),
     }
 
 

@@ -1,8 +1,9 @@
 """Scene render settings (`scene.stratum`), named exactly as the native settings.
 
-The sampler and filter menus are built from the native registries at register time, so the
-menu and the library cannot disagree. If the library cannot be loaded, registration still
-succeeds (with a single 'random' sampler) and the engine reports the load error on render.
+The sampler, hemisphere, integrator and filter menus are built from the native registries at
+register time (item tooltips are the registry descriptions), so a menu and the library cannot
+disagree. If the library cannot be loaded, registration still succeeds (with one-item fallback
+menus) and the engine reports the load error on render.
 """
 
 from __future__ import annotations
@@ -15,6 +16,10 @@ from . import native
 EnumItems = list[tuple[str, str, str]]
 
 FALLBACK_SAMPLERS: EnumItems = [("random", "Random", "Independent uniform random numbers")]
+FALLBACK_HEMISPHERES: EnumItems = [
+    ("cosine", "Cosine-Weighted", "Cosine-weighted directions (pdf cos(theta)/pi)"),
+]
+FALLBACK_INTEGRATORS: EnumItems = [("path", "Path Tracing", "Path tracing")]
 FALLBACK_FILTERS: EnumItems = [
     ("box", "Box", "Box filter"),
     ("blackman_harris", "Blackman-Harris", "Blackman-Harris filter"),
@@ -36,11 +41,16 @@ def _registry_items(kind: str, fallback: EnumItems) -> EnumItems:
     return items or list(fallback)
 
 
-def _make_property_group(samplers: EnumItems, filters: EnumItems) -> type:
-    sampler_default = "random" if any(i[0] == "random" for i in samplers) else samplers[0][0]
-    filter_default = (
-        "blackman_harris" if any(i[0] == "blackman_harris" for i in filters) else filters[0][0]
-    )
+def _default(items: EnumItems, preferred: str) -> str:
+    return preferred if any(i[0] == preferred for i in items) else items[0][0]
+
+
+def _make_property_group(samplers: EnumItems, filters: EnumItems, hemispheres: EnumItems,
+                         integrators: EnumItems) -> type:
+    sampler_default = _default(samplers, "random")
+    filter_default = _default(filters, "blackman_harris")
+    hemisphere_default = _default(hemispheres, "cosine")
+    integrator_default = _default(integrators, "path")
 
     class StratumRenderSettings(bpy.types.PropertyGroup):
         __annotations__ = {
@@ -64,6 +74,23 @@ def _make_property_group(samplers: EnumItems, filters: EnumItems) -> type:
                 name="Sampler",
                 description="Sampling strategy (from the native sampler registry)",
                 items=samplers, default=sampler_default,
+            ),
+            "hemisphere": EnumProperty(
+                name="Hemisphere",
+                description="Distribution of diffuse and ambient-occlusion directions "
+                "(from the native hemisphere registry)",
+                items=hemispheres, default=hemisphere_default,
+            ),
+            "integrator": EnumProperty(
+                name="Integrator",
+                description="Light transport algorithm (from the native integrator registry)",
+                items=integrators, default=integrator_default,
+            ),
+            "ao_distance": FloatProperty(
+                name="AO Distance",
+                description="Ambient occlusion: a direction is occluded when an obstacle lies "
+                "within this distance",
+                default=1.0, min=1e-4, soft_max=100.0, subtype="DISTANCE",
             ),
             "filter_type": EnumProperty(
                 name="Filter Type",
@@ -90,7 +117,9 @@ def register() -> None:
     load_error = ""
     samplers = _registry_items("sampler", FALLBACK_SAMPLERS)
     filters = _registry_items("filter", FALLBACK_FILTERS)
-    _property_group = _make_property_group(samplers, filters)
+    hemispheres = _registry_items("hemisphere", FALLBACK_HEMISPHERES)
+    integrators = _registry_items("integrator", FALLBACK_INTEGRATORS)
+    _property_group = _make_property_group(samplers, filters, hemispheres, integrators)
     bpy.utils.register_class(_property_group)
     bpy.types.Scene.stratum = PointerProperty(type=_property_group, name="Stratum")
 

@@ -45,7 +45,12 @@ class STRATUM_RENDER_PT_sampling(StratumButtonsPanel, bpy.types.Panel):
         col.prop(settings, "samples", text="Samples")
         col = layout.column()
         col.prop(settings, "sampler", text="Sampler")
+        col.prop(settings, "hemisphere", text="Hemisphere")
         col.prop(settings, "seed", text="Seed")
+        col = layout.column()
+        col.prop(settings, "integrator", text="Integrator")
+        if settings.integrator == "ao":
+            col.prop(settings, "ao_distance", text="AO Distance")
 
 
 class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):

@@ -14,6 +14,16 @@ EXPECTED_PROPERTIES = {
     "filter_type": "blackman_harris",
     "filter_width": 1.5,
     "threads": 0,
+    "hemisphere": "cosine",
+    "integrator": "path",
+    "ao_distance": 1.0,
+}
+# Menus built from native registries: property name -> registry kind.
+REGISTRY_MENUS = {
+    "sampler": "sampler",
+    "hemisphere": "hemisphere",
+    "integrator": "integrator",
+    "filter_type": "filter",
 }
 
 
@@ -43,6 +53,8 @@ def test_properties_defaults_and_limits(stratum_addon: Any) -> None:
     assert props["threads"].hard_min == 0
     assert props["filter_width"].hard_min == pytest.approx(0.01)
     assert props["filter_width"].hard_max == pytest.approx(10.0)
+    assert props["ao_distance"].hard_min == pytest.approx(1e-4)
+    assert props["ao_distance"].subtype == "DISTANCE"
     s.samples = 0  # clamped by the property's min
     assert s.samples == 1
 
@@ -98,3 +110,74 @@ def test_unregister_restores_builtin_panels(stratum_addon: Any) -> None:
         stratum_addon.register()
     assert "STRATUM" in surface.COMPAT_ENGINES
     assert hasattr(bpy.types.Scene, "stratum")
+
+
+def _menu(prop: str) -> Any:
+    return bpy.types.Scene.bl_rna.properties["stratum"].fixed_type.properties[prop]
+
+
+@pytest.mark.parametrize("prop", sorted(REGISTRY_MENUS))
+def test_menus_equal_native_registries(stratum_addon: Any, prop: str) -> None:
+    """Every registry-backed menu lists exactly the registry's names, in order, with the
+    registry's labels and descriptions (the tooltips)."""
+    from stratum import native
+
+    try:
+        entries = native.registry(REGISTRY_MENUS[prop])
+    except native.StratumError:
+        pytest.skip("native library not available: menus use their fallbacks")
+    items = _menu(prop).enum_items
+    assert [i.identifier for i in items] == [e.name for e in entries]
+    assert [i.name for i in items] == [e.label for e in entries]
+    assert [i.description for i in items] == [e.description for e in entries]
+
+
+@pytest.mark.parametrize("prop", ["sampler", "hemisphere", "integrator"])
+def test_every_registry_entry_can_be_chosen(stratum_addon: Any, prop: str) -> None:
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    s = bpy.context.scene.stratum
+    for item in _menu(prop).enum_items:
+        setattr(s, prop, item.identifier)
+        assert getattr(s, prop) == item.identifier
+    with pytest.raises(TypeError):
+        setattr(s, prop, "no_such_entry")
+
+
+class _RecordingLayout:
+    """Stands in for a UILayout: records which properties a panel draws."""
+
+    def __init__(self, drawn: list[str]) -> None:
+        self.drawn = drawn
+        self.use_property_split = False
+        self.use_property_decorate = True
+        self.active = True
+        self.enabled = True
+
+    def column(self, **_: Any) -> _RecordingLayout:
+        return self
+
+    def row(self, **_: Any) -> _RecordingLayout:
+        return self
+
+    def prop(self, data: Any, name: str, **_: Any) -> None:
+        assert hasattr(data, name), name
+        self.drawn.append(name)
+
+
+@pytest.mark.parametrize("integrator", ["path", "ao"])
+def test_sampling_panel_draws_the_sampling_settings(stratum_addon: Any, integrator: str) -> None:
+    from types import SimpleNamespace
+
+    from stratum import ui
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    names = {i.identifier for i in _menu("integrator").enum_items}
+    if integrator not in names:
+        pytest.skip(f"integrator {integrator!r} is not registered")
+    scene.stratum.integrator = integrator
+    drawn: list[str] = []
+    panel = SimpleNamespace(layout=_RecordingLayout(drawn))
+    ui.STRATUM_RENDER_PT_sampling.draw(panel, SimpleNamespace(scene=scene))  # type: ignore[arg-type]
+    assert {"samples", "sampler", "hemisphere", "integrator", "seed"} <= set(drawn)
+    assert ("ao_distance" in drawn) == (integrator == "ao")
