@@ -22,10 +22,10 @@ public:
     float get_1d(const PixelSample& s, uint32_t dimension) const override {
         return bits_to_unit_float(stream(s, dimension).next_u32());
     }
+    // The pair is the two 1D values, so a dimension reads the same whether asked alone or in
+    // its pair.
     Vec2 get_2d(const PixelSample& s, uint32_t dimension) const override {
-        Pcg32 rng = stream(s, dimension);
-        const float u = bits_to_unit_float(rng.next_u32());
-        return {u, bits_to_unit_float(rng.next_u32())};
+        return {get_1d(s, dimension), get_1d(s, dimension + 1)};
     }
 
 private:
