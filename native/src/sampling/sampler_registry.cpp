@@ -2,7 +2,12 @@
 
 #include <array>
 
+#include "sampling/bluenoise_sampler.h"
+#include "sampling/fibonacci_sampler.h"
 #include "sampling/independent_sampler.h"
+#include "sampling/lcg_sampler.h"
+#include "sampling/lhs_sampler.h"
+#include "sampling/stratified_sampler.h"
 
 namespace stratum {
 
@@ -17,6 +22,29 @@ const std::array kSamplers = {
     SamplerEntry{{"random", "Random (PCG32)",
                   "Independent uniform samples: PCG32 keyed by a hash of pixel, sample, dimension and seed"},
                  &make<IndependentSampler>},
+    SamplerEntry{
+        {"lcg", "LCG (minstd)",
+         "The coursework's standard generator: minstd LCG seeded by a hash of pixel, sample and dimension"},
+        &make<LcgSampler>},
+    SamplerEntry{{"stratified", "Stratified (jittered)",
+                  "Jittered grid per dimension pair: one random point in each cell of a shuffled grid of the "
+                  "sample count"},
+                 &make<StratifiedSampler>},
+    SamplerEntry{
+        {"lhs", "Latin hypercube",
+         "N-rooks: each dimension split into as many strata as samples, one jittered sample per stratum"},
+        &make<LhsSampler>},
+    SamplerEntry{{"bluenoise", "Blue noise (void-and-cluster)",
+                  "Values read from a 128x128 void-and-cluster texture so neighbouring pixels' errors form "
+                  "blue noise"},
+                 &make<BlueNoiseSampler>},
+    SamplerEntry{
+        {"fibonacci", "Fibonacci lattice",
+         "Fibonacci lattice of the sample count per dimension pair, randomly shifted in every pixel"},
+        &make<FibonacciSampler>},
+    SamplerEntry{{"fibonacci_static", "Fibonacci lattice (static)",
+                  "Fibonacci lattice, same shift in every pixel (banding, seed 000 table 3)"},
+                 &make<StaticFibonacciSampler>},
 };
 
 }  // namespace
