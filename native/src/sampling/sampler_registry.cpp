@@ -4,10 +4,13 @@
 
 #include "sampling/bluenoise_sampler.h"
 #include "sampling/fibonacci_sampler.h"
+#include "sampling/halton_sampler.h"
 #include "sampling/independent_sampler.h"
 #include "sampling/lcg_sampler.h"
 #include "sampling/lhs_sampler.h"
+#include "sampling/sobol_sampler.h"
 #include "sampling/stratified_sampler.h"
+#include "sampling/zsobol_sampler.h"
 
 namespace stratum {
 
@@ -34,6 +37,24 @@ const std::array kSamplers = {
         {"lhs", "Latin hypercube",
          "N-rooks: each dimension split into as many strata as samples, one jittered sample per stratum"},
         &make<LhsSampler>},
+    SamplerEntry{{"halton", "Halton",
+                  "Halton sequence (one prime base per dimension), each pixel a stratified run of it"},
+                 &make<PlainHaltonSampler>},
+    SamplerEntry{{"halton_rd", "Halton (random digits)",
+                  "Halton with every digit of each base passed through a random permutation"},
+                 &make<PermutedHaltonSampler>},
+    SamplerEntry{
+        {"halton_owen", "Halton (Owen)",
+         "Halton with base-b Owen scrambling: each digit permuted depending on the digits before it"},
+        &make<OwenHaltonSampler>},
+    SamplerEntry{
+        {"sobol", "Sobol (Owen-scrambled)",
+         "Owen-scrambled Sobol per pixel and dimension pair (Burley 2020); best with power-of-two samples"},
+        &make<SobolSampler>},
+    SamplerEntry{
+        {"zsobol", "Sobol (blue-noise pixels)",
+         "Sobol ordered over the image in Z-order so pixel errors form blue noise (Ahmed & Wonka 2020)"},
+        &make<ZSobolSampler>},
     SamplerEntry{{"bluenoise", "Blue noise (void-and-cluster)",
                   "Values read from a 128x128 void-and-cluster texture so neighbouring pixels' errors form "
                   "blue noise"},
