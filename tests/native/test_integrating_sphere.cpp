@@ -40,29 +40,14 @@ double expected_radiance(double emission, double k, int max_bounces) {
     return emission * sum;
 }
 
-RenderOutput render_sphere(int32_t model, float k, float emission, int max_bounces, uint32_t seed) {
-    StratumScene* scene = nullptr;
-    EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
+RenderOutput render_sphere(int32_t model, float k, float emission, int max_bounces, uint32_t seed,
+                           const char* sampler = "random") {
     const StratumMaterialDesc wall{model, {k, k, k}, 1.0f, 0.0f, 0.0f, 1.5f, {emission, emission, emission}};
-    uint32_t mat = 0;
-    EXPECT_EQ(stratum_scene_add_material(scene, &wall, &mat), STRATUM_OK);
-    const SphereMesh sphere = make_sphere(1.0f, 12, 24);
-    const std::vector<uint32_t> mats(sphere.triangles.size() / 3, mat);
-    const StratumMeshDesc mesh{sphere.positions.data(),
-                               static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(),
-                               static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
-    uint32_t mesh_id = 0;
-    EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, &mesh_id), STRATUM_OK);
-    EXPECT_EQ(stratum_scene_add_instance(scene, mesh_id, kIdentity), STRATUM_OK);
-    const StratumCameraDesc camera = camera_at(0.1f, -0.2f, 0.3f);
-    EXPECT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK);
+    StratumScene* scene = make_sphere_interior(wall, 12, 0.1f, -0.2f, 0.3f);
+    EXPECT_NE(scene, nullptr) << stratum_last_error();
     RenderOutput out = render(
-        scene,
-        {{"width", 16}, {"height", 16}, {"samples", 64}, {"max_bounces", max_bounces}, {"seed", seed}});
+        scene, {{"width", 16}, {"height", 16}, {"samples", 64}, {"max_bounces", max_bounces}, {"seed", seed}},
+        sampler);
     stratum_scene_destroy(scene);
     return out;
 }
@@ -89,6 +74,38 @@ TEST(IntegratingSphere, HighReflectanceConvergesToGeometricSeries) {
     const RenderOutput out = render_sphere(STRATUM_MATERIAL_DIFFUSE, 0.8f, 1.0f, 60, 11);
     const Stats s = red_channel_stats(out.rgba);
     EXPECT_NEAR(s.mean, 5.0, 4.0 * s.standard_error) << "se " << s.standard_error;
+}
+
+// Every registered sampler renders the closed sphere without bias. Pixel errors are independent
+// only for samplers randomised per pixel: a static lattice or an unscrambled sequence correlates
+// them, and blue-noise samplers anti-correlate them. So the standard error combines the spread
+// of pixels within one image (s_p/√P) with the spread of image means over R = 8 seeds
+// (s_r/√R), which captures correlation across pixels; the test accepts 4 combined σ.
+TEST(IntegratingSphere, EverySamplerIsUnbiased) {
+    const int32_t n = stratum_registry_count(STRATUM_REGISTRY_SAMPLER);
+    ASSERT_GE(n, 1);
+    const double expected = expected_radiance(1.0, 0.5, 6);
+    for (int32_t i = 0; i < n; ++i) {
+        const char* name = nullptr;
+        ASSERT_EQ(stratum_registry_entry(STRATUM_REGISTRY_SAMPLER, i, &name, nullptr, nullptr), STRATUM_OK);
+        constexpr int kSeeds = 8;
+        double sum = 0, sum2 = 0, pixel_se = 0;
+        for (int seed = 0; seed < kSeeds; ++seed) {
+            const Stats st = red_channel_stats(
+                render_sphere(STRATUM_MATERIAL_DIFFUSE, 0.5f, 1.0f, 6, static_cast<uint32_t>(seed), name)
+                    .rgba);
+            sum += st.mean;
+            sum2 += st.mean * st.mean;
+            pixel_se = std::max(pixel_se, st.standard_error);
+        }
+        const double mean = sum / kSeeds;
+        const double seed_var = std::max(0.0, (sum2 - kSeeds * mean * mean) / (kSeeds - 1));
+        // The mean of R images has pixel noise s_p/√(P R) and correlated noise s_r/√R.
+        const double se = std::sqrt(pixel_se * pixel_se / kSeeds + seed_var / kSeeds);
+        EXPECT_NEAR(mean, expected, 4.0 * se)
+            << name << ": mean " << mean << " expected " << expected << " se " << se;
+        EXPECT_GT(se, 0.0) << name;
+    }
 }
 
 TEST(Determinism, SameSeedGivesBitIdenticalImagesForAnyThreadCount) {
