@@ -44,9 +44,8 @@ inline constexpr std::array<SobolMatrix, 2> kSobolMatrices = {detail::sobol_matr
 constexpr uint32_t sobol_sample32(uint32_t index, uint32_t dim) {
     const SobolMatrix& v = kSobolMatrices[dim];
     uint32_t x = 0;
-    for (uint32_t k = 0; index != 0; index >>= 1, ++k) {
-        if (index & 1u) x ^= v[k];
-    }
+    // Branch-free: scrambled indices have random bits, and a branch per bit mispredicts.
+    for (uint32_t k = 0; index != 0; index >>= 1, ++k) x ^= v[k] & (0u - (index & 1u));
     return x;
 }
 
