@@ -22,17 +22,8 @@ constexpr uint32_t reverse_bits32(uint32_t v) {
     return (v >> 16) | (v << 16);
 }
 
-// Laine–Karras hash with Burley's constants (Burley 2020, Listing 1), on reversed bits.
-constexpr uint32_t laine_karras_permutation(uint32_t x, uint32_t seed) {
-    x += seed;
-    x ^= x * 0x6c50b47cu;
-    x ^= x * 0xb82f1e52u;
-    x ^= x * 0xc7afe638u;
-    x ^= x * 0x8d22f6e6u;
-    return x;
-}
-
-// Vegdahl 2021 ("Building a better LK hash"): better avalanche than the one above, on reversed bits.
+// Vegdahl 2021 ("Building a better LK hash"): the Laine–Karras construction with constants of
+// better avalanche than Burley's Listing 1, applied to reversed bits.
 constexpr uint32_t vegdahl_permutation(uint32_t x, uint32_t seed) {
     x ^= x * 0x3d20adeau;
     x += seed;
@@ -46,10 +37,6 @@ constexpr uint32_t vegdahl_permutation(uint32_t x, uint32_t seed) {
 // flipped by a function of bits > k of x and of the seed.
 constexpr uint32_t nested_uniform_scramble(uint32_t x, uint32_t seed) {
     return reverse_bits32(vegdahl_permutation(reverse_bits32(x), seed));
-}
-
-constexpr uint32_t nested_uniform_scramble_lk(uint32_t x, uint32_t seed) {
-    return reverse_bits32(laine_karras_permutation(reverse_bits32(x), seed));
 }
 
 }  // namespace stratum
