@@ -21,7 +21,8 @@ build: setup
 	cmake -S . -B $(BUILD) -G Ninja $(CMAKE_ARGS) > $(BUILD).configure.log || (cat $(BUILD).configure.log; false)
 	cmake --build $(BUILD)
 	mkdir -p addon/stratum/lib
-	cp -f $(BUILD)/libstratum.so $(LIB)
+	# Copy then rename: overwriting the file in place would crash a process that has it loaded.
+	cp -f $(BUILD)/libstratum.so $(LIB).tmp && mv -f $(LIB).tmp $(LIB)
 
 test: build lint test-native test-python test-blender
 
