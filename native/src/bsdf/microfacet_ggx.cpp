@@ -52,13 +52,14 @@ namespace {
 // s = sqrt(F0) = (eta - 1)/(eta + 1) on [0, sqrt(0.99)] (F0 <= 0.99 as in ior_from_f0), on
 // which the albedo is smooth (it grows like s^2 from 0 at eta = 1).
 constexpr int kCosCount = 32, kRoughnessCount = 32, kRootF0Count = 32;
-constexpr int kStrataPerAxis = 16;  // 256 stratified VNDF samples per table entry
+constexpr int kStrataPerAxis = 32;  // 1024 stratified VNDF samples per table entry
 constexpr float kMinTableCos = 1e-3f;
 const float kMaxRootF0 = std::sqrt(0.99f);
 
 struct AlbedoTables {
     std::array<float, kCosCount * kRoughnessCount> unit;                       // E(mu, r)
     std::array<float, kCosCount * kRoughnessCount * kRootF0Count> dielectric;  // E_F(mu, r, s)
+    std::array<float, kCosCount * kRoughnessCount * kRootF0Count> visible_fresnel;  // F_v(mu, r, s)
     std::array<float, kRoughnessCount> unit_average;                           // E_avg(r)
     std::array<float, kRootF0Count> fresnel_average;                           // F_avg(s)
 };
@@ -78,7 +79,7 @@ std::unique_ptr<const AlbedoTables> build_albedo_tables() {
             // VNDF importance sampling: f cos / pdf = F G2(wo, wi) / G1(wo), a bounded integrand,
             // so stratified midpoints converge fast and the table is deterministic.
             double unit_sum = 0.0;
-            std::array<double, kRootF0Count> dielectric_sum{};
+            std::array<double, kRootF0Count> dielectric_sum{}, schlick_sum{};
             const float g1_o = ggx_g1(wo, alpha);
             for (int a = 0; a < kStrataPerAxis; ++a) {
                 for (int b = 0; b < kStrataPerAxis; ++b) {
@@ -90,14 +91,22 @@ std::unique_ptr<const AlbedoTables> build_albedo_tables() {
                     if (wi.z <= 0.0f) continue;
                     const float w = ggx_g2_height_correlated(wo, wi, alpha) / g1_o;
                     unit_sum += w;
-                    for (int k = 0; k < kRootF0Count; ++k)
-                        dielectric_sum[k] += w * fresnel_dielectric(cos_oh, eta[k]);
+                    for (int k = 0; k < kRootF0Count; ++k) {
+                        const float f = fresnel_dielectric(cos_oh, eta[k]), f0 = f0_from_ior(eta[k]);
+                        dielectric_sum[k] += w * f;
+                        // Position of F between F0 and 1, unweighted by G2/G1 (see the header).
+                        if (f0 < 1.0f) schlick_sum[k] += std::clamp((f - f0) / (1.0f - f0), 0.0f, 1.0f);
+                    }
                 }
             }
             const double n = double(kStrataPerAxis) * kStrataPerAxis;
             t->unit[j * kCosCount + i] = float(unit_sum / n);
-            for (int k = 0; k < kRootF0Count; ++k)
-                t->dielectric[(k * kRoughnessCount + j) * kCosCount + i] = float(dielectric_sum[k] / n);
+            for (int k = 0; k < kRootF0Count; ++k) {
+                const int at = (k * kRoughnessCount + j) * kCosCount + i;
+                t->dielectric[at] = float(dielectric_sum[k] / n);
+                const float f0 = f0_from_ior(eta[k]);
+                t->visible_fresnel[at] = f0 + (1.0f - f0) * float(schlick_sum[k] / n);
+            }
         }
         // E_avg = 2 int_0^1 E(mu) mu dmu by the trapezoid rule on the table nodes.
         double avg = 0.0;
@@ -163,6 +172,15 @@ float ggx_average_albedo_unit_fresnel(float roughness) {
 
 float ggx_albedo_dielectric(float cos_o, float roughness, float eta) {
     const float* table = albedo_tables().dielectric.data();
+    const GridPos mu = grid_pos(cos_o, kCosCount), r = grid_pos(roughness, kRoughnessCount);
+    const GridPos s = root_f0_pos(eta);
+    constexpr int kSlice = kCosCount * kRoughnessCount;
+    return bilinear(table + s.i * kSlice, mu, r) * (1 - s.f) +
+           bilinear(table + (s.i + 1) * kSlice, mu, r) * s.f;
+}
+
+float ggx_visible_fresnel_dielectric(float cos_o, float roughness, float eta) {
+    const float* table = albedo_tables().visible_fresnel.data();
     const GridPos mu = grid_pos(cos_o, kCosCount), r = grid_pos(roughness, kRoughnessCount);
     const GridPos s = root_f0_pos(eta);
     constexpr int kSlice = kCosCount * kRoughnessCount;

@@ -13,7 +13,8 @@ struct LobesV2 {
     bool has_specular;      // dielectric layer present (eta != 1)
     float eta;              // relative IOR of the dielectric layer
     float specular_scale;   // multiple-scattering compensation c(cos_o) of the dielectric lobe
-    float specular_albedo;  // A_spec(cos_o)
+    float specular_albedo;  // A_spec(cos_o): what the dielectric lobe reflects
+    float layer_albedo;     // what the diffuse below loses: 1 - layer_albedo reaches it
     Rgb metal_f0, metal_scale;
     float probability_metal, probability_specular;  // the diffuse lobe takes the rest
 };
@@ -34,34 +35,54 @@ float specular_eta(const Material& m) {
     return std::max(eta, 1.0f / eta);
 }
 
-LobesV2 setup(const Material& m, Vec3 wo) {
+LobesV2 setup(const Material& m, Vec3 wo, PrincipledV2Distribution distribution) {
     LobesV2 l;
     l.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
     l.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     l.alpha = ggx_alpha_from_roughness(l.roughness);
     l.eta = specular_eta(m);
     l.has_specular = l.eta > 1.0f;
+    const bool multiscatter = distribution == PrincipledV2Distribution::MultiscatterGgx;
     const float e = std::max(ggx_albedo_unit_fresnel(wo.z, l.roughness), 1e-4f);
     const float e_avg = ggx_average_albedo_unit_fresnel(l.roughness);
-    l.specular_scale = 1.0f, l.specular_albedo = 0.0f;
+    l.specular_scale = 1.0f, l.specular_albedo = 0.0f, l.layer_albedo = 0.0f;
     if (l.has_specular) {
-        l.specular_scale = multiscatter_scale(e, e_avg, fresnel_dielectric_average(l.eta));
-        l.specular_albedo =
-            std::min(ggx_albedo_dielectric(wo.z, l.roughness, l.eta) * l.specular_scale, 1.0f);
+        // What reaches the diffuse below is 1 - layer_albedo, Cycles' estimate of the specular
+        // albedo (svm/closure.h: closure_layering_weight(bsdf_albedo(spec), weight)): the
+        // closure weight times the visible-normal Fresnel estimate F_v (microfacet_ggx.h).
+        //   Multiscatter GGX: the weight carries the lobe's energy E + F_ms (1 - E) = E c
+        //     (Cycles darkens the weight to that and scales eval by 1/E), so the estimate is
+        //     F_v E c, close to the true albedo E_F c but larger at grazing views.
+        //   GGX: no energy compensation and the weight stays 1, so the estimate is F_v alone,
+        //     about 1/E times the true single-scattering albedo E_F: the diffuse also loses what
+        //     the microfacets lose. Not energy conserving, like Cycles.
+        const float visible_fresnel = ggx_visible_fresnel_dielectric(wo.z, l.roughness, l.eta);
+        const float single_albedo = ggx_albedo_dielectric(wo.z, l.roughness, l.eta);
+        if (multiscatter) {
+            l.specular_scale = multiscatter_scale(e, e_avg, fresnel_dielectric_average(l.eta));
+            l.specular_albedo = std::min(single_albedo * l.specular_scale, 1.0f);
+            l.layer_albedo = std::min(visible_fresnel * e * l.specular_scale, 1.0f);
+        } else {
+            l.specular_albedo = std::min(single_albedo, 1.0f);
+            l.layer_albedo = std::min(visible_fresnel, 1.0f);
+        }
     }
     l.metal_f0 = Rgb(std::clamp(m.base_color.r, 0.0f, 1.0f), std::clamp(m.base_color.g, 0.0f, 1.0f),
                      std::clamp(m.base_color.b, 0.0f, 1.0f));
-    // Schlick's hemispherical average: F0 + (1 - F0)/21.
-    const Rgb f_avg_metal = l.metal_f0 + (Rgb(1.0f) - l.metal_f0) * (1.0f / 21.0f);
-    l.metal_scale =
-        Rgb(multiscatter_scale(e, e_avg, f_avg_metal.r), multiscatter_scale(e, e_avg, f_avg_metal.g),
-            multiscatter_scale(e, e_avg, f_avg_metal.b));
+    l.metal_scale = Rgb(1.0f);
+    if (multiscatter) {
+        // Schlick's hemispherical average: F0 + (1 - F0)/21.
+        const Rgb f_avg_metal = l.metal_f0 + (Rgb(1.0f) - l.metal_f0) * (1.0f / 21.0f);
+        l.metal_scale = Rgb(multiscatter_scale(e, e_avg, f_avg_metal.r),
+                            multiscatter_scale(e, e_avg, f_avg_metal.g),
+                            multiscatter_scale(e, e_avg, f_avg_metal.b));
+    }
     // Lobe selection proportional to each lobe's albedo estimate for this wo.
     const float sw = schlick_weight(wo.z);
     const float weight_metal = l.metallic * (l.metal_f0 * (1.0f - sw) + Rgb(sw)).average();
     const float weight_specular = (1.0f - l.metallic) * l.specular_albedo;
     const float weight_diffuse =
-        (1.0f - l.metallic) * (1.0f - l.specular_albedo) * std::max(m.base_color.average(), 0.0f);
+        (1.0f - l.metallic) * (1.0f - l.layer_albedo) * std::max(m.base_color.average(), 0.0f);
     const float total = weight_metal + weight_specular + weight_diffuse;
     l.probability_metal = total > 0.0f ? weight_metal / total : 0.0f;
     l.probability_specular = total > 0.0f ? weight_specular / total : 0.0f;
@@ -70,7 +91,7 @@ LobesV2 setup(const Material& m, Vec3 wo) {
 
 BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi) {
     const float probability_diffuse = std::max(1.0f - l.probability_metal - l.probability_specular, 0.0f);
-    BsdfEval e{m.base_color * ((1.0f - l.metallic) * (1.0f - l.specular_albedo) * kInvPi * wi.z),
+    BsdfEval e{m.base_color * ((1.0f - l.metallic) * (1.0f - l.layer_albedo) * kInvPi * wi.z),
                probability_diffuse * cosine_hemisphere_pdf(wi.z)};
     if (l.probability_metal > 0.0f || l.probability_specular > 0.0f) {
         const Vec3 h = normalize(wo + wi);
@@ -94,14 +115,15 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi) {
 
 }  // namespace
 
-BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi) {
+BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi, PrincipledV2Distribution distribution) {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return {Rgb(), 0.0f};
-    return eval_lobes(setup(m, wo), m, wo, wi);
+    return eval_lobes(setup(m, wo, distribution), m, wo, wi);
 }
 
-bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out) {
+bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
+                          PrincipledV2Distribution distribution) {
     if (wo.z <= 0.0f) return false;
-    const LobesV2 l = setup(m, wo);
+    const LobesV2 l = setup(m, wo, distribution);
     const float probability_microfacet = l.probability_metal + l.probability_specular;
     Vec3 wi;
     // Metal and dielectric share D and G, so one VNDF draw serves both microfacet lobes.

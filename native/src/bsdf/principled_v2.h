@@ -12,20 +12,32 @@
 // | specular   | Specular IOR Level: F0 = F0(ior) 2 level, ior re-derived (0.5 = unchanged) |
 // | ior        | dielectric IOR of the specular layer (default 1.5)                       |
 //
-// f_spec  = F(wi.h, eta) D G2 / (4 cos_o cos_i) * c(cos_o),   A_spec(cos_o) its directional albedo
-// f_diff  = (1 - A_spec(cos_o)) base / pi          (energy-conserving layering, as Cycles)
+// f_spec  = F(wi.h, eta) D G2 / (4 cos_o cos_i) * c(cos_o),   A_spec(cos_o) = E_F c its albedo
+// f_diff  = (1 - A_layer(cos_o)) base / pi    (Cycles' layering by its albedo *estimate*)
 // f_metal = F_schlick(wi.h, base) D G2 / (4 cos_o cos_i) * c_metal(cos_o)   (F82 tint = white)
-// c = 1 + F_ms (1 - E(cos_o)) / E(cos_o), F_ms = F_avg E_avg / (1 - F_avg (1 - E_avg)): the energy
-// lost by single scattering, returned with the average multi-bounce Fresnel. E, E_avg, A_spec and
-// F_avg come from tables this code computes once (microfacet_ggx.cpp).
+// Multiscatter GGX: c = 1 + F_ms (1 - E(cos_o)) / E(cos_o), F_ms = F_avg E_avg / (1 - F_avg (1 -
+//   E_avg)), the energy lost by single scattering returned with the average multi-bounce Fresnel;
+//   A_layer = F_v E c.
+// GGX: c = c_metal = 1 and A_layer = F_v, larger than A_spec = E_F by about 1/E: not energy
+//   conserving, exactly as Cycles (which assumes a lossless lobe in its estimate).
+// F_v = ggx_visible_fresnel_dielectric: the visible-normal mean Fresnel Cycles tabulates
+// (microfacet_ggx.h). E, E_avg, E_F, F_v, F_avg come from tables this code computes once.
 // The layering factors depend on wo only, so, like Cycles, this model is not reciprocal.
+// Which distribution a material uses is the node's `distribution` (Blender 4.x/5.0 default
+// Multiscatter GGX; files saved by 3.x keep GGX).
 #pragma once
 
 #include "bsdf/bsdf.h"
 
 namespace stratum {
 
-BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi);
-bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out);
+// The Principled node's "distribution" (Cycles 4.x/5.0 offer both for the Principled BSDF).
+enum class PrincipledV2Distribution : int32_t { Ggx = 0, MultiscatterGgx = 1 };
+inline constexpr PrincipledV2Distribution kPrincipledV2DefaultDistribution = PrincipledV2Distribution::MultiscatterGgx;
+
+BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi,
+                            PrincipledV2Distribution distribution = kPrincipledV2DefaultDistribution);
+bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
+                          PrincipledV2Distribution distribution = kPrincipledV2DefaultDistribution);
 
 }  // namespace stratum
