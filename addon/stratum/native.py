@@ -57,6 +57,9 @@ MATERIAL_PRINCIPLED_V1 = 1
 MATERIAL_PRINCIPLED_V2 = 2
 MATERIAL_EMISSION = 3
 
+MICROFACET_GGX = 0
+MICROFACET_MULTISCATTER_GGX = 1
+
 LIGHT_POINT = 0
 LIGHT_SUN = 1
 LIGHT_AREA_RECTANGLE = 2
@@ -103,6 +106,7 @@ class _MaterialDesc(ctypes.Structure):
         ("specular", ctypes.c_float),
         ("ior", ctypes.c_float),
         ("emission", _c_float3),
+        ("distribution", ctypes.c_int32),
     ]
 
 
@@ -171,6 +175,7 @@ class Material:
     specular: float = 0.5
     ior: float = 1.5
     emission: tuple[float, float, float] = (0.0, 0.0, 0.0)
+    distribution: int = MICROFACET_GGX
 
 
 @dataclass

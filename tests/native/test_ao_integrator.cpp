@@ -45,8 +45,8 @@ struct AoScene {
     uint32_t material = 0;
     AoScene() {
         EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
-        const StratumMaterialDesc grey{
-            STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1, 0, 0, 1.5f, {0, 0, 0}};
+        const StratumMaterialDesc grey{STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1, 0, 0, 1.5f, {0, 0, 0},
+                                       STRATUM_MICROFACET_GGX};
         EXPECT_EQ(stratum_scene_add_material(scene, &grey, &material), STRATUM_OK);
     }
     ~AoScene() { stratum_scene_destroy(scene); }

@@ -19,7 +19,8 @@ struct SceneHandle {
 };
 
 uint32_t add_grey(StratumScene* s) {
-    StratumMaterialDesc m{STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, 0.5f, 1.5f, {0, 0, 0}};
+    StratumMaterialDesc m{STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, 0.5f, 1.5f, {0, 0, 0},
+                          STRATUM_MICROFACET_GGX};
     uint32_t id = 99;
     EXPECT_EQ(stratum_scene_add_material(s, &m, &id), STRATUM_OK);
     return id;
@@ -79,7 +80,8 @@ TEST(Api, OutOfRangeIndicesAndZeroSizesAreRejected) {
 
 TEST(Api, BadMaterialLightAndCameraValuesAreNamed) {
     SceneHandle scene;
-    StratumMaterialDesc m{STRATUM_MATERIAL_DIFFUSE, {0.5f, 1.5f, 0.5f}, 1.0f, 0.0f, 0.5f, 1.5f, {0, 0, 0}};
+    StratumMaterialDesc m{STRATUM_MATERIAL_DIFFUSE, {0.5f, 1.5f, 0.5f}, 1.0f, 0.0f, 0.5f, 1.5f, {0, 0, 0},
+                          STRATUM_MICROFACET_GGX};
     EXPECT_EQ(stratum_scene_add_material(scene.s, &m, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("base_color[1] = 1.5"), std::string::npos) << last_error();
 

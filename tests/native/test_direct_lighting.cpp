@@ -35,7 +35,8 @@ struct Floor {
                                         0.0f,
                                         0.0f,
                                         1.5f,
-                                        {0, 0, 0}};
+                                        {0, 0, 0},
+                                        STRATUM_MICROFACET_GGX};
         add_quad(floor, 0.0f, 10.0f);
     }
     ~Floor() { stratum_scene_destroy(scene); }
@@ -151,7 +152,8 @@ TEST(DirectLighting, RectangleAreaLightFacesDown) {
 TEST(DirectLighting, EmissiveSquareThroughNeeAndMis) {
     Floor f;
     const float L = 2.0f;
-    const StratumMaterialDesc emitter{STRATUM_MATERIAL_EMISSION, {0, 0, 0}, 1, 0, 0, 1.5f, {L, L, L}};
+    const StratumMaterialDesc emitter{STRATUM_MATERIAL_EMISSION, {0, 0, 0}, 1, 0, 0, 1.5f, {L, L, L},
+                                      STRATUM_MICROFACET_GGX};
     f.add_quad(emitter, 1.0f, 0.4f);
     const double X = 0.4, s = X / std::sqrt(1 + X * X);
     expect_radiance(f.measure(0.5f, 1.0f), 4.0 * L * s * std::atan(s));

@@ -42,7 +42,8 @@ double expected_radiance(double emission, double k, int max_bounces) {
 
 RenderOutput render_sphere(int32_t model, float k, float emission, int max_bounces, uint32_t seed,
                            const char* sampler = "random") {
-    const StratumMaterialDesc wall{model, {k, k, k}, 1.0f, 0.0f, 0.0f, 1.5f, {emission, emission, emission}};
+    const StratumMaterialDesc wall{
+        model, {k, k, k}, 1.0f, 0.0f, 0.0f, 1.5f, {emission, emission, emission}, STRATUM_MICROFACET_GGX};
     StratumScene* scene = make_sphere_interior(wall, 12, 0.1f, -0.2f, 0.3f);
     EXPECT_NE(scene, nullptr) << stratum_last_error();
     RenderOutput out = render(
@@ -111,8 +112,8 @@ TEST(IntegratingSphere, EverySamplerIsUnbiased) {
 TEST(Determinism, SameSeedGivesBitIdenticalImagesForAnyThreadCount) {
     StratumScene* scene = nullptr;
     ASSERT_EQ(stratum_scene_create(&scene), STRATUM_OK);
-    const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {0.6f, 0.5f, 0.4f}, 1, 0, 0, 1.5f,
-                                   {0.5f, 0.5f, 0.5f}};
+    const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {0.6f, 0.5f, 0.4f},    1, 0, 0, 1.5f,
+                                   {0.5f, 0.5f, 0.5f},       STRATUM_MICROFACET_GGX};
     uint32_t mat = 0;
     ASSERT_EQ(stratum_scene_add_material(scene, &wall, &mat), STRATUM_OK);
     const SphereMesh sphere = make_sphere(1.0f, 6, 12);

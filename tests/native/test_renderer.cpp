@@ -13,8 +13,8 @@ using namespace stratum_test;
 namespace {
 
 StratumScene* lit_sphere_interior() {
-    const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {0.7f, 0.7f, 0.7f}, 1, 0, 0, 1.5f,
-                                   {0.3f, 0.3f, 0.3f}};
+    const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {0.7f, 0.7f, 0.7f},    1, 0, 0, 1.5f,
+                                   {0.3f, 0.3f, 0.3f},       STRATUM_MICROFACET_GGX};
     StratumScene* scene = make_sphere_interior(wall, 8, 0, 0, 0.2f);
     EXPECT_NE(scene, nullptr) << stratum_last_error();
     return scene;

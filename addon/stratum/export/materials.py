@@ -89,6 +89,10 @@ def _principled(node: Any, issues: list[str]) -> native.Material:
                              socket_value(node, "Emission Strength"))
         specular = socket_value(node, "Specular")
     ior = socket_value(node, "IOR")
+    # Cycles 4.x/5.x model both distributions; the 3.x model here is single-scatter GGX only.
+    multiscatter = getattr(node, "distribution", "GGX") == "MULTI_GGX"
+    if multiscatter and not v2:
+        issues.append("Multiscatter GGX (rendered as GGX)")
     return native.Material(
         model=native.MATERIAL_PRINCIPLED_V2 if v2 else native.MATERIAL_PRINCIPLED_V1,
         base_color=clamped,
@@ -97,6 +101,8 @@ def _principled(node: Any, issues: list[str]) -> native.Material:
         specular=max(_finite(float(specular if specular is not None else 0.5), 0.5), 0.0),
         ior=max(_finite(float(ior if ior is not None else 1.5), 1.5), 1e-3),
         emission=emission,
+        distribution=(native.MICROFACET_MULTISCATTER_GGX if multiscatter and v2
+                      else native.MICROFACET_GGX),
     )
 
 

@@ -93,14 +93,20 @@ typedef enum StratumMaterialModel {
     STRATUM_MATERIAL_EMISSION = 3       /* pure emitter, no reflection */
 } StratumMaterialModel;
 
+typedef enum StratumMicrofacetDistribution {
+    STRATUM_MICROFACET_GGX = 0,             /* single-scattering GGX */
+    STRATUM_MICROFACET_MULTISCATTER_GGX = 1 /* GGX with energy compensation (v2 only) */
+} StratumMicrofacetDistribution;
+
 typedef struct StratumMaterialDesc {
-    int32_t model;       /* StratumMaterialModel */
-    float base_color[3]; /* linear RGB reflectance, each in [0,1] */
-    float roughness;     /* [0,1], Principled/Disney convention (alpha = roughness^2) */
-    float metallic;      /* [0,1] */
-    float specular;      /* v1: "Specular" [0,inf); v2: "Specular IOR Level" [0,inf) */
-    float ior;           /* v2: index of refraction of the dielectric coat, > 0 */
-    float emission[3];   /* emitted radiance (colour x strength), each >= 0 */
+    int32_t model;        /* StratumMaterialModel */
+    float base_color[3];  /* linear RGB reflectance, each in [0,1] */
+    float roughness;      /* [0,1], Principled/Disney convention (alpha = roughness^2) */
+    float metallic;       /* [0,1] */
+    float specular;       /* v1: "Specular" [0,inf); v2: "Specular IOR Level" [0,inf) */
+    float ior;            /* v2: index of refraction of the dielectric coat, > 0 */
+    float emission[3];    /* emitted radiance (colour x strength), each >= 0 */
+    int32_t distribution; /* StratumMicrofacetDistribution (the Principled node's) */
 } StratumMaterialDesc;
 
 /* Adds a material; its id (0, 1, 2, ... in order) is written to out_id. */

@@ -41,7 +41,8 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                   {"metallic", m.metallic},
                                   {"specular", m.specular},
                                   {"ior", m.ior},
-                                  {"emission", rgb(m.emission)}});
+                                  {"emission", rgb(m.emission)},
+                                  {"distribution", static_cast<int>(m.distribution)}});
     }
     j["meshes"] = json::array();
     for (const Mesh& mesh : scene.meshes) {
@@ -119,6 +120,7 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.specular = m.at("specular").get<float>();
             d.ior = m.at("ior").get<float>();
             read_floats(m.at("emission"), d.emission);
+            d.distribution = m.at("distribution").get<int32_t>();
             if ((status = stratum_scene_add_material(scene, &d, nullptr)) != STRATUM_OK)
                 return entry_point_failed(status);
         }

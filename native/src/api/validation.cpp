@@ -66,6 +66,10 @@ Material validate_material(const StratumMaterialDesc& d) {
     m.specular = finite_in(d.specular, 0.0f, 1e6f, "material specular");
     m.ior = finite_positive(d.ior, "material ior");
     m.emission = validate_radiance(d.emission, "material emission");
+    check(d.distribution == STRATUM_MICROFACET_GGX || d.distribution == STRATUM_MICROFACET_MULTISCATTER_GGX,
+          "material distribution " + std::to_string(d.distribution) +
+              " is not a StratumMicrofacetDistribution");
+    m.distribution = static_cast<MicrofacetDistribution>(d.distribution);
     return m;
 }
 

@@ -17,10 +17,15 @@
 #include <cstdint>
 
 #include "core/math.h"
+#include "sampling/hemisphere.h"
 
 namespace stratum {
 
 enum class MaterialModel : int32_t { Diffuse = 0, PrincipledV1 = 1, PrincipledV2 = 2, Emission = 3 };
+
+// The Principled node's microfacet distribution (Blender's `distribution`): single-scatter GGX,
+// or GGX with multiple-scattering energy compensation (Cycles 4.x "Multiscatter GGX").
+enum class MicrofacetDistribution : int32_t { Ggx = 0, MultiscatterGgx = 1 };
 
 struct Material {
     MaterialModel model;
@@ -30,6 +35,7 @@ struct Material {
     float specular;
     float ior;
     Rgb emission;
+    MicrofacetDistribution distribution;
 };
 
 // value = f(wo, wi) |cos theta_i|; pdf = solid-angle density with which bsdf_sample produces wi.
@@ -47,8 +53,12 @@ struct BsdfSample {
 
 // wo, wi in the local shading frame (z = shading normal), both pointing away from the surface;
 // wo points toward the viewer. A wi or wo below the horizon gives value 0.
-BsdfEval bsdf_eval(const Material& m, Vec3 wo, Vec3 wi);
+// `hemisphere` is the distribution diffuse lobes sample directions from (a render setting);
+// the pdf reported is always the exact density of that choice, so every choice is unbiased.
+BsdfEval bsdf_eval(const Material& m, Vec3 wo, Vec3 wi,
+                   HemisphereDistribution hemisphere = HemisphereDistribution::Cosine);
 // u_lobe picks the lobe, u warps inside it. Returns false when no direction is produced (absorbed).
-bool bsdf_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out);
+bool bsdf_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
+                 HemisphereDistribution hemisphere = HemisphereDistribution::Cosine);
 
 }  // namespace stratum

@@ -4,17 +4,18 @@
 
 namespace stratum {
 
-BsdfEval lambert_eval(const Material& m, Vec3 wo, Vec3 wi) {
+BsdfEval lambert_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return {Rgb(), 0.0f};
-    return {m.base_color * (wi.z * kInvPi), cosine_hemisphere_pdf(wi.z)};
+    return {m.base_color * (wi.z * kInvPi), hemisphere_pdf(hemisphere, wi.z)};
 }
 
-bool lambert_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out) {
+bool lambert_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out, HemisphereDistribution hemisphere) {
     if (wo.z <= 0.0f) return false;
-    const Vec3 wi = sample_cosine_hemisphere(u);
-    if (wi.z <= 0.0f) return false;
-    // f cos / pdf = (rho/pi) cos / (cos/pi) = rho.
-    *out = {wi, m.base_color, cosine_hemisphere_pdf(wi.z)};
+    const Vec3 wi = sample_hemisphere(hemisphere, u);
+    const float pdf = hemisphere_pdf(hemisphere, wi.z);
+    if (wi.z <= 0.0f || !(pdf > 0.0f)) return false;
+    // f cos / pdf: exactly rho for cosine sampling, rho cos/(pi pdf) otherwise.
+    *out = {wi, m.base_color * (wi.z * kInvPi / pdf), pdf};
     return true;
 }
 

@@ -57,11 +57,11 @@ constexpr float kMinTableCos = 1e-3f;
 const float kMaxRootF0 = std::sqrt(0.99f);
 
 struct AlbedoTables {
-    std::array<float, kCosCount * kRoughnessCount> unit;                       // E(mu, r)
-    std::array<float, kCosCount * kRoughnessCount * kRootF0Count> dielectric;  // E_F(mu, r, s)
+    std::array<float, kCosCount * kRoughnessCount> unit;                            // E(mu, r)
+    std::array<float, kCosCount * kRoughnessCount * kRootF0Count> dielectric;       // E_F(mu, r, s)
     std::array<float, kCosCount * kRoughnessCount * kRootF0Count> visible_fresnel;  // F_v(mu, r, s)
-    std::array<float, kRoughnessCount> unit_average;                           // E_avg(r)
-    std::array<float, kRootF0Count> fresnel_average;                           // F_avg(s)
+    std::array<float, kRoughnessCount> unit_average;                                // E_avg(r)
+    std::array<float, kRootF0Count> fresnel_average;                                // F_avg(s)
 };
 
 float eta_from_root_f0(float s) { return (1.0f + s) / (1.0f - s); }

@@ -56,9 +56,10 @@ Rgb specular_value(const LobesV1& l, Vec3 wo, Vec3 wi) {
     return fresnel * (ggx_d(h, l.alpha) * ggx_g2_separable(wo, wi, l.alpha) / (4.0f * wo.z));
 }
 
-BsdfEval eval_lobes(const LobesV1& l, const Material& m, Vec3 wo, Vec3 wi) {
+BsdfEval eval_lobes(const LobesV1& l, const Material& m, Vec3 wo, Vec3 wi,
+                    HemisphereDistribution hemisphere) {
     BsdfEval e{l.diffuse_color * (burley_diffuse(wo, wi, std::clamp(m.roughness, 0.0f, 1.0f)) * wi.z),
-               l.diffuse_probability * cosine_hemisphere_pdf(wi.z)};
+               l.diffuse_probability * hemisphere_pdf(hemisphere, wi.z)};
     if (l.has_specular) {
         e.value += specular_value(l, wo, wi);
         e.pdf += (1.0f - l.diffuse_probability) * ggx_reflection_pdf(wo, wi, l.alpha);
@@ -68,25 +69,26 @@ BsdfEval eval_lobes(const LobesV1& l, const Material& m, Vec3 wo, Vec3 wi) {
 
 }  // namespace
 
-BsdfEval principled_v1_eval(const Material& m, Vec3 wo, Vec3 wi) {
+BsdfEval principled_v1_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return {Rgb(), 0.0f};
-    return eval_lobes(setup(m, wo), m, wo, wi);
+    return eval_lobes(setup(m, wo), m, wo, wi, hemisphere);
 }
 
-bool principled_v1_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out) {
+bool principled_v1_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
+                          HemisphereDistribution hemisphere) {
     if (wo.z <= 0.0f) return false;
     const LobesV1 l = setup(m, wo);
     if (l.diffuse_probability <= 0.0f && !l.has_specular) return false;
     Vec3 wi;
     if (u_lobe < l.diffuse_probability) {
-        wi = sample_cosine_hemisphere(u);
+        wi = sample_hemisphere(hemisphere, u);
         if (wi.z <= 0.0f) return false;
     } else if (!ggx_sample_reflection(wo, l.alpha, u, &wi)) {
         return false;
     }
     // The weight uses the full mixture pdf (one-sample MIS over lobes), so it equals value/pdf
     // exactly as bsdf_eval reports them.
-    const BsdfEval e = eval_lobes(l, m, wo, wi);
+    const BsdfEval e = eval_lobes(l, m, wo, wi, hemisphere);
     if (e.pdf <= 0.0f) return false;
     *out = {wi, e.value / e.pdf, e.pdf};
     return true;

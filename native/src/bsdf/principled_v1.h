@@ -23,7 +23,8 @@
 
 namespace stratum {
 
-BsdfEval principled_v1_eval(const Material& m, Vec3 wo, Vec3 wi);
-bool principled_v1_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out);
+BsdfEval principled_v1_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere);
+bool principled_v1_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
+                          HemisphereDistribution hemisphere);
 
 }  // namespace stratum

@@ -35,14 +35,14 @@ float specular_eta(const Material& m) {
     return std::max(eta, 1.0f / eta);
 }
 
-LobesV2 setup(const Material& m, Vec3 wo, PrincipledV2Distribution distribution) {
+LobesV2 setup(const Material& m, Vec3 wo) {
     LobesV2 l;
     l.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
     l.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
     l.alpha = ggx_alpha_from_roughness(l.roughness);
     l.eta = specular_eta(m);
     l.has_specular = l.eta > 1.0f;
-    const bool multiscatter = distribution == PrincipledV2Distribution::MultiscatterGgx;
+    const bool multiscatter = m.distribution == MicrofacetDistribution::MultiscatterGgx;
     const float e = std::max(ggx_albedo_unit_fresnel(wo.z, l.roughness), 1e-4f);
     const float e_avg = ggx_average_albedo_unit_fresnel(l.roughness);
     l.specular_scale = 1.0f, l.specular_albedo = 0.0f, l.layer_albedo = 0.0f;
@@ -73,9 +73,9 @@ LobesV2 setup(const Material& m, Vec3 wo, PrincipledV2Distribution distribution)
     if (multiscatter) {
         // Schlick's hemispherical average: F0 + (1 - F0)/21.
         const Rgb f_avg_metal = l.metal_f0 + (Rgb(1.0f) - l.metal_f0) * (1.0f / 21.0f);
-        l.metal_scale = Rgb(multiscatter_scale(e, e_avg, f_avg_metal.r),
-                            multiscatter_scale(e, e_avg, f_avg_metal.g),
-                            multiscatter_scale(e, e_avg, f_avg_metal.b));
+        l.metal_scale =
+            Rgb(multiscatter_scale(e, e_avg, f_avg_metal.r), multiscatter_scale(e, e_avg, f_avg_metal.g),
+                multiscatter_scale(e, e_avg, f_avg_metal.b));
     }
     // Lobe selection proportional to each lobe's albedo estimate for this wo.
     const float sw = schlick_weight(wo.z);
@@ -89,10 +89,11 @@ LobesV2 setup(const Material& m, Vec3 wo, PrincipledV2Distribution distribution)
     return l;
 }
 
-BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi) {
+BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi,
+                    HemisphereDistribution hemisphere) {
     const float probability_diffuse = std::max(1.0f - l.probability_metal - l.probability_specular, 0.0f);
     BsdfEval e{m.base_color * ((1.0f - l.metallic) * (1.0f - l.layer_albedo) * kInvPi * wi.z),
-               probability_diffuse * cosine_hemisphere_pdf(wi.z)};
+               probability_diffuse * hemisphere_pdf(hemisphere, wi.z)};
     if (l.probability_metal > 0.0f || l.probability_specular > 0.0f) {
         const Vec3 h = normalize(wo + wi);
         const float cos_ih = dot(wi, h);
@@ -115,25 +116,25 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi) {
 
 }  // namespace
 
-BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi, PrincipledV2Distribution distribution) {
+BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return {Rgb(), 0.0f};
-    return eval_lobes(setup(m, wo, distribution), m, wo, wi);
+    return eval_lobes(setup(m, wo), m, wo, wi, hemisphere);
 }
 
 bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
-                          PrincipledV2Distribution distribution) {
+                          HemisphereDistribution hemisphere) {
     if (wo.z <= 0.0f) return false;
-    const LobesV2 l = setup(m, wo, distribution);
+    const LobesV2 l = setup(m, wo);
     const float probability_microfacet = l.probability_metal + l.probability_specular;
     Vec3 wi;
     // Metal and dielectric share D and G, so one VNDF draw serves both microfacet lobes.
     if (u_lobe < probability_microfacet) {
         if (!ggx_sample_reflection(wo, l.alpha, u, &wi)) return false;
     } else {
-        wi = sample_cosine_hemisphere(u);
+        wi = sample_hemisphere(hemisphere, u);
         if (wi.z <= 0.0f) return false;
     }
-    const BsdfEval e = eval_lobes(l, m, wo, wi);
+    const BsdfEval e = eval_lobes(l, m, wo, wi, hemisphere);
     if (e.pdf <= 0.0f) return false;
     *out = {wi, e.value / e.pdf, e.pdf};
     return true;

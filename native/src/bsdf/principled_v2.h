@@ -31,13 +31,9 @@
 
 namespace stratum {
 
-// The Principled node's "distribution" (Cycles 4.x/5.0 offer both for the Principled BSDF).
-enum class PrincipledV2Distribution : int32_t { Ggx = 0, MultiscatterGgx = 1 };
-inline constexpr PrincipledV2Distribution kPrincipledV2DefaultDistribution = PrincipledV2Distribution::MultiscatterGgx;
-
-BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi,
-                            PrincipledV2Distribution distribution = kPrincipledV2DefaultDistribution);
+// The microfacet distribution is m.distribution (Blender 4.x/5.0 default Multiscatter GGX).
+BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere);
 bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
-                          PrincipledV2Distribution distribution = kPrincipledV2DefaultDistribution);
+                          HemisphereDistribution hemisphere);
 
 }  // namespace stratum

@@ -57,7 +57,7 @@ Rgb PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, c
         if (lights.sample(hit.position, sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
                           sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), &ls) &&
             dot(ls.wi, ng) > 0.0f) {
-            const BsdfEval f = bsdf_eval(material, wo, frame.to_local(ls.wi));
+            const BsdfEval f = bsdf_eval(material, wo, frame.to_local(ls.wi), settings_.hemisphere);
             if (!f.value.is_black()) {
                 const Vec3 o = offset_ray_origin(hit.position, ng);
                 const ShadowRay shadow = std::isinf(ls.distance)
@@ -73,7 +73,8 @@ Rgb PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, c
 
         BsdfSample bs;
         if (!bsdf_sample(material, wo, sampler.get_1d(pixel, bounce_dimension(vertex, kDimBsdfLobe)),
-                         sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection)), &bs)) {
+                         sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection)), &bs,
+                         settings_.hemisphere)) {
             break;
         }
         const Vec3 wi = frame.to_world(bs.wi);

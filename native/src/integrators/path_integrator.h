@@ -5,6 +5,7 @@
 // | parameter   | meaning |
 // |-------------|---------|
 // | max_bounces | Cycles' meaning: vertices 0..max_bounces scatter; 0 = direct lighting only |
+// | hemisphere  | distribution diffuse lobes sample directions from (sampling/hemisphere.h) |
 //
 // Emission found by a scattered ray is weighted against light sampling with the power
 // heuristic; lights without geometry (point, sun, area lights, which Cycles also keeps out of
