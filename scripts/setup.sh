@@ -7,8 +7,8 @@ cd "$(dirname "$0")/.."
 DEB_PACKAGES=(
   build-essential cmake ninja-build pkg-config clang-format
   blender
-  libembree-dev libopenimageio-dev openimageio-tools libopencolorio-dev libtbb-dev
-  nlohmann-json3-dev googletest libgtest-dev libbenchmark-dev
+  libembree-dev libopenimageio-dev libopencolorio-dev libtbb-dev
+  nlohmann-json3-dev googletest libgtest-dev
   python3-numpy python3-pytest python3-venv
 )
 
