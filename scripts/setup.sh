@@ -10,6 +10,7 @@ DEB_PACKAGES=(
   libembree-dev libopenimageio-dev libopencolorio-dev libtbb-dev
   nlohmann-json3-dev googletest libgtest-dev
   python3-numpy python3-pytest python3-venv
+  chromium chromium-driver
 )
 
 missing=()
