@@ -259,6 +259,7 @@ def _declare(lib: ctypes.CDLL) -> None:
                                              c_uint32, c_uint32, c_uint32, c_uint32, c_uint32,
                                              p_float]),
         "stratum_warp_hemisphere": (c_int32, [p_char, p_float, c_uint32, p_float, p_float]),
+        "stratum_bluenoise_texture": (c_int32, [p_float, c_uint32]),
         "stratum_scene_create": (c_int32, [pp_void]),
         "stratum_scene_destroy": (None, [p_void]),
         "stratum_scene_add_material": (c_int32, [p_void, ctypes.POINTER(_MaterialDesc), p_u32]),
@@ -434,6 +435,19 @@ def warp_hemisphere(distribution: str, uv: Any) -> tuple[np.ndarray, np.ndarray]
                                          _float_ptr(xyz), _float_ptr(pdf))
     _check(lib, status, "stratum_warp_hemisphere")
     return xyz, pdf
+
+
+BLUENOISE_TEXTURE_SIZE = 128
+
+
+def bluenoise_texture() -> np.ndarray:
+    """The `bluenoise` sampler's void-and-cluster texture as a (128, 128) float32 array indexed
+    [y, x]: (rank + 0.5)/16384 per texel, the values the sampler reads."""
+    lib = load_library()
+    n = BLUENOISE_TEXTURE_SIZE
+    out = np.empty((n, n), dtype=np.float32)
+    _check(lib, lib.stratum_bluenoise_texture(_float_ptr(out), n * n), "stratum_bluenoise_texture")
+    return out
 
 
 # ---- helpers ---------------------------------------------------------------------------------

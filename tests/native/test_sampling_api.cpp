@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "sampling/bluenoise_sampler.h"
 #include "sampling/dimensions.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
@@ -203,4 +204,32 @@ TEST(SamplingApi, HemisphereWarpRejectsBadInputNamingTheIndex) {
     EXPECT_EQ(stratum_warp_hemisphere("cosine", uv.data(), 3, nullptr, nullptr),
               STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(stratum_warp_hemisphere("cosine", uv.data(), 3, xyz.data(), nullptr), STRATUM_OK);
+}
+
+TEST(SamplingApi, BlueNoiseTextureIsThePermutationOfRanksTheSamplerReads) {
+    constexpr uint32_t kTexels = BlueNoiseSampler::kSize * BlueNoiseSampler::kSize;
+    std::vector<float> texture(kTexels, -1.0f);
+    ASSERT_EQ(stratum_bluenoise_texture(texture.data(), kTexels), STRATUM_OK) << last_error();
+    // value = (rank + 0.5)/16384 exactly in float: every rank 0..16383 appears once.
+    std::vector<int> seen(kTexels, 0);
+    for (uint32_t i = 0; i < kTexels; ++i) {
+        const float rank = texture[i] * float(kTexels) - 0.5f;
+        ASSERT_EQ(rank, std::floor(rank)) << "texel " << i << " value " << texture[i];
+        ASSERT_GE(rank, 0.0f);
+        ASSERT_LT(rank, float(kTexels));
+        ++seen[static_cast<size_t>(rank)];
+    }
+    for (uint32_t r = 0; r < kTexels; ++r) ASSERT_EQ(seen[r], 1) << "rank " << r;
+    // Row-major, the sampler's own texture.
+    const std::vector<uint32_t>& ranks = BlueNoiseSampler::ranks();
+    for (uint32_t i = 0; i < kTexels; ++i) ASSERT_EQ(texture[i], BlueNoiseSampler::rank_to_value(ranks[i]));
+}
+
+TEST(SamplingApi, BlueNoiseTextureRejectsAWrongCountOrNull) {
+    std::vector<float> texture(128 * 128 + 1);
+    EXPECT_EQ(stratum_bluenoise_texture(texture.data(), 64 * 64), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(last_error().find("count = 4096"), std::string::npos) << last_error();
+    EXPECT_EQ(stratum_bluenoise_texture(texture.data(), 128 * 128 + 1), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_bluenoise_texture(nullptr, 128 * 128), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(last_error().find("out is NULL"), std::string::npos) << last_error();
 }

@@ -78,6 +78,10 @@ STRATUM_API StratumStatus stratum_sampler_points(const char* sampler, uint32_t s
  * out_pdf (optional) their solid-angle densities. */
 STRATUM_API StratumStatus stratum_warp_hemisphere(const char* distribution, const float* uv, uint32_t count,
                                                   float* out_xyz, float* out_pdf);
+/* The `bluenoise` sampler's 128 x 128 void-and-cluster texture, row-major (texel (x, y) at
+ * y*128 + x): out receives (rank + 0.5)/16384 per texel, the values the sampler reads.
+ * count must be 128*128. The texture is generated on first use (about a second). */
+STRATUM_API StratumStatus stratum_bluenoise_texture(float* out, uint32_t count);
 
 /* ---- scene ----------------------------------------------------------------------------- */
 

@@ -8,8 +8,10 @@
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <vector>
 
 #include "api/abi_guard.h"
+#include "sampling/bluenoise_sampler.h"
 #include "sampling/dimensions.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
@@ -211,6 +213,20 @@ StratumStatus stratum_warp_hemisphere(const char* distribution, const float* uv,
             out_xyz[3 * size_t{i} + 2] = w.z;
             if (out_pdf) out_pdf[i] = stratum::hemisphere_pdf(d, w.z);
         }
+        return STRATUM_OK;
+    });
+}
+
+// The texture is a fixed function of the library (not of any seed), so there is nothing to
+// choose: the caller passes the size it expects, and a mismatch is an error, not a truncation.
+StratumStatus stratum_bluenoise_texture(float* out, uint32_t count) {
+    return guarded("stratum_bluenoise_texture", [&] {
+        constexpr uint32_t kTexels = stratum::BlueNoiseSampler::kSize * stratum::BlueNoiseSampler::kSize;
+        require(count == kTexels,
+                "count = " + std::to_string(count) + " is not " + std::to_string(kTexels) + " (128 x 128)");
+        require(out != nullptr, "out is NULL");
+        const std::vector<uint32_t>& ranks = stratum::BlueNoiseSampler::ranks();
+        for (uint32_t i = 0; i < kTexels; ++i) out[i] = stratum::BlueNoiseSampler::rank_to_value(ranks[i]);
         return STRATUM_OK;
     });
 }
