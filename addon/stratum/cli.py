@@ -3,7 +3,9 @@ through Blender with Stratum.
 
 Works without bpy: `render` runs Blender ($STRATUM_BLENDER or `blender`) in the background
 with a small script that registers the add-on from this checkout and renders one frame;
-`points` calls the native library directly (matplotlib only for --plot).
+`points` calls the native library directly (matplotlib only for --plot); `compare` renders
+many configurations through Blender and compares them (stratum.compare; Dask, OpenEXR and FLIP
+are imported only when it runs).
 """
 
 from __future__ import annotations
@@ -354,7 +356,28 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--max-bounces", dest="max_bounces", type=int)
     p.add_argument("--resolution", type=_parse_resolution, help="WxH, e.g. 64x64")
     p.set_defaults(func=_cmd_render)
+
+    p = sub.add_parser(
+        "compare", help="compare samplers on a .blend: renders, metrics, report",
+        description="Renders every (sampler x spp x seed) of SCENE through Blender with the "
+        "scene's render settings changed, plus a reference (mean of --reference-renders "
+        "high-spp renders, or --reference FILE.exr); writes linear EXRs, results.json, "
+        "results.csv and a report into --out. Finished configurations are not rendered again.")
+    _compare_arguments(p)
+    p.set_defaults(func=_cmd_compare)
     return parser
+
+
+def _compare_arguments(p: argparse.ArgumentParser) -> None:
+    from .compare import add_arguments  # light: no numpy-heavy, dask or FLIP imports
+
+    add_arguments(p)
+
+
+def _cmd_compare(ns: argparse.Namespace) -> int:
+    from .compare import run_compare
+
+    return run_compare(ns)
 
 
 def main(argv: list[str] | None = None) -> int:

@@ -1,0 +1,184 @@
+"""Runs inside Blender (3.4's Python, or a Python with the bpy wheel): renders a batch of
+`stratum compare` configurations of the scene Blender has opened, one after the other, so the
+Blender start-up is paid once per batch.
+
+    blender -b --factory-startup -noaudio SCENE.blend --python blender_batch.py -- BATCH.json
+
+BATCH.json: {"mode": "render" | "probe", "addon_parent": folder holding stratum/,
+"output_dir": str, "threads": int | null, "configs": [entry, ...], "probe_output": str}, an
+entry as made by plan.batch_entry. For each entry the script sets scene.stratum (sampler,
+samples, seed, integrator, hemisphere, max_bounces, threads) and the render resolution, renders
+with the STRATUM engine, saves the Render Result as a linear 32-bit float OpenEXR (as
+scripts/render_to_files.py does), then writes the JSON sidecar (key, render time, EXR size and
+sha256). Both go to a temporary name first and are renamed into place, the sidecar last: a
+configuration counts as done only when its sidecar exists. After each one it prints
+`STRATUM_COMPARE_DONE {json}` on stdout (the runner's progress bar reads it).
+
+"seconds" is the wall time of bpy.ops.render.render() (scene export, BVH build and path
+tracing); "trace_seconds" is the native renderer's own render time (path tracing only).
+
+Probe mode writes the scene's render size and Stratum settings to probe_output instead.
+Any failure prints `stratum compare: <message>` on stderr and exits with status 1.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import json
+import os
+import sys
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+DONE_PREFIX = "STRATUM_COMPARE_DONE "
+START_PREFIX = "STRATUM_COMPARE_START "
+
+RenderFn = Callable[[dict[str, Any], Path], dict[str, float]]
+
+
+def _sha256(path: Path) -> str:
+    h = hashlib.sha256()
+    with open(path, "rb") as f:
+        for block in iter(lambda: f.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
+
+
+def _tmp_name(path: Path) -> Path:
+    # The extension stays last: Blender's writers look at it.
+    return path.with_name(f".tmp-{os.getpid()}-{path.name}")
+
+
+def write_json_atomic(path: Path, data: dict[str, Any]) -> None:
+    tmp = _tmp_name(path)
+    tmp.write_text(json.dumps(data, indent=1, sort_keys=True))
+    os.replace(tmp, path)
+
+
+def run_batch(payload: dict[str, Any], render_fn: RenderFn) -> None:
+    """Renders every entry with render_fn(entry, exr_path) -> timings, then commits its EXR and
+    its sidecar (in that order, each by rename)."""
+    out_dir = Path(payload["output_dir"])
+    for entry in payload["configs"]:
+        print(START_PREFIX + json.dumps({"key": entry["key"], "label": entry["label"]}),
+              flush=True)
+        exr = out_dir / entry["exr"]
+        exr.parent.mkdir(parents=True, exist_ok=True)
+        tmp = _tmp_name(exr)
+        try:
+            timings = render_fn(entry, tmp)
+            if not tmp.is_file():
+                raise RuntimeError(f"{entry['label']}: the render wrote no image")
+            os.replace(tmp, exr)
+        finally:
+            if tmp.exists():
+                tmp.unlink()
+        sidecar = {"key": entry["key"], "settings": entry, "exr": entry["exr"],
+                   "exr_size": exr.stat().st_size, "exr_sha256": _sha256(exr), **timings}
+        write_json_atomic(out_dir / entry["sidecar"], sidecar)
+        print(DONE_PREFIX + json.dumps({"key": entry["key"], "label": entry["label"],
+                                        "seconds": timings.get("seconds")}), flush=True)
+
+
+def _setup_blender(payload: dict[str, Any]) -> tuple[Any, Any]:
+    """Registers the add-on from the checkout; returns (bpy, scene)."""
+    sys.path.insert(0, payload["addon_parent"])
+    import bpy
+
+    import stratum
+
+    stratum.register()
+    return bpy, bpy.context.scene
+
+
+def _render_size(scene: Any) -> list[int]:
+    r = scene.render
+    scale = r.resolution_percentage / 100.0
+    return [max(int(r.resolution_x * scale), 1), max(int(r.resolution_y * scale), 1)]
+
+
+def _probe(payload: dict[str, Any]) -> None:
+    bpy, scene = _setup_blender(payload)
+    s = scene.stratum
+    info = {"resolution": _render_size(scene), "integrator": str(s.integrator),
+            "hemisphere": str(s.hemisphere), "max_bounces": int(s.max_bounces),
+            "sampler": str(s.sampler), "samples": int(s.samples),
+            "blender_version": list(bpy.app.version)}
+    write_json_atomic(Path(payload["probe_output"]), info)
+
+
+def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
+    bpy, scene = _setup_blender(payload)
+    from stratum import native
+    from stratum.engine import StratumRenderEngine
+
+    # Remember the native renderer's last progress report: its render_seconds is the path
+    # tracing time without export and BVH build.
+    last: dict[str, Any] = {}
+    original_progress = native.Renderer.progress
+
+    def progress(self: Any) -> Any:
+        p = original_progress(self)
+        last["progress"] = p
+        return p
+
+    native.Renderer.progress = progress  # type: ignore[method-assign]
+
+    scene.render.engine = "STRATUM"
+    scene.render.use_compositing = False
+    scene.render.use_sequencer = False
+    settings = scene.render.image_settings
+    settings.file_format = "OPEN_EXR"
+    settings.color_depth = "32"
+    settings.color_mode = "RGBA"
+    threads = payload.get("threads")
+
+    def render(entry: dict[str, Any], path: Path) -> dict[str, float]:
+        s = scene.stratum
+        s.sampler = entry["sampler"]
+        s.samples = int(entry["samples"])
+        s.seed = int(entry["seed"])
+        s.integrator = entry["integrator"]
+        s.hemisphere = entry["hemisphere"]
+        if entry.get("max_bounces") is not None:
+            s.max_bounces = int(entry["max_bounces"])
+        if threads is not None:
+            s.threads = int(threads)
+        scene.render.resolution_x, scene.render.resolution_y = entry["resolution"]
+        scene.render.resolution_percentage = 100
+        last.clear()
+        started = time.perf_counter()
+        bpy.ops.render.render()
+        seconds = time.perf_counter() - started
+        errors = [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
+        if errors:
+            raise RuntimeError(f"{entry['label']}: {errors[0]}")
+        bpy.data.images["Render Result"].save_render(filepath=str(path), scene=scene)
+        trace = last.get("progress")
+        return {"seconds": seconds,
+                "trace_seconds": float(trace.render_seconds) if trace else seconds}
+
+    return render
+
+
+def main(argv: list[str]) -> int:
+    try:
+        payload = json.loads(Path(argv[argv.index("--") + 1]).read_text())
+        if payload.get("mode") == "probe":
+            _probe(payload)
+        else:
+            run_batch(payload, _blender_render_fn(payload))
+        return 0
+    except Exception as exc:  # noqa: BLE001 - every failure becomes one message and status 1
+        message = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+        print(f"stratum compare: {type(exc).__name__}: {message}", file=sys.stderr)
+        return 1
+
+
+if __name__ == "__main__":
+    code = main(sys.argv)
+    sys.stdout.flush()
+    sys.stderr.flush()
+    os._exit(code)  # Blender would otherwise go on (or tear down slowly) after the script
