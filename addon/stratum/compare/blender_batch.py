@@ -11,7 +11,8 @@ samples, seed, integrator, hemisphere, max_bounces, threads) and the render reso
 with the STRATUM engine, saves the Render Result as a linear 32-bit float OpenEXR (as
 scripts/render_to_files.py does), then writes the JSON sidecar (key, render time, EXR size and
 sha256). Both go to a temporary name first and are renamed into place, the sidecar last: a
-configuration counts as done only when its sidecar exists. After each one it prints
+configuration counts as done only when its sidecar exists. A configuration that fails is
+reported and the batch goes on; the script then exits with status 1. After each one it prints
 `STRATUM_COMPARE_DONE {json}` on stdout (the runner's progress bar reads it).
 
 "seconds" is the wall time of bpy.ops.render.render() (scene export, BVH build and path
@@ -59,27 +60,49 @@ def write_json_atomic(path: Path, data: dict[str, Any]) -> None:
 
 def run_batch(payload: dict[str, Any], render_fn: RenderFn) -> None:
     """Renders every entry with render_fn(entry, exr_path) -> timings, then commits its EXR and
-    its sidecar (in that order, each by rename)."""
+    its sidecar (in that order, each by rename). A failed entry is reported on stderr and the
+    batch goes on with the next one (what succeeds stays usable by a resume); raises at the
+    end if any failed."""
     out_dir = Path(payload["output_dir"])
+    failures: list[str] = []
     for entry in payload["configs"]:
         print(START_PREFIX + json.dumps({"key": entry["key"], "label": entry["label"]}),
               flush=True)
-        exr = out_dir / entry["exr"]
-        exr.parent.mkdir(parents=True, exist_ok=True)
-        tmp = _tmp_name(exr)
         try:
-            timings = render_fn(entry, tmp)
-            if not tmp.is_file():
-                raise RuntimeError(f"{entry['label']}: the render wrote no image")
-            os.replace(tmp, exr)
-        finally:
-            if tmp.exists():
-                tmp.unlink()
-        sidecar = {"key": entry["key"], "settings": entry, "exr": entry["exr"],
-                   "exr_size": exr.stat().st_size, "exr_sha256": _sha256(exr), **timings}
-        write_json_atomic(out_dir / entry["sidecar"], sidecar)
+            timings = _render_entry(out_dir, entry, render_fn)
+        except Exception as exc:  # noqa: BLE001 - reported, then the next configuration
+            message = f"{entry['label']}: {_first_line(exc)}"
+            print(f"stratum compare: render failed: {message}", file=sys.stderr, flush=True)
+            failures.append(message)
+            continue
         print(DONE_PREFIX + json.dumps({"key": entry["key"], "label": entry["label"],
                                         "seconds": timings.get("seconds")}), flush=True)
+    if failures:
+        raise RuntimeError(f"{len(failures)} of {len(payload['configs'])} renders failed; "
+                           f"first: {failures[0]}")
+
+
+def _first_line(exc: BaseException) -> str:
+    text = str(exc).strip()
+    return f"{type(exc).__name__}: {text.splitlines()[0] if text else ''}"
+
+
+def _render_entry(out_dir: Path, entry: dict[str, Any], render_fn: RenderFn) -> dict[str, float]:
+    exr = out_dir / entry["exr"]
+    exr.parent.mkdir(parents=True, exist_ok=True)
+    tmp = _tmp_name(exr)
+    try:
+        timings = render_fn(entry, tmp)
+        if not tmp.is_file():
+            raise RuntimeError("the render wrote no image")
+        os.replace(tmp, exr)
+    finally:
+        if tmp.exists():
+            tmp.unlink()
+    sidecar = {"key": entry["key"], "settings": entry, "exr": entry["exr"],
+               "exr_size": exr.stat().st_size, "exr_sha256": _sha256(exr), **timings}
+    write_json_atomic(out_dir / entry["sidecar"], sidecar)
+    return timings
 
 
 def _setup_blender(payload: dict[str, Any]) -> tuple[Any, Any]:
@@ -172,8 +195,7 @@ def main(argv: list[str]) -> int:
             run_batch(payload, _blender_render_fn(payload))
         return 0
     except Exception as exc:  # noqa: BLE001 - every failure becomes one message and status 1
-        message = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
-        print(f"stratum compare: {type(exc).__name__}: {message}", file=sys.stderr)
+        print(f"stratum compare: {_first_line(exc)}", file=sys.stderr)
         return 1
 
 
