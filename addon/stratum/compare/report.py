@@ -256,7 +256,8 @@ def crop_region(results: Results, reference: np.ndarray) -> tuple[tuple[int, int
             x0, y0 = max(0, min(x, w_img - 1)), max(0, min(y, h_img - 1))
             x1, y1 = max(x0 + 1, min(x + w, w_img)), max(y0 + 1, min(y + h, h_img))
             if w > 0 and h > 0:
-                return (x0, y0, x1 - x0, y1 - y0), "the region given as `crop` in results.json"
+                how = "the region given as `crop` in results.json, where the metrics were measured"
+                return (x0, y0, x1 - x0, y1 - y0), how
         except (TypeError, ValueError):
             pass
     return detail_region(reference), ("no `crop` was given, so the quarter-size window with "

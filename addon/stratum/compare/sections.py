@@ -261,7 +261,8 @@ def error_spectra(res: Results, fig_dir: Path) -> str:
             tiles.append(f"<td>{img_tag(res.out_dir, p, f'{sampler} error')}"
                          f"{esc(sampler)}</td>")
     note = (
-        "Error image = luminance (Rec. 709 weights) of render − reference, linear, first seed. "
+        "Error image = luminance (Rec. 709 weights) of render − reference, linear, first seed, "
+        "over the full image (also when the metrics use a crop). "
         "Power = |DFT(error − mean)|² / pixels, averaged over rings of |f| (cycles per pixel). "
         "Low-frequency ratio = mean power within 0 &lt; |f| ≤ 1/8 (the disc |k| ≤ W/8, DC "
         "excluded) over the mean power at every f ≠ 0, as in tests/native/test_bluenoise.cpp "
