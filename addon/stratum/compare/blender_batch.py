@@ -16,7 +16,8 @@ reported and the batch goes on; the script then exits with status 1. After each 
 `STRATUM_COMPARE_DONE {json}` on stdout (the runner's progress bar reads it).
 
 "seconds" is the wall time of bpy.ops.render.render() (scene export, BVH build and path
-tracing); "trace_seconds" is the native renderer's own render time (path tracing only).
+tracing); "trace_seconds" is the native renderer's own render time (path tracing only). Each
+sampler's one-off set-up in the process (bluenoise's texture) is done before, untimed.
 
 Probe mode writes the scene's render size and Stratum settings to probe_output instead.
 Any failure prints `stratum compare: <message>` on stderr and exits with status 1.
@@ -157,8 +158,14 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
     settings.color_depth = "32"
     settings.color_mode = "RGBA"
     threads = payload.get("threads")
+    warmed: set[str] = set()
 
     def render(entry: dict[str, Any], path: Path) -> dict[str, float]:
+        if entry["sampler"] not in warmed:
+            # Untimed: a sampler's one-off set-up (bluenoise builds its texture, ~1-2 s, once
+            # per process) would otherwise land on whichever render comes first.
+            native.sampler_points(entry["sampler"], 1, 0, 4, 4, (0, 0), (0, 1), 1)
+            warmed.add(entry["sampler"])
         s = scene.stratum
         s.sampler = entry["sampler"]
         s.samples = int(entry["samples"])
