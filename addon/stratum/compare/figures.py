@@ -78,7 +78,17 @@ def convergence_figure(path: Path, metric_label: str, series: Sequence[Series],
     noise floor as a dashed horizontal line."""
     plt = _pyplot()
     colours = _colours([s.sampler for s in series])
+    from matplotlib.ticker import LogLocator, NullFormatter, StrMethodFormatter
+
     fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.4), constrained_layout=True)
+    # y range from the means, the positive interval ends and the floor; a band that reaches
+    # zero or below (few seeds) runs off the bottom instead of stretching the axis.
+    ys_all = [v for s in series for v in (*s.mean, *s.high, *s.low)
+              if np.isfinite(v) and v > 0]
+    ys_all = [v for v in ys_all if v >= 0.01 * min((m for s in series for m in s.mean
+                                                      if np.isfinite(m) and m > 0), default=v)]
+    if noise_floor is not None and np.isfinite(noise_floor) and noise_floor > 0:
+        ys_all.append(noise_floor)
     for ax, against in zip(axes, ("spp", "seconds"), strict=True):
         for s in series:
             x = s.spp if against == "spp" else s.seconds
@@ -88,7 +98,7 @@ def convergence_figure(path: Path, metric_label: str, series: Sequence[Series],
             c = colours[s.sampler]
             order = np.argsort(x[ok])
             xs, ys = x[ok][order], s.mean[ok][order]
-            floor_of_band = ys * 1e-3
+            floor_of_band = ys * 1e-6
             lo = np.maximum(np.nan_to_num(s.low[ok][order], nan=0.0), floor_of_band)
             hi = np.maximum(np.nan_to_num(s.high[ok][order], nan=0.0), ys)
             slope = s.slope_spp if against == "spp" else s.slope_seconds
@@ -102,6 +112,12 @@ def convergence_figure(path: Path, metric_label: str, series: Sequence[Series],
                        label="reference noise floor")
         ax.set_xscale("log")
         ax.set_yscale("log")
+        ax.xaxis.set_minor_formatter(NullFormatter())
+        if against == "seconds":  # 1-2-5 ticks, plain numbers
+            ax.xaxis.set_major_locator(LogLocator(subs=(1.0, 2.0, 5.0)))
+            ax.xaxis.set_major_formatter(StrMethodFormatter("{x:g}"))
+        if ys_all:
+            ax.set_ylim(min(ys_all) / 1.5, max(ys_all) * 1.5)
         if against == "spp" and series:  # label the measured spp, not powers of ten
             ticks = sorted({float(v) for s in series for v in s.spp if v > 0})
             ax.set_xticks(ticks, [f"{v:g}" for v in ticks])

@@ -153,8 +153,11 @@ class Results:
                 if r.get("sampler") == sampler and int(r.get("spp", -1)) == spp]
         return np.array([float(v) for v in vals if isinstance(v, int | float)], dtype=float)
 
-    def below_floor(self, sampler: str, spp: int) -> bool:
-        return any(bool(r.get("below_noise_floor")) for r in self.renders
+    def below_floor(self, sampler: str, spp: int, metric: str | None = None) -> bool:
+        """Any seed below the reference noise floor: by `<metric>_below_noise_floor` when the
+        runner gives it, else by `below_noise_floor`."""
+        key = f"{metric}_below_noise_floor" if metric else "below_noise_floor"
+        return any(bool(r.get(key, r.get("below_noise_floor"))) for r in self.renders
                    if r.get("sampler") == sampler and int(r.get("spp", -1)) == spp)
 
     @staticmethod
@@ -231,13 +234,21 @@ def display_transform(linear: np.ndarray, gain: float = 1.0) -> np.ndarray:
 
 def detail_region(reference: np.ndarray) -> tuple[int, int, int, int]:
     """(x, y, w, h) of the quarter-size window (w = W/4, h = H/4, at least 8 px) with the
-    largest sum of |∇| of the display-transformed reference luminance (integral image)."""
+    largest sum of |∇| of the display-transformed reference luminance (integral image),
+    not counting pixels next to clipped ones (a channel > 1: lights), whose edges would win."""
     lum = luminance(display_transform(reference))
+    clipped = np.asarray(reference)[..., :3].max(axis=-1) > 1.0
+    near = clipped.copy()
+    near[1:, :] |= clipped[:-1, :]
+    near[:-1, :] |= clipped[1:, :]
+    near[:, 1:] |= clipped[:, :-1]
+    near[:, :-1] |= clipped[:, 1:]
     h_img, w_img = lum.shape
     w, h = min(w_img, max(8, w_img // 4)), min(h_img, max(8, h_img // 4))
     grad = np.zeros_like(lum)
     grad[:, 1:] += np.abs(np.diff(lum, axis=1))
     grad[1:, :] += np.abs(np.diff(lum, axis=0))
+    grad[near] = 0.0
     s = np.zeros((h_img + 1, w_img + 1))
     s[1:, 1:] = grad.cumsum(0).cumsum(1)
     sums = s[h:, w:] - s[:-h, w:] - s[h:, :-w] + s[:-h, :-w]
@@ -262,7 +273,8 @@ def crop_region(results: Results, reference: np.ndarray) -> tuple[tuple[int, int
             pass
     return detail_region(reference), ("no `crop` was given, so the quarter-size window with "
                                       "the most detail in the reference (largest sum of the "
-                                      "luminance gradient after the display transform)")
+                                      "luminance gradient after the display transform, clipped "
+                                      "pixels such as lights and their edges left out)")
 
 
 def crop_gain(reference_crop: np.ndarray) -> float:

@@ -140,7 +140,8 @@ def convergence(res: Results, fig_dir: Path) -> str:
             series.append(figures.Series(
                 sampler=sampler, spp=spp, seconds=seconds, mean=stats[:, 0], low=stats[:, 1],
                 high=stats[:, 2],
-                below_floor=np.array([res.below_floor(sampler, s) for s in res.spp], dtype=bool),
+                below_floor=np.array([res.below_floor(sampler, s, metric) for s in res.spp],
+                                     dtype=bool),
                 slope_spp=res.slope(sampler, metric)[0], slope_seconds=slope_t))
         path = figures.convergence_figure(fig_dir / f"convergence_{metric}.png", label, series,
                                           res.noise_floor(metric))
@@ -152,7 +153,7 @@ def convergence(res: Results, fig_dir: Path) -> str:
         "is that reference noise floor (MSE and relative MSE; results.json gives none for "
         "FLIP). Hollow markers are points where at least one seed measured below the floor: "
         "there the curve is limited by the reference, not by the sampler, so read slopes "
-        "above the line."
+        "above the line. A band that reaches zero or below (few seeds) runs off the bottom."
     )
     return "\n".join(parts) + _note(esc(note))
 
@@ -253,7 +254,8 @@ def error_spectra(res: Results, fig_dir: Path) -> str:
 
     low = [(s, e) for (s, spp), e in errors.items() if spp == levels[0]]
     if low:
-        scale = 3.0 * float(np.sqrt(np.mean([np.mean(e**2) for _, e in low]))) or 1.0
+        # 99th percentile of |error|: a few fireflies must not wash out the noise pattern.
+        scale = float(np.percentile(np.abs(np.stack([e for _, e in low])), 99)) or 1.0
         cmap = colormaps["RdBu_r"]
         for sampler, err in low:
             rgb = cmap(np.clip(0.5 + 0.5 * err / scale, 0.0, 1.0))[..., :3]
@@ -272,7 +274,8 @@ def error_spectra(res: Results, fig_dir: Path) -> str:
     text = (img_tag(res.out_dir, path, "radially averaged error spectra")
             + f"<table>{head}{rows}</table>" + _note(note))
     if tiles:
-        text += (f"<p>Error images at {levels[0]} spp (red +, blue −, ±{fmt(scale)}):</p>"
+        text += (f"<p>Error images at {levels[0]} spp (red +, blue −, ±{fmt(scale)}: "
+                 "the 99th percentile of |error|):</p>"
                  f'<table class="grid"><tr>{"".join(tiles)}</tr></table>')
     return text
 
