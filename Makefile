@@ -10,7 +10,7 @@ CMAKE_ARGS ?= -DCMAKE_BUILD_TYPE=Release -DSTRATUM_WERROR=ON
 LIB        := addon/stratum/lib/libstratum.so
 
 .PHONY: all setup build test test-native test-python test-blender test-blender-3 test-blender-wheel \
-        lint render bench sanitize format clean
+        lint render bench sanitize format clean study
 
 all: build
 
@@ -61,6 +61,12 @@ bench: build
 	bash scripts/install_addon.sh
 	mkdir -p out
 	$(BLENDER_BG) --python scripts/bench.py
+
+# The sampler study (issue 4): Cornell box, Wolf and AO runs of `stratum compare` into
+# out/study/, then out/study/summary.md and figures (about 30-40 min on 2 cores). Not part of
+# `make test`. Re-running renders only what is missing.
+study: build
+	$(PY) scripts/study.py --out out/study --jobs 2
 
 # ASan/UBSan build of the core and its tests.
 sanitize: setup
