@@ -468,3 +468,36 @@ def test_acceptance_cornell_64(native: Any, tmp_path: Path) -> None:
         assert f"<h2>{title}</h2>" in page, title
     assert 'class="problem"' not in page
     assert seconds < 300, f"acceptance run took {seconds:.0f} s"
+
+
+def test_crop_outside_the_image_is_rejected_before_rendering(
+        native: Any, fake_blender: Path, tmp_path: Path,
+        capsys: pytest.CaptureFixture[str]) -> None:
+    out = tmp_path / "out"
+    # The fake scene is 12x10: known only after Blender opened it (the probe).
+    assert cli.main(["compare", str(CORNELL), "--crop", "4,4,10,4", "--out", str(out)]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and "outside the 12x10 image" in err[0]
+    assert [c["mode"] for c in _calls(fake_blender)] == ["probe"]
+    assert not out.exists()
+
+
+def test_progress_bar_without_a_tty() -> None:
+    import io
+
+    from stratum.compare.runner import ProgressBar
+
+    settings = plan.SceneSettings("abc", (16, 16), "path", "cosine", 8)
+    tests, _ = plan.plan(settings, ["random"], [1, 4], [0], None, None, [])
+    stream = io.StringIO()
+    bar = ProgressBar(tests, stream=stream, already_done=1)
+    bar.event("start", {"key": tests[0].key})
+    bar.event("done", {"key": tests[0].key})
+    bar.event("done", {"key": tests[0].key})  # reported twice: counted once
+    bar.event("start", {"key": tests[1].key})
+    bar.event("done", {"key": tests[1].key})
+    lines = stream.getvalue().splitlines()
+    assert len(lines) == 2 and "\r" not in stream.getvalue()
+    assert "2/3 configurations" in lines[0] and "ETA" in lines[0]
+    assert "now: random spp=1 seed=0" in lines[0]
+    assert "3/3 configurations" in lines[1] and "ETA 0:00" in lines[1]
