@@ -146,6 +146,50 @@ def fmt(x: float | None, digits: int = 3) -> str:
     return f"{x:.{digits}g}"
 
 
+BLOCK = 4  # block size of the low-pass MSE
+
+
+def block_mse(out: Path, name: str, results: dict[str, Any]) -> dict[tuple[str, int], float]:
+    """Mean over seeds of the MSE of the error's BLOCK x BLOCK block means, per (sampler, spp).
+
+    Plain MSE is blind to how the error is arranged: a per-pixel-independent error and the same
+    error copied into bands have equal MSE. Averaging BLOCK^2 pixels divides uncorrelated
+    (white) error by ~BLOCK^2 and blue-noise error by more, but leaves correlated error
+    (banding, structured patterns) nearly intact, so block MSE / MSE measures how visible
+    the error's structure is: ~1/16 for white noise, ~1 for banding."""
+    import numpy as np
+    from stratum.compare.exr import read_rgb
+
+    reference = read_rgb(out / name / results["reference"]["path"]).astype(np.float64)
+    h, w = (reference.shape[0] // BLOCK) * BLOCK, (reference.shape[1] // BLOCK) * BLOCK
+    sums: dict[tuple[str, int], list[float]] = {}
+    for row in results["renders"]:
+        err = read_rgb(out / name / row["path"]).astype(np.float64) - reference
+        blocks = err[:h, :w].reshape(h // BLOCK, BLOCK, w // BLOCK, BLOCK, 3).mean(axis=(1, 3))
+        sums.setdefault((row["sampler"], int(row["spp"])), []).append(float(np.mean(blocks ** 2)))
+    return {k: float(np.mean(v)) for k, v in sums.items()}
+
+
+def block_table(results: dict[str, Any], blocks: dict[tuple[str, int], float],
+                spps: list[int]) -> tuple[str, dict]:
+    """Block MSE ratio to lcg, and block MSE / MSE (the error's structure), per spp."""
+    lines = ["| sampler | " + " | ".join(f"{s} spp" for s in spps) + " |",
+             "|" + "---|" * (len(spps) + 1)]
+    numbers: dict[str, dict[str, Any]] = {}
+    for sampler in results["samplers"]:
+        cells = []
+        numbers[sampler] = {}
+        for spp in spps:
+            b, b0 = blocks.get((sampler, spp)), blocks.get((BASELINE, spp))
+            m = mean_of(results, sampler, spp, "mse")
+            ratio = b / b0 if b is not None and b0 else None
+            share = b / m if b is not None and m else None
+            numbers[sampler][str(spp)] = {"ratio_to_lcg": ratio, "block_over_mse": share}
+            cells.append(f"{fmt(ratio, 2)} ({fmt(share, 2)})")
+        lines.append(f"| {sampler} | " + " | ".join(cells) + " |")
+    return "\n".join(lines), numbers
+
+
 def ratio_table(results: dict[str, Any], metric: str, spps: list[int]) -> tuple[str, dict]:
     """Markdown table of mean(metric) / mean(metric of lcg) per sampler and spp, plus the MSE
     slope; returns the table and the numbers."""
@@ -181,28 +225,38 @@ def absolute_table(results: dict[str, Any], metric: str, spps: list[int]) -> str
 
 
 def ao_table(out: Path) -> tuple[str, dict]:
-    """MSE (mean over seeds) of every hemisphere x sampler x rays, and its ratio to
-    random + cosine at the same number of rays (the article's best pseudo-random case)."""
-    data: dict[str, dict[str, dict[str, float | None]]] = {}
+    """Per hemisphere x sampler x rays: MSE (mean over seeds), its ratio to random + cosine at
+    the same number of rays (the article's best pseudo-random case), and block MSE / MSE (how
+    much of the error is spatially correlated: banding)."""
+    data: dict[str, dict[str, dict[str, Any]]] = {}
     spps: list[int] = []
     for h in AO_HEMISPHERES:
         res = load_results(out, f"ao_{h}")
         if res is None:
             continue
         spps = res["spp"]
-        data[h] = {s: {str(n): mean_of(res, s, n, "mse") for n in spps} for s in res["samplers"]}
+        blocks = block_mse(out, f"ao_{h}", res)
+        data[h] = {s: {str(n): {"mse": mean_of(res, s, n, "mse"),
+                                "flip_ldr": mean_of(res, s, n, "flip_ldr"),
+                                "block_mse": blocks.get((s, n))} for n in spps}
+                   for s in res["samplers"]}
     if not data:
         return "(no AO results)", {}
     base = data.get("cosine", {}).get("random", {})
-    lines = ["| distribution | sampler | " + " | ".join(f"{n} rays" for n in spps)
-             + " | (ratio to random+cosine) |", "|---|---|" + "---|" * (len(spps) + 1)]
+    lines = ["| distribution | sampler | " + " | ".join(f"MSE {n} rays" for n in spps)
+             + " | MSE / random+cosine | block MSE / MSE | LDR-FLIP |",
+             "|---|---|" + "---|" * (len(spps) + 3)]
     for h, by_sampler in data.items():
         for s, by_spp in by_sampler.items():
-            cells = [fmt(by_spp[str(n)], 3) for n in spps]
-            ratios = [fmt((by_spp[str(n)] or math.nan) / (base.get(str(n)) or math.nan), 2)
-                      for n in spps]
+            cells = [fmt(by_spp[str(n)]["mse"], 3) for n in spps]
+            ratios, shares, flips = [], [], []
+            for n in spps:
+                v, b0 = by_spp[str(n)], base.get(str(n), {})
+                ratios.append(fmt((v["mse"] or math.nan) / (b0.get("mse") or math.nan), 2))
+                shares.append(fmt((v["block_mse"] or math.nan) / (v["mse"] or math.nan), 2))
+                flips.append(fmt(v["flip_ldr"], 3))
             lines.append(f"| {h} | {s} | " + " | ".join(cells) + " | " + " / ".join(ratios)
-                         + " |")
+                         + " | " + " / ".join(shares) + " | " + " / ".join(flips) + " |")
     return "\n".join(lines), data
 
 
@@ -232,11 +286,18 @@ def write_summary(out: Path, log: list[dict[str, Any]]) -> None:
                   absolute_table(res, "mse", spps), "",
                   "Mean LDR-FLIP ± half the 95 % interval:", "",
                   absolute_table(res, "flip_ldr", spps), ""]
+        blocks_text, block_numbers = block_table(res, block_mse(out, name, res), spps)
+        parts += [(f"Low-pass error: MSE of {BLOCK}x{BLOCK} block means, ratio to lcg (in "
+                  "brackets block MSE / MSE: ~1/16 white noise, less for blue noise, more "
+                  "for structured error):"), "", blocks_text, ""]
         headline[name] = {"mse_ratio": numbers, "flip_ldr_ratio": flip_numbers,
+                          "block_mse": block_numbers,
                           "slopes": res.get("slopes", {}), "reference": ref}
     table, numbers = ao_table(out)
     parts += ["## AO (scenes/ao_study.blend, integrator ao)", "",
-              "Mean MSE over seeds; in brackets the ratio to pseudo-random + cosine:", "",
+              ("Mean over seeds at each number of rays (a / b / c = 8 / 16 / 32 rays). "
+              f"Block MSE = MSE of {BLOCK}x{BLOCK} block means of the error: block MSE / MSE "
+              "is ~1/16 for independent pixel errors and ~1 for banding."), "",
               table, ""]
     headline["ao_mse"] = numbers
     if log:
