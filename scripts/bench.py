@@ -177,18 +177,22 @@ def bench_stratum_direct(args: argparse.Namespace) -> dict[str, float]:
     with native.Scene() as native_scene:
         export_scene(depsgraph, native_scene)
         t_export = time.perf_counter() - t0
-        renderer = native.Renderer(native_scene)
-    with renderer:
-        for name, value in renderer_settings(scene).items():
-            renderer.set(name, value)
-        t1 = time.perf_counter()
-        renderer.start()
-        while not renderer.wait(50):
-            pass
-        wall = time.perf_counter() - t1
-        p = renderer.progress()
+        with native.Renderer(native_scene) as renderer:
+            for name, value in renderer_settings(scene).items():
+                renderer.set(name, value)
+            t1 = time.perf_counter()
+            renderer.start()
+            while not renderer.wait(50):
+                pass
+            wall = time.perf_counter() - t1
+            p = renderer.progress()
+        # The ceiling, measured right after in the same process: Embree alone on the same
+        # ray mix (camera, then one bounce and one shadow ray per vertex).
+        raw_rays, raw_seconds = native_scene.measure_ray_throughput(
+            args.res, args.res, args.samples, MAX_BOUNCES, args.threads)
     return {"export": t_export, "build": p.build_seconds, "trace": p.render_seconds,
-            "wall": wall, "rays": p.rays, "samples_done": p.samples_done}
+            "wall": wall, "rays": p.rays, "samples_done": p.samples_done,
+            "raw_rays_per_s": raw_rays / raw_seconds if raw_seconds > 0 else 0.0}
 
 
 def bench_stratum_engine(args: argparse.Namespace) -> float:
@@ -254,6 +258,9 @@ def main() -> int:
             "",
             f"ratio Stratum/Cycles, total (F12):    {ratio(st_total, cyc['total'])}",
             f"ratio Stratum/Cycles, path tracing:   {ratio(st['trace'], cyc['trace'])}",
+            "",
+            f"{'raw Embree, same ray mix':28s}{st['raw_rays_per_s'] / 1e6:10.2f} M rays/s",
+            f"ratio Stratum/raw Embree, rays/s:     {ratio(rays_per_s, st['raw_rays_per_s'])}",
         ]
     else:
         lines += ["", f"Stratum: not measured ({reason})"]

@@ -270,6 +270,10 @@ def _declare(lib: ctypes.CDLL) -> None:
         "stratum_scene_set_background": (c_int32, [p_void, p_float]),
         "stratum_scene_save": (c_int32, [p_void, p_char]),
         "stratum_scene_load": (c_int32, [p_char, pp_void]),
+        "stratum_scene_measure_ray_throughput": (c_int32, [p_void, c_uint32, c_uint32, c_uint32,
+                                                           c_uint32, c_uint32,
+                                                           ctypes.POINTER(ctypes.c_double),
+                                                           ctypes.POINTER(ctypes.c_double)]),
         "stratum_renderer_create": (c_int32, [p_void, pp_void]),
         "stratum_renderer_destroy": (None, [p_void]),
         "stratum_renderer_set_int": (c_int32, [p_void, p_char, c_int64]),
@@ -557,6 +561,18 @@ class Scene(_Handle):
     def save(self, path: str | os.PathLike[str]) -> None:
         _check(self._lib, self._lib.stratum_scene_save(self.handle, os.fsencode(path)),
                "stratum_scene_save")
+
+    def measure_ray_throughput(self, width: int, height: int, samples: int, max_bounces: int,
+                               threads: int = 0) -> tuple[float, float]:
+        """Embree alone on the path tracer's ray mix: (rays traced, seconds), the ceiling
+        `make bench` compares Stratum's rays/s with."""
+        rays, seconds = ctypes.c_double(), ctypes.c_double()
+        _check(self._lib, self._lib.stratum_scene_measure_ray_throughput(
+            self.handle, _uint32(width, "width"), _uint32(height, "height"),
+            _uint32(samples, "samples"), _uint32(max_bounces, "max_bounces"),
+            _uint32(threads, "threads"), ctypes.byref(rays), ctypes.byref(seconds)),
+            "stratum_scene_measure_ray_throughput")
+        return rays.value, seconds.value
 
     def add_material(self, material: Mapping[str, Any] | Material) -> int:
         desc = _MaterialDesc()

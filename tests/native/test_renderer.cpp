@@ -84,3 +84,19 @@ TEST(Renderer, CapturedSceneFileRendersTheSameImage) {
     EXPECT_NE(std::string(stratum_last_error()).find(path), std::string::npos) << stratum_last_error();
     std::remove(path.c_str());
 }
+
+// The benchmark ceiling traces at least the camera rays, and bounces while paths hit.
+TEST(Renderer, RayThroughputCountsTheRayMix) {
+    StratumScene* scene = lit_sphere_interior();
+    double rays = 0, seconds = 0;
+    // Inside a closed sphere every path hits at every vertex: each of the 4 vertices traces a
+    // continuation ray and a shadow ray, so exactly 2 * (max_bounces + 1) rays per camera ray.
+    ASSERT_EQ(stratum_scene_measure_ray_throughput(scene, 8, 4, 2, 3, 1, &rays, &seconds), STRATUM_OK);
+    EXPECT_EQ(rays, 8.0 * 4.0 * 2.0 * 2.0 * 4.0);
+    EXPECT_GT(seconds, 0.0);
+    EXPECT_EQ(stratum_scene_measure_ray_throughput(scene, 0, 4, 2, 3, 1, &rays, &seconds),
+              STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(stratum_last_error()).find("resolution 0x4"), std::string::npos)
+        << stratum_last_error();
+    stratum_scene_destroy(scene);
+}

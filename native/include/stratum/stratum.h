@@ -179,6 +179,14 @@ STRATUM_API StratumStatus stratum_scene_set_background(StratumScene* scene, cons
 STRATUM_API StratumStatus stratum_scene_save(const StratumScene* scene, const char* path);
 STRATUM_API StratumStatus stratum_scene_load(const char* path, StratumScene** out_scene);
 
+/* Benchmark ceiling: traces the path tracer's ray mix (camera ray, then per vertex one bounce
+ * and one shadow ray, up to max_bounces) with Embree alone, no shading or sampling, and reports
+ * the rays traced and the seconds spent (BVH build excluded). */
+STRATUM_API StratumStatus stratum_scene_measure_ray_throughput(const StratumScene* scene, uint32_t width,
+                                                               uint32_t height, uint32_t samples,
+                                                               uint32_t max_bounces, uint32_t threads,
+                                                               double* out_rays, double* out_seconds);
+
 /* ---- rendering --------------------------------------------------------------------------- */
 
 typedef struct StratumRenderer StratumRenderer;

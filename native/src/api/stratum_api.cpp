@@ -13,6 +13,7 @@
 #include "integrators/integrator.h"
 #include "render/image_output.h"
 #include "render/pixel_filter.h"
+#include "render/ray_throughput.h"
 #include "render/renderer.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
@@ -183,6 +184,26 @@ StratumStatus stratum_scene_load(const char* path, StratumScene** out_scene) {
         if (status != STRATUM_OK)
             return fail(status, "stratum_scene_load: " + std::string(path) + ": " + error);
         *out_scene = scene.release();
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_measure_ray_throughput(const StratumScene* scene, uint32_t width, uint32_t height,
+                                                   uint32_t samples, uint32_t max_bounces, uint32_t threads,
+                                                   double* out_rays, double* out_seconds) {
+    return guarded("stratum_scene_measure_ray_throughput", [&] {
+        require(scene && out_rays && out_seconds, "scene, out_rays or out_seconds is NULL");
+        require(width > 0 && height > 0 && width <= 65536 && height <= 65536,
+                "resolution " + std::to_string(width) + "x" + std::to_string(height) +
+                    " out of range [1, 65536]");
+        require(samples > 0 && samples <= (1u << 16),
+                "samples = " + std::to_string(samples) + " out of range [1, 65536]");
+        require(max_bounces <= 1024,
+                "max_bounces = " + std::to_string(max_bounces) + " out of range [0, 1024]");
+        const stratum::RayThroughput t =
+            stratum::measure_ray_throughput(scene->scene, width, height, samples, max_bounces, threads);
+        *out_rays = t.rays;
+        *out_seconds = t.seconds;
         return STRATUM_OK;
     });
 }
