@@ -22,6 +22,7 @@ The runs (the source documents' experiments, with more samplers, seeds and spp):
 
     .venv/bin/python scripts/study.py [--out out/study] [--jobs 2] [--only cornell,wolf]
                                       [--quick] [--dry-run] [--summary-only]
+                                      [--docs docs/study]
 
 --quick runs the same study at toy sizes (to test the pipeline in a minute or two).
 """
@@ -422,7 +423,8 @@ def ratio_plot(out: Path) -> Path | None:
         return None
     fig, axes = plt.subplots(1, len(runs), figsize=(5.2 * len(runs), 3.8), squeeze=False)
     for ax, (name, res) in zip(axes[0], runs):
-        for sampler in res["samplers"]:
+        colors = plt.get_cmap("tab20").colors
+        for k, sampler in enumerate(res["samplers"]):
             xs, ys = [], []
             for spp in res["spp"]:
                 m, b = mean_of(res, sampler, spp, "mse"), mean_of(res, BASELINE, spp, "mse")
@@ -430,7 +432,8 @@ def ratio_plot(out: Path) -> Path | None:
                     xs.append(spp)
                     ys.append(m / b)
             style = "-" if sampler in GRID_SAMPLERS else "--"
-            ax.plot(xs, ys, style, marker="o", ms=3, label=sampler)
+            ax.plot(xs, ys, style, marker="osv^D<>ph*Xd"[k % 12], ms=3, label=sampler,
+                    color=colors[(2 * k) % 20 + (2 * k) // 20])
         ax.axhline(0.5, color="grey", lw=0.6, ls=":")
         ax.set_xscale("log", base=2)
         ax.set_yscale("log")
@@ -448,11 +451,44 @@ def ratio_plot(out: Path) -> Path | None:
 
 def make_figures(out: Path) -> None:
     (out / "figures").mkdir(parents=True, exist_ok=True)
-    made = [image_grid(out, "cornell", 8, gain=2.0), image_grid(out, "wolf", 1, gain=1.5),
-            image_grid(out, "wolf", 8, gain=1.5), ratio_plot(out), *ao_grids(out)]
+    made = [image_grid(out, "cornell", 8, gain=2.0), image_grid(out, "wolf", 1, gain=1.0),
+            image_grid(out, "wolf", 8, gain=1.0), ratio_plot(out), *ao_grids(out)]
     for p in made:
         if p is not None:
             print(f"study: wrote {p}")
+
+
+# The figures docs/study.md shows: (source under out/study, name under docs/study).
+DOC_FIGURES = (
+    ("figures/mse_ratio_to_lcg.png", "mse_ratio_to_lcg.png"),
+    ("figures/cornell_grid_8spp.png", "cornell_grid_8spp.png"),
+    ("figures/wolf_grid_1spp.png", "wolf_grid_1spp.png"),
+    ("wolf/figures/error_spectra.png", "wolf_error_spectra.png"),
+    ("wolf/figures/convergence_flip_ldr.png", "wolf_convergence_flip_ldr.png"),
+    ("figures/ao_table2_distributions.png", "ao_table2_distributions.png"),
+    ("figures/ao_table3_fibonacci.png", "ao_table3_fibonacci.png"),
+)
+DOC_MAX_BYTES = 300_000
+
+
+def export_docs(out: Path, docs: Path) -> None:
+    """Copies DOC_FIGURES into docs as 256-colour PNGs (each under DOC_MAX_BYTES, halving the
+    size until it fits), so the repository stays small."""
+    from PIL import Image
+
+    docs.mkdir(parents=True, exist_ok=True)
+    for src, name in DOC_FIGURES:
+        if not (out / src).is_file():
+            print(f"study: {out / src} missing, not copied")
+            continue
+        img = Image.open(out / src).convert("RGB")
+        while True:
+            img.quantize(colors=256, method=Image.Quantize.MEDIANCUT).save(
+                docs / name, optimize=True)
+            if (docs / name).stat().st_size <= DOC_MAX_BYTES or img.width < 400:
+                break
+            img = img.resize((img.width * 3 // 4, img.height * 3 // 4), Image.LANCZOS)
+        print(f"study: wrote {docs / name} ({(docs / name).stat().st_size // 1000} KB)")
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -464,6 +500,8 @@ def main(argv: list[str] | None = None) -> int:
     p.add_argument("--dry-run", action="store_true", help="print the commands only")
     p.add_argument("--summary-only", action="store_true",
                    help="no rendering: rebuild summary.md and the figures from results.json")
+    p.add_argument("--docs", metavar="DIR",
+                   help="also copy the figures docs/study.md shows into DIR (e.g. docs/study)")
     args = p.parse_args(argv)
     out = Path(args.out).resolve()
     out.mkdir(parents=True, exist_ok=True)
@@ -487,6 +525,8 @@ def main(argv: list[str] | None = None) -> int:
         log = previous
     write_summary(out, log)
     make_figures(out)
+    if args.docs:
+        export_docs(out, Path(args.docs))
     return 0
 
 
