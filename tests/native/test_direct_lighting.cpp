@@ -158,3 +158,28 @@ TEST(DirectLighting, EmissiveSquareThroughNeeAndMis) {
     const double X = 0.4, s = X / std::sqrt(1 + X * X);
     expect_radiance(f.measure(0.5f, 1.0f), 4.0 * L * s * std::atan(s));
 }
+
+// Several lights of very different power: NEE chooses among them (half by power, half uniform
+// over light objects) and must stay unbiased; the irradiances simply add. The sun and the point
+// light stand off to the side, so the emissive square above the origin does not shadow them:
+//   sun tilted 45 degrees: E = 3 cos 45;  point at (1.5, 0, 1): E = P cos / (4 pi d^2),
+//   cos = 1/sqrt(3.25), d^2 = 3.25.
+TEST(DirectLighting, SeveralLightsAdd) {
+    Floor f;
+    StratumLightDesc sun = light_at(STRATUM_LIGHT_SUN, 3.0f, 5.0f);
+    const float c = std::sqrt(0.5f);
+    const float tilt[12] = {c, 0, c, 0, 0, 1, 0, 0, -c, 0, c, 5};
+    std::copy(tilt, tilt + 12, sun.transform);
+    StratumLightDesc point = light_at(STRATUM_LIGHT_POINT, 1.0f, 1.0f);
+    point.transform[3] = 1.5f;
+    ASSERT_EQ(stratum_scene_add_light(f.scene, &sun), STRATUM_OK);
+    ASSERT_EQ(stratum_scene_add_light(f.scene, &point), STRATUM_OK);
+    const float L = 2.0f;
+    const StratumMaterialDesc emitter{STRATUM_MATERIAL_EMISSION, {0, 0, 0}, 1, 0, 0, 1.5f, {L, L, L},
+                                      STRATUM_MICROFACET_GGX};
+    f.add_quad(emitter, 1.0f, 0.4f);
+    const double X = 0.4, s = X / std::sqrt(1 + X * X);
+    const double irradiance =
+        3.0 * std::sqrt(0.5) + 1.0 / std::sqrt(3.25) / (4.0 * kPiF * 3.25) + 4.0 * L * s * std::atan(s);
+    expect_radiance(f.measure(0.5f, 1.0f), irradiance);
+}

@@ -1,11 +1,13 @@
 #include "lights/light_set.h"
 
 #include <algorithm>
+#include <unordered_map>
 
 namespace stratum {
 
-uint32_t LightSet::add(Light light) {
+uint32_t LightSet::add(Light light, uint32_t object) {
     lights_.push_back(std::move(light));
+    object_.push_back(object);
     return static_cast<uint32_t>(lights_.size() - 1);
 }
 
@@ -25,13 +27,24 @@ void LightSet::finalize(float scene_radius) {
             lights_[i]);
     }
     double total = 0.0;
-    for (double p : power) total += p;
+    std::unordered_map<uint32_t, double> object_power;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        total += power[i];
+        object_power[object_[i]] += power[i];
+    }
+    std::unordered_map<uint32_t, size_t> object_size;
+    for (uint32_t o : object_) ++object_size[o];
+    const double objects = static_cast<double>(object_power.size());
     probability_.resize(lights_.size());
     cdf_.resize(lights_.size());
     double running = 0.0;
     for (size_t i = 0; i < lights_.size(); ++i) {
-        // Lights of zero power are never chosen; if all are zero, choose uniformly.
-        const double p = total > 0.0 ? power[i] / total : 1.0 / static_cast<double>(lights_.size());
+        // Zero total (or object) power: that half of the mixture is uniform instead.
+        const double by_power = total > 0.0 ? power[i] / total : 1.0 / static_cast<double>(lights_.size());
+        const double in_object = object_power[object_[i]] > 0.0
+                                     ? power[i] / object_power[object_[i]]
+                                     : 1.0 / static_cast<double>(object_size[object_[i]]);
+        const double p = 0.5 * by_power + 0.5 * in_object / objects;
         probability_[i] = static_cast<float>(p);
         running += p;
         cdf_[i] = static_cast<float>(running);

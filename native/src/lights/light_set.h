@@ -1,5 +1,12 @@
 // All lights of a scene and the discrete distribution that next-event estimation chooses them
-// by: probability proportional to emitted power (textbook 5.14, p(j) = Φ_j / ΣΦ).
+// by. Pure power-proportional choice (textbook 5.14, p(j) = Φ_j / ΣΦ) starves a light whose
+// power estimate is small next to another's although it dominates somewhere (a dim lamp beside
+// a sun whose "power" is its flux through the whole scene): its few samples carry huge weights
+// and the image shows dark pixels where it was never chosen. So the choice is a defensive
+// mixture: half by power, half uniform over light objects (a Blender lamp, or all emissive
+// triangles of one object, chosen within the object by power):
+//     p(j) = ½ Φ_j / ΣΦ + ½ (1/G) Φ_j / Φ_g(j),   G objects, Φ_g the power of j's object.
+// Any p > 0 wherever a light contributes keeps NEE unbiased.
 #pragma once
 
 #include <cstdint>
@@ -17,9 +24,10 @@ class LightSet {
 public:
     using Light = std::variant<PointLight, SunLight, AreaLight, EmissiveTriangle>;
 
+    // `object` groups lights that belong to one scene object (the triangles of one emissive
+    // mesh); every Blender lamp is an object of its own. Returns the index of the added light.
+    uint32_t add(Light light, uint32_t object);
     // scene_radius: radius of a sphere bounding the scene, to give the sun a power.
-    // Returns the index of the added light.
-    uint32_t add(Light light);
     void finalize(float scene_radius);
 
     bool empty() const { return lights_.empty(); }
@@ -31,7 +39,8 @@ public:
 
 private:
     std::vector<Light> lights_;
-    std::vector<float> cdf_;  // cdf_[i] = P(choice < i+1), last = 1
+    std::vector<uint32_t> object_;  // object of each light
+    std::vector<float> cdf_;        // cdf_[i] = P(choice < i+1), last = 1
     std::vector<float> probability_;
 };
 

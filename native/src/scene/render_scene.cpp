@@ -26,30 +26,38 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
         triangle_count_ += mesh.triangles.size();
         instances_.push_back(std::move(g));
     }
+    // Light objects for the choice among lights: each instance's emissive triangles form one,
+    // then every lamp is one.
+    uint32_t light_object = 0;
     for (InstanceGeometry& g : instances_) {
         const Mesh& mesh = *g.mesh;
+        const uint32_t object = light_object++;
         for (size_t t = 0; t < mesh.triangles.size(); ++t) {
             const Material& m = materials_[mesh.material_ids[t]];
             if (m.emission.is_black()) continue;
             if (g.emissive_light.empty()) g.emissive_light.assign(mesh.triangles.size(), kNoLight);
             const auto& tri = mesh.triangles[t];
             g.emissive_light[t] = lights_.add(
-                EmissiveTriangle(g.positions[tri[0]], g.positions[tri[1]], g.positions[tri[2]], m.emission));
+                EmissiveTriangle(g.positions[tri[0]], g.positions[tri[1]], g.positions[tri[2]], m.emission),
+                object);
         }
     }
     for (const LightParams& l : scene.lights) {
         const Rgb power = l.color * l.strength;
+        const uint32_t object = light_object++;
         switch (l.type) {
             case LightType::Point:
-                lights_.add(PointLight(l.light_to_world.translation(), power, l.radius));
+                lights_.add(PointLight(l.light_to_world.translation(), power, l.radius), object);
                 break;
             case LightType::Sun:
-                lights_.add(SunLight(normalize(l.light_to_world.vector(Vec3(0, 0, 1))), power, l.angle));
+                lights_.add(SunLight(normalize(l.light_to_world.vector(Vec3(0, 0, 1))), power, l.angle),
+                            object);
                 break;
             case LightType::AreaRectangle:
             case LightType::AreaEllipse:
                 lights_.add(
-                    AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse, power));
+                    AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse, power),
+                    object);
                 break;
         }
     }
