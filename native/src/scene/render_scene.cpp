@@ -23,7 +23,6 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
             const float len = length(w);
             g.corner_normals.push_back(len > 0.0f ? w / len : Vec3(0, 0, 1));
         }
-        triangle_count_ += mesh.triangles.size();
         instances_.push_back(std::move(g));
     }
     // Light objects for the choice among lights: each instance's emissive triangles form one,

@@ -35,7 +35,6 @@ public:
     }
     const LightSet& lights() const { return lights_; }
     Rgb background() const { return background_; }
-    size_t triangle_count() const { return triangle_count_; }
 
 private:
     struct InstanceGeometry {
@@ -49,7 +48,6 @@ private:
     EmbreeScene embree_;
     LightSet lights_;
     Rgb background_;
-    size_t triangle_count_ = 0;
 };
 
 }  // namespace stratum
