@@ -64,6 +64,9 @@ LIGHT_POINT = 0
 LIGHT_SUN = 1
 LIGHT_AREA_RECTANGLE = 2
 LIGHT_AREA_ELLIPSE = 3
+CAMERA_PERSPECTIVE = 0
+CAMERA_ORTHOGRAPHIC = 1
+CAMERA_TYPES: dict[str, int] = {"PERSP": CAMERA_PERSPECTIVE, "ORTHO": CAMERA_ORTHOGRAPHIC}
 
 SENSOR_FIT_AUTO = 0
 SENSOR_FIT_HORIZONTAL = 1
@@ -146,6 +149,12 @@ class _CameraDesc(ctypes.Structure):
         ("clip_start", ctypes.c_float),
         ("clip_end", ctypes.c_float),
         ("transform", _c_float16),
+        ("type", ctypes.c_int32),
+        ("ortho_scale", ctypes.c_float),
+        ("aperture_radius", ctypes.c_float),
+        ("focus_distance", ctypes.c_float),
+        ("aperture_blades", ctypes.c_int32),
+        ("aperture_rotation", ctypes.c_float),
     ]
 
 
@@ -201,6 +210,12 @@ class Camera:
     clip_start: float = 0.1
     clip_end: float = 1000.0
     transform: Sequence[float] | np.ndarray = tuple(np.eye(4, dtype=np.float32).ravel())
+    type: int | str = CAMERA_PERSPECTIVE  # or "PERSP" / "ORTHO"
+    ortho_scale: float = 6.0  # orthographic: extent of the fitted image side (scene units)
+    aperture_radius: float = 0.0  # thin lens radius (scene units); 0 = pinhole
+    focus_distance: float = 0.0  # depth of the sharp plane; > 0 when aperture_radius > 0
+    aperture_blades: int = 0  # 0 = round, >= 3 = polygon
+    aperture_rotation: float = 0.0  # radians
 
 
 @dataclass(frozen=True)
@@ -662,6 +677,11 @@ class Scene(_Handle):
             if fit not in SENSOR_FITS:
                 raise ValueError(f"camera: unknown sensor_fit {fit!r}")
             values["sensor_fit"] = SENSOR_FITS[fit]
+        kind = values["type"]
+        if isinstance(kind, str):
+            if kind not in CAMERA_TYPES:
+                raise ValueError(f"camera: unknown type {kind!r} (known: {sorted(CAMERA_TYPES)})")
+            values["type"] = CAMERA_TYPES[kind]
         values["transform"] = _matrix16(values["transform"], "camera transform")
         desc = _CameraDesc()
         _set_struct(desc, values, "camera")

@@ -75,7 +75,8 @@ inline RenderOutput render(StratumScene* scene, std::initializer_list<std::pair<
 
 // A camera at `position` looking down −Z with a 90° horizontal field of view.
 inline StratumCameraDesc camera_at(float x, float y, float z) {
-    StratumCameraDesc c{18.0f, 36.0f, 36.0f, STRATUM_SENSOR_FIT_AUTO, 0, 0, 1e-3f, 1e3f, {}};
+    StratumCameraDesc c{18.0f, 36.0f, 36.0f, STRATUM_SENSOR_FIT_AUTO, 0, 0, 1e-3f, 1e3f, {}, 0, 0, 0,
+                        0,     0,     0};
     std::copy(kIdentity, kIdentity + 16, c.transform);
     c.transform[3] = x;
     c.transform[7] = y;

@@ -94,7 +94,7 @@ TEST(Api, BadMaterialLightAndCameraValuesAreNamed) {
     EXPECT_EQ(stratum_scene_add_light(scene.s, &l), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("size_x"), std::string::npos) << last_error();
 
-    StratumCameraDesc c{50, 36, 24, STRATUM_SENSOR_FIT_AUTO, 0, 0, 10.0f, 1.0f, {}};
+    StratumCameraDesc c{50, 36, 24, STRATUM_SENSOR_FIT_AUTO, 0, 0, 10.0f, 1.0f, {}, 0, 0, 0, 0, 0, 0};
     std::copy(kIdentity, kIdentity + 16, c.transform);
     EXPECT_EQ(stratum_scene_set_camera(scene.s, &c), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("clip_start"), std::string::npos) << last_error();

@@ -260,3 +260,49 @@ def test_warp_hemisphere_rejects_bad_points_naming_the_index(native: Any) -> Non
         native.warp_hemisphere("spiral", uv[:1])
     with pytest.raises(ValueError, match="shape"):
         native.warp_hemisphere("cosine", np.zeros(4, dtype=np.float32))
+
+
+def _render_rgb(native: Any, scene: Any, size: int = 16, samples: int = 4) -> np.ndarray:
+    with native.Renderer(scene, width=size, height=size, samples=samples, seed=1,
+                         max_bounces=1) as renderer:
+        renderer.start()
+        deadline = time.monotonic() + 60
+        while not renderer.wait(100):
+            assert time.monotonic() < deadline, "render did not finish"
+        pixels = np.empty(size * size * 4, dtype=np.float32)
+        renderer.read_pixels(pixels)
+    return pixels.reshape(size, size, 4)[..., :3]
+
+
+def test_orthographic_and_thin_lens_cameras_cross_the_abi(native: Any, tiny_scene: Any) -> None:
+    """The appended StratumCameraDesc fields reach the core: an orthographic view of the 2 x 2
+    quad from (0, 0, 4) sees only the quad at ortho_scale 1 and the background (0.1) in its
+    corners at ortho_scale 8; a thin lens renders; bad values are named."""
+    assert native._CameraDesc.type.offset == 24 * 4  # right after the 16-float transform
+    assert ctypes_size(native) == 30 * 4
+    at = np.eye(4, dtype=np.float32)
+    at[2, 3] = 4.0
+    tiny_scene.set_camera(native.Camera(transform=at, type="ORTHO", ortho_scale=1.0))
+    close = _render_rgb(native, tiny_scene)
+    assert (np.abs(close - 0.1) > 1e-3).any(axis=-1).all()  # no background pixel
+    tiny_scene.set_camera(native.Camera(transform=at, type=native.CAMERA_ORTHOGRAPHIC,
+                                        ortho_scale=8.0))
+    far = _render_rgb(native, tiny_scene)
+    for y, x in ((0, 0), (0, -1), (-1, 0), (-1, -1)):
+        assert far[y, x] == pytest.approx((0.1, 0.1, 0.1), abs=1e-6)
+    tiny_scene.set_camera(native.Camera(transform=at, aperture_radius=0.2, focus_distance=4.0,
+                                        aperture_blades=5, aperture_rotation=0.3))
+    assert np.isfinite(_render_rgb(native, tiny_scene)).all()
+    with pytest.raises(native.StratumError, match="aperture_blades"):
+        tiny_scene.set_camera(native.Camera(transform=at, aperture_radius=0.2,
+                                            focus_distance=4.0, aperture_blades=2))
+    with pytest.raises(native.StratumError, match="ortho_scale"):
+        tiny_scene.set_camera(native.Camera(transform=at, type="ORTHO", ortho_scale=0.0))
+    with pytest.raises(ValueError, match="PANO"):
+        tiny_scene.set_camera(native.Camera(transform=at, type="PANO"))
+
+
+def ctypes_size(native: Any) -> int:
+    import ctypes
+
+    return ctypes.sizeof(native._CameraDesc)

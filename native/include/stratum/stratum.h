@@ -161,6 +161,11 @@ typedef enum StratumSensorFit {
     STRATUM_SENSOR_FIT_VERTICAL = 2
 } StratumSensorFit;
 
+typedef enum StratumCameraType {
+    STRATUM_CAMERA_PERSPECTIVE = 0, /* Blender PERSP: lens_mm and the sensor frame the view */
+    STRATUM_CAMERA_ORTHOGRAPHIC = 1 /* Blender ORTHO: ortho_scale frames the view */
+} StratumCameraType;
+
 typedef struct StratumCameraDesc {
     float lens_mm;              /* focal length, > 0 */
     float sensor_width_mm;      /* > 0 */
@@ -169,6 +174,14 @@ typedef struct StratumCameraDesc {
     float shift_x, shift_y;     /* in units of the fitted sensor dimension, as Blender */
     float clip_start, clip_end; /* 0 < clip_start < clip_end */
     float transform[16];        /* camera-to-world, row-major; looks down local -Z, +Y up */
+    /* Appended fields: all zero gives the perspective pinhole camera above. */
+    int32_t type;            /* StratumCameraType */
+    float ortho_scale;       /* orthographic: extent of the fitted image side, scene units, > 0 */
+    float aperture_radius;   /* thin lens radius in scene units (Cycles: lens/(2 fstop), lens in
+                                m; orthographic 1/(2 fstop)), >= 0; 0 = pinhole */
+    float focus_distance;    /* depth of the sharp plane along the view axis; > 0 if aperture */
+    int32_t aperture_blades; /* 0 = round aperture, >= 3 = regular polygon */
+    float aperture_rotation; /* radians, rotates the polygon */
 } StratumCameraDesc;
 
 STRATUM_API StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraDesc* camera);

@@ -78,7 +78,13 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                        {"sensor_fit", static_cast<int>(c.fit)},
                        {"shift", {c.shift_x, c.shift_y}},
                        {"clip", {c.clip_start, c.clip_end}},
-                       {"transform", matrix(c.camera_to_world)}};
+                       {"transform", matrix(c.camera_to_world)},
+                       {"type", static_cast<int>(c.type)},
+                       {"ortho_scale", c.ortho_scale},
+                       {"aperture_radius", c.aperture_radius},
+                       {"focus_distance", c.focus_distance},
+                       {"aperture_blades", c.aperture_blades},
+                       {"aperture_rotation", c.aperture_rotation}};
     }
     j["background"] = rgb(scene.background);
     std::ofstream out(path, std::ios::binary);
@@ -177,6 +183,13 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.clip_start = c.at("clip").at(0).get<float>();
             d.clip_end = c.at("clip").at(1).get<float>();
             read_floats(c.at("transform"), d.transform);
+            // Absent in files written before orthographic and thin-lens cameras: a pinhole.
+            d.type = c.value("type", 0);
+            d.ortho_scale = c.value("ortho_scale", 0.0f);
+            d.aperture_radius = c.value("aperture_radius", 0.0f);
+            d.focus_distance = c.value("focus_distance", 0.0f);
+            d.aperture_blades = c.value("aperture_blades", 0);
+            d.aperture_rotation = c.value("aperture_rotation", 0.0f);
             if ((status = stratum_scene_set_camera(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
         }

@@ -167,6 +167,21 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
     check(c.clip_start < c.clip_end,
           "camera clip_start = " + fmt(c.clip_start) + " must be below clip_end = " + fmt(c.clip_end));
     c.camera_to_world = validate_transform(d.transform, "camera transform");
+    check(d.type == STRATUM_CAMERA_PERSPECTIVE || d.type == STRATUM_CAMERA_ORTHOGRAPHIC,
+          "camera type " + std::to_string(d.type) + " is not a StratumCameraType");
+    c.type = static_cast<CameraType>(d.type);
+    if (c.type == CameraType::Orthographic)
+        c.ortho_scale = finite_positive(d.ortho_scale, "camera ortho_scale");
+    const float kMax = std::numeric_limits<float>::max();
+    c.aperture_radius = finite_in(d.aperture_radius, 0.0f, kMax, "camera aperture_radius");
+    if (c.aperture_radius > 0.0f) {
+        c.focus_distance = finite_positive(d.focus_distance, "camera focus_distance (with an aperture)");
+        check(d.aperture_blades == 0 || (d.aperture_blades >= 3 && d.aperture_blades <= 1000000),
+              "camera aperture_blades = " + std::to_string(d.aperture_blades) +
+                  " must be 0 (round) or in [3, 1000000]");
+        c.aperture_blades = d.aperture_blades;
+        c.aperture_rotation = finite_in(d.aperture_rotation, -1e6f, 1e6f, "camera aperture_rotation");
+    }
     return c;
 }
 

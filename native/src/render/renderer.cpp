@@ -106,9 +106,13 @@ void Renderer::run() {
                                 for (uint32_t i = begin; i < end; ++i) {
                                     const PixelSample ps{x, y, i};
                                     const Vec2 offset = filter.sample(sampler->get_2d(ps, kDimFilter));
+                                    // The lens pair is drawn only by a thin-lens camera, so
+                                    // pinhole renders do exactly the work they did before.
+                                    const Vec2 lens = camera.has_aperture() ? sampler->get_2d(ps, kDimLens)
+                                                                            : Vec2{0.5f, 0.5f};
                                     const CameraRay ray =
                                         camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
-                                                            static_cast<float>(y) + 0.5f + offset.y);
+                                                            static_cast<float>(y) + 0.5f + offset.y, lens);
                                     const Rgb L =
                                         integrator->radiance(*render_scene_, *sampler, ps, ray, rays);
                                     // A NaN or Inf sample would poison the pixel forever; it

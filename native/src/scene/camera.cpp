@@ -1,6 +1,24 @@
 #include "scene/camera.h"
 
+#include <algorithm>
+#include <cmath>
+
+#include "sampling/warps.h"
+
 namespace stratum {
+
+Vec2 sample_aperture(Vec2 u, int32_t blades, float rotation) {
+    if (blades < 3) return sample_uniform_disk_concentric(u);
+    const float n = static_cast<float>(blades);
+    const float k = std::min(std::floor(u.x * n), n - 1.0f);
+    const float u1 = std::min(u.x * n - k, 1.0f);
+    // Uniform point of the triangle (0, A, B): s = sqrt(u1) scales the edge AB, u.y slides along it.
+    const float half = kPi / n, centre = rotation + 2.0f * kPi * k / n;
+    const float s = std::sqrt(u1);
+    const float a0 = centre - half, a1 = centre + half;
+    const float w0 = s * (1.0f - u.y), w1 = s * u.y;
+    return {w0 * std::cos(a0) + w1 * std::cos(a1), w0 * std::sin(a0) + w1 * std::sin(a1)};
+}
 
 Camera::Camera(const CameraParams& params, uint32_t width, uint32_t height)
     : params_(params),
@@ -23,8 +41,10 @@ Camera::Camera(const CameraParams& params, uint32_t width, uint32_t height)
             sensor = params.sensor_height_mm;
             break;
     }
-    // Size of the fitted side of the view plane at unit distance; shift is in units of it.
-    const float fitted = sensor / params.lens_mm;
+    // Size of the fitted side of the view plane (at unit distance for perspective, in scene
+    // units for orthographic, where ortho_scale replaces sensor/lens); shift is in units of it.
+    const float fitted =
+        params.type == CameraType::Orthographic ? params.ortho_scale : sensor / params.lens_mm;
     const float half_w = fit_horizontal ? 0.5f * fitted : 0.5f * fitted * w / h;
     const float half_h = fit_horizontal ? 0.5f * fitted * h / w : 0.5f * fitted;
     const float dx = params.shift_x * fitted, dy = params.shift_y * fitted;
@@ -34,14 +54,25 @@ Camera::Camera(const CameraParams& params, uint32_t width, uint32_t height)
     top_ = half_h + dy;
 }
 
-CameraRay Camera::generate_ray(float fx, float fy) const {
+CameraRay Camera::generate_ray(float fx, float fy, Vec2 lens) const {
     const float px = left_ + (right_ - left_) * fx * inv_width_;
     const float py = bottom_ + (top_ - bottom_) * fy * inv_height_;
-    const Vec3 local(px, py, -1.0f);
-    const float inv_len = 1.0f / length(local);
-    // Blender clips by depth along the view axis; along the ray that is depth / cos = depth*|local|.
+    // Local space: the pinhole ray goes from `origin` to `target`, one unit deeper.
+    Vec3 origin(0.0f, 0.0f, 0.0f), target(px, py, -1.0f);
+    if (params_.type == CameraType::Orthographic) origin = Vec3(px, py, 0.0f);
+    float depth = 1.0f;
+    if (params_.aperture_radius > 0.0f) {
+        // Thin lens: aim at the pinhole ray's point at depth focus_distance from a lens point.
+        depth = params_.focus_distance;
+        target = origin + (target - origin) * depth;
+        const Vec2 a = sample_aperture(lens, params_.aperture_blades, params_.aperture_rotation);
+        origin = origin + Vec3(a.x * params_.aperture_radius, a.y * params_.aperture_radius, 0.0f);
+    }
+    const Vec3 local = target - origin;
+    // Blender clips by depth along the view axis; along the ray that is depth * |local| / local depth.
+    const float inv_len = depth / length(local);
     const Vec3 dir = normalize(params_.camera_to_world.vector(local));
-    return {params_.camera_to_world.translation(), dir, params_.clip_start / inv_len,
+    return {params_.camera_to_world.point(origin), dir, params_.clip_start / inv_len,
             params_.clip_end / inv_len};
 }
 

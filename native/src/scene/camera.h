@@ -1,13 +1,26 @@
-// Blender's perspective camera: lens, sensor size and fit, shift and clipping, computed as
-// Blender's BKE_camera_params_compute_viewplane does, so Stratum frames exactly what Cycles frames.
+// Blender's perspective and orthographic cameras: lens, ortho_scale, sensor size and fit,
+// shift, clipping and thin-lens depth of field, computed as Blender's
+// BKE_camera_params_compute_viewplane and Cycles' camera do, so Stratum frames exactly what
+// Cycles frames.
 //
 // | parameter         | meaning (Blender name) |
 // |-------------------|------------------------|
-// | lens_mm           | focal length (lens) |
+// | type              | type: PERSP or ORTHO |
+// | lens_mm           | focal length (lens), perspective |
+// | ortho_scale       | ortho_scale: extent of the fitted image side in scene units, orthographic |
 // | sensor_*_mm       | sensor_width / sensor_height |
-// | fit               | sensor_fit: AUTO uses sensor_width along the larger image side |
+// | fit               | sensor_fit: AUTO uses sensor_width (ortho_scale) along the larger image side |
 // | shift_x/y         | lens shift, in units of the fitted image side |
-// | clip_start/end    | ray extent along the view direction |
+// | clip_start/end    | ray extent along the view direction (by depth) |
+// | aperture_radius   | Cycles' aperture size: lens/(2 fstop) (ortho 1/(2 fstop)); 0 = pinhole |
+// | focus_distance    | dof.focus_distance: depth of the plane in focus |
+// | aperture_blades   | dof.aperture_blades: 0 = disk, n >= 3 = regular n-gon inscribed in the radius |
+// | aperture_rotation | dof.aperture_rotation (radians): turns the n-gon counter-clockwise |
+//
+// Thin lens (Cycles' model): the ray starts at a uniform point of the aperture (radius
+// aperture_radius, on the plane z = 0 of the pinhole, or of the film point when orthographic)
+// and passes through the point the pinhole ray reaches at depth focus_distance, so the plane
+// at that depth is sharp.
 #pragma once
 
 #include <cstdint>
@@ -17,14 +30,21 @@
 namespace stratum {
 
 enum class SensorFit : int32_t { Auto = 0, Horizontal = 1, Vertical = 2 };
+enum class CameraType : int32_t { Perspective = 0, Orthographic = 1 };
 
 struct CameraParams {
+    CameraType type = CameraType::Perspective;
     float lens_mm = 50.0f;
+    float ortho_scale = 6.0f;
     float sensor_width_mm = 36.0f;
     float sensor_height_mm = 24.0f;
     SensorFit fit = SensorFit::Auto;
     float shift_x = 0.0f, shift_y = 0.0f;
     float clip_start = 0.1f, clip_end = 1000.0f;
+    float aperture_radius = 0.0f;
+    float focus_distance = 0.0f;
+    int32_t aperture_blades = 0;
+    float aperture_rotation = 0.0f;
     Transform camera_to_world;
 };
 
@@ -34,13 +54,23 @@ struct CameraRay {
     float t_min, t_max;
 };
 
+// Maps u in [0,1)^2 uniformly onto the unit aperture: the unit disk (blades 0, concentric map)
+// or the regular n-gon inscribed in it (blades n >= 3) whose vertices lie at the angles
+// rotation + (2k+1) pi/n, as Cycles' regular_polygon_sample (an edge faces the angle
+// `rotation`): one of the n equal triangles (centre, vertex k-1, vertex k) is chosen by u.x,
+// u.x rescaled to [0,1) is reused, then a uniform point in the triangle.
+Vec2 sample_aperture(Vec2 u, int32_t blades, float rotation);
+
 class Camera {
 public:
     Camera(const CameraParams& params, uint32_t width, uint32_t height);
     // Ray through the film position (fx, fy) in pixels: (0,0) is the bottom-left corner of the
     // image, (width, height) the top-right, as Blender's render result rows run bottom to top.
-    CameraRay generate_ray(float fx, float fy) const;
-    // The view plane at unit distance in front of the camera: [left,right] x [bottom,top].
+    // `lens` in [0,1)^2 picks the point on the aperture (ignored for a pinhole).
+    CameraRay generate_ray(float fx, float fy, Vec2 lens = {0.5f, 0.5f}) const;
+    bool has_aperture() const { return params_.aperture_radius > 0.0f; }
+    // The view plane: at unit distance in front of the camera (perspective) or at the camera
+    // (orthographic, scene units): [left,right] x [bottom,top].
     float left() const { return left_; }
     float right() const { return right_; }
     float bottom() const { return bottom_; }
