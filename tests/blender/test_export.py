@@ -125,10 +125,10 @@ def test_missing_camera_is_a_clear_error(scene_builder: Any, recording_scene: An
         export_scene(b.depsgraph(), recording_scene)
 
 
-def test_orthographic_camera_is_rejected(scene_builder: Any, recording_scene: Any) -> None:
+def test_panoramic_camera_is_rejected(scene_builder: Any, recording_scene: Any) -> None:
     b = scene_builder()
-    b.camera().data.type = "ORTHO"
-    with pytest.raises(ExportError, match="ORTHO"):
+    b.camera().data.type = "PANO"
+    with pytest.raises(ExportError, match="PANO"):
         export_scene(b.depsgraph(), recording_scene)
 
 

@@ -20,9 +20,9 @@ def convert_camera(scene: Any, depsgraph: Any) -> native.Camera:
                           f"(type {cam_ob.type})")
     ob = cam_ob.evaluated_get(depsgraph) if depsgraph is not None else cam_ob
     cam = ob.data
-    if cam.type != "PERSP":
+    if cam.type not in native.CAMERA_TYPES:
         raise ExportError(f"Camera '{cam_ob.name}': camera type {cam.type} is not supported "
-                          "(only perspective, PERSP)")
+                          "(only perspective, PERSP, and orthographic, ORTHO)")
     m = matrix_to_array(ob.matrix_world).reshape(4, 4).astype(np.float64)
     # Drop object scale: a scaled camera must not change the projection.
     axes = m[:3, :3]
@@ -31,6 +31,9 @@ def convert_camera(scene: Any, depsgraph: Any) -> native.Camera:
         raise ExportError(f"Camera '{cam_ob.name}' has a degenerate transform")
     m[:3, :3] = axes / lengths
     return native.Camera(
+        type=native.CAMERA_TYPES[cam.type],
+        ortho_scale=float(cam.ortho_scale),
+        **_depth_of_field(cam, m, depsgraph),
         lens_mm=float(cam.lens),
         sensor_width_mm=float(cam.sensor_width),
         sensor_height_mm=float(cam.sensor_height),
@@ -41,3 +44,34 @@ def convert_camera(scene: Any, depsgraph: Any) -> native.Camera:
         clip_end=float(cam.clip_end),
         transform=np.ascontiguousarray(m.astype(np.float32).reshape(16)),
     )
+
+
+def _depth_of_field(cam: Any, camera_to_world: np.ndarray, depsgraph: Any) -> dict[str, Any]:
+    """Cycles' thin lens from camera.dof (blender/camera.cpp): aperture radius
+    lens[mm] * 1e-3 / (2 fstop) in scene units (orthographic: 1 / (2 fstop)), fstop clamped to
+    1e-5; focus distance dof.focus_distance, or with a focus object the distance from the
+    camera to the object's origin along the camera's view axis; blades below 3 mean round."""
+    dof = cam.dof
+    if not dof.use_dof:
+        return {}
+    fstop = max(float(dof.aperture_fstop), 1e-5)
+    if cam.type == "ORTHO":
+        radius = 1.0 / (2.0 * fstop)
+    else:
+        radius = float(cam.lens) * 1e-3 / (2.0 * fstop)
+    focus = float(dof.focus_distance)
+    target = dof.focus_object
+    if target is not None:
+        if depsgraph is not None:
+            target = target.evaluated_get(depsgraph)
+        target_pos = np.array(target.matrix_world.translation, dtype=np.float64)
+        view_axis = camera_to_world[:3, 2]  # unit: the transform's scale was removed
+        focus = abs(float(np.dot(view_axis, camera_to_world[:3, 3] - target_pos)))
+    blades = int(dof.aperture_blades)
+    return {
+        "aperture_radius": radius,
+        # The core needs a positive depth; Cycles' focus at 0 is degenerate anyway.
+        "focus_distance": max(focus, 1e-6),
+        "aperture_blades": blades if blades >= 3 else 0,
+        "aperture_rotation": float(dof.aperture_rotation),
+    }
