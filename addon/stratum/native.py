@@ -13,6 +13,7 @@ OIIO and TBB, and deep binding keeps our library bound to the copies it was link
 from __future__ import annotations
 
 import ctypes
+import math
 import os
 import sys
 import threading
@@ -64,6 +65,9 @@ LIGHT_POINT = 0
 LIGHT_SUN = 1
 LIGHT_AREA_RECTANGLE = 2
 LIGHT_AREA_ELLIPSE = 3
+LIGHT_SPOT = 4  # Cycles 4.x/5.x spot
+LIGHT_SPOT_V1 = 5  # Cycles 3.x spot: the 4.x falloff times cos(angle to the axis)
+
 CAMERA_PERSPECTIVE = 0
 CAMERA_ORTHOGRAPHIC = 1
 CAMERA_TYPES: dict[str, int] = {"PERSP": CAMERA_PERSPECTIVE, "ORTHO": CAMERA_ORTHOGRAPHIC}
@@ -135,6 +139,8 @@ class _LightDesc(ctypes.Structure):
         ("size_x", ctypes.c_float),
         ("size_y", ctypes.c_float),
         ("transform", _c_float16),
+        ("spot_size", ctypes.c_float),
+        ("spot_blend", ctypes.c_float),
     ]
 
 
@@ -197,6 +203,8 @@ class Light:
     size_x: float = 1.0
     size_y: float = 1.0
     transform: Sequence[float] | np.ndarray = tuple(np.eye(4, dtype=np.float32).ravel())
+    spot_size: float = math.pi  # full cone angle (spot lights)
+    spot_blend: float = 0.0
 
 
 @dataclass

@@ -98,6 +98,17 @@ def render_mean(scene):
     return [sum(px[c::4]) / n for c in range(3)]
 
 
+def render_row(scene):
+    """Green channel of the middle row (y = 16 of 32, x = 16..31: centre to the right edge)."""
+    path = os.path.join(tempfile.mkdtemp(), "probe.exr")
+    scene.render.filepath = path
+    bpy.ops.render.render(write_still=True)
+    img = bpy.data.images.load(path)
+    px = list(img.pixels)
+    w = img.size[0]
+    return [px[4 * (16 * w + x) + 1] for x in range(16, 32)]
+
+
 def run(case):
     scene = reset()
     if case.startswith("furnace_"):
@@ -122,6 +133,16 @@ def run(case):
         light(scene, "POINT", 1000.0, (0, 0, 2), size=0.0)
         plane(scene, material("diffuse"))
         camera(scene, 90.0, scale=0.05)
+    elif case.startswith("spot_plane"):
+        # Spot light 2 m above the plane, pointing down: 1000 W, cone 60 deg, blend 0.5, r = 0.
+        # The 2.5 m view covers the cone (edge at 2 tan 30 = 1.155 m); pixels are printed.
+        obj = light(scene, "SPOT", 1000.0, (0, 0, 2), size=0.0)
+        obj.data.spot_size = math.radians(60.0)
+        obj.data.spot_blend = 0.5
+        plane(scene, material("diffuse"))
+        camera(scene, 90.0, scale=2.56)
+        print("RESULT", case, "row", " ".join(f"{v:.4f}" for v in render_row(scene)))
+        return
     elif case == "sun_plane":
         light(scene, "SUN", 3.0, (0, 0, 2), size=0.0)
         plane(scene, material("diffuse"))

@@ -15,6 +15,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "render_helpers.h"
 
@@ -182,4 +184,138 @@ TEST(DirectLighting, SeveralLightsAdd) {
     const double irradiance =
         3.0 * std::sqrt(0.5) + 1.0 / std::sqrt(3.25) / (4.0 * kPiF * 3.25) + 4.0 * L * s * std::atan(s);
     expect_radiance(f.measure(0.5f, 1.0f), irradiance);
+}
+
+// Spot lights (docs/cycles_models.md §4 "Spot light"): intensity P/(4π) · S(cos θ) toward angle θ
+// from the axis, S the smoothstep over the blend band, times cos θ for the Cycles 3.x model. The
+// spot hangs at (x0, 0, h) pointing straight down, so the floor's origin sees it at
+// cos θ = h / d, d² = x0² + h², and E = I · S(cos θ) [· cos θ] · cos θ / d². The expected value
+// is that closed form averaged over the square footprint the camera sees (its curvature in the
+// blend band exceeds the 3w²/h² bound used for smooth falloffs, which stays as slack).
+namespace {
+
+constexpr double kSpotSize = 60.0 * kPiF / 180.0;  // half angle 30 degrees
+constexpr double kSpotBlend = 0.5;
+
+double spot_factor(double cos_theta, bool cosine_falloff) {
+    const double cos_half = std::cos(0.5 * kSpotSize), smooth = (1.0 - cos_half) * kSpotBlend;
+    if (cos_theta <= cos_half) return 0.0;
+    const double x = std::min(1.0, (cos_theta - cos_half) / smooth);
+    return x * x * (3.0 - 2.0 * x) * (cosine_falloff ? cos_theta : 1.0);
+}
+
+// Irradiance at the floor point (x, y, 0) from the spot of power P at (x0, 0, h).
+double spot_irradiance(double power, double x0, double h, double x, double y, bool cosine_falloff) {
+    const double d2 = (x - x0) * (x - x0) + y * y + h * h, c = h / std::sqrt(d2);
+    return power / (4.0 * kPiF) * spot_factor(c, cosine_falloff) * c / d2;
+}
+
+// Mean of spot_irradiance over the square footprint |x|, |y| <= w seen from height camera_z.
+double spot_footprint_irradiance(double power, double x0, double h, float camera_z, bool cosine_falloff) {
+    const double w = 0.5 * 36.0 / 5000.0 * camera_z;
+    const int n = 64;
+    double sum = 0.0;
+    for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j)
+            sum += spot_irradiance(power, x0, h, w * (2.0 * (i + 0.5) / n - 1.0),
+                                   w * (2.0 * (j + 0.5) / n - 1.0), cosine_falloff);
+    return sum / (n * n);
+}
+
+StratumLightDesc spot_at(int32_t type, float power, float x0, float h) {
+    StratumLightDesc spot = light_at(type, power, h);
+    spot.transform[3] = x0;
+    spot.spot_size = static_cast<float>(kSpotSize);
+    spot.spot_blend = static_cast<float>(kSpotBlend);
+    return spot;
+}
+
+}  // namespace
+
+TEST(DirectLighting, SpotLightCentreIsThePointLightIntensity) {
+    for (const int32_t type : {STRATUM_LIGHT_SPOT, STRATUM_LIGHT_SPOT_V1}) {
+        for (const float radius : {0.0f, 0.1f}) {
+            Floor f;
+            StratumLightDesc spot = spot_at(type, 100.0f, 0.0f, 2.0f);
+            spot.radius = radius;
+            ASSERT_EQ(stratum_scene_add_light(f.scene, &spot), STRATUM_OK) << stratum_last_error();
+            // On the axis S = 1 and cos θ = 1: E = P / (4π h²), in both models. With a radius the
+            // sphere subtends a cone of cos θm = √(1 − r²/h²) within which the 3.x model's cos θ
+            // varies: E gains ∫cos²θ dω / ∫cos θ dω = 2(1 − c³) / (3(1 − c²)).
+            const double c = std::sqrt(1.0 - radius * radius / 4.0);
+            const double v1 = radius > 0.0f ? 2.0 * (1.0 - c * c * c) / (3.0 * (1.0 - c * c)) : 1.0;
+            expect_radiance(f.measure(3.0f, 2.0f),
+                            100.0 / (4.0 * kPiF * 4.0) * (type == STRATUM_LIGHT_SPOT_V1 ? v1 : 1.0));
+        }
+    }
+}
+
+TEST(DirectLighting, SpotLightBlendBandFollowsTheSmoothstep) {
+    // θ = 25 degrees: inside the band [21.1, 30] degrees, S = 0.65.
+    const float h = 2.0f, x0 = h * std::tan(25.0f * kPiF / 180.0f);
+    ASSERT_GT(spot_factor(std::cos(25.0 * kPiF / 180.0), false), 0.3);
+    ASSERT_LT(spot_factor(std::cos(25.0 * kPiF / 180.0), false), 0.9);
+    for (const int32_t type : {STRATUM_LIGHT_SPOT, STRATUM_LIGHT_SPOT_V1}) {
+        Floor f;
+        const StratumLightDesc spot = spot_at(type, 100.0f, x0, h);
+        ASSERT_EQ(stratum_scene_add_light(f.scene, &spot), STRATUM_OK);
+        expect_radiance(f.measure(0.5f, h),
+                        spot_footprint_irradiance(100.0, x0, h, 0.5f, type == STRATUM_LIGHT_SPOT_V1));
+    }
+}
+
+TEST(DirectLighting, SpotLightIsDarkOutsideItsCone) {
+    // θ = 45 degrees > 30: nothing, with or without a radius (the sphere stays outside too).
+    for (const float radius : {0.0f, 0.1f}) {
+        Floor f;
+        StratumLightDesc spot = spot_at(STRATUM_LIGHT_SPOT, 100.0f, 2.0f, 2.0f);
+        spot.radius = radius;
+        ASSERT_EQ(stratum_scene_add_light(f.scene, &spot), STRATUM_OK);
+        EXPECT_EQ(f.measure(0.5f, 2.0f).mean, 0.0);
+    }
+    // A hard edge (blend 0): full intensity just inside, none just outside.
+    Floor inside, outside;
+    StratumLightDesc spot = spot_at(STRATUM_LIGHT_SPOT, 100.0f, 2.0f * std::tan(29.0f * kPiF / 180.0f), 2.0f);
+    spot.spot_blend = 0.0f;
+    ASSERT_EQ(stratum_scene_add_light(inside.scene, &spot), STRATUM_OK);
+    const double c = std::cos(29.0 * kPiF / 180.0);
+    expect_radiance(inside.measure(0.5f, 2.0f), 100.0 / (4.0 * kPiF) * c * c * c / 4.0);
+    spot.transform[3] = 2.0f * std::tan(31.0f * kPiF / 180.0f);
+    ASSERT_EQ(stratum_scene_add_light(outside.scene, &spot), STRATUM_OK);
+    EXPECT_EQ(outside.measure(0.5f, 2.0f).mean, 0.0);
+}
+
+TEST(DirectLighting, SpotLightValuesAreValidatedAndSaved) {
+    Floor f;
+    StratumLightDesc spot = spot_at(STRATUM_LIGHT_SPOT, 100.0f, 0.0f, 2.0f);
+    spot.spot_size = 0.0f;
+    EXPECT_EQ(stratum_scene_add_light(f.scene, &spot), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(stratum_last_error()).find("spot_size"), std::string::npos) << stratum_last_error();
+    spot.spot_size = 3.2f;
+    EXPECT_EQ(stratum_scene_add_light(f.scene, &spot), STRATUM_ERROR_INVALID_ARGUMENT);
+    spot.spot_size = kPiF;
+    spot.spot_blend = 1.5f;
+    EXPECT_EQ(stratum_scene_add_light(f.scene, &spot), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(stratum_last_error()).find("spot_blend"), std::string::npos)
+        << stratum_last_error();
+    // Other lights ignore the spot fields.
+    StratumLightDesc point = light_at(STRATUM_LIGHT_POINT, 1.0f, 2.0f);
+    point.spot_size = -1.0f;
+    EXPECT_EQ(stratum_scene_add_light(f.scene, &point), STRATUM_OK);
+
+    // A saved scene keeps the cone: it renders the same image after loading.
+    Floor g;
+    const StratumLightDesc blended = spot_at(STRATUM_LIGHT_SPOT_V1, 100.0f, 0.9f, 2.0f);
+    ASSERT_EQ(stratum_scene_add_light(g.scene, &blended), STRATUM_OK);
+    StratumCameraDesc camera = camera_at(0, 0, 3);
+    ASSERT_EQ(stratum_scene_set_camera(g.scene, &camera), STRATUM_OK);
+    const std::string path = ::testing::TempDir() + "stratum_spot_scene.json";
+    ASSERT_EQ(stratum_scene_save(g.scene, path.c_str()), STRATUM_OK) << stratum_last_error();
+    StratumScene* loaded = nullptr;
+    ASSERT_EQ(stratum_scene_load(path.c_str(), &loaded), STRATUM_OK) << stratum_last_error();
+    const auto a = render(g.scene, {{"width", 16}, {"height", 16}, {"samples", 4}, {"max_bounces", 0}});
+    const auto b = render(loaded, {{"width", 16}, {"height", 16}, {"samples", 4}, {"max_bounces", 0}});
+    EXPECT_EQ(a.rgba, b.rgba);
+    stratum_scene_destroy(loaded);
+    std::remove(path.c_str());
 }

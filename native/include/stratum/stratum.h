@@ -140,7 +140,10 @@ typedef enum StratumLightType {
     STRATUM_LIGHT_SUN = 1,            /* strength = irradiance W/m^2, angle = angular diameter (rad) */
     STRATUM_LIGHT_AREA_RECTANGLE = 2, /* power P in W, size_x * size_y (square: equal sizes);
                                          one-sided Lambertian, radiance P / (pi * area) */
-    STRATUM_LIGHT_AREA_ELLIPSE = 3    /* power in W, diameters size_x, size_y (disk: equal) */
+    STRATUM_LIGHT_AREA_ELLIPSE = 3,   /* power in W, diameters size_x, size_y (disk: equal) */
+    STRATUM_LIGHT_SPOT = 4,           /* point light (power, radius) limited to a cone down local -Z:
+                                         spot_size, spot_blend; Cycles 4.x/5.x falloff */
+    STRATUM_LIGHT_SPOT_V1 = 5         /* as SPOT, times cos(angle to the axis): Cycles 3.x */
 } StratumLightType;
 
 typedef struct StratumLightDesc {
@@ -151,6 +154,9 @@ typedef struct StratumLightDesc {
     float angle;          /* sun: angular diameter in radians, [0, pi] */
     float size_x, size_y; /* area: extent along local x and y, > 0 */
     float transform[16];  /* light-to-world, row-major; lights point down local -Z */
+    /* Appended fields (spot lights only; ignored otherwise). */
+    float spot_size;  /* full cone angle in radians, (0, pi] */
+    float spot_blend; /* [0, 1]: smoothstep falloff over this fraction of (1 - cos(spot_size/2)) */
 } StratumLightDesc;
 
 STRATUM_API StratumStatus stratum_scene_add_light(StratumScene* scene, const StratumLightDesc* light);

@@ -69,6 +69,7 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                {"radius", l.radius},
                                {"angle", l.angle},
                                {"size", {l.size_x, l.size_y}},
+                               {"spot", {l.spot_size, l.spot_blend}},
                                {"transform", matrix(l.light_to_world)}});
     }
     if (scene.camera) {
@@ -167,6 +168,10 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.angle = l.at("angle").get<float>();
             d.size_x = l.at("size").at(0).get<float>();
             d.size_y = l.at("size").at(1).get<float>();
+            // Files written before spot lights have no "spot": the defaults of LightParams.
+            const json spot = l.value("spot", json::array({kPi, 0.0f}));
+            d.spot_size = spot.at(0).get<float>();
+            d.spot_blend = spot.at(1).get<float>();
             read_floats(l.at("transform"), d.transform);
             if ((status = stratum_scene_add_light(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);

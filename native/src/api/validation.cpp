@@ -136,7 +136,7 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
 }
 
 LightParams validate_light(const StratumLightDesc& d) {
-    check(d.type >= STRATUM_LIGHT_POINT && d.type <= STRATUM_LIGHT_AREA_ELLIPSE,
+    check(d.type >= STRATUM_LIGHT_POINT && d.type <= STRATUM_LIGHT_SPOT_V1,
           "light type " + std::to_string(d.type) + " is not a StratumLightType");
     LightParams l;
     l.type = static_cast<LightType>(d.type);
@@ -147,6 +147,12 @@ LightParams validate_light(const StratumLightDesc& d) {
     if (l.type == LightType::AreaRectangle || l.type == LightType::AreaEllipse) {
         l.size_x = finite_positive(d.size_x, "area light size_x");
         l.size_y = finite_positive(d.size_y, "area light size_y");
+    }
+    if (l.type == LightType::Spot || l.type == LightType::SpotV1) {
+        check(std::isfinite(d.spot_size) && d.spot_size > 0.0f && d.spot_size <= kPi,
+              "spot light spot_size = " + fmt(d.spot_size) + " must be in (0, " + fmt(kPi) + "]");
+        l.spot_size = d.spot_size;
+        l.spot_blend = finite_in(d.spot_blend, 0.0f, 1.0f, "spot light spot_blend");
     }
     l.light_to_world = validate_transform(d.transform, "light transform");
     return l;

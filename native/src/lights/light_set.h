@@ -16,13 +16,14 @@
 #include "lights/area_light.h"
 #include "lights/emissive_triangle.h"
 #include "lights/point_light.h"
+#include "lights/spot_light.h"
 #include "lights/sun_light.h"
 
 namespace stratum {
 
 class LightSet {
 public:
-    using Light = std::variant<PointLight, SunLight, AreaLight, EmissiveTriangle>;
+    using Light = std::variant<PointLight, SunLight, AreaLight, EmissiveTriangle, SpotLight>;
 
     // `object` groups lights that belong to one scene object (the triangles of one emissive
     // mesh); every Blender lamp is an object of its own. Returns the index of the added light.

@@ -58,6 +58,12 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
                     AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse, power),
                     object);
                 break;
+            case LightType::Spot:
+            case LightType::SpotV1:
+                lights_.add(SpotLight(l.light_to_world, power, l.radius, l.spot_size, l.spot_blend,
+                                      l.type == LightType::SpotV1),
+                            object);
+                break;
         }
     }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.

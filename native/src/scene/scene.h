@@ -26,7 +26,14 @@ struct Instance {
     Transform object_to_world;
 };
 
-enum class LightType : int32_t { Point = 0, Sun = 1, AreaRectangle = 2, AreaEllipse = 3 };
+enum class LightType : int32_t {
+    Point = 0,
+    Sun = 1,
+    AreaRectangle = 2,
+    AreaEllipse = 3,
+    Spot = 4,
+    SpotV1 = 5
+};
 
 struct LightParams {
     LightType type = LightType::Point;
@@ -35,6 +42,7 @@ struct LightParams {
     float radius = 0.0f;
     float angle = 0.0f;
     float size_x = 1.0f, size_y = 1.0f;
+    float spot_size = kPi, spot_blend = 0.0f;
     Transform light_to_world;
 };
 
