@@ -146,8 +146,8 @@ def _configure_stratum(scene: bpy.types.Scene, seed: int) -> None:
     s.threads = 0
 
 
-def _render_exr(scene: bpy.types.Scene, path: Path) -> tuple[np.ndarray, float]:
-    """Renders the scene to a linear EXR and returns (RES x RES x 3 float64, seconds)."""
+def _render_exr(scene: bpy.types.Scene, path: Path, res: int = RES) -> tuple[np.ndarray, float]:
+    """Renders the scene to a linear EXR and returns (res x res x 3 float64, seconds)."""
     path.parent.mkdir(parents=True, exist_ok=True)
     if path.exists():
         path.unlink()
@@ -156,14 +156,14 @@ def _render_exr(scene: bpy.types.Scene, path: Path) -> tuple[np.ndarray, float]:
     bpy.ops.render.render(write_still=True)
     seconds = time.perf_counter() - t0
     assert path.is_file(), f"render did not write {path}"
-    return _load_exr(path), seconds
+    return _load_exr(path, res), seconds
 
 
-def _load_exr(path: Path) -> np.ndarray:
+def _load_exr(path: Path, res: int = RES) -> np.ndarray:
     image = bpy.data.images.load(str(path), check_existing=False)
     try:
         w, h = image.size
-        assert (w, h) == (RES, RES), f"{path}: size {w}x{h}, expected {RES}x{RES}"
+        assert (w, h) == (res, res), f"{path}: size {w}x{h}, expected {res}x{res}"
         buf = np.empty(w * h * image.channels, dtype=np.float32)
         image.pixels.foreach_get(buf)
         rgba = buf.reshape(h, w, image.channels)
@@ -175,9 +175,12 @@ def _load_exr(path: Path) -> np.ndarray:
 class Renders:
     """Two seeds of one renderer: their mean (the compared image) and noise estimates."""
 
-    def __init__(self, name: str, images: list[np.ndarray], seconds: list[float]) -> None:
+    def __init__(self, name: str, images: list[np.ndarray], seconds: list[float],
+                 block: int = BLOCK) -> None:
         a, b = images
         self.name = name
+        self.block = block  # side of the compared blocks, in pixels
+        self.res = a.shape[0]
         self.seconds = seconds
         self.mean = (a + b) / 2.0
         half = (a - b) / 2.0
@@ -186,30 +189,30 @@ class Renders:
         self.inflation = 1.0  # >1 when pixels are correlated (see module docstring)
 
     def block_mean(self) -> np.ndarray:
-        return _blocks(self.mean).mean(axis=(1, 3))
+        return _blocks(self.mean, self.block).mean(axis=(1, 3))
 
     def block_var(self) -> np.ndarray:
-        n = BLOCK * BLOCK
-        return _blocks(self.pixel_var).sum(axis=(1, 3)) / n**2 * self.inflation**2
+        n = self.block * self.block
+        return _blocks(self.pixel_var, self.block).sum(axis=(1, 3)) / n**2 * self.inflation**2
 
     def image_var(self) -> np.ndarray:
-        return self.pixel_var.sum(axis=(0, 1)) / (RES * RES) ** 2 * self.inflation**2
+        return self.pixel_var.sum(axis=(0, 1)) / (self.res * self.res) ** 2 * self.inflation**2
 
     def calibrate(self) -> float:
         """sqrt(mean z^2) of the block means of the half-difference image (1 if pixels are
         independent); sigmas are inflated by it when it is above 1."""
-        n = BLOCK * BLOCK
-        hb = _blocks(self.half_diff).mean(axis=(1, 3))
-        vb = _blocks(self.pixel_var).sum(axis=(1, 3)) / n**2
+        n = self.block * self.block
+        hb = _blocks(self.half_diff, self.block).mean(axis=(1, 3))
+        vb = _blocks(self.pixel_var, self.block).sum(axis=(1, 3)) / n**2
         ok = vb > 0
         ratio = float(np.sqrt(np.mean(hb[ok] ** 2 / vb[ok]))) if ok.any() else 1.0
         self.inflation = max(1.0, ratio)
         return ratio
 
 
-def _blocks(img: np.ndarray) -> np.ndarray:
-    nb = RES // BLOCK
-    return img.reshape(nb, BLOCK, nb, BLOCK, img.shape[-1])
+def _blocks(img: np.ndarray, block: int = BLOCK) -> np.ndarray:
+    nb = img.shape[0] // block
+    return img.reshape(nb, block, nb, block, img.shape[-1])
 
 
 def _render_two_seeds(name: str, configure) -> Renders:

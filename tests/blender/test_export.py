@@ -211,7 +211,7 @@ def test_lights(scene_builder: Any, recording_scene: Any) -> None:
     b.camera()
     specs = [("POINT", {}), ("SUN", {"angle": 0.1}), ("AREA", {"shape": "RECTANGLE",
              "size": 2.0, "size_y": 0.5}), ("AREA", {"shape": "DISK", "size": 1.5}),
-             ("SPOT", {})]
+             ("SPOT", {"spot_size": 0.8, "spot_blend": 0.3, "shadow_soft_size": 0.05})]
     for i, (kind, attrs) in enumerate(specs):
         light = bpy.data.lights.new(f"L{i}", kind)
         light.energy = 100.0 + i
@@ -234,5 +234,9 @@ def test_lights(scene_builder: Any, recording_scene: Any) -> None:
     assert (by_strength[102].size_x, by_strength[102].size_y) == pytest.approx((2.0, 0.5))
     assert by_strength[103].type == native.LIGHT_AREA_ELLIPSE
     assert (by_strength[103].size_x, by_strength[103].size_y) == pytest.approx((1.5, 1.5))
-    assert by_strength[104].type == native.LIGHT_POINT
-    assert any("spot cone ignored" in w for w in summary.warnings)
+    # Cycles 3.x's spot falloff has an extra cos θ: the native SPOT_V1 model.
+    spot_type = native.LIGHT_SPOT_V1 if bpy.app.version < (4, 0, 0) else native.LIGHT_SPOT
+    assert by_strength[104].type == spot_type
+    assert (by_strength[104].spot_size, by_strength[104].spot_blend) == pytest.approx((0.8, 0.3))
+    assert by_strength[104].radius == pytest.approx(0.05)
+    assert not any("L4" in w for w in summary.warnings)

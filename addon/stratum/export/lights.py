@@ -1,7 +1,8 @@
 """Blender lights -> native lights.
 
 Units follow what Cycles renders in the running Blender (docs/cycles_models.md, measured):
-point power P has intensity P/(4π), sun strength is irradiance, and an area light of power P
+point power P has intensity P/(4π) (a spot's too, on its axis; its cone falloff gains a factor
+cos θ in Cycles 3.x), sun strength is irradiance, and an area light of power P
 and area A has radiance P/(πA) in Cycles 4.x/5.x but P/(4A) in Cycles 3.x. The native library
 implements the physical P/(πA), so a 3.x area light's power is scaled by π/4.
 """
@@ -23,11 +24,15 @@ def convert_light(ob: Any, matrix_world: Any, summary: ExportSummary) -> native.
     transform = matrix_to_array(matrix_world)
     kind = light.type
     power = float(light.energy) * _exposure_scale(light)
-    if kind in {"POINT", "SPOT"}:
-        if kind == "SPOT":
-            summary.warn(f"Light '{ob.name}': spot cone ignored (rendered as a point light)")
+    if kind == "POINT":
         return native.Light(type=native.LIGHT_POINT, color=color, strength=power,
                             radius=max(float(light.shadow_soft_size), 0.0), transform=transform)
+    if kind == "SPOT":
+        # Cycles 3.x multiplies the spot falloff by cos(angle to the axis), 4.x+ does not.
+        spot_type = native.LIGHT_SPOT_V1 if bpy.app.version < (4, 0, 0) else native.LIGHT_SPOT
+        return native.Light(type=spot_type, color=color, strength=power,
+                            radius=max(float(light.shadow_soft_size), 0.0), transform=transform,
+                            spot_size=float(light.spot_size), spot_blend=float(light.spot_blend))
     if kind == "SUN":
         return native.Light(type=native.LIGHT_SUN, color=color, strength=power,
                             angle=float(light.angle), transform=transform)
