@@ -193,6 +193,16 @@ typedef struct StratumCameraDesc {
 STRATUM_API StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraDesc* camera);
 /* Constant background radiance (Blender world colour x strength). */
 STRATUM_API StratumStatus stratum_scene_set_background(StratumScene* scene, const float rgb[3]);
+/* Environment image (Blender World: Background <- Environment Texture, equirectangular): it
+ * replaces the constant background and is importance-sampled as a light. rgb: width*height*3
+ * linear RGB floats (copied), rows top (+Z) to bottom, each >= 0 and finite; the radiance is
+ * rgb * strength (strength >= 0). Cycles' mapping: a world direction d is looked up at
+ * e = rotation * d (rotation: row-major 3x3 world-to-environment rotation, NULL = identity) with
+ * u = 0.5 - atan2(e.y, e.x)/(2 pi) (left to right), v = 1 - acos(e.z)/pi (bottom to top);
+ * nearest texel. Calling it again replaces the image. */
+STRATUM_API StratumStatus stratum_scene_set_environment(StratumScene* scene, const float* rgb, uint32_t width,
+                                                        uint32_t height, float strength,
+                                                        const float rotation[9]);
 
 /* Writes / reads a captured scene (JSON) for the native CLI and for bug reports. */
 STRATUM_API StratumStatus stratum_scene_save(const StratumScene* scene, const char* path);

@@ -1,7 +1,9 @@
 #include "api/scene_file.h"
 
+#include <array>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 namespace stratum {
 
@@ -88,6 +90,14 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                        {"aperture_rotation", c.aperture_rotation}};
     }
     j["background"] = rgb(scene.background);
+    if (scene.environment) {
+        const Environment& e = *scene.environment;
+        j["environment"] = {{"width", e.width},
+                            {"height", e.height},
+                            {"strength", e.strength},
+                            {"rotation", e.rotation},
+                            {"rgb", e.rgb}};
+    }
     std::ofstream out(path, std::ios::binary);
     if (!out) return std::string("cannot open '") + path + "' for writing";
     out << j.dump();
@@ -202,6 +212,21 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
         read_floats(j.at("background"), bg);
         if ((status = stratum_scene_set_background(scene, bg)) != STRATUM_OK)
             return entry_point_failed(status);
+        if (j.contains("environment")) {
+            const json& e = j.at("environment");
+            const auto rgb = e.at("rgb").get<std::vector<float>>();
+            const auto rotation = e.at("rotation").get<std::array<float, 9>>();
+            const auto width = e.at("width").get<uint32_t>(), height = e.at("height").get<uint32_t>();
+            if (rgb.size() != static_cast<size_t>(width) * height * 3) {
+                *error = "malformed scene: environment rgb has " + std::to_string(rgb.size()) +
+                         " values, expected " + std::to_string(static_cast<size_t>(width) * height * 3);
+                return STRATUM_ERROR_IO;
+            }
+            if ((status = stratum_scene_set_environment(scene, rgb.data(), width, height,
+                                                        e.at("strength").get<float>(), rotation.data())) !=
+                STRATUM_OK)
+                return entry_point_failed(status);
+        }
         return STRATUM_OK;
     } catch (const std::exception& e) {
         *error = std::string("malformed scene: ") + e.what();

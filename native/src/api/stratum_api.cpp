@@ -166,6 +166,15 @@ StratumStatus stratum_scene_set_background(StratumScene* scene, const float rgb[
     });
 }
 
+StratumStatus stratum_scene_set_environment(StratumScene* scene, const float* rgb, uint32_t width,
+                                            uint32_t height, float strength, const float rotation[9]) {
+    return guarded("stratum_scene_set_environment", [&] {
+        require(scene != nullptr, "scene is NULL");
+        scene->scene.environment = stratum::validate_environment(rgb, width, height, strength, rotation);
+        return STRATUM_OK;
+    });
+}
+
 StratumStatus stratum_scene_save(const StratumScene* scene, const char* path) {
     return guarded("stratum_scene_save", [&] {
         require(scene && path, "scene or path is NULL");

@@ -47,6 +47,49 @@ Rgb validate_radiance(const float* rgb, const char* what) {
     return rgb_in(rgb, 0.0f, std::numeric_limits<float>::max(), what);
 }
 
+Environment validate_environment(const float* rgb, uint32_t width, uint32_t height, float strength,
+                                 const float* rotation) {
+    check(rgb != nullptr, "environment rgb is NULL");
+    check(width > 0 && height > 0, "environment size " + std::to_string(width) + " x " +
+                                       std::to_string(height) + " must be at least 1 x 1");
+    check(static_cast<uint64_t>(width) * height <= (uint64_t(1) << 28),
+          "environment size " + std::to_string(width) + " x " + std::to_string(height) + " is too large");
+    check(std::isfinite(strength) && strength >= 0.0f,
+          "environment strength = " + fmt(strength) + " must be finite and >= 0");
+    Environment e;
+    e.width = width;
+    e.height = height;
+    e.strength = strength;
+    const size_t n = static_cast<size_t>(width) * height * 3;
+    for (size_t k = 0; k < n; ++k) {
+        if (!(std::isfinite(rgb[k]) && rgb[k] >= 0.0f)) {
+            const size_t texel = k / 3;
+            throw ValidationError("environment pixel (" + std::to_string(texel % width) + ", " +
+                                  std::to_string(texel / width) + ") channel " + std::to_string(k % 3) +
+                                  " = " + fmt(rgb[k]) + " must be finite and >= 0");
+        }
+    }
+    e.rgb.assign(rgb, rgb + n);
+    if (rotation) {
+        for (int i = 0; i < 9; ++i) {
+            check(std::isfinite(rotation[i]), "environment rotation element " + std::to_string(i) + " = " +
+                                                  fmt(rotation[i]) + " is not finite");
+            e.rotation[static_cast<size_t>(i)] = rotation[i];
+        }
+        // R Rᵀ = I within float rounding: a rotation, not a scale or shear.
+        for (int a = 0; a < 3; ++a) {
+            for (int b = 0; b < 3; ++b) {
+                float d = 0.0f;
+                for (int k = 0; k < 3; ++k) d += rotation[3 * a + k] * rotation[3 * b + k];
+                check(std::abs(d - (a == b ? 1.0f : 0.0f)) < 1e-4f,
+                      "environment rotation is not a rotation: row " + std::to_string(a) + " · row " +
+                          std::to_string(b) + " = " + fmt(d));
+            }
+        }
+    }
+    return e;
+}
+
 Transform validate_transform(const float* m, const char* what) {
     for (int i = 0; i < 16; ++i) {
         if (!std::isfinite(m[i])) {

@@ -21,5 +21,7 @@ LightParams validate_light(const StratumLightDesc& desc);
 CameraParams validate_camera(const StratumCameraDesc& desc);
 Transform validate_transform(const float* m, const char* what);
 Rgb validate_radiance(const float* rgb, const char* what);
+Environment validate_environment(const float* rgb, uint32_t width, uint32_t height, float strength,
+                                 const float* rotation);
 
 }  // namespace stratum

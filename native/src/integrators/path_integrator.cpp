@@ -30,7 +30,12 @@ Rgb PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, c
         SurfaceHit hit;
         ++rays;
         if (!scene.intersect(origin, dir, t_min, t_max, &hit)) {
-            L += beta * scene.background();
+            // The environment is also sampled by NEE: MIS against it, as for emissive triangles.
+            float w = 1.0f;
+            if (scatter_pdf > 0.0f && lights.environment()) {
+                w = power_heuristic(scatter_pdf, lights.environment_pdf(dir));
+            }
+            L += beta * scene.background(dir) * w;
             break;
         }
         const Material& material = *hit.material;

@@ -6,6 +6,7 @@
 namespace stratum {
 
 uint32_t LightSet::add(Light light, uint32_t object) {
+    if (std::holds_alternative<EnvironmentLight>(light)) environment_ = lights_.size();
     lights_.push_back(std::move(light));
     object_.push_back(object);
     return static_cast<uint32_t>(lights_.size() - 1);
@@ -17,9 +18,12 @@ void LightSet::finalize(float scene_radius) {
         power[i] = std::visit(
             [&](const auto& l) -> double {
                 using T = std::decay_t<decltype(l)>;
-                // The sun's flux through the scene's cross-section.
+                // The sun's flux through the scene's cross-section; the environment's likewise,
+                // from its average radiance (π·R²·L̄, the flux of a uniform sky through a disk).
                 if constexpr (std::is_same_v<T, SunLight>) {
                     return l.irradiance().average() * kPi * scene_radius * scene_radius;
+                } else if constexpr (std::is_same_v<T, EnvironmentLight>) {
+                    return l.average().average() * kPi * scene_radius * scene_radius;
                 } else {
                     return l.power();
                 }
@@ -61,7 +65,7 @@ bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const {
     const bool ok = std::visit(
         [&](const auto& l) {
             using T = std::decay_t<decltype(l)>;
-            if constexpr (std::is_same_v<T, SunLight>) {
+            if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, EnvironmentLight>) {
                 return l.sample(u, out);
             } else {
                 return l.sample(p, u, out);
@@ -76,6 +80,15 @@ bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const {
 float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const {
     const auto& tri = std::get<EmissiveTriangle>(lights_[index]);
     return probability_[index] * tri.pdf(p, hit);
+}
+
+const EnvironmentLight* LightSet::environment() const {
+    return environment_ == SIZE_MAX ? nullptr : &std::get<EnvironmentLight>(lights_[environment_]);
+}
+
+float LightSet::environment_pdf(Vec3 wi) const {
+    if (environment_ == SIZE_MAX) return 0.0f;
+    return probability_[environment_] * std::get<EnvironmentLight>(lights_[environment_]).pdf(wi);
 }
 
 }  // namespace stratum

@@ -15,6 +15,7 @@
 
 #include "lights/area_light.h"
 #include "lights/emissive_triangle.h"
+#include "lights/environment_light.h"
 #include "lights/point_light.h"
 #include "lights/spot_light.h"
 #include "lights/sun_light.h"
@@ -23,7 +24,8 @@ namespace stratum {
 
 class LightSet {
 public:
-    using Light = std::variant<PointLight, SunLight, AreaLight, EmissiveTriangle, SpotLight>;
+    using Light =
+        std::variant<PointLight, SunLight, AreaLight, EmissiveTriangle, SpotLight, EnvironmentLight>;
 
     // `object` groups lights that belong to one scene object (the triangles of one emissive
     // mesh); every Blender lamp is an object of its own. Returns the index of the added light.
@@ -37,12 +39,16 @@ public:
     bool sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const;
     // Pdf (choice × solid angle) with which sample() reaches `hit` on emissive triangle `index`.
     float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const;
+    // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
+    const EnvironmentLight* environment() const;
+    float environment_pdf(Vec3 wi) const;
 
 private:
     std::vector<Light> lights_;
     std::vector<uint32_t> object_;  // object of each light
     std::vector<float> cdf_;        // cdf_[i] = P(choice < i+1), last = 1
     std::vector<float> probability_;
+    size_t environment_ = SIZE_MAX;  // index of the environment light, if any
 };
 
 }  // namespace stratum

@@ -66,6 +66,12 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
                 break;
         }
     }
+    if (scene.environment) {
+        const Environment& e = *scene.environment;
+        std::vector<float> rgb(e.rgb.size());
+        for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = e.rgb[i] * e.strength;
+        lights_.add(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation), light_object++);
+    }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.
     lights_.finalize(lo.x <= hi.x ? std::max(1.0f, 0.5f * length(hi - lo)) : 1.0f);
 

@@ -34,7 +34,12 @@ public:
         return embree_.occluded(origin, direction, t_min, t_max);
     }
     const LightSet& lights() const { return lights_; }
-    Rgb background() const { return background_; }
+    // Radiance of a ray that leaves the scene in direction `dir`: the environment image if
+    // there is one, else the constant background.
+    Rgb background(Vec3 dir) const {
+        const EnvironmentLight* env = lights_.environment();
+        return env ? env->radiance(dir) : background_;
+    }
 
 private:
     struct InstanceGeometry {

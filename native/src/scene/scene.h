@@ -46,6 +46,14 @@ struct LightParams {
     Transform light_to_world;
 };
 
+// An equirectangular environment image (see lights/environment_light.h for the mapping).
+struct Environment {
+    std::vector<float> rgb;  // width*height*3 linear RGB, rows top to bottom (not × strength)
+    uint32_t width = 0, height = 0;
+    float strength = 1.0f;
+    std::array<float, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // world to environment, row-major
+};
+
 struct Scene {
     std::vector<Material> materials;
     std::vector<Mesh> meshes;
@@ -53,6 +61,7 @@ struct Scene {
     std::vector<LightParams> lights;
     std::optional<CameraParams> camera;
     Rgb background{0.0f};
+    std::optional<Environment> environment;  // replaces the background when present
 };
 
 }  // namespace stratum

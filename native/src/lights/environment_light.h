@@ -1,0 +1,63 @@
+// Blender World -> Background <- Environment Texture (equirectangular), importance-sampled.
+//
+// | parameter | meaning |
+// |-----------|---------|
+// | image     | width x height linear RGB radiance, rows top (up, +Z) to bottom, × strength |
+// | rotation  | world-to-environment rotation R: the image is looked up at R·dir |
+//
+// Mapping (Cycles' direction_to_equirectangular, kernel/geom: range (−2π, π, −π, π)):
+//     u = 0.5 − atan2(d.y, d.x)/(2π),   v = 1 − acos(d.z)/π   (v = 1 straight up)
+// so the image centre column faces +X and its left edge −X, going through −Y at u = 0.25.
+// Texel (i, j) (column i, row j from the top) covers u ∈ [i/W, (i+1)/W), v ∈ (1 − (j+1)/H, 1 − j/H].
+// Lookup is nearest-texel (Cycles' "Closest" interpolation; Cycles' default "Linear" differs
+// only within a texel).
+//
+// Sampling (textbook §4.7.3, pbrt's piecewise-constant 2D distribution): texel (i, j) is chosen
+// with probability ∝ luminance(i, j) · sin θ_j (θ_j at the row centre), then (u, v) uniformly in
+// it, so p(u, v) is piecewise constant with ∫ p du dv = 1; since dω = 2π² sin θ du dv, the
+// solid-angle pdf is p(u, v) / (2π² sin θ). An all-black image is sampled by sin θ alone.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "core/math.h"
+#include "lights/light_sample.h"
+
+namespace stratum {
+
+class EnvironmentLight {
+public:
+    // rgb: width*height*3 floats, already multiplied by the strength; rotation: row-major 3x3.
+    EnvironmentLight(std::vector<float> rgb, uint32_t width, uint32_t height,
+                     const std::array<float, 9>& rotation);
+
+    Rgb radiance(Vec3 world_dir) const;
+    bool sample(Vec2 u, LightSample* out) const;
+    // Solid-angle pdf with which sample() returns world_dir.
+    float pdf(Vec3 world_dir) const;
+    // Radiance averaged over the sphere (solid-angle weighted): the power estimate's input.
+    Rgb average() const { return average_; }
+
+private:
+    struct Texel {
+        uint32_t i, j;
+        float u, v, sin_theta;
+    };
+    Texel texel(Vec3 world_dir) const;
+    Rgb at(uint32_t i, uint32_t j) const {
+        const size_t k = 3 * (static_cast<size_t>(j) * width_ + i);
+        return {rgb_[k], rgb_[k + 1], rgb_[k + 2]};
+    }
+
+    std::vector<float> rgb_;
+    uint32_t width_, height_;
+    std::array<float, 9> rotation_;  // world to environment
+    std::vector<float> row_cdf_;     // height_ + 1 entries, row_cdf_[0] = 0, last = 1
+    std::vector<float> column_cdf_;  // per row, width_ + 1 entries
+    std::vector<float> density_;     // p(u, v) of each texel
+    Rgb average_;
+};
+
+}  // namespace stratum
