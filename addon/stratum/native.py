@@ -291,6 +291,8 @@ def _declare(lib: ctypes.CDLL) -> None:
         "stratum_scene_add_light": (c_int32, [p_void, ctypes.POINTER(_LightDesc)]),
         "stratum_scene_set_camera": (c_int32, [p_void, ctypes.POINTER(_CameraDesc)]),
         "stratum_scene_set_background": (c_int32, [p_void, p_float]),
+        "stratum_scene_set_environment": (c_int32, [p_void, p_float, c_uint32, c_uint32,
+                                                    ctypes.c_float, p_float]),
         "stratum_scene_save": (c_int32, [p_void, p_char]),
         "stratum_scene_load": (c_int32, [p_char, pp_void]),
         "stratum_scene_measure_ray_throughput": (c_int32, [p_void, c_uint32, c_uint32, c_uint32,
@@ -702,6 +704,23 @@ class Scene(_Handle):
             raise ValueError("background: expected 3 floats (linear RGB)")
         _check(self._lib, self._lib.stratum_scene_set_background(self.handle, _float_ptr(c)),
                "stratum_scene_set_background")
+
+    def set_environment(self, rgb: np.ndarray, strength: float = 1.0,
+                        rotation: Sequence[float] | np.ndarray | None = None) -> None:
+        """Equirectangular environment image: rgb is (height, width, 3) linear RGB, rows top
+        (+Z) to bottom, as stratum_scene_set_environment documents; rotation is the 3x3
+        world-to-environment rotation (None = identity)."""
+        img = np.ascontiguousarray(np.asarray(rgb, dtype=np.float32))
+        if img.ndim != 3 or img.shape[2] != 3:
+            raise ValueError(f"environment: expected a (height, width, 3) array, got {img.shape}")
+        rot = None
+        if rotation is not None:
+            rot = np.ascontiguousarray(np.asarray(rotation, dtype=np.float32).reshape(-1))
+            if rot.size != 9:
+                raise ValueError("environment rotation: expected 9 floats (3x3 row-major)")
+        _check(self._lib, self._lib.stratum_scene_set_environment(
+            self.handle, _float_ptr(img), img.shape[1], img.shape[0], float(strength),
+            None if rot is None else _float_ptr(rot)), "stratum_scene_set_environment")
 
 
 # ---- Renderer --------------------------------------------------------------------------------

@@ -56,6 +56,7 @@ class RecordingScene:
         self.lights: list[Any] = []
         self.camera: Any = None
         self.background: Any = None
+        self.environment: Any = None
 
     def add_material(self, material: Any) -> int:
         self.materials.append(material)
@@ -83,6 +84,9 @@ class RecordingScene:
 
     def set_background(self, rgb: Any) -> None:
         self.background = tuple(rgb)
+
+    def set_environment(self, rgb: Any, strength: float = 1.0, rotation: Any = None) -> None:
+        self.environment = {"rgb": np.array(rgb), "strength": strength, "rotation": rotation}
 
 
 CUBE_VERTS = [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),

@@ -306,3 +306,26 @@ def ctypes_size(native: Any) -> int:
     import ctypes
 
     return ctypes.sizeof(native._CameraDesc)
+
+
+def test_set_environment_validates_and_renders(native: Any, tiny_scene: Any) -> None:
+    img = np.full((4, 8, 3), 0.5, dtype=np.float32)
+    with pytest.raises(ValueError, match="height, width, 3"):
+        tiny_scene.set_environment(img[..., :2])
+    with pytest.raises(ValueError, match="9 floats"):
+        tiny_scene.set_environment(img, rotation=np.eye(2))
+    bad = img.copy()
+    bad[1, 2, 0] = -1.0
+    with pytest.raises(native.StratumError, match=r"environment pixel \(2, 1\) channel 0 = -1"):
+        tiny_scene.set_environment(bad)
+    with pytest.raises(native.StratumError, match="environment strength = -2"):
+        tiny_scene.set_environment(img, strength=-2.0)
+    # A constant image x strength replaces the 0.1 background: corner pixels see it.
+    tiny_scene.set_environment(img, strength=0.4, rotation=np.eye(3))
+    with native.Renderer(tiny_scene, width=16, height=12, samples=1, max_bounces=0) as renderer:
+        renderer.start()
+        deadline = time.monotonic() + 60
+        while not renderer.wait(100):
+            assert time.monotonic() < deadline, "render did not finish"
+        pixels = renderer.read_pixels(np.empty(16 * 12 * 4, dtype=np.float32))
+    assert pixels.reshape(12, 16, 4)[0, 0, :3] == pytest.approx([0.2, 0.2, 0.2])

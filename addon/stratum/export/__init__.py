@@ -25,7 +25,7 @@ from .meshes import (
     slot_material_ids,
     triangle_material_ids,
 )
-from .world import convert_world
+from .world import convert_environment, convert_world
 
 __all__ = [
     "ExportCancelled",
@@ -55,6 +55,9 @@ def export_scene(
 
     scene.set_camera(convert_camera(bl_scene, depsgraph))
     scene.set_background(convert_world(bl_scene, summary))
+    environment = convert_environment(bl_scene, summary)
+    if environment is not None:
+        scene.set_environment(environment.rgb, environment.strength, environment.rotation)
 
     for count, instance in enumerate(depsgraph.object_instances):
         if should_stop is not None and count % 64 == 0 and should_stop():

@@ -1,8 +1,23 @@
-"""The scene world -> native constant background."""
+"""The scene world -> native constant background, or an equirectangular environment image.
+
+Supported: World Output <- Background (Color, Strength) with Color either a value or linked
+from an Environment Texture node (equirectangular projection) whose Vector input is unlinked
+(the ray direction) or a Mapping node that only turns about Z, fed by Texture Coordinate
+"Generated" (the ray direction in a world). The image's pixels are taken from Blender
+(`image.pixels`): float images hold scene-linear values; byte images hold values in their
+colour space. Only images whose colour space is linear are converted exactly; any other
+colour space gives a warning (OCIO conversion is pending) and its pixels are used as Blender
+gives them. The native side looks the image up nearest-texel (Cycles' "Closest"); Cycles'
+default "Linear" differs only within a texel.
+"""
 
 from __future__ import annotations
 
+import math
+from dataclasses import dataclass
 from typing import Any
+
+import numpy as np
 
 from .common import (
     ExportSummary,
@@ -12,6 +27,70 @@ from .common import (
     socket_value,
     uses_nodes,
 )
+
+# Colour spaces whose pixel values are linear (Blender 3.x and 4.x/5.x names).
+LINEAR_COLOR_SPACES = frozenset({
+    "Linear", "Linear Rec.709", "Linear Rec.2020", "Linear CIE-XYZ E", "Linear CIE-XYZ D65",
+    "Linear FilmLight E-Gamut", "Non-Color", "Raw", "scene_linear", "Linear ACES", "Linear ACEScg",
+})
+
+
+@dataclass
+class Environment:
+    rgb: np.ndarray  # (height, width, 3) float32, rows top (+Z) to bottom
+    strength: float
+    rotation: np.ndarray  # 3x3 world-to-environment rotation
+
+
+def _rotation_z(angle: float) -> np.ndarray:
+    c, s = math.cos(angle), math.sin(angle)
+    return np.array([[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]], dtype=np.float32)
+
+
+def _mapping_rotation(node: Any) -> np.ndarray | None:
+    """World-to-environment rotation of an Environment Texture's Vector input, or None when
+    it is not one Stratum can express (only a rotation about Z of the ray direction)."""
+    vector = node.inputs["Vector"]
+    if not vector.is_linked:
+        return np.eye(3, dtype=np.float32)
+    mapping = vector.links[0].from_node
+    if mapping.bl_idname != "ShaderNodeMapping" or mapping.vector_type not in {
+            "POINT", "VECTOR", "TEXTURE"}:
+        return None
+    source = mapping.inputs["Vector"]
+    if not source.is_linked or source.links[0].from_node.bl_idname != "ShaderNodeTexCoord" \
+            or source.links[0].from_socket.name != "Generated":
+        return None
+    values = {}
+    for name in ("Location", "Rotation", "Scale"):
+        socket = mapping.inputs.get(name)
+        if socket is None or socket.is_linked:
+            return None
+        values[name] = [float(x) for x in socket.default_value]
+    rx, ry, rz = values["Rotation"]
+    sx, sy, sz = values["Scale"]
+    # POINT: R·(S·d) + L; VECTOR: R·(S·d); TEXTURE: the inverse. A uniform positive scale does
+    # not change a direction; a location would, except for VECTOR.
+    moves = mapping.vector_type != "VECTOR" and any(abs(x) > 1e-6 for x in values["Location"])
+    if abs(rx) > 1e-6 or abs(ry) > 1e-6 or moves or not (sx > 0 and sx == sy == sz):
+        return None
+    return _rotation_z(-rz if mapping.vector_type == "TEXTURE" else rz)
+
+
+def _background_node(scene: Any) -> Any | None:
+    world = scene.world
+    if world is None or not uses_nodes(world):
+        return None
+    output = active_output(world.node_tree, "ShaderNodeOutputWorld")
+    surface = output.inputs.get("Surface") if output is not None else None
+    node = linked_from(surface) if surface is not None else None
+    return node if node is not None and node.bl_idname == "ShaderNodeBackground" else None
+
+
+def _environment_node(background: Any) -> Any | None:
+    color = background.inputs["Color"]
+    node = linked_from(color) if color.is_linked else None
+    return node if node is not None and node.bl_idname == "ShaderNodeTexEnvironment" else None
 
 
 def convert_world(scene: Any, summary: ExportSummary) -> tuple[float, float, float]:
@@ -30,12 +109,59 @@ def convert_world(scene: Any, summary: ExportSummary) -> tuple[float, float, flo
         summary.warn(f"World '{world.name}': shader node '{node.name}' ({node.bl_idname}) is "
                      "not supported; using the world colour (constant background only)")
         return rgb(world.color)
-    linked = [s for s in ("Color", "Strength") if node.inputs[s].is_linked]
+    # An Environment Texture on Color is exported by convert_environment (it replaces this).
+    linked = [s for s in ("Color", "Strength") if node.inputs[s].is_linked
+              and not (s == "Color" and _environment_node(node) is not None)]
     if linked:
-        summary.warn(f"World '{world.name}': linked Background {', '.join(linked)} (e.g. an "
-                     "environment texture) is not supported; using the socket values as a "
-                     "constant background")
+        summary.warn(f"World '{world.name}': linked Background {', '.join(linked)} is not "
+                     "supported; using the socket values as a constant background")
     color = rgb(socket_value(node, "Color"))
     strength = float(socket_value(node, "Strength"))
     return (max(color[0] * strength, 0.0), max(color[1] * strength, 0.0),
             max(color[2] * strength, 0.0))
+
+
+def convert_environment(scene: Any, summary: ExportSummary) -> Environment | None:
+    """The world's Environment Texture as an image for the native side, or None (then the
+    constant background of convert_world applies)."""
+    background = _background_node(scene)
+    node = _environment_node(background) if background is not None else None
+    if node is None:
+        return None
+    world = scene.world
+    image = node.image
+    if image is None:
+        summary.warn(f"World '{world.name}': Environment Texture '{node.name}' has no image; "
+                     "using a constant background")
+        return None
+    if node.projection != "EQUIRECTANGULAR":
+        summary.warn(f"World '{world.name}': Environment Texture projection {node.projection} "
+                     "is not supported; using a constant background")
+        return None
+    rotation = _mapping_rotation(node)
+    if rotation is None:
+        summary.warn(f"World '{world.name}': the Environment Texture's Vector input is not "
+                     "supported (only Texture Coordinate Generated -> Mapping turning about Z); "
+                     "using the unrotated equirectangular mapping")
+        rotation = np.eye(3, dtype=np.float32)
+    width, height = (int(v) for v in image.size)
+    channels = int(image.channels)
+    if width == 0 or height == 0 or channels == 0:
+        summary.warn(f"World '{world.name}': image '{image.name}' has no pixels; using a "
+                     "constant background")
+        return None
+    space = image.colorspace_settings.name
+    if space not in LINEAR_COLOR_SPACES:
+        summary.warn(f"World '{world.name}': image '{image.name}' is in colour space '{space}'; "
+                     "its conversion to linear (OCIO) is pending, so its pixels are used as "
+                     "Blender stores them")
+    pixels = np.empty(width * height * channels, dtype=np.float32)
+    image.pixels.foreach_get(pixels)
+    pixels = pixels.reshape(height, width, channels)[::-1]  # Blender: rows bottom to top
+    if channels >= 3:
+        img = pixels[:, :, :3]
+    else:
+        img = np.repeat(pixels[:, :, :1], 3, axis=2)
+    img = np.nan_to_num(np.maximum(img, 0.0), nan=0.0, posinf=0.0)
+    strength = max(float(socket_value(background, "Strength")), 0.0)
+    return Environment(np.ascontiguousarray(img, dtype=np.float32), strength, rotation)
