@@ -111,19 +111,23 @@ def _open_scene() -> bpy.types.Scene:
     return scene
 
 
-def _configure_cycles(scene: bpy.types.Scene, seed: int) -> None:
+def _configure_cycles(scene: bpy.types.Scene, seed: int, *, samples: int = SPP_PER_SEED,
+                      max_bounces: int = MAX_BOUNCES) -> None:
+    """Cycles as the peer: CPU, no denoising, adaptive sampling, clamping or glossy blur, every
+    bounce limit equal to max_bounces, Stratum's pixel filter. Shared by the other agreement
+    tests."""
     scene.render.engine = "CYCLES"
     c = scene.cycles
     c.device = "CPU"
-    c.samples = SPP_PER_SEED
+    c.samples = samples
     c.seed = seed
     c.use_animated_seed = False
     c.use_adaptive_sampling = False
     c.use_denoising = False
-    c.max_bounces = MAX_BOUNCES
-    c.diffuse_bounces = MAX_BOUNCES
-    c.glossy_bounces = MAX_BOUNCES
-    c.transmission_bounces = MAX_BOUNCES
+    c.max_bounces = max_bounces
+    c.diffuse_bounces = max_bounces
+    c.glossy_bounces = max_bounces
+    c.transmission_bounces = max_bounces
     c.volume_bounces = 0
     c.sample_clamp_direct = 0.0
     c.sample_clamp_indirect = 0.0
@@ -135,12 +139,14 @@ def _configure_cycles(scene: bpy.types.Scene, seed: int) -> None:
         c.use_layer_samples = "IGNORE"
 
 
-def _configure_stratum(scene: bpy.types.Scene, seed: int) -> None:
+def _configure_stratum(scene: bpy.types.Scene, seed: int, *, samples: int = SPP_PER_SEED,
+                       max_bounces: int = MAX_BOUNCES) -> None:
+    """Stratum with the same samples, bounces and pixel filter as _configure_cycles."""
     scene.render.engine = "STRATUM"
     s = scene.stratum
-    s.samples = SPP_PER_SEED
+    s.samples = samples
     s.seed = seed
-    s.max_bounces = MAX_BOUNCES
+    s.max_bounces = max_bounces
     s.filter_type = "blackman_harris"
     s.filter_width = FILTER_WIDTH
     s.threads = 0

@@ -29,6 +29,7 @@ cone angle and unit errors. Cost: four renders of 32 x 32 x 1024 one-bounce path
 
 from __future__ import annotations
 
+import functools
 import math
 
 import bpy
@@ -36,7 +37,6 @@ import numpy as np
 import pytest
 
 from test_cycles_agreement import (
-    FILTER_WIDTH,
     K_SIGMA,
     OUT,
     Renders,
@@ -44,6 +44,8 @@ from test_cycles_agreement import (
     _render_exr,
     _stratum_available,
 )
+from test_cycles_agreement import _configure_cycles as configure_cycles
+from test_cycles_agreement import _configure_stratum as configure_stratum
 
 RES = 32
 BLOCK = 8
@@ -114,32 +116,9 @@ def _spot_scene() -> bpy.types.Scene:
     return scene
 
 
-def _configure_cycles(scene: bpy.types.Scene, seed: int) -> None:
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = SPP_PER_SEED
-    c.seed = seed
-    c.use_animated_seed = False
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.max_bounces = 0
-    c.sample_clamp_direct = 0.0
-    c.sample_clamp_indirect = 0.0
-    c.light_sampling_threshold = 0.0
-    c.pixel_filter_type = "BLACKMAN_HARRIS"
-    c.filter_width = FILTER_WIDTH
-
-
-def _configure_stratum(scene: bpy.types.Scene, seed: int) -> None:
-    scene.render.engine = "STRATUM"
-    s = scene.stratum
-    s.samples = SPP_PER_SEED
-    s.seed = seed
-    s.max_bounces = 0
-    s.filter_type = "blackman_harris"
-    s.filter_width = FILTER_WIDTH
-    s.threads = 0
+# Direct light only (max_bounces 0), with the shared peer settings of the Cornell-box test.
+_configure_cycles = functools.partial(configure_cycles, samples=SPP_PER_SEED, max_bounces=0)
+_configure_stratum = functools.partial(configure_stratum, samples=SPP_PER_SEED, max_bounces=0)
 
 
 def _render_two_seeds(name: str, configure) -> Renders:
