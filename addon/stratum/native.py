@@ -114,6 +114,11 @@ class _MaterialDesc(ctypes.Structure):
         ("ior", ctypes.c_float),
         ("emission", _c_float3),
         ("distribution", ctypes.c_int32),
+        ("transmission", ctypes.c_float),
+        ("coat", ctypes.c_float),
+        ("coat_roughness", ctypes.c_float),
+        ("coat_ior", ctypes.c_float),
+        ("coat_tint", _c_float3),
     ]
 
 
@@ -141,6 +146,8 @@ class _LightDesc(ctypes.Structure):
         ("transform", _c_float16),
         ("spot_size", ctypes.c_float),
         ("spot_blend", ctypes.c_float),
+        ("visibility", ctypes.c_uint32),
+        ("spread", ctypes.c_float),
     ]
 
 
@@ -161,6 +168,10 @@ class _CameraDesc(ctypes.Structure):
         ("focus_distance", ctypes.c_float),
         ("aperture_blades", ctypes.c_int32),
         ("aperture_rotation", ctypes.c_float),
+        ("latitude_min", ctypes.c_float),
+        ("latitude_max", ctypes.c_float),
+        ("longitude_min", ctypes.c_float),
+        ("longitude_max", ctypes.c_float),
     ]
 
 

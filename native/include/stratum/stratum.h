@@ -94,7 +94,15 @@ typedef enum StratumMaterialModel {
     STRATUM_MATERIAL_DIFFUSE = 0,       /* Lambertian (Cycles' Diffuse BSDF, roughness 0) */
     STRATUM_MATERIAL_PRINCIPLED_V1 = 1, /* Cycles 3.x Principled: Burley diffuse + GGX */
     STRATUM_MATERIAL_PRINCIPLED_V2 = 2, /* Cycles 4.x Principled: Lambert + layered GGX */
-    STRATUM_MATERIAL_EMISSION = 3       /* pure emitter, no reflection */
+    STRATUM_MATERIAL_EMISSION = 3,      /* pure emitter, no reflection */
+    STRATUM_MATERIAL_GLOSSY = 4,        /* Cycles Glossy BSDF: GGX reflection, Fresnel 1, tinted by
+                                           base_color; roughness 0 = mirror */
+    STRATUM_MATERIAL_GLASS = 5,         /* Cycles Glass BSDF: dielectric GGX reflection + refraction
+                                           with Fresnel at `ior`, both tinted by base_color;
+                                           roughness 0 = smooth glass */
+    STRATUM_MATERIAL_TRANSPARENT = 6,   /* Cycles Transparent BSDF: straight through, times base_color;
+                                           shadow rays pass too (transparent shadows) */
+    STRATUM_MATERIAL_HOLDOUT = 7        /* Cycles Holdout: what it covers is black with alpha 0 */
 } StratumMaterialModel;
 
 typedef enum StratumMicrofacetDistribution {
@@ -111,11 +119,102 @@ typedef struct StratumMaterialDesc {
     float ior;            /* v2: index of refraction of the dielectric coat, > 0 */
     float emission[3];    /* emitted radiance (colour x strength), each >= 0 */
     int32_t distribution; /* StratumMicrofacetDistribution (the Principled node's) */
+    /* Appended fields (Principled only; all zero = the opaque Principled above). */
+    float transmission;      /* [0,1]: weight of the dielectric transmission lobe (at `ior`; v1
+                                derives nothing from `specular` for it, as Cycles 3.x) */
+    float coat;              /* [0,inf): v1 "Clearcoat" (GTR1 lobe, IOR 1.5, weight 0.25 coat);
+                                v2 "Coat Weight" (dielectric GGX layer on top) */
+    float coat_roughness;    /* [0,1]: v1 "Clearcoat Roughness", v2 "Coat Roughness" */
+    float coat_ior;          /* v2: > 0 (Blender default 1.5) */
+    float coat_tint[3];      /* v2: linear RGB in [0,1] */
 } StratumMaterialDesc;
 
 /* Adds a material; its id (0, 1, 2, ... in order) is written to out_id. */
 STRATUM_API StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMaterialDesc* material,
                                                      uint32_t* out_id);
+
+/* A material made of several closures (Blender's Mix Shader and Add Shader flattened, as Cycles
+ * does): the scattering and emission of a shading point are sum_i weight_i * closure_i.
+ * weight: linear RGB, each >= 0 and finite. */
+typedef struct StratumClosureDesc {
+    float weight[3];
+    StratumMaterialDesc closure;
+} StratumClosureDesc;
+
+STRATUM_API StratumStatus stratum_scene_add_closure_material(StratumScene* scene,
+                                                             const StratumClosureDesc* closures,
+                                                             uint32_t closure_count, uint32_t* out_id);
+
+/* ---- image textures ----------------------------------------------------------------------- */
+
+typedef enum StratumTextureInterpolation {
+    STRATUM_TEXTURE_CLOSEST = 0, /* nearest texel */
+    STRATUM_TEXTURE_LINEAR = 1   /* bilinear (Cycles' Linear, and what Cubic/Smart fall back to) */
+} StratumTextureInterpolation;
+
+typedef enum StratumTextureExtension {
+    STRATUM_TEXTURE_REPEAT = 0, /* tile */
+    STRATUM_TEXTURE_EXTEND = 1, /* clamp to the edge texel */
+    STRATUM_TEXTURE_CLIP = 2,   /* transparent black outside [0,1]^2 */
+    STRATUM_TEXTURE_MIRROR = 3  /* tile, mirrored every other tile */
+} StratumTextureExtension;
+
+/* One image. Exactly one source: `path` (a file OpenImageIO reads), `file_data` (the bytes of
+ * such a file in memory: Blender's packed images; `file_name` names its format by extension),
+ * or `pixels` (width*height*channels floats, rows top to bottom, in `color_space`, as Blender's
+ * Image.pixels gives them: 1 to 4 channels). The image is converted to scene-linear Rec.709
+ * with OpenColorIO: from `color_space` (a colour space name or alias in `ocio_config`, e.g.
+ * "sRGB", "Linear Rec.709", "Non-Color") to the config's scene_linear role. Colour spaces whose
+ * config entry is data (Non-Color) are not converted. ocio_config is the path of Blender's
+ * datafiles/colormanagement/config.ocio; NULL accepts only "Non-Color", "Raw", "Linear",
+ * "Linear Rec.709" and "sRGB" (the built-in sRGB curve). An unknown colour space or an
+ * unreadable file is STRATUM_ERROR_INVALID_ARGUMENT / STRATUM_ERROR_IO naming it. Alpha is
+ * straight (not premultiplied); a missing alpha channel reads as 1. */
+typedef struct StratumTextureDesc {
+    const char* path;
+    const void* file_data;
+    size_t file_size;
+    const char* file_name;
+    const float* pixels;
+    uint32_t width, height, channels;
+    const char* color_space;
+    const char* ocio_config;
+    int32_t interpolation; /* StratumTextureInterpolation */
+    int32_t extension;     /* StratumTextureExtension */
+} StratumTextureDesc;
+
+/* Adds a texture; its id (0, 1, 2, ...) is written to out_id. */
+STRATUM_API StratumStatus stratum_scene_add_texture(StratumScene* scene, const StratumTextureDesc* texture,
+                                                    uint32_t* out_id);
+
+typedef enum StratumMaterialParam {
+    STRATUM_PARAM_BASE_COLOR = 0, /* RGB */
+    STRATUM_PARAM_ROUGHNESS = 1,  /* scalar */
+    STRATUM_PARAM_METALLIC = 2,   /* scalar */
+    STRATUM_PARAM_NORMAL = 3,     /* tangent-space normal map (Normal Map node), strength = scale */
+    STRATUM_PARAM_EMISSION = 4,   /* RGB, replaces the emission colour; times emission_strength */
+    STRATUM_PARAM_WEIGHT = 5,     /* scalar: multiplies the closure's weight (Mix factors, alpha) */
+    STRATUM_PARAM_TRANSMISSION = 6,
+    STRATUM_PARAM_SPECULAR = 7
+} StratumMaterialParam;
+
+/* Drives one parameter of one closure of a material by a texture, looked up at the mesh's
+ * corner_uvs. value = offset + scale * texel, where texel is the texture's RGB (channel -1) or
+ * one channel (0..3 = R, G, B, A) replicated; a scalar parameter takes the mean of an RGB
+ * value. For STRATUM_PARAM_NORMAL the texel is a tangent-space normal (2 texel - 1), `scale` is
+ * the Normal Map strength and `offset` is unused. For STRATUM_PARAM_EMISSION the result is
+ * multiplied by emission_strength. Later bindings of the same parameter replace earlier ones. */
+typedef struct StratumTextureBinding {
+    uint32_t material_id;
+    uint32_t closure_index; /* 0 for a material added with stratum_scene_add_material */
+    int32_t param;          /* StratumMaterialParam */
+    uint32_t texture_id;
+    int32_t channel;        /* -1 = RGB, 0..3 */
+    float scale, offset;
+    float emission_strength; /* STRATUM_PARAM_EMISSION only */
+} StratumTextureBinding;
+
+STRATUM_API StratumStatus stratum_scene_bind_texture(StratumScene* scene, const StratumTextureBinding* binding);
 
 typedef struct StratumMeshDesc {
     const float* positions; /* 3 floats per vertex, object space; required */
@@ -134,6 +233,29 @@ STRATUM_API StratumStatus stratum_scene_add_mesh(StratumScene* scene, const Stra
 /* Places mesh `mesh_id` with an object-to-world transform (16 floats, row-major). */
 STRATUM_API StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id,
                                                      const float transform[16]);
+
+/* Ray visibility (Cycles' Object > Visibility > Ray Visibility and the light's equivalents). */
+typedef enum StratumVisibility {
+    STRATUM_VISIBLE_CAMERA = 1,
+    STRATUM_VISIBLE_DIFFUSE = 2,
+    STRATUM_VISIBLE_GLOSSY = 4,
+    STRATUM_VISIBLE_TRANSMISSION = 8,
+    STRATUM_VISIBLE_SHADOW = 16,
+    STRATUM_VISIBLE_ALL = 31
+} StratumVisibility;
+
+typedef struct StratumInstanceDesc {
+    uint32_t mesh_id;
+    float transform[16];     /* object-to-world (row-major) at shutter open, or always if static */
+    float transform_end[16]; /* at shutter close; read when motion = 1 */
+    int32_t motion;          /* 0 static; 1 moves from transform to transform_end over the shutter
+                                (rotation interpolated as a quaternion, as Cycles) */
+    uint32_t visibility;     /* StratumVisibility bits: which rays see the object */
+    int32_t holdout;         /* 1: Cycles' Object > Visibility > Holdout */
+} StratumInstanceDesc;
+
+/* Places an instance. A mesh placed many times is stored once (Embree instancing). */
+STRATUM_API StratumStatus stratum_scene_add_instance_ex(StratumScene* scene, const StratumInstanceDesc* instance);
 
 typedef enum StratumLightType {
     STRATUM_LIGHT_POINT = 0,          /* power in W (Blender's), radius in m */
@@ -157,6 +279,11 @@ typedef struct StratumLightDesc {
     /* Appended fields (spot lights only; ignored otherwise). */
     float spot_size;  /* full cone angle in radians, (0, pi] */
     float spot_blend; /* [0, 1]: smoothstep falloff over this fraction of (1 - cos(spot_size/2)) */
+    /* Appended fields: visibility 0 reads as STRATUM_VISIBLE_ALL. */
+    uint32_t visibility; /* StratumVisibility bits: CAMERA (area lights seen by camera rays),
+                            DIFFUSE / GLOSSY / TRANSMISSION (lit by it at such a vertex), SHADOW
+                            (Cycles' cast_shadow) */
+    float spread;        /* area lights: Cycles' spread in radians, (0, pi]; 0 reads as pi */
 } StratumLightDesc;
 
 STRATUM_API StratumStatus stratum_scene_add_light(StratumScene* scene, const StratumLightDesc* light);
@@ -169,7 +296,10 @@ typedef enum StratumSensorFit {
 
 typedef enum StratumCameraType {
     STRATUM_CAMERA_PERSPECTIVE = 0, /* Blender PERSP: lens_mm and the sensor frame the view */
-    STRATUM_CAMERA_ORTHOGRAPHIC = 1 /* Blender ORTHO: ortho_scale frames the view */
+    STRATUM_CAMERA_ORTHOGRAPHIC = 1, /* Blender ORTHO: ortho_scale frames the view */
+    STRATUM_CAMERA_EQUIRECTANGULAR = 2 /* Blender PANO, equirectangular: the image spans longitude
+                                          [longitude_min, longitude_max] left to right and latitude
+                                          [latitude_min, latitude_max] bottom to top */
 } StratumCameraType;
 
 typedef struct StratumCameraDesc {
@@ -188,6 +318,8 @@ typedef struct StratumCameraDesc {
     float focus_distance;    /* depth of the sharp plane along the view axis; > 0 if aperture */
     int32_t aperture_blades; /* 0 = round aperture, >= 3 = regular polygon */
     float aperture_rotation; /* radians, rotates the polygon */
+    float latitude_min, latitude_max;   /* equirectangular, radians */
+    float longitude_min, longitude_max; /* equirectangular, radians */
 } StratumCameraDesc;
 
 STRATUM_API StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraDesc* camera);
@@ -225,7 +357,10 @@ STRATUM_API StratumStatus stratum_renderer_create(const StratumScene* scene, Str
 STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
 
 /* Named settings (see README "Render settings"):
- *   int:    width, height, samples, max_bounces, seed, threads (0 = all cores)
+ *   int:    width, height, samples, max_bounces, seed, threads (0 = all cores),
+ *           crop_x, crop_y, crop_width, crop_height (the border region of the width x height
+ *           frame in pixels, bottom-left origin; crop_width = 0 = the whole frame; the image
+ *           read and written is the region), film_transparent (1: background alpha 0)
  *   float:  filter_width (pixels), ao_distance (scene units, > 0)
  *   string: sampler (registry name), filter_type ("box", "blackman_harris"),
  *           integrator (registry name), hemisphere (registry name)
@@ -256,8 +391,8 @@ typedef struct StratumProgress {
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);
 
-/* Copies the current image: width*height*4 floats (linear RGBA), rows bottom to top as
- * Blender's render result. `count` is the number of floats the buffer holds. */
+/* Copies the current image: width*height*4 floats (linear RGBA; for a border render the
+ * region's size), rows bottom to top as Blender's render result. `count` is the number of floats the buffer holds. */
 STRATUM_API StratumStatus stratum_renderer_read_pixels(const StratumRenderer* r, float* rgba, size_t count);
 /* Writes the current image (EXR linear, or PNG/other by extension via OpenImageIO). */
 STRATUM_API StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path);

@@ -5,12 +5,12 @@
 
 namespace stratum {
 
-Rgb AoIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                            const CameraRay& camera_ray, uint64_t& rays) const {
     SurfaceHit hit;
     ++rays;
     if (!scene.intersect(camera_ray.origin, camera_ray.direction, camera_ray.t_min, camera_ray.t_max, &hit)) {
-        return Rgb(1.0f);
+        return {Rgb(1.0f)};
     }
     const Vec3 wo = -camera_ray.direction;
     const Vec3 ng = dot(hit.geometric_normal, wo) < 0.0f ? -hit.geometric_normal : hit.geometric_normal;
@@ -25,7 +25,7 @@ Rgb AoIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, con
     float weight = 1.0f;
     if (settings_.hemisphere != HemisphereDistribution::Cosine) {
         const float pdf = hemisphere_pdf(settings_.hemisphere, local.z);
-        if (!(pdf > 0.0f)) return Rgb(1.0f);
+        if (!(pdf > 0.0f)) return {Rgb(1.0f)};
         weight = kInvPi * local.z / pdf;
     }
     const Vec3 wi = frame.to_world(local);
@@ -34,8 +34,8 @@ Rgb AoIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, con
         ++rays;
         occluded = scene.occluded(offset_ray_origin(hit.position, ng), wi, 0.0f, settings_.ao_distance);
     }
-    if (!occluded) return Rgb(1.0f);
-    return Rgb(1.0f - weight);
+    if (!occluded) return {Rgb(1.0f)};
+    return {Rgb(1.0f - weight)};
 }
 
 }  // namespace stratum

@@ -30,7 +30,7 @@ namespace stratum {
 class AoIntegrator final : public Integrator {
 public:
     explicit AoIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
-    Rgb radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+    RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                  const CameraRay& ray, uint64_t& rays) const override;
 
 private:

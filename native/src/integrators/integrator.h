@@ -25,11 +25,18 @@ struct IntegratorSettings {
     float ao_distance = 1.0f;
 };
 
+// One camera ray's estimate: the radiance, and the alpha the film stores (1 = covered; a
+// holdout or, with a transparent film, the background gives 0).
+struct RadianceSample {
+    Rgb radiance;
+    float alpha = 1.0f;
+};
+
 class Integrator {
 public:
     virtual ~Integrator() = default;
     // `rays` is incremented by the number of rays traced.
-    virtual Rgb radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+    virtual RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                          const CameraRay& ray, uint64_t& rays) const = 0;
 };
 

@@ -17,7 +17,7 @@ float power_heuristic(float pdf_a, float pdf_b) {
 
 }  // namespace
 
-Rgb PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                              const CameraRay& camera_ray, uint64_t& rays) const {
     Rgb L(0.0f), beta(1.0f);
     Vec3 origin = camera_ray.origin, dir = camera_ray.direction;
@@ -100,7 +100,7 @@ Rgb PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, c
         t_min = 0.0f;
         t_max = kInfinity;
     }
-    return L;
+    return {L};
 }
 
 }  // namespace stratum

@@ -20,7 +20,7 @@ namespace stratum {
 class PathIntegrator final : public Integrator {
 public:
     explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
-    Rgb radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+    RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                  const CameraRay& ray, uint64_t& rays) const override;
 
 private:

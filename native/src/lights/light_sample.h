@@ -16,6 +16,9 @@ struct LightSample {
     // strategies are combined by MIS; lights without geometry are found by light sampling only
     // and take the full weight.
     bool found_by_bsdf_rays;
+    // StratumVisibility bits of the light (DIFFUSE / GLOSSY / TRANSMISSION: which vertices it
+    // lights; SHADOW: whether occluders block it).
+    uint32_t visibility = 31;
 };
 
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();

@@ -88,6 +88,7 @@ void Renderer::run() {
         const PixelFilter filter(filter_type, s.filter_width);
         const Camera camera(*scene_.camera, s.width, s.height);
         std::vector<Rgb> sums(static_cast<size_t>(s.width) * s.height);
+        std::vector<float> alpha_sums(sums.size(), 0.0f);
         std::vector<uint32_t> counts(sums.size(), 0);
 
         uint32_t begin = 0;
@@ -103,6 +104,7 @@ void Renderer::run() {
                                 if (cancel_.load(std::memory_order_relaxed)) break;
                                 const size_t p = static_cast<size_t>(y) * s.width + x;
                                 Rgb sum = sums[p];
+                                float alpha_sum = alpha_sums[p];
                                 for (uint32_t i = begin; i < end; ++i) {
                                     const PixelSample ps{x, y, i};
                                     const Vec2 offset = filter.sample(sampler->get_2d(ps, kDimFilter));
@@ -113,14 +115,17 @@ void Renderer::run() {
                                     const CameraRay ray =
                                         camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
                                                             static_cast<float>(y) + 0.5f + offset.y, lens);
-                                    const Rgb L =
+                                    const RadianceSample r =
                                         integrator->radiance(*render_scene_, *sampler, ps, ray, rays);
+                                    const Rgb& L = r.radiance;
                                     // A NaN or Inf sample would poison the pixel forever; it
                                     // is a bug upstream, so it is dropped visibly (counted, 0).
                                     if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b))
                                         sum += L;
+                                    alpha_sum += r.alpha;
                                 }
                                 sums[p] = sum;
+                                alpha_sums[p] = alpha_sum;
                                 counts[p] = end;
                                 pixel_samples += end - begin;
                             }
@@ -137,7 +142,7 @@ void Renderer::run() {
                                 px[0] = v.r;
                                 px[1] = v.g;
                                 px[2] = v.b;
-                                px[3] = 1.0f;
+                                px[3] = alpha_sums[p] / static_cast<float>(counts[p]);
                             }
                         }
                         update_serial_.fetch_add(1);

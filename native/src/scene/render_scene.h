@@ -20,6 +20,11 @@ struct SurfaceHit {
     Vec3 shading_normal;    // unit, interpolated corner normal (or the geometric normal)
     const Material* material;
     uint32_t emissive_light;  // index in the LightSet, or kNoLight
+    Vec2 uv{0.0f, 0.0f};      // interpolated corner_uvs (0,0 if the mesh has none)
+    Vec3 dpdu{0.0f, 0.0f, 0.0f};  // world-space tangent along +u (0 if no UVs), for normal maps
+    uint32_t material_id = 0;     // scene material id
+    uint32_t visibility = 31;     // the instance's StratumVisibility bits
+    bool holdout = false;         // the instance is a holdout
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;
