@@ -279,7 +279,7 @@ def test_orthographic_and_thin_lens_cameras_cross_the_abi(native: Any, tiny_scen
     quad from (0, 0, 4) sees only the quad at ortho_scale 1 and the background (0.1) in its
     corners at ortho_scale 8; a thin lens renders; bad values are named."""
     assert native._CameraDesc.type.offset == 24 * 4  # right after the 16-float transform
-    assert ctypes_size(native) == 30 * 4
+    assert ctypes_size(native) == 34 * 4  # ... then latitude and longitude ranges
     at = np.eye(4, dtype=np.float32)
     at[2, 3] = 4.0
     tiny_scene.set_camera(native.Camera(transform=at, type="ORTHO", ortho_scale=1.0))
