@@ -47,7 +47,7 @@ lint: setup
 
 format: setup
 	clang-format -i $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
-	$(VENV)/bin/ruff format addon tests scenes scripts
+	$(VENV)/bin/ruff check --fix addon tests scenes scripts
 
 # Renders the bundled Cornell box with Stratum through Blender in background mode.
 render: build

@@ -120,13 +120,13 @@ typedef struct StratumMaterialDesc {
     float emission[3];    /* emitted radiance (colour x strength), each >= 0 */
     int32_t distribution; /* StratumMicrofacetDistribution (the Principled node's) */
     /* Appended fields (Principled only; all zero = the opaque Principled above). */
-    float transmission;      /* [0,1]: weight of the dielectric transmission lobe (at `ior`; v1
-                                derives nothing from `specular` for it, as Cycles 3.x) */
-    float coat;              /* [0,inf): v1 "Clearcoat" (GTR1 lobe, IOR 1.5, weight 0.25 coat);
-                                v2 "Coat Weight" (dielectric GGX layer on top) */
-    float coat_roughness;    /* [0,1]: v1 "Clearcoat Roughness", v2 "Coat Roughness" */
-    float coat_ior;          /* v2: > 0 (Blender default 1.5) */
-    float coat_tint[3];      /* v2: linear RGB in [0,1] */
+    float transmission;   /* [0,1]: weight of the dielectric transmission lobe (at `ior`; v1
+                             derives nothing from `specular` for it, as Cycles 3.x) */
+    float coat;           /* [0,inf): v1 "Clearcoat" (GTR1 lobe, IOR 1.5, weight 0.25 coat);
+                             v2 "Coat Weight" (dielectric GGX layer on top) */
+    float coat_roughness; /* [0,1]: v1 "Clearcoat Roughness", v2 "Coat Roughness" */
+    float coat_ior;       /* v2: > 0 (Blender default 1.5) */
+    float coat_tint[3];   /* v2: linear RGB in [0,1] */
 } StratumMaterialDesc;
 
 /* Adds a material; its id (0, 1, 2, ... in order) is written to out_id. */
@@ -209,12 +209,13 @@ typedef struct StratumTextureBinding {
     uint32_t closure_index; /* 0 for a material added with stratum_scene_add_material */
     int32_t param;          /* StratumMaterialParam */
     uint32_t texture_id;
-    int32_t channel;        /* -1 = RGB, 0..3 */
+    int32_t channel; /* -1 = RGB, 0..3 */
     float scale, offset;
     float emission_strength; /* STRATUM_PARAM_EMISSION only */
 } StratumTextureBinding;
 
-STRATUM_API StratumStatus stratum_scene_bind_texture(StratumScene* scene, const StratumTextureBinding* binding);
+STRATUM_API StratumStatus stratum_scene_bind_texture(StratumScene* scene,
+                                                     const StratumTextureBinding* binding);
 
 typedef struct StratumMeshDesc {
     const float* positions; /* 3 floats per vertex, object space; required */
@@ -255,7 +256,8 @@ typedef struct StratumInstanceDesc {
 } StratumInstanceDesc;
 
 /* Places an instance. A mesh placed many times is stored once (Embree instancing). */
-STRATUM_API StratumStatus stratum_scene_add_instance_ex(StratumScene* scene, const StratumInstanceDesc* instance);
+STRATUM_API StratumStatus stratum_scene_add_instance_ex(StratumScene* scene,
+                                                        const StratumInstanceDesc* instance);
 
 typedef enum StratumLightType {
     STRATUM_LIGHT_POINT = 0,          /* power in W (Blender's), radius in m */
@@ -295,8 +297,8 @@ typedef enum StratumSensorFit {
 } StratumSensorFit;
 
 typedef enum StratumCameraType {
-    STRATUM_CAMERA_PERSPECTIVE = 0, /* Blender PERSP: lens_mm and the sensor frame the view */
-    STRATUM_CAMERA_ORTHOGRAPHIC = 1, /* Blender ORTHO: ortho_scale frames the view */
+    STRATUM_CAMERA_PERSPECTIVE = 0,    /* Blender PERSP: lens_mm and the sensor frame the view */
+    STRATUM_CAMERA_ORTHOGRAPHIC = 1,   /* Blender ORTHO: ortho_scale frames the view */
     STRATUM_CAMERA_EQUIRECTANGULAR = 2 /* Blender PANO, equirectangular: the image spans longitude
                                           [longitude_min, longitude_max] left to right and latitude
                                           [latitude_min, latitude_max] bottom to top */
@@ -311,13 +313,13 @@ typedef struct StratumCameraDesc {
     float clip_start, clip_end; /* 0 < clip_start < clip_end */
     float transform[16];        /* camera-to-world, row-major; looks down local -Z, +Y up */
     /* Appended fields: all zero gives the perspective pinhole camera above. */
-    int32_t type;            /* StratumCameraType */
-    float ortho_scale;       /* orthographic: extent of the fitted image side, scene units, > 0 */
-    float aperture_radius;   /* thin lens radius in scene units (Cycles: lens/(2 fstop), lens in
-                                m; orthographic 1/(2 fstop)), >= 0; 0 = pinhole */
-    float focus_distance;    /* depth of the sharp plane along the view axis; > 0 if aperture */
-    int32_t aperture_blades; /* 0 = round aperture, >= 3 = regular polygon */
-    float aperture_rotation; /* radians, rotates the polygon */
+    int32_t type;                       /* StratumCameraType */
+    float ortho_scale;                  /* orthographic: extent of the fitted image side, scene units, > 0 */
+    float aperture_radius;              /* thin lens radius in scene units (Cycles: lens/(2 fstop), lens in
+                                           m; orthographic 1/(2 fstop)), >= 0; 0 = pinhole */
+    float focus_distance;               /* depth of the sharp plane along the view axis; > 0 if aperture */
+    int32_t aperture_blades;            /* 0 = round aperture, >= 3 = regular polygon */
+    float aperture_rotation;            /* radians, rotates the polygon */
     float latitude_min, latitude_max;   /* equirectangular, radians */
     float longitude_min, longitude_max; /* equirectangular, radians */
 } StratumCameraDesc;
@@ -392,7 +394,8 @@ typedef struct StratumProgress {
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);
 
 /* Copies the current image: width*height*4 floats (linear RGBA; for a border render the
- * region's size), rows bottom to top as Blender's render result. `count` is the number of floats the buffer holds. */
+ * region's size), rows bottom to top as Blender's render result. `count` is the number of floats the buffer
+ * holds. */
 STRATUM_API StratumStatus stratum_renderer_read_pixels(const StratumRenderer* r, float* rgba, size_t count);
 /* Writes the current image (EXR linear, or PNG/other by extension via OpenImageIO). */
 STRATUM_API StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path);

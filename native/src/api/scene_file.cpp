@@ -36,7 +36,8 @@ std::string save_scene_file(const Scene& scene, const char* path) {
     j["format"] = kFormat;
     j["version"] = kVersion;
     j["materials"] = json::array();
-    for (const Material& m : scene.materials) {
+    for (const SceneMaterial& sm : scene.materials) {
+        const Material& m = sm.closures.front().params;
         j["materials"].push_back({{"model", static_cast<int>(m.model)},
                                   {"base_color", rgb(m.base_color)},
                                   {"roughness", m.roughness},

@@ -113,7 +113,8 @@ StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMater
     return guarded("stratum_scene_add_material", [&] {
         require(scene && material, "scene or material is NULL");
         const uint32_t id = static_cast<uint32_t>(scene->scene.materials.size());
-        scene->scene.materials.push_back(stratum::validate_material(*material));
+        scene->scene.materials.push_back(stratum::SceneMaterial{
+            {stratum::WeightedClosure{stratum::Rgb(1.0f), stratum::validate_material(*material)}}});
         if (out_id) *out_id = id;
         return STRATUM_OK;
     });

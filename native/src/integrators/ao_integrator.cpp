@@ -5,8 +5,9 @@
 
 namespace stratum {
 
-RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
-                           const CameraRay& camera_ray, uint64_t& rays) const {
+RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& sampler,
+                                      const PixelSample& pixel, const CameraRay& camera_ray,
+                                      uint64_t& rays) const {
     SurfaceHit hit;
     ++rays;
     if (!scene.intersect(camera_ray.origin, camera_ray.direction, camera_ray.t_min, camera_ray.t_max, &hit)) {

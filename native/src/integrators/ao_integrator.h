@@ -31,7 +31,7 @@ class AoIntegrator final : public Integrator {
 public:
     explicit AoIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
     RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
-                 const CameraRay& ray, uint64_t& rays) const override;
+                            const CameraRay& ray, uint64_t& rays) const override;
 
 private:
     IntegratorSettings settings_;

@@ -36,8 +36,8 @@ class Integrator {
 public:
     virtual ~Integrator() = default;
     // `rays` is incremented by the number of rays traced.
-    virtual RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
-                         const CameraRay& ray, uint64_t& rays) const = 0;
+    virtual RadianceSample radiance(const RenderScene& scene, const Sampler& sampler,
+                                    const PixelSample& pixel, const CameraRay& ray, uint64_t& rays) const = 0;
 };
 
 struct IntegratorEntry {

@@ -17,8 +17,9 @@ float power_heuristic(float pdf_a, float pdf_b) {
 
 }  // namespace
 
-RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
-                             const CameraRay& camera_ray, uint64_t& rays) const {
+RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler,
+                                        const PixelSample& pixel, const CameraRay& camera_ray,
+                                        uint64_t& rays) const {
     Rgb L(0.0f), beta(1.0f);
     Vec3 origin = camera_ray.origin, dir = camera_ray.direction;
     float t_min = camera_ray.t_min, t_max = camera_ray.t_max;

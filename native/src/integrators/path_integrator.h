@@ -21,7 +21,7 @@ class PathIntegrator final : public Integrator {
 public:
     explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
     RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
-                 const CameraRay& ray, uint64_t& rays) const override;
+                            const CameraRay& ray, uint64_t& rays) const override;
 
 private:
     IntegratorSettings settings_;

@@ -32,7 +32,7 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
         const Mesh& mesh = *g.mesh;
         const uint32_t object = light_object++;
         for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-            const Material& m = materials_[mesh.material_ids[t]];
+            const Material& m = materials_[mesh.material_ids[t]].closures.front().params;
             if (m.emission.is_black()) continue;
             if (g.emissive_light.empty()) g.emissive_light.assign(mesh.triangles.size(), kNoLight);
             const auto& tri = mesh.triangles[t];
@@ -82,7 +82,9 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
     if (!error.empty()) throw std::runtime_error(error);
 }
 
-bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, SurfaceHit* hit) const {
+bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, SurfaceHit* hit,
+                            const RayQuery& query) const {
+    (void)query;
     RayHit h;
     if (!embree_.intersect(origin, direction, t_min, t_max, &h)) return false;
     const InstanceGeometry& g = instances_[h.geometry];
@@ -101,7 +103,8 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
         const float nl = length(n);
         if (nl > 0.0f) hit->shading_normal = n / nl;
     }
-    hit->material = &materials_[g.mesh->material_ids[h.triangle]];
+    hit->material_id = g.mesh->material_ids[h.triangle];
+    hit->material = &materials_[hit->material_id].closures.front().params;
     hit->emissive_light = g.emissive_light.empty() ? kNoLight : g.emissive_light[h.triangle];
     return true;
 }

@@ -21,6 +21,17 @@ struct Mesh {
     std::vector<uint32_t> material_ids;  // 1 per triangle
 };
 
+// One closure of a material with its weight (Blender's Mix / Add Shader trees flattened).
+struct WeightedClosure {
+    Rgb weight{1.0f};
+    Material params;
+};
+
+// A scene material: the sum of its weighted closures (one for a plain material).
+struct SceneMaterial {
+    std::vector<WeightedClosure> closures;
+};
+
 struct Instance {
     uint32_t mesh_id;
     Transform object_to_world;
@@ -55,7 +66,7 @@ struct Environment {
 };
 
 struct Scene {
-    std::vector<Material> materials;
+    std::vector<SceneMaterial> materials;
     std::vector<Mesh> meshes;
     std::vector<Instance> instances;
     std::vector<LightParams> lights;
