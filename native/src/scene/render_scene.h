@@ -49,6 +49,8 @@ public:
         return embree_.occluded(origin, direction, t_min, t_max);
     }
     const LightSet& lights() const { return lights_; }
+    // The closures of scene material `id` (SurfaceHit::material_id), before texturing.
+    const SceneMaterial& material(uint32_t id) const { return materials_[id]; }
     // Radiance of a ray that leaves the scene in direction `dir`: the environment image if
     // there is one, else the constant background.
     Rgb background(Vec3 dir) const {
