@@ -284,8 +284,18 @@ std::string file_text(const std::string& path) {
 TEST(Camera, AbiValidatesTheNewFieldsByName) {
     StratumCameraDesc c = camera_desc();
     EXPECT_EQ(set_camera_error(c), "");  // appended fields all zero: the perspective pinhole
-    c.type = 2;
-    EXPECT_NE(set_camera_error(c).find("camera type 2"), std::string::npos) << set_camera_error(c);
+    c.type = 3;
+    EXPECT_NE(set_camera_error(c).find("camera type 3"), std::string::npos) << set_camera_error(c);
+    c.type = STRATUM_CAMERA_EQUIRECTANGULAR;  // zero ranges: an empty image
+    EXPECT_NE(set_camera_error(c).find("latitude_min = 0 must be below latitude_max = 0"), std::string::npos)
+        << set_camera_error(c);
+    c.latitude_min = -2.0f;
+    EXPECT_NE(set_camera_error(c).find("camera latitude_min = -2"), std::string::npos) << set_camera_error(c);
+    c.latitude_min = -1.0f;
+    c.latitude_max = 1.0f;
+    EXPECT_NE(set_camera_error(c).find("longitude_min = 0 must be below"), std::string::npos) << set_camera_error(c);
+    c.longitude_max = 1.0f;
+    EXPECT_EQ(set_camera_error(c), "");
     c.type = STRATUM_CAMERA_ORTHOGRAPHIC;
     EXPECT_NE(set_camera_error(c).find("ortho_scale"), std::string::npos) << set_camera_error(c);
     c.ortho_scale = 3;

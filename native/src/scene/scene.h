@@ -34,7 +34,12 @@ struct SceneMaterial {
 
 struct Instance {
     uint32_t mesh_id;
-    Transform object_to_world;
+    Transform object_to_world;  // at shutter open, or always if static
+    // Appended for issue 5 (StratumInstanceDesc): motion blur, ray visibility, holdout.
+    Transform object_to_world_end;  // at shutter close; read when `motion`
+    bool motion = false;
+    uint32_t visibility = 31;  // StratumVisibility bits
+    bool holdout = false;
 };
 
 enum class LightType : int32_t {
@@ -55,6 +60,8 @@ struct LightParams {
     float size_x = 1.0f, size_y = 1.0f;
     float spot_size = kPi, spot_blend = 0.0f;
     Transform light_to_world;
+    uint32_t visibility = 31;  // StratumVisibility bits (0 at the ABI reads as all)
+    float spread = kPi;        // area lights: Cycles' spread, (0, pi]
 };
 
 // An equirectangular environment image (see lights/environment_light.h for the mapping).
