@@ -17,7 +17,7 @@
 // | aperture_blades   | dof.aperture_blades: 0 = disk, n >= 3 = regular n-gon inscribed in the radius |
 // | aperture_rotation | dof.aperture_rotation (radians): turns the n-gon counter-clockwise |
 // | latitude_min/max  | equirectangular: latitude at the bottom / top image edge (radians) |
-// | longitude_min/max | equirectangular: longitude range; the left edge looks at longitude_max |
+// | longitude_min/max | equirectangular: longitude (−φ below) at the left / right image edge |
 //
 // Thin lens (Cycles' model): the ray starts at a uniform point of the aperture (radius
 // aperture_radius, on the plane z = 0 of the pinhole, or of the film point when orthographic)
