@@ -293,7 +293,8 @@ TEST(Camera, AbiValidatesTheNewFieldsByName) {
     EXPECT_NE(set_camera_error(c).find("camera latitude_min = -2"), std::string::npos) << set_camera_error(c);
     c.latitude_min = -1.0f;
     c.latitude_max = 1.0f;
-    EXPECT_NE(set_camera_error(c).find("longitude_min = 0 must be below"), std::string::npos) << set_camera_error(c);
+    EXPECT_NE(set_camera_error(c).find("longitude_min = 0 must be below"), std::string::npos)
+        << set_camera_error(c);
     c.longitude_max = 1.0f;
     EXPECT_EQ(set_camera_error(c), "");
     c.type = STRATUM_CAMERA_ORTHOGRAPHIC;

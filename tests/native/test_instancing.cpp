@@ -19,8 +19,8 @@ namespace {
 
 // Row-major object-to-world: rotation by `angle` about the unit axis (ax, ay, az), then a scale
 // (sx, sy, sz) applied first, then a translation.
-std::vector<float> placement(float angle, float ax, float ay, float az, float sx, float sy, float sz, float tx,
-                             float ty, float tz) {
+std::vector<float> placement(float angle, float ax, float ay, float az, float sx, float sy, float sz,
+                             float tx, float ty, float tz) {
     const float c = std::cos(angle), s = std::sin(angle), t = 1 - c;
     const float r[3][3] = {{t * ax * ax + c, t * ax * ay - s * az, t * ax * az + s * ay},
                            {t * ax * ay + s * az, t * ay * ay + c, t * ay * az - s * ax},
@@ -53,7 +53,8 @@ struct TestMesh {
 TestMesh smooth_sphere(uint32_t rings, uint32_t material) {
     const SphereMesh s = make_sphere(1.0f, rings, 2 * rings);
     TestMesh m{s.positions, {}, {}, s.triangles, {}};
-    for (uint32_t v : s.triangles) m.normals.insert(m.normals.end(), &s.positions[3 * v], &s.positions[3 * v] + 3);
+    for (uint32_t v : s.triangles)
+        m.normals.insert(m.normals.end(), &s.positions[3 * v], &s.positions[3 * v] + 3);
     m.materials.assign(s.triangles.size() / 3, material);
     return m;
 }
@@ -102,9 +103,10 @@ StratumScene* three_spheres(bool instanced) {
         stratum_scene_add_mesh(scene, &d, &id);
         stratum_scene_add_instance(scene, id, kIdentity);
     }
-    const std::vector<std::vector<float>> places = {placement(0.7f, 0, 0, 1, 0.5f, 0.5f, 0.5f, -1.2f, 0, -0.5f),
-                                                    placement(1.1f, 0.6f, 0, 0.8f, 0.3f, 0.6f, 0.4f, 0, 0.5f, -0.6f),
-                                                    placement(-0.4f, 1, 0, 0, 0.7f, 0.7f, 0.7f, 1.3f, -0.3f, -0.3f)};
+    const std::vector<std::vector<float>> places = {
+        placement(0.7f, 0, 0, 1, 0.5f, 0.5f, 0.5f, -1.2f, 0, -0.5f),
+        placement(1.1f, 0.6f, 0, 0.8f, 0.3f, 0.6f, 0.4f, 0, 0.5f, -0.6f),
+        placement(-0.4f, 1, 0, 0, 0.7f, 0.7f, 0.7f, 1.3f, -0.3f, -0.3f)};
     const TestMesh sphere = smooth_sphere(12, grey);
     if (instanced) {
         const StratumMeshDesc d = sphere.desc();
@@ -151,7 +153,8 @@ TEST(Instancing, InstancesRenderAsTheFlattenedMeshes) {
         if (a.rgba[i] == b.rgba[i]) ++identical;
     }
     std::printf("instanced vs flattened: mean %.6f vs %.6f, %zu of %zu values differ > 1e-3, %zu identical\n",
-                sum_a / static_cast<double>(a.rgba.size()), sum_b / static_cast<double>(b.rgba.size()), differing, a.rgba.size(), identical);
+                sum_a / static_cast<double>(a.rgba.size()), sum_b / static_cast<double>(b.rgba.size()),
+                differing, a.rgba.size(), identical);
     EXPECT_NEAR(sum_a, sum_b, 1e-3 * sum_b);
     EXPECT_LT(differing, a.rgba.size() / 50);
     stratum_scene_destroy(inst);
@@ -203,7 +206,8 @@ TEST(Instancing, TenThousandInstancesCostOneMesh) {
     const RenderScene rs(scene);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const double grown = resident_bytes() - before;
-    std::printf("10000 instances x 1024 triangles: BVH build %.3f s, resident +%.1f MB\n", seconds, grown / 1e6);
+    std::printf("10000 instances x 1024 triangles: BVH build %.3f s, resident +%.1f MB\n", seconds,
+                grown / 1e6);
     EXPECT_LT(grown, 100e6);
     size_t hits = 0;
     for (int i = 0; i < 100; ++i) {

@@ -28,8 +28,8 @@ Mesh rectangle(float x0, float x1, float y0, float y1, float z, uint32_t materia
 Transform rotation_z(float angle, Vec3 scale = {1, 1, 1}, Vec3 translation = {0, 0, 0}) {
     const float c = std::cos(angle), s = std::sin(angle);
     Transform t;
-    t.m = {c * scale.x, -s * scale.y, 0, translation.x, s * scale.x, c * scale.y, 0, translation.y,
-           0,           0,            scale.z, translation.z};
+    t.m = {c * scale.x, -s * scale.y, 0, translation.x, s * scale.x, c * scale.y, 0, translation.y, 0, 0,
+           scale.z,     translation.z};
     return t;
 }
 
@@ -66,7 +66,8 @@ TEST(InstanceMotion, DecompositionRecomposesAtBothEnds) {
     ASSERT_EQ(embree.build(std::span(&proto, 1), std::span(&p, 1)), "");
     for (const auto& [time, expected] : {std::pair{0.0f, a}, std::pair{1.0f, b}}) {
         const Transform got = embree.motion_transform(0, time);
-        for (int i = 0; i < 12; ++i) EXPECT_NEAR(got.m[i], expected.m[i], 1e-5f) << "time " << time << " element " << i;
+        for (int i = 0; i < 12; ++i)
+            EXPECT_NEAR(got.m[i], expected.m[i], 1e-5f) << "time " << time << " element " << i;
     }
 }
 
@@ -147,7 +148,8 @@ TEST(InstanceMotion, MovingObjectCoversThePixelsForTheAnalyticFractionOfTheShutt
                                     RayQuery{uniform(rng), STRATUM_VISIBLE_CAMERA});
         }
         const double mean = covered / static_cast<double>(kSamples), p = coverage(x0);
-        EXPECT_NEAR(mean, p, 4.0 * std::sqrt(p * (1.0 - p) / kSamples) + 1e-9) << "column " << i << " x0 " << x0;
+        EXPECT_NEAR(mean, p, 4.0 * std::sqrt(p * (1.0 - p) / kSamples) + 1e-9)
+            << "column " << i << " x0 " << x0;
         ++checked;
     }
     EXPECT_GT(checked, 48);
@@ -250,7 +252,8 @@ TEST(InstanceVisibility, AbiValidatesInstancesByName) {
     StratumScene* scene = nullptr;
     ASSERT_EQ(stratum_scene_create(&scene), STRATUM_OK);
     const auto error = [&](const StratumInstanceDesc& d) {
-        return stratum_scene_add_instance_ex(scene, &d) == STRATUM_OK ? std::string() : std::string(stratum_last_error());
+        return stratum_scene_add_instance_ex(scene, &d) == STRATUM_OK ? std::string()
+                                                                      : std::string(stratum_last_error());
     };
     StratumInstanceDesc d{};
     std::copy(kIdentity, kIdentity + 16, d.transform);
@@ -274,7 +277,8 @@ TEST(InstanceVisibility, AbiValidatesInstancesByName) {
     EXPECT_NE(error(d).find("instance transform_end is singular"), std::string::npos) << error(d);
     std::copy(kIdentity, kIdentity + 16, d.transform_end);
     d.transform_end[0] = std::nanf("");
-    EXPECT_NE(error(d).find("instance transform_end element 0 = nan is not finite"), std::string::npos) << error(d);
+    EXPECT_NE(error(d).find("instance transform_end element 0 = nan is not finite"), std::string::npos)
+        << error(d);
     d.transform_end[0] = 1;
     d.motion = 3;
     EXPECT_NE(error(d).find("instance motion = 3"), std::string::npos) << error(d);

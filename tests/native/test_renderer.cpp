@@ -114,8 +114,13 @@ TEST(Renderer, BorderRenderEqualsTheCropOfTheFullRender) {
     const auto full = render(scene, {{"width", kW}, {"height", kH}, {"samples", 8}, {"seed", 3}});
     StratumRenderer* r = nullptr;
     ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
-    for (const auto& [name, value] : {std::pair<const char*, int64_t>{"width", kW}, {"height", kH}, {"samples", 8},
-                                      {"seed", 3}, {"crop_x", kX}, {"crop_y", kY}, {"crop_width", kCw},
+    for (const auto& [name, value] : {std::pair<const char*, int64_t>{"width", kW},
+                                      {"height", kH},
+                                      {"samples", 8},
+                                      {"seed", 3},
+                                      {"crop_x", kX},
+                                      {"crop_y", kY},
+                                      {"crop_width", kCw},
                                       {"crop_height", kCh}}) {
         ASSERT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK) << stratum_last_error();
     }
@@ -125,8 +130,10 @@ TEST(Renderer, BorderRenderEqualsTheCropOfTheFullRender) {
     std::vector<float> region(static_cast<size_t>(kCw * kCh * 4));
     // The full frame's size is refused: the image is the region.
     std::vector<float> too_big(static_cast<size_t>(kW * kH * 4));
-    EXPECT_EQ(stratum_renderer_read_pixels(r, too_big.data(), too_big.size()), STRATUM_ERROR_INVALID_ARGUMENT);
-    ASSERT_EQ(stratum_renderer_read_pixels(r, region.data(), region.size()), STRATUM_OK) << stratum_last_error();
+    EXPECT_EQ(stratum_renderer_read_pixels(r, too_big.data(), too_big.size()),
+              STRATUM_ERROR_INVALID_ARGUMENT);
+    ASSERT_EQ(stratum_renderer_read_pixels(r, region.data(), region.size()), STRATUM_OK)
+        << stratum_last_error();
     size_t equal = 0;
     for (int64_t y = 0; y < kCh; ++y) {
         for (int64_t x = 0; x < kCw; ++x) {
@@ -148,7 +155,8 @@ TEST(Renderer, BorderRegionIsValidatedByName) {
     const auto start_error = [&](std::initializer_list<std::pair<const char*, int64_t>> ints) {
         StratumRenderer* r = nullptr;
         EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
-        for (const auto& [name, value] : ints) EXPECT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK);
+        for (const auto& [name, value] : ints)
+            EXPECT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK);
         const StratumStatus status = stratum_renderer_start(r);
         std::string error = status == STRATUM_OK ? "" : stratum_last_error();
         int32_t done = 0;
@@ -156,18 +164,26 @@ TEST(Renderer, BorderRegionIsValidatedByName) {
         stratum_renderer_destroy(r);
         return error;
     };
-    EXPECT_NE(start_error({{"width", 16}, {"height", 8}, {"crop_x", 10}, {"crop_width", 7}, {"crop_height", 2}})
-                  .find("crop_x = 10 + crop_width = 7 exceeds width = 16"),
-              std::string::npos);
-    EXPECT_NE(start_error({{"width", 16}, {"height", 8}, {"crop_y", 4}, {"crop_width", 2}, {"crop_height", 5}})
-                  .find("crop_y = 4 + crop_height = 5 exceeds height = 8"),
-              std::string::npos);
+    EXPECT_NE(
+        start_error({{"width", 16}, {"height", 8}, {"crop_x", 10}, {"crop_width", 7}, {"crop_height", 2}})
+            .find("crop_x = 10 + crop_width = 7 exceeds width = 16"),
+        std::string::npos);
+    EXPECT_NE(
+        start_error({{"width", 16}, {"height", 8}, {"crop_y", 4}, {"crop_width", 2}, {"crop_height", 5}})
+            .find("crop_y = 4 + crop_height = 5 exceeds height = 8"),
+        std::string::npos);
     EXPECT_NE(start_error({{"width", 16}, {"height", 8}, {"crop_width", 2}}).find("crop_height = 0"),
               std::string::npos);
-    EXPECT_NE(start_error({{"width", 16}, {"height", 8}, {"crop_x", 3}}).find("crop_width = 0 (the whole frame)"),
-              std::string::npos);
-    EXPECT_EQ(start_error({{"width", 16}, {"height", 8}, {"samples", 1}, {"crop_x", 9}, {"crop_y", 7},
-                           {"crop_width", 7}, {"crop_height", 1}}),
+    EXPECT_NE(
+        start_error({{"width", 16}, {"height", 8}, {"crop_x", 3}}).find("crop_width = 0 (the whole frame)"),
+        std::string::npos);
+    EXPECT_EQ(start_error({{"width", 16},
+                           {"height", 8},
+                           {"samples", 1},
+                           {"crop_x", 9},
+                           {"crop_y", 7},
+                           {"crop_width", 7},
+                           {"crop_height", 1}}),
               "");
     StratumRenderer* r = nullptr;
     ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);

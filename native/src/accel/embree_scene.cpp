@@ -10,9 +10,9 @@ namespace stratum {
 
 struct EmbreeScene::Impl {
     RTCDevice device = nullptr;
-    RTCScene scene = nullptr;                // top level: one instance per placement
-    std::vector<RTCScene> prototypes;        // object space: one triangle geometry each
-    std::vector<RTCGeometry> moving;         // per placement: its instance if moving, else null
+    RTCScene scene = nullptr;          // top level: one instance per placement
+    std::vector<RTCScene> prototypes;  // object space: one triangle geometry each
+    std::vector<RTCGeometry> moving;   // per placement: its instance if moving, else null
     std::mutex error_mutex;
     std::string error;
 };

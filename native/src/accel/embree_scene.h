@@ -53,7 +53,8 @@ public:
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
     // Builds the BVHs. Returns an empty string on success, otherwise Embree's error message.
-    std::string build(std::span<const TriangleGeometry> prototypes, std::span<const InstancePlacement> placements);
+    std::string build(std::span<const TriangleGeometry> prototypes,
+                      std::span<const InstancePlacement> placements);
     // Closest hit with t in (t_min, t_max) at shutter time `time` in [0,1], among instances whose
     // mask shares a bit with `mask`; false if none.
     bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, float time, uint32_t mask,

@@ -181,7 +181,8 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             if (d.motion) read_floats(i.at("transform_end"), d.transform_end);
             d.visibility = i.value("visibility", static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
             d.holdout = i.value("holdout", 0);
-            if ((status = stratum_scene_add_instance_ex(scene, &d)) != STRATUM_OK) return entry_point_failed(status);
+            if ((status = stratum_scene_add_instance_ex(scene, &d)) != STRATUM_OK)
+                return entry_point_failed(status);
         }
         for (const json& l : j.at("lights")) {
             StratumLightDesc d{};

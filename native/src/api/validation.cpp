@@ -194,8 +194,10 @@ uint32_t validate_visibility(uint32_t bits, const char* what) {
 Instance validate_instance(const StratumInstanceDesc& d, uint32_t mesh_count) {
     check(d.mesh_id < mesh_count, "instance mesh_id " + std::to_string(d.mesh_id) + " out of range [0, " +
                                       std::to_string(mesh_count) + ")");
-    check(d.motion == 0 || d.motion == 1, "instance motion = " + std::to_string(d.motion) + " must be 0 or 1");
-    check(d.holdout == 0 || d.holdout == 1, "instance holdout = " + std::to_string(d.holdout) + " must be 0 or 1");
+    check(d.motion == 0 || d.motion == 1,
+          "instance motion = " + std::to_string(d.motion) + " must be 0 or 1");
+    check(d.holdout == 0 || d.holdout == 1,
+          "instance holdout = " + std::to_string(d.holdout) + " must be 0 or 1");
     Instance inst;
     inst.mesh_id = d.mesh_id;
     inst.object_to_world = validate_transform(d.transform, "instance transform");
@@ -272,8 +274,9 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
         c.longitude_max = finite_in(d.longitude_max, -2.0f * kPi, 2.0f * kPi, "camera longitude_max");
         check(c.latitude_min < c.latitude_max, "camera latitude_min = " + fmt(c.latitude_min) +
                                                    " must be below latitude_max = " + fmt(c.latitude_max));
-        check(c.longitude_min < c.longitude_max, "camera longitude_min = " + fmt(c.longitude_min) +
-                                                     " must be below longitude_max = " + fmt(c.longitude_max));
+        check(c.longitude_min < c.longitude_max,
+              "camera longitude_min = " + fmt(c.longitude_min) +
+                  " must be below longitude_max = " + fmt(c.longitude_max));
     }
     if (c.type == CameraType::Orthographic)
         c.ortho_scale = finite_positive(d.ortho_scale, "camera ortho_scale");

@@ -46,9 +46,9 @@ public:
 
 private:
     std::vector<Light> lights_;
-    std::vector<uint32_t> object_;  // object of each light
+    std::vector<uint32_t> object_;      // object of each light
     std::vector<uint32_t> visibility_;  // StratumVisibility bits of each light
-    std::vector<float> cdf_;        // cdf_[i] = P(choice < i+1), last = 1
+    std::vector<float> cdf_;            // cdf_[i] = P(choice < i+1), last = 1
     std::vector<float> probability_;
     size_t environment_ = SIZE_MAX;  // index of the environment light, if any
 };

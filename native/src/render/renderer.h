@@ -60,7 +60,7 @@ private:
     Scene scene_;
     RenderSettings settings_;
     std::unique_ptr<RenderScene> render_scene_;
-    PixelRegion region_;                // of the current render, set by start()
+    PixelRegion region_;               // of the current render, set by start()
     uint32_t width_ = 0, height_ = 0;  // the region's size
 
     // Published image (RGBA, averaged). Tiles write disjoint regions under a shared lock;

@@ -57,7 +57,8 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
             object_bounds.push_back(b);
         }
         const uint32_t proto = prototype_of[inst.mesh_id];
-        placements.push_back({proto, inst.object_to_world, inst.object_to_world_end, inst.motion, inst.visibility});
+        placements.push_back(
+            {proto, inst.object_to_world, inst.object_to_world_end, inst.motion, inst.visibility});
         add_transformed(world, object_bounds[proto], inst.object_to_world);
         if (inst.motion) {
             // Rotation is interpolated, so a moving box can bulge past both end boxes; the bound
@@ -84,10 +85,10 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
             if (g.emissive_light.empty()) g.emissive_light.assign(mesh.triangles.size(), kNoLight);
             const auto& tri = mesh.triangles[t];
             const Transform& m = g.object_to_world;
-            g.emissive_light[t] = lights_.add(
-                EmissiveTriangle(m.point(mesh.positions[tri[0]]), m.point(mesh.positions[tri[1]]),
-                                 m.point(mesh.positions[tri[2]]), e),
-                object);
+            g.emissive_light[t] =
+                lights_.add(EmissiveTriangle(m.point(mesh.positions[tri[0]]), m.point(mesh.positions[tri[1]]),
+                                             m.point(mesh.positions[tri[2]]), e),
+                            object);
         }
     }
     for (const LightParams& l : scene.lights) {
@@ -95,11 +96,12 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
         const uint32_t object = light_object++;
         switch (l.type) {
             case LightType::Point:
-                lights_.add(PointLight(l.light_to_world.translation(), power, l.radius), object, l.visibility);
+                lights_.add(PointLight(l.light_to_world.translation(), power, l.radius), object,
+                            l.visibility);
                 break;
             case LightType::Sun:
-                lights_.add(SunLight(normalize(l.light_to_world.vector(Vec3(0, 0, 1))), power, l.angle), object,
-                            l.visibility);
+                lights_.add(SunLight(normalize(l.light_to_world.vector(Vec3(0, 0, 1))), power, l.angle),
+                            object, l.visibility);
                 break;
             case LightType::AreaRectangle:
             case LightType::AreaEllipse:
