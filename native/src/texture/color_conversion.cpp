@@ -2,11 +2,13 @@
 
 #include <OpenColorIO/OpenColorIO.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <mutex>
 #include <stdexcept>
 #include <utility>
+#include <vector>
 
 namespace stratum {
 
@@ -54,13 +56,22 @@ Cache& cache() {
     return c;
 }
 
+// Up to 8 of the config's colour space names, the ones Blender users pick most often first.
 std::string some_names(const OCIO::Config& config) {
-    std::string names;
-    const int n = config.getNumColorSpaces();
-    for (int i = 0; i < n && i < 8; ++i) {
-        names += (i ? ", '" : "'") + std::string(config.getColorSpaceNameByIndex(i)) + "'";
+    std::vector<std::string> names;
+    for (const char* common : {"sRGB", "Non-Color", "Linear Rec.709", "Linear", "Raw"}) {
+        const OCIO::ConstColorSpaceRcPtr cs = config.getColorSpace(common);
+        if (cs && std::find(names.begin(), names.end(), cs->getName()) == names.end())
+            names.push_back(cs->getName());
     }
-    return names + (n > 8 ? ", ..." : "");
+    const int n = config.getNumColorSpaces();
+    for (int i = 0; i < n && names.size() < 8; ++i) {
+        const std::string name = config.getColorSpaceNameByIndex(i);
+        if (std::find(names.begin(), names.end(), name) == names.end()) names.push_back(name);
+    }
+    std::string text;
+    for (const std::string& name : names) text += (text.empty() ? "'" : ", '") + name + "'";
+    return text + (static_cast<size_t>(n) > names.size() ? ", ..." : "");
 }
 
 Conversion builtin_or_throw(const std::string& space, const std::string& why_no_config) {

@@ -115,7 +115,8 @@ DecodedImage read_image_memory(const void* data, size_t size, const std::string&
     const std::string extension = std::filesystem::path(file_name).extension().string();
     const std::string what = file_name + " (in memory, " + std::to_string(size) + " bytes)";
     OIIO::Filesystem::IOMemReader proxy(const_cast<void*>(data), size);
-    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(file_name, false, nullptr, &proxy);
+    // Created by format (the extension alone): given the file name, OIIO would look for the file.
+    std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::create(extension.substr(1));
     if (!in) throw ImageReadError("no image reader for '" + what + "': " + OIIO::geterror());
     if (in->supports("ioproxy")) {
         OIIO::ImageSpec config = read_config();
