@@ -108,6 +108,28 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                             {"rotation", e.rotation},
                             {"rgb", e.rgb}};
     }
+    if (!scene.textures.empty()) {
+        // Textures are saved decoded (linear RGBA, rows bottom to top) and reloaded as 4-channel
+        // Non-Color pixels, so a file replays without the original images or OCIO config.
+        json textures = json::array(), bindings = json::array();
+        for (const auto& t : scene.textures) {
+            textures.push_back({{"width", t->width},
+                                {"height", t->height},
+                                {"interpolation", static_cast<int>(t->interpolation)},
+                                {"extension", static_cast<int>(t->extension)},
+                                {"rgba", t->rgba}});
+        }
+        for (const TextureBinding& b : scene.texture_bindings) {
+            bindings.push_back({{"material", b.material_id},
+                                {"closure", b.closure_index},
+                                {"param", static_cast<int>(b.param)},
+                                {"texture", b.texture_id},
+                                {"channel", b.channel},
+                                {"scale", b.scale},
+                                {"offset", b.offset}});
+        }
+        j["textures"] = {{"images", textures}, {"bindings", bindings}};
+    }
     std::ofstream out(path, std::ios::binary);
     if (!out) return std::string("cannot open '") + path + "' for writing";
     out << j.dump();
@@ -250,6 +272,39 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                                                         e.at("strength").get<float>(), rotation.data())) !=
                 STRATUM_OK)
                 return entry_point_failed(status);
+        }
+        if (j.contains("textures")) {
+            for (const json& t : j.at("textures").at("images")) {
+                const auto rgba = t.at("rgba").get<std::vector<float>>();
+                StratumTextureDesc d{};
+                d.width = t.at("width").get<uint32_t>();
+                d.height = t.at("height").get<uint32_t>();
+                if (rgba.size() != static_cast<size_t>(d.width) * d.height * 4) {
+                    *error = "malformed scene: texture rgba has " + std::to_string(rgba.size()) +
+                             " values, expected " +
+                             std::to_string(static_cast<size_t>(d.width) * d.height * 4);
+                    return STRATUM_ERROR_IO;
+                }
+                d.pixels = rgba.data();
+                d.channels = 4;
+                d.color_space = "Non-Color";
+                d.interpolation = t.at("interpolation").get<int32_t>();
+                d.extension = t.at("extension").get<int32_t>();
+                if ((status = stratum_scene_add_texture(scene, &d, nullptr)) != STRATUM_OK)
+                    return entry_point_failed(status);
+            }
+            for (const json& b : j.at("textures").at("bindings")) {
+                StratumTextureBinding d{};
+                d.material_id = b.at("material").get<uint32_t>();
+                d.closure_index = b.at("closure").get<uint32_t>();
+                d.param = b.at("param").get<int32_t>();
+                d.texture_id = b.at("texture").get<uint32_t>();
+                d.channel = b.at("channel").get<int32_t>();
+                d.scale = b.at("scale").get<float>();
+                d.offset = b.at("offset").get<float>();
+                if ((status = stratum_scene_bind_texture(scene, &d)) != STRATUM_OK)
+                    return entry_point_failed(status);
+            }
         }
         return STRATUM_OK;
     } catch (const std::exception& e) {

@@ -4,12 +4,15 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "bsdf/bsdf.h"
 #include "core/math.h"
 #include "scene/camera.h"
+#include "texture/texture.h"
+#include "texture/texture_binding.h"
 
 namespace stratum {
 
@@ -80,6 +83,10 @@ struct Scene {
     std::optional<CameraParams> camera;
     Rgb background{0.0f};
     std::optional<Environment> environment;  // replaces the background when present
+    // Image textures (shared: copies of a Scene share the pixels) and the material parameters
+    // they drive; at most one binding per (material, closure, parameter).
+    std::vector<std::shared_ptr<const Texture>> textures;
+    std::vector<TextureBinding> texture_bindings;
 };
 
 }  // namespace stratum
