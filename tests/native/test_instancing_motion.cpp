@@ -177,6 +177,7 @@ TEST(InstanceVisibility, RayMasksSelectInstances) {
     // Camera ray over the camera-invisible blocker: reaches the floor.
     ASSERT_TRUE(rs.intersect({0, 0, 5}, down, 0, kInfinity, &hit, kCamera));
     EXPECT_NEAR(hit.position.z, 0.0f, 1e-6f);
+    EXPECT_NEAR(hit.t, 5.0f, 1e-6f);
     EXPECT_EQ(hit.visibility, static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
     EXPECT_FALSE(hit.holdout);
     // ...but it shadows the floor, and diffuse rays see it.

@@ -172,6 +172,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->emissive_light = g.emissive_light.empty() ? kNoLight : g.emissive_light[h.triangle];
     hit->visibility = g.visibility;
     hit->holdout = g.holdout;
+    hit->t = h.t;
     return true;
 }
 
