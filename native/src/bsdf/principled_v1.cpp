@@ -90,7 +90,8 @@ bool principled_v1_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, Bsdf
     // exactly as bsdf_eval reports them.
     const BsdfEval e = eval_lobes(l, m, wo, wi, hemisphere);
     if (e.pdf <= 0.0f) return false;
-    *out = {wi, e.value / e.pdf, e.pdf};
+    *out = {wi, e.value / e.pdf, e.pdf, false,
+            u_lobe < l.diffuse_probability ? ScatterKind::Diffuse : ScatterKind::Glossy};
     return true;
 }
 

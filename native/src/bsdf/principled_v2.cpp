@@ -136,7 +136,8 @@ bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, Bsdf
     }
     const BsdfEval e = eval_lobes(l, m, wo, wi, hemisphere);
     if (e.pdf <= 0.0f) return false;
-    *out = {wi, e.value / e.pdf, e.pdf};
+    *out = {wi, e.value / e.pdf, e.pdf, false,
+            u_lobe < probability_microfacet ? ScatterKind::Glossy : ScatterKind::Diffuse};
     return true;
 }
 
