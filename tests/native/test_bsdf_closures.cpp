@@ -19,7 +19,7 @@
 namespace stratum {
 namespace {
 
-constexpr int kChiSquareTests = 27;  // 9 closure sets x 3 view directions
+constexpr int kChiSquareTests = 45;  // 15 closure sets x 3 view directions
 constexpr double kSignificance = 0.01 / kChiSquareTests;
 constexpr int kSampleCount = 400'000;
 
@@ -32,6 +32,18 @@ Material glossy(Rgb c, float r, MicrofacetDistribution d = MicrofacetDistributio
     return make(MaterialModel::Glossy, c, r, 1.5f, d);
 }
 Material glass(Rgb c, float r, float eta) { return make(MaterialModel::Glass, c, r, eta); }
+
+Material principled(MaterialModel model, Rgb c, float roughness, float metallic, float transmission,
+                    float coat, float ior = 1.45f, MicrofacetDistribution d = MicrofacetDistribution::Ggx) {
+    Material m = make(model, c, roughness, ior, d);
+    m.metallic = metallic;
+    m.transmission = transmission;
+    m.coat = coat;
+    m.coat_roughness = 0.2f;
+    m.coat_ior = 1.5f;
+    m.coat_tint = Rgb(0.9f, 0.7f, 0.5f);
+    return m;
+}
 
 SceneMaterial mix(std::initializer_list<WeightedClosure> closures) { return SceneMaterial{closures}; }
 SceneMaterial single(const Material& m) { return mix({{Rgb(1.0f), m}}); }
@@ -48,14 +60,21 @@ const float kViewThetas[] = {0.17f, 0.87f, 1.22f};
 std::vector<SceneMaterial> chi_square_materials() {
     return {single(glossy(Rgb(0.9f, 0.6f, 0.3f), 0.3f)),
             single(glossy(Rgb(0.8f), 0.6f, MicrofacetDistribution::MultiscatterGgx)),
-            single(glass(Rgb(1.0f), 0.3f, 1.5f)),
-            single(glass(Rgb(1.0f), 0.6f, 1.5f)),
+            single(glass(Rgb(1.0f), 0.3f, 1.5f)), single(glass(Rgb(1.0f), 0.6f, 1.5f)),
             single(glass(Rgb(1.0f), 0.3f, 1.0f / 1.5f)),  // leaving the glass
             single(glass(Rgb(0.9f, 0.8f, 0.7f), 0.7f, 1.0f / 1.33f)),
             mix({{Rgb(0.5f), lambert(Rgb(0.8f))}, {Rgb(0.5f), glossy(Rgb(1.0f), 0.4f)}}),
             mix({{Rgb(0.3f, 0.5f, 0.7f), lambert(Rgb(0.8f))}, {Rgb(0.7f), glass(Rgb(1.0f), 0.5f, 1.45f)}}),
             mix({{Rgb(0.6f), glossy(Rgb(0.8f), 0.35f)},
-                 {Rgb(0.4f), make(MaterialModel::Transparent, Rgb(1), 0)}})};
+                 {Rgb(0.4f), make(MaterialModel::Transparent, Rgb(1), 0)}}),
+            // Principled with transmission and coat, both generations, entering and leaving.
+            single(principled(MaterialModel::PrincipledV1, Rgb(0.8f, 0.6f, 0.4f), 0.4f, 0.0f, 0.7f, 0.0f)),
+            single(principled(MaterialModel::PrincipledV1, Rgb(0.8f), 0.5f, 0.2f, 0.0f, 1.0f)),
+            single(principled(MaterialModel::PrincipledV1, Rgb(0.9f), 0.3f, 0.0f, 1.0f, 0.5f, 1.0f / 1.45f)),
+            single(principled(MaterialModel::PrincipledV2, Rgb(0.8f, 0.6f, 0.4f), 0.4f, 0.0f, 0.7f, 0.0f)),
+            single(principled(MaterialModel::PrincipledV2, Rgb(0.8f), 0.5f, 0.3f, 0.0f, 1.0f, 1.45f,
+                              MicrofacetDistribution::MultiscatterGgx)),
+            single(principled(MaterialModel::PrincipledV2, Rgb(0.9f), 0.3f, 0.0f, 1.0f, 0.5f, 1.0f / 1.45f))};
 }
 
 TEST(Closures, SamplingMatchesPdfChiSquare) {
@@ -147,6 +166,33 @@ TEST(Closures, WhiteFurnaceBounds) {
         // Multiscatter compensation restores the full albedo: 1 within the table's accuracy
         // (1024 stratified samples per entry, interpolated) and 4 standard errors.
         EXPECT_NEAR(a.mean, 1.0, 4.0 * a.std_error + 0.01) << "roughness " << roughness;
+    }
+}
+
+// White furnace for the Principled transmission and coat lobes: a white V2 glass (transmission 1)
+// with or without a coat, and Cycles 3.4's V1 glass pair (specular 0: no other lobe), reflect and
+// transmit at most everything: mean weight <= 1 + 4 standard errors.
+TEST(Closures, PrincipledTransmissionAndCoatWhiteFurnace) {
+    for (const float roughness : {0.1f, 0.4f, 0.8f}) {
+        for (const float eta : {1.45f, 1.0f / 1.45f}) {
+            Material v1 =
+                principled(MaterialModel::PrincipledV1, Rgb(1.0f), roughness, 0.0f, 1.0f, 0.0f, eta);
+            v1.specular = 0.0f;
+            Material v2_coated =
+                principled(MaterialModel::PrincipledV2, Rgb(1.0f), roughness, 0.0f, 1.0f, 1.0f, eta);
+            v2_coated.coat_tint = Rgb(1.0f);
+            for (const Material& m :
+                 {v1, principled(MaterialModel::PrincipledV2, Rgb(1.0f), roughness, 0.0f, 1.0f, 0.0f, eta),
+                  v2_coated}) {
+                const ClosureSet set(single(m));
+                for (const float theta : {0.2f, 0.8f, 1.3f}) {
+                    const Albedo a = sampled_albedo(set, direction(theta, 0.4f), 0, 100'000, 13);
+                    EXPECT_LE(a.mean, 1.0 + 4.0 * a.std_error + 1e-6)
+                        << "model " << int(m.model) << " coat " << m.coat << " r " << roughness << " eta "
+                        << eta << " theta " << theta;
+                }
+            }
+        }
     }
 }
 
