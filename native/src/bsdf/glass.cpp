@@ -1,5 +1,6 @@
 #include "bsdf/glass.h"
 
+#include "bsdf/glass_albedo.h"
 #include "bsdf/glossy.h"
 #include "bsdf/microfacet_ggx.h"
 #include "sampling/warps.h"
@@ -75,10 +76,16 @@ bool dielectric_ggx_sample(Vec3 wo, float alpha, float eta, float u_event, Vec2 
     return wi->z < 0.0f;
 }
 
+float glass_energy_scale(MicrofacetDistribution distribution, float cos_o, float roughness, float eta) {
+    if (distribution != MicrofacetDistribution::MultiscatterGgx) return 1.0f;
+    return 1.0f / std::max(ggx_glass_albedo(cos_o, roughness, eta), 1e-3f);
+}
+
 BsdfEval glass_eval(const Material& m, Vec3 wo, Vec3 wi) {
-    if (ggx_is_sharp(m.roughness)) return {Rgb(), 0.0f};
+    if (ggx_is_sharp(m.roughness) || wo.z <= 0.0f) return {Rgb(), 0.0f};
     const DielectricEval e = dielectric_ggx_eval(wo, wi, ggx_alpha_from_roughness(m.roughness), m.ior);
-    return {m.base_color * (e.reflect_value + e.transmit_value), e.reflect_pdf + e.transmit_pdf};
+    const float scale = glass_energy_scale(m.distribution, wo.z, m.roughness, m.ior);
+    return {m.base_color * ((e.reflect_value + e.transmit_value) * scale), e.reflect_pdf + e.transmit_pdf};
 }
 
 bool glass_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out) {

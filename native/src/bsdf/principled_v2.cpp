@@ -131,7 +131,8 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi,
         // The transmission lobe: glass whose reflection is untinted and refraction tinted by
         // base_color (Cycles 4.x: reflection tint = specular tint, transmission tint = base).
         const DielectricEval g = dielectric_ggx_eval(wo, wi, l.alpha, l.glass_eta);
-        const float w = (1.0f - l.metallic) * l.transmission;
+        const float w = (1.0f - l.metallic) * l.transmission *
+                        glass_energy_scale(m.distribution, wo.z, l.roughness, l.glass_eta);
         e.value += (Rgb(g.reflect_value) + m.base_color * g.transmit_value) * l.base_scale * w;
         e.pdf += l.probability_glass * (g.reflect_pdf + g.transmit_pdf);
     }
