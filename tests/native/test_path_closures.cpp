@@ -136,6 +136,26 @@ TEST(PathClosures, OpaqueSlabShadows) {
     expect_rgb(floor_radiance(t.scene).radiance, Rgb(0.0f));
 }
 
+// Next-event estimation through a transmissive closure: a rough glass square lit by the sun from
+// above, seen from straight below (its back face: eta = 1/1.5). The light is below the viewer's
+// side of the surface, so only the transmission lobe sees it. With wo = n and wi = -n, h = n and
+// (glass.h) f cos_i = (1 - F0) D(n) G2 eta^2 / (1 - eta)^2 with D(n) = 1/(pi alpha^2), G2 = 1,
+// F0 = ((1 - eta)/(1 + eta))^2; the sun's radiance is its irradiance (a delta light).
+TEST(PathClosures, LightThroughRoughGlassIsTheClosedForm) {
+    TestScene t;
+    const float roughness = 0.5f, ior = 1.5f;
+    t.add_quad(0.0f, 3.0f,
+               t.add_material({{Rgb(1.0f), make(MaterialModel::Glass, Rgb(1.0f), roughness, ior)}}));
+    t.add_sun();
+    const double eta = 1.0 / ior, alpha = roughness * roughness;
+    const double f0 = ((1 - eta) / (1 + eta)) * ((1 - eta) / (1 + eta));
+    const double expected =
+        kSunIrradiance * (1 - f0) * eta * eta / ((1 - eta) * (1 - eta) * kPi * alpha * alpha);
+    const RadianceSample r = trace(t.scene, {0.0f, 0.0f, -2.0f}, {0.0f, 0.0f, 0.0f}, direct_only());
+    EXPECT_NEAR(r.radiance.r, expected, 1e-5 * expected);
+    EXPECT_NEAR(r.radiance.b, expected, 1e-5 * expected);
+}
+
 // Camera straight down at a holdout square over the floor.
 RadianceSample look_down(const Scene& scene, bool film_transparent) {
     IntegratorSettings s = direct_only();
