@@ -9,6 +9,8 @@
 // tolerance is needed; comparisons are relative 1e-5.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "integrators/path_integrator.h"
@@ -154,6 +156,42 @@ TEST(PathClosures, LightThroughRoughGlassIsTheClosedForm) {
     const RadianceSample r = trace(t.scene, {0.0f, 0.0f, -2.0f}, {0.0f, 0.0f, 0.0f}, direct_only());
     EXPECT_NEAR(r.radiance.r, expected, 1e-5 * expected);
     EXPECT_NEAR(r.radiance.b, expected, 1e-5 * expected);
+}
+
+// After the last bounce the path still crosses transparent surfaces to reach emission (Cycles'
+// PATH_RAY_TERMINATE_AFTER_TRANSPARENT). A floor of albedo rho under a huge emitting ceiling of
+// radiance E seen through a huge transparent sheet of colour c has radiance rho c E (irradiance
+// pi c E). With max_bounces 0 half of that estimate (by MIS) comes from BSDF rays that cross the
+// sheet after the floor's bounce; without crossing the mean would fall short. The ceiling and
+// sheet (half side 1000 at heights 2 and 1) miss less than 1e-5 of the floor's cosine-weighted
+// hemisphere. Tolerance: 4 standard errors of the mean of N independent samples.
+TEST(PathClosures, EmissionBehindTransparentIsCollectedAfterTheLastBounce) {
+    TestScene t;
+    const float rho = 0.8f;
+    const Rgb colour(0.6f, 0.3f, 0.9f), radiance(2.0f);
+    t.add_quad(0.0f, 1000.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Diffuse, Rgb(rho))}}));
+    t.add_quad(1.0f, 1000.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Transparent, colour)}}));
+    Material glow = make(MaterialModel::Emission, Rgb(0.0f));
+    glow.emission = radiance;
+    t.add_quad(2.0f, 1000.0f, t.add_material({{Rgb(1.0f), glow}}));
+    const RenderScene render_scene(t.scene);
+    const auto sampler = find_sampler("random")->create(SamplerSettings{});
+    const PathIntegrator integrator(direct_only());
+    constexpr int kN = 200000;
+    double sum = 0, sum2 = 0;
+    for (int i = 0; i < kN; ++i) {
+        uint64_t rays = 0;
+        const CameraRay ray{{0.0f, 0.0f, 0.5f}, {0.0f, 0.0f, -1.0f}, 0.0f, kInfinity};
+        const double v =
+            integrator
+                .radiance(render_scene, *sampler, PixelSample{0, 0, static_cast<uint32_t>(i)}, ray, rays)
+                .radiance.b;
+        sum += v;
+        sum2 += v * v;
+    }
+    const double mean = sum / kN, std_error = std::sqrt(std::max(sum2 / kN - mean * mean, 0.0) / kN);
+    const double expected = rho * colour.b * radiance.b;
+    EXPECT_NEAR(mean, expected, 4.0 * std_error + 1e-5 * expected) << "std error " << std_error;
 }
 
 // Camera straight down at a holdout square over the floor.

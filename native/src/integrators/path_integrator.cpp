@@ -99,7 +99,19 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
             }
             L += beta * emission * w;
         }
-        if (bounce > settings_.max_bounces || !closures.scatters()) break;
+        if (bounce > settings_.max_bounces) {
+            // Past the last bounce Cycles still follows transparent closures to collect the
+            // emission behind them (PATH_RAY_TERMINATE_AFTER_TRANSPARENT): continue straight on
+            // with their summed weight, the expectation of picking the transparent closure.
+            const Rgb pass = closures.transparency();
+            if (pass.is_black() || ++transparent_bounce > settings_.transparent_max_bounces) break;
+            beta *= pass;
+            origin = offset_ray_origin(hit.position, -sp.ng);
+            t_min = 0.0f;
+            t_max = kInfinity;
+            continue;
+        }
+        if (!closures.scatters()) break;
 
         const Frame frame = Frame::from_normal(sp.ns);
         const Vec3 wo = frame.to_local(wo_world);

@@ -16,6 +16,9 @@
 //   emission reached after a delta scatter takes the full weight.
 // * A sampled Transparent closure continues the ray straight on; it is not a bounce, keeps the
 //   ray's visibility kind and its MIS pdf, and counts against transparent_max_bounces.
+// * After the last bounce the ray still passes surfaces with Transparent closures (times their
+//   summed weight) and collects the emission behind them, then ends (Cycles'
+//   PATH_RAY_TERMINATE_AFTER_TRANSPARENT).
 // * Shadow rays pass surfaces whose material has Transparent closures, times their summed
 //   weight x colour, up to transparent_max_bounces surfaces; any other surface occludes.
 // * Holdout (Holdout closures, or SurfaceHit::holdout for a holdout object) while the path has
