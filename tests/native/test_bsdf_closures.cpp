@@ -292,6 +292,32 @@ TEST(Closures, MixtureOfDiffuseIsDiffuseOfMixedAlbedo) {
     }
 }
 
+// The kinds mask NEE uses for light visibility: a light that lights only glossy closures sees a
+// glass closure's reflection and not its refraction; one that lights only diffuse closures sees
+// neither; the pdf (the BSDF sampling density, for MIS) is the same whatever the mask.
+TEST(Closures, EvalKindsMaskSelectsClosuresByScatterKind) {
+    const ClosureSet set(mix({{Rgb(0.5f), lambert(Rgb(0.8f))}, {Rgb(0.5f), glass(Rgb(1.0f), 0.4f, 1.5f)}}));
+    const Vec3 wo = direction(0.5f, 0.0f), above = direction(0.7f, 2.5f), below = direction(2.6f, 3.0f);
+    const auto value = [&](Vec3 wi, uint32_t kinds) {
+        return set.eval(wo, wi, HemisphereDistribution::Cosine, kinds).value.r;
+    };
+    const uint32_t diffuse = scatter_kind_bit(ScatterKind::Diffuse),
+                   glossy = scatter_kind_bit(ScatterKind::Glossy),
+                   transmission = scatter_kind_bit(ScatterKind::Transmission);
+    const float lambert_part = 0.5f * 0.8f * kInvPi * above.z;
+    const float glass_reflection = 0.5f * glass_eval(glass(Rgb(1.0f), 0.4f, 1.5f), wo, above).value.r;
+    const float glass_refraction = 0.5f * glass_eval(glass(Rgb(1.0f), 0.4f, 1.5f), wo, below).value.r;
+    ASSERT_GT(glass_reflection, 0.0f);
+    ASSERT_GT(glass_refraction, 0.0f);
+    EXPECT_FLOAT_EQ(value(above, diffuse), lambert_part);
+    EXPECT_FLOAT_EQ(value(above, glossy), glass_reflection);
+    EXPECT_FLOAT_EQ(value(above, diffuse | glossy), lambert_part + glass_reflection);
+    EXPECT_EQ(value(below, diffuse | glossy), 0.0f);
+    EXPECT_FLOAT_EQ(value(below, transmission), glass_refraction);
+    EXPECT_EQ(set.eval(wo, below, HemisphereDistribution::Cosine, diffuse).pdf,
+              set.eval(wo, below, HemisphereDistribution::Cosine).pdf);
+}
+
 TEST(Closures, SumsEmissionHoldoutAndTransparency) {
     Material e = make(MaterialModel::Emission, Rgb(0.0f), 0.0f);
     e.emission = Rgb(2.0f, 4.0f, 6.0f);
