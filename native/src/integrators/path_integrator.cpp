@@ -17,10 +17,6 @@ float power_heuristic(float pdf_a, float pdf_b) {
     return a > 0.0f ? a / (a + b) : 0.0f;
 }
 
-// The shutter time of a camera ray. CameraRay carries no time yet (the camera's motion-blur work
-// adds it); until then every ray samples the middle of the shutter, Embree's time 0.5.
-float camera_ray_time(const CameraRay&) { return 0.5f; }
-
 // The ray visibility bit of a ray scattered by a lobe of this kind (StratumVisibility).
 uint32_t ray_visibility(ScatterKind kind, uint32_t previous) {
     switch (kind) {
@@ -56,7 +52,7 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
     float t_min = camera_ray.t_min, t_max = camera_ray.t_max;
     float scatter_pdf = 0.0f;  // solid-angle pdf of the last scattering; 0 for camera and delta rays
     Vec3 scatter_origin;
-    RayQuery query{camera_ray_time(camera_ray), STRATUM_VISIBLE_CAMERA};
+    RayQuery query{camera_ray.time, STRATUM_VISIBLE_CAMERA};
     // Cycles' PATH_RAY_TRANSPARENT_BACKGROUND: only camera and transparent vertices so far.
     bool camera_visible_path = true;
     uint32_t bounce = 0, transparent_bounce = 0;
@@ -68,7 +64,14 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
     for (uint32_t vertex = 0;; ++vertex) {
         SurfaceHit hit;
         ++rays;
-        if (!scene.intersect(origin, dir, t_min, t_max, &hit, query)) {
+        const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
+        // Lamps have no geometry: the emitting face of an area lamp whose camera visibility is on
+        // is met analytically, in front of whatever the ray hits (NEE never samples it for the
+        // camera, so there is nothing to weight against).
+        if (camera_visible_path) {
+            L += beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, STRATUM_VISIBLE_CAMERA);
+        }
+        if (!found) {
             if (camera_visible_path && settings_.film_transparent) {
                 transparency += beta.average();
                 break;

@@ -1,10 +1,18 @@
 #include "integrators/shading_point.h"
 
+#include "texture/material_texturing.h"
+
 namespace stratum {
 
 ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world) {
     ShadingPoint sp{ClosureSet(scene.material(hit.material_id)), hit.geometric_normal, hit.shading_normal,
                     false};
+    // Textures first, on the winding-oriented normal: a normal map's tangent frame (T, sign
+    // cross(N, T), N) is defined for it, and the flip below then applies to the mapped normal.
+    if (!scene.textures().of_material(hit.material_id).empty()) {
+        apply_texture_bindings(scene.textures(), hit.material_id, hit.uv, hit.dpdu, sp.closures.closures(),
+                               sp.closures.count(), &sp.ns, hit.bitangent_sign);
+    }
     sp.backfacing = dot(hit.geometric_normal, wo_world) < 0.0f;
     if (sp.backfacing) sp.ng = -sp.ng;
     // The shading normal is flipped to the viewer's side along with the geometric one.
