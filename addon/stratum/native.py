@@ -983,6 +983,8 @@ class Renderer(_Handle):
                "stratum_renderer_create")
         self._width = 0
         self._height = 0
+        self._crop_width = 0  # a border render reads and writes only its region
+        self._crop_height = 0
         self._started = False
         for name, value in settings.items():
             self.set(name, value)
@@ -1001,10 +1003,8 @@ class Renderer(_Handle):
         key = name.encode()
         if isinstance(value, bool | int | np.integer):
             status = self._lib.stratum_renderer_set_int(self.handle, key, int(value))
-            if name == "width":
-                self._width = int(value)
-            elif name == "height":
-                self._height = int(value)
+            if name in ("width", "height", "crop_width", "crop_height"):
+                setattr(self, f"_{name}", int(value))
         elif isinstance(value, float | np.floating):
             status = self._lib.stratum_renderer_set_float(self.handle, key, float(value))
         elif isinstance(value, str):
@@ -1020,6 +1020,13 @@ class Renderer(_Handle):
     @property
     def height(self) -> int:
         return self._height
+
+    @property
+    def image_size(self) -> tuple[int, int]:
+        """(width, height) of the image read_pixels returns: the border region if one is set."""
+        if self._crop_width > 0 and self._crop_height > 0:
+            return self._crop_width, self._crop_height
+        return self._width, self._height
 
     def start(self) -> None:
         _check(self._lib, self._lib.stratum_renderer_start(self.handle), "stratum_renderer_start")
@@ -1057,7 +1064,8 @@ class Renderer(_Handle):
         """Copies the current image (linear RGBA, rows bottom to top) into `out` (a contiguous
         float32 array of width*height*4 values, any shape) with one native copy."""
         if out is None:
-            out = np.empty(self._width * self._height * 4, dtype=np.float32)
+            width, height = self.image_size
+            out = np.empty(width * height * 4, dtype=np.float32)
         if out.dtype != np.float32 or not out.flags.c_contiguous or not out.flags.writeable:
             raise ValueError("read_pixels: out must be a writeable C-contiguous float32 array")
         _check(self._lib,

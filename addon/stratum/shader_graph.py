@@ -313,11 +313,12 @@ class Flattener:
     def _principled(self, node: Any, weight: Rgb, weight_binding: Binding | None) -> None:
         v2 = node.inputs.get("Specular IOR Level") is not None or self.version >= (4, 0, 0)
         names = PRINCIPLED_V2 if v2 else PRINCIPLED_V1
-        for name, off in names["unsupported"]:
-            socket = node.inputs.get(name)
-            if socket is not None and (socket.is_linked or float(socket.default_value) != off):
-                self.warn(node, f"Principled '{node.name}': '{name}' is not supported "
-                                "(rendered without it)")
+        unsupported = [name for name, off in names["unsupported"]
+                       if (socket := node.inputs.get(name)) is not None
+                       and (socket.is_linked or float(socket.default_value) != off)]
+        if unsupported:
+            self.warn(node, f"Principled '{node.name}': " + ", ".join(f"'{n}'" for n in unsupported)
+                      + " not supported (rendered without)")
         bindings: list[Binding] = []
         strength = self.scalar(node, "Emission Strength", 1.0)
         for name, param in names["bindable"]:

@@ -57,6 +57,9 @@ class RecordingScene:
         self.camera: Any = None
         self.background: Any = None
         self.environment: Any = None
+        self.textures: list[Any] = []
+        self.bindings: list[Any] = []
+        self.instance_descs: dict[int, Any] = {}
 
     def add_material(self, material: Any) -> int:
         self.materials.append(material)
@@ -87,6 +90,25 @@ class RecordingScene:
 
     def set_environment(self, rgb: Any, strength: float = 1.0, rotation: Any = None) -> None:
         self.environment = {"rgb": np.array(rgb), "strength": strength, "rotation": rotation}
+
+    # Issue-5 entry points. Closure materials share the material id space (as natively);
+    # add_instance_ex instances are listed in `instances` too, their descriptions in
+    # `instance_descs` (by position in `instances`).
+    def add_closure_material(self, closures: Any) -> int:
+        self.materials.append([(tuple(w), m) for w, m in closures])
+        return len(self.materials) - 1
+
+    def add_texture(self, texture: Any) -> int:
+        self.textures.append(texture)
+        return len(self.textures) - 1
+
+    def bind_texture(self, binding: Any) -> None:
+        self.bindings.append(binding)
+
+    def add_instance_ex(self, instance: Any) -> None:
+        self.instance_descs[len(self.instances)] = instance
+        self.instances.append((instance.mesh_id,
+                               np.array(instance.transform, dtype=np.float32).reshape(4, 4)))
 
 
 CUBE_VERTS = [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),

@@ -27,6 +27,8 @@ class ExportSummary:
     triangles: int = 0  # triangles of the unique meshes
     instanced_triangles: int = 0  # triangles over all instances
     lights: int = 0
+    textures: int = 0  # images sent (each once)
+    moving_instances: int = 0  # instances with motion blur (transform differs over the shutter)
     object_triangles: dict[str, int] = field(default_factory=dict)  # evaluated, per object
     object_instances: dict[str, int] = field(default_factory=dict)  # instances per object
     warnings: list[str] = field(default_factory=list)
