@@ -894,6 +894,21 @@ class Scene(_Handle):
                self._lib.stratum_scene_add_instance(self.handle, int(mesh_id), _float_ptr(m)),
                "stratum_scene_add_instance")
 
+    def add_instances(self, mesh_ids: np.ndarray, transforms: np.ndarray) -> None:
+        """Static instances in bulk: mesh_ids (N,) and transforms (N, 4, 4) row-major. One C
+        call per instance without per-instance array conversion (scenes place 10 000s)."""
+        ids = np.ascontiguousarray(mesh_ids, dtype=np.uint32).reshape(-1)
+        mats = np.ascontiguousarray(transforms, dtype=np.float32).reshape(-1, 16)
+        if len(ids) != len(mats):
+            raise ValueError(f"add_instances: {len(ids)} mesh ids for {len(mats)} transforms")
+        fn = self._lib.stratum_scene_add_instance
+        handle = self.handle
+        base = mats.ctypes.data
+        pointer = ctypes.POINTER(ctypes.c_float)
+        for i, mesh_id in enumerate(ids.tolist()):
+            _check(self._lib, fn(handle, mesh_id, ctypes.cast(base + 64 * i, pointer)),
+                   "stratum_scene_add_instance")
+
     def add_instance_ex(self, instance: Instance) -> None:
         """An instance with motion (transform_end not None), ray visibility and holdout."""
         desc = _InstanceDesc()

@@ -105,6 +105,10 @@ class RecordingScene:
     def bind_texture(self, binding: Any) -> None:
         self.bindings.append(binding)
 
+    def add_instances(self, mesh_ids: Any, transforms: Any) -> None:
+        matrices = np.array(transforms, dtype=np.float32).reshape(-1, 4, 4)
+        self.instances.extend(zip((int(i) for i in mesh_ids), matrices, strict=True))
+
     def add_instance_ex(self, instance: Any) -> None:
         self.instance_descs[len(self.instances)] = instance
         self.instances.append((instance.mesh_id,

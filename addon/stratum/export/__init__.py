@@ -16,9 +16,11 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+import numpy as np
+
 from .. import native
 from .camera import convert_camera
-from .common import ExportCancelled, ExportError, ExportSummary, matrix_to_array
+from .common import ExportCancelled, ExportError, ExportSummary, instance_matrices
 from .lights import convert_light, object_visibility
 from .materials import MaterialTable, convert_material
 from .meshes import (
@@ -109,65 +111,95 @@ def export_scene(
         scene.set_environment(environment.rgb, environment.strength, environment.rotation)
 
     flags = _InstanceFlags(getattr(depsgraph, "view_layer", None))
-    key_cache: dict[int, tuple[Any, ...]] = {}  # evaluated object -> mesh key
-    for count, instance in enumerate(depsgraph.object_instances):
-        if should_stop is not None and count % 256 == 0 and should_stop():
+    # Per evaluated object (instance_object is the real evaluated object, shared by all its
+    # instances): (mesh id, triangles); LIGHT_ID for lights, -1 for nothing to draw.
+    objects: dict[Any, tuple[int, int]] = {}
+    placed: list[tuple[int, int, Any, Any, Any]] = []  # (index, mesh id, ob, parent, motion)
+    index = -1
+    for index, instance in enumerate(depsgraph.object_instances):
+        if should_stop is not None and index % 256 == 0 and should_stop():
             raise ExportCancelled("export cancelled")
         is_instance = instance.is_instance
         ob = instance.instance_object if is_instance else instance.object
-        if ob is None:
+        # show_self is off for an instancer whose own geometry is hidden in renders (Cycles
+        # skips those too: blender/object.cpp).
+        if ob is None or not (is_instance or instance.show_self):
             continue
-        kind = ob.type
-        parent = instance.parent if is_instance else None
-        if kind == "LIGHT":
-            visibility, _ = flags.get(ob, parent)
-            light = convert_light(ob, instance.matrix_world, visibility, summary)
-            if light is not None:
-                try:
-                    scene.add_light(light)
-                except native.StratumError as exc:
-                    raise ExportError(f"Light '{ob.name}': {exc}") from exc
-                summary.lights += 1
-            continue
-        if kind not in GEOMETRY_TYPES:
-            continue
-
-        pointer = ob.as_pointer()
-        key = key_cache.get(pointer)
-        if key is None:
-            slot_ids = slot_material_ids(ob, materials.id_for)
-            key = mesh_key(ob, tuple(int(i) for i in slot_ids))
-            key_cache[pointer] = key
-        found = mesh_ids.get(key)
+        found = objects.get(ob)
         if found is None:
-            found = _add_mesh(ob, depsgraph, scene, materials, summary)
-            mesh_ids[key] = found
-        mesh_id, n_tri = found
-        if mesh_id < 0:
-            continue
+            found = _object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
+            objects[ob] = found
+        mesh_id = found[0]
+        if mesh_id == LIGHT_ID:
+            _add_light(ob, instance, flags, scene, summary)
+        elif mesh_id >= 0:
+            parent = instance.parent if is_instance else None
+            moved = motion.get(instance_key(instance, ob)) if motion else None
+            placed.append((index, mesh_id, ob, parent, moved))
+    matrices = instance_matrices(depsgraph, index + 1)
+
+    plain_ids: list[int] = []
+    plain_rows: list[int] = []
+    for row, mesh_id, ob, parent, moved in placed:
         visibility, holdout = flags.get(ob, parent)
-        matrix = matrix_to_array(instance.matrix_world)
-        end = None
-        if motion is not None:
-            moved = motion.get(instance_key(instance, ob))
-            if moved is not None:
-                matrix, end = moved
-                summary.moving_instances += 1
-        try:
-            if end is None and visibility == native.VISIBLE_ALL and not holdout:
-                scene.add_instance(mesh_id, matrix)
-            else:
-                scene.add_instance_ex(native.Instance(mesh_id, matrix, end, visibility, holdout))
-        except native.StratumError as exc:
-            raise ExportError(f"Object '{ob.name}': {exc}") from exc
-        summary.instances += 1
-        summary.instanced_triangles += n_tri
-        summary.object_triangles[ob.name] = n_tri
+        if moved is None and visibility == native.VISIBLE_ALL and not holdout:
+            plain_ids.append(mesh_id)
+            plain_rows.append(row)
+        else:
+            start_m, end_m = moved if moved is not None else (matrices[row], None)
+            summary.moving_instances += moved is not None
+            try:
+                scene.add_instance_ex(native.Instance(mesh_id, start_m, end_m, visibility,
+                                                      holdout))
+            except native.StratumError as exc:
+                raise ExportError(f"Object '{ob.name}': {exc}") from exc
+        summary.instanced_triangles += objects[ob][1]
         summary.object_instances[ob.name] = summary.object_instances.get(ob.name, 0) + 1
+        summary.object_triangles[ob.name] = objects[ob][1]
+    try:
+        scene.add_instances(np.asarray(plain_ids, dtype=np.uint32), matrices[plain_rows])
+    except native.StratumError as exc:
+        raise ExportError(f"Instances: {exc}") from exc
+    summary.instances = len(placed)
 
     summary.textures = materials.textures.count
     summary.export_seconds = time.perf_counter() - start
     return summary
+
+
+LIGHT_ID = -2
+
+
+def _object_geometry(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
+                     mesh_ids: dict[tuple[Any, ...], tuple[int, int]],
+                     summary: ExportSummary) -> tuple[int, int]:
+    """(mesh id, triangles) of an evaluated object, its mesh added on first sight of its
+    geometry; (LIGHT_ID, 0) for a light, (-1, 0) for nothing to draw."""
+    kind = ob.type
+    if kind == "LIGHT":
+        return (LIGHT_ID, 0)
+    if kind not in GEOMETRY_TYPES:
+        return (-1, 0)
+    slot_ids = slot_material_ids(ob, materials.id_for)
+    key = mesh_key(ob, tuple(int(i) for i in slot_ids))
+    found = mesh_ids.get(key)
+    if found is None:
+        found = _add_mesh(ob, depsgraph, scene, materials, summary)
+        mesh_ids[key] = found
+    return found
+
+
+def _add_light(ob: Any, instance: Any, flags: _InstanceFlags, scene: Any,
+               summary: ExportSummary) -> None:
+    visibility, _ = flags.get(ob, instance.parent if instance.is_instance else None)
+    light = convert_light(ob, instance.matrix_world, visibility, summary)
+    if light is None:
+        return
+    try:
+        scene.add_light(light)
+    except native.StratumError as exc:
+        raise ExportError(f"Light '{ob.name}': {exc}") from exc
+    summary.lights += 1
 
 
 def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
@@ -178,7 +210,8 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
                    if materials.uv_maps.get(int(i))), "")
     arrays = object_mesh_arrays(ob, depsgraph, uv_map)
     if arrays is None or len(arrays.triangles) == 0:
-        if ob.type == "MESH":
+        # A vertex/face instancer's own mesh often has no faces on purpose.
+        if ob.type == "MESH" and not getattr(ob, "is_instancer", False):
             summary.warn(f"Object '{ob.name}': mesh has no faces (skipped)")
         return (-1, 0)
     if arrays.missing_uv:

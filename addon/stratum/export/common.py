@@ -54,6 +54,16 @@ def matrix_to_array(matrix: Any) -> np.ndarray:
     return np.ascontiguousarray(np.array(matrix, dtype=np.float32).reshape(16))
 
 
+def instance_matrices(depsgraph: Any, count: int) -> np.ndarray:
+    """matrix_world of every depsgraph object instance, in iteration order, as (count, 4, 4)
+    row-major float32: one foreach_get instead of a Matrix conversion per instance (which
+    costs ~0.2 ms each in Blender 3.4). RNA stores matrices column-major, hence the transpose."""
+    flat = np.empty(count * 16, dtype=np.float32)
+    if count:
+        depsgraph.object_instances.foreach_get("matrix_world", flat)
+    return np.ascontiguousarray(flat.reshape(count, 4, 4).transpose(0, 2, 1))
+
+
 def linked_from(socket: Any) -> Any | None:
     """The node feeding `socket`, following reroute nodes; None if unlinked."""
     seen = 0

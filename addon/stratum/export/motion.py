@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from .common import matrix_to_array
+from .common import instance_matrices
 
 
 def instance_key(instance: Any, ob: Any) -> tuple[Any, ...]:
@@ -43,13 +43,14 @@ def shutter_interval(bl_scene: Any) -> tuple[float, float]:
 
 
 def _transforms(depsgraph: Any) -> dict[tuple[Any, ...], np.ndarray]:
-    out: dict[tuple[Any, ...], np.ndarray] = {}
-    for instance in depsgraph.object_instances:
+    keys: list[tuple[tuple[Any, ...], int]] = []
+    index = -1
+    for index, instance in enumerate(depsgraph.object_instances):
         ob = instance.instance_object if instance.is_instance else instance.object
-        if ob is None or ob.type == "LIGHT" or ob.type == "CAMERA":
-            continue
-        out[instance_key(instance, ob)] = matrix_to_array(instance.matrix_world)
-    return out
+        if ob is not None and ob.type not in {"LIGHT", "CAMERA"}:
+            keys.append((instance_key(instance, ob), index))
+    matrices = instance_matrices(depsgraph, index + 1)
+    return {key: matrices[row] for key, row in keys}
 
 
 def _split(frame: float) -> tuple[int, float]:
