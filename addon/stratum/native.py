@@ -289,8 +289,8 @@ class Material:
 @dataclass
 class Texture:
     """One image for stratum_scene_add_texture: exactly one of path, file_data (with
-    file_name naming its format), pixels ((height, width, channels) float32, rows top to
-    bottom)."""
+    file_name naming its format), pixels ((height, width, channels) float32, rows bottom to
+    top as Blender's Image.pixels)."""
 
     path: str | None = None
     file_data: bytes | None = None
@@ -313,7 +313,7 @@ class TextureBinding:
     channel: int = -1  # -1 RGB, 0..3 one channel
     scale: float = 1.0
     offset: float = 0.0
-    emission_strength: float = 1.0
+    emission_strength: float = 0.0  # must be 0 (PARAM_EMISSION bindings are refused)
 
 
 @dataclass

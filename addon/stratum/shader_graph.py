@@ -12,19 +12,19 @@ textures that drive their parameters (StratumTextureBinding).
 | Node (bl_idname)               | Closure       | Inputs read (* = texture-bindable)       |
 |--------------------------------|---------------|------------------------------------------|
 | ShaderNodeBsdfPrincipled, 3.x  | PRINCIPLED_V1 | Base Color*, Metallic*, Roughness*,      |
-|                                |               | Specular*, IOR, Transmission*, Clearcoat,|
-|                                |               | Clearcoat Roughness, Emission* x Emission|
+|                                |               | Specular*, IOR, Transmission, Clearcoat, |
+|                                |               | Clearcoat Roughness, Emission x Emission |
 |                                |               | Strength, Alpha*, Normal*                |
 | ShaderNodeBsdfPrincipled, 4.x+ | PRINCIPLED_V2 | Base Color*, Metallic*, Roughness*, IOR, |
-|                                |               | Specular IOR Level*, Transmission Weight*|
+|                                |               | Specular IOR Level*, Transmission Weight,|
 |                                |               | Coat Weight/Roughness/IOR/Tint, Emission |
-|                                |               | Color* x Strength, Alpha*, Normal*       |
+|                                |               | Color x Strength, Alpha*, Normal*        |
 | ShaderNodeBsdfDiffuse          | DIFFUSE       | Color*, Normal*                          |
 | ShaderNodeBsdfGlossy (3.x) /   | GLOSSY        | Color*, Roughness*, Normal*              |
 |   ShaderNodeBsdfAnisotropic    |               |                                          |
 | ShaderNodeBsdfGlass            | GLASS         | Color*, Roughness*, IOR, Normal*         |
 | ShaderNodeBsdfTransparent      | TRANSPARENT   | Color*                                   |
-| ShaderNodeEmission             | EMISSION      | Color* x Strength                        |
+| ShaderNodeEmission             | EMISSION      | Color x Strength                         |
 | ShaderNodeHoldout              | HOLDOUT       |                                          |
 | ShaderNodeMixShader, AddShader | (weights)     | Fac (constant or image*)                 |
 
@@ -49,6 +49,9 @@ IMAGE_NODE = "ShaderNodeTexImage"
 NORMAL_MAP_NODE = "ShaderNodeNormalMap"
 GLOSSY_NODES = ("ShaderNodeBsdfGlossy", "ShaderNodeBsdfAnisotropic")
 DEFAULT_GREY: Rgb = (0.8, 0.8, 0.8)
+# Parameters the native contract does not take textures for (stratum.h: emissive triangles are
+# light-sampled with a constant emission; transmission waits for a per-material weight).
+NATIVE_UNBINDABLE = frozenset({native.PARAM_EMISSION, native.PARAM_TRANSMISSION})
 
 
 @dataclass(frozen=True)
@@ -65,10 +68,9 @@ class Binding:
 
     param: int
     image: ImageRef
-    channel: int = -1  # -1 = RGB (mean for a scalar parameter), 3 = alpha
+    channel: int = -1  # -1 = RGB (luminance for a scalar parameter), 3 = alpha
     scale: float = 1.0
     offset: float = 0.0
-    emission_strength: float = 1.0
 
 
 @dataclass
@@ -142,8 +144,7 @@ class Flattener:
         c = tuple(float(x) for x in tuple(v)[:3])
         return (c[0], c[1], c[2]) if all(math.isfinite(x) for x in c) else fallback
 
-    def texture(self, node: Any, name: str, param: int, bindings: list[Binding],
-                strength: float = 1.0) -> None:
+    def texture(self, node: Any, name: str, param: int, bindings: list[Binding]) -> None:
         """Records a binding if `name` is linked to an image (or, for Normal, to a Normal Map
         of an image); warns about any other link (the socket's value is then used)."""
         socket = node.inputs.get(name)
@@ -151,6 +152,11 @@ class Flattener:
         if found is None:
             return
         src, out = found
+        if param in NATIVE_UNBINDABLE:
+            self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' "
+                           "is not supported (the renderer takes a constant there); using the "
+                           "socket's value")
+            return
         if param == native.PARAM_NORMAL:
             if src.bl_idname == NORMAL_MAP_NODE and getattr(src, "space", "TANGENT") == "TANGENT":
                 image = self._source(src.inputs["Color"])
@@ -167,7 +173,7 @@ class Flattener:
             return
         if src.bl_idname == IMAGE_NODE:
             channel = 3 if out.name == "Alpha" else -1
-            bindings.append(Binding(param, self._image(src), channel, 1.0, 0.0, strength))
+            bindings.append(Binding(param, self._image(src), channel, 1.0, 0.0))
             return
         self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' is not "
                        "supported; using the socket's value")
@@ -301,7 +307,7 @@ class Flattener:
         if kind == "ShaderNodeEmission":
             strength = self.scalar(node, "Strength", 1.0)
             self.unsupported_link(node, "Strength")
-            self.texture(node, "Color", native.PARAM_EMISSION, bindings, strength)
+            self.texture(node, "Color", native.PARAM_EMISSION, bindings)
             color = self.color(node, "Color", (1.0, 1.0, 1.0))
             return native.Material(model=native.MATERIAL_EMISSION, base_color=(0.0, 0.0, 0.0),
                                    emission=_emission(color, strength)), bindings
@@ -322,8 +328,7 @@ class Flattener:
         bindings: list[Binding] = []
         strength = self.scalar(node, "Emission Strength", 1.0)
         for name, param in names["bindable"]:
-            self.texture(node, name, param, bindings,
-                         strength if param == native.PARAM_EMISSION else 1.0)
+            self.texture(node, name, param, bindings)
         for name in names["constant"]:
             self.unsupported_link(node, name)
         roughness = self._roughness(node)

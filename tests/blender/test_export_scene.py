@@ -144,9 +144,9 @@ def test_generated_image_once_with_binding_and_named_uv_map(scene_builder: Any,
     tex = recording_scene.textures[0]
     assert tex.path is None and tex.file_data is None
     assert tex.pixels.shape == (2, 4, 4)
-    # rows top to bottom: Blender's row 0 (green 0) is the last row
-    assert tex.pixels[-1, :, 1] == pytest.approx(0.0)
-    assert tex.pixels[0, :, 1] == pytest.approx(0.5)
+    # rows bottom to top, as Image.pixels and the C ABI: row 0 has green 0
+    assert tex.pixels[0, :, 1] == pytest.approx(0.0)
+    assert tex.pixels[-1, :, 1] == pytest.approx(0.5)
     assert tex.color_space == "Non-Color"  # generated float buffer: already scene-linear
     assert [bd.param for bd in recording_scene.bindings] == [native.PARAM_BASE_COLOR] * 2
     assert {bd.texture_id for bd in recording_scene.bindings} == {0}

@@ -272,3 +272,17 @@ def test_other_bsdfs() -> None:
     assert closures[0].material.emission == pytest.approx((4.0, 2.0, 0.0))
     closures, _ = flatten(output_with(glass))
     assert closures[0].material.ior == pytest.approx(1.45)
+
+
+def test_image_on_emission_or_transmission_warns_and_uses_the_value() -> None:
+    # The native contract refuses PARAM_EMISSION / PARAM_TRANSMISSION bindings.
+    node, glow, clear = principled_v2(**{"Emission Strength": 2.0,
+                                         "Emission Color": (1.0, 0.5, 0.0, 1.0)}), \
+        image("Glow"), image("Clear")
+    link(glow, "Color", node, "Emission Color")
+    link(clear, "Color", node, "Transmission Weight")
+    closures, warnings = flatten(output_with(node))
+    assert len(warnings) == 2
+    assert any("'Glow'" in w for w in warnings) and any("'Clear'" in w for w in warnings)
+    assert closures[0].bindings == []
+    assert closures[0].material.emission == pytest.approx((2.0, 1.0, 0.0))

@@ -3,7 +3,8 @@
 Source of the pixels, in Blender's order of precedence:
   * packed (image.packed_file): the file's bytes (file_data) with its name (format by extension);
   * a file (image.filepath made absolute, relative to the image's library): OpenImageIO reads it;
-  * generated or painted-in-memory images (no file): Image.pixels, rows flipped to top-first.
+  * generated or painted-in-memory images (no file): Image.pixels (rows bottom to top, as the
+    C ABI takes them).
 Colour space: image.colorspace_settings.name, converted by the native side with OpenColorIO using
 Blender's own config (the one this Blender ships). Float pixel buffers are already scene-linear
 in Blender's memory, so they are sent as "Non-Color" (no conversion).
@@ -70,7 +71,7 @@ def _pixels(image: Any) -> np.ndarray:
     channels = int(image.channels)
     buf = np.empty(width * height * channels, dtype=np.float32)
     image.pixels.foreach_get(buf)
-    return np.ascontiguousarray(buf.reshape(height, width, channels)[::-1])
+    return buf.reshape(height, width, channels)
 
 
 def missing_texture(node: Any) -> native.Texture:

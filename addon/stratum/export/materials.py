@@ -116,7 +116,7 @@ class MaterialTable:
                     self._scene.bind_texture(native.TextureBinding(
                         material_id=mat_id, closure_index=index, param=b.param,
                         texture_id=self.textures.id_for(b.image.node), channel=b.channel,
-                        scale=b.scale, offset=b.offset, emission_strength=b.emission_strength))
+                        scale=b.scale, offset=b.offset))
         except native.StratumError as exc:
             raise ExportError(f"Material '{name}': {exc}") from exc
         self._summary.materials += 1
