@@ -216,3 +216,44 @@ def read_image_pixels(path: Path) -> np.ndarray:
         return buf.reshape(h, w, image.channels)
     finally:
         bpy.data.images.remove(image)
+
+
+def _render_probe(library: Any, scene: Any, **settings: Any) -> np.ndarray:
+    with library.Renderer(scene, width=2, height=2, samples=1, **settings) as renderer:
+        renderer.start()
+        while not renderer.wait(100):
+            pass
+        return renderer.read_pixels().reshape(2, 2, 4)
+
+
+def skip_unless_integrators_write_alpha(library: Any) -> None:
+    """Skips while the native integrators do not write alpha (film_transparent and holdout are
+    accepted at the ABI before the integrators honour them): a camera seeing only the
+    background of a transparent film must read alpha 0."""
+    with library.Scene() as scene:
+        scene.set_camera(library.Camera())
+        if _render_probe(library, scene, film_transparent=1)[0, 0, 3] != 0.0:
+            pytest.skip("the native integrators do not write alpha yet")
+
+
+def skip_unless_integrators_apply_textures(library: Any) -> None:
+    """Skips while the integrators do not apply texture bindings: a quad filling the view,
+    its diffuse colour bound to a black texture, under a white background, must be black."""
+    if not library.has_symbol("stratum_scene_add_texture"):
+        pytest.skip("the native library predates textures (stratum_scene_add_texture)")
+    with library.Scene() as scene:
+        mat = scene.add_material({"model": library.MATERIAL_DIFFUSE, "base_color": (1, 1, 1)})
+        quad = np.array([[-9, -9, 0], [9, -9, 0], [9, 9, 0], [-9, 9, 0]], dtype=np.float32)
+        mesh = scene.add_mesh(quad, np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32),
+                              np.full(2, mat, dtype=np.uint32),
+                              corner_uvs=np.zeros((2, 3, 2), dtype=np.float32))
+        scene.add_instance(mesh, np.eye(4, dtype=np.float32))
+        camera = np.eye(4, dtype=np.float32)
+        camera[2, 3] = 2.0
+        scene.set_camera(library.Camera(transform=camera))
+        scene.set_background((1.0, 1.0, 1.0))
+        black = scene.add_texture(library.Texture(pixels=np.zeros((1, 1, 3), np.float32),
+                                                  color_space="Non-Color"))
+        scene.bind_texture(library.TextureBinding(mat, 0, library.PARAM_BASE_COLOR, black))
+        if _render_probe(library, scene)[..., :3].max() > 0.0:
+            pytest.skip("the native integrators do not apply texture bindings yet")

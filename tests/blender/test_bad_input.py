@@ -22,7 +22,7 @@ from stratum.export import ExportError, export_scene
 from stratum.export import camera as camera_export
 from stratum.export.images import blender_ocio_config
 
-from conftest import read_image_pixels
+from conftest import read_image_pixels, skip_unless_integrators_apply_textures
 
 
 def _render(scene: Any, path: Path) -> np.ndarray | None:
@@ -74,8 +74,7 @@ def test_missing_image_exports_magenta_with_a_warning(scene_builder: Any,
 
 def test_missing_image_renders_with_a_warning(library: Any, scene_builder: Any,
                                               tmp_path: Path) -> None:
-    if not library.has_symbol("stratum_scene_add_texture"):
-        pytest.skip("the native library predates textures (stratum_scene_add_texture)")
+    skip_unless_integrators_apply_textures(library)
     b = scene_builder().basic()
     b.scene.objects["Cube"].data.materials.append(_image_material(b, _missing_image()))
     pixels = _render(b.scene, tmp_path / "missing.exr")

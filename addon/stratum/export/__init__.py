@@ -218,9 +218,14 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
         summary.warn(f"Object '{ob.name}': UV map '{arrays.missing_uv}' not found; "
                      "using the active render UV map")
     mat_ids = triangle_material_ids(arrays.material_index, slot_ids)
+    uvs = arrays.corner_uvs
+    if uvs is None and materials.textured.intersection(int(i) for i in slot_ids):
+        # Cycles reads a missing UV attribute as (0, 0): textures show their corner texel.
+        summary.warn(f"Object '{ob.name}': no UV map for its image textures; using UV (0, 0)")
+        uvs = np.zeros((len(arrays.triangles), 3, 2), dtype=np.float32)
     try:
         mesh_id = scene.add_mesh(arrays.positions, arrays.triangles, mat_ids,
-                                 arrays.corner_normals, arrays.corner_uvs)
+                                 arrays.corner_normals, uvs)
     except native.StratumError as exc:
         raise ExportError(f"Object '{ob.name}': {exc}") from exc
     summary.meshes += 1

@@ -78,6 +78,7 @@ class MaterialTable:
         self._material_name = ""
         self.textures = TextureTable(scene, self._texture_warning)
         self.uv_maps: dict[int, str] = {}  # material id -> UV layer its textures read
+        self.textured: set[int] = set()  # material ids with texture bindings
 
     def _texture_warning(self, node: Any, message: str) -> None:
         self._summary.warn(f"Material '{self._material_name}': {message}")
@@ -121,4 +122,6 @@ class MaterialTable:
             raise ExportError(f"Material '{name}': {exc}") from exc
         self._summary.materials += 1
         self.uv_maps[mat_id] = converted.uv_map
+        if any(c.bindings for c in closures):
+            self.textured.add(mat_id)
         return mat_id
