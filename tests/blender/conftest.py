@@ -257,3 +257,40 @@ def skip_unless_integrators_apply_textures(library: Any) -> None:
         scene.bind_texture(library.TextureBinding(mat, 0, library.PARAM_BASE_COLOR, black))
         if _render_probe(library, scene)[..., :3].max() > 0.0:
             pytest.skip("the native integrators do not apply texture bindings yet")
+
+
+def skip_unless_integrators_honour_light_visibility(library: Any) -> None:
+    """Skips while the integrators ignore light visibility bits: a diffuse quad lit only by a
+    point light invisible to diffuse rays must be black."""
+    with library.Scene() as scene:
+        mat = scene.add_material({"model": library.MATERIAL_DIFFUSE, "base_color": (1, 1, 1)})
+        quad = np.array([[-9, -9, 0], [9, -9, 0], [9, 9, 0], [-9, 9, 0]], dtype=np.float32)
+        mesh = scene.add_mesh(quad, np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32),
+                              np.full(2, mat, dtype=np.uint32))
+        scene.add_instance(mesh, np.eye(4, dtype=np.float32))
+        above = np.eye(4, dtype=np.float32)
+        above[2, 3] = 1.0
+        scene.add_light(type=library.LIGHT_POINT, strength=100.0, transform=above,
+                        visibility=library.VISIBLE_ALL & ~library.VISIBLE_DIFFUSE)
+        above[2, 3] = 2.0
+        scene.set_camera(library.Camera(transform=above))
+        if _render_probe(library, scene)[..., :3].max() > 0.0:
+            pytest.skip("the native integrators ignore light visibility yet")
+
+
+def skip_unless_integrators_honour_object_visibility(library: Any) -> None:
+    """Skips while camera rays ignore instance visibility: an emissive quad hidden from the
+    camera, on a black background, must not be seen."""
+    with library.Scene() as scene:
+        mat = scene.add_material({"model": library.MATERIAL_EMISSION, "base_color": (0, 0, 0),
+                                  "emission": (1, 1, 1)})
+        quad = np.array([[-9, -9, 0], [9, -9, 0], [9, 9, 0], [-9, 9, 0]], dtype=np.float32)
+        mesh = scene.add_mesh(quad, np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32),
+                              np.full(2, mat, dtype=np.uint32))
+        scene.add_instance_ex(library.Instance(
+            mesh, np.eye(4), visibility=library.VISIBLE_ALL & ~library.VISIBLE_CAMERA))
+        camera = np.eye(4, dtype=np.float32)
+        camera[2, 3] = 2.0
+        scene.set_camera(library.Camera(transform=camera))
+        if _render_probe(library, scene)[..., :3].max() > 0.0:
+            pytest.skip("camera rays ignore object visibility yet")

@@ -15,6 +15,8 @@ from stratum.engine import StratumRenderEngine
 from conftest import (
     read_image_pixels,
     skip_unless_integrators_apply_textures,
+    skip_unless_integrators_honour_light_visibility,
+    skip_unless_integrators_honour_object_visibility,
     skip_unless_integrators_write_alpha,
 )
 
@@ -149,3 +151,41 @@ def test_motion_blur_render(library: Any, scene_builder: Any, tmp_path: Path) ->
     # The blurred edge ramps over several pixels instead of one step.
     ramp = np.abs(np.diff(row))
     assert (ramp > 0.02 * abs(row.max() - background)).sum() >= 3
+
+
+def test_object_camera_visibility_reaches_the_render(library: Any, scene_builder: Any,
+                                                      tmp_path: Path) -> None:
+    """A cube hidden from camera rays: the image is the world colour everywhere."""
+    _needs_symbol(library, "stratum_scene_add_instance_ex")
+    skip_unless_integrators_honour_object_visibility(library)
+    b = scene_builder().basic()
+    b.scene.objects["Cube"].visible_camera = False
+    hidden = _render(b.scene, tmp_path / "hidden.exr")
+    assert hidden[..., :3] == pytest.approx(np.full_like(hidden[..., :3], 0.05), abs=1e-4)
+
+
+def test_light_diffuse_visibility_reaches_the_render(library: Any, scene_builder: Any,
+                                                     tmp_path: Path) -> None:
+    """A light invisible to diffuse rays leaves the (diffuse) cube lit by the world only."""
+    skip_unless_integrators_honour_light_visibility(library)
+    b = scene_builder().basic()
+    lit = _render(b.scene, tmp_path / "lit.exr")[12:20, 12:20, :3].mean()
+    b.scene.objects["Light"].visible_diffuse = False
+    unlit = _render(b.scene, tmp_path / "unlit.exr")[12:20, 12:20, :3].mean()
+    assert unlit < 0.5 * lit
+
+
+def test_equirectangular_camera_renders(library: Any, scene_builder: Any,
+                                        tmp_path: Path) -> None:
+    """A panorama from the camera: the cube occupies a patch around the view direction, the
+    rest of the sphere of directions is the world colour."""
+    b = scene_builder().basic()
+    cam = b.scene.camera.data
+    cam.type = "PANO"
+    source = cam if bpy.app.version >= (4, 0, 0) else cam.cycles
+    source.panorama_type = "EQUIRECTANGULAR"
+    b.set_resolution(64, 32)
+    pixels = _render(b.scene, tmp_path / "pano.exr")
+    assert pixels.shape[:2] == (32, 64)
+    world = np.isclose(pixels[..., :3], 0.05, atol=1e-4).all(axis=2)
+    assert 0.5 < world.mean() < 1.0
