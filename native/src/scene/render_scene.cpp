@@ -38,7 +38,8 @@ Rgb material_emission(const SceneMaterial& material) {
     return sum;
 }
 
-RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), background_(scene.background) {
+RenderScene::RenderScene(const Scene& scene)
+    : materials_(scene.materials), textures_(scene), background_(scene.background) {
     // One prototype BVH per mesh that is placed at least once.
     std::vector<uint32_t> prototype_of(scene.meshes.size(), kNoLight);
     std::vector<TriangleGeometry> prototypes;
@@ -158,6 +159,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     }
     hit->uv = {0.0f, 0.0f};
     hit->dpdu = Vec3(0.0f, 0.0f, 0.0f);
+    hit->bitangent_sign = 1.0f;
     if (!mesh.corner_uvs.empty()) {
         const Vec2 t0 = mesh.corner_uvs[k], t1 = mesh.corner_uvs[k + 1], t2 = mesh.corner_uvs[k + 2];
         hit->uv = {t0.x * b0 + t1.x * h.b1 + t2.x * h.b2, t0.y * b0 + t1.y * h.b1 + t2.y * h.b2};
@@ -165,7 +167,10 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
         // edges gives dpdu = (dv2 e1 − dv1 e2) / (du1 dv2 − du2 dv1) (pbrt 3.6.2). Degenerate UVs: 0.
         const float du1 = t1.x - t0.x, dv1 = t1.y - t0.y, du2 = t2.x - t0.x, dv2 = t2.y - t0.y;
         const float det = du1 * dv2 - du2 * dv1;
-        if (det != 0.0f) hit->dpdu = (e1 * dv2 - e2 * dv1) / det;
+        if (det != 0.0f) {
+            hit->dpdu = (e1 * dv2 - e2 * dv1) / det;
+            hit->bitangent_sign = det < 0.0f ? -1.0f : 1.0f;
+        }
     }
     hit->material_id = mesh.material_ids[h.triangle];
     hit->material = &materials_[hit->material_id].closures.front().params;
