@@ -161,8 +161,13 @@ class Flattener:
             if src.bl_idname == NORMAL_MAP_NODE and getattr(src, "space", "TANGENT") == "TANGENT":
                 image = self._source(src.inputs["Color"])
                 if image is not None and image[0].bl_idname == IMAGE_NODE:
-                    bindings.append(Binding(param, self._image(image[0]), -1,
-                                            self.scalar(src, "Strength", 1.0)))
+                    strength = self.scalar(src, "Strength", 1.0)
+                    if self.version >= (4, 0, 0) and not 0.0 <= strength <= 1.0:
+                        # Cycles 4.x+ scales the tangent-space normal; the renderer follows
+                        # 3.4's lerp, which agrees only for strengths in [0, 1].
+                        self.warn(src, f"Normal Map '{src.name}': strength {strength:g} outside "
+                                       "[0, 1] renders as Cycles 3.x does")
+                    bindings.append(Binding(param, self._image(image[0]), -1, strength))
                     return
                 if image is None:
                     return  # a Normal Map with a constant colour: the flat normal

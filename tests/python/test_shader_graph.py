@@ -286,3 +286,15 @@ def test_image_on_emission_or_transmission_warns_and_uses_the_value() -> None:
     assert any("'Glow'" in w for w in warnings) and any("'Clear'" in w for w in warnings)
     assert closures[0].bindings == []
     assert closures[0].material.emission == pytest.approx((2.0, 1.0, 0.0))
+
+
+def test_normal_map_strength_outside_unit_range_warns_in_4x_only() -> None:
+    for version, expected in ((V3, 0), (V5, 1)):
+        node, tex = principled_v2(), image("Bumps")
+        nmap = Node("ShaderNodeNormalMap", "Normal Map", {"Strength": 2.0,
+                    "Color": (0.5, 0.5, 1, 1)}, ("Normal",), space="TANGENT")
+        link(tex, "Color", nmap, "Color")
+        link(nmap, "Normal", node, "Normal")
+        closures, warnings = flatten(output_with(node), version)
+        assert len(warnings) == expected
+        assert closures[0].bindings[0].scale == pytest.approx(2.0)
