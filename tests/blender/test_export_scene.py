@@ -386,3 +386,34 @@ def test_border_and_film_transparent_settings(scene_builder: Any) -> None:
             settings["crop_height"]) == (25, 5, 50, 20)
     assert settings["film_transparent"] == 1
     assert engine.result_size(b.scene) == (50, 20)
+
+
+def test_geometry_nodes_instances_of_mesh_data(scene_builder: Any,
+                                               recording_scene: Any) -> None:
+    """Instance on Points with a Cube node: the instances are mesh data without an object of
+    their own (instance_object is the instancer); their geometry is instance.object's."""
+    b = scene_builder()
+    b.camera()
+    points = bpy.data.meshes.new("Points")
+    points.from_pydata([(0, 0, 0), (3, 0, 0), (0, 3, 0)], [], [])
+    scatter = b.link(bpy.data.objects.new("Scatter", points))
+    group = bpy.data.node_groups.new("Scatter", "GeometryNodeTree")
+    if hasattr(group, "interface"):  # 4.0+
+        group.interface.new_socket("Geometry", in_out="INPUT", socket_type="NodeSocketGeometry")
+        group.interface.new_socket("Geometry", in_out="OUTPUT", socket_type="NodeSocketGeometry")
+    else:
+        group.inputs.new("NodeSocketGeometry", "Geometry")
+        group.outputs.new("NodeSocketGeometry", "Geometry")
+    nodes, links = group.nodes, group.links
+    group_in, group_out = nodes.new("NodeGroupInput"), nodes.new("NodeGroupOutput")
+    on_points, cube = nodes.new("GeometryNodeInstanceOnPoints"), nodes.new("GeometryNodeMeshCube")
+    links.new(group_in.outputs[0], on_points.inputs["Points"])
+    links.new(cube.outputs[0], on_points.inputs["Instance"])
+    links.new(on_points.outputs[0], group_out.inputs[0])
+    scatter.modifiers.new("Scatter", "NODES").node_group = group
+    summary = export_scene(b.depsgraph(), recording_scene)
+    assert summary.meshes == 1 and summary.triangles == 12
+    assert summary.instances == 3
+    xs = sorted((round(float(m[0, 3])), round(float(m[1, 3]))) for _, m in
+                recording_scene.instances)
+    assert xs == [(0, 0), (0, 3), (3, 0)]

@@ -55,16 +55,24 @@ def _holdout(ob: Any, view_layer: Any) -> bool:
         return False
 
 
+def _identity(ob: Any) -> tuple[int, int]:
+    """What an object draws: its original object and its evaluated data. Stable across the
+    temporary objects depsgraph iteration hands out for instances (their pointers are reused)."""
+    original = getattr(ob, "original", None) or ob
+    data = ob.data
+    return (original.as_pointer(), data.as_pointer() if data is not None else 0)
+
+
 class _InstanceFlags:
-    """Visibility and holdout per (object, parent), cached: 10 000 instances of one object
-    should not read its properties 10 000 times."""
+    """Visibility and holdout per (object identity, instancer), cached: 10 000 instances of
+    one object should not read its properties 10 000 times."""
 
     def __init__(self, view_layer: Any) -> None:
         self._view_layer = view_layer
-        self._cache: dict[tuple[int, int], tuple[int, bool]] = {}
+        self._cache: dict[tuple[tuple[int, int], int], tuple[int, bool]] = {}
 
-    def get(self, ob: Any, parent: Any | None) -> tuple[int, bool]:
-        key = (ob.as_pointer(), parent.as_pointer() if parent is not None else 0)
+    def get(self, ob: Any, ident: tuple[int, int], parent: Any | None) -> tuple[int, bool]:
+        key = (ident, parent.as_pointer() if parent is not None else 0)
         found = self._cache.get(key)
         if found is None:
             # Cycles (blender/object.cpp): an instance is visible to the rays both it and its
@@ -111,37 +119,42 @@ def export_scene(
         scene.set_environment(environment.rgb, environment.strength, environment.rotation)
 
     flags = _InstanceFlags(getattr(depsgraph, "view_layer", None))
-    # Per evaluated object (instance_object is the real evaluated object, shared by all its
-    # instances): (mesh id, triangles); LIGHT_ID for lights, -1 for nothing to draw.
-    objects: dict[Any, tuple[int, int]] = {}
-    placed: list[tuple[int, int, Any, Any, Any]] = []  # (index, mesh id, ob, parent, motion)
+    # Per geometry identity (original object, evaluated data): (mesh id, triangles); LIGHT_ID
+    # for lights, -1 for nothing to draw.
+    objects: dict[tuple[int, int], tuple[int, int]] = {}
+    # (row, mesh id, object name, triangles, visibility, holdout, (open, close) or None)
+    placed: list[tuple[int, int, str, int, int, bool, Any]] = []
     index = -1
     for index, instance in enumerate(depsgraph.object_instances):
         if should_stop is not None and index % 256 == 0 and should_stop():
             raise ExportCancelled("export cancelled")
         is_instance = instance.is_instance
-        ob = instance.instance_object if is_instance else instance.object
+        # instance.object is what is drawn: for an instance, a temporary object (valid during
+        # this iteration only) that carries the instance's own data -- a geometry-nodes
+        # instance of mesh data has no object of its own (instance_object is its instancer).
+        ob = instance.object
         # show_self is off for an instancer whose own geometry is hidden in renders (Cycles
         # skips those too: blender/object.cpp).
         if ob is None or not (is_instance or instance.show_self):
             continue
-        found = objects.get(ob)
+        ident = _identity(ob)
+        found = objects.get(ident)
         if found is None:
             found = _object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
-            objects[ob] = found
+            objects[ident] = found
         mesh_id = found[0]
+        parent = instance.parent if is_instance else None
         if mesh_id == LIGHT_ID:
-            _add_light(ob, instance, flags, scene, summary)
+            _add_light(ob, instance, flags.get(ob, ident, parent)[0], scene, summary)
         elif mesh_id >= 0:
-            parent = instance.parent if is_instance else None
             moved = motion.get(instance_key(instance, ob)) if motion else None
-            placed.append((index, mesh_id, ob, parent, moved))
+            visibility, holdout = flags.get(ob, ident, parent)
+            placed.append((index, mesh_id, ob.name, found[1], visibility, holdout, moved))
     matrices = instance_matrices(depsgraph, index + 1)
 
     plain_ids: list[int] = []
     plain_rows: list[int] = []
-    for row, mesh_id, ob, parent, moved in placed:
-        visibility, holdout = flags.get(ob, parent)
+    for row, mesh_id, name, n_tri, visibility, holdout, moved in placed:
         if moved is None and visibility == native.VISIBLE_ALL and not holdout:
             plain_ids.append(mesh_id)
             plain_rows.append(row)
@@ -152,10 +165,10 @@ def export_scene(
                 scene.add_instance_ex(native.Instance(mesh_id, start_m, end_m, visibility,
                                                       holdout))
             except native.StratumError as exc:
-                raise ExportError(f"Object '{ob.name}': {exc}") from exc
-        summary.instanced_triangles += objects[ob][1]
-        summary.object_instances[ob.name] = summary.object_instances.get(ob.name, 0) + 1
-        summary.object_triangles[ob.name] = objects[ob][1]
+                raise ExportError(f"Object '{name}': {exc}") from exc
+        summary.instanced_triangles += n_tri
+        summary.object_instances[name] = summary.object_instances.get(name, 0) + 1
+        summary.object_triangles[name] = n_tri
     try:
         scene.add_instances(np.asarray(plain_ids, dtype=np.uint32), matrices[plain_rows])
     except native.StratumError as exc:
@@ -189,9 +202,8 @@ def _object_geometry(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTab
     return found
 
 
-def _add_light(ob: Any, instance: Any, flags: _InstanceFlags, scene: Any,
+def _add_light(ob: Any, instance: Any, visibility: int, scene: Any,
                summary: ExportSummary) -> None:
-    visibility, _ = flags.get(ob, instance.parent if instance.is_instance else None)
     light = convert_light(ob, instance.matrix_world, visibility, summary)
     if light is None:
         return

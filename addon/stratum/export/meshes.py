@@ -97,7 +97,10 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "") -> MeshArrays:
 
 def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "") -> MeshArrays | None:
     """Evaluated, triangulated geometry of an object (None if it has no surface)."""
-    ob_eval = ob.evaluated_get(depsgraph) if depsgraph is not None else ob
+    # Depsgraph instances are evaluated already (and temporary: evaluated_get would find the
+    # instancer of a geometry-nodes instance, not the instance's own data).
+    evaluated = getattr(ob, "is_evaluated", False) or depsgraph is None
+    ob_eval = ob if evaluated else ob.evaluated_get(depsgraph)
     try:
         mesh = ob_eval.to_mesh()
     except RuntimeError as exc:

@@ -46,7 +46,7 @@ def _transforms(depsgraph: Any) -> dict[tuple[Any, ...], np.ndarray]:
     keys: list[tuple[tuple[Any, ...], int]] = []
     index = -1
     for index, instance in enumerate(depsgraph.object_instances):
-        ob = instance.instance_object if instance.is_instance else instance.object
+        ob = instance.object
         if ob is not None and ob.type not in {"LIGHT", "CAMERA"}:
             keys.append((instance_key(instance, ob), index))
     matrices = instance_matrices(depsgraph, index + 1)
