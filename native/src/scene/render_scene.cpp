@@ -58,16 +58,19 @@ RenderScene::RenderScene(const Scene& scene)
             object_bounds.push_back(b);
         }
         const uint32_t proto = prototype_of[inst.mesh_id];
+        // An exporter may flag every object as moving when motion blur is on: equal ends are
+        // static (flattened if placed once, emissive triangles kept as lights).
+        const bool moving = inst.motion && inst.object_to_world.m != inst.object_to_world_end.m;
         placements.push_back(
-            {proto, inst.object_to_world, inst.object_to_world_end, inst.motion, inst.visibility});
+            {proto, inst.object_to_world, inst.object_to_world_end, moving, inst.visibility});
         add_transformed(world, object_bounds[proto], inst.object_to_world);
-        if (inst.motion) {
+        if (moving) {
             // Rotation is interpolated, so a moving box can bulge past both end boxes; the bound
             // only sizes the sun's selection weight, where that slack does not matter.
             add_transformed(world, object_bounds[proto], inst.object_to_world_end);
             has_motion_ = true;
         }
-        instances_.push_back({&mesh, inst.object_to_world, inst.motion, inst.visibility, inst.holdout, {}});
+        instances_.push_back({&mesh, inst.object_to_world, moving, inst.visibility, inst.holdout, {}});
     }
     std::vector<Rgb> emission(materials_.size());
     for (size_t m = 0; m < materials_.size(); ++m) emission[m] = material_emission(materials_[m]);
@@ -177,6 +180,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->emissive_light = g.emissive_light.empty() ? kNoLight : g.emissive_light[h.triangle];
     hit->visibility = g.visibility;
     hit->holdout = g.holdout;
+    hit->t = h.t;
     return true;
 }
 

@@ -29,6 +29,7 @@ struct SurfaceHit {
     uint32_t material_id = 0;     // scene material id
     uint32_t visibility = 31;     // the instance's StratumVisibility bits
     bool holdout = false;         // the instance is a holdout
+    float t = 0.0f;               // distance along the ray (for LightSet::lamp_radiance's t_max)
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;
