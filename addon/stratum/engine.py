@@ -26,11 +26,41 @@ def render_size(scene: Any) -> tuple[int, int]:
     return max(int(r.resolution_x * scale), 1), max(int(r.resolution_y * scale), 1)
 
 
+def border_region(scene: Any) -> tuple[int, int, int, int] | None:
+    """The border (Render Region) in pixels of the frame, bottom-left origin: (x, y, width,
+    height), or None without a border. Blender's render pipeline truncates border * size to
+    integers (render_init_from_main: disprect = border * winx/winy) and renders, and hands the
+    engine, only that region; use_crop_to_border only decides whether Blender pads it back to
+    the full frame afterwards."""
+    r = scene.render
+    if not r.use_border:
+        return None
+    width, height = render_size(scene)
+    x0, x1 = int(r.border_min_x * width), int(r.border_max_x * width)
+    y0, y1 = int(r.border_min_y * height), int(r.border_max_y * height)
+    if x1 - x0 < 1 or y1 - y0 < 1 or (x0, y0, x1, y1) == (0, 0, width, height):
+        return None
+    return x0, y0, x1 - x0, y1 - y0
+
+
+def result_size(scene: Any) -> tuple[int, int]:
+    """Size of the render result the engine fills: the border region, or the frame."""
+    region = border_region(scene)
+    return (region[2], region[3]) if region is not None else render_size(scene)
+
+
 def renderer_settings(scene: Any) -> dict[str, int | float | str]:
     """Native settings from scene.stratum and the output resolution (name -> value; the
-    Python type selects set_int / set_float / set_string)."""
+    Python type selects set_int / set_float / set_string). The border and film settings are
+    only sent when used, so a library without them still renders every other scene."""
     s = scene.stratum
     width, height = render_size(scene)
+    extra: dict[str, int | float | str] = {}
+    region = border_region(scene)
+    if region is not None:
+        extra.update(zip(("crop_x", "crop_y", "crop_width", "crop_height"), region, strict=True))
+    if scene.render.film_transparent:
+        extra["film_transparent"] = 1
     return {
         "width": width,
         "height": height,
@@ -44,7 +74,7 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
         "hemisphere": str(s.hemisphere),
         "integrator": str(s.integrator),
         "ao_distance": float(s.ao_distance),
-    }
+    } | extra
 
 
 def format_stats(progress: native.Progress, elapsed: float) -> str:
@@ -130,11 +160,12 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             # The library failed at register time; try again (it may exist now).
             native.load_library()
         settings = renderer_settings(scene)
-        width, height = int(settings["width"]), int(settings["height"])
+        width, height = result_size(scene)
 
         self.update_stats("", "Exporting scene")
         with native.Scene() as native_scene:
-            summary = export_scene(depsgraph, native_scene, should_stop=self.test_break)
+            summary = export_scene(depsgraph, native_scene, should_stop=self.test_break,
+                                   frame_set=self.frame_set)
             type(self).last_summary = summary
             for warning in summary.warnings:
                 self._report("WARNING", warning)

@@ -57,6 +57,33 @@ MATERIAL_DIFFUSE = 0
 MATERIAL_PRINCIPLED_V1 = 1
 MATERIAL_PRINCIPLED_V2 = 2
 MATERIAL_EMISSION = 3
+MATERIAL_GLOSSY = 4
+MATERIAL_GLASS = 5
+MATERIAL_TRANSPARENT = 6
+MATERIAL_HOLDOUT = 7
+
+TEXTURE_CLOSEST = 0
+TEXTURE_LINEAR = 1
+TEXTURE_REPEAT = 0
+TEXTURE_EXTEND = 1
+TEXTURE_CLIP = 2
+TEXTURE_MIRROR = 3
+
+PARAM_BASE_COLOR = 0
+PARAM_ROUGHNESS = 1
+PARAM_METALLIC = 2
+PARAM_NORMAL = 3
+PARAM_EMISSION = 4
+PARAM_WEIGHT = 5
+PARAM_TRANSMISSION = 6
+PARAM_SPECULAR = 7
+
+VISIBLE_CAMERA = 1
+VISIBLE_DIFFUSE = 2
+VISIBLE_GLOSSY = 4
+VISIBLE_TRANSMISSION = 8
+VISIBLE_SHADOW = 16
+VISIBLE_ALL = 31
 
 MICROFACET_GGX = 0
 MICROFACET_MULTISCATTER_GGX = 1
@@ -70,7 +97,9 @@ LIGHT_SPOT_V1 = 5  # Cycles 3.x spot: the 4.x falloff times cos(angle to the axi
 
 CAMERA_PERSPECTIVE = 0
 CAMERA_ORTHOGRAPHIC = 1
-CAMERA_TYPES: dict[str, int] = {"PERSP": CAMERA_PERSPECTIVE, "ORTHO": CAMERA_ORTHOGRAPHIC}
+CAMERA_EQUIRECTANGULAR = 2
+CAMERA_TYPES: dict[str, int] = {"PERSP": CAMERA_PERSPECTIVE, "ORTHO": CAMERA_ORTHOGRAPHIC,
+                                "EQUIRECTANGULAR": CAMERA_EQUIRECTANGULAR}
 
 SENSOR_FIT_AUTO = 0
 SENSOR_FIT_HORIZONTAL = 1
@@ -119,6 +148,54 @@ class _MaterialDesc(ctypes.Structure):
         ("coat_roughness", ctypes.c_float),
         ("coat_ior", ctypes.c_float),
         ("coat_tint", _c_float3),
+    ]
+
+
+class _ClosureDesc(ctypes.Structure):
+    _fields_ = [
+        ("weight", _c_float3),
+        ("closure", _MaterialDesc),
+    ]
+
+
+class _TextureDesc(ctypes.Structure):
+    _fields_ = [
+        ("path", ctypes.c_char_p),
+        ("file_data", ctypes.c_void_p),
+        ("file_size", ctypes.c_size_t),
+        ("file_name", ctypes.c_char_p),
+        ("pixels", ctypes.POINTER(ctypes.c_float)),
+        ("width", ctypes.c_uint32),
+        ("height", ctypes.c_uint32),
+        ("channels", ctypes.c_uint32),
+        ("color_space", ctypes.c_char_p),
+        ("ocio_config", ctypes.c_char_p),
+        ("interpolation", ctypes.c_int32),
+        ("extension", ctypes.c_int32),
+    ]
+
+
+class _TextureBinding(ctypes.Structure):
+    _fields_ = [
+        ("material_id", ctypes.c_uint32),
+        ("closure_index", ctypes.c_uint32),
+        ("param", ctypes.c_int32),
+        ("texture_id", ctypes.c_uint32),
+        ("channel", ctypes.c_int32),
+        ("scale", ctypes.c_float),
+        ("offset", ctypes.c_float),
+        ("emission_strength", ctypes.c_float),
+    ]
+
+
+class _InstanceDesc(ctypes.Structure):
+    _fields_ = [
+        ("mesh_id", ctypes.c_uint32),
+        ("transform", _c_float16),
+        ("transform_end", _c_float16),
+        ("motion", ctypes.c_int32),
+        ("visibility", ctypes.c_uint32),
+        ("holdout", ctypes.c_int32),
     ]
 
 
@@ -202,6 +279,50 @@ class Material:
     ior: float = 1.5
     emission: tuple[float, float, float] = (0.0, 0.0, 0.0)
     distribution: int = MICROFACET_GGX
+    transmission: float = 0.0
+    coat: float = 0.0
+    coat_roughness: float = 0.03
+    coat_ior: float = 1.5
+    coat_tint: tuple[float, float, float] = (1.0, 1.0, 1.0)
+
+
+@dataclass
+class Texture:
+    """One image for stratum_scene_add_texture: exactly one of path, file_data (with
+    file_name naming its format), pixels ((height, width, channels) float32, rows bottom to
+    top as Blender's Image.pixels)."""
+
+    path: str | None = None
+    file_data: bytes | None = None
+    file_name: str | None = None
+    pixels: np.ndarray | None = None
+    color_space: str = "sRGB"
+    ocio_config: str | None = None
+    interpolation: int = TEXTURE_LINEAR
+    extension: int = TEXTURE_REPEAT
+
+
+@dataclass
+class TextureBinding:
+    """Drives one parameter of one closure of a material by a texture (see stratum.h)."""
+
+    material_id: int
+    closure_index: int
+    param: int
+    texture_id: int
+    channel: int = -1  # -1 RGB, 0..3 one channel
+    scale: float = 1.0
+    offset: float = 0.0
+    emission_strength: float = 0.0  # must be 0 (PARAM_EMISSION bindings are refused)
+
+
+@dataclass
+class Instance:
+    mesh_id: int
+    transform: Sequence[float] | np.ndarray
+    transform_end: Sequence[float] | np.ndarray | None = None  # set when the object moves
+    visibility: int = VISIBLE_ALL
+    holdout: bool = False
 
 
 @dataclass
@@ -216,6 +337,8 @@ class Light:
     transform: Sequence[float] | np.ndarray = tuple(np.eye(4, dtype=np.float32).ravel())
     spot_size: float = math.pi  # full cone angle (spot lights)
     spot_blend: float = 0.0
+    visibility: int = VISIBLE_ALL
+    spread: float = math.pi  # area lights
 
 
 @dataclass
@@ -235,6 +358,10 @@ class Camera:
     focus_distance: float = 0.0  # depth of the sharp plane; > 0 when aperture_radius > 0
     aperture_blades: int = 0  # 0 = round, >= 3 = polygon
     aperture_rotation: float = 0.0  # radians
+    latitude_min: float = -math.pi / 2  # equirectangular ranges (radians)
+    latitude_max: float = math.pi / 2
+    longitude_min: float = -math.pi
+    longitude_max: float = math.pi
 
 
 @dataclass(frozen=True)
@@ -329,6 +456,39 @@ def _declare(lib: ctypes.CDLL) -> None:
             raise LibraryLoadError(f"{lib._name}: missing symbol {name}") from exc
         fn.restype = restype
         fn.argtypes = argtypes
+    # The issue-5 entry points: a library built before them still loads (every scene that
+    # needs none of them renders); a call that needs one raises a StratumError naming it.
+    later: dict[str, tuple[Any, list[Any]]] = {
+        "stratum_scene_add_closure_material": (c_int32, [p_void, ctypes.POINTER(_ClosureDesc),
+                                                         c_uint32, p_u32]),
+        "stratum_scene_add_texture": (c_int32, [p_void, ctypes.POINTER(_TextureDesc), p_u32]),
+        "stratum_scene_bind_texture": (c_int32, [p_void, ctypes.POINTER(_TextureBinding)]),
+        "stratum_scene_add_instance_ex": (c_int32, [p_void, ctypes.POINTER(_InstanceDesc)]),
+    }
+    for name, (restype, argtypes) in later.items():
+        fn = getattr(lib, name, None)
+        if fn is None:
+            _missing_symbols.add(name)
+            continue
+        fn.restype = restype
+        fn.argtypes = argtypes
+
+
+_missing_symbols: set[str] = set()
+
+
+def has_symbol(name: str) -> bool:
+    """True when the loaded library exports `name` (an issue-5 entry point may be missing
+    from a library built before it)."""
+    load_library()
+    return name not in _missing_symbols
+
+
+def _entry(lib: ctypes.CDLL, name: str) -> Any:
+    if name in _missing_symbols:
+        raise StratumError(ERROR_INTERNAL, f"the Stratum library lacks {name}: it was built "
+                           "before this feature; rebuild it (make build)")
+    return getattr(lib, name)
 
 
 def load_library(path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
@@ -622,6 +782,64 @@ class Scene(_Handle):
                "stratum_scene_add_material")
         return int(out.value)
 
+    def add_closure_material(
+            self, closures: Sequence[tuple[Sequence[float], Mapping[str, Any] | Material]]) -> int:
+        """A material made of weighted closures [(weight RGB, material), ...]."""
+        n = len(closures)
+        if n == 0:
+            raise ValueError("closure material: at least one closure is needed")
+        descs = (_ClosureDesc * n)()
+        for i, (weight, material) in enumerate(closures):
+            values = asdict(Material())
+            values.update(_fields(material))
+            _set_struct(descs[i].closure, values, f"closure {i}")
+            _set_struct(descs[i], {"weight": weight}, f"closure {i}")
+        out = ctypes.c_uint32()
+        fn = _entry(self._lib, "stratum_scene_add_closure_material")
+        _check(self._lib, fn(self.handle, descs, n, ctypes.byref(out)),
+               "stratum_scene_add_closure_material")
+        return int(out.value)
+
+    def add_texture(self, texture: Texture) -> int:
+        desc = _TextureDesc()
+        keep: list[Any] = []  # buffers referenced by desc, alive until the (copying) call returns
+        if texture.path is not None:
+            desc.path = os.fsencode(texture.path)
+        if texture.file_data is not None:
+            data = ctypes.create_string_buffer(bytes(texture.file_data), len(texture.file_data))
+            keep.append(data)
+            desc.file_data = ctypes.cast(data, ctypes.c_void_p)
+            desc.file_size = len(texture.file_data)
+        if texture.file_name is not None:
+            desc.file_name = texture.file_name.encode()
+        if texture.pixels is not None:
+            px = np.ascontiguousarray(texture.pixels, dtype=np.float32)
+            if px.ndim == 2:
+                px = px[:, :, None]
+            if px.ndim != 3:
+                raise ValueError(f"texture pixels: expected (height, width, channels), got "
+                                 f"{px.shape}")
+            keep.append(px)
+            desc.pixels = _float_ptr(px)
+            desc.height, desc.width, desc.channels = (int(v) for v in px.shape)
+        desc.color_space = texture.color_space.encode()
+        if texture.ocio_config is not None:
+            desc.ocio_config = os.fsencode(texture.ocio_config)
+        desc.interpolation = int(texture.interpolation)
+        desc.extension = int(texture.extension)
+        out = ctypes.c_uint32()
+        fn = _entry(self._lib, "stratum_scene_add_texture")
+        status = fn(self.handle, ctypes.byref(desc), ctypes.byref(out))
+        del keep
+        _check(self._lib, status, "stratum_scene_add_texture")
+        return int(out.value)
+
+    def bind_texture(self, binding: TextureBinding) -> None:
+        desc = _TextureBinding()
+        _set_struct(desc, _fields(binding), "texture binding")
+        fn = _entry(self._lib, "stratum_scene_bind_texture")
+        _check(self._lib, fn(self.handle, ctypes.byref(desc)), "stratum_scene_bind_texture")
+
     def add_mesh(
         self,
         positions: np.ndarray,
@@ -675,6 +893,37 @@ class Scene(_Handle):
         _check(self._lib,
                self._lib.stratum_scene_add_instance(self.handle, int(mesh_id), _float_ptr(m)),
                "stratum_scene_add_instance")
+
+    def add_instances(self, mesh_ids: np.ndarray, transforms: np.ndarray) -> None:
+        """Static instances in bulk: mesh_ids (N,) and transforms (N, 4, 4) row-major. One C
+        call per instance without per-instance array conversion (scenes place 10 000s)."""
+        ids = np.ascontiguousarray(mesh_ids, dtype=np.uint32).reshape(-1)
+        mats = np.ascontiguousarray(transforms, dtype=np.float32).reshape(-1, 16)
+        if len(ids) != len(mats):
+            raise ValueError(f"add_instances: {len(ids)} mesh ids for {len(mats)} transforms")
+        fn = self._lib.stratum_scene_add_instance
+        handle = self.handle
+        base = mats.ctypes.data
+        pointer = ctypes.POINTER(ctypes.c_float)
+        for i, mesh_id in enumerate(ids.tolist()):
+            _check(self._lib, fn(handle, mesh_id, ctypes.cast(base + 64 * i, pointer)),
+                   "stratum_scene_add_instance")
+
+    def add_instance_ex(self, instance: Instance) -> None:
+        """An instance with motion (transform_end not None), ray visibility and holdout."""
+        desc = _InstanceDesc()
+        desc.mesh_id = _uint32(instance.mesh_id, "instance mesh_id")
+        # memmove, not per-element assignment: scenes place tens of thousands of instances.
+        start = _matrix16(instance.transform, "instance transform")
+        ctypes.memmove(desc.transform, start.ctypes.data, 64)
+        if instance.transform_end is not None:
+            end = _matrix16(instance.transform_end, "instance transform_end")
+            ctypes.memmove(desc.transform_end, end.ctypes.data, 64)
+            desc.motion = 1
+        desc.visibility = _uint32(instance.visibility, "instance visibility")
+        desc.holdout = 1 if instance.holdout else 0
+        fn = _entry(self._lib, "stratum_scene_add_instance_ex")
+        _check(self._lib, fn(self.handle, ctypes.byref(desc)), "stratum_scene_add_instance_ex")
 
     def add_light(self, light: Mapping[str, Any] | Light | None = None, **fields: Any) -> None:
         values = asdict(Light())
@@ -749,6 +998,8 @@ class Renderer(_Handle):
                "stratum_renderer_create")
         self._width = 0
         self._height = 0
+        self._crop_width = 0  # a border render reads and writes only its region
+        self._crop_height = 0
         self._started = False
         for name, value in settings.items():
             self.set(name, value)
@@ -767,10 +1018,8 @@ class Renderer(_Handle):
         key = name.encode()
         if isinstance(value, bool | int | np.integer):
             status = self._lib.stratum_renderer_set_int(self.handle, key, int(value))
-            if name == "width":
-                self._width = int(value)
-            elif name == "height":
-                self._height = int(value)
+            if name in ("width", "height", "crop_width", "crop_height"):
+                setattr(self, f"_{name}", int(value))
         elif isinstance(value, float | np.floating):
             status = self._lib.stratum_renderer_set_float(self.handle, key, float(value))
         elif isinstance(value, str):
@@ -786,6 +1035,13 @@ class Renderer(_Handle):
     @property
     def height(self) -> int:
         return self._height
+
+    @property
+    def image_size(self) -> tuple[int, int]:
+        """(width, height) of the image read_pixels returns: the border region if one is set."""
+        if self._crop_width > 0 and self._crop_height > 0:
+            return self._crop_width, self._crop_height
+        return self._width, self._height
 
     def start(self) -> None:
         _check(self._lib, self._lib.stratum_renderer_start(self.handle), "stratum_renderer_start")
@@ -823,7 +1079,8 @@ class Renderer(_Handle):
         """Copies the current image (linear RGBA, rows bottom to top) into `out` (a contiguous
         float32 array of width*height*4 values, any shape) with one native copy."""
         if out is None:
-            out = np.empty(self._width * self._height * 4, dtype=np.float32)
+            width, height = self.image_size
+            out = np.empty(width * height * 4, dtype=np.float32)
         if out.dtype != np.float32 or not out.flags.c_contiguous or not out.flags.writeable:
             raise ValueError("read_pixels: out must be a writeable C-contiguous float32 array")
         _check(self._lib,

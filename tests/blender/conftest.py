@@ -57,6 +57,9 @@ class RecordingScene:
         self.camera: Any = None
         self.background: Any = None
         self.environment: Any = None
+        self.textures: list[Any] = []
+        self.bindings: list[Any] = []
+        self.instance_descs: dict[int, Any] = {}
 
     def add_material(self, material: Any) -> int:
         self.materials.append(material)
@@ -87,6 +90,29 @@ class RecordingScene:
 
     def set_environment(self, rgb: Any, strength: float = 1.0, rotation: Any = None) -> None:
         self.environment = {"rgb": np.array(rgb), "strength": strength, "rotation": rotation}
+
+    # Issue-5 entry points. Closure materials share the material id space (as natively);
+    # add_instance_ex instances are listed in `instances` too, their descriptions in
+    # `instance_descs` (by position in `instances`).
+    def add_closure_material(self, closures: Any) -> int:
+        self.materials.append([(tuple(w), m) for w, m in closures])
+        return len(self.materials) - 1
+
+    def add_texture(self, texture: Any) -> int:
+        self.textures.append(texture)
+        return len(self.textures) - 1
+
+    def bind_texture(self, binding: Any) -> None:
+        self.bindings.append(binding)
+
+    def add_instances(self, mesh_ids: Any, transforms: Any) -> None:
+        matrices = np.array(transforms, dtype=np.float32).reshape(-1, 4, 4)
+        self.instances.extend(zip((int(i) for i in mesh_ids), matrices, strict=True))
+
+    def add_instance_ex(self, instance: Any) -> None:
+        self.instance_descs[len(self.instances)] = instance
+        self.instances.append((instance.mesh_id,
+                               np.array(instance.transform, dtype=np.float32).reshape(4, 4)))
 
 
 CUBE_VERTS = [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),
@@ -190,3 +216,81 @@ def read_image_pixels(path: Path) -> np.ndarray:
         return buf.reshape(h, w, image.channels)
     finally:
         bpy.data.images.remove(image)
+
+
+def _render_probe(library: Any, scene: Any, **settings: Any) -> np.ndarray:
+    with library.Renderer(scene, width=2, height=2, samples=1, **settings) as renderer:
+        renderer.start()
+        while not renderer.wait(100):
+            pass
+        return renderer.read_pixels().reshape(2, 2, 4)
+
+
+def skip_unless_integrators_write_alpha(library: Any) -> None:
+    """Skips while the native integrators do not write alpha (film_transparent and holdout are
+    accepted at the ABI before the integrators honour them): a camera seeing only the
+    background of a transparent film must read alpha 0."""
+    with library.Scene() as scene:
+        scene.set_camera(library.Camera())
+        if _render_probe(library, scene, film_transparent=1)[0, 0, 3] != 0.0:
+            pytest.skip("the native integrators do not write alpha yet")
+
+
+def skip_unless_integrators_apply_textures(library: Any) -> None:
+    """Skips while the integrators do not apply texture bindings: a quad filling the view,
+    its diffuse colour bound to a black texture, under a white background, must be black."""
+    if not library.has_symbol("stratum_scene_add_texture"):
+        pytest.skip("the native library predates textures (stratum_scene_add_texture)")
+    with library.Scene() as scene:
+        mat = scene.add_material({"model": library.MATERIAL_DIFFUSE, "base_color": (1, 1, 1)})
+        quad = np.array([[-9, -9, 0], [9, -9, 0], [9, 9, 0], [-9, 9, 0]], dtype=np.float32)
+        mesh = scene.add_mesh(quad, np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32),
+                              np.full(2, mat, dtype=np.uint32),
+                              corner_uvs=np.zeros((2, 3, 2), dtype=np.float32))
+        scene.add_instance(mesh, np.eye(4, dtype=np.float32))
+        camera = np.eye(4, dtype=np.float32)
+        camera[2, 3] = 2.0
+        scene.set_camera(library.Camera(transform=camera))
+        scene.set_background((1.0, 1.0, 1.0))
+        black = scene.add_texture(library.Texture(pixels=np.zeros((1, 1, 3), np.float32),
+                                                  color_space="Non-Color"))
+        scene.bind_texture(library.TextureBinding(mat, 0, library.PARAM_BASE_COLOR, black))
+        if _render_probe(library, scene)[..., :3].max() > 0.0:
+            pytest.skip("the native integrators do not apply texture bindings yet")
+
+
+def skip_unless_integrators_honour_light_visibility(library: Any) -> None:
+    """Skips while the integrators ignore light visibility bits: a diffuse quad lit only by a
+    point light invisible to diffuse rays must be black."""
+    with library.Scene() as scene:
+        mat = scene.add_material({"model": library.MATERIAL_DIFFUSE, "base_color": (1, 1, 1)})
+        quad = np.array([[-9, -9, 0], [9, -9, 0], [9, 9, 0], [-9, 9, 0]], dtype=np.float32)
+        mesh = scene.add_mesh(quad, np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32),
+                              np.full(2, mat, dtype=np.uint32))
+        scene.add_instance(mesh, np.eye(4, dtype=np.float32))
+        above = np.eye(4, dtype=np.float32)
+        above[2, 3] = 1.0
+        scene.add_light(type=library.LIGHT_POINT, strength=100.0, transform=above,
+                        visibility=library.VISIBLE_ALL & ~library.VISIBLE_DIFFUSE)
+        above[2, 3] = 2.0
+        scene.set_camera(library.Camera(transform=above))
+        if _render_probe(library, scene)[..., :3].max() > 0.0:
+            pytest.skip("the native integrators ignore light visibility yet")
+
+
+def skip_unless_integrators_honour_object_visibility(library: Any) -> None:
+    """Skips while camera rays ignore instance visibility: an emissive quad hidden from the
+    camera, on a black background, must not be seen."""
+    with library.Scene() as scene:
+        mat = scene.add_material({"model": library.MATERIAL_EMISSION, "base_color": (0, 0, 0),
+                                  "emission": (1, 1, 1)})
+        quad = np.array([[-9, -9, 0], [9, -9, 0], [9, 9, 0], [-9, 9, 0]], dtype=np.float32)
+        mesh = scene.add_mesh(quad, np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32),
+                              np.full(2, mat, dtype=np.uint32))
+        scene.add_instance_ex(library.Instance(
+            mesh, np.eye(4), visibility=library.VISIBLE_ALL & ~library.VISIBLE_CAMERA))
+        camera = np.eye(4, dtype=np.float32)
+        camera[2, 3] = 2.0
+        scene.set_camera(library.Camera(transform=camera))
+        if _render_probe(library, scene)[..., :3].max() > 0.0:
+            pytest.skip("camera rays ignore object visibility yet")

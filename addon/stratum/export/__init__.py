@@ -1,9 +1,13 @@
 """Scene export: evaluated depsgraph -> native.Scene, numpy arrays only.
 
-    summary = export_scene(depsgraph, native_scene)
+    summary = export_scene(depsgraph, native_scene, should_stop, frame_set)
 
-Meshes are exported once per distinct evaluated geometry and placed by one instance per
-object instance (object, collection instance, particle/geometry-nodes instance).
+Every mesh is sent once per distinct evaluated geometry (and material assignment) and placed by
+one instance per depsgraph object instance (objects, collection instances, particle and
+geometry-nodes instances). Instances carry the object's ray visibility and holdout (Object >
+Visibility in Cycles) and, with motion blur, the transforms at shutter open and close.
+Collections excluded from the view layer or disabled for render never reach
+depsgraph.object_instances, so nothing else is needed for them.
 """
 
 from __future__ import annotations
@@ -12,10 +16,12 @@ import time
 from collections.abc import Callable
 from typing import Any
 
+import numpy as np
+
 from .. import native
 from .camera import convert_camera
-from .common import ExportCancelled, ExportError, ExportSummary, matrix_to_array
-from .lights import convert_light
+from .common import ExportCancelled, ExportError, ExportSummary, instance_matrices
+from .lights import convert_light, object_visibility
 from .materials import MaterialTable, convert_material
 from .meshes import (
     GEOMETRY_TYPES,
@@ -25,6 +31,7 @@ from .meshes import (
     slot_material_ids,
     triangle_material_ids,
 )
+from .motion import instance_key, shutter_transforms
 from .world import convert_environment, convert_world
 
 __all__ = [
@@ -37,77 +44,203 @@ __all__ = [
 ]
 
 
+def _holdout(ob: Any, view_layer: Any) -> bool:
+    """Object > Visibility > Holdout, or a holdout collection in the view layer."""
+    if getattr(ob, "is_holdout", False):
+        return True
+    original = getattr(ob, "original", None) or ob
+    try:
+        return bool(original.holdout_get(view_layer=view_layer))
+    except (TypeError, RuntimeError, AttributeError):
+        return False
+
+
+def _identity(ob: Any) -> tuple[int, int]:
+    """What an object draws: its original object and its evaluated data. Stable across the
+    temporary objects depsgraph iteration hands out for instances (their pointers are reused)."""
+    original = getattr(ob, "original", None) or ob
+    data = ob.data
+    return (original.as_pointer(), data.as_pointer() if data is not None else 0)
+
+
+class _InstanceFlags:
+    """Visibility and holdout per (object identity, instancer), cached: 10 000 instances of
+    one object should not read its properties 10 000 times."""
+
+    def __init__(self, view_layer: Any) -> None:
+        self._view_layer = view_layer
+        self._cache: dict[tuple[tuple[int, int], int], tuple[int, bool]] = {}
+
+    def get(self, ob: Any, ident: tuple[int, int], parent: Any | None) -> tuple[int, bool]:
+        key = (ident, parent.as_pointer() if parent is not None else 0)
+        found = self._cache.get(key)
+        if found is None:
+            # Cycles (blender/object.cpp): an instance is visible to the rays both it and its
+            # instancer are visible to, and held out if either is.
+            visibility = object_visibility(ob)
+            holdout = _holdout(ob, self._view_layer)
+            if parent is not None:
+                visibility &= object_visibility(parent)
+                holdout = holdout or _holdout(parent, self._view_layer)
+            found = (visibility, holdout)
+            self._cache[key] = found
+        return found
+
+
 def export_scene(
     depsgraph: Any,
-    scene: native.Scene,
+    scene: Any,
     should_stop: Callable[[], bool] | None = None,
+    frame_set: Callable[[int, float], None] | None = None,
 ) -> ExportSummary:
-    """Exports the evaluated scene of `depsgraph` into `scene`.
+    """Exports the evaluated scene of `depsgraph` into `scene` (a native.Scene).
 
     Raises ExportError (message names the object) for data that cannot be rendered and
     ExportCancelled if should_stop() becomes true. Unsupported features that have a fallback
-    are collected in summary.warnings (one per material / light / world)."""
+    are collected in summary.warnings (one per material node / light / world / object).
+    frame_set(frame, subframe) re-evaluates the depsgraph at another time (RenderEngine.frame_set
+    during a render); it is needed for motion blur only."""
     start = time.perf_counter()
     summary = ExportSummary()
     bl_scene = depsgraph.scene_eval if hasattr(depsgraph, "scene_eval") else depsgraph.scene
     materials = MaterialTable(scene, summary)
     mesh_ids: dict[tuple[Any, ...], tuple[int, int]] = {}  # key -> (mesh id, triangles)
+    motion = shutter_transforms(depsgraph, bl_scene, frame_set)
 
-    scene.set_camera(convert_camera(bl_scene, depsgraph))
+    try:
+        # Blender clamps lens to >= 1 mm, so a zero focal length comes only from files other
+        # tools wrote; the native side rejects it (and any other bad value) by name.
+        scene.set_camera(convert_camera(bl_scene, depsgraph))
+    except native.StratumError as exc:
+        raise ExportError(f"Camera '{bl_scene.camera.name}': {exc}") from exc
     scene.set_background(convert_world(bl_scene, summary))
     environment = convert_environment(bl_scene, summary)
     if environment is not None:
         scene.set_environment(environment.rgb, environment.strength, environment.rotation)
 
-    for count, instance in enumerate(depsgraph.object_instances):
-        if should_stop is not None and count % 64 == 0 and should_stop():
+    flags = _InstanceFlags(getattr(depsgraph, "view_layer", None))
+    # Per geometry identity (original object, evaluated data): (mesh id, triangles); LIGHT_ID
+    # for lights, -1 for nothing to draw.
+    objects: dict[tuple[int, int], tuple[int, int]] = {}
+    # (row, mesh id, object name, triangles, visibility, holdout, (open, close) or None)
+    placed: list[tuple[int, int, str, int, int, bool, Any]] = []
+    index = -1
+    for index, instance in enumerate(depsgraph.object_instances):
+        if should_stop is not None and index % 256 == 0 and should_stop():
             raise ExportCancelled("export cancelled")
-        ob = instance.instance_object if instance.is_instance else instance.object
-        if ob is None:
+        is_instance = instance.is_instance
+        # instance.object is what is drawn: for an instance, a temporary object (valid during
+        # this iteration only) that carries the instance's own data -- a geometry-nodes
+        # instance of mesh data has no object of its own (instance_object is its instancer).
+        ob = instance.object
+        # show_self is off for an instancer whose own geometry is hidden in renders (Cycles
+        # skips those too: blender/object.cpp).
+        if ob is None or not (is_instance or instance.show_self):
             continue
-        kind = ob.type
-        if kind == "LIGHT":
-            light = convert_light(ob, instance.matrix_world, summary)
-            if light is not None:
-                try:
-                    scene.add_light(light)
-                except native.StratumError as exc:
-                    raise ExportError(f"Light '{ob.name}': {exc}") from exc
-                summary.lights += 1
-            continue
-        if kind not in GEOMETRY_TYPES:
-            continue
-
-        matrix = matrix_to_array(instance.matrix_world)
-        slot_ids = slot_material_ids(ob, materials.id_for)
-        key = mesh_key(ob, tuple(int(i) for i in slot_ids))
-        found = mesh_ids.get(key)
+        ident = _identity(ob)
+        found = objects.get(ident)
         if found is None:
-            arrays = object_mesh_arrays(ob, depsgraph)
-            if arrays is None or len(arrays.triangles) == 0:
-                mesh_ids[key] = (-1, 0)
-                continue
-            mat_ids = triangle_material_ids(arrays.material_index, slot_ids)
-            try:
-                mesh_id = scene.add_mesh(arrays.positions, arrays.triangles, mat_ids,
-                                         arrays.corner_normals, arrays.corner_uvs)
-            except native.StratumError as exc:
-                raise ExportError(f"Object '{ob.name}': {exc}") from exc
-            found = (mesh_id, len(arrays.triangles))
-            mesh_ids[key] = found
-            summary.meshes += 1
-            summary.triangles += found[1]
-        mesh_id, n_tri = found
-        if mesh_id < 0:
-            continue
-        try:
-            scene.add_instance(mesh_id, matrix)
-        except native.StratumError as exc:
-            raise ExportError(f"Object '{ob.name}': {exc}") from exc
-        summary.instances += 1
-        summary.instanced_triangles += n_tri
-        summary.object_triangles[ob.name] = n_tri
-        summary.object_instances[ob.name] = summary.object_instances.get(ob.name, 0) + 1
+            found = _object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
+            objects[ident] = found
+        mesh_id = found[0]
+        parent = instance.parent if is_instance else None
+        if mesh_id == LIGHT_ID:
+            _add_light(ob, instance, flags.get(ob, ident, parent)[0], scene, summary)
+        elif mesh_id >= 0:
+            moved = motion.get(instance_key(instance, ob)) if motion else None
+            visibility, holdout = flags.get(ob, ident, parent)
+            placed.append((index, mesh_id, ob.name, found[1], visibility, holdout, moved))
+    matrices = instance_matrices(depsgraph, index + 1)
 
+    plain_ids: list[int] = []
+    plain_rows: list[int] = []
+    for row, mesh_id, name, n_tri, visibility, holdout, moved in placed:
+        if moved is None and visibility == native.VISIBLE_ALL and not holdout:
+            plain_ids.append(mesh_id)
+            plain_rows.append(row)
+        else:
+            start_m, end_m = moved if moved is not None else (matrices[row], None)
+            summary.moving_instances += moved is not None
+            try:
+                scene.add_instance_ex(native.Instance(mesh_id, start_m, end_m, visibility,
+                                                      holdout))
+            except native.StratumError as exc:
+                raise ExportError(f"Object '{name}': {exc}") from exc
+        summary.instanced_triangles += n_tri
+        summary.object_instances[name] = summary.object_instances.get(name, 0) + 1
+        summary.object_triangles[name] = n_tri
+    try:
+        scene.add_instances(np.asarray(plain_ids, dtype=np.uint32), matrices[plain_rows])
+    except native.StratumError as exc:
+        raise ExportError(f"Instances: {exc}") from exc
+    summary.instances = len(placed)
+
+    summary.textures = materials.textures.count
     summary.export_seconds = time.perf_counter() - start
     return summary
+
+
+LIGHT_ID = -2
+
+
+def _object_geometry(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
+                     mesh_ids: dict[tuple[Any, ...], tuple[int, int]],
+                     summary: ExportSummary) -> tuple[int, int]:
+    """(mesh id, triangles) of an evaluated object, its mesh added on first sight of its
+    geometry; (LIGHT_ID, 0) for a light, (-1, 0) for nothing to draw."""
+    kind = ob.type
+    if kind == "LIGHT":
+        return (LIGHT_ID, 0)
+    if kind not in GEOMETRY_TYPES:
+        return (-1, 0)
+    slot_ids = slot_material_ids(ob, materials.id_for)
+    key = mesh_key(ob, tuple(int(i) for i in slot_ids))
+    found = mesh_ids.get(key)
+    if found is None:
+        found = _add_mesh(ob, depsgraph, scene, materials, summary)
+        mesh_ids[key] = found
+    return found
+
+
+def _add_light(ob: Any, instance: Any, visibility: int, scene: Any,
+               summary: ExportSummary) -> None:
+    light = convert_light(ob, instance.matrix_world, visibility, summary)
+    if light is None:
+        return
+    try:
+        scene.add_light(light)
+    except native.StratumError as exc:
+        raise ExportError(f"Light '{ob.name}': {exc}") from exc
+    summary.lights += 1
+
+
+def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
+              summary: ExportSummary) -> tuple[int, int]:
+    """(mesh id, triangles) of an object's evaluated geometry; (-1, 0) when it has none."""
+    slot_ids = slot_material_ids(ob, materials.id_for)
+    uv_map = next((materials.uv_maps.get(int(i), "") for i in slot_ids
+                   if materials.uv_maps.get(int(i))), "")
+    arrays = object_mesh_arrays(ob, depsgraph, uv_map)
+    if arrays is None or len(arrays.triangles) == 0:
+        # A vertex/face instancer's own mesh often has no faces on purpose.
+        if ob.type == "MESH" and not getattr(ob, "is_instancer", False):
+            summary.warn(f"Object '{ob.name}': mesh has no faces (skipped)")
+        return (-1, 0)
+    if arrays.missing_uv:
+        summary.warn(f"Object '{ob.name}': UV map '{arrays.missing_uv}' not found; "
+                     "using the active render UV map")
+    mat_ids = triangle_material_ids(arrays.material_index, slot_ids)
+    uvs = arrays.corner_uvs
+    if uvs is None and materials.textured.intersection(int(i) for i in slot_ids):
+        # Cycles reads a missing UV attribute as (0, 0): textures show their corner texel.
+        summary.warn(f"Object '{ob.name}': no UV map for its image textures; using UV (0, 0)")
+        uvs = np.zeros((len(arrays.triangles), 3, 2), dtype=np.float32)
+    try:
+        mesh_id = scene.add_mesh(arrays.positions, arrays.triangles, mat_ids,
+                                 arrays.corner_normals, uvs)
+    except native.StratumError as exc:
+        raise ExportError(f"Object '{ob.name}': {exc}") from exc
+    summary.meshes += 1
+    summary.triangles += len(arrays.triangles)
+    return (mesh_id, len(arrays.triangles))
+

@@ -4,10 +4,28 @@ from __future__ import annotations
 
 from typing import Any
 
+import bpy
 import numpy as np
 
 from .. import native
 from .common import ExportError, matrix_to_array
+
+
+def _panorama(cam: Any, name: str) -> dict[str, Any]:
+    """Equirectangular panorama ranges: Cycles 3.x keeps them in camera.cycles, 4.x+ on the
+    camera itself. Other panorama types are an error naming the type."""
+    source = cam.cycles if bpy.app.version < (4, 0, 0) and hasattr(cam, "cycles") else cam
+    kind = getattr(source, "panorama_type", "")
+    if kind != "EQUIRECTANGULAR":
+        raise ExportError(f"Camera '{name}': camera type PANO with panorama type {kind} is not "
+                          "supported (only EQUIRECTANGULAR, perspective and orthographic)")
+    return {
+        "type": native.CAMERA_EQUIRECTANGULAR,
+        "latitude_min": float(source.latitude_min),
+        "latitude_max": float(source.latitude_max),
+        "longitude_min": float(source.longitude_min),
+        "longitude_max": float(source.longitude_max),
+    }
 
 
 def convert_camera(scene: Any, depsgraph: Any) -> native.Camera:
@@ -20,9 +38,14 @@ def convert_camera(scene: Any, depsgraph: Any) -> native.Camera:
                           f"(type {cam_ob.type})")
     ob = cam_ob.evaluated_get(depsgraph) if depsgraph is not None else cam_ob
     cam = ob.data
-    if cam.type not in native.CAMERA_TYPES:
+    if cam.type == "PANO":
+        kind = _panorama(cam, cam_ob.name)
+    elif cam.type in native.CAMERA_TYPES:
+        kind = {"type": native.CAMERA_TYPES[cam.type]}
+    else:
         raise ExportError(f"Camera '{cam_ob.name}': camera type {cam.type} is not supported "
-                          "(only perspective, PERSP, and orthographic, ORTHO)")
+                          "(only perspective, orthographic and equirectangular panorama)")
+
     m = matrix_to_array(ob.matrix_world).reshape(4, 4).astype(np.float64)
     # Drop object scale: a scaled camera must not change the projection.
     axes = m[:3, :3]
@@ -31,7 +54,7 @@ def convert_camera(scene: Any, depsgraph: Any) -> native.Camera:
         raise ExportError(f"Camera '{cam_ob.name}' has a degenerate transform")
     m[:3, :3] = axes / lengths
     return native.Camera(
-        type=native.CAMERA_TYPES[cam.type],
+        **kind,
         ortho_scale=float(cam.ortho_scale),
         **_depth_of_field(cam, m, depsgraph),
         lens_mm=float(cam.lens),

@@ -27,6 +27,8 @@ class ExportSummary:
     triangles: int = 0  # triangles of the unique meshes
     instanced_triangles: int = 0  # triangles over all instances
     lights: int = 0
+    textures: int = 0  # images sent (each once)
+    moving_instances: int = 0  # instances with motion blur (transform differs over the shutter)
     object_triangles: dict[str, int] = field(default_factory=dict)  # evaluated, per object
     object_instances: dict[str, int] = field(default_factory=dict)  # instances per object
     warnings: list[str] = field(default_factory=list)
@@ -50,6 +52,16 @@ def uses_nodes(idblock: Any) -> bool:
 def matrix_to_array(matrix: Any) -> np.ndarray:
     """A Blender 4x4 Matrix as 16 float32, row-major (m[row*4 + col]), as the C ABI wants."""
     return np.ascontiguousarray(np.array(matrix, dtype=np.float32).reshape(16))
+
+
+def instance_matrices(depsgraph: Any, count: int) -> np.ndarray:
+    """matrix_world of every depsgraph object instance, in iteration order, as (count, 4, 4)
+    row-major float32: one foreach_get instead of a Matrix conversion per instance (which
+    costs ~0.2 ms each in Blender 3.4). RNA stores matrices column-major, hence the transpose."""
+    flat = np.empty(count * 16, dtype=np.float32)
+    if count:
+        depsgraph.object_instances.foreach_get("matrix_world", flat)
+    return np.ascontiguousarray(flat.reshape(count, 4, 4).transpose(0, 2, 1))
 
 
 def linked_from(socket: Any) -> Any | None:

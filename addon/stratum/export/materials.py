@@ -1,45 +1,30 @@
-"""Blender materials -> native materials (one id per distinct Blender material)."""
+"""Blender materials -> native materials (one id per distinct Blender material).
+
+The node walk is stratum.shader_graph (pure Python, unit-tested without Blender); this module
+feeds it the active Material Output's Surface input, then sends the closures, the images and
+their bindings to the native scene. A material of one closure with weight 1 is added with
+stratum_scene_add_material, any other with stratum_scene_add_closure_material: the same thing
+to the renderer.
+"""
 
 from __future__ import annotations
 
-import math
+from dataclasses import dataclass, field
 from typing import Any
 
 import bpy
 
 from .. import native
-from .common import (
-    ExportSummary,
-    active_output,
-    linked_from,
-    rgb,
-    socket_value,
-    uses_nodes,
-)
+from ..shader_graph import DEFAULT_GREY, Closure, flatten_surface
+from .common import ExportError, ExportSummary, active_output, linked_from, rgb, uses_nodes
+from .images import TextureTable
 
-DEFAULT_GREY = (0.8, 0.8, 0.8)
 
-# Principled inputs that Stratum does not model: (socket name, value that means "off").
-_V1_UNSUPPORTED = (
-    ("Subsurface", 0.0),
-    ("Transmission", 0.0),
-    ("Clearcoat", 0.0),
-    ("Sheen", 0.0),
-    ("Anisotropic", 0.0),
-)
-_V2_UNSUPPORTED = (
-    ("Subsurface Weight", 0.0),
-    ("Transmission Weight", 0.0),
-    ("Coat Weight", 0.0),
-    ("Sheen Weight", 0.0),
-    ("Anisotropic", 0.0),
-    ("Thin Film Thickness", 0.0),
-)
-# Inputs whose values we read; if linked, we fall back to the socket's default value.
-_READ_INPUTS = (
-    "Base Color", "Roughness", "Metallic", "Specular", "Specular IOR Level", "IOR",
-    "Emission", "Emission Color", "Emission Strength",
-)
+@dataclass
+class ConvertedMaterial:
+    closures: list[Closure]
+    uv_map: str = ""  # UV layer its textures read ("" = the mesh's active render layer)
+    warnings: list[str] = field(default_factory=list)  # each names the material and node
 
 
 def _clamp01(color: tuple[float, float, float]) -> tuple[float, float, float]:
@@ -47,123 +32,60 @@ def _clamp01(color: tuple[float, float, float]) -> tuple[float, float, float]:
             min(max(color[2], 0.0), 1.0))
 
 
-def _finite(x: float, fallback: float) -> float:
-    return x if math.isfinite(x) else fallback
+def _single(material: native.Material) -> list[Closure]:
+    return [Closure((1.0, 1.0, 1.0), material)]
 
 
-def _emission(color: Any, strength: Any) -> tuple[float, float, float]:
-    c = rgb(color) if color is not None else (0.0, 0.0, 0.0)
-    s = float(strength) if strength is not None else 1.0
-    return (max(c[0] * s, 0.0), max(c[1] * s, 0.0), max(c[2] * s, 0.0))
-
-
-def _principled(node: Any, issues: list[str]) -> native.Material:
-    v2 = bpy.app.version >= (4, 0, 0) or node.inputs.get("Specular IOR Level") is not None
-    for name, off in _V2_UNSUPPORTED if v2 else _V1_UNSUPPORTED:
-        sock = node.inputs.get(name)
-        if sock is None:
-            continue
-        if sock.is_linked or float(sock.default_value) != off:
-            issues.append(name.lower())
-    alpha = node.inputs.get("Alpha")
-    if alpha is not None and (alpha.is_linked or float(alpha.default_value) < 1.0):
-        issues.append("alpha")
-    normal = node.inputs.get("Normal")
-    if normal is not None and normal.is_linked:
-        issues.append("normal map")
-    linked = [n for n in _READ_INPUTS
-              if node.inputs.get(n) is not None and node.inputs[n].is_linked]
-    if linked:
-        issues.append("linked " + ", ".join(linked) + " (using the socket values)")
-
-    base = rgb(socket_value(node, "Base Color"))
-    clamped = _clamp01(base)
-    if clamped != base:
-        issues.append("base color outside [0, 1] (clamped)")
-    if v2:
-        emission = _emission(socket_value(node, "Emission Color"),
-                             socket_value(node, "Emission Strength"))
-        specular = socket_value(node, "Specular IOR Level")
-    else:
-        emission = _emission(socket_value(node, "Emission"),
-                             socket_value(node, "Emission Strength"))
-        specular = socket_value(node, "Specular")
-    ior = socket_value(node, "IOR")
-    # Cycles 4.x/5.x model both distributions; the 3.x model here is single-scatter GGX only.
-    multiscatter = getattr(node, "distribution", "GGX") == "MULTI_GGX"
-    if multiscatter and not v2:
-        issues.append("Multiscatter GGX (rendered as GGX)")
-    return native.Material(
-        model=native.MATERIAL_PRINCIPLED_V2 if v2 else native.MATERIAL_PRINCIPLED_V1,
-        base_color=clamped,
-        roughness=min(max(_finite(float(socket_value(node, "Roughness")), 0.5), 0.0), 1.0),
-        metallic=min(max(_finite(float(socket_value(node, "Metallic")), 0.0), 0.0), 1.0),
-        specular=max(_finite(float(specular if specular is not None else 0.5), 0.5), 0.0),
-        ior=max(_finite(float(ior if ior is not None else 1.5), 1.5), 1e-3),
-        emission=emission,
-        distribution=(native.MICROFACET_MULTISCATTER_GGX if multiscatter and v2
-                      else native.MICROFACET_GGX),
-    )
-
-
-def convert_material(material: Any | None) -> tuple[native.Material, list[str]]:
-    """A native material and the list of unsupported features that were approximated."""
-    issues: list[str] = []
+def convert_material(material: Any | None) -> ConvertedMaterial:
+    """Closures of a Blender material (None: the default grey diffuse)."""
     if material is None:
-        return native.Material(model=native.MATERIAL_DIFFUSE, base_color=DEFAULT_GREY), issues
+        return ConvertedMaterial(_single(native.Material(model=native.MATERIAL_DIFFUSE,
+                                                         base_color=DEFAULT_GREY)))
     if not uses_nodes(material):
         color = _clamp01(rgb(material.diffuse_color))
-        return native.Material(model=native.MATERIAL_DIFFUSE, base_color=color), issues
-
-    node_tree = material.node_tree
-    output = active_output(node_tree, "ShaderNodeOutputMaterial")
+        return ConvertedMaterial(_single(native.Material(model=native.MATERIAL_DIFFUSE,
+                                                         base_color=color)))
+    output = active_output(material.node_tree, "ShaderNodeOutputMaterial")
     surface = output.inputs.get("Surface") if output is not None else None
-    node = linked_from(surface) if surface is not None else None
-    if node is None:
+    if surface is None or linked_from(surface) is None:
         # Cycles renders an unconnected surface black; keep it visible but say so.
-        issues.append("no shader connected to the Material Output (using grey diffuse)")
-        return native.Material(model=native.MATERIAL_DIFFUSE, base_color=DEFAULT_GREY), issues
+        return ConvertedMaterial(
+            _single(native.Material(model=native.MATERIAL_DIFFUSE, base_color=DEFAULT_GREY)),
+            warnings=[f"Material '{material.name}': no shader connected to the Material Output "
+                      "(using grey diffuse)"])
+    warnings: list[str] = []
 
-    kind = node.bl_idname
-    if kind == "ShaderNodeBsdfPrincipled":
-        return _principled(node, issues), issues
-    if kind == "ShaderNodeBsdfDiffuse":
-        color_sock = node.inputs.get("Color")
-        if color_sock is not None and color_sock.is_linked:
-            issues.append("linked Color (using the socket value)")
-        rough = node.inputs.get("Roughness")
-        if rough is not None and (rough.is_linked or float(rough.default_value) != 0.0):
-            issues.append("diffuse roughness (Oren-Nayar)")
-        color = rgb(socket_value(node, "Color"))
-        clamped = _clamp01(color)
-        if clamped != color:
-            issues.append("color outside [0, 1] (clamped)")
-        return native.Material(model=native.MATERIAL_DIFFUSE, base_color=clamped), issues
-    if kind == "ShaderNodeEmission":
-        linked = [n for n in ("Color", "Strength") if node.inputs[n].is_linked]
-        if linked:
-            issues.append("linked " + ", ".join(linked) + " (using the socket values)")
-        emission = _emission(socket_value(node, "Color"), socket_value(node, "Strength"))
-        return native.Material(model=native.MATERIAL_EMISSION, base_color=(0.0, 0.0, 0.0),
-                               emission=emission), issues
-    issues.append(f"shader node '{node.name}' ({kind}) is not supported (using grey diffuse)")
-    return native.Material(model=native.MATERIAL_DIFFUSE, base_color=DEFAULT_GREY), issues
+    def warn(node: Any, message: str) -> None:
+        warnings.append(f"Material '{material.name}': {message}")
+
+    closures, uv_map = flatten_surface(surface, tuple(bpy.app.version), warn)
+    if not closures:
+        # Every closure had weight 0: Cycles shades the surface black (and opaque).
+        closures = _single(native.Material(model=native.MATERIAL_DIFFUSE,
+                                           base_color=(0.0, 0.0, 0.0)))
+    return ConvertedMaterial(closures, uv_map, warnings)
 
 
 class MaterialTable:
-    """Assigns native material ids, once per Blender material (plus one default)."""
+    """Assigns native material ids, once per Blender material (plus one default), and the
+    textures they bind, once per image."""
 
-    def __init__(self, scene: native.Scene, summary: ExportSummary) -> None:
+    def __init__(self, scene: Any, summary: ExportSummary) -> None:
         self._scene = scene
         self._summary = summary
         self._ids: dict[int, int] = {}
         self._default: int | None = None
+        self._material_name = ""
+        self.textures = TextureTable(scene, self._texture_warning)
+        self.uv_maps: dict[int, str] = {}  # material id -> UV layer its textures read
+        self.textured: set[int] = set()  # material ids with texture bindings
+
+    def _texture_warning(self, node: Any, message: str) -> None:
+        self._summary.warn(f"Material '{self._material_name}': {message}")
 
     def default_id(self) -> int:
         if self._default is None:
-            desc, _ = convert_material(None)
-            self._default = self._scene.add_material(desc)
-            self._summary.materials += 1
+            self._default = self._add("(default)", convert_material(None))
         return self._default
 
     def id_for(self, material: Any | None) -> int:
@@ -174,10 +96,32 @@ class MaterialTable:
         found = self._ids.get(key)
         if found is not None:
             return found
-        desc, issues = convert_material(material)
-        if issues:
-            self._summary.warn(f"Material '{material.name}': " + "; ".join(issues))
-        mat_id = self._scene.add_material(desc)
-        self._summary.materials += 1
+        converted = convert_material(material)
+        for warning in converted.warnings:
+            self._summary.warn(warning)
+        mat_id = self._add(material.name, converted)
         self._ids[key] = mat_id
+        return mat_id
+
+    def _add(self, name: str, converted: ConvertedMaterial) -> int:
+        closures = converted.closures
+        self._material_name = name
+        try:
+            if len(closures) == 1 and closures[0].weight == (1.0, 1.0, 1.0):
+                mat_id = self._scene.add_material(closures[0].material)
+            else:
+                mat_id = self._scene.add_closure_material(
+                    [(c.weight, c.material) for c in closures])
+            for index, closure in enumerate(closures):
+                for b in closure.bindings:
+                    self._scene.bind_texture(native.TextureBinding(
+                        material_id=mat_id, closure_index=index, param=b.param,
+                        texture_id=self.textures.id_for(b.image.node), channel=b.channel,
+                        scale=b.scale, offset=b.offset))
+        except native.StratumError as exc:
+            raise ExportError(f"Material '{name}': {exc}") from exc
+        self._summary.materials += 1
+        self.uv_maps[mat_id] = converted.uv_map
+        if any(c.bindings for c in closures):
+            self.textured.add(mat_id)
         return mat_id

@@ -20,6 +20,7 @@ class MeshArrays:
     material_index: np.ndarray  # (T,) int32, the object's material slot per triangle
     corner_normals: np.ndarray | None  # (T, 3, 3) float32
     corner_uvs: np.ndarray | None  # (T, 3, 2) float32
+    missing_uv: str = ""  # the UV map asked for, when the mesh has no layer of that name
 
 
 def _get(collection: Any, attr: str, count: int, width: int, dtype: Any) -> np.ndarray:
@@ -38,17 +39,27 @@ def _corner_normals(mesh: Any, n_loops: int) -> np.ndarray:
     return _get(mesh.loops, "normal", n_loops, 3, np.float32)
 
 
-def _corner_uvs(mesh: Any, n_loops: int) -> np.ndarray | None:
-    layer = mesh.uv_layers.active
-    if layer is None:
-        return None
+def _uv_layer(mesh: Any, name: str) -> tuple[Any | None, bool]:
+    """The UV layer `name` ("" = the active render layer, as Cycles' default UV), and whether
+    a named layer was missing (then the active render layer is used)."""
+    layers = mesh.uv_layers
+    if name:
+        layer = layers.get(name)
+        if layer is not None:
+            return layer, False
+    render = next((layer for layer in layers if layer.active_render), None)
+    return (render if render is not None else layers.active), bool(name)
+
+
+def _corner_uvs(layer: Any, n_loops: int) -> np.ndarray:
     if hasattr(layer, "uv"):  # 3.5+
         return _get(layer.uv, "vector", n_loops, 2, np.float32)
     return _get(layer.data, "uv", n_loops, 2, np.float32)
 
 
-def mesh_arrays(mesh: Any, object_name: str) -> MeshArrays:
-    """Triangulated arrays of an evaluated mesh; ExportError naming the object on bad data."""
+def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "") -> MeshArrays:
+    """Triangulated arrays of an evaluated mesh (UVs from layer `uv_map`, "" = the active
+    render layer); ExportError naming the object on bad data."""
     mesh.calc_loop_triangles()
     n_vert = len(mesh.vertices)
     n_loops = len(mesh.loops)
@@ -75,18 +86,21 @@ def mesh_arrays(mesh: Any, object_name: str) -> MeshArrays:
         if not np.isfinite(normals).all():
             normals = None  # degenerate faces; let the renderer use geometric normals
     uvs = None
-    if n_tri:
-        per_loop_uv = _corner_uvs(mesh, n_loops)
-        if per_loop_uv is not None:
-            uvs = per_loop_uv[loops]  # (T, 3, 2)
-            if not np.isfinite(uvs).all():
-                raise ExportError(f"Object '{object_name}' has non-finite UV coordinates")
-    return MeshArrays(positions, triangles, material_index, normals, uvs)
+    layer, missing = _uv_layer(mesh, uv_map)
+    if n_tri and layer is not None:
+        uvs = _corner_uvs(layer, n_loops)[loops]  # (T, 3, 2)
+        if not np.isfinite(uvs).all():
+            raise ExportError(f"Object '{object_name}' has non-finite UV coordinates")
+    return MeshArrays(positions, triangles, material_index, normals, uvs,
+                      uv_map if missing else "")
 
 
-def object_mesh_arrays(ob: Any, depsgraph: Any) -> MeshArrays | None:
+def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "") -> MeshArrays | None:
     """Evaluated, triangulated geometry of an object (None if it has no surface)."""
-    ob_eval = ob.evaluated_get(depsgraph) if depsgraph is not None else ob
+    # Depsgraph instances are evaluated already (and temporary: evaluated_get would find the
+    # instancer of a geometry-nodes instance, not the instance's own data).
+    evaluated = getattr(ob, "is_evaluated", False) or depsgraph is None
+    ob_eval = ob if evaluated else ob.evaluated_get(depsgraph)
     try:
         mesh = ob_eval.to_mesh()
     except RuntimeError as exc:
@@ -94,18 +108,19 @@ def object_mesh_arrays(ob: Any, depsgraph: Any) -> MeshArrays | None:
     if mesh is None:
         return None
     try:
-        return mesh_arrays(mesh, ob.name)
+        return mesh_arrays(mesh, ob.name, uv_map)
     finally:
         ob_eval.to_mesh_clear()
 
 
 def mesh_key(ob: Any, slot_ids: tuple[int, ...]) -> tuple[Any, ...]:
-    """Deduplication key: the original mesh data (plus materials) when the object has no
-    modifiers, otherwise the original object (its evaluated geometry is its own)."""
-    original = getattr(ob, "original", None) or ob
-    data = getattr(original, "data", None)
-    if ob.type == "MESH" and data is not None and len(ob.modifiers) == 0:
+    """Deduplication key: the evaluated geometry (plus materials). A mesh object's evaluated
+    data is shared by every object (and instance) showing the same geometry, and is its own
+    for an object whose modifiers changed it; other types are keyed by the original object."""
+    data = getattr(ob, "data", None)
+    if ob.type == "MESH" and data is not None:
         return ("data", data.as_pointer(), slot_ids)
+    original = getattr(ob, "original", None) or ob
     return ("object", original.as_pointer(), slot_ids)
 
 

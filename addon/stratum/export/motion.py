@@ -1,0 +1,88 @@
+"""Motion blur: object transforms at shutter open and close.
+
+Cycles (blender/sync.cpp, BlenderSync::sync_motion) re-evaluates the scene at the shutter's
+ends with RenderEngine.frame_set and keeps, per object, the transforms there. The shutter spans
+motion_blur_shutter frames around the current frame, placed by the motion blur position
+(3.x: scene.cycles.motion_blur_position, 4.x+: scene.render.motion_blur_position; default
+CENTER): START [f, f + s], CENTER [f - s/2, f + s/2], END [f - s, f].
+Only instances whose transform differs between the two ends are sent as moving.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import Any
+
+import numpy as np
+
+from .common import instance_matrices
+
+
+def instance_key(instance: Any, ob: Any) -> tuple[Any, ...]:
+    """Identifies one object instance across depsgraph evaluations."""
+    if instance.is_instance:
+        parent = instance.parent
+        return (parent.name if parent is not None else "", ob.name,
+                tuple(instance.persistent_id))
+    return (ob.name,)
+
+
+def shutter_interval(bl_scene: Any) -> tuple[float, float]:
+    render = bl_scene.render
+    frame = float(bl_scene.frame_current) + float(getattr(bl_scene, "frame_subframe", 0.0))
+    shutter = max(float(render.motion_blur_shutter), 0.0)
+    position = getattr(render, "motion_blur_position", None)
+    if position is None:
+        position = getattr(getattr(bl_scene, "cycles", None), "motion_blur_position", "CENTER")
+    if position == "START":
+        return frame, frame + shutter
+    if position == "END":
+        return frame - shutter, frame
+    return frame - 0.5 * shutter, frame + 0.5 * shutter
+
+
+def _transforms(depsgraph: Any) -> dict[tuple[Any, ...], np.ndarray]:
+    keys: list[tuple[tuple[Any, ...], int]] = []
+    index = -1
+    for index, instance in enumerate(depsgraph.object_instances):
+        ob = instance.object
+        if ob is not None and ob.type not in {"LIGHT", "CAMERA"}:
+            keys.append((instance_key(instance, ob), index))
+    matrices = instance_matrices(depsgraph, index + 1)
+    return {key: matrices[row] for key, row in keys}
+
+
+def _split(frame: float) -> tuple[int, float]:
+    whole = math.floor(frame)
+    return int(whole), frame - whole
+
+
+def shutter_transforms(depsgraph: Any, bl_scene: Any,
+                       frame_set: Callable[[int, float], None] | None
+                       ) -> dict[tuple[Any, ...], tuple[np.ndarray, np.ndarray]] | None:
+    """{instance key: (transform at open, transform at close)} of the instances that move over
+    the shutter, or None without motion blur. Leaves the depsgraph at the current frame."""
+    if not bl_scene.render.use_motion_blur or bl_scene.render.motion_blur_shutter <= 0.0:
+        return None
+    if frame_set is None:
+        original = getattr(bl_scene, "original", bl_scene)
+
+        def frame_set(frame: int, subframe: float) -> None:
+            original.frame_set(frame, subframe=subframe)
+
+    current = (int(bl_scene.frame_current), float(getattr(bl_scene, "frame_subframe", 0.0)))
+    open_time, close_time = shutter_interval(bl_scene)
+    try:
+        frame_set(*_split(open_time))
+        at_open = _transforms(depsgraph)
+        frame_set(*_split(close_time))
+        at_close = _transforms(depsgraph)
+    finally:
+        frame_set(*current)
+    moving: dict[tuple[Any, ...], tuple[np.ndarray, np.ndarray]] = {}
+    for key, start in at_open.items():
+        end = at_close.get(key)
+        if end is not None and not np.array_equal(start, end):
+            moving[key] = (start, end)
+    return moving

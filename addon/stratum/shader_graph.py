@@ -1,0 +1,440 @@
+"""Blender shader node graphs -> weighted closures, as Cycles flattens them (pure Python).
+
+    closures, uv_map = flatten_surface(surface_socket, blender_version, warn)
+
+Cycles evaluates a material's shader tree into a list of closures, each with an RGB weight:
+Mix Shader scales its first input by (1 - Fac) and its second by Fac, Add Shader passes its
+weight to both inputs, and Principled BSDF with Alpha < 1 is Mix(Transparent, Principled, Alpha)
+(intern/cycles/scene/shader_nodes.cpp, PrincipledBsdfNode::compile). This module walks the
+same tree into the native contract's closures (stratum.h StratumClosureDesc) plus the image
+textures that drive their parameters (StratumTextureBinding).
+
+| Node (bl_idname)               | Closure       | Inputs read (* = texture-bindable)       |
+|--------------------------------|---------------|------------------------------------------|
+| ShaderNodeBsdfPrincipled, 3.x  | PRINCIPLED_V1 | Base Color*, Metallic*, Roughness*,      |
+|                                |               | Specular*, IOR, Transmission, Clearcoat, |
+|                                |               | Clearcoat Roughness, Emission x Emission |
+|                                |               | Strength, Alpha*, Normal*                |
+| ShaderNodeBsdfPrincipled, 4.x+ | PRINCIPLED_V2 | Base Color*, Metallic*, Roughness*, IOR, |
+|                                |               | Specular IOR Level*, Transmission Weight,|
+|                                |               | Coat Weight/Roughness/IOR/Tint, Emission |
+|                                |               | Color x Strength, Alpha*, Normal*        |
+| ShaderNodeBsdfDiffuse          | DIFFUSE       | Color*, Normal*                          |
+| ShaderNodeBsdfGlossy (3.x) /   | GLOSSY        | Color*, Roughness*, Normal*              |
+|   ShaderNodeBsdfAnisotropic    |               |                                          |
+| ShaderNodeBsdfGlass            | GLASS         | Color*, Roughness*, IOR, Normal*         |
+| ShaderNodeBsdfTransparent      | TRANSPARENT   | Color*                                   |
+| ShaderNodeEmission             | EMISSION      | Color x Strength                         |
+| ShaderNodeHoldout              | HOLDOUT       |                                          |
+| ShaderNodeMixShader, AddShader | (weights)     | Fac (constant or image*)                 |
+
+`*`: an Image Texture node linked directly (Color or Alpha output), or through a Normal Map node
+(tangent space) for Normal. Anything else linked to an input: one warning naming the material
+and the node, and the socket's own value. This module never imports bpy: nodes are read by
+duck typing (bl_idname, name, inputs, outputs, links), so the unit tests use plain objects.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
+from typing import Any
+
+from . import native
+
+Rgb = tuple[float, float, float]
+
+IMAGE_NODE = "ShaderNodeTexImage"
+NORMAL_MAP_NODE = "ShaderNodeNormalMap"
+GLOSSY_NODES = ("ShaderNodeBsdfGlossy", "ShaderNodeBsdfAnisotropic")
+DEFAULT_GREY: Rgb = (0.8, 0.8, 0.8)
+# Parameters the native contract does not take textures for (stratum.h: emissive triangles are
+# light-sampled with a constant emission; transmission waits for a per-material weight).
+NATIVE_UNBINDABLE = frozenset({native.PARAM_EMISSION, native.PARAM_TRANSMISSION})
+
+
+@dataclass(frozen=True)
+class ImageRef:
+    """An Image Texture node and the UV layer it reads ("" = the mesh's active render UV)."""
+
+    node: Any
+    uv_map: str = ""
+
+
+@dataclass(frozen=True)
+class Binding:
+    """A texture driving one closure parameter: value = offset + scale * texel."""
+
+    param: int
+    image: ImageRef
+    channel: int = -1  # -1 = RGB (luminance for a scalar parameter), 3 = alpha
+    scale: float = 1.0
+    offset: float = 0.0
+
+
+@dataclass
+class Closure:
+    weight: Rgb
+    material: native.Material
+    bindings: list[Binding] = field(default_factory=list)
+
+
+class Flattener:
+    """Walks one material's surface tree. `warn(node, message)` is called at most once per
+    node (the caller prefixes the material name)."""
+
+    def __init__(self, version: tuple[int, int, int], warn: Callable[[Any, str], None]) -> None:
+        self.version = version
+        self._warn = warn
+        self._warned: set[str] = set()
+        self.closures: list[Closure] = []
+
+    # ---- warnings and socket reading ------------------------------------------------------
+
+    def warn(self, node: Any, message: str) -> None:
+        key = getattr(node, "name", str(id(node)))
+        if key in self._warned:
+            return
+        self._warned.add(key)
+        self._warn(node, message)
+
+    def _source(self, socket: Any) -> tuple[Any, Any] | None:
+        """(node, output socket) feeding `socket`, following reroutes; None if unlinked."""
+        for _ in range(64):
+            if socket is None or not socket.is_linked:
+                return None
+            link = socket.links[0]
+            if getattr(link, "is_muted", False) or not getattr(link, "is_valid", True):
+                return None
+            node = link.from_node
+            if node.bl_idname == "NodeReroute":
+                socket = node.inputs[0]
+                continue
+            return node, link.from_socket
+        return None
+
+    def _image(self, image_node: Any) -> ImageRef:
+        """The UV layer an Image Texture reads, from its Vector input."""
+        found = self._source(image_node.inputs["Vector"])
+        if found is None:
+            return ImageRef(image_node)
+        node, out = found
+        if node.bl_idname == "ShaderNodeUVMap":
+            return ImageRef(image_node, str(node.uv_map))
+        if node.bl_idname == "ShaderNodeTexCoord" and out.name == "UV":
+            return ImageRef(image_node)
+        self.warn(node, f"node '{node.name}' ({node.bl_idname}) on the Vector input of "
+                        f"'{image_node.name}' is not supported; using the UV map")
+        return ImageRef(image_node)
+
+    def value(self, node: Any, name: str, fallback: Any) -> Any:
+        """An input's own value (fallback if the node has no such input)."""
+        socket = node.inputs.get(name)
+        if socket is None:
+            return fallback
+        return socket.default_value
+
+    def scalar(self, node: Any, name: str, fallback: float) -> float:
+        v = float(self.value(node, name, fallback))
+        return v if math.isfinite(v) else fallback
+
+    def color(self, node: Any, name: str, fallback: Rgb) -> Rgb:
+        v = self.value(node, name, fallback)
+        c = tuple(float(x) for x in tuple(v)[:3])
+        return (c[0], c[1], c[2]) if all(math.isfinite(x) for x in c) else fallback
+
+    def texture(self, node: Any, name: str, param: int, bindings: list[Binding]) -> None:
+        """Records a binding if `name` is linked to an image (or, for Normal, to a Normal Map
+        of an image); warns about any other link (the socket's value is then used)."""
+        socket = node.inputs.get(name)
+        found = self._source(socket) if socket is not None else None
+        if found is None:
+            return
+        src, out = found
+        if param in NATIVE_UNBINDABLE:
+            self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' "
+                           "is not supported (the renderer takes a constant there); using the "
+                           "socket's value")
+            return
+        if param == native.PARAM_NORMAL:
+            if src.bl_idname == NORMAL_MAP_NODE and getattr(src, "space", "TANGENT") == "TANGENT":
+                image = self._source(src.inputs["Color"])
+                if image is not None and image[0].bl_idname == IMAGE_NODE:
+                    strength = self.scalar(src, "Strength", 1.0)
+                    if self.version >= (4, 0, 0) and not 0.0 <= strength <= 1.0:
+                        # Cycles 4.x+ scales the tangent-space normal; the renderer follows
+                        # 3.4's lerp, which agrees only for strengths in [0, 1].
+                        self.warn(src, f"Normal Map '{src.name}': strength {strength:g} outside "
+                                       "[0, 1] renders as Cycles 3.x does")
+                    bindings.append(Binding(param, self._image(image[0]), -1, strength))
+                    return
+                if image is None:
+                    return  # a Normal Map with a constant colour: the flat normal
+                src = image[0]
+            self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' "
+                           "is not supported (only Image Texture -> Normal Map, tangent space); "
+                           "using the shading normal")
+            return
+        if src.bl_idname == IMAGE_NODE:
+            channel = 3 if out.name == "Alpha" else -1
+            bindings.append(Binding(param, self._image(src), channel, 1.0, 0.0))
+            return
+        self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' is not "
+                       "supported; using the socket's value")
+
+    def unsupported_link(self, node: Any, name: str) -> None:
+        """Warns when an input Stratum reads only as a constant is linked."""
+        socket = node.inputs.get(name)
+        found = self._source(socket) if socket is not None else None
+        if found is not None:
+            src = found[0]
+            self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' "
+                           "is not supported; using the socket's value")
+
+    # ---- the walk ---------------------------------------------------------------------------
+
+    def walk(self, socket: Any, weight: Rgb, weight_binding: Binding | None = None) -> None:
+        found = self._source(socket)
+        if found is None:
+            return  # an unlinked shader input adds no closure (Cycles: black)
+        node = found[0]
+        if getattr(node, "mute", False):
+            self.warn(node, f"muted node '{node.name}' is rendered as nothing")
+            return
+        kind = node.bl_idname
+        if kind == "ShaderNodeMixShader":
+            self._mix(node, weight, weight_binding)
+        elif kind == "ShaderNodeAddShader":
+            self.walk(node.inputs[0], weight, weight_binding)
+            self.walk(node.inputs[1], weight, weight_binding)
+        elif kind == "ShaderNodeBsdfPrincipled":
+            self._principled(node, weight, weight_binding)
+        else:
+            made = self._simple(node)
+            if made is None:
+                self.warn(node, f"shader node '{node.name}' ({kind}) is not supported; using a "
+                                "default Principled BSDF")
+                made = (self._default_principled(), [])
+            self._emit(weight, weight_binding, *made)
+
+    def _emit(self, weight: Rgb, weight_binding: Binding | None, material: native.Material,
+              bindings: list[Binding]) -> None:
+        if weight_binding is None and max(weight) <= 0.0:
+            return  # Cycles drops closures of zero weight
+        all_bindings = list(bindings)
+        if weight_binding is not None:
+            all_bindings.append(weight_binding)
+        self.closures.append(Closure(weight, material, all_bindings))
+
+    def _mix(self, node: Any, weight: Rgb, weight_binding: Binding | None) -> None:
+        fac_socket = node.inputs[0]
+        fac = min(max(float(fac_socket.default_value), 0.0), 1.0)
+        found = self._source(fac_socket)
+        if found is not None and found[0].bl_idname == IMAGE_NODE:
+            if weight_binding is None:
+                channel = 3 if found[1].name == "Alpha" else -1
+                image = self._image(found[0])
+                # first input x (1 - fac), second x fac (fac from the image, per shading point)
+                self.walk(node.inputs[1], weight,
+                          Binding(native.PARAM_WEIGHT, image, channel, -1.0, 1.0))
+                self.walk(node.inputs[2], weight,
+                          Binding(native.PARAM_WEIGHT, image, channel, 1.0, 0.0))
+                return
+            self.warn(node, f"Mix Shader '{node.name}': an image factor inside another "
+                            "image-driven mix is not supported; using its Fac value")
+        elif found is not None:
+            self.warn(found[0], f"node '{found[0].name}' ({found[0].bl_idname}) on the Fac of "
+                                f"'{node.name}' is not supported; using the Fac value {fac:g}")
+        self.walk(node.inputs[1], _scale(weight, 1.0 - fac), weight_binding)
+        self.walk(node.inputs[2], _scale(weight, fac), weight_binding)
+
+    def _default_principled(self) -> native.Material:
+        v2 = self.version >= (4, 0, 0)
+        return native.Material(
+            model=native.MATERIAL_PRINCIPLED_V2 if v2 else native.MATERIAL_PRINCIPLED_V1,
+            base_color=DEFAULT_GREY, roughness=0.5, specular=0.5, ior=1.5 if v2 else 1.45,
+            distribution=native.MICROFACET_MULTISCATTER_GGX if v2 else native.MICROFACET_GGX)
+
+    # ---- BSDF nodes ---------------------------------------------------------------------------
+
+    def _clamped_color(self, node: Any, name: str) -> Rgb:
+        c = self.color(node, name, DEFAULT_GREY)
+        clamped = (min(max(c[0], 0.0), 1.0), min(max(c[1], 0.0), 1.0), min(max(c[2], 0.0), 1.0))
+        if clamped != c:
+            self.warn(node, f"'{name}' of '{node.name}' outside [0, 1] is clamped")
+        return clamped
+
+    def _roughness(self, node: Any) -> float:
+        return min(max(self.scalar(node, "Roughness", 0.5), 0.0), 1.0)
+
+    def _distribution(self, node: Any, roughness: float) -> int:
+        dist = getattr(node, "distribution", "GGX")
+        if dist == "MULTI_GGX":
+            return native.MICROFACET_MULTISCATTER_GGX
+        if dist not in ("GGX", "SHARP") and roughness > 0.0:
+            self.warn(node, f"distribution {dist} of '{node.name}' is rendered as GGX")
+        return native.MICROFACET_GGX
+
+    def _simple(self, node: Any) -> tuple[native.Material, list[Binding]] | None:
+        """Closure and bindings of a single-closure node, or None if not supported."""
+        kind = node.bl_idname
+        bindings: list[Binding] = []
+        if kind == "ShaderNodeBsdfDiffuse":
+            self.texture(node, "Color", native.PARAM_BASE_COLOR, bindings)
+            self.texture(node, "Normal", native.PARAM_NORMAL, bindings)
+            self.unsupported_link(node, "Roughness")
+            if self.scalar(node, "Roughness", 0.0) != 0.0:
+                self.warn(node, f"Diffuse '{node.name}': roughness (Oren-Nayar) is rendered as "
+                                "Lambertian")
+            return native.Material(model=native.MATERIAL_DIFFUSE,
+                                   base_color=self._clamped_color(node, "Color")), bindings
+        if kind in GLOSSY_NODES or kind == "ShaderNodeBsdfGlass":
+            self.texture(node, "Color", native.PARAM_BASE_COLOR, bindings)
+            self.texture(node, "Roughness", native.PARAM_ROUGHNESS, bindings)
+            self.texture(node, "Normal", native.PARAM_NORMAL, bindings)
+            roughness = 0.0 if getattr(node, "distribution", "") == "SHARP" else \
+                self._roughness(node)
+            if kind in GLOSSY_NODES and self.scalar(node, "Anisotropy", 0.0) != 0.0:
+                self.warn(node, f"'{node.name}': anisotropy is rendered as isotropic")
+            glass = kind == "ShaderNodeBsdfGlass"
+            if glass:
+                self.unsupported_link(node, "IOR")
+            return native.Material(
+                model=native.MATERIAL_GLASS if glass else native.MATERIAL_GLOSSY,
+                base_color=self._clamped_color(node, "Color"), roughness=roughness,
+                ior=max(self.scalar(node, "IOR", 1.5), 1e-3),
+                distribution=self._distribution(node, roughness)), bindings
+        if kind == "ShaderNodeBsdfTransparent":
+            self.texture(node, "Color", native.PARAM_BASE_COLOR, bindings)
+            return native.Material(model=native.MATERIAL_TRANSPARENT,
+                                   base_color=self._clamped_color(node, "Color")), bindings
+        if kind == "ShaderNodeEmission":
+            strength = self.scalar(node, "Strength", 1.0)
+            self.unsupported_link(node, "Strength")
+            self.texture(node, "Color", native.PARAM_EMISSION, bindings)
+            color = self.color(node, "Color", (1.0, 1.0, 1.0))
+            return native.Material(model=native.MATERIAL_EMISSION, base_color=(0.0, 0.0, 0.0),
+                                   emission=_emission(color, strength)), bindings
+        if kind == "ShaderNodeHoldout":
+            return native.Material(model=native.MATERIAL_HOLDOUT,
+                                   base_color=(0.0, 0.0, 0.0)), bindings
+        return None
+
+    def _principled(self, node: Any, weight: Rgb, weight_binding: Binding | None) -> None:
+        v2 = node.inputs.get("Specular IOR Level") is not None or self.version >= (4, 0, 0)
+        names = PRINCIPLED_V2 if v2 else PRINCIPLED_V1
+        unsupported = [name for name, off in names["unsupported"]
+                       if (socket := node.inputs.get(name)) is not None
+                       and (socket.is_linked or float(socket.default_value) != off)]
+        if unsupported:
+            self.warn(node, f"Principled '{node.name}': " + ", ".join(f"'{n}'" for n in unsupported)
+                      + " not supported (rendered without)")
+        bindings: list[Binding] = []
+        strength = self.scalar(node, "Emission Strength", 1.0)
+        for name, param in names["bindable"]:
+            self.texture(node, name, param, bindings)
+        for name in names["constant"]:
+            self.unsupported_link(node, name)
+        roughness = self._roughness(node)
+        material = native.Material(
+            model=native.MATERIAL_PRINCIPLED_V2 if v2 else native.MATERIAL_PRINCIPLED_V1,
+            base_color=self._clamped_color(node, "Base Color"),
+            roughness=roughness,
+            metallic=min(max(self.scalar(node, "Metallic", 0.0), 0.0), 1.0),
+            specular=max(self.scalar(node, names["specular"], 0.5), 0.0),
+            ior=max(self.scalar(node, "IOR", 1.5), 1e-3),
+            emission=_emission(self.color(node, names["emission"], (0.0, 0.0, 0.0)), strength),
+            distribution=(native.MICROFACET_MULTISCATTER_GGX
+                          if v2 and getattr(node, "distribution", "GGX") == "MULTI_GGX"
+                          else native.MICROFACET_GGX),
+            transmission=min(max(self.scalar(node, names["transmission"], 0.0), 0.0), 1.0),
+            coat=max(self.scalar(node, names["coat"], 0.0), 0.0),
+            coat_roughness=min(max(self.scalar(node, names["coat_roughness"], 0.03), 0.0), 1.0),
+            coat_ior=max(self.scalar(node, "Coat IOR", 1.5), 1e-3),
+            coat_tint=_clamp01(self.color(node, "Coat Tint", (1.0, 1.0, 1.0))),
+        )
+        if not v2 and getattr(node, "distribution", "GGX") == "MULTI_GGX":
+            self.warn(node, f"Principled '{node.name}': Multiscatter GGX is rendered as GGX "
+                            "(Cycles 3.x model)")
+        self._principled_alpha(node, weight, weight_binding, material, bindings)
+
+    def _principled_alpha(self, node: Any, weight: Rgb, weight_binding: Binding | None,
+                          material: native.Material, bindings: list[Binding]) -> None:
+        """Alpha < 1 is Mix(Transparent, Principled, Alpha), as Cycles compiles it."""
+        alpha_bindings: list[Binding] = []
+        self.texture(node, "Alpha", native.PARAM_WEIGHT, alpha_bindings)
+        transparent = native.Material(model=native.MATERIAL_TRANSPARENT,
+                                      base_color=(1.0, 1.0, 1.0))
+        if alpha_bindings:
+            alpha = alpha_bindings[0]
+            if weight_binding is not None:
+                self.warn(node, f"Principled '{node.name}': an image Alpha inside an "
+                                "image-driven Mix Shader is not supported; using Alpha 1")
+                self._emit(weight, weight_binding, material, bindings)
+                return
+            self._emit(weight, replace(alpha, scale=-1.0, offset=1.0), transparent, [])
+            self._emit(weight, alpha, material, bindings)
+            return
+        alpha = min(max(self.scalar(node, "Alpha", 1.0), 0.0), 1.0)
+        if alpha < 1.0:
+            self._emit(_scale(weight, 1.0 - alpha), weight_binding, transparent, [])
+        self._emit(_scale(weight, alpha), weight_binding, material, bindings)
+
+
+# Principled BSDF sockets per generation (Blender 3.x "v1", 4.x/5.x "v2").
+PRINCIPLED_V1: dict[str, Any] = {
+    "bindable": (("Base Color", native.PARAM_BASE_COLOR), ("Roughness", native.PARAM_ROUGHNESS),
+                 ("Metallic", native.PARAM_METALLIC), ("Normal", native.PARAM_NORMAL),
+                 ("Specular", native.PARAM_SPECULAR),
+                 ("Transmission", native.PARAM_TRANSMISSION), ("Emission", native.PARAM_EMISSION)),
+    "constant": ("IOR", "Clearcoat", "Clearcoat Roughness", "Emission Strength"),
+    "unsupported": (("Subsurface", 0.0), ("Sheen", 0.0), ("Anisotropic", 0.0),
+                    ("Specular Tint", 0.0), ("Transmission Roughness", 0.0)),
+    "specular": "Specular", "emission": "Emission", "transmission": "Transmission",
+    "coat": "Clearcoat", "coat_roughness": "Clearcoat Roughness",
+}
+PRINCIPLED_V2: dict[str, Any] = {
+    "bindable": (("Base Color", native.PARAM_BASE_COLOR), ("Roughness", native.PARAM_ROUGHNESS),
+                 ("Metallic", native.PARAM_METALLIC), ("Normal", native.PARAM_NORMAL),
+                 ("Specular IOR Level", native.PARAM_SPECULAR),
+                 ("Transmission Weight", native.PARAM_TRANSMISSION),
+                 ("Emission Color", native.PARAM_EMISSION)),
+    "constant": ("IOR", "Coat Weight", "Coat Roughness", "Coat IOR", "Coat Tint",
+                 "Emission Strength"),
+    "unsupported": (("Subsurface Weight", 0.0), ("Sheen Weight", 0.0), ("Anisotropic", 0.0),
+                    ("Thin Film Thickness", 0.0), ("Diffuse Roughness", 0.0)),
+    "specular": "Specular IOR Level", "emission": "Emission Color",
+    "transmission": "Transmission Weight", "coat": "Coat Weight",
+    "coat_roughness": "Coat Roughness",
+}
+
+
+def _scale(weight: Rgb, factor: float) -> Rgb:
+    return (weight[0] * factor, weight[1] * factor, weight[2] * factor)
+
+
+def _clamp01(c: Rgb) -> Rgb:
+    return (min(max(c[0], 0.0), 1.0), min(max(c[1], 0.0), 1.0), min(max(c[2], 0.0), 1.0))
+
+
+def _emission(color: Rgb, strength: float) -> Rgb:
+    return (max(color[0] * strength, 0.0), max(color[1] * strength, 0.0),
+            max(color[2] * strength, 0.0))
+
+
+def flatten_surface(surface: Any, version: tuple[int, int, int],
+                    warn: Callable[[Any, str], None]) -> tuple[list[Closure], str]:
+    """Closures of the tree linked to `surface` (a Material Output's Surface input) and the UV
+    layer its textures read ("" = active render layer). Textures reading different UV maps:
+    one warning, the first map wins (the native mesh carries one UV set)."""
+    flattener = Flattener(version, warn)
+    flattener.walk(surface, (1.0, 1.0, 1.0))
+    uv_maps = [b.image.uv_map for c in flattener.closures for b in c.bindings]
+    uv_map = uv_maps[0] if uv_maps else ""
+    for b in (b for c in flattener.closures for b in c.bindings):
+        if b.image.uv_map != uv_map:
+            flattener.warn(b.image.node, f"Image Texture '{b.image.node.name}' reads UV map "
+                                         f"'{b.image.uv_map or 'active'}' but the material "
+                                         f"already uses '{uv_map or 'active'}'; using the latter")
+    return flattener.closures, uv_map

@@ -1,0 +1,300 @@
+"""Node-graph flattening (stratum.shader_graph) on plain stand-ins for Blender nodes: the
+weights Cycles gives nested Mix/Add shaders, the Principled socket generations, textures."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import pytest
+from stratum import native
+from stratum.shader_graph import flatten_surface
+
+V3 = (3, 4, 1)
+V5 = (5, 0, 1)
+
+
+class Socket:
+    def __init__(self, name: str, default_value: Any = None) -> None:
+        self.name = name
+        self.default_value = default_value
+        self.links: list[Any] = []
+
+    @property
+    def is_linked(self) -> bool:
+        return bool(self.links)
+
+
+class Link:
+    def __init__(self, from_node: Any, from_socket: Socket) -> None:
+        self.from_node = from_node
+        self.from_socket = from_socket
+        self.is_muted = False
+        self.is_valid = True
+
+
+class Sockets(list):
+    def get(self, name: str) -> Socket | None:
+        return next((s for s in self if s.name == name), None)
+
+    def __getitem__(self, key: Any) -> Any:
+        if isinstance(key, str):
+            found = self.get(key)
+            if found is None:
+                raise KeyError(key)
+            return found
+        return super().__getitem__(key)
+
+
+class Node:
+    def __init__(self, bl_idname: str, name: str, inputs: dict[str, Any] | list[tuple[str, Any]],
+                 outputs: tuple[str, ...] = ("BSDF",), **props: Any) -> None:
+        self.bl_idname = bl_idname
+        self.name = name
+        items = inputs.items() if isinstance(inputs, dict) else inputs
+        self.inputs = Sockets(Socket(k, v) for k, v in items)
+        self.outputs = Sockets(Socket(k) for k in outputs)
+        self.mute = False
+        for key, value in props.items():
+            setattr(self, key, value)
+
+
+def link(src: Node, output: str, dst: Node, input_: str | int) -> None:
+    socket = dst.inputs[input_]
+    socket.links = [Link(src, src.outputs[output])]
+
+
+def output_with(node: Node, socket: str = "BSDF") -> Socket:
+    surface = Socket("Surface")
+    surface.links = [Link(node, node.outputs[socket])]
+    return surface
+
+
+def diffuse(name: str, color: tuple[float, float, float] = (0.5, 0.5, 0.5)) -> Node:
+    return Node("ShaderNodeBsdfDiffuse", name,
+                {"Color": (*color, 1.0), "Roughness": 0.0, "Normal": (0, 0, 0)})
+
+
+def mix(name: str, fac: float) -> Node:
+    return Node("ShaderNodeMixShader", name, [("Fac", fac), ("Shader", None), ("Shader", None)],
+                ("Shader",))
+
+
+def add(name: str) -> Node:
+    return Node("ShaderNodeAddShader", name, [("Shader", None), ("Shader", None)], ("Shader",))
+
+
+def image(name: str) -> Node:
+    return Node("ShaderNodeTexImage", name, {"Vector": (0, 0, 0)}, ("Color", "Alpha"))
+
+
+def principled_v1(**values: Any) -> Node:
+    inputs = {"Base Color": (0.8, 0.8, 0.8, 1.0), "Subsurface": 0.0, "Metallic": 0.0,
+              "Specular": 0.5, "Specular Tint": 0.0, "Roughness": 0.5, "Anisotropic": 0.0,
+              "Sheen": 0.0, "Clearcoat": 0.0, "Clearcoat Roughness": 0.03, "IOR": 1.45,
+              "Transmission": 0.0, "Transmission Roughness": 0.0, "Emission": (0, 0, 0, 1),
+              "Emission Strength": 1.0, "Alpha": 1.0, "Normal": (0, 0, 0)}
+    inputs.update(values)
+    return Node("ShaderNodeBsdfPrincipled", "Principled BSDF", inputs, distribution="GGX")
+
+
+def principled_v2(**values: Any) -> Node:
+    inputs = {"Base Color": (0.8, 0.8, 0.8, 1.0), "Metallic": 0.0, "Roughness": 0.5,
+              "IOR": 1.5, "Alpha": 1.0, "Normal": (0, 0, 0), "Diffuse Roughness": 0.0,
+              "Subsurface Weight": 0.0, "Specular IOR Level": 0.5, "Anisotropic": 0.0,
+              "Transmission Weight": 0.0, "Coat Weight": 0.0, "Coat Roughness": 0.03,
+              "Coat IOR": 1.5, "Coat Tint": (1, 1, 1, 1), "Sheen Weight": 0.0,
+              "Emission Color": (1, 1, 1, 1), "Emission Strength": 0.0,
+              "Thin Film Thickness": 0.0}
+    inputs.update(values)
+    return Node("ShaderNodeBsdfPrincipled", "Principled BSDF", inputs, distribution="MULTI_GGX")
+
+
+def flatten(surface: Socket, version: tuple[int, int, int] = V5) -> tuple[Any, list[str]]:
+    warnings: list[str] = []
+    closures, _ = flatten_surface(surface, version, lambda node, msg: warnings.append(msg))
+    return closures, warnings
+
+
+def test_nested_mix_and_add_weights() -> None:
+    # Add(Mix(A, B, 0.25), Mix(C, Mix(D, E, 0.5), 0.8)):
+    # A 0.75, B 0.25, C 0.2, D 0.8*0.5 = 0.4, E 0.4 -- Cycles' closure weights.
+    a, b, c, d, e = (diffuse(n) for n in "ABCDE")
+    m1, m2, m3, top = mix("M1", 0.25), mix("M2", 0.8), mix("M3", 0.5), add("Add")
+    link(a, "BSDF", m1, 1)
+    link(b, "BSDF", m1, 2)
+    link(d, "BSDF", m3, 1)
+    link(e, "BSDF", m3, 2)
+    link(c, "BSDF", m2, 1)
+    link(m3, "Shader", m2, 2)
+    link(m1, "Shader", top, 0)
+    link(m2, "Shader", top, 1)
+    closures, warnings = flatten(output_with(top, "Shader"))
+    assert warnings == []
+    weights = [cl.weight[0] for cl in closures]
+    assert weights == pytest.approx([0.75, 0.25, 0.2, 0.4, 0.4])
+    assert all(cl.material.model == native.MATERIAL_DIFFUSE for cl in closures)
+
+
+def test_add_of_same_input_twice_doubles_and_zero_weights_are_dropped() -> None:
+    a, b = diffuse("A"), diffuse("B")
+    m, top = mix("Mix", 1.0), add("Add")
+    link(a, "BSDF", m, 1)  # weight 0: dropped as Cycles does
+    link(b, "BSDF", m, 2)
+    link(m, "Shader", top, 0)
+    link(m, "Shader", top, 1)
+    closures, _ = flatten(output_with(top, "Shader"))
+    assert [cl.weight for cl in closures] == [(1.0, 1.0, 1.0), (1.0, 1.0, 1.0)]
+
+
+def test_principled_v1_mapping() -> None:
+    node = principled_v1(**{"Base Color": (0.2, 0.4, 0.6, 1.0), "Metallic": 0.3,
+                            "Roughness": 0.7, "Specular": 0.6, "IOR": 1.33,
+                            "Transmission": 0.9, "Clearcoat": 0.5,
+                            "Clearcoat Roughness": 0.1, "Emission": (1.0, 0.5, 0.0, 1.0),
+                            "Emission Strength": 2.0})
+    closures, warnings = flatten(output_with(node), V3)
+    assert warnings == []
+    (cl,) = closures
+    m = cl.material
+    assert m.model == native.MATERIAL_PRINCIPLED_V1
+    assert m.base_color == pytest.approx((0.2, 0.4, 0.6))
+    assert (m.metallic, m.roughness, m.specular, m.ior) == pytest.approx((0.3, 0.7, 0.6, 1.33))
+    assert (m.transmission, m.coat, m.coat_roughness) == pytest.approx((0.9, 0.5, 0.1))
+    assert m.emission == pytest.approx((2.0, 1.0, 0.0))
+    assert m.distribution == native.MICROFACET_GGX
+
+
+def test_principled_v2_mapping() -> None:
+    node = principled_v2(**{"Specular IOR Level": 0.8, "Transmission Weight": 0.4,
+                            "Coat Weight": 1.0, "Coat Roughness": 0.2, "Coat IOR": 1.6,
+                            "Coat Tint": (0.9, 0.8, 0.7, 1.0),
+                            "Emission Color": (0.0, 1.0, 0.0, 1.0), "Emission Strength": 3.0})
+    closures, warnings = flatten(output_with(node), V5)
+    assert warnings == []
+    m = closures[0].material
+    assert m.model == native.MATERIAL_PRINCIPLED_V2
+    assert (m.specular, m.transmission, m.coat, m.coat_roughness, m.coat_ior) == \
+        pytest.approx((0.8, 0.4, 1.0, 0.2, 1.6))
+    assert m.coat_tint == pytest.approx((0.9, 0.8, 0.7))
+    assert m.emission == pytest.approx((0.0, 3.0, 0.0))
+    assert m.distribution == native.MICROFACET_MULTISCATTER_GGX
+
+
+def test_principled_alpha_is_transparent_mix() -> None:
+    closures, _ = flatten(output_with(principled_v2(Alpha=0.3)))
+    assert [cl.material.model for cl in closures] == [native.MATERIAL_TRANSPARENT,
+                                                      native.MATERIAL_PRINCIPLED_V2]
+    assert closures[0].weight[0] == pytest.approx(0.7)
+    assert closures[0].material.base_color == (1.0, 1.0, 1.0)
+    assert closures[1].weight[0] == pytest.approx(0.3)
+
+
+def test_image_alpha_cutout_binds_weights() -> None:
+    node, tex = principled_v2(), image("Leaf")
+    link(tex, "Alpha", node, "Alpha")
+    link(tex, "Color", node, "Base Color")
+    closures, warnings = flatten(output_with(node))
+    assert warnings == []
+    transparent, principled = closures
+    (w,) = transparent.bindings
+    assert (w.param, w.channel, w.scale, w.offset) == (native.PARAM_WEIGHT, 3, -1.0, 1.0)
+    params = {(b.param, b.channel, b.scale, b.offset) for b in principled.bindings}
+    assert params == {(native.PARAM_WEIGHT, 3, 1.0, 0.0), (native.PARAM_BASE_COLOR, -1, 1.0, 0.0)}
+    assert all(b.image.node is tex for b in principled.bindings)
+
+
+def test_mix_fac_from_image() -> None:
+    a, b, m, tex = diffuse("A"), diffuse("B"), mix("Mix", 0.5), image("Mask")
+    link(a, "BSDF", m, 1)
+    link(b, "BSDF", m, 2)
+    link(tex, "Color", m, 0)
+    closures, _ = flatten(output_with(m, "Shader"))
+    assert [cl.weight for cl in closures] == [(1.0, 1.0, 1.0)] * 2
+    assert [(x.bindings[0].scale, x.bindings[0].offset) for x in closures] == [(-1.0, 1.0),
+                                                                              (1.0, 0.0)]
+
+
+def test_textures_and_normal_map_and_uv_map() -> None:
+    node = principled_v1()
+    rough, normal_tex, uv = image("Rough"), image("NormalTex"), Node(
+        "ShaderNodeUVMap", "UV Map", {}, ("UV",), uv_map="Second")
+    nmap = Node("ShaderNodeNormalMap", "Normal Map", {"Strength": 0.5, "Color": (0.5, 0.5, 1, 1)},
+                ("Normal",), space="TANGENT")
+    link(uv, "UV", rough, "Vector")
+    link(uv, "UV", normal_tex, "Vector")
+    link(rough, "Color", node, "Roughness")
+    link(normal_tex, "Color", nmap, "Color")
+    link(nmap, "Normal", node, "Normal")
+    warnings: list[str] = []
+    closures, uv_map = flatten_surface(output_with(node), V3, lambda n, m: warnings.append(m))
+    assert uv_map == "Second" and warnings == []
+    by_param = {b.param: b for b in closures[0].bindings}
+    assert by_param[native.PARAM_ROUGHNESS].image.node is rough
+    assert by_param[native.PARAM_NORMAL].scale == pytest.approx(0.5)
+
+
+def test_unsupported_node_warns_once_per_node_and_falls_back() -> None:
+    node = principled_v2(**{"Base Color": (0.1, 0.2, 0.3, 1.0), "Roughness": 0.25})
+    noise = Node("ShaderNodeTexNoise", "Noise", {}, ("Fac", "Color"))
+    link(noise, "Color", node, "Base Color")
+    link(noise, "Fac", node, "Roughness")
+    closures, warnings = flatten(output_with(node))
+    assert len(warnings) == 1 and "'Noise'" in warnings[0]
+    assert closures[0].material.base_color == pytest.approx((0.1, 0.2, 0.3))
+    assert closures[0].material.roughness == pytest.approx(0.25)
+    assert closures[0].bindings == []
+    toon = Node("ShaderNodeBsdfToon", "Toon", {}, ("BSDF",))
+    closures, warnings = flatten(output_with(toon), V3)
+    assert len(warnings) == 1 and "'Toon'" in warnings[0]
+    assert closures[0].material.model == native.MATERIAL_PRINCIPLED_V1
+
+
+def test_other_bsdfs() -> None:
+    glossy = Node("ShaderNodeBsdfAnisotropic", "Glossy", {"Color": (1, 0.5, 0.25, 1),
+                  "Roughness": 0.2, "Anisotropy": 0.0}, distribution="MULTI_GGX")
+    glass = Node("ShaderNodeBsdfGlass", "Glass", {"Color": (1, 1, 1, 1), "Roughness": 0.0,
+                 "IOR": 1.45}, distribution="BECKMANN")
+    emit = Node("ShaderNodeEmission", "Emit", {"Color": (1, 0.5, 0, 1), "Strength": 4.0},
+                ("Emission",))
+    hold = Node("ShaderNodeHoldout", "Hold", {}, ("Holdout",))
+    transparent = Node("ShaderNodeBsdfTransparent", "T", {"Color": (0.5, 0.5, 0.5, 1)})
+    expected = [(glossy, native.MATERIAL_GLOSSY), (glass, native.MATERIAL_GLASS),
+                (emit, native.MATERIAL_EMISSION), (hold, native.MATERIAL_HOLDOUT),
+                (transparent, native.MATERIAL_TRANSPARENT)]
+    for node, model in expected:
+        closures, warnings = flatten(output_with(node, node.outputs[0].name))
+        assert warnings == [], node.name
+        assert closures[0].material.model == model
+    closures, _ = flatten(output_with(glossy))
+    assert closures[0].material.distribution == native.MICROFACET_MULTISCATTER_GGX
+    assert closures[0].material.roughness == pytest.approx(0.2)
+    closures, _ = flatten(output_with(emit, "Emission"))
+    assert closures[0].material.emission == pytest.approx((4.0, 2.0, 0.0))
+    closures, _ = flatten(output_with(glass))
+    assert closures[0].material.ior == pytest.approx(1.45)
+
+
+def test_image_on_emission_or_transmission_warns_and_uses_the_value() -> None:
+    # The native contract refuses PARAM_EMISSION / PARAM_TRANSMISSION bindings.
+    node, glow, clear = principled_v2(**{"Emission Strength": 2.0,
+                                         "Emission Color": (1.0, 0.5, 0.0, 1.0)}), \
+        image("Glow"), image("Clear")
+    link(glow, "Color", node, "Emission Color")
+    link(clear, "Color", node, "Transmission Weight")
+    closures, warnings = flatten(output_with(node))
+    assert len(warnings) == 2
+    assert any("'Glow'" in w for w in warnings) and any("'Clear'" in w for w in warnings)
+    assert closures[0].bindings == []
+    assert closures[0].material.emission == pytest.approx((2.0, 1.0, 0.0))
+
+
+def test_normal_map_strength_outside_unit_range_warns_in_4x_only() -> None:
+    for version, expected in ((V3, 0), (V5, 1)):
+        node, tex = principled_v2(), image("Bumps")
+        nmap = Node("ShaderNodeNormalMap", "Normal Map", {"Strength": 2.0,
+                    "Color": (0.5, 0.5, 1, 1)}, ("Normal",), space="TANGENT")
+        link(tex, "Color", nmap, "Color")
+        link(nmap, "Normal", node, "Normal")
+        closures, warnings = flatten(output_with(node), version)
+        assert len(warnings) == expected
+        assert closures[0].bindings[0].scale == pytest.approx(2.0)
