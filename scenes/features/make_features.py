@@ -624,6 +624,7 @@ def save(folder, name):
 
 
 def main():
+    bpy.context.preferences.filepaths.save_version = 0  # no .blend1 backups
     folder = output_dir()
     textures = os.path.join(folder, "textures")
     os.makedirs(textures, exist_ok=True)
