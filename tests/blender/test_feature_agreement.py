@@ -308,6 +308,44 @@ def _report(case: str, c: Renders, s: Renders, flip: float, flip_noise: float) -
     return "\n".join(lines), img_rel, blk_rel, lit
 
 
+# Objects whose screen discs are reported one by one (diagnostics, not asserted): the spheres of
+# materials.blend, named after their material (scenes/features/make_features.py MATERIALS).
+SPHERES = {
+    "materials": ("metal_smooth", "metal_medium", "metal_rough", "coat", "glass",
+                  "rough_glass", "diffuse", "textured", "mix", "add", "cutout", "plastic"),
+}
+
+
+def _sphere_regions(case: str) -> dict[str, np.ndarray]:
+    """Per listed sphere object, a boolean RES x RES mask (rows bottom to top) of the pixels
+    inside 70% of its projected radius: pixels that see the sphere only."""
+    from bpy_extras.object_utils import world_to_camera_view
+
+    scene = _open_case(case)
+    cam = scene.camera
+    right = cam.matrix_world.to_3x3().col[0].normalized()
+    ys, xs = np.mgrid[0:RES, 0:RES] + 0.5
+    regions = {}
+    for name in SPHERES.get(case, ()):
+        ob = bpy.data.objects[name]
+        center = ob.matrix_world.translation
+        radius = max(ob.dimensions) / 2.0
+        c = world_to_camera_view(scene, cam, center)
+        e = world_to_camera_view(scene, cam, center + right * radius)
+        r_px = 0.7 * RES * float(np.hypot(e.x - c.x, e.y - c.y))
+        regions[name] = (xs - c.x * RES) ** 2 + (ys - c.y * RES) ** 2 <= r_px**2
+    return regions
+
+
+def _sphere_lines(case: str, c: Renders, s: Renders) -> list[str]:
+    lines = []
+    for name, mask in _sphere_regions(case).items():
+        cm, sm = c.mean[mask].mean(axis=0), s.mean[mask].mean(axis=0)
+        lines.append(f"  {name:13s} {int(mask.sum()):3d} px  cycles {_fmt3(cm)}  rel "
+                     f"{_fmt3((sm - cm) / np.maximum(cm, 1e-12), '{:+.1%}')}")
+    return ["per sphere (pixels inside 70% of its radius; not asserted):", *lines] if lines else []
+
+
 # Features the exporter does not translate yet and does not warn about either (so the export
 # test cannot name them): marked strict, so the mark fails the run as soon as the feature lands
 # and must then be removed.
@@ -329,6 +367,7 @@ def test_feature_agrees_with_cycles(cycles_case: Renders, stratum_case: Renders,
     # For scale: FLIP between Cycles' two seeds, i.e. images with half the samples each.
     flip_noise = flip_ldr(c.mean + c.half_diff, c.mean - c.half_diff, f"{case}_flipnoise")
     report, img_rel, blk_rel, lit = _report(case, c, s, flip, flip_noise)
+    report = "\n".join([report, *_sphere_lines(case, c, s)])
     (FEATURE_OUT / f"{case}_report.txt").write_text(report + "\n")
     print("\n" + report)
     assert (np.abs(img_rel) <= IMAGE_TOL).all(), f"image means differ:\n{report}"
