@@ -284,8 +284,19 @@ std::string file_text(const std::string& path) {
 TEST(Camera, AbiValidatesTheNewFieldsByName) {
     StratumCameraDesc c = camera_desc();
     EXPECT_EQ(set_camera_error(c), "");  // appended fields all zero: the perspective pinhole
-    c.type = 2;
-    EXPECT_NE(set_camera_error(c).find("camera type 2"), std::string::npos) << set_camera_error(c);
+    c.type = 3;
+    EXPECT_NE(set_camera_error(c).find("camera type 3"), std::string::npos) << set_camera_error(c);
+    c.type = STRATUM_CAMERA_EQUIRECTANGULAR;  // zero ranges: an empty image
+    EXPECT_NE(set_camera_error(c).find("latitude_min = 0 must be below latitude_max = 0"), std::string::npos)
+        << set_camera_error(c);
+    c.latitude_min = -2.0f;
+    EXPECT_NE(set_camera_error(c).find("camera latitude_min = -2"), std::string::npos) << set_camera_error(c);
+    c.latitude_min = -1.0f;
+    c.latitude_max = 1.0f;
+    EXPECT_NE(set_camera_error(c).find("longitude_min = 0 must be below"), std::string::npos)
+        << set_camera_error(c);
+    c.longitude_max = 1.0f;
+    EXPECT_EQ(set_camera_error(c), "");
     c.type = STRATUM_CAMERA_ORTHOGRAPHIC;
     EXPECT_NE(set_camera_error(c).find("ortho_scale"), std::string::npos) << set_camera_error(c);
     c.ortho_scale = 3;
@@ -330,4 +341,111 @@ TEST(Camera, SceneFileKeepsOrthographicAndThinLensFields) {
     stratum_scene_destroy(loaded);
     std::remove(a.c_str());
     std::remove(b.c_str());
+}
+
+// ---- equirectangular -------------------------------------------------------------------------
+
+namespace {
+
+CameraParams equirect(float lat_min, float lat_max, float lon_min, float lon_max) {
+    CameraParams p;
+    p.type = CameraType::Equirectangular;
+    p.latitude_min = lat_min;
+    p.latitude_max = lat_max;
+    p.longitude_min = lon_min;
+    p.longitude_max = lon_max;
+    return p;
+}
+
+void expect_direction(const Camera& c, float fx, float fy, Vec3 expected) {
+    const CameraRay r = c.generate_ray(fx, fy);
+    EXPECT_NEAR(r.direction.x, expected.x, 1e-5f) << "film (" << fx << ", " << fy << ")";
+    EXPECT_NEAR(r.direction.y, expected.y, 1e-5f) << "film (" << fx << ", " << fy << ")";
+    EXPECT_NEAR(r.direction.z, expected.z, 1e-5f) << "film (" << fx << ", " << fy << ")";
+}
+
+}  // namespace
+
+// Cycles' mapping with Blender's camera frame (blender_camera_matrix): the centre looks down the
+// camera's −Z, the left edge behind it (+Z), a quarter in to the camera's left (−X), three
+// quarters to its right (+X); the bottom row straight down (−Y), the top row straight up.
+TEST(Camera, EquirectangularFullSphereDirections) {
+    const Camera c(equirect(-0.5f * kPi, 0.5f * kPi, -kPi, kPi), 64, 32);
+    expect_direction(c, 32, 16, {0, 0, -1});
+    expect_direction(c, 0, 16, {0, 0, 1});
+    expect_direction(c, 64, 16, {0, 0, 1});
+    expect_direction(c, 16, 16, {-1, 0, 0});
+    expect_direction(c, 48, 16, {1, 0, 0});
+    expect_direction(c, 32, 0, {0, -1, 0});
+    expect_direction(c, 32, 32, {0, 1, 0});
+    // Top-right corner: latitude π/2 whatever the longitude; a corner of a partial range below.
+    expect_direction(c, 64, 32, {0, 1, 0});
+    const CameraRay r = c.generate_ray(32, 16);
+    EXPECT_EQ(r.t_min, 0.1f);  // clipping by distance along the ray
+    EXPECT_EQ(r.t_max, 1000.0f);
+}
+
+// Partial ranges: the image corners look at (longitude, latitude) = (lon_min, lat_min) bottom
+// left and (lon_max, lat_max) top right, longitude measured as −φ of Cycles' spherical frame
+// (toward the camera's right); the camera transform rotates the result.
+TEST(Camera, EquirectangularRangesAndTransform) {
+    CameraParams p = equirect(-0.3f, 0.6f, -1.0f, 0.5f);
+    p.camera_to_world = looking_along_y();  // local −Z -> world +Y, local Y -> world +Z, X -> X
+    const Camera c(p, 30, 20);
+    // Panorama-space d(φ, θ) = (sin θ cos φ, sin θ sin φ, cos θ) with φ = −lon, θ = π/2 − lat,
+    // seen in the camera frame as (−d.y, d.z, −d.x), then world (x, −z, y).
+    const auto world = [](float lon, float lat) {
+        const float phi = -lon, theta = 0.5f * kPi - lat;
+        const Vec3 d(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+        const Vec3 cam(-d.y, d.z, -d.x);
+        return Vec3(cam.x, -cam.z, cam.y);
+    };
+    expect_direction(c, 0, 0, world(-1.0f, -0.3f));
+    expect_direction(c, 30, 20, world(0.5f, 0.6f));
+    expect_direction(c, 15, 10, world(-0.25f, 0.15f));
+    const CameraRay r = c.generate_ray(15, 10);
+    EXPECT_NEAR(r.origin.x, 1.0f, 1e-6f);
+    EXPECT_NEAR(r.origin.y, 2.0f, 1e-6f);
+    EXPECT_NEAR(r.origin.z, 3.0f, 1e-6f);
+}
+
+// With an aperture the rays of one film point pass through the same point at focus distance.
+TEST(Camera, EquirectangularThinLensFocusesAtTheFocusDistance) {
+    CameraParams p = equirect(-0.5f * kPi, 0.5f * kPi, -kPi, kPi);
+    p.aperture_radius = 0.2f;
+    p.focus_distance = 3.0f;
+    const Camera c(p, 64, 32);
+    const Camera pinhole(equirect(-0.5f * kPi, 0.5f * kPi, -kPi, kPi), 64, 32);
+    const CameraRay centre = pinhole.generate_ray(20.3f, 11.7f);
+    const Vec3 focus = centre.origin + centre.direction * 3.0f;
+    for (const Vec2 lens : {Vec2{0.1f, 0.9f}, Vec2{0.7f, 0.2f}, Vec2{0.4f, 0.55f}}) {
+        const CameraRay r = c.generate_ray(20.3f, 11.7f, lens);
+        EXPECT_GT(length(r.origin), 0.01f);
+        const Vec3 to = focus - r.origin;
+        EXPECT_NEAR(dot(normalize(to), r.direction), 1.0f, 1e-5f);
+    }
+}
+
+TEST(Camera, SceneFileKeepsEquirectangularRanges) {
+    StratumCameraDesc c = camera_desc();
+    c.type = STRATUM_CAMERA_EQUIRECTANGULAR;
+    c.latitude_min = -0.25f;
+    c.latitude_max = 0.75f;
+    c.longitude_min = -2.0f;
+    c.longitude_max = 1.5f;
+    StratumScene* scene = nullptr;
+    ASSERT_EQ(stratum_scene_create(&scene), STRATUM_OK);
+    ASSERT_EQ(stratum_scene_set_camera(scene, &c), STRATUM_OK) << stratum_last_error();
+    const std::string path = ::testing::TempDir() + "stratum_equirect_camera.json";
+    ASSERT_EQ(stratum_scene_save(scene, path.c_str()), STRATUM_OK);
+    std::ifstream in(path);
+    std::stringstream text;
+    text << in.rdbuf();
+    EXPECT_NE(text.str().find("\"latitude\":[-0.25,0.75]"), std::string::npos) << text.str();
+    EXPECT_NE(text.str().find("\"longitude\":[-2.0,1.5]"), std::string::npos) << text.str();
+    StratumScene* loaded = nullptr;
+    EXPECT_EQ(stratum_scene_load(path.c_str(), &loaded), STRATUM_OK) << stratum_last_error();
+    stratum_scene_destroy(loaded);
+    stratum_scene_destroy(scene);
+    std::remove(path.c_str());
 }

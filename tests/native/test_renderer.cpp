@@ -5,7 +5,11 @@
 #include <chrono>
 #include <cstdio>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "integrators/integrator.h"
+#include "render/render_settings.h"
 #include "render_helpers.h"
 
 using namespace stratum_test;
@@ -99,4 +103,102 @@ TEST(Renderer, RayThroughputCountsTheRayMix) {
     EXPECT_NE(std::string(stratum_last_error()).find("resolution 0x4"), std::string::npos)
         << stratum_last_error();
     stratum_scene_destroy(scene);
+}
+
+// A border render traces only the region, with the full frame's camera and sampler
+// coordinates: its pixels are bit-identical to the same pixels of the full render, and
+// read_pixels returns the region (crop_width x crop_height, rows bottom to top).
+TEST(Renderer, BorderRenderEqualsTheCropOfTheFullRender) {
+    StratumScene* scene = lit_sphere_interior();
+    constexpr int64_t kW = 40, kH = 30, kX = 7, kY = 11, kCw = 19, kCh = 13;
+    const auto full = render(scene, {{"width", kW}, {"height", kH}, {"samples", 8}, {"seed", 3}});
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    for (const auto& [name, value] : {std::pair<const char*, int64_t>{"width", kW},
+                                      {"height", kH},
+                                      {"samples", 8},
+                                      {"seed", 3},
+                                      {"crop_x", kX},
+                                      {"crop_y", kY},
+                                      {"crop_width", kCw},
+                                      {"crop_height", kCh}}) {
+        ASSERT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK) << stratum_last_error();
+    }
+    ASSERT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
+    int32_t done = 0;
+    while (!done) stratum_renderer_wait(r, 1000, &done);
+    std::vector<float> region(static_cast<size_t>(kCw * kCh * 4));
+    // The full frame's size is refused: the image is the region.
+    std::vector<float> too_big(static_cast<size_t>(kW * kH * 4));
+    EXPECT_EQ(stratum_renderer_read_pixels(r, too_big.data(), too_big.size()),
+              STRATUM_ERROR_INVALID_ARGUMENT);
+    ASSERT_EQ(stratum_renderer_read_pixels(r, region.data(), region.size()), STRATUM_OK)
+        << stratum_last_error();
+    size_t equal = 0;
+    for (int64_t y = 0; y < kCh; ++y) {
+        for (int64_t x = 0; x < kCw; ++x) {
+            for (int c = 0; c < 4; ++c) {
+                const float a = region[static_cast<size_t>((y * kCw + x) * 4 + c)];
+                const float b = full.rgba[static_cast<size_t>(((y + kY) * kW + (x + kX)) * 4 + c)];
+                equal += a == b;
+            }
+        }
+    }
+    EXPECT_EQ(equal, region.size());
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(scene);
+}
+
+// A region outside the frame, or a partial crop description, is refused at start by name.
+TEST(Renderer, BorderRegionIsValidatedByName) {
+    StratumScene* scene = lit_sphere_interior();
+    const auto start_error = [&](std::initializer_list<std::pair<const char*, int64_t>> ints) {
+        StratumRenderer* r = nullptr;
+        EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+        for (const auto& [name, value] : ints)
+            EXPECT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK);
+        const StratumStatus status = stratum_renderer_start(r);
+        std::string error = status == STRATUM_OK ? "" : stratum_last_error();
+        int32_t done = 0;
+        while (status == STRATUM_OK && !done) stratum_renderer_wait(r, 1000, &done);
+        stratum_renderer_destroy(r);
+        return error;
+    };
+    EXPECT_NE(
+        start_error({{"width", 16}, {"height", 8}, {"crop_x", 10}, {"crop_width", 7}, {"crop_height", 2}})
+            .find("crop_x = 10 + crop_width = 7 exceeds width = 16"),
+        std::string::npos);
+    EXPECT_NE(
+        start_error({{"width", 16}, {"height", 8}, {"crop_y", 4}, {"crop_width", 2}, {"crop_height", 5}})
+            .find("crop_y = 4 + crop_height = 5 exceeds height = 8"),
+        std::string::npos);
+    EXPECT_NE(start_error({{"width", 16}, {"height", 8}, {"crop_width", 2}}).find("crop_height = 0"),
+              std::string::npos);
+    EXPECT_NE(
+        start_error({{"width", 16}, {"height", 8}, {"crop_x", 3}}).find("crop_width = 0 (the whole frame)"),
+        std::string::npos);
+    EXPECT_EQ(start_error({{"width", 16},
+                           {"height", 8},
+                           {"samples", 1},
+                           {"crop_x", 9},
+                           {"crop_y", 7},
+                           {"crop_width", 7},
+                           {"crop_height", 1}}),
+              "");
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_int(r, "film_transparent", 2), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(stratum_last_error()).find("'film_transparent' = 2"), std::string::npos);
+    EXPECT_EQ(stratum_renderer_set_int(r, "film_transparent", 1), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_int(r, "crop_width", -1), STRATUM_ERROR_INVALID_ARGUMENT);
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(scene);
+}
+
+// Film > Transparent reaches the integrator, which turns escaped rays into alpha 0.
+TEST(Renderer, FilmTransparentReachesTheIntegratorSettings) {
+    stratum::RenderSettings s;
+    EXPECT_FALSE(stratum::integrator_settings(s).film_transparent);
+    EXPECT_EQ(stratum::set_int_setting(s, "film_transparent", 1), "");
+    EXPECT_TRUE(stratum::integrator_settings(s).film_transparent);
 }

@@ -159,17 +159,22 @@ typedef enum StratumTextureExtension {
     STRATUM_TEXTURE_MIRROR = 3  /* tile, mirrored every other tile */
 } StratumTextureExtension;
 
-/* One image. Exactly one source: `path` (a file OpenImageIO reads), `file_data` (the bytes of
- * such a file in memory: Blender's packed images; `file_name` names its format by extension),
- * or `pixels` (width*height*channels floats, rows top to bottom, in `color_space`, as Blender's
- * Image.pixels gives them: 1 to 4 channels). The image is converted to scene-linear Rec.709
- * with OpenColorIO: from `color_space` (a colour space name or alias in `ocio_config`, e.g.
- * "sRGB", "Linear Rec.709", "Non-Color") to the config's scene_linear role. Colour spaces whose
- * config entry is data (Non-Color) are not converted. ocio_config is the path of Blender's
- * datafiles/colormanagement/config.ocio; NULL accepts only "Non-Color", "Raw", "Linear",
- * "Linear Rec.709" and "sRGB" (the built-in sRGB curve). An unknown colour space or an
- * unreadable file is STRATUM_ERROR_INVALID_ARGUMENT / STRATUM_ERROR_IO naming it. Alpha is
- * straight (not premultiplied); a missing alpha channel reads as 1. */
+/* One image. Exactly one source: `path` (a file OpenImageIO reads), `file_data` + `file_size`
+ * (the bytes of such a file in memory: Blender's packed images; `file_name` is required and its
+ * extension chooses the reader), or `pixels` (width*height*channels floats, 1 to 4 channels:
+ * grey, grey+alpha, RGB, RGBA; rows BOTTOM to top, exactly as Blender's Image.pixels gives
+ * them). width/height/channels describe `pixels` only and must be 0 otherwise. Texture UV
+ * (0,0) is the bottom-left of the picture (Blender's and Cycles' convention: a file's first
+ * scanline is the top row). The image is converted to scene linear with OpenColorIO: from
+ * `color_space` (a colour space name or alias in `ocio_config`, e.g. "sRGB", "Linear",
+ * "Non-Color") to the config's scene_linear role; data colour spaces (isdata: Non-Color, Raw)
+ * are not converted; alpha never is. ocio_config is the path of Blender's
+ * datafiles/colormanagement/config.ocio; NULL (or a config the system's OpenColorIO cannot
+ * read, e.g. Blender 5.0's version-2.4 config under OCIO 2.1) accepts only "Non-Color", "Raw",
+ * "Linear", "Linear Rec.709" and "sRGB" (the exact piecewise sRGB curve). Alpha is straight
+ * (not premultiplied; premultiplied OpenEXR data is divided by alpha); a missing alpha reads 1.
+ * An unknown colour space is STRATUM_ERROR_INVALID_ARGUMENT naming it; a file that cannot be
+ * read is STRATUM_ERROR_IO naming the path and OpenImageIO's message. */
 typedef struct StratumTextureDesc {
     const char* path;
     const void* file_data;
@@ -200,10 +205,16 @@ typedef enum StratumMaterialParam {
 
 /* Drives one parameter of one closure of a material by a texture, looked up at the mesh's
  * corner_uvs. value = offset + scale * texel, where texel is the texture's RGB (channel -1) or
- * one channel (0..3 = R, G, B, A) replicated; a scalar parameter takes the mean of an RGB
- * value. For STRATUM_PARAM_NORMAL the texel is a tangent-space normal (2 texel - 1), `scale` is
- * the Normal Map strength and `offset` is unused. For STRATUM_PARAM_EMISSION the result is
- * multiplied by emission_strength. Later bindings of the same parameter replace earlier ones. */
+ * one channel (0..3 = R, G, B, A) replicated; a scalar parameter reads an RGB texel as its
+ * luminance 0.2126729 R + 0.7151522 G + 0.0721750 B (Cycles' colour-to-float conversion).
+ * Results are clamped as Cycles clamps the sockets: colours >= 0, roughness/metallic/WEIGHT to
+ * [0,1], specular >= 0. For STRATUM_PARAM_NORMAL the texel is a tangent-space normal
+ * (2 texel - 1), channel must be -1, `scale` is the Normal Map strength and `offset` is unused;
+ * the perturbed normal is the shading point's (all closures). STRATUM_PARAM_EMISSION is
+ * refused (emissive triangles are light-sampled with constant emission) and
+ * STRATUM_PARAM_TRANSMISSION too until materials carry a transmission weight;
+ * emission_strength must be 0. A later binding of the same (material, closure, param)
+ * replaces the earlier one. */
 typedef struct StratumTextureBinding {
     uint32_t material_id;
     uint32_t closure_index; /* 0 for a material added with stratum_scene_add_material */

@@ -2,15 +2,17 @@
 
 #include <embree3/rtcore.h>
 
+#include <cmath>
 #include <cstring>
-#include <limits>
 #include <mutex>
 
 namespace stratum {
 
 struct EmbreeScene::Impl {
     RTCDevice device = nullptr;
-    RTCScene scene = nullptr;
+    RTCScene scene = nullptr;          // top level: one instance per placement
+    std::vector<RTCScene> prototypes;  // object space: one triangle geometry each
+    std::vector<RTCGeometry> moving;   // per placement: its instance if moving, else null
     std::mutex error_mutex;
     std::string error;
 };
@@ -25,28 +27,103 @@ void record_error(void* user, RTCError code, const char* message) {
             "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
 }
 
+// Unit quaternion (r, i, j, k) of the rotation matrix with rows r0, r1, r2 (Shepperd's method:
+// the largest of the four candidate divisors keeps the division well conditioned).
+void quaternion_from_rotation(const float r[3][3], float q[4]) {
+    const float trace = r[0][0] + r[1][1] + r[2][2];
+    if (trace > 0.0f) {
+        const float s = 2.0f * std::sqrt(trace + 1.0f);
+        q[0] = 0.25f * s;
+        q[1] = (r[2][1] - r[1][2]) / s;
+        q[2] = (r[0][2] - r[2][0]) / s;
+        q[3] = (r[1][0] - r[0][1]) / s;
+    } else if (r[0][0] > r[1][1] && r[0][0] > r[2][2]) {
+        const float s = 2.0f * std::sqrt(1.0f + r[0][0] - r[1][1] - r[2][2]);
+        q[0] = (r[2][1] - r[1][2]) / s;
+        q[1] = 0.25f * s;
+        q[2] = (r[0][1] + r[1][0]) / s;
+        q[3] = (r[0][2] + r[2][0]) / s;
+    } else if (r[1][1] > r[2][2]) {
+        const float s = 2.0f * std::sqrt(1.0f + r[1][1] - r[0][0] - r[2][2]);
+        q[0] = (r[0][2] - r[2][0]) / s;
+        q[1] = (r[0][1] + r[1][0]) / s;
+        q[2] = 0.25f * s;
+        q[3] = (r[1][2] + r[2][1]) / s;
+    } else {
+        const float s = 2.0f * std::sqrt(1.0f + r[2][2] - r[0][0] - r[1][1]);
+        q[0] = (r[1][0] - r[0][1]) / s;
+        q[1] = (r[0][2] + r[2][0]) / s;
+        q[2] = (r[1][2] + r[2][1]) / s;
+        q[3] = 0.25f * s;
+    }
+}
+
+RTCQuaternionDecomposition to_embree(const MotionDecomposition& d) {
+    RTCQuaternionDecomposition q;
+    rtcInitQuaternionDecomposition(&q);
+    rtcQuaternionDecompositionSetScale(&q, d.scale[0], d.scale[1], d.scale[2]);
+    rtcQuaternionDecompositionSetSkew(&q, d.skew_xy, d.skew_xz, d.skew_yz);
+    rtcQuaternionDecompositionSetQuaternion(&q, d.quaternion[0], d.quaternion[1], d.quaternion[2],
+                                            d.quaternion[3]);
+    rtcQuaternionDecompositionSetTranslation(&q, d.translation.x, d.translation.y, d.translation.z);
+    return q;
+}
+
 }  // namespace
+
+MotionDecomposition decompose_transform(const Transform& m) {
+    // Gram–Schmidt on the columns a0, a1, a2 of A: A = Q·S with Q's columns orthonormal and S
+    // upper triangular. Validation rejects singular motion transforms, so no column vanishes.
+    const Vec3 a0 = m.column(0), a1 = m.column(1), a2 = m.column(2);
+    MotionDecomposition d{};
+    d.scale[0] = length(a0);
+    const Vec3 q0 = a0 / d.scale[0];
+    d.skew_xy = dot(q0, a1);
+    const Vec3 u1 = a1 - q0 * d.skew_xy;
+    d.scale[1] = length(u1);
+    const Vec3 q1 = u1 / d.scale[1];
+    d.skew_xz = dot(q0, a2);
+    d.skew_yz = dot(q1, a2);
+    const Vec3 u2 = a2 - q0 * d.skew_xz - q1 * d.skew_yz;
+    d.scale[2] = length(u2);
+    Vec3 q2 = u2 / d.scale[2];
+    // A mirror: Q = [q0 q1 q2] has det −1; flipping q2 and scale_z keeps Q·S = A with Q a rotation.
+    if (dot(cross(q0, q1), q2) < 0.0f) {
+        q2 = -q2;
+        d.scale[2] = -d.scale[2];
+    }
+    const float r[3][3] = {{q0.x, q1.x, q2.x}, {q0.y, q1.y, q2.y}, {q0.z, q1.z, q2.z}};
+    quaternion_from_rotation(r, d.quaternion);
+    d.translation = m.translation();
+    return d;
+}
 
 EmbreeScene::EmbreeScene() : impl_(new Impl) {}
 
 EmbreeScene::~EmbreeScene() {
+    for (RTCGeometry g : impl_->moving)
+        if (g) rtcReleaseGeometry(g);
     if (impl_->scene) rtcReleaseScene(impl_->scene);
+    for (RTCScene s : impl_->prototypes) rtcReleaseScene(s);
     if (impl_->device) rtcReleaseDevice(impl_->device);
     delete impl_;
 }
 
-std::string EmbreeScene::build(std::span<const TriangleGeometry> geometries) {
+std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
+                               std::span<const InstancePlacement> placements) {
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device)
         return "Embree: cannot create a device (error " +
                std::to_string(static_cast<int>(rtcGetDeviceError(nullptr))) + ")";
     rtcSetDeviceErrorFunction(impl_->device, &record_error, impl_);
-    impl_->scene = rtcNewScene(impl_->device);
-    // Robust traversal: watertight triangle tests, so rays do not leak through shared edges.
-    rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
-    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
-    for (size_t i = 0; i < geometries.size(); ++i) {
-        const TriangleGeometry& g = geometries[i];
+    if (!rtcGetDeviceProperty(impl_->device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED))
+        return "Embree was built without EMBREE_RAY_MASK: ray visibility needs it";
+    for (const TriangleGeometry& g : prototypes) {
+        RTCScene proto = rtcNewScene(impl_->device);
+        impl_->prototypes.push_back(proto);
+        // Robust traversal: watertight triangle tests, so rays do not leak through shared edges.
+        rtcSetSceneFlags(proto, RTC_SCENE_FLAG_ROBUST);
+        rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
         RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
         auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
             geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), g.positions.size()));
@@ -63,15 +140,56 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> geometries) {
         }
         std::memcpy(indices, g.triangles.data(), g.triangles.size() * sizeof(g.triangles[0]));
         rtcCommitGeometry(geom);
-        rtcAttachGeometryByID(impl_->scene, geom, static_cast<unsigned>(i));
+        rtcAttachGeometryByID(proto, geom, 0);
         rtcReleaseGeometry(geom);
+        rtcCommitScene(proto);
+    }
+    impl_->scene = rtcNewScene(impl_->device);
+    rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
+    rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
+    impl_->moving.assign(placements.size(), nullptr);
+    for (size_t i = 0; i < placements.size() && impl_->prototypes.size() == prototypes.size(); ++i) {
+        const InstancePlacement& p = placements[i];
+        RTCGeometry inst = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
+        rtcSetGeometryInstancedScene(inst, impl_->prototypes.at(p.prototype));
+        rtcSetGeometryMask(inst, p.mask);
+        if (p.motion) {
+            rtcSetGeometryTimeStepCount(inst, 2);
+            RTCQuaternionDecomposition q0 = to_embree(decompose_transform(p.start));
+            RTCQuaternionDecomposition q1 = to_embree(decompose_transform(p.end));
+            // q and −q are the same rotation; Cycles (transform_motion_decompose) flips the later
+            // one onto the near hemisphere so the slerp takes the short way round.
+            const float d = q0.quaternion_r * q1.quaternion_r + q0.quaternion_i * q1.quaternion_i +
+                            q0.quaternion_j * q1.quaternion_j + q0.quaternion_k * q1.quaternion_k;
+            if (d < 0.0f) {
+                rtcQuaternionDecompositionSetQuaternion(&q1, -q1.quaternion_r, -q1.quaternion_i,
+                                                        -q1.quaternion_j, -q1.quaternion_k);
+            }
+            rtcSetGeometryTransformQuaternion(inst, 0, &q0);
+            rtcSetGeometryTransformQuaternion(inst, 1, &q1);
+        } else {
+            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, p.start.m.data());
+        }
+        rtcCommitGeometry(inst);
+        rtcAttachGeometryByID(impl_->scene, inst, static_cast<unsigned>(i));
+        if (p.motion)
+            impl_->moving[i] = inst;  // keeps our reference for motion_transform()
+        else
+            rtcReleaseGeometry(inst);
     }
     rtcCommitScene(impl_->scene);
     std::lock_guard lock(impl_->error_mutex);
     return impl_->error;
 }
 
-bool EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, RayHit* hit) const {
+Transform EmbreeScene::motion_transform(uint32_t instance, float time) const {
+    Transform t;
+    rtcGetGeometryTransform(impl_->moving[instance], time, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, t.m.data());
+    return t;
+}
+
+bool EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, float time, uint32_t mask,
+                            RayHit* hit) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -83,16 +201,18 @@ bool EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     rh.ray.dir_z = direction.z;
     rh.ray.tnear = t_min;
     rh.ray.tfar = t_max;
-    rh.ray.mask = std::numeric_limits<unsigned>::max();
+    rh.ray.time = time;
+    rh.ray.mask = mask;
     rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    *hit = {rh.ray.tfar, rh.hit.geomID, rh.hit.primID, rh.hit.u, rh.hit.v};
+    *hit = {rh.ray.tfar, rh.hit.instID[0], rh.hit.primID, rh.hit.u, rh.hit.v};
     return true;
 }
 
-bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_min, float t_max) const {
+bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_min, float t_max, float time,
+                           uint32_t mask) const {
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};
@@ -104,7 +224,8 @@ bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_min, float t_max
     ray.dir_z = direction.z;
     ray.tnear = t_min;
     ray.tfar = t_max;
-    ray.mask = std::numeric_limits<unsigned>::max();
+    ray.time = time;
+    ray.mask = mask;
     rtcOccluded1(impl_->scene, &context, &ray);
     return ray.tfar < 0.0f;
 }

@@ -1,5 +1,18 @@
-// Ray queries against world-space triangle meshes. The only file set that includes Embree;
-// the rest of the core sees plain hits (geometry index, triangle index, barycentrics).
+// Ray queries against instanced triangle meshes: a two-level Embree BVH. The only file set that
+// includes Embree; the rest of the core sees plain hits (instance index, triangle index,
+// barycentrics).
+//
+// Every mesh that is placed gets one object-space BVH (an Embree scene holding one triangle
+// geometry); every placement is an RTC_GEOMETRY_TYPE_INSTANCE of it in the top-level scene, so
+// N placements of one mesh cost one mesh of memory plus N small instance records.
+//
+// | placement field | Embree |
+// |-----------------|--------|
+// | start, end      | instance transform at time 0 and 1 (2 time steps when `motion`); the
+// |                 | steps are given as RTC_FORMAT_QUATERNION_DECOMPOSITION so rotation is
+// |                 | interpolated by slerp and scale/skew/translation linearly (Embree >= 3.6) |
+// | mask            | rtcSetGeometryMask: a ray of mask m sees the instance iff (m & mask) != 0;
+// |                 | Debian's Embree 3.13 is built with EMBREE_RAY_MASK (checked at build) |
 #pragma once
 
 #include <array>
@@ -17,9 +30,17 @@ struct TriangleGeometry {
     std::span<const std::array<uint32_t, 3>> triangles;
 };
 
+struct InstancePlacement {
+    uint32_t prototype = 0;  // index into the prototypes given to build()
+    Transform start;         // object-to-world (always, when not moving)
+    Transform end;           // object-to-world at time 1; read when `motion`
+    bool motion = false;
+    uint32_t mask = 0xffffffffu;
+};
+
 struct RayHit {
     float t;
-    uint32_t geometry;  // index into the geometries given to build()
+    uint32_t instance;  // index into the placements given to build()
     uint32_t triangle;
     float b1, b2;  // barycentrics of vertices 1 and 2
 };
@@ -31,17 +52,34 @@ public:
     EmbreeScene(const EmbreeScene&) = delete;
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
-    // Builds the BVH. Returns an empty string on success, otherwise Embree's error message.
-    std::string build(std::span<const TriangleGeometry> geometries);
-    // Closest hit with t in (t_min, t_max); false if none.
-    bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, RayHit* hit) const;
-    // True if anything lies on the ray with t in (t_min, t_max).
-    bool occluded(Vec3 origin, Vec3 direction, float t_min, float t_max) const;
+    // Builds the BVHs. Returns an empty string on success, otherwise Embree's error message.
+    std::string build(std::span<const TriangleGeometry> prototypes,
+                      std::span<const InstancePlacement> placements);
+    // Closest hit with t in (t_min, t_max) at shutter time `time` in [0,1], among instances whose
+    // mask shares a bit with `mask`; false if none.
+    bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, float time, uint32_t mask,
+                   RayHit* hit) const;
+    // True if anything visible to `mask` lies on the ray with t in (t_min, t_max) at `time`.
+    bool occluded(Vec3 origin, Vec3 direction, float t_min, float t_max, float time, uint32_t mask) const;
+    // Object-to-world transform of a moving placement at `time`, interpolated by Embree exactly
+    // as the traversal interpolates it.
+    Transform motion_transform(uint32_t instance, float time) const;
 
     struct Impl;  // Embree handles; public so Embree's C error callback can reach it
 
 private:
     Impl* impl_;
 };
+
+// Splits the linear part A of `m` into A = R·S, R a rotation (unit quaternion r, i, j, k) and S
+// upper triangular (scale on the diagonal, skew above it; Embree's layout), by Gram–Schmidt on
+// A's columns. A mirroring A (det < 0) gets a negative scale_z so that R stays a rotation.
+struct MotionDecomposition {
+    float scale[3];
+    float skew_xy, skew_xz, skew_yz;
+    float quaternion[4];  // r, i, j, k
+    Vec3 translation;
+};
+MotionDecomposition decompose_transform(const Transform& m);
 
 }  // namespace stratum

@@ -62,7 +62,12 @@ std::string save_scene_file(const Scene& scene, const char* path) {
     }
     j["instances"] = json::array();
     for (const Instance& i : scene.instances) {
-        j["instances"].push_back({{"mesh", i.mesh_id}, {"transform", matrix(i.object_to_world)}});
+        j["instances"].push_back({{"mesh", i.mesh_id},
+                                  {"transform", matrix(i.object_to_world)},
+                                  {"transform_end", matrix(i.object_to_world_end)},
+                                  {"motion", i.motion ? 1 : 0},
+                                  {"visibility", i.visibility},
+                                  {"holdout", i.holdout ? 1 : 0}});
     }
     j["lights"] = json::array();
     for (const LightParams& l : scene.lights) {
@@ -73,7 +78,9 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                {"angle", l.angle},
                                {"size", {l.size_x, l.size_y}},
                                {"spot", {l.spot_size, l.spot_blend}},
-                               {"transform", matrix(l.light_to_world)}});
+                               {"transform", matrix(l.light_to_world)},
+                               {"visibility", l.visibility},
+                               {"spread", l.spread}});
     }
     if (scene.camera) {
         const CameraParams& c = *scene.camera;
@@ -88,7 +95,9 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                        {"aperture_radius", c.aperture_radius},
                        {"focus_distance", c.focus_distance},
                        {"aperture_blades", c.aperture_blades},
-                       {"aperture_rotation", c.aperture_rotation}};
+                       {"aperture_rotation", c.aperture_rotation},
+                       {"latitude", {c.latitude_min, c.latitude_max}},
+                       {"longitude", {c.longitude_min, c.longitude_max}}};
     }
     j["background"] = rgb(scene.background);
     if (scene.environment) {
@@ -98,6 +107,28 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                             {"strength", e.strength},
                             {"rotation", e.rotation},
                             {"rgb", e.rgb}};
+    }
+    if (!scene.textures.empty()) {
+        // Textures are saved decoded (linear RGBA, rows bottom to top) and reloaded as 4-channel
+        // Non-Color pixels, so a file replays without the original images or OCIO config.
+        json textures = json::array(), bindings = json::array();
+        for (const auto& t : scene.textures) {
+            textures.push_back({{"width", t->width},
+                                {"height", t->height},
+                                {"interpolation", static_cast<int>(t->interpolation)},
+                                {"extension", static_cast<int>(t->extension)},
+                                {"rgba", t->rgba}});
+        }
+        for (const TextureBinding& b : scene.texture_bindings) {
+            bindings.push_back({{"material", b.material_id},
+                                {"closure", b.closure_index},
+                                {"param", static_cast<int>(b.param)},
+                                {"texture", b.texture_id},
+                                {"channel", b.channel},
+                                {"scale", b.scale},
+                                {"offset", b.offset}});
+        }
+        j["textures"] = {{"images", textures}, {"bindings", bindings}};
     }
     std::ofstream out(path, std::ios::binary);
     if (!out) return std::string("cannot open '") + path + "' for writing";
@@ -164,11 +195,16 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                 return entry_point_failed(status);
         }
         for (const json& i : j.at("instances")) {
-            float t[16];
-            read_floats(i.at("transform"), t);
-            if ((status = stratum_scene_add_instance(scene, i.at("mesh").get<uint32_t>(), t)) != STRATUM_OK) {
+            StratumInstanceDesc d{};
+            d.mesh_id = i.at("mesh").get<uint32_t>();
+            read_floats(i.at("transform"), d.transform);
+            // Files written before motion blur and ray visibility: a static instance seen by all rays.
+            d.motion = i.value("motion", 0);
+            if (d.motion) read_floats(i.at("transform_end"), d.transform_end);
+            d.visibility = i.value("visibility", static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
+            d.holdout = i.value("holdout", 0);
+            if ((status = stratum_scene_add_instance_ex(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
-            }
         }
         for (const json& l : j.at("lights")) {
             StratumLightDesc d{};
@@ -184,6 +220,9 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.spot_size = spot.at(0).get<float>();
             d.spot_blend = spot.at(1).get<float>();
             read_floats(l.at("transform"), d.transform);
+            // Absent in older files: 0 reads as all rays and as spread pi.
+            d.visibility = l.value("visibility", 0u);
+            d.spread = l.value("spread", 0.0f);
             if ((status = stratum_scene_add_light(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
@@ -206,6 +245,12 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.focus_distance = c.value("focus_distance", 0.0f);
             d.aperture_blades = c.value("aperture_blades", 0);
             d.aperture_rotation = c.value("aperture_rotation", 0.0f);
+            const json latitude = c.value("latitude", json::array({-0.5f * kPi, 0.5f * kPi}));
+            const json longitude = c.value("longitude", json::array({-kPi, kPi}));
+            d.latitude_min = latitude.at(0).get<float>();
+            d.latitude_max = latitude.at(1).get<float>();
+            d.longitude_min = longitude.at(0).get<float>();
+            d.longitude_max = longitude.at(1).get<float>();
             if ((status = stratum_scene_set_camera(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
@@ -227,6 +272,39 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                                                         e.at("strength").get<float>(), rotation.data())) !=
                 STRATUM_OK)
                 return entry_point_failed(status);
+        }
+        if (j.contains("textures")) {
+            for (const json& t : j.at("textures").at("images")) {
+                const auto rgba = t.at("rgba").get<std::vector<float>>();
+                StratumTextureDesc d{};
+                d.width = t.at("width").get<uint32_t>();
+                d.height = t.at("height").get<uint32_t>();
+                if (rgba.size() != static_cast<size_t>(d.width) * d.height * 4) {
+                    *error = "malformed scene: texture rgba has " + std::to_string(rgba.size()) +
+                             " values, expected " +
+                             std::to_string(static_cast<size_t>(d.width) * d.height * 4);
+                    return STRATUM_ERROR_IO;
+                }
+                d.pixels = rgba.data();
+                d.channels = 4;
+                d.color_space = "Non-Color";
+                d.interpolation = t.at("interpolation").get<int32_t>();
+                d.extension = t.at("extension").get<int32_t>();
+                if ((status = stratum_scene_add_texture(scene, &d, nullptr)) != STRATUM_OK)
+                    return entry_point_failed(status);
+            }
+            for (const json& b : j.at("textures").at("bindings")) {
+                StratumTextureBinding d{};
+                d.material_id = b.at("material").get<uint32_t>();
+                d.closure_index = b.at("closure").get<uint32_t>();
+                d.param = b.at("param").get<int32_t>();
+                d.texture_id = b.at("texture").get<uint32_t>();
+                d.channel = b.at("channel").get<int32_t>();
+                d.scale = b.at("scale").get<float>();
+                d.offset = b.at("offset").get<float>();
+                if ((status = stratum_scene_bind_texture(scene, &d)) != STRATUM_OK)
+                    return entry_point_failed(status);
+            }
         }
         return STRATUM_OK;
     } catch (const std::exception& e) {

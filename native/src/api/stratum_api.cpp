@@ -1,5 +1,6 @@
 // The C entry points. Every input is validated here, every exception stops here: nothing
 // that crosses this file can throw or abort the host (Blender) process.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <memory>
@@ -134,11 +135,22 @@ StratumStatus stratum_scene_add_mesh(StratumScene* scene, const StratumMeshDesc*
 StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id, const float transform[16]) {
     return guarded("stratum_scene_add_instance", [&] {
         require(scene && transform, "scene or transform is NULL");
-        require(mesh_id < scene->scene.meshes.size(), "mesh_id " + std::to_string(mesh_id) +
-                                                          " out of range [0, " +
-                                                          std::to_string(scene->scene.meshes.size()) + ")");
+        // A static instance seen by every ray: the _ex description with those values.
+        StratumInstanceDesc d{};
+        d.mesh_id = mesh_id;
+        std::copy(transform, transform + 16, d.transform);
+        d.visibility = STRATUM_VISIBLE_ALL;
         scene->scene.instances.push_back(
-            {mesh_id, stratum::validate_transform(transform, "instance transform")});
+            stratum::validate_instance(d, static_cast<uint32_t>(scene->scene.meshes.size())));
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_add_instance_ex(StratumScene* scene, const StratumInstanceDesc* instance) {
+    return guarded("stratum_scene_add_instance_ex", [&] {
+        require(scene && instance, "scene or instance is NULL");
+        scene->scene.instances.push_back(
+            stratum::validate_instance(*instance, static_cast<uint32_t>(scene->scene.meshes.size())));
         return STRATUM_OK;
     });
 }

@@ -178,6 +178,44 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
     return mesh;
 }
 
+namespace {
+
+// The determinant of a transform's linear part.
+float linear_determinant(const Transform& t) { return dot(t.column(0), cross(t.column(1), t.column(2))); }
+
+uint32_t validate_visibility(uint32_t bits, const char* what) {
+    check((bits & ~static_cast<uint32_t>(STRATUM_VISIBLE_ALL)) == 0,
+          std::string(what) + " = " + std::to_string(bits) + " has bits outside STRATUM_VISIBLE_ALL (31)");
+    return bits;
+}
+
+}  // namespace
+
+Instance validate_instance(const StratumInstanceDesc& d, uint32_t mesh_count) {
+    check(d.mesh_id < mesh_count, "instance mesh_id " + std::to_string(d.mesh_id) + " out of range [0, " +
+                                      std::to_string(mesh_count) + ")");
+    check(d.motion == 0 || d.motion == 1,
+          "instance motion = " + std::to_string(d.motion) + " must be 0 or 1");
+    check(d.holdout == 0 || d.holdout == 1,
+          "instance holdout = " + std::to_string(d.holdout) + " must be 0 or 1");
+    Instance inst;
+    inst.mesh_id = d.mesh_id;
+    inst.object_to_world = validate_transform(d.transform, "instance transform");
+    inst.motion = d.motion == 1;
+    inst.object_to_world_end = inst.object_to_world;
+    if (inst.motion) {
+        inst.object_to_world_end = validate_transform(d.transform_end, "instance transform_end");
+        // The motion decomposition (rotation x scale) needs an invertible linear part.
+        check(linear_determinant(inst.object_to_world) != 0.0f,
+              "instance transform of a moving instance is singular (determinant 0)");
+        check(linear_determinant(inst.object_to_world_end) != 0.0f,
+              "instance transform_end is singular (determinant 0)");
+    }
+    inst.visibility = validate_visibility(d.visibility, "instance visibility");
+    inst.holdout = d.holdout == 1;
+    return inst;
+}
+
 LightParams validate_light(const StratumLightDesc& d) {
     check(d.type >= STRATUM_LIGHT_POINT && d.type <= STRATUM_LIGHT_SPOT_V1,
           "light type " + std::to_string(d.type) + " is not a StratumLightType");
@@ -198,6 +236,13 @@ LightParams validate_light(const StratumLightDesc& d) {
         l.spot_blend = finite_in(d.spot_blend, 0.0f, 1.0f, "spot light spot_blend");
     }
     l.light_to_world = validate_transform(d.transform, "light transform");
+    l.visibility = d.visibility == 0 ? static_cast<uint32_t>(STRATUM_VISIBLE_ALL)
+                                     : validate_visibility(d.visibility, "light visibility");
+    if (l.type == LightType::AreaRectangle || l.type == LightType::AreaEllipse) {
+        check(std::isfinite(d.spread) && d.spread >= 0.0f && d.spread <= kPi,
+              "area light spread = " + fmt(d.spread) + " must be in (0, " + fmt(kPi) + "] (0 reads as pi)");
+        l.spread = d.spread == 0.0f ? kPi : d.spread;
+    }
     return l;
 }
 
@@ -216,9 +261,23 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
     check(c.clip_start < c.clip_end,
           "camera clip_start = " + fmt(c.clip_start) + " must be below clip_end = " + fmt(c.clip_end));
     c.camera_to_world = validate_transform(d.transform, "camera transform");
-    check(d.type == STRATUM_CAMERA_PERSPECTIVE || d.type == STRATUM_CAMERA_ORTHOGRAPHIC,
+    check(d.type == STRATUM_CAMERA_PERSPECTIVE || d.type == STRATUM_CAMERA_ORTHOGRAPHIC ||
+              d.type == STRATUM_CAMERA_EQUIRECTANGULAR,
           "camera type " + std::to_string(d.type) + " is not a StratumCameraType");
     c.type = static_cast<CameraType>(d.type);
+    if (c.type == CameraType::Equirectangular) {
+        // Blender's ranges: latitude within [-pi/2, pi/2], longitude within [-2 pi, 2 pi]
+        // (a span of at most 2 pi); min = max would give a zero-width image.
+        c.latitude_min = finite_in(d.latitude_min, -0.5f * kPi, 0.5f * kPi, "camera latitude_min");
+        c.latitude_max = finite_in(d.latitude_max, -0.5f * kPi, 0.5f * kPi, "camera latitude_max");
+        c.longitude_min = finite_in(d.longitude_min, -2.0f * kPi, 2.0f * kPi, "camera longitude_min");
+        c.longitude_max = finite_in(d.longitude_max, -2.0f * kPi, 2.0f * kPi, "camera longitude_max");
+        check(c.latitude_min < c.latitude_max, "camera latitude_min = " + fmt(c.latitude_min) +
+                                                   " must be below latitude_max = " + fmt(c.latitude_max));
+        check(c.longitude_min < c.longitude_max,
+              "camera longitude_min = " + fmt(c.longitude_min) +
+                  " must be below longitude_max = " + fmt(c.longitude_max));
+    }
     if (c.type == CameraType::Orthographic)
         c.ortho_scale = finite_positive(d.ortho_scale, "camera ortho_scale");
     const float kMax = std::numeric_limits<float>::max();

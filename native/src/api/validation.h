@@ -17,6 +17,8 @@ public:
 
 Material validate_material(const StratumMaterialDesc& desc);
 Mesh validate_mesh(const StratumMeshDesc& desc, uint32_t material_count);
+// mesh_count: meshes in the scene (mesh_id must be below it).
+Instance validate_instance(const StratumInstanceDesc& desc, uint32_t mesh_count);
 LightParams validate_light(const StratumLightDesc& desc);
 CameraParams validate_camera(const StratumCameraDesc& desc);
 Transform validate_transform(const float* m, const char* what);

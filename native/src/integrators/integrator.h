@@ -23,6 +23,7 @@ struct IntegratorSettings {
     // obstacle occludes (scene units, > 0; infinity = unlimited).
     HemisphereDistribution hemisphere = HemisphereDistribution::Cosine;
     float ao_distance = 1.0f;
+    bool film_transparent = false;  // Film > Transparent: rays that escape to the background give alpha 0
 };
 
 // One camera ray's estimate: the radiance, and the alpha the film stores (1 = covered; a

@@ -1,10 +1,20 @@
 #include "lights/area_light.h"
 
+#include <cmath>
+
 #include "sampling/warps.h"
 
 namespace stratum {
 
-AreaLight::AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power)
+float area_light_spread_attenuation(float cos_a, float tan_half, float normalize) {
+    if (std::isinf(tan_half)) return 1.0f;
+    if (!(cos_a > 0.0f)) return 0.0f;
+    const float tan_a = safe_sqrt(1.0f - cos_a * cos_a) / cos_a;
+    return std::max((tan_half - tan_a) * normalize, 0.0f);
+}
+
+AreaLight::AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power,
+                     float spread)
     : center_(light_to_world.translation()),
       axis_x_(light_to_world.vector(Vec3(0.5f * size_x, 0, 0))),
       axis_y_(light_to_world.vector(Vec3(0, 0.5f * size_y, 0))),
@@ -16,6 +26,14 @@ AreaLight::AreaLight(const Transform& light_to_world, float size_x, float size_y
     // Local −Z; in world the normal follows the handedness of the transform.
     normal_ = normalize(light_to_world.normal(Vec3(0, 0, -1)));
     radiance_ = power * (kInvPi / area_);
+    const float half = 0.5f * spread;
+    if (spread >= kPi) {
+        tan_half_spread_ = kInfinity;
+        normalize_spread_ = 1.0f;
+    } else {
+        tan_half_spread_ = std::tan(half);
+        normalize_spread_ = half > 0.05f ? 1.0f / (tan_half_spread_ - half) : 3.0f / (half * half * half);
+    }
 }
 
 bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
@@ -36,7 +54,9 @@ bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
     const Vec3 wi = to / d;
     const float cos_light = -dot(wi, normal_);
     if (cos_light <= 0.0f) return false;  // the back side does not emit
-    *out = {wi, d, radiance_, d2 / (area_ * cos_light), false};
+    const float f = area_light_spread_attenuation(cos_light, tan_half_spread_, normalize_spread_);
+    if (!(f > 0.0f)) return false;
+    *out = {wi, d, radiance_ * f, d2 / (area_ * cos_light), false};
     return true;
 }
 

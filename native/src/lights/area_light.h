@@ -1,17 +1,28 @@
 // Blender area light: a one-sided planar emitter (square, rectangle, disk or ellipse) facing
-// its local −Z axis.
+// its local −Z axis, optionally narrowed by Cycles' spread.
 //
 // | parameter        | meaning |
 // |------------------|---------|
 // | power P          | "Power" in W times colour |
 // | size_x, size_y   | "Size" / "Size Y": side lengths, or diameters of disk and ellipse |
 // | shape            | rectangle (square is equal sides) or ellipse (disk is equal diameters) |
+// | spread s         | "Spread" (full angle, radians, (0, π]); π = plain Lambertian emitter |
 //
 // Radiance L = P / (π A), A the world-space area: a Lambertian emitter whose flux is P. This is
 // Cycles 4.x/5.x; Cycles 3.x used P / (4 A) (docs/cycles_models.md), and the add-on scales the
 // power of a 3.x scene by π/4 so both Blenders render what their Cycles renders.
+//
+// Spread (Cycles 3.4 and 4.x kernel/light/area.h area_light_spread_attenuation, scene/light.cpp;
+// Blender D10594, a soft box's grid of slats): the radiance toward a direction at angle a from
+// the normal is L · f(a),
+//     f(a) = max((tan h − tan a) · N, 0),   h = s/2,   N = 1 / (tan h − h)
+// (N = 3/h³ for h <= 0.05, Cycles 4.x's Taylor form; 3.4 uses the exact form, equal there to
+// float precision). N normalises the flux: 2π N ∫₀ʰ (tan h − tan a) cos a sin a da = π, so the
+// light's power P, its selection weight and the sampling are unchanged by the spread.
 // Points are sampled uniformly in area (textbook 4.37 for the rectangle, concentric polar map
-// for the ellipse, 4.41), converted to solid angle: pdf = r² / (A |cos θ_light|).
+// for the ellipse, 4.41), converted to solid angle: pdf = r² / (A |cos θ_light|); f only
+// multiplies the radiance of each sample (f > 0 only where cos θ_light > 0, inside the support
+// of the pdf, so the estimator stays unbiased).
 #pragma once
 
 #include "core/math.h"
@@ -19,10 +30,15 @@
 
 namespace stratum {
 
+// f(a) above for cos_a = cos a; tan_half = tan h, normalize = N. Returns 1 for spread π
+// (tan_half = infinity).
+float area_light_spread_attenuation(float cos_a, float tan_half, float normalize);
+
 class AreaLight {
 public:
     // light_to_world maps the unit shape (x, y in [−½, ½]·size) into the world.
-    AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power);
+    AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power,
+              float spread = kPi);
     bool sample(Vec3 p, Vec2 u, LightSample* out) const;
     float power() const { return power_.average(); }
 
@@ -33,6 +49,8 @@ private:
     float area_;
     Rgb power_;
     Rgb radiance_;
+    float tan_half_spread_;   // infinity when spread = π
+    float normalize_spread_;  // N
 };
 
 }  // namespace stratum

@@ -5,10 +5,11 @@
 
 namespace stratum {
 
-uint32_t LightSet::add(Light light, uint32_t object) {
+uint32_t LightSet::add(Light light, uint32_t object, uint32_t visibility) {
     if (std::holds_alternative<EnvironmentLight>(light)) environment_ = lights_.size();
     lights_.push_back(std::move(light));
     object_.push_back(object);
+    visibility_.push_back(visibility);
     return static_cast<uint32_t>(lights_.size() - 1);
 }
 
@@ -74,6 +75,7 @@ bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const {
         lights_[index]);
     if (!ok) return false;
     out->pdf *= choice;
+    out->visibility = visibility_[index];
     return true;
 }
 

@@ -28,8 +28,9 @@ public:
         std::variant<PointLight, SunLight, AreaLight, EmissiveTriangle, SpotLight, EnvironmentLight>;
 
     // `object` groups lights that belong to one scene object (the triangles of one emissive
-    // mesh); every Blender lamp is an object of its own. Returns the index of the added light.
-    uint32_t add(Light light, uint32_t object);
+    // mesh); every Blender lamp is an object of its own. `visibility` (StratumVisibility bits)
+    // is copied into every LightSample of the light. Returns the index of the added light.
+    uint32_t add(Light light, uint32_t object, uint32_t visibility = 31);
     // scene_radius: radius of a sphere bounding the scene, to give the sun a power.
     void finalize(float scene_radius);
 
@@ -45,8 +46,9 @@ public:
 
 private:
     std::vector<Light> lights_;
-    std::vector<uint32_t> object_;  // object of each light
-    std::vector<float> cdf_;        // cdf_[i] = P(choice < i+1), last = 1
+    std::vector<uint32_t> object_;      // object of each light
+    std::vector<uint32_t> visibility_;  // StratumVisibility bits of each light
+    std::vector<float> cdf_;            // cdf_[i] = P(choice < i+1), last = 1
     std::vector<float> probability_;
     size_t environment_ = SIZE_MAX;  // index of the environment light, if any
 };

@@ -43,6 +43,11 @@ std::string set_int_setting(RenderSettings& s, std::string_view name, int64_t va
         {"max_bounces", &RenderSettings::max_bounces, 0, kMaxBounces},
         {"seed", &RenderSettings::seed, 0, 0xffffffffll},
         {"threads", &RenderSettings::threads, 0, 1024},
+        {"crop_x", &RenderSettings::crop_x, 0, kMaxResolution - 1},
+        {"crop_y", &RenderSettings::crop_y, 0, kMaxResolution - 1},
+        {"crop_width", &RenderSettings::crop_width, 0, kMaxResolution},
+        {"crop_height", &RenderSettings::crop_height, 0, kMaxResolution},
+        {"film_transparent", &RenderSettings::film_transparent, 0, 1},
     };
     for (const Field& f : kFields) {
         if (f.name != name) continue;
@@ -111,11 +116,37 @@ std::string set_string_setting(RenderSettings& s, std::string_view name, std::st
     return "unknown string setting '" + std::string(name) + "'";
 }
 
+std::string crop_region(const RenderSettings& s, PixelRegion* out) {
+    if (s.crop_width == 0) {
+        if (s.crop_height != 0 || s.crop_x != 0 || s.crop_y != 0) {
+            return "border region: crop_width = 0 (the whole frame) but crop_x = " +
+                   std::to_string(s.crop_x) + ", crop_y = " + std::to_string(s.crop_y) +
+                   ", crop_height = " + std::to_string(s.crop_height) + " (all must be 0)";
+        }
+        *out = {0, 0, s.width, s.height};
+        return {};
+    }
+    if (s.crop_height == 0)
+        return "border region: crop_height = 0 with crop_width = " + std::to_string(s.crop_width);
+    const auto outside = [](const char* axis, uint32_t start, uint32_t size, uint32_t frame) {
+        return std::string("border region outside the frame: crop_") + axis + " = " + std::to_string(start) +
+               " + crop_" + (axis[0] == 'x' ? "width" : "height") + " = " + std::to_string(size) +
+               " exceeds " + (axis[0] == 'x' ? "width" : "height") + " = " + std::to_string(frame);
+    };
+    if (static_cast<uint64_t>(s.crop_x) + s.crop_width > s.width)
+        return outside("x", s.crop_x, s.crop_width, s.width);
+    if (static_cast<uint64_t>(s.crop_y) + s.crop_height > s.height)
+        return outside("y", s.crop_y, s.crop_height, s.height);
+    *out = {s.crop_x, s.crop_y, s.crop_width, s.crop_height};
+    return {};
+}
+
 IntegratorSettings integrator_settings(const RenderSettings& s) {
     IntegratorSettings out;
     out.max_bounces = s.max_bounces;
     parse_hemisphere(s.hemisphere, &out.hemisphere);
     out.ao_distance = s.ao_distance;
+    out.film_transparent = s.film_transparent != 0;
     return out;
 }
 

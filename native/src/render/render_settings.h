@@ -14,6 +14,11 @@ struct RenderSettings {
     uint32_t max_bounces = 12;
     uint32_t seed = 0;
     uint32_t threads = 0;  // 0 = all cores
+    // Border render: the region [crop_x, crop_x + crop_width) x [crop_y, crop_y + crop_height) of
+    // the width x height frame, bottom-left origin; crop_width = 0 = the whole frame. Only the
+    // region is rendered, read and written; its pixels are those of the full frame.
+    uint32_t crop_x = 0, crop_y = 0, crop_width = 0, crop_height = 0;
+    uint32_t film_transparent = 0;  // 1: the background has alpha 0 (Cycles' Film > Transparent)
     float filter_width = 1.5f;
     float ao_distance = 1.0f;  // `ao` integrator: occlusion distance, scene units, > 0 (inf allowed)
     std::string sampler = "random";
@@ -21,6 +26,14 @@ struct RenderSettings {
     std::string integrator = "path";
     std::string hemisphere = "cosine";  // sampling/hemisphere.h registry name
 };
+
+// The rendered region in pixels of the full frame.
+struct PixelRegion {
+    uint32_t x = 0, y = 0, width = 0, height = 0;
+};
+// The region the crop settings select (the whole frame when crop_width = 0), or an error
+// message naming the setting that puts it outside the frame.
+std::string crop_region(const RenderSettings& s, PixelRegion* out);
 
 struct IntegratorSettings;
 // The integrator's share of the settings (names already validated).

@@ -21,6 +21,11 @@ constexpr uint32_t kMaxPassSamples = 64;
 
 using Clock = std::chrono::steady_clock;
 
+// Index of full-frame pixel (x, y) in the region's buffers (rows bottom to top).
+size_t pixel_index(const PixelRegion& region, uint32_t x, uint32_t y) {
+    return static_cast<size_t>(y - region.y) * region.width + (x - region.x);
+}
+
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -43,8 +48,12 @@ std::string Renderer::start() {
     join();
     if (!scene_.camera) return "the scene has no camera";
     if (!find_sampler(settings_.sampler)) return "unknown sampler '" + settings_.sampler + "'";
-    width_ = settings_.width;
-    height_ = settings_.height;
+    PixelRegion region;
+    const std::string crop_error = crop_region(settings_, &region);
+    if (!crop_error.empty()) return crop_error;
+    region_ = region;
+    width_ = region.width;
+    height_ = region.height;
     image_.assign(static_cast<size_t>(width_) * height_ * 4, 0.0f);
     cancel_.store(false);
     done_.store(false);
@@ -64,6 +73,7 @@ std::string Renderer::start() {
 
 void Renderer::run() {
     const RenderSettings s = settings_;
+    const PixelRegion region = region_;
     std::string error;
     try {
         tbb::task_arena arena(s.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(s.threads));
@@ -86,8 +96,11 @@ void Renderer::run() {
         FilterType filter_type = FilterType::BlackmanHarris;
         parse_filter_type(s.filter_type, &filter_type);
         const PixelFilter filter(filter_type, s.filter_width);
+        // Camera and sampler see the full frame and full-frame pixel coordinates, so a pixel of a
+        // border render is bit-identical to the same pixel of the full render.
         const Camera camera(*scene_.camera, s.width, s.height);
-        std::vector<Rgb> sums(static_cast<size_t>(s.width) * s.height);
+        const bool motion = render_scene_->has_motion();
+        std::vector<Rgb> sums(static_cast<size_t>(region.width) * region.height);
         std::vector<float> alpha_sums(sums.size(), 0.0f);
         std::vector<uint32_t> counts(sums.size(), 0);
 
@@ -96,13 +109,14 @@ void Renderer::run() {
             const uint32_t end = std::min({s.samples, std::max(1u, 2 * begin), begin + kMaxPassSamples});
             arena.execute([&] {
                 tbb::parallel_for(
-                    tbb::blocked_range2d<uint32_t>(0, s.height, kTileSize, 0, s.width, kTileSize),
+                    tbb::blocked_range2d<uint32_t>(region.y, region.y + region.height, kTileSize, region.x,
+                                                   region.x + region.width, kTileSize),
                     [&](const tbb::blocked_range2d<uint32_t>& tile) {
                         uint64_t rays = 0, pixel_samples = 0;
                         for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
                             for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                                 if (cancel_.load(std::memory_order_relaxed)) break;
-                                const size_t p = static_cast<size_t>(y) * s.width + x;
+                                const size_t p = pixel_index(region, x, y);
                                 Rgb sum = sums[p];
                                 float alpha_sum = alpha_sums[p];
                                 for (uint32_t i = begin; i < end; ++i) {
@@ -112,9 +126,11 @@ void Renderer::run() {
                                     // pinhole renders do exactly the work they did before.
                                     const Vec2 lens = camera.has_aperture() ? sampler->get_2d(ps, kDimLens)
                                                                             : Vec2{0.5f, 0.5f};
-                                    const CameraRay ray =
+                                    CameraRay ray =
                                         camera.generate_ray(static_cast<float>(x) + 0.5f + offset.x,
                                                             static_cast<float>(y) + 0.5f + offset.y, lens);
+                                    // Drawn only with motion, so static renders stay bit-identical.
+                                    if (motion) ray.time = sampler->get_1d(ps, kDimTime);
                                     const RadianceSample r =
                                         integrator->radiance(*render_scene_, *sampler, ps, ray, rays);
                                     const Rgb& L = r.radiance;
@@ -135,7 +151,7 @@ void Renderer::run() {
                         std::shared_lock lock(image_mutex_);
                         for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
                             for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
-                                const size_t p = static_cast<size_t>(y) * s.width + x;
+                                const size_t p = pixel_index(region, x, y);
                                 if (counts[p] == 0) continue;
                                 const Rgb v = sums[p] / static_cast<float>(counts[p]);
                                 float* px = &image_[4 * p];

@@ -47,7 +47,8 @@ public:
     // True when the render has ended within the timeout.
     bool wait(int timeout_ms);
     RenderProgress progress() const;
-    // width*height*4 floats, rows bottom to top.
+    // width()*height()*4 floats, rows bottom to top: the border region (the whole frame when
+    // there is none).
     void read_pixels(float* rgba) const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
@@ -59,7 +60,8 @@ private:
     Scene scene_;
     RenderSettings settings_;
     std::unique_ptr<RenderScene> render_scene_;
-    uint32_t width_ = 0, height_ = 0;
+    PixelRegion region_;               // of the current render, set by start()
+    uint32_t width_ = 0, height_ = 0;  // the region's size
 
     // Published image (RGBA, averaged). Tiles write disjoint regions under a shared lock;
     // read_pixels takes it exclusively.

@@ -54,7 +54,30 @@ Camera::Camera(const CameraParams& params, uint32_t width, uint32_t height)
     top_ = half_h + dy;
 }
 
+CameraRay Camera::generate_equirectangular_ray(float fx, float fy, Vec2 lens) const {
+    const float u = fx * inv_width_, v = fy * inv_height_;
+    const float phi = (params_.longitude_min - params_.longitude_max) * u - params_.longitude_min;
+    const float theta = (params_.latitude_min - params_.latitude_max) * v - params_.latitude_min + 0.5f * kPi;
+    const float sin_theta = std::sin(theta);
+    // Cycles' panorama space.
+    Vec3 d(sin_theta * std::cos(phi), sin_theta * std::sin(phi), std::cos(theta));
+    Vec3 origin(0.0f, 0.0f, 0.0f);
+    if (params_.aperture_radius > 0.0f) {
+        const Vec2 a = sample_aperture(lens, params_.aperture_blades, params_.aperture_rotation);
+        const Vec3 focus = d * params_.focus_distance;
+        const Vec3 U = normalize(Vec3(1.0f, 0.0f, 0.0f) - d * d.x);
+        const Vec3 V = normalize(cross(d, U));
+        origin = U * (a.x * params_.aperture_radius) + V * (a.y * params_.aperture_radius);
+        d = normalize(focus - origin);
+    }
+    // Panorama space to Blender camera space (blender_camera_matrix): (x, y, z) -> (−y, z, −x).
+    const auto to_camera = [](Vec3 p) { return Vec3(-p.y, p.z, -p.x); };
+    const Vec3 dir = normalize(params_.camera_to_world.vector(to_camera(d)));
+    return {params_.camera_to_world.point(to_camera(origin)), dir, params_.clip_start, params_.clip_end};
+}
+
 CameraRay Camera::generate_ray(float fx, float fy, Vec2 lens) const {
+    if (params_.type == CameraType::Equirectangular) return generate_equirectangular_ray(fx, fy, lens);
     const float px = left_ + (right_ - left_) * fx * inv_width_;
     const float py = bottom_ + (top_ - bottom_) * fy * inv_height_;
     // Local space: the pinhole ray goes from `origin` to `target`, one unit deeper.

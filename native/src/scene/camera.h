@@ -1,4 +1,4 @@
-// Blender's perspective and orthographic cameras: lens, ortho_scale, sensor size and fit,
+// Blender's perspective, orthographic and equirectangular cameras: lens, ortho_scale, sensor size and fit,
 // shift, clipping and thin-lens depth of field, computed as Blender's
 // BKE_camera_params_compute_viewplane and Cycles' camera do, so Stratum frames exactly what
 // Cycles frames.
@@ -16,11 +16,24 @@
 // | focus_distance    | dof.focus_distance: depth of the plane in focus |
 // | aperture_blades   | dof.aperture_blades: 0 = disk, n >= 3 = regular n-gon inscribed in the radius |
 // | aperture_rotation | dof.aperture_rotation (radians): turns the n-gon counter-clockwise |
+// | latitude_min/max  | equirectangular: latitude at the bottom / top image edge (radians) |
+// | longitude_min/max | equirectangular: longitude (−φ below) at the left / right image edge |
 //
 // Thin lens (Cycles' model): the ray starts at a uniform point of the aperture (radius
 // aperture_radius, on the plane z = 0 of the pinhole, or of the film point when orthographic)
 // and passes through the point the pinhole ray reaches at depth focus_distance, so the plane
 // at that depth is sharp.
+//
+// Equirectangular (Cycles 3.4 and 5.0 kernel/camera/projection.h equirectangular_range_to_direction,
+// scene/camera.cpp equirectangular_range, blender/camera.cpp blender_camera_matrix): film point
+// (u, v) in [0,1]^2 (v = 0 at the bottom) maps to
+//     φ = (lon_min − lon_max) u − lon_min,   θ = (lat_min − lat_max) v − lat_min + π/2,
+//     d = (sin θ cos φ, sin θ sin φ, cos θ)   in Cycles' panorama space,
+// which Blender's camera frame sees as (−d.y, d.z, −d.x): the image centre (φ = 0, θ = π/2 for
+// symmetric ranges) looks down the camera's −Z, u grows toward the camera's +X (φ decreasing),
+// v toward +Y. Clipping is by distance along the ray. A thin lens (Cycles' camera_sample_panorama)
+// aims from a point of the aperture disk, spanned by U = normalize(x − d.x d), V = d × U in
+// panorama space, at d · focus_distance.
 #pragma once
 
 #include <cstdint>
@@ -30,7 +43,7 @@
 namespace stratum {
 
 enum class SensorFit : int32_t { Auto = 0, Horizontal = 1, Vertical = 2 };
-enum class CameraType : int32_t { Perspective = 0, Orthographic = 1 };
+enum class CameraType : int32_t { Perspective = 0, Orthographic = 1, Equirectangular = 2 };
 
 struct CameraParams {
     CameraType type = CameraType::Perspective;
@@ -45,6 +58,8 @@ struct CameraParams {
     float focus_distance = 0.0f;
     int32_t aperture_blades = 0;
     float aperture_rotation = 0.0f;
+    float latitude_min = -kPi / 2, latitude_max = kPi / 2;
+    float longitude_min = -kPi, longitude_max = kPi;
     Transform camera_to_world;
 };
 
@@ -52,6 +67,9 @@ struct CameraRay {
     Vec3 origin;
     Vec3 direction;  // unit length
     float t_min, t_max;
+    // Shutter time in [0,1] the ray samples (motion blur). The renderer sets it: drawn from the
+    // sampler at kDimTime when the scene has motion, 0.5 otherwise.
+    float time = 0.5f;
 };
 
 // Maps u in [0,1)^2 uniformly onto the unit aperture: the unit disk (blades 0, concentric map)
@@ -77,6 +95,8 @@ public:
     float top() const { return top_; }
 
 private:
+    CameraRay generate_equirectangular_ray(float fx, float fy, Vec2 lens) const;
+
     CameraParams params_;
     float inv_width_, inv_height_;
     float left_, right_, bottom_, top_;

@@ -1,44 +1,94 @@
 #include "scene/render_scene.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 namespace stratum {
 
+namespace {
+
+struct Bounds {
+    Vec3 lo{kInfinity, kInfinity, kInfinity}, hi{-kInfinity, -kInfinity, -kInfinity};
+    void add(Vec3 p) {
+        lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+        hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+    }
+    bool empty() const { return !(lo.x <= hi.x); }
+};
+
+// World bounds of an object-space box under an affine map: the box of its 8 transformed corners.
+void add_transformed(Bounds& world, const Bounds& object, const Transform& m) {
+    if (object.empty()) return;
+    for (int c = 0; c < 8; ++c) {
+        world.add(m.point(Vec3(c & 1 ? object.hi.x : object.lo.x, c & 2 ? object.hi.y : object.lo.y,
+                               c & 4 ? object.hi.z : object.lo.z)));
+    }
+}
+
+Vec3 unit_or(Vec3 v, Vec3 fallback) {
+    const float len = length(v);
+    return len > 0.0f ? v / len : fallback;
+}
+
+}  // namespace
+
+Rgb material_emission(const SceneMaterial& material) {
+    Rgb sum(0.0f);
+    for (const WeightedClosure& c : material.closures) sum += c.weight * c.params.emission;
+    return sum;
+}
+
 RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), background_(scene.background) {
+    // One prototype BVH per mesh that is placed at least once.
+    std::vector<uint32_t> prototype_of(scene.meshes.size(), kNoLight);
+    std::vector<TriangleGeometry> prototypes;
+    std::vector<Bounds> object_bounds;
+    std::vector<InstancePlacement> placements;
+    placements.reserve(scene.instances.size());
     instances_.reserve(scene.instances.size());
-    Vec3 lo(kInfinity, kInfinity, kInfinity), hi(-kInfinity, -kInfinity, -kInfinity);
+    Bounds world;
     for (const Instance& inst : scene.instances) {
         const Mesh& mesh = scene.meshes.at(inst.mesh_id);
-        InstanceGeometry g{&mesh, {}, {}, {}};
-        g.positions.reserve(mesh.positions.size());
-        for (Vec3 p : mesh.positions) {
-            const Vec3 w = inst.object_to_world.point(p);
-            g.positions.push_back(w);
-            lo = Vec3(std::min(lo.x, w.x), std::min(lo.y, w.y), std::min(lo.z, w.z));
-            hi = Vec3(std::max(hi.x, w.x), std::max(hi.y, w.y), std::max(hi.z, w.z));
+        if (prototype_of[inst.mesh_id] == kNoLight) {
+            prototype_of[inst.mesh_id] = static_cast<uint32_t>(prototypes.size());
+            prototypes.push_back({mesh.positions, mesh.triangles});
+            Bounds b;
+            for (Vec3 p : mesh.positions) b.add(p);
+            object_bounds.push_back(b);
         }
-        g.corner_normals.reserve(mesh.corner_normals.size());
-        for (Vec3 n : mesh.corner_normals) {
-            const Vec3 w = inst.object_to_world.normal(n);
-            const float len = length(w);
-            g.corner_normals.push_back(len > 0.0f ? w / len : Vec3(0, 0, 1));
+        const uint32_t proto = prototype_of[inst.mesh_id];
+        placements.push_back(
+            {proto, inst.object_to_world, inst.object_to_world_end, inst.motion, inst.visibility});
+        add_transformed(world, object_bounds[proto], inst.object_to_world);
+        if (inst.motion) {
+            // Rotation is interpolated, so a moving box can bulge past both end boxes; the bound
+            // only sizes the sun's selection weight, where that slack does not matter.
+            add_transformed(world, object_bounds[proto], inst.object_to_world_end);
+            has_motion_ = true;
         }
-        instances_.push_back(std::move(g));
+        instances_.push_back({&mesh, inst.object_to_world, inst.motion, inst.visibility, inst.holdout, {}});
     }
-    // Light objects for the choice among lights: each instance's emissive triangles form one,
-    // then every lamp is one.
+    std::vector<Rgb> emission(materials_.size());
+    for (size_t m = 0; m < materials_.size(); ++m) emission[m] = material_emission(materials_[m]);
+    // Light objects for the choice among lights: each static instance's emissive triangles form
+    // one, then every lamp is one. A moving emitter gets no light entries (a light sample drawn
+    // at one shutter time could not be matched by the shadow ray's time): it is still found by
+    // camera and BSDF rays, which then take the full MIS weight, so it is unbiased but noisier.
     uint32_t light_object = 0;
-    for (InstanceGeometry& g : instances_) {
+    for (InstanceData& g : instances_) {
+        if (g.motion) continue;
         const Mesh& mesh = *g.mesh;
         const uint32_t object = light_object++;
         for (size_t t = 0; t < mesh.triangles.size(); ++t) {
-            const Material& m = materials_[mesh.material_ids[t]].closures.front().params;
-            if (m.emission.is_black()) continue;
+            const Rgb& e = emission[mesh.material_ids[t]];
+            if (e.is_black()) continue;
             if (g.emissive_light.empty()) g.emissive_light.assign(mesh.triangles.size(), kNoLight);
             const auto& tri = mesh.triangles[t];
-            g.emissive_light[t] = lights_.add(
-                EmissiveTriangle(g.positions[tri[0]], g.positions[tri[1]], g.positions[tri[2]], m.emission),
-                object);
+            const Transform& m = g.object_to_world;
+            g.emissive_light[t] =
+                lights_.add(EmissiveTriangle(m.point(mesh.positions[tri[0]]), m.point(mesh.positions[tri[1]]),
+                                             m.point(mesh.positions[tri[2]]), e),
+                            object);
         }
     }
     for (const LightParams& l : scene.lights) {
@@ -46,23 +96,24 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
         const uint32_t object = light_object++;
         switch (l.type) {
             case LightType::Point:
-                lights_.add(PointLight(l.light_to_world.translation(), power, l.radius), object);
+                lights_.add(PointLight(l.light_to_world.translation(), power, l.radius), object,
+                            l.visibility);
                 break;
             case LightType::Sun:
                 lights_.add(SunLight(normalize(l.light_to_world.vector(Vec3(0, 0, 1))), power, l.angle),
-                            object);
+                            object, l.visibility);
                 break;
             case LightType::AreaRectangle:
             case LightType::AreaEllipse:
-                lights_.add(
-                    AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse, power),
-                    object);
+                lights_.add(AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse,
+                                      power, l.spread),
+                            object, l.visibility);
                 break;
             case LightType::Spot:
             case LightType::SpotV1:
                 lights_.add(SpotLight(l.light_to_world, power, l.radius, l.spot_size, l.spot_blend,
                                       l.type == LightType::SpotV1),
-                            object);
+                            object, l.visibility);
                 break;
         }
     }
@@ -73,39 +124,54 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
         lights_.add(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation), light_object++);
     }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.
-    lights_.finalize(lo.x <= hi.x ? std::max(1.0f, 0.5f * length(hi - lo)) : 1.0f);
+    lights_.finalize(world.empty() ? 1.0f : std::max(1.0f, 0.5f * length(world.hi - world.lo)));
 
-    std::vector<TriangleGeometry> geometries;
-    geometries.reserve(instances_.size());
-    for (const InstanceGeometry& g : instances_) geometries.push_back({g.positions, g.mesh->triangles});
-    const std::string error = embree_.build(geometries);
+    const std::string error = embree_.build(prototypes, placements);
     if (!error.empty()) throw std::runtime_error(error);
 }
 
 bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, SurfaceHit* hit,
                             const RayQuery& query) const {
-    (void)query;
     RayHit h;
-    if (!embree_.intersect(origin, direction, t_min, t_max, &h)) return false;
-    const InstanceGeometry& g = instances_[h.geometry];
-    const auto& tri = g.mesh->triangles[h.triangle];
-    const Vec3 p0 = g.positions[tri[0]], p1 = g.positions[tri[1]], p2 = g.positions[tri[2]];
+    if (!embree_.intersect(origin, direction, t_min, t_max, query.time, query.visibility, &h)) return false;
+    const InstanceData& g = instances_[h.instance];
+    const Mesh& mesh = *g.mesh;
+    const Transform m = g.motion ? embree_.motion_transform(h.instance, query.time) : g.object_to_world;
+    const auto& tri = mesh.triangles[h.triangle];
+    // World vertices first, then interpolation: the same arithmetic as a mesh flattened to world
+    // space, so an identity instance shades exactly as the flattened mesh does.
+    const Vec3 p0 = m.point(mesh.positions[tri[0]]), p1 = m.point(mesh.positions[tri[1]]),
+               p2 = m.point(mesh.positions[tri[2]]);
     const float b0 = 1.0f - h.b1 - h.b2;
     hit->position = p0 * b0 + p1 * h.b1 + p2 * h.b2;
-    const Vec3 c = cross(p1 - p0, p2 - p0);
-    const float len = length(c);
-    hit->geometric_normal = len > 0.0f ? c / len : -direction;
+    const Vec3 e1 = p1 - p0, e2 = p2 - p0;
+    hit->geometric_normal = unit_or(cross(e1, e2), -direction);
     hit->shading_normal = hit->geometric_normal;
-    if (!g.corner_normals.empty()) {
-        const size_t k = 3 * static_cast<size_t>(h.triangle);
-        const Vec3 n =
-            g.corner_normals[k] * b0 + g.corner_normals[k + 1] * h.b1 + g.corner_normals[k + 2] * h.b2;
-        const float nl = length(n);
-        if (nl > 0.0f) hit->shading_normal = n / nl;
+    const size_t k = 3 * static_cast<size_t>(h.triangle);
+    if (!mesh.corner_normals.empty()) {
+        // Normals map by the inverse transpose (Transform::normal), each corner made unit first.
+        const Vec3 fallback(0, 0, 1);
+        const Vec3 n = unit_or(m.normal(mesh.corner_normals[k]), fallback) * b0 +
+                       unit_or(m.normal(mesh.corner_normals[k + 1]), fallback) * h.b1 +
+                       unit_or(m.normal(mesh.corner_normals[k + 2]), fallback) * h.b2;
+        hit->shading_normal = unit_or(n, hit->geometric_normal);
     }
-    hit->material_id = g.mesh->material_ids[h.triangle];
+    hit->uv = {0.0f, 0.0f};
+    hit->dpdu = Vec3(0.0f, 0.0f, 0.0f);
+    if (!mesh.corner_uvs.empty()) {
+        const Vec2 t0 = mesh.corner_uvs[k], t1 = mesh.corner_uvs[k + 1], t2 = mesh.corner_uvs[k + 2];
+        hit->uv = {t0.x * b0 + t1.x * h.b1 + t2.x * h.b2, t0.y * b0 + t1.y * h.b1 + t2.y * h.b2};
+        // p − p0 = dpdu (u − u0) + dpdv (v − v0) on the triangle: solving the 2x2 system of the two
+        // edges gives dpdu = (dv2 e1 − dv1 e2) / (du1 dv2 − du2 dv1) (pbrt 3.6.2). Degenerate UVs: 0.
+        const float du1 = t1.x - t0.x, dv1 = t1.y - t0.y, du2 = t2.x - t0.x, dv2 = t2.y - t0.y;
+        const float det = du1 * dv2 - du2 * dv1;
+        if (det != 0.0f) hit->dpdu = (e1 * dv2 - e2 * dv1) / det;
+    }
+    hit->material_id = mesh.material_ids[h.triangle];
     hit->material = &materials_[hit->material_id].closures.front().params;
     hit->emissive_light = g.emissive_light.empty() ? kNoLight : g.emissive_light[h.triangle];
+    hit->visibility = g.visibility;
+    hit->holdout = g.holdout;
     return true;
 }
 

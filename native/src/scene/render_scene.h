@@ -1,5 +1,7 @@
-// The scene in render-ready form: instances flattened to world-space triangles in an Embree
-// BVH, emissive triangles and light objects in one LightSet, and the shading data a hit needs.
+// The scene in render-ready form: one object-space BVH per placed mesh and one Embree instance
+// per placement (accel/embree_scene.h), emissive triangles and light objects in one LightSet,
+// and the shading data a hit needs, computed from the prototype mesh and the instance transform
+// (at the ray's time for a moving instance).
 #pragma once
 
 #include <cstdint>
@@ -31,11 +33,14 @@ inline constexpr uint32_t kNoLight = 0xffffffffu;
 
 // What a ray is for: the shutter time it samples (motion blur) and the StratumVisibility bit of
 // its kind (CAMERA, DIFFUSE, GLOSSY, TRANSMISSION or SHADOW), matched against each instance's
-// visibility.
+// visibility: the ray sees an instance iff (visibility & instance visibility) != 0.
 struct RayQuery {
     float time = 0.5f;
     uint32_t visibility = 31;
 };
+
+// Emitted radiance of a material: sum_i weight_i ⊙ emission_i over its closures.
+Rgb material_emission(const SceneMaterial& material);
 
 class RenderScene {
 public:
@@ -45,12 +50,13 @@ public:
     bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, SurfaceHit* hit,
                    const RayQuery& query = {}) const;
     bool occluded(Vec3 origin, Vec3 direction, float t_min, float t_max, const RayQuery& query = {}) const {
-        (void)query;
-        return embree_.occluded(origin, direction, t_min, t_max);
+        return embree_.occluded(origin, direction, t_min, t_max, query.time, query.visibility);
     }
     const LightSet& lights() const { return lights_; }
     // The closures of scene material `id` (SurfaceHit::material_id), before texturing.
     const SceneMaterial& material(uint32_t id) const { return materials_[id]; }
+    // True if some instance moves over the shutter (the renderer then samples ray times).
+    bool has_motion() const { return has_motion_; }
     // Radiance of a ray that leaves the scene in direction `dir`: the environment image if
     // there is one, else the constant background.
     Rgb background(Vec3 dir) const {
@@ -59,17 +65,20 @@ public:
     }
 
 private:
-    struct InstanceGeometry {
+    struct InstanceData {
         const Mesh* mesh;
-        std::vector<Vec3> positions;           // world space
-        std::vector<Vec3> corner_normals;      // world space, unit; empty if the mesh has none
-        std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive
+        Transform object_to_world;  // static instances; moving ones ask Embree at the ray's time
+        bool motion;
+        uint32_t visibility;
+        bool holdout;
+        std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive; empty if none
     };
     std::vector<SceneMaterial> materials_;
-    std::vector<InstanceGeometry> instances_;
+    std::vector<InstanceData> instances_;
     EmbreeScene embree_;
     LightSet lights_;
     Rgb background_;
+    bool has_motion_ = false;
 };
 
 }  // namespace stratum

@@ -4,12 +4,15 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <vector>
 
 #include "bsdf/bsdf.h"
 #include "core/math.h"
 #include "scene/camera.h"
+#include "texture/texture.h"
+#include "texture/texture_binding.h"
 
 namespace stratum {
 
@@ -34,7 +37,12 @@ struct SceneMaterial {
 
 struct Instance {
     uint32_t mesh_id;
-    Transform object_to_world;
+    Transform object_to_world;  // at shutter open, or always if static
+    // Appended for issue 5 (StratumInstanceDesc): motion blur, ray visibility, holdout.
+    Transform object_to_world_end;  // at shutter close; read when `motion`
+    bool motion = false;
+    uint32_t visibility = 31;  // StratumVisibility bits
+    bool holdout = false;
 };
 
 enum class LightType : int32_t {
@@ -55,6 +63,8 @@ struct LightParams {
     float size_x = 1.0f, size_y = 1.0f;
     float spot_size = kPi, spot_blend = 0.0f;
     Transform light_to_world;
+    uint32_t visibility = 31;  // StratumVisibility bits (0 at the ABI reads as all)
+    float spread = kPi;        // area lights: Cycles' spread, (0, pi]
 };
 
 // An equirectangular environment image (see lights/environment_light.h for the mapping).
@@ -73,6 +83,10 @@ struct Scene {
     std::optional<CameraParams> camera;
     Rgb background{0.0f};
     std::optional<Environment> environment;  // replaces the background when present
+    // Image textures (shared: copies of a Scene share the pixels) and the material parameters
+    // they drive; at most one binding per (material, closure, parameter).
+    std::vector<std::shared_ptr<const Texture>> textures;
+    std::vector<TextureBinding> texture_bindings;
 };
 
 }  // namespace stratum

@@ -1,0 +1,52 @@
+// The texture entry points: stratum_scene_add_texture and stratum_scene_bind_texture.
+#include <string>
+
+#include "api/abi_guard.h"
+#include "api/texture_validation.h"
+#include "stratum/stratum.h"
+#include "texture/image_reading.h"
+
+// Defined in api/stratum_api.cpp; only its `scene` member is used here.
+struct StratumScene {
+    stratum::Scene scene;
+};
+
+extern "C" {
+
+StratumStatus stratum_scene_add_texture(StratumScene* scene, const StratumTextureDesc* texture,
+                                        uint32_t* out_id) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_add_texture", [&] {
+        require(scene && texture, "scene or texture is NULL");
+        std::shared_ptr<const stratum::Texture> loaded;
+        try {
+            loaded = stratum::load_texture(*texture);
+        } catch (const stratum::ImageReadError& e) {
+            return fail(STRATUM_ERROR_IO, std::string("stratum_scene_add_texture: ") + e.what());
+        }
+        scene->scene.textures.push_back(std::move(loaded));
+        if (out_id) *out_id = static_cast<uint32_t>(scene->scene.textures.size() - 1);
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_bind_texture(StratumScene* scene, const StratumTextureBinding* binding) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_bind_texture", [&] {
+        require(scene && binding, "scene or binding is NULL");
+        const stratum::TextureBinding b = stratum::validate_texture_binding(*binding, scene->scene);
+        auto& bindings = scene->scene.texture_bindings;
+        // A later binding of the same parameter replaces the earlier one.
+        for (stratum::TextureBinding& existing : bindings) {
+            if (existing.material_id == b.material_id && existing.closure_index == b.closure_index &&
+                existing.param == b.param) {
+                existing = b;
+                return STRATUM_OK;
+            }
+        }
+        bindings.push_back(b);
+        return STRATUM_OK;
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,36 @@
+// Conversion of image texels to the renderer's scene-linear space with OpenColorIO, from the
+// image's colour space (Blender's Image > Color Space) through Blender's own config.
+//
+// | config          | colour space              | conversion                                 |
+// |-----------------|---------------------------|--------------------------------------------|
+// | a readable file | data (isdata, Non-Color)  | none                                       |
+// |                 | any other name or alias   | OCIO processor: space -> scene_linear role |
+// | NULL            | Non-Color, Raw, Linear,   | none                                       |
+// |                 | Linear Rec.709            |                                            |
+// |                 | sRGB                      | IEC 61966-2-1 piecewise EOTF (built in)    |
+// | unreadable      | the NULL names only       | built in, as NULL (see below)              |
+//
+// Debian 12 ships OpenColorIO 2.1.2, which reads config versions up to 2.1: Blender 3.4's
+// config (version 2.0) works, Blender 5.0's (ocio_profile_version 2.4) is refused by the
+// library ("minor version 4 is not supported"). For such a config the built-in names are
+// converted with the built-in transforms, which equal what Blender 5.0's config defines for
+// them (its sRGB is the same piecewise curve, its scene_linear is Linear Rec.709); any other
+// name is an error that says why. Alpha is never converted. Processors are cached per
+// (config, colour space); the cache is shared by all threads.
+#pragma once
+
+#include <cstddef>
+#include <string>
+
+namespace stratum {
+
+// Converts `count` straight-alpha RGBA pixels in place from `color_space` to scene linear.
+// config_path NULL or empty: built-in names only. Throws std::invalid_argument naming an
+// unknown colour space (and listing some valid names).
+void convert_to_scene_linear(const char* config_path, const std::string& color_space, float* rgba,
+                             size_t count);
+
+// The built-in sRGB decoding curve (IEC 61966-2-1): sRGB-encoded value to linear.
+float srgb_to_linear(float encoded);
+
+}  // namespace stratum

@@ -1,0 +1,77 @@
+// Applies a scene's texture bindings to the closures of a shading point, after the integrator
+// has copied the material's closures (RenderScene::material) for the hit.
+//
+// | parameter     | value written (t = texel looked up at the hit's UV)                    |
+// |---------------|-------------------------------------------------------------------------|
+// | BaseColor     | max(offset + scale t.rgb, 0)  (channel k: t[k] on all three)            |
+// | Roughness,    | clamp(offset + scale y, 0, 1)   y = t[channel], or for channel -1 the   |
+// | Metallic      |   luminance 0.2126729 r + 0.7151522 g + 0.0721750 b: Cycles converts a  |
+// |               |   colour to a float socket with linear_rgb_to_gray (film rgb_to_y of    |
+// |               |   the Rec.709 scene_linear space), svm/convert.h, 3.4 and 5.0           |
+// | Specular      | max(offset + scale y, 0)                                               |
+// | Weight        | closure weight *= clamp(offset + scale y, 0, 1) (Mix Shader's saturated |
+// |               |   factor, svm_node_mix_closure)                                        |
+// | Normal        | Cycles' Normal Map node, tangent space (svm/tex_coord.h): c = 2 t - 1,  |
+// |               |   N' = normalize(c.x T + c.y B + c.z N), B = sign cross(N, T); strength |
+// |               |   s = scale: if s != 1, N' = normalize(N + max(s, 0)(N' - N))           |
+//
+// Tangent frame deviation from Cycles: Cycles uses MikkTSpace per-vertex tangents and a
+// per-vertex bitangent sign. Here T is the triangle's dpdu (constant per triangle)
+// Gram-Schmidt orthogonalised against the interpolated shading normal, and the sign is the
+// triangle's UV orientation (+1 when (dpdu, dpdv, N) is right-handed, -1 for mirrored UVs).
+// On smooth meshes MikkTSpace tangents vary smoothly across triangles where dpdu jumps, so
+// normal-mapped curved surfaces can show faint per-triangle facets; flat and UV-aligned
+// surfaces agree exactly. A point without a tangent (no UVs: dpdu = 0) keeps its normal, as
+// Cycles does without a tangent attribute. A normal binding on any closure of a material sets
+// the point's one shading normal (Cycles perturbs only the closures wired to the node).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "scene/scene.h"
+#include "texture/texture.h"
+#include "texture/texture_binding.h"
+
+namespace stratum {
+
+// Rec.709 luminance weights Cycles uses to turn a colour into a float (rgb_to_y).
+inline constexpr float kLuminanceR = 0.2126729f, kLuminanceG = 0.7151522f, kLuminanceB = 0.0721750f;
+
+// The bindings of a scene, grouped by material for the per-hit lookup; shares the scene's
+// texture pixels.
+class TextureBindings {
+public:
+    TextureBindings() = default;
+    explicit TextureBindings(const Scene& scene);
+
+    struct Bound {
+        TextureBinding binding;
+        const Texture* texture;
+    };
+    // The bindings of scene material `material_id` (empty if it has none).
+    const std::vector<Bound>& of_material(uint32_t material_id) const {
+        return material_id < per_material_.size() ? per_material_[material_id] : none_;
+    }
+
+private:
+    std::vector<std::shared_ptr<const Texture>> textures_;
+    std::vector<std::vector<Bound>> per_material_;
+    std::vector<Bound> none_;
+};
+
+// Applies material `material_id`'s bindings at texture coordinate `uv` to its `count`
+// closures (a copy of RenderScene::material(material_id).closures) and to the shading normal.
+// shading_normal: unit, oriented as the triangle's winding (SurfaceHit::shading_normal, before
+// any flip toward the viewer); dpdu: SurfaceHit::dpdu; bitangent_sign: +1 or -1, the UV
+// orientation of the triangle (see above).
+void apply_texture_bindings(const TextureBindings& data, uint32_t material_id, Vec2 uv, Vec3 dpdu,
+                            WeightedClosure* closures, uint32_t count, Vec3* shading_normal,
+                            float bitangent_sign = 1.0f);
+
+// The Normal Map node (tangent space) on its own: `color` the texel's RGB, `strength` the
+// node's Strength. Returns `normal` unchanged when there is no usable tangent.
+Vec3 apply_normal_map(Rgb color, float strength, Vec3 normal, Vec3 dpdu, float bitangent_sign);
+
+}  // namespace stratum

@@ -1,0 +1,82 @@
+#include "texture/texture.h"
+
+#include <cmath>
+#include <cstdlib>
+
+namespace stratum {
+
+namespace {
+
+// Integer part (floor) and fraction of x.
+float split_floor(float x, int* ix) {
+    const float f = std::floor(x);
+    *ix = static_cast<int>(f);
+    return x - f;
+}
+
+int wrap_periodic(int i, int n) {
+    const int m = i % n;
+    return m < 0 ? m + n : m;
+}
+
+int wrap_clamp(int i, int n) { return std::clamp(i, 0, n - 1); }
+
+// Tiles alternate between the image and its reflection: ..., 1, 0 | 0, 1, ..., n-1 | n-1, ...
+int wrap_mirror(int i, int n) {
+    const int m = std::abs(i + (i < 0 ? 1 : 0)) % (2 * n);
+    return m >= n ? 2 * n - m - 1 : m;
+}
+
+// Index i into [0, n) under `extension`; -1 when Clip leaves the image.
+int wrap(int i, int n, TextureExtension extension) {
+    switch (extension) {
+        case TextureExtension::Repeat:
+            return wrap_periodic(i, n);
+        case TextureExtension::Extend:
+            return wrap_clamp(i, n);
+        case TextureExtension::Mirror:
+            return wrap_mirror(i, n);
+        case TextureExtension::Clip:
+            break;
+    }
+    return (i < 0 || i >= n) ? -1 : i;
+}
+
+Rgba texel_or_zero(const Texture& t, int x, int y) {
+    if (x < 0 || y < 0) return {};
+    return t.texel(static_cast<uint32_t>(x), static_cast<uint32_t>(y));
+}
+
+void accumulate(Rgba* sum, Rgba v, float w) {
+    sum->r += w * v.r;
+    sum->g += w * v.g;
+    sum->b += w * v.b;
+    sum->a += w * v.a;
+}
+
+}  // namespace
+
+Rgba texture_lookup(const Texture& t, Vec2 uv) {
+    const int w = static_cast<int>(t.width), h = static_cast<int>(t.height);
+    if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return {};
+    int ix = 0, iy = 0;
+    if (t.interpolation == TextureInterpolation::Closest) {
+        split_floor(uv.x * static_cast<float>(w), &ix);
+        split_floor(uv.y * static_cast<float>(h), &iy);
+        return texel_or_zero(t, wrap(ix, w, t.extension), wrap(iy, h, t.extension));
+    }
+    // Texel i covers [i, i+1) in x = u w and is centred at i + 0.5: shifting by 0.5 puts the
+    // two neighbours at floor(x) and floor(x) + 1 with weight fraction(x).
+    const float tx = split_floor(uv.x * static_cast<float>(w) - 0.5f, &ix);
+    const float ty = split_floor(uv.y * static_cast<float>(h) - 0.5f, &iy);
+    const int x0 = wrap(ix, w, t.extension), x1 = wrap(ix + 1, w, t.extension);
+    const int y0 = wrap(iy, h, t.extension), y1 = wrap(iy + 1, h, t.extension);
+    Rgba sum;
+    accumulate(&sum, texel_or_zero(t, x0, y0), (1.0f - tx) * (1.0f - ty));
+    accumulate(&sum, texel_or_zero(t, x1, y0), tx * (1.0f - ty));
+    accumulate(&sum, texel_or_zero(t, x0, y1), (1.0f - tx) * ty);
+    accumulate(&sum, texel_or_zero(t, x1, y1), tx * ty);
+    return sum;
+}
+
+}  // namespace stratum
