@@ -80,7 +80,7 @@ DARK = 0.016  # linear; see the module docstring
 # case -> (file, scene name or None for the file's only scene, samples per seed)
 CASES = {
     "materials": ("materials.blend", None, 768),
-    "lights": ("lights.blend", None, 1024),
+    "lights": ("lights.blend", None, 768),
     "world": ("world.blend", None, 384),
     "camera_dof": ("camera.blend", "dof", 256),
     "camera_ortho": ("camera.blend", "ortho", 256),
