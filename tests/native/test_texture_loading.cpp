@@ -132,6 +132,9 @@ TEST(TextureLoading, PngStraightAlphaIsKept) {
 TEST(TextureLoading, InMemoryBytesMatchTheFileForProxyAndTemporaryFileReaders) {
     // PNG and OpenEXR readers read from memory (IOProxy); SGI's reader does not, so its bytes
     // go through a temporary file. Each must give what reading the path gives.
+    ASSERT_TRUE(OIIO::ImageInput::create("png")->supports("ioproxy"));
+    ASSERT_TRUE(OIIO::ImageInput::create("exr")->supports("ioproxy"));
+    ASSERT_FALSE(OIIO::ImageInput::create("sgi")->supports("ioproxy"));
     for (const auto& [name, format] :
          {std::pair<std::string, OIIO::TypeDesc>{"tex_mem.png", OIIO::TypeDesc::UINT8},
           {"tex_mem.exr", OIIO::TypeDesc::HALF},

@@ -15,6 +15,12 @@
 // |               |   N' = normalize(c.x T + c.y B + c.z N), B = sign cross(N, T); strength |
 // |               |   s = scale: if s != 1, N' = normalize(N + max(s, 0)(N' - N))           |
 //
+// Strength is Cycles 3.4's (a normalised lerp between N and the mapped normal). Cycles 4.x /
+// 5.0 apply it in tangent space instead: c.xy *= s, c.z = mix(1, c.z, clamp(s, 0, 1)). With N
+// orthogonal to T and a unit texel normal the two agree exactly for s in [0, 1]; they differ
+// for s > 1 (4.x keeps c.z), s < 0 (4.x inverts the relief, 3.4 clamps to 0) and slightly for
+// non-unit texels (8-bit quantisation).
+//
 // Tangent frame deviation from Cycles: Cycles uses MikkTSpace per-vertex tangents and a
 // per-vertex bitangent sign. Here T is the triangle's dpdu (constant per triangle)
 // Gram-Schmidt orthogonalised against the interpolated shading normal, and the sign is the
