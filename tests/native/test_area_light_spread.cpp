@@ -196,3 +196,39 @@ TEST(AreaLightSpread, LightVisibilityReachesTheSamples) {
     stratum_scene_destroy(loaded);
     stratum_scene_destroy(scene);
 }
+
+// A ray meets a lamp's emitting face: the nearest camera-visible area light in front of the
+// ray gives its radiance (× spread factor); the back side, a miss, a lamp beyond t_max, a lamp
+// without the ray's visibility bit and a point of the square outside the disk give black.
+TEST(AreaLightSpread, RaysSeeTheEmittingFaceOfVisibleLamps) {
+    Transform at2, at1;
+    at2.m[11] = 2.0f;
+    at1.m[11] = 1.0f;
+    LightSet set;
+    set.add(AreaLight(at2, 1.0f, 1.0f, false, Rgb(10.0f)), 0, STRATUM_VISIBLE_CAMERA);
+    set.add(AreaLight(at1, 0.2f, 0.2f, true, Rgb(1.0f)), 1, STRATUM_VISIBLE_ALL & ~STRATUM_VISIBLE_CAMERA);
+    set.finalize(1.0f);
+    const Vec3 up(0, 0, 1);
+    const float L = 10.0f * kInvPi;
+    EXPECT_FLOAT_EQ(set.lamp_radiance({0.3f, 0.3f, 0}, up, kInfinity, STRATUM_VISIBLE_CAMERA).r, L);
+    // The small disk at z = 1 is nearer but not camera-visible; glossy rays see it.
+    EXPECT_FLOAT_EQ(set.lamp_radiance({0, 0, 0}, up, kInfinity, STRATUM_VISIBLE_CAMERA).r, L);
+    EXPECT_FLOAT_EQ(set.lamp_radiance({0, 0, 0}, up, kInfinity, STRATUM_VISIBLE_GLOSSY).r,
+                    1.0f * kInvPi / (kPi * 0.01f));
+    // (0.09, 0.09) lies in the disk's bounding square but outside the disk (radius 0.1).
+    EXPECT_FLOAT_EQ(set.lamp_radiance({0.09f, 0.09f, 0}, up, kInfinity, STRATUM_VISIBLE_GLOSSY).r, 0.0f);
+    EXPECT_EQ(set.lamp_radiance({0.6f, 0, 0}, up, kInfinity, STRATUM_VISIBLE_CAMERA).r, 0.0f);
+    EXPECT_EQ(set.lamp_radiance({0, 0, 0}, up, 1.5f, STRATUM_VISIBLE_CAMERA).r, 0.0f);
+    EXPECT_EQ(set.lamp_radiance({0, 0, 3}, -up, kInfinity, STRATUM_VISIBLE_CAMERA).r, 0.0f);
+    // Spread 60°: seen 20° off the normal, f = (tan 30° − tan 20°) N.
+    const AreaLight narrow = square_light(60.0f * kPi / 180.0f, 4.0f);
+    const Spread s = spread_constants(60.0f * kPi / 180.0f);
+    const float a = 20.0f * kPi / 180.0f;
+    float t = 0;
+    Rgb radiance;
+    ASSERT_TRUE(narrow.intersect({0, 0, 0}, {std::sin(a), 0, std::cos(a)}, kInfinity, &t, &radiance));
+    EXPECT_NEAR(t, 2.0f / std::cos(a), 1e-5f);
+    EXPECT_NEAR(radiance.r,
+                10.0f * kInvPi / 16.0f * (std::tan(0.5f * 60.0f * kPi / 180.0f) - std::tan(a)) * s.normalize,
+                1e-5f);
+}

@@ -177,6 +177,7 @@ TEST(InstanceVisibility, RayMasksSelectInstances) {
     // Camera ray over the camera-invisible blocker: reaches the floor.
     ASSERT_TRUE(rs.intersect({0, 0, 5}, down, 0, kInfinity, &hit, kCamera));
     EXPECT_NEAR(hit.position.z, 0.0f, 1e-6f);
+    EXPECT_NEAR(hit.t, 5.0f, 1e-6f);
     EXPECT_EQ(hit.visibility, static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
     EXPECT_FALSE(hit.holdout);
     // ...but it shadows the floor, and diffuse rays see it.
@@ -235,8 +236,12 @@ TEST(InstanceShading, EmissiveLightsSumTheClosuresAndSkipMovingEmitters) {
     moving.motion = true;
     moving.object_to_world_end = rotation_z(0, {1, 1, 1}, {6, 0, 0});
     scene.instances.push_back(moving);
+    Instance still = instance_of(0, rotation_z(0, {1, 1, 1}, {-5, 0, 0}));
+    still.motion = true;  // flagged as moving, but both ends equal: a static light
+    scene.instances.push_back(still);
     const RenderScene rs(scene);
-    EXPECT_EQ(rs.lights().size(), 2u);  // the static square's two triangles
+    EXPECT_TRUE(rs.has_motion());
+    EXPECT_EQ(rs.lights().size(), 4u);  // the two static squares' triangles
     LightSample ls;
     ASSERT_TRUE(rs.lights().sample({0, 0, 1}, 0.1f, {0.3f, 0.3f}, &ls));
     EXPECT_EQ(ls.radiance.r, 1.5f);

@@ -58,6 +58,32 @@ void quaternion_from_rotation(const float r[3][3], float q[4]) {
     }
 }
 
+// A committed triangle geometry of `g`, its vertices mapped by `to_world` (if not null) with
+// Transform::point, the arithmetic RenderScene uses to shade hits, and ray mask `mask`; null if
+// Embree cannot allocate the buffers.
+RTCGeometry new_triangles(RTCDevice device, const TriangleGeometry& g, const Transform* to_world,
+                          uint32_t mask) {
+    RTCGeometry geom = rtcNewGeometry(device, RTC_GEOMETRY_TYPE_TRIANGLE);
+    rtcSetGeometryMask(geom, mask);
+    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), g.positions.size()));
+    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), g.triangles.size()));
+    if (!vertices || !indices) {
+        rtcReleaseGeometry(geom);
+        return nullptr;
+    }
+    for (size_t v = 0; v < g.positions.size(); ++v) {
+        const Vec3 p = to_world ? to_world->point(g.positions[v]) : g.positions[v];
+        vertices[3 * v] = p.x;
+        vertices[3 * v + 1] = p.y;
+        vertices[3 * v + 2] = p.z;
+    }
+    std::memcpy(indices, g.triangles.data(), g.triangles.size() * sizeof(g.triangles[0]));
+    rtcCommitGeometry(geom);
+    return geom;
+}
+
 RTCQuaternionDecomposition to_embree(const MotionDecomposition& d) {
     RTCQuaternionDecomposition q;
     rtcInitQuaternionDecomposition(&q);
@@ -104,7 +130,8 @@ EmbreeScene::~EmbreeScene() {
     for (RTCGeometry g : impl_->moving)
         if (g) rtcReleaseGeometry(g);
     if (impl_->scene) rtcReleaseScene(impl_->scene);
-    for (RTCScene s : impl_->prototypes) rtcReleaseScene(s);
+    for (RTCScene s : impl_->prototypes)
+        if (s) rtcReleaseScene(s);
     if (impl_->device) rtcReleaseDevice(impl_->device);
     delete impl_;
 }
@@ -118,28 +145,26 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
     rtcSetDeviceErrorFunction(impl_->device, &record_error, impl_);
     if (!rtcGetDeviceProperty(impl_->device, RTC_DEVICE_PROPERTY_RAY_MASK_SUPPORTED))
         return "Embree was built without EMBREE_RAY_MASK: ray visibility needs it";
-    for (const TriangleGeometry& g : prototypes) {
+    // A mesh placed once and not moving is flattened into the top level in world space (as
+    // Cycles applies static transforms of single-user objects): no instance indirection on
+    // its rays. Meshes placed several times, or moving, are instanced from one BVH.
+    std::vector<uint32_t> placed(prototypes.size(), 0);
+    std::vector<bool> instanced(prototypes.size(), false);
+    for (const InstancePlacement& p : placements) {
+        ++placed.at(p.prototype);
+        if (p.motion) instanced[p.prototype] = true;
+    }
+    for (size_t k = 0; k < prototypes.size(); ++k) instanced[k] = instanced[k] || placed[k] > 1;
+    impl_->prototypes.assign(prototypes.size(), nullptr);
+    for (size_t k = 0; k < prototypes.size(); ++k) {
+        if (!instanced[k]) continue;
         RTCScene proto = rtcNewScene(impl_->device);
-        impl_->prototypes.push_back(proto);
+        impl_->prototypes[k] = proto;
         // Robust traversal: watertight triangle tests, so rays do not leak through shared edges.
         rtcSetSceneFlags(proto, RTC_SCENE_FLAG_ROBUST);
         rtcSetSceneBuildQuality(proto, RTC_BUILD_QUALITY_HIGH);
-        RTCGeometry geom = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-        auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-            geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), g.positions.size()));
-        auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-            geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), g.triangles.size()));
-        if (!vertices || !indices) {
-            rtcReleaseGeometry(geom);
-            break;
-        }
-        for (size_t v = 0; v < g.positions.size(); ++v) {
-            vertices[3 * v] = g.positions[v].x;
-            vertices[3 * v + 1] = g.positions[v].y;
-            vertices[3 * v + 2] = g.positions[v].z;
-        }
-        std::memcpy(indices, g.triangles.data(), g.triangles.size() * sizeof(g.triangles[0]));
-        rtcCommitGeometry(geom);
+        RTCGeometry geom = new_triangles(impl_->device, prototypes[k], nullptr, 0xffffffffu);
+        if (!geom) return "Embree: out of memory for mesh buffers";
         rtcAttachGeometryByID(proto, geom, 0);
         rtcReleaseGeometry(geom);
         rtcCommitScene(proto);
@@ -148,8 +173,15 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(impl_->scene, RTC_BUILD_QUALITY_HIGH);
     impl_->moving.assign(placements.size(), nullptr);
-    for (size_t i = 0; i < placements.size() && impl_->prototypes.size() == prototypes.size(); ++i) {
+    for (size_t i = 0; i < placements.size(); ++i) {
         const InstancePlacement& p = placements[i];
+        if (!instanced[p.prototype]) {
+            RTCGeometry flat = new_triangles(impl_->device, prototypes[p.prototype], &p.start, p.mask);
+            if (!flat) return "Embree: out of memory for mesh buffers";
+            rtcAttachGeometryByID(impl_->scene, flat, static_cast<unsigned>(i));
+            rtcReleaseGeometry(flat);
+            continue;
+        }
         RTCGeometry inst = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(inst, impl_->prototypes.at(p.prototype));
         rtcSetGeometryMask(inst, p.mask);
@@ -207,7 +239,9 @@ bool EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
     rtcIntersect1(impl_->scene, &context, &rh);
     if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return false;
-    *hit = {rh.ray.tfar, rh.hit.instID[0], rh.hit.primID, rh.hit.u, rh.hit.v};
+    // A flattened placement is a top-level geometry whose ID is its placement index.
+    const uint32_t placement = rh.hit.instID[0] == RTC_INVALID_GEOMETRY_ID ? rh.hit.geomID : rh.hit.instID[0];
+    *hit = {rh.ray.tfar, placement, rh.hit.primID, rh.hit.u, rh.hit.v};
     return true;
 }
 

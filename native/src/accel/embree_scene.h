@@ -2,9 +2,11 @@
 // includes Embree; the rest of the core sees plain hits (instance index, triangle index,
 // barycentrics).
 //
-// Every mesh that is placed gets one object-space BVH (an Embree scene holding one triangle
-// geometry); every placement is an RTC_GEOMETRY_TYPE_INSTANCE of it in the top-level scene, so
-// N placements of one mesh cost one mesh of memory plus N small instance records.
+// A mesh placed several times, or moving, gets one object-space BVH (an Embree scene holding one
+// triangle geometry) and each placement is an RTC_GEOMETRY_TYPE_INSTANCE of it in the top-level
+// scene, so N placements of one mesh cost one mesh of memory plus N small instance records. A
+// mesh placed once and static is flattened into the top level in world space instead (what
+// Cycles does with single-user objects): its rays skip the instance indirection.
 //
 // | placement field | Embree |
 // |-----------------|--------|

@@ -61,3 +61,22 @@ bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
 }
 
 }  // namespace stratum
+
+namespace stratum {
+
+bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance) const {
+    const float cos_light = -dot(dir, normal_);
+    if (!(cos_light > 0.0f)) return false;  // parallel, or seen from the back
+    const float hit_t = dot(center_ - origin, normal_) / -cos_light;
+    if (!(hit_t > 0.0f && hit_t < t_max)) return false;
+    // Coordinates along the half axes (orthogonal for a light transform without shear).
+    const Vec3 q = origin + dir * hit_t - center_;
+    const float a = dot(q, axis_x_) / dot(axis_x_, axis_x_), b = dot(q, axis_y_) / dot(axis_y_, axis_y_);
+    const bool inside = ellipse_ ? a * a + b * b <= 1.0f : std::abs(a) <= 1.0f && std::abs(b) <= 1.0f;
+    if (!inside) return false;
+    *t = hit_t;
+    *radiance = radiance_ * area_light_spread_attenuation(cos_light, tan_half_spread_, normalize_spread_);
+    return true;
+}
+
+}  // namespace stratum

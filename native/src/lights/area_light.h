@@ -40,6 +40,9 @@ public:
     AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power,
               float spread = kPi);
     bool sample(Vec3 p, Vec2 u, LightSample* out) const;
+    // The ray origin + t·dir (dir unit) meets the emitting face at t in (0, t_max): writes t and
+    // the radiance toward the ray's origin (spread included). False for the back side or a miss.
+    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance) const;
     float power() const { return power_.average(); }
 
 private:

@@ -7,6 +7,8 @@ namespace stratum {
 
 uint32_t LightSet::add(Light light, uint32_t object, uint32_t visibility) {
     if (std::holds_alternative<EnvironmentLight>(light)) environment_ = lights_.size();
+    if (std::holds_alternative<AreaLight>(light))
+        area_lights_.push_back(static_cast<uint32_t>(lights_.size()));
     lights_.push_back(std::move(light));
     object_.push_back(object);
     visibility_.push_back(visibility);
@@ -82,6 +84,21 @@ bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const {
 float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const {
     const auto& tri = std::get<EmissiveTriangle>(lights_[index]);
     return probability_[index] * tri.pdf(p, hit);
+}
+
+Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility) const {
+    Rgb radiance(0.0f);
+    float nearest = t_max;
+    for (const uint32_t i : area_lights_) {
+        if (!(visibility_[i] & visibility)) continue;
+        float t;
+        Rgb L;
+        if (std::get<AreaLight>(lights_[i]).intersect(origin, dir, nearest, &t, &L)) {
+            nearest = t;
+            radiance = L;
+        }
+    }
+    return radiance;
 }
 
 const EnvironmentLight* LightSet::environment() const {

@@ -40,15 +40,21 @@ public:
     bool sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const;
     // Pdf (choice × solid angle) with which sample() reaches `hit` on emissive triangle `index`.
     float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const;
+    // Radiance of the nearest area light whose visibility has bit `visibility` and whose
+    // emitting face the ray (dir unit) meets before t_max; black if none. Lamps are not in the
+    // BVH: this is what a camera ray adds for a lamp it sees (Cycles' Object > Visibility >
+    // Camera on a light; no MIS, a camera ray has no light sample).
+    Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility) const;
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
     const EnvironmentLight* environment() const;
     float environment_pdf(Vec3 wi) const;
 
 private:
     std::vector<Light> lights_;
-    std::vector<uint32_t> object_;      // object of each light
-    std::vector<uint32_t> visibility_;  // StratumVisibility bits of each light
-    std::vector<float> cdf_;            // cdf_[i] = P(choice < i+1), last = 1
+    std::vector<uint32_t> object_;       // object of each light
+    std::vector<uint32_t> visibility_;   // StratumVisibility bits of each light
+    std::vector<uint32_t> area_lights_;  // indices of the area lights (lamp_radiance)
+    std::vector<float> cdf_;             // cdf_[i] = P(choice < i+1), last = 1
     std::vector<float> probability_;
     size_t environment_ = SIZE_MAX;  // index of the environment light, if any
 };

@@ -38,7 +38,8 @@ Rgb material_emission(const SceneMaterial& material) {
     return sum;
 }
 
-RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), background_(scene.background) {
+RenderScene::RenderScene(const Scene& scene)
+    : materials_(scene.materials), textures_(scene), background_(scene.background) {
     // One prototype BVH per mesh that is placed at least once.
     std::vector<uint32_t> prototype_of(scene.meshes.size(), kNoLight);
     std::vector<TriangleGeometry> prototypes;
@@ -57,16 +58,19 @@ RenderScene::RenderScene(const Scene& scene) : materials_(scene.materials), back
             object_bounds.push_back(b);
         }
         const uint32_t proto = prototype_of[inst.mesh_id];
+        // An exporter may flag every object as moving when motion blur is on: equal ends are
+        // static (flattened if placed once, emissive triangles kept as lights).
+        const bool moving = inst.motion && inst.object_to_world.m != inst.object_to_world_end.m;
         placements.push_back(
-            {proto, inst.object_to_world, inst.object_to_world_end, inst.motion, inst.visibility});
+            {proto, inst.object_to_world, inst.object_to_world_end, moving, inst.visibility});
         add_transformed(world, object_bounds[proto], inst.object_to_world);
-        if (inst.motion) {
+        if (moving) {
             // Rotation is interpolated, so a moving box can bulge past both end boxes; the bound
             // only sizes the sun's selection weight, where that slack does not matter.
             add_transformed(world, object_bounds[proto], inst.object_to_world_end);
             has_motion_ = true;
         }
-        instances_.push_back({&mesh, inst.object_to_world, inst.motion, inst.visibility, inst.holdout, {}});
+        instances_.push_back({&mesh, inst.object_to_world, moving, inst.visibility, inst.holdout, {}});
     }
     std::vector<Rgb> emission(materials_.size());
     for (size_t m = 0; m < materials_.size(); ++m) emission[m] = material_emission(materials_[m]);
@@ -158,6 +162,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     }
     hit->uv = {0.0f, 0.0f};
     hit->dpdu = Vec3(0.0f, 0.0f, 0.0f);
+    hit->bitangent_sign = 1.0f;
     if (!mesh.corner_uvs.empty()) {
         const Vec2 t0 = mesh.corner_uvs[k], t1 = mesh.corner_uvs[k + 1], t2 = mesh.corner_uvs[k + 2];
         hit->uv = {t0.x * b0 + t1.x * h.b1 + t2.x * h.b2, t0.y * b0 + t1.y * h.b1 + t2.y * h.b2};
@@ -165,13 +170,17 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
         // edges gives dpdu = (dv2 e1 − dv1 e2) / (du1 dv2 − du2 dv1) (pbrt 3.6.2). Degenerate UVs: 0.
         const float du1 = t1.x - t0.x, dv1 = t1.y - t0.y, du2 = t2.x - t0.x, dv2 = t2.y - t0.y;
         const float det = du1 * dv2 - du2 * dv1;
-        if (det != 0.0f) hit->dpdu = (e1 * dv2 - e2 * dv1) / det;
+        if (det != 0.0f) {
+            hit->dpdu = (e1 * dv2 - e2 * dv1) / det;
+            hit->bitangent_sign = det < 0.0f ? -1.0f : 1.0f;
+        }
     }
     hit->material_id = mesh.material_ids[h.triangle];
     hit->material = &materials_[hit->material_id].closures.front().params;
     hit->emissive_light = g.emissive_light.empty() ? kNoLight : g.emissive_light[h.triangle];
     hit->visibility = g.visibility;
     hit->holdout = g.holdout;
+    hit->t = h.t;
     return true;
 }
 

@@ -12,6 +12,7 @@
 #include "accel/embree_scene.h"
 #include "lights/light_set.h"
 #include "scene/scene.h"
+#include "texture/material_texturing.h"
 
 namespace stratum {
 
@@ -24,9 +25,11 @@ struct SurfaceHit {
     uint32_t emissive_light;      // index in the LightSet, or kNoLight
     Vec2 uv{0.0f, 0.0f};          // interpolated corner_uvs (0,0 if the mesh has none)
     Vec3 dpdu{0.0f, 0.0f, 0.0f};  // world-space tangent along +u (0 if no UVs), for normal maps
+    float bitangent_sign = 1.0f;  // -1 where the triangle's UVs are mirrored (normal maps)
     uint32_t material_id = 0;     // scene material id
     uint32_t visibility = 31;     // the instance's StratumVisibility bits
     bool holdout = false;         // the instance is a holdout
+    float t = 0.0f;               // distance along the ray (for LightSet::lamp_radiance's t_max)
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;
@@ -55,6 +58,8 @@ public:
     const LightSet& lights() const { return lights_; }
     // The closures of scene material `id` (SurfaceHit::material_id), before texturing.
     const SceneMaterial& material(uint32_t id) const { return materials_[id]; }
+    // Image textures bound to material parameters (applied per shading point).
+    const TextureBindings& textures() const { return textures_; }
     // True if some instance moves over the shutter (the renderer then samples ray times).
     bool has_motion() const { return has_motion_; }
     // Radiance of a ray that leaves the scene in direction `dir`: the environment image if
@@ -74,6 +79,7 @@ private:
         std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive; empty if none
     };
     std::vector<SceneMaterial> materials_;
+    TextureBindings textures_;
     std::vector<InstanceData> instances_;
     EmbreeScene embree_;
     LightSet lights_;
