@@ -29,6 +29,44 @@ void read_floats(const json& j, T (&out)[N]) {
     for (size_t i = 0; i < N; ++i) out[i] = j[i].get<T>();
 }
 
+json closure_json(const WeightedClosure& c) {
+    const Material& m = c.params;
+    return {{"weight", rgb(c.weight)},
+            {"model", static_cast<int>(m.model)},
+            {"base_color", rgb(m.base_color)},
+            {"roughness", m.roughness},
+            {"metallic", m.metallic},
+            {"specular", m.specular},
+            {"ior", m.ior},
+            {"emission", rgb(m.emission)},
+            {"distribution", static_cast<int>(m.distribution)},
+            {"transmission", m.transmission},
+            {"coat", m.coat},
+            {"coat_roughness", m.coat_roughness},
+            {"coat_ior", m.coat_ior},
+            {"coat_tint", rgb(m.coat_tint)}};
+}
+
+// The fields of one closure; those added with closures (transmission, coat) default to the
+// all-zero "none" of StratumMaterialDesc when an older file lacks them.
+StratumMaterialDesc material_desc(const json& m) {
+    StratumMaterialDesc d{};
+    d.model = m.at("model").get<int32_t>();
+    read_floats(m.at("base_color"), d.base_color);
+    d.roughness = m.at("roughness").get<float>();
+    d.metallic = m.at("metallic").get<float>();
+    d.specular = m.at("specular").get<float>();
+    d.ior = m.at("ior").get<float>();
+    read_floats(m.at("emission"), d.emission);
+    d.distribution = m.at("distribution").get<int32_t>();
+    d.transmission = m.value("transmission", 0.0f);
+    d.coat = m.value("coat", 0.0f);
+    d.coat_roughness = m.value("coat_roughness", 0.0f);
+    d.coat_ior = m.value("coat_ior", 0.0f);
+    if (m.contains("coat_tint")) read_floats(m.at("coat_tint"), d.coat_tint);
+    return d;
+}
+
 }  // namespace
 
 std::string save_scene_file(const Scene& scene, const char* path) {
@@ -36,16 +74,12 @@ std::string save_scene_file(const Scene& scene, const char* path) {
     j["format"] = kFormat;
     j["version"] = kVersion;
     j["materials"] = json::array();
+    // Each material is its list of weighted closures (files written before closures existed
+    // hold one flat closure per material; load_scene_file reads both).
     for (const SceneMaterial& sm : scene.materials) {
-        const Material& m = sm.closures.front().params;
-        j["materials"].push_back({{"model", static_cast<int>(m.model)},
-                                  {"base_color", rgb(m.base_color)},
-                                  {"roughness", m.roughness},
-                                  {"metallic", m.metallic},
-                                  {"specular", m.specular},
-                                  {"ior", m.ior},
-                                  {"emission", rgb(m.emission)},
-                                  {"distribution", static_cast<int>(m.distribution)}});
+        json closures = json::array();
+        for (const WeightedClosure& c : sm.closures) closures.push_back(closure_json(c));
+        j["materials"].push_back({{"closures", closures}});
     }
     j["meshes"] = json::array();
     for (const Mesh& mesh : scene.meshes) {
@@ -161,16 +195,21 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
         }
         StratumStatus status = STRATUM_OK;
         for (const json& m : j.at("materials")) {
-            StratumMaterialDesc d{};
-            d.model = m.at("model").get<int32_t>();
-            read_floats(m.at("base_color"), d.base_color);
-            d.roughness = m.at("roughness").get<float>();
-            d.metallic = m.at("metallic").get<float>();
-            d.specular = m.at("specular").get<float>();
-            d.ior = m.at("ior").get<float>();
-            read_floats(m.at("emission"), d.emission);
-            d.distribution = m.at("distribution").get<int32_t>();
-            if ((status = stratum_scene_add_material(scene, &d, nullptr)) != STRATUM_OK)
+            if (!m.contains("closures")) {
+                const StratumMaterialDesc d = material_desc(m);
+                if ((status = stratum_scene_add_material(scene, &d, nullptr)) != STRATUM_OK)
+                    return entry_point_failed(status);
+                continue;
+            }
+            std::vector<StratumClosureDesc> closures;
+            for (const json& c : m.at("closures")) {
+                StratumClosureDesc cd{};
+                read_floats(c.at("weight"), cd.weight);
+                cd.closure = material_desc(c);
+                closures.push_back(cd);
+            }
+            if ((status = stratum_scene_add_closure_material(
+                     scene, closures.data(), static_cast<uint32_t>(closures.size()), nullptr)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
         for (const json& m : j.at("meshes")) {

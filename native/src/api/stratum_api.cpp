@@ -121,6 +121,17 @@ StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMater
     });
 }
 
+StratumStatus stratum_scene_add_closure_material(StratumScene* scene, const StratumClosureDesc* closures,
+                                                 uint32_t closure_count, uint32_t* out_id) {
+    return guarded("stratum_scene_add_closure_material", [&] {
+        require(scene, "scene is NULL");
+        const uint32_t id = static_cast<uint32_t>(scene->scene.materials.size());
+        scene->scene.materials.push_back(stratum::validate_closure_material(closures, closure_count));
+        if (out_id) *out_id = id;
+        return STRATUM_OK;
+    });
+}
+
 StratumStatus stratum_scene_add_mesh(StratumScene* scene, const StratumMeshDesc* mesh, uint32_t* out_id) {
     return guarded("stratum_scene_add_mesh", [&] {
         require(scene && mesh, "scene or mesh is NULL");

@@ -103,7 +103,7 @@ Transform validate_transform(const float* m, const char* what) {
 }
 
 Material validate_material(const StratumMaterialDesc& d) {
-    check(d.model >= STRATUM_MATERIAL_DIFFUSE && d.model <= STRATUM_MATERIAL_EMISSION,
+    check(d.model >= STRATUM_MATERIAL_DIFFUSE && d.model <= STRATUM_MATERIAL_HOLDOUT,
           "material model " + std::to_string(d.model) + " is not a StratumMaterialModel");
     Material m{};
     m.model = static_cast<MaterialModel>(d.model);
@@ -117,7 +117,33 @@ Material validate_material(const StratumMaterialDesc& d) {
           "material distribution " + std::to_string(d.distribution) +
               " is not a StratumMicrofacetDistribution");
     m.distribution = static_cast<MicrofacetDistribution>(d.distribution);
+    m.transmission = finite_in(d.transmission, 0.0f, 1.0f, "material transmission");
+    m.coat = finite_in(d.coat, 0.0f, 1e6f, "material coat");
+    m.coat_roughness = finite_in(d.coat_roughness, 0.0f, 1.0f, "material coat_roughness");
+    // All-zero appended fields mean "no coat" (callers written before they existed), so the
+    // coat's IOR and tint are checked only where a coat is present.
+    if (m.coat > 0.0f) {
+        m.coat_ior = finite_positive(d.coat_ior, "material coat_ior");
+        m.coat_tint = rgb_in(d.coat_tint, 0.0f, 1.0f, "material coat_tint");
+    }
     return m;
+}
+
+SceneMaterial validate_closure_material(const StratumClosureDesc* closures, uint32_t count) {
+    check(closures != nullptr, "closures is NULL");
+    check(count >= 1 && count <= kMaxClosures,
+          "closure_count " + std::to_string(count) + " is not in [1, " + std::to_string(kMaxClosures) + "]");
+    SceneMaterial material;
+    for (uint32_t i = 0; i < count; ++i) {
+        const std::string what = "closure " + std::to_string(i);
+        try {
+            const Rgb weight = validate_radiance(closures[i].weight, (what + " weight").c_str());
+            material.closures.push_back({weight, validate_material(closures[i].closure)});
+        } catch (const ValidationError& e) {
+            throw ValidationError(what + ": " + e.what());
+        }
+    }
+    return material;
 }
 
 Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {

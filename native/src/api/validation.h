@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bsdf/closure_set.h"
 #include "scene/scene.h"
 #include "stratum/stratum.h"
 
@@ -16,6 +17,8 @@ public:
 };
 
 Material validate_material(const StratumMaterialDesc& desc);
+// A closure material: 1..kMaxClosures closures, weights finite and >= 0.
+SceneMaterial validate_closure_material(const StratumClosureDesc* closures, uint32_t count);
 Mesh validate_mesh(const StratumMeshDesc& desc, uint32_t material_count);
 // mesh_count: meshes in the scene (mesh_id must be below it).
 Instance validate_instance(const StratumInstanceDesc& desc, uint32_t mesh_count);

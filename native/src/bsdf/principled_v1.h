@@ -9,7 +9,21 @@
 // | roughness  | Burley retro-reflection strength and GGX alpha = roughness^2                |
 // | metallic   | diffuse weight (1 - metallic); cspec0 = mix(0.08 specular, base, metallic)   |
 // | specular   | F0 = 0.08 specular, ior = 2 / (1 - sqrt(0.08 specular)) - 1 (Specular Tint 0)|
+// | transmission | t' = transmission (1 - metallic): glass pair of weight t'; diffuse gets      |
+// |            | (1 - metallic)(1 - transmission), the specular lobe 1 - t'                     |
+// | ior        | relative IOR of the glass pair (inverted on back faces by the caller)          |
+// | coat       | Clearcoat: GTR1 lobe, weight 0.25 coat, Fresnel at IOR 1.5                     |
+// | coat_roughness | Clearcoat Roughness: GTR1 alpha = coat_roughness^2 (in [1e-3, 0.999])      |
 //
+// Transmission as Cycles 3.4 builds it (svm_node_closure_principled, distribution GGX or
+// roughness <= 0.05): two closures weighted by the Fresnel F_N = F(cos_o, ior) of the shading
+// normal, a GGX reflection with Fresnel 1 (untinted: Specular Tint 0) of weight t' F_N and a GGX
+// refraction without Fresnel (bsdf_microfacet_ggx_refraction, Walter 2007 eq. 21 with G1 G1)
+// tinted by base_color of weight t' (1 - F_N); Transmission Roughness 0 (refraction roughness =
+// roughness). Below Cycles' sharp threshold both are Dirac lobes. Not energy conserving at
+// roughness > 0 (each lobe loses its shadowing), as in Cycles.
+// Clearcoat: 0.25 coat F(wi.h, 1.5) D_GTR1(h) G1(wo) G1(wi) / (4 cos_o), G1 of a fixed GGX
+// alpha 0.25 (Cycles 3.4 bsdf_microfacet.h, Burley 2012 appendix); sampled from D_GTR1 cos(h).
 // f = (1 - metallic) base f_burley + F(wi.h) D G1(wo) G1(wi) / (4 cos_o cos_i)
 // f_burley = (1/pi) (1 + (Fd90 - 1) FL)(1 + (Fd90 - 1) FV), Fd90 = 0.5 + 2 roughness cos^2(theta_d),
 // FL, FV = Schlick weights (1 - cos)^5 of wi, wo; cos(theta_d) = wi.h. The diffuse is not reduced

@@ -1,5 +1,6 @@
 #include "bsdf/principled_v2.h"
 
+#include "bsdf/glass.h"
 #include "bsdf/microfacet_ggx.h"
 #include "sampling/warps.h"
 
@@ -16,7 +17,12 @@ struct LobesV2 {
     float specular_albedo;  // A_spec(cos_o): what the dielectric lobe reflects
     float layer_albedo;     // what the diffuse below loses: 1 - layer_albedo reaches it
     Rgb metal_f0, metal_scale;
-    float probability_metal, probability_specular;  // the diffuse lobe takes the rest
+    float transmission;  // weight of the dielectric glass lobe inside the non-metal part
+    float glass_eta;     // its relative IOR (inverted on back faces by the caller)
+    float coat;          // coat weight; 0 = no coat
+    float coat_alpha, coat_eta;
+    Rgb base_scale;  // what the coat lets through to every layer below, for this wo
+    float probability_metal, probability_specular, probability_glass, probability_coat;  // diffuse: rest
 };
 
 // Kulla & Conty 2017: with single-scattering albedo E(mu) and average E_avg, the missing energy
@@ -77,39 +83,87 @@ LobesV2 setup(const Material& m, Vec3 wo) {
             Rgb(multiscatter_scale(e, e_avg, f_avg_metal.r), multiscatter_scale(e, e_avg, f_avg_metal.g),
                 multiscatter_scale(e, e_avg, f_avg_metal.b));
     }
+    l.transmission = std::clamp(m.transmission, 0.0f, 1.0f);
+    l.glass_eta = std::max(m.ior, 1e-5f);
+    // Coat (Cycles 4.x svm_node_closure_principled): a dielectric GGX layer of weight `coat`
+    // whose albedo estimate F_v removes that share from everything below, then Beer absorption
+    // by coat_tint over the refracted path length 1/cos_t through a unit-thick coat.
+    l.coat = std::clamp(m.coat, 0.0f, 1.0f);
+    l.coat_alpha = ggx_alpha_from_roughness(m.coat_roughness);
+    l.coat_eta = std::max(std::max(m.coat_ior, 1e-5f), 1.0f / std::max(m.coat_ior, 1e-5f));
+    l.base_scale = Rgb(1.0f);
+    float coat_albedo = 0.0f;
+    if (l.coat > 0.0f && l.coat_eta > 1.0f) {
+        coat_albedo = std::min(
+            ggx_visible_fresnel_dielectric(wo.z, std::clamp(m.coat_roughness, 0.0f, 1.0f), l.coat_eta), 1.0f);
+        l.base_scale = Rgb(1.0f - l.coat * coat_albedo);
+        const float cos_t = safe_sqrt(1.0f - (1.0f - wo.z * wo.z) / (l.coat_eta * l.coat_eta));
+        const float depth = 1.0f / std::max(cos_t, 1e-4f);
+        const Rgb tint(std::pow(std::clamp(m.coat_tint.r, 0.0f, 1.0f), depth),
+                       std::pow(std::clamp(m.coat_tint.g, 0.0f, 1.0f), depth),
+                       std::pow(std::clamp(m.coat_tint.b, 0.0f, 1.0f), depth));
+        l.base_scale *= Rgb(1.0f - l.coat) + tint * l.coat;
+    }
     // Lobe selection proportional to each lobe's albedo estimate for this wo.
     const float sw = schlick_weight(wo.z);
-    const float weight_metal = l.metallic * (l.metal_f0 * (1.0f - sw) + Rgb(sw)).average();
-    const float weight_specular = (1.0f - l.metallic) * l.specular_albedo;
-    const float weight_diffuse =
-        (1.0f - l.metallic) * (1.0f - l.layer_albedo) * std::max(m.base_color.average(), 0.0f);
-    const float total = weight_metal + weight_specular + weight_diffuse;
+    const float below = l.base_scale.average();
+    const float weight_metal = below * l.metallic * (l.metal_f0 * (1.0f - sw) + Rgb(sw)).average();
+    const float opaque = (1.0f - l.metallic) * (1.0f - l.transmission) * below;
+    const float weight_specular = opaque * l.specular_albedo;
+    const float weight_diffuse = opaque * (1.0f - l.layer_albedo) * std::max(m.base_color.average(), 0.0f);
+    const float glass_fresnel = fresnel_dielectric(wo.z, l.glass_eta);
+    const float weight_glass =
+        below * (1.0f - l.metallic) * l.transmission *
+        (glass_fresnel + (1.0f - glass_fresnel) * std::max(m.base_color.average(), 0.0f));
+    const float weight_coat = l.coat * coat_albedo;
+    const float total = weight_metal + weight_specular + weight_diffuse + weight_glass + weight_coat;
     l.probability_metal = total > 0.0f ? weight_metal / total : 0.0f;
     l.probability_specular = total > 0.0f ? weight_specular / total : 0.0f;
+    l.probability_glass = total > 0.0f ? weight_glass / total : 0.0f;
+    l.probability_coat = total > 0.0f ? weight_coat / total : 0.0f;
     return l;
 }
 
 BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi,
                     HemisphereDistribution hemisphere) {
-    const float probability_diffuse = std::max(1.0f - l.probability_metal - l.probability_specular, 0.0f);
-    BsdfEval e{m.base_color * ((1.0f - l.metallic) * (1.0f - l.layer_albedo) * kInvPi * wi.z),
-               probability_diffuse * hemisphere_pdf(hemisphere, wi.z)};
+    BsdfEval e{Rgb(0.0f), 0.0f};
+    if (l.probability_glass > 0.0f) {
+        // The transmission lobe: glass whose reflection is untinted and refraction tinted by
+        // base_color (Cycles 4.x: reflection tint = specular tint, transmission tint = base).
+        const DielectricEval g = dielectric_ggx_eval(wo, wi, l.alpha, l.glass_eta);
+        const float w = (1.0f - l.metallic) * l.transmission *
+                        glass_energy_scale(m.distribution, wo.z, l.roughness, l.glass_eta);
+        e.value += (Rgb(g.reflect_value) + m.base_color * g.transmit_value) * l.base_scale * w;
+        e.pdf += l.probability_glass * (g.reflect_pdf + g.transmit_pdf);
+    }
+    if (wi.z <= 0.0f) return e;
+    const float probability_diffuse = std::max(
+        1.0f - l.probability_metal - l.probability_specular - l.probability_glass - l.probability_coat, 0.0f);
+    const float opaque = (1.0f - l.metallic) * (1.0f - l.transmission);
+    e.value += m.base_color * l.base_scale * (opaque * (1.0f - l.layer_albedo) * kInvPi * wi.z);
+    e.pdf += probability_diffuse * hemisphere_pdf(hemisphere, wi.z);
+    const Vec3 h = normalize(wo + wi);
+    const float cos_ih = dot(wi, h);
     if (l.probability_metal > 0.0f || l.probability_specular > 0.0f) {
-        const Vec3 h = normalize(wo + wi);
-        const float cos_ih = dot(wi, h);
         // D G2 / (4 cos_o) = f cos_i without Fresnel.
         const float microfacet =
             ggx_d(h, l.alpha) * ggx_g2_height_correlated(wo, wi, l.alpha) / (4.0f * wo.z);
-        const float microfacet_pdf = ggx_reflection_pdf(wo, wi, l.alpha);
         if (l.metallic > 0.0f) {
             const float sw = schlick_weight(cos_ih);
-            e.value += (l.metal_f0 * (1.0f - sw) + Rgb(sw)) * l.metal_scale * (l.metallic * microfacet);
+            e.value += (l.metal_f0 * (1.0f - sw) + Rgb(sw)) * l.metal_scale * l.base_scale *
+                       (l.metallic * microfacet);
         }
         if (l.has_specular) {
             e.value +=
-                Rgb((1.0f - l.metallic) * fresnel_dielectric(cos_ih, l.eta) * l.specular_scale * microfacet);
+                l.base_scale * (opaque * fresnel_dielectric(cos_ih, l.eta) * l.specular_scale * microfacet);
         }
-        e.pdf += (l.probability_metal + l.probability_specular) * microfacet_pdf;
+        e.pdf += (l.probability_metal + l.probability_specular) * ggx_reflection_pdf(wo, wi, l.alpha);
+    }
+    if (l.probability_coat > 0.0f) {
+        const float coat =
+            ggx_d(h, l.coat_alpha) * ggx_g2_height_correlated(wo, wi, l.coat_alpha) / (4.0f * wo.z);
+        e.value += Rgb(l.coat * fresnel_dielectric(cos_ih, l.coat_eta) * coat);
+        e.pdf += l.probability_coat * ggx_reflection_pdf(wo, wi, l.coat_alpha);
     }
     return e;
 }
@@ -117,7 +171,7 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi,
 }  // namespace
 
 BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) {
-    if (wo.z <= 0.0f || wi.z <= 0.0f) return {Rgb(), 0.0f};
+    if (wo.z <= 0.0f || wi.z == 0.0f || (wi.z < 0.0f && m.transmission <= 0.0f)) return {Rgb(), 0.0f};
     return eval_lobes(setup(m, wo), m, wo, wi, hemisphere);
 }
 
@@ -126,17 +180,30 @@ bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, Bsdf
     if (wo.z <= 0.0f) return false;
     const LobesV2 l = setup(m, wo);
     const float probability_microfacet = l.probability_metal + l.probability_specular;
+    const float glass_end = probability_microfacet + l.probability_glass;
+    const float coat_end = glass_end + l.probability_coat;
     Vec3 wi;
-    // Metal and dielectric share D and G, so one VNDF draw serves both microfacet lobes.
+    ScatterKind kind = ScatterKind::Glossy;
     if (u_lobe < probability_microfacet) {
+        // Metal and dielectric share D and G, so one VNDF draw serves both microfacet lobes.
         if (!ggx_sample_reflection(wo, l.alpha, u, &wi)) return false;
+    } else if (u_lobe < glass_end) {
+        // The glass lobe's own reflect/refract choice reuses u_lobe rescaled to [0, 1).
+        const float u_event =
+            std::min((u_lobe - probability_microfacet) / l.probability_glass, kOneMinusEpsilon);
+        bool transmitted = false;
+        if (!dielectric_ggx_sample(wo, l.alpha, l.glass_eta, u_event, u, &wi, &transmitted)) return false;
+        if (transmitted) kind = ScatterKind::Transmission;
+    } else if (u_lobe < coat_end) {
+        if (!ggx_sample_reflection(wo, l.coat_alpha, u, &wi)) return false;
     } else {
         wi = sample_hemisphere(hemisphere, u);
         if (wi.z <= 0.0f) return false;
+        kind = ScatterKind::Diffuse;
     }
     const BsdfEval e = eval_lobes(l, m, wo, wi, hemisphere);
     if (e.pdf <= 0.0f) return false;
-    *out = {wi, e.value / e.pdf, e.pdf};
+    *out = {wi, e.value / e.pdf, e.pdf, false, kind};
     return true;
 }
 

@@ -10,7 +10,18 @@
 // | roughness  | GGX alpha = roughness^2 for both microfacet lobes                        |
 // | metallic   | mix: metallic f_metal + (1 - metallic) (f_spec + f_diffuse)              |
 // | specular   | Specular IOR Level: F0 = F0(ior) 2 level, ior re-derived (0.5 = unchanged) |
-// | ior        | dielectric IOR of the specular layer (default 1.5)                       |
+// | ior        | dielectric IOR of the specular layer (default 1.5) and of the glass lobe |
+// | transmission | weight of a glass lobe (glass.h) replacing spec + diffuse: reflection     |
+// |            | untinted, refraction tinted by base_color; single-scatter GGX             |
+// | coat       | Coat Weight: dielectric GGX layer (single scatter) on top of everything   |
+// | coat_roughness, coat_ior | its roughness and IOR                                     |
+// | coat_tint  | absorption of what passes the coat: tint^(1/cos_t), cos_t refracted into it |
+//
+// Layering as Cycles 4.x/5.0 svm_node_closure_principled: coat first (weight coat; the layers
+// below are scaled by (1 - coat F_v,coat(cos_o)) and mix(1, coat_tint^(1/cos_t), coat)), then
+// metal (metallic), then transmission ((1 - metallic) transmission: glass), then the specular
+// layer over the diffuse ((1 - metallic)(1 - transmission)). The glass lobe has no
+// multiple-scattering compensation here (Cycles 4.x compensates Multiscatter GGX glass).
 //
 // f_spec  = F(wi.h, eta) D G2 / (4 cos_o cos_i) * c(cos_o),   A_spec(cos_o) = E_F c its albedo
 // f_diff  = (1 - A_layer(cos_o)) base / pi    (Cycles' layering by its albedo *estimate*)

@@ -2,15 +2,19 @@
 
 #include "integrators/ray_offset.h"
 #include "sampling/dimensions.h"
+#include "stratum/stratum.h"
 
 namespace stratum {
 
 RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& sampler,
                                       const PixelSample& pixel, const CameraRay& camera_ray,
                                       uint64_t& rays) const {
+    // Mid-shutter until CameraRay carries its own time (the camera's motion-blur work adds it).
+    constexpr float kShutterMiddle = 0.5f;
     SurfaceHit hit;
     ++rays;
-    if (!scene.intersect(camera_ray.origin, camera_ray.direction, camera_ray.t_min, camera_ray.t_max, &hit)) {
+    if (!scene.intersect(camera_ray.origin, camera_ray.direction, camera_ray.t_min, camera_ray.t_max, &hit,
+                         {kShutterMiddle, STRATUM_VISIBLE_CAMERA})) {
         return {Rgb(1.0f)};
     }
     const Vec3 wo = -camera_ray.direction;
@@ -33,7 +37,8 @@ RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& s
     bool occluded = dot(wi, ng) <= 0.0f;
     if (!occluded) {
         ++rays;
-        occluded = scene.occluded(offset_ray_origin(hit.position, ng), wi, 0.0f, settings_.ao_distance);
+        occluded = scene.occluded(offset_ray_origin(hit.position, ng), wi, 0.0f, settings_.ao_distance,
+                                  {kShutterMiddle, STRATUM_VISIBLE_SHADOW});
     }
     if (!occluded) return {Rgb(1.0f)};
     return {Rgb(1.0f - weight)};

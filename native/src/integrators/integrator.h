@@ -23,7 +23,12 @@ struct IntegratorSettings {
     // obstacle occludes (scene units, > 0; infinity = unlimited).
     HemisphereDistribution hemisphere = HemisphereDistribution::Cosine;
     float ao_distance = 1.0f;
-    bool film_transparent = false;  // Film > Transparent: rays that escape to the background give alpha 0
+    // Cycles' transparent_max_bounces (default 8 in 3.4 and 5.0): pass-throughs of Transparent
+    // closures (and transparent-shadow surfaces) allowed per path; they are not bounces.
+    uint32_t transparent_max_bounces = 8;
+    // Cycles' Film > Transparent: background seen directly (also through transparent closures)
+    // gives alpha 0 instead of its radiance, and holdouts turn into alpha.
+    bool film_transparent = false;
 };
 
 // One camera ray's estimate: the radiance, and the alpha the film stores (1 = covered; a

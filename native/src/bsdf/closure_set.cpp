@@ -1,0 +1,117 @@
+#include "bsdf/closure_set.h"
+
+namespace stratum {
+
+namespace {
+
+float albedo_estimate(const Material& m) {
+    switch (m.model) {
+        case MaterialModel::Diffuse:
+        case MaterialModel::Glossy:
+        case MaterialModel::Glass:
+        case MaterialModel::Transparent:
+            return m.base_color.average();
+        case MaterialModel::PrincipledV1:
+        case MaterialModel::PrincipledV2:
+            return 1.0f;  // the specular layer reflects whatever the base colour
+        case MaterialModel::Emission:
+        case MaterialModel::Holdout:
+            break;
+    }
+    return 0.0f;
+}
+
+uint32_t closure_kinds(const Material& m, Vec3 wi) {
+    switch (m.model) {
+        case MaterialModel::Diffuse:
+            return scatter_kind_bit(ScatterKind::Diffuse);
+        case MaterialModel::Glossy:
+            return scatter_kind_bit(ScatterKind::Glossy);
+        case MaterialModel::Glass:
+            return scatter_kind_bit(wi.z < 0.0f ? ScatterKind::Transmission : ScatterKind::Glossy);
+        case MaterialModel::PrincipledV1:
+        case MaterialModel::PrincipledV2:
+            return wi.z < 0.0f
+                       ? scatter_kind_bit(ScatterKind::Transmission)
+                       : scatter_kind_bit(ScatterKind::Diffuse) | scatter_kind_bit(ScatterKind::Glossy);
+        case MaterialModel::Transparent:
+            return scatter_kind_bit(ScatterKind::Transparent);
+        case MaterialModel::Emission:
+        case MaterialModel::Holdout:
+            break;
+    }
+    return 0;
+}
+
+}  // namespace
+
+ClosureSet::ClosureSet(const SceneMaterial& material) {
+    count_ = static_cast<uint32_t>(std::min<size_t>(material.closures.size(), kMaxClosures));
+    for (uint32_t i = 0; i < count_; ++i) closures_[i] = material.closures[i];
+    finalize();
+}
+
+void ClosureSet::finalize() {
+    sample_weight_sum_ = 0.0f;
+    emission_ = holdout_ = transparency_ = Rgb(0.0f);
+    has_transmission_ = has_non_delta_ = false;
+    for (uint32_t i = 0; i < count_; ++i) {
+        const WeightedClosure& c = closures_[i];
+        emission_ += c.weight * c.params.emission;
+        if (c.params.model == MaterialModel::Holdout) holdout_ += c.weight;
+        if (c.params.model == MaterialModel::Transparent) transparency_ += c.weight * c.params.base_color;
+        sample_weight_[i] = std::abs(c.weight.average()) * albedo_estimate(c.params);
+        sample_weight_sum_ += sample_weight_[i];
+        if (sample_weight_[i] > 0.0f) {
+            has_transmission_ = has_transmission_ || bsdf_has_transmission(c.params);
+            has_non_delta_ = has_non_delta_ || !bsdf_is_delta(c.params);
+        }
+    }
+}
+
+BsdfEval ClosureSet::eval(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere, uint32_t kinds) const {
+    BsdfEval sum{Rgb(0.0f), 0.0f};
+    if (!(sample_weight_sum_ > 0.0f)) return sum;
+    for (uint32_t i = 0; i < count_; ++i) {
+        if (sample_weight_[i] <= 0.0f) continue;
+        const Material& m = closures_[i].params;
+        const BsdfEval e = bsdf_eval(m, wo, wi, hemisphere);
+        if (closure_kinds(m, wi) & kinds) sum.value += closures_[i].weight * e.value;
+        sum.pdf += sample_weight_[i] / sample_weight_sum_ * e.pdf;
+    }
+    return sum;
+}
+
+bool ClosureSet::sample(Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
+                        HemisphereDistribution hemisphere) const {
+    if (!(sample_weight_sum_ > 0.0f)) return false;
+    // Choose closure i by u_lobe over the cumulative sample weights, then rescale u_lobe to the
+    // position inside the chosen interval so the closure's own lobe choice gets a fresh uniform.
+    const float target = u_lobe * sample_weight_sum_;
+    float start = 0.0f;
+    uint32_t chosen = count_;
+    for (uint32_t i = 0; i < count_; ++i) {
+        if (sample_weight_[i] <= 0.0f) continue;
+        chosen = i;
+        if (target < start + sample_weight_[i]) break;
+        start += sample_weight_[i];
+    }
+    if (chosen == count_) return false;
+    const float width = sample_weight_[chosen];
+    const float u_inner = std::clamp((target - start) / width, 0.0f, kOneMinusEpsilon);
+    BsdfSample s;
+    if (!bsdf_sample(closures_[chosen].params, wo, u_inner, u, &s, hemisphere)) return false;
+    const float probability = width / sample_weight_sum_;
+    if (s.delta) {
+        s.weight = closures_[chosen].weight * s.weight / probability;
+        s.pdf = probability;
+        *out = s;
+        return true;
+    }
+    const BsdfEval e = eval(wo, s.wi, hemisphere);
+    if (!(e.pdf > 0.0f)) return false;
+    *out = {s.wi, e.value / e.pdf, e.pdf, false, s.kind};
+    return true;
+}
+
+}  // namespace stratum

@@ -1,0 +1,71 @@
+// The closures of one shading point: Sum_i w_i f_i, Blender's Mix / Add Shader trees flattened as
+// Cycles flattens them (Cycles 3.4 / 4.x `kernel/closure/bsdf.h`, `integrator/surface_shader.h`:
+// one-sample MIS over closures, each chosen with probability p_i proportional to its sample weight).
+//
+// | quantity         | definition                                                                |
+// |------------------|---------------------------------------------------------------------------|
+// | eval value       | Sum_i w_i f_i(wo, wi) cos_i over the non-delta closures                  |
+// | eval pdf         | Sum_i p_i pdf_i(wo, wi); p_i = s_i / Sum_j s_j                           |
+// | sample weight s_i| average(w_i) x albedo estimate of closure i (average(base_color) for the  |
+// |                  | single-lobe models, 1 for Principled); 0 for Emission and Holdout         |
+// | emission         | Sum_i w_i emission_i                                                      |
+// | holdout          | Sum of the weights of Holdout closures (Cycles shader_holdout_apply)     |
+// | transparency     | Sum_i w_i base_color_i over Transparent closures (transparent shadows)   |
+//
+// Sampling picks closure i with u_lobe, rescales u_lobe to [0,1) for the closure's own lobe
+// choice, and samples it. A non-delta pick reports the full mixture value and pdf (so weight =
+// value/pdf is one-sample MIS over closures). A delta pick reports weight w_i f_i/(p_i pdf_i) and
+// delta = true: no other closure can produce that exact direction.
+// Capacity is fixed (kMaxClosures) with in-place storage, so a texturing step can rewrite the
+// parameters of each closure before evaluation; call finalize() after any such change.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "bsdf/bsdf.h"
+#include "scene/scene.h"
+
+namespace stratum {
+
+inline constexpr uint32_t kMaxClosures = 8;
+
+class ClosureSet {
+public:
+    // Copies the first kMaxClosures closures (the API rejects more).
+    explicit ClosureSet(const SceneMaterial& material);
+
+    WeightedClosure* closures() { return closures_.data(); }
+    uint32_t count() const { return count_; }
+    // Recomputes the sample weights and the summed quantities from the closures' parameters.
+    void finalize();
+
+    Rgb emission() const { return emission_; }
+    Rgb holdout() const { return holdout_; }
+    Rgb transparency() const { return transparency_; }
+    bool has_transmission() const { return has_transmission_; }
+    // Whether any closure has a non-delta part that next-event estimation can evaluate.
+    bool has_non_delta() const { return has_non_delta_; }
+    // Whether any closure scatters light at all.
+    bool scatters() const { return sample_weight_sum_ > 0.0f; }
+
+    // `kinds` selects the closures whose value is summed (bit k = ScatterKind k; a Glass closure
+    // counts as Glossy for wi above the surface and Transmission below; Principled as both
+    // Diffuse and Glossy). The pdf is always the full sampling density.
+    BsdfEval eval(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere, uint32_t kinds = kAllKinds) const;
+    bool sample(Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out, HemisphereDistribution hemisphere) const;
+
+    static constexpr uint32_t kAllKinds = 0xf;
+
+private:
+    std::array<WeightedClosure, kMaxClosures> closures_{};
+    std::array<float, kMaxClosures> sample_weight_{};
+    uint32_t count_ = 0;
+    float sample_weight_sum_ = 0.0f;
+    Rgb emission_, holdout_, transparency_;
+    bool has_transmission_ = false, has_non_delta_ = false;
+};
+
+inline constexpr uint32_t scatter_kind_bit(ScatterKind k) { return 1u << static_cast<uint32_t>(k); }
+
+}  // namespace stratum

@@ -1,0 +1,41 @@
+#include "bsdf/glossy.h"
+
+#include "bsdf/microfacet_ggx.h"
+#include "sampling/warps.h"
+
+namespace stratum {
+
+namespace {
+
+float energy_scale(const Material& m, float cos_o) {
+    if (m.distribution != MicrofacetDistribution::MultiscatterGgx) return 1.0f;
+    // With Fresnel 1 the multi-bounce Fresnel F_ms is 1: the missing (1 - E)/E all returns.
+    return 1.0f / std::max(ggx_albedo_unit_fresnel(cos_o, m.roughness), 1e-4f);
+}
+
+}  // namespace
+
+BsdfEval glossy_eval(const Material& m, Vec3 wo, Vec3 wi) {
+    if (wo.z <= 0.0f || wi.z <= 0.0f || ggx_is_sharp(m.roughness)) return {Rgb(), 0.0f};
+    const float alpha = ggx_alpha_from_roughness(m.roughness);
+    const Vec3 h = normalize(wo + wi);
+    const float f = ggx_d(h, alpha) * ggx_g2_height_correlated(wo, wi, alpha) / (4.0f * wo.z);
+    return {m.base_color * (f * energy_scale(m, wo.z)), ggx_reflection_pdf(wo, wi, alpha)};
+}
+
+bool glossy_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out) {
+    if (wo.z <= 0.0f) return false;
+    if (ggx_is_sharp(m.roughness)) {
+        *out = {Vec3(-wo.x, -wo.y, wo.z), m.base_color, 1.0f, true, ScatterKind::Glossy};
+        return true;
+    }
+    const float alpha = ggx_alpha_from_roughness(m.roughness);
+    Vec3 wi;
+    if (!ggx_sample_reflection(wo, alpha, u, &wi)) return false;
+    const BsdfEval e = glossy_eval(m, wo, wi);
+    if (e.pdf <= 0.0f) return false;
+    *out = {wi, e.value / e.pdf, e.pdf, false, ScatterKind::Glossy};
+    return true;
+}
+
+}  // namespace stratum

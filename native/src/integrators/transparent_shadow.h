@@ -1,0 +1,23 @@
+// Shadow-ray transmittance through Transparent closures (Cycles "transparent shadows",
+// Cycles 3.4 / 4.x `integrator/intersect_shadow.h` + `shade_shadow.h`): the ray is traced
+// surface by surface; a surface whose material has Transparent closures multiplies the
+// transmittance by their summed weight x colour, any other surface blocks it.
+//
+// | parameter      | meaning                                                               |
+// |----------------|-----------------------------------------------------------------------|
+// | origin, dir    | shadow ray, origin already offset off the shaded surface               |
+// | t_max          | distance to the light point (infinity for distant lights)              |
+// | max_surfaces   | transparent surfaces that may be crossed (transparent_max_bounces left)|
+#pragma once
+
+#include <cstdint>
+
+#include "scene/render_scene.h"
+
+namespace stratum {
+
+// Returns the transmittance (0 when blocked); `rays` counts the rays traced.
+Rgb shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float t_max, const RayQuery& query,
+                         uint32_t max_surfaces, uint64_t& rays);
+
+}  // namespace stratum
