@@ -14,6 +14,29 @@ it to out/bench.txt. Reported:
 * Stratum total F12 time through the engine, comparable with Cycles' F12 time;
 * the ratios Stratum / Cycles (total, and path tracing alone), measured in this one run.
 
+Then the export section (acceptance 3 of issue 5), each scene built in this script:
+
+* monkey_1m: Suzanne subdivided 5 times (Catmull-Clark, applied: 503 808 quads = 1 007 616
+  triangles, one object), a camera and a sun;
+* instances_10k: 10 000 instances of one 12-triangle cube (vertex instancing) plus the child
+  object itself, a camera and a sun.
+
+For each, Stratum's export (depsgraph -> native scene, timed around export_scene) and BVH build
+(progress().build_seconds of a 1-sample 32 x 32 render) against Cycles' synchronisation of the
+same scene, read from the status lines Cycles prints during a 1-sample 32 x 32 render (Blender
+3.4's `blender -b`; the bpy module prints none, so there only the F12 total is given):
+
+* "Cycles object sync": first "Synchronizing object" line -> "Initializing" (Blender data ->
+  Cycles scene: meshes, instances, shaders);
+* "Cycles scene update": "Initializing" -> "Sample 0" (device update: attributes, normals, the
+  BVH build, lights, copies to the device);
+* "Cycles sync total" = both: Cycles' whole synchronisation, the analogue of Stratum's export +
+  BVH build (Blender's own depsgraph evaluation precedes both renderers and is in neither).
+
+Each export measurement is repeated --repeats times (default 3) and the minimum of each
+quantity reported (other processes on shared cores only add time). The ratio
+(Stratum export + BVH) / (Cycles sync total) comes from this one run.
+
 Exit status: 0 when both renderers ran, 2 when Stratum is not available (Cycles numbers are
 still printed), 1 on an error.
 """
@@ -21,16 +44,19 @@ still printed), 1 on an error.
 from __future__ import annotations
 
 import argparse
+import math
 import os
 import re
 import sys
 import tempfile
 import time
 import traceback
+from collections.abc import Callable
 from pathlib import Path
-from typing import Self
+from typing import Any, Self
 
 import bpy
+import numpy as np
 
 REPO = Path(__file__).resolve().parents[1]
 SCENE = REPO / "scenes" / "cornell_box.blend"
@@ -55,6 +81,8 @@ def parse_args() -> argparse.Namespace:
     p.add_argument("--res", type=int, default=256)
     p.add_argument("--threads", type=int, default=0, help="0 = all cores")
     p.add_argument("--scene", type=Path, default=SCENE)
+    p.add_argument("--repeats", type=int, default=3,
+                   help="runs of each export measurement (the minimum is reported)")
     return p.parse_args(argv)
 
 
@@ -217,6 +245,190 @@ def ratio(a: float | None, b: float | None) -> str:
     return "n/a" if not a or not b else f"{a / b:6.2f}x"
 
 
+# ---- export and BVH build: 1M triangles, 10 000 instances ------------------------------------
+
+EXPORT_RES = 32
+MONKEY_LEVELS = 5  # 1968 quads after the first level, x4 per further level: 503 808 quads
+INSTANCES = 10_000
+
+
+def _bmesh() -> Any:
+    """bmesh, importable only once bpy is (the bpy wheel registers it on import)."""
+    import bmesh
+
+    return bmesh
+
+
+def _empty_scene() -> bpy.types.Scene:
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
+    cam.location = (0.0, -4.0, 0.0)
+    cam.rotation_euler = (math.pi / 2, 0.0, 0.0)
+    scene.collection.objects.link(cam)
+    scene.camera = cam
+    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
+    sun.rotation_euler = (0.6, 0.0, 0.4)
+    scene.collection.objects.link(sun)
+    r = scene.render
+    r.resolution_x = r.resolution_y = EXPORT_RES
+    r.resolution_percentage = 100
+    c = scene.cycles
+    c.device = "CPU"
+    c.samples = 1
+    c.use_denoising = False
+    c.use_adaptive_sampling = False
+    return scene
+
+
+def build_monkey_1m() -> bpy.types.Scene:
+    """Suzanne with MONKEY_LEVELS Catmull-Clark levels applied to its mesh (no modifier left:
+    neither renderer's timing includes the subdivision)."""
+    scene = _empty_scene()
+    bmesh = _bmesh()
+    bm = bmesh.new()
+    bmesh.ops.create_monkey(bm)
+    base = bpy.data.meshes.new("monkey")
+    bm.to_mesh(base)
+    bm.free()
+    ob = bpy.data.objects.new("monkey", base)
+    scene.collection.objects.link(ob)
+    mod = ob.modifiers.new("subdivision", "SUBSURF")
+    mod.levels = mod.render_levels = MONKEY_LEVELS
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    depsgraph.update()
+    dense = bpy.data.meshes.new_from_object(ob.evaluated_get(depsgraph))
+    ob.modifiers.clear()
+    ob.data = dense
+    return scene
+
+
+def build_instances_10k() -> bpy.types.Scene:
+    """INSTANCES instances of one cube: a parent whose vertices (a square grid) instance its
+    child (instance_type VERTS); Blender also renders the child itself."""
+    scene = _empty_scene()
+    side = math.ceil(math.sqrt(INSTANCES))
+    idx = np.arange(INSTANCES)
+    verts = np.zeros((INSTANCES, 3), dtype=np.float32)
+    verts[:, 0] = (idx % side - (side - 1) / 2) * 0.03
+    verts[:, 2] = (idx // side - (side - 1) / 2) * 0.03
+    grid = bpy.data.meshes.new("grid")
+    grid.vertices.add(INSTANCES)
+    grid.vertices.foreach_set("co", verts.ravel())
+    grid.update()
+    parent = bpy.data.objects.new("grid", grid)
+    parent.instance_type = "VERTS"
+    scene.collection.objects.link(parent)
+    bmesh = _bmesh()
+    bm = bmesh.new()
+    bmesh.ops.create_cube(bm, size=0.01)
+    cube = bpy.data.meshes.new("cube")
+    bm.to_mesh(cube)
+    bm.free()
+    child = bpy.data.objects.new("cube", cube)
+    child.parent = parent
+    scene.collection.objects.link(child)
+    return scene
+
+
+def cycles_sync_stages(log: str) -> dict[str, float | None]:
+    """Seconds of Cycles' object sync and scene update, from its status lines, which read
+    "Fra:1 Mem:.. | Time:00:00.22 | Mem:.., Peak:.. | Scene, ViewLayer | <stage> | <detail>"."""
+    first_sync = initializing = sample0 = None
+    for line in log.splitlines():
+        parts = [p.strip() for p in line.split("|")]
+        at = next((i for i, p in enumerate(parts) if p.startswith("Time:")), None)
+        if not line.startswith("Fra:") or at is None or len(parts) <= at + 3:
+            continue
+        m = _TIME.search(parts[at])
+        if not m:
+            continue
+        t = int(m.group(1)) * 60 + float(m.group(2))
+        stage = parts[at + 3]
+        if stage.startswith("Synchronizing") and first_sync is None:
+            first_sync = t
+        elif stage.startswith("Initializing") and initializing is None:
+            initializing = t
+        elif stage.startswith("Sample 0") and sample0 is None:
+            sample0 = t
+    if first_sync is None or initializing is None or sample0 is None:
+        return {"object_sync": None, "scene_update": None, "sync_total": None}
+    return {"object_sync": initializing - first_sync, "scene_update": sample0 - initializing,
+            "sync_total": sample0 - first_sync}
+
+
+def bench_export_case(build: Callable[[], bpy.types.Scene], stratum_ok: bool,
+                      ) -> dict[str, float | int | None]:
+    scene = build()
+    scene.render.engine = "CYCLES"
+    with CaptureStdout() as cap:
+        t0 = time.perf_counter()
+        bpy.ops.render.render()
+        total = time.perf_counter() - t0
+    out: dict[str, float | int | None] = {"cycles_f12": total, **cycles_sync_stages(cap.text)}
+    if not stratum_ok:
+        return out
+    from stratum import native
+    from stratum.engine import renderer_settings
+    from stratum.export import export_scene
+
+    scene = build()
+    scene.render.engine = "STRATUM"
+    scene.stratum.samples = 1
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    depsgraph.update()
+    t0 = time.perf_counter()
+    with native.Scene() as native_scene:
+        summary = export_scene(depsgraph, native_scene)
+        t_export = time.perf_counter() - t0
+        with native.Renderer(native_scene) as renderer:
+            for name, value in renderer_settings(scene).items():
+                renderer.set(name, value)
+            renderer.start()
+            while not renderer.wait(50):
+                pass
+            p = renderer.progress()
+    out.update({"export": t_export, "build": p.build_seconds,
+                "triangles": summary.triangles, "instances": summary.instances,
+                "instanced_triangles": summary.instanced_triangles})
+    return out
+
+
+def fastest(runs: list[dict[str, float | int | None]]) -> dict[str, float | int | None]:
+    """Per quantity, the minimum over repeated runs: on shared cores, other processes only ever
+    add time, so the minimum is the best estimate of the cost itself."""
+    out: dict[str, float | int | None] = {}
+    for key in runs[0]:
+        values = [r[key] for r in runs if r[key] is not None]
+        out[key] = min(values) if values else None
+    return out
+
+
+def export_lines(name: str, r: dict[str, float | int | None]) -> list[str]:
+    lines = [f"{name}:"]
+    if "export" in r:
+        lines.append(f"  scene: {r['instances']} instances, {r['triangles']} unique triangles, "
+                     f"{r['instanced_triangles']} instanced")
+    lines += [
+        f"  {'Cycles object sync':30s}{fmt(r['object_sync']):>10s}",
+        f"  {'Cycles scene update (BVH...)':30s}{fmt(r['scene_update']):>10s}",
+        f"  {'Cycles sync total':30s}{fmt(r['sync_total']):>10s}",
+        f"  {'Cycles F12, 1 spp 32x32':30s}{fmt(r['cycles_f12']):>10s}",
+    ]
+    if "export" in r:
+        both = r["export"] + r["build"]
+        lines += [
+            f"  {'Stratum export':30s}{fmt(r['export']):>10s}",
+            f"  {'Stratum BVH build':30s}{fmt(r['build']):>10s}",
+            f"  {'Stratum export + BVH':30s}{fmt(both):>10s}",
+            f"  ratio Stratum (export + BVH) / Cycles sync total: {ratio(both, r['sync_total'])}",
+            # Cycles' F12 time holds its sync and more: this ratio is a lower bound of the one
+            # above, the only one available where Cycles prints no status lines (bpy wheel).
+            f"  ratio Stratum (export + BVH) / Cycles F12:        {ratio(both, r['cycles_f12'])}",
+        ]
+    return lines
+
+
 def main() -> int:
     args = parse_args()
     cores = os.cpu_count()
@@ -264,6 +476,13 @@ def main() -> int:
         ]
     else:
         lines += ["", f"Stratum: not measured ({reason})"]
+
+    heading = (f"Export and BVH build (1 spp, {EXPORT_RES}x{EXPORT_RES}, seconds, minimum of "
+               f"{args.repeats} runs):")
+    lines += ["", heading]
+    for name, build in (("monkey_1m", build_monkey_1m), ("instances_10k", build_instances_10k)):
+        runs = [bench_export_case(build, st is not None) for _ in range(args.repeats)]
+        lines += export_lines(name, fastest(runs))
     table = "\n".join(lines)
     print(table)
     OUT.mkdir(parents=True, exist_ok=True)
