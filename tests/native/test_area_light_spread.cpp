@@ -224,10 +224,12 @@ TEST(AreaLightSpread, RaysSeeTheEmittingFaceOfVisibleLamps) {
     const AreaLight narrow = square_light(60.0f * kPi / 180.0f, 4.0f);
     const Spread s = spread_constants(60.0f * kPi / 180.0f);
     const float a = 20.0f * kPi / 180.0f;
-    float t = 0;
+    float t = 0, pdf = 0;
     Rgb radiance;
-    ASSERT_TRUE(narrow.intersect({0, 0, 0}, {std::sin(a), 0, std::cos(a)}, kInfinity, &t, &radiance));
+    ASSERT_TRUE(narrow.intersect({0, 0, 0}, {std::sin(a), 0, std::cos(a)}, kInfinity, &t, &radiance, &pdf));
     EXPECT_NEAR(t, 2.0f / std::cos(a), 1e-5f);
+    // sample()'s solid-angle density of that direction: t² / (A cos θ_light), A = 4 x 4.
+    EXPECT_NEAR(pdf, t * t / (16.0f * std::cos(a)), 1e-6f);
     EXPECT_NEAR(radiance.r,
                 10.0f * kInvPi / 16.0f * (std::tan(0.5f * 60.0f * kPi / 180.0f) - std::tan(a)) * s.normalize,
                 1e-5f);

@@ -65,11 +65,28 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         SurfaceHit hit;
         ++rays;
         const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
-        // Lamps have no geometry: the emitting face of an area lamp whose camera visibility is on
-        // is met analytically, in front of whatever the ray hits (NEE never samples it for the
-        // camera, so there is nothing to weight against).
-        if (camera_visible_path) {
-            L += beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, STRATUM_VISIBLE_CAMERA);
+        // Lamps have no geometry: the emitting face of an area lamp is met analytically, in front
+        // of whatever the ray hits, if the lamp is visible to this kind of ray. A camera ray takes
+        // it whole (no light sample competes); a scattered ray is MIS-weighted against the NEE
+        // sample that could have found the same direction (delta scattering: NEE could not).
+        {
+            float lamp_pdf = 0.0f, lamp_t = 0.0f;
+            const Rgb lamp = lights.lamp_radiance(
+                origin, dir, found ? hit.t : t_max,
+                camera_visible_path ? uint32_t{STRATUM_VISIBLE_CAMERA} : query.visibility, &lamp_pdf,
+                &lamp_t);
+            if (!lamp.is_black()) {
+                float w = 1.0f;
+                if (!camera_visible_path && scatter_pdf > 0.0f) {
+                    // NEE sampled from the scattering point: after transparent pass-throughs the
+                    // ray started further on, and the solid-angle pdf scales with distance².
+                    const Vec3 lamp_point = origin + dir * lamp_t;
+                    const float scale = dot(lamp_point - scatter_origin, lamp_point - scatter_origin) /
+                                        std::max(lamp_t * lamp_t, 1e-30f);
+                    w = power_heuristic(scatter_pdf, lamp_pdf * scale);
+                }
+                L += beta * lamp * w;
+            }
         }
         if (!found) {
             if (camera_visible_path && settings_.film_transparent) {

@@ -56,7 +56,8 @@ bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
     if (cos_light <= 0.0f) return false;  // the back side does not emit
     const float f = area_light_spread_attenuation(cos_light, tan_half_spread_, normalize_spread_);
     if (!(f > 0.0f)) return false;
-    *out = {wi, d, radiance_ * f, d2 / (area_ * cos_light), false};
+    // Rays scattered by BSDFs meet the lamp too (LightSet::lamp_radiance), so NEE is MIS-weighted.
+    *out = {wi, d, radiance_ * f, d2 / (area_ * cos_light), true};
     return true;
 }
 
@@ -64,7 +65,7 @@ bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
 
 namespace stratum {
 
-bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance) const {
+bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const {
     const float cos_light = -dot(dir, normal_);
     if (!(cos_light > 0.0f)) return false;  // parallel, or seen from the back
     const float hit_t = dot(center_ - origin, normal_) / -cos_light;
@@ -75,6 +76,7 @@ bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* rad
     const bool inside = ellipse_ ? a * a + b * b <= 1.0f : std::abs(a) <= 1.0f && std::abs(b) <= 1.0f;
     if (!inside) return false;
     *t = hit_t;
+    *pdf = hit_t * hit_t / (area_ * cos_light);  // sample()'s solid-angle pdf of this direction
     *radiance = radiance_ * area_light_spread_attenuation(cos_light, tan_half_spread_, normalize_spread_);
     return true;
 }

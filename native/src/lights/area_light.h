@@ -40,9 +40,10 @@ public:
     AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power,
               float spread = kPi);
     bool sample(Vec3 p, Vec2 u, LightSample* out) const;
-    // The ray origin + t·dir (dir unit) meets the emitting face at t in (0, t_max): writes t and
-    // the radiance toward the ray's origin (spread included). False for the back side or a miss.
-    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance) const;
+    // The ray origin + t·dir (dir unit) meets the emitting face at t in (0, t_max): writes t,
+    // the radiance toward the ray's origin (spread included) and the solid-angle pdf with which
+    // sample() at the origin produces this direction. False for the back side or a miss.
+    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
     float power() const { return power_.average(); }
 
 private:

@@ -86,18 +86,22 @@ float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const {
     return probability_[index] * tri.pdf(p, hit);
 }
 
-Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility) const {
+Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf,
+                            float* t_out) const {
     Rgb radiance(0.0f);
-    float nearest = t_max;
+    float nearest = t_max, nearest_pdf = 0.0f;
     for (const uint32_t i : area_lights_) {
         if (!(visibility_[i] & visibility)) continue;
-        float t;
+        float t, solid_angle_pdf;
         Rgb L;
-        if (std::get<AreaLight>(lights_[i]).intersect(origin, dir, nearest, &t, &L)) {
+        if (std::get<AreaLight>(lights_[i]).intersect(origin, dir, nearest, &t, &L, &solid_angle_pdf)) {
             nearest = t;
             radiance = L;
+            nearest_pdf = probability_[i] * solid_angle_pdf;
         }
     }
+    if (pdf) *pdf = nearest_pdf;
+    if (t_out) *t_out = nearest;
     return radiance;
 }
 

@@ -42,9 +42,12 @@ public:
     float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const;
     // Radiance of the nearest area light whose visibility has bit `visibility` and whose
     // emitting face the ray (dir unit) meets before t_max; black if none. Lamps are not in the
-    // BVH: this is what a camera ray adds for a lamp it sees (Cycles' Object > Visibility >
-    // Camera on a light; no MIS, a camera ray has no light sample).
-    Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility) const;
+    // BVH: this is how camera rays (Cycles' Object > Visibility > Camera on a light) and
+    // BSDF-scattered rays find them. *pdf (if not null) = the pdf (choice × solid angle) with
+    // which sample() at `origin` picks that direction, for MIS.
+    // *t (if not null) = the distance to the lamp.
+    Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
+                      float* t = nullptr) const;
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
     const EnvironmentLight* environment() const;
     float environment_pdf(Vec3 wi) const;
