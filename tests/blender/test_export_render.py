@@ -96,6 +96,7 @@ def test_holdout_object_cuts_alpha(library: Any, scene_builder: Any, tmp_path: P
     skip_unless_integrators_write_alpha(library)
     b = scene_builder().basic()
     b.scene.objects["Cube"].is_holdout = True
+    b.scene.render.film_transparent = True  # without it Cycles' holdout is black, alpha 1
     pixels = _render(b.scene, tmp_path / "holdout.exr")
     assert pixels[16, 16, 3] == pytest.approx(0.0, abs=1e-6)
     assert np.allclose(pixels[16, 16, :3], 0.0, atol=1e-6)
