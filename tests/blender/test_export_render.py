@@ -96,6 +96,7 @@ def test_holdout_object_cuts_alpha(library: Any, scene_builder: Any, tmp_path: P
     skip_unless_integrators_write_alpha(library)
     b = scene_builder().basic()
     b.scene.objects["Cube"].is_holdout = True
+    b.scene.render.film_transparent = True  # without it Cycles' holdout is black, alpha 1
     pixels = _render(b.scene, tmp_path / "holdout.exr")
     assert pixels[16, 16, 3] == pytest.approx(0.0, abs=1e-6)
     assert np.allclose(pixels[16, 16, :3], 0.0, atol=1e-6)
@@ -189,3 +190,37 @@ def test_equirectangular_camera_renders(library: Any, scene_builder: Any,
     assert pixels.shape[:2] == (32, 64)
     world = np.isclose(pixels[..., :3], 0.05, atol=1e-4).all(axis=2)
     assert 0.5 < world.mean() < 1.0
+
+
+def test_mixed_and_added_emission_closures_render_their_weights(
+        library: Any, scene_builder: Any, tmp_path: Path) -> None:
+    """Add(Mix(red, blue, 0.25), green x 0.5) emission on a quad filling the view, black world:
+    every pixel is (0.75, 0.5, 0.25) -- the closure weights, end to end."""
+    _needs_symbol(library, "stratum_scene_add_closure_material")
+    b = scene_builder()
+    b.camera()
+    b.world((0.0, 0.0, 0.0))
+    mat = bpy.data.materials.new("Weights")
+    if bpy.app.version < (5, 0, 0):
+        mat.use_nodes = True
+    nt = mat.node_tree
+    emissions = []
+    for color, strength in (((1, 0, 0, 1), 1.0), ((0, 0, 1, 1), 1.0), ((0, 1, 0, 1), 0.5)):
+        node = nt.nodes.new("ShaderNodeEmission")
+        node.inputs["Color"].default_value = color
+        node.inputs["Strength"].default_value = strength
+        emissions.append(node)
+    mix, add = nt.nodes.new("ShaderNodeMixShader"), nt.nodes.new("ShaderNodeAddShader")
+    mix.inputs[0].default_value = 0.25
+    nt.links.new(emissions[0].outputs[0], mix.inputs[1])
+    nt.links.new(emissions[1].outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], add.inputs[0])
+    nt.links.new(emissions[2].outputs[0], add.inputs[1])
+    nt.links.new(add.outputs[0], nt.nodes["Material Output"].inputs["Surface"])
+    quad = bpy.data.meshes.new("Quad")
+    quad.from_pydata([(-4, 0, -4), (4, 0, -4), (4, 0, 4), (-4, 0, 4)], [], [(0, 1, 2, 3)])
+    quad.materials.append(mat)
+    b.link(bpy.data.objects.new("Quad", quad))
+    pixels = _render(b.scene, tmp_path / "weights.exr")
+    assert pixels[..., :3].reshape(-1, 3).mean(axis=0) == pytest.approx((0.75, 0.5, 0.25),
+                                                                        abs=1e-3)
