@@ -254,7 +254,9 @@ def test_feature_noise_allows_comparison(cycles_case: Renders, stratum_case: Ren
     sd_img = np.sqrt(c.image_var() + s.image_var())
     assert (K_SIGMA * sd_img < 0.5 * IMAGE_TOL * c_img).all(), (
         f"{case}: image-mean noise too high: 4 sigma_D = "
-        f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}; raise SPP")
+        f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')} (each renderer alone: cycles "
+        f"{_fmt3(K_SIGMA * np.sqrt(c.image_var()) / c_img, '{:.3%}')}, stratum "
+        f"{_fmt3(K_SIGMA * np.sqrt(s.image_var()) / c_img, '{:.3%}')})")
     cb = c.block_mean()
     lit = cb >= DARK
     rel = K_SIGMA * np.sqrt(c.block_var() + s.block_var()) / np.maximum(cb, 1e-12)
