@@ -90,7 +90,7 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
 
         if (camera_visible_path) {
             const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
-            if (!holdout.is_black() && settings_.film_transparent) transparency += (holdout * beta).average();
+            if (!holdout.is_black()) transparency += (holdout * beta).average();
             if (hit.holdout) break;
         }
         const Rgb emission = closures.emission();
