@@ -448,6 +448,11 @@ def _declare(lib: ctypes.CDLL) -> None:
         "stratum_renderer_progress": (c_int32, [p_void, ctypes.POINTER(_Progress)]),
         "stratum_renderer_read_pixels": (c_int32, [p_void, p_float, ctypes.c_size_t]),
         "stratum_renderer_write_image": (c_int32, [p_void, p_char]),
+        "stratum_scene_add_closure_material": (c_int32, [p_void, ctypes.POINTER(_ClosureDesc),
+                                                         c_uint32, p_u32]),
+        "stratum_scene_add_texture": (c_int32, [p_void, ctypes.POINTER(_TextureDesc), p_u32]),
+        "stratum_scene_bind_texture": (c_int32, [p_void, ctypes.POINTER(_TextureBinding)]),
+        "stratum_scene_add_instance_ex": (c_int32, [p_void, ctypes.POINTER(_InstanceDesc)]),
     }
     for name, (restype, argtypes) in signatures.items():
         try:
@@ -456,39 +461,6 @@ def _declare(lib: ctypes.CDLL) -> None:
             raise LibraryLoadError(f"{lib._name}: missing symbol {name}") from exc
         fn.restype = restype
         fn.argtypes = argtypes
-    # The issue-5 entry points: a library built before them still loads (every scene that
-    # needs none of them renders); a call that needs one raises a StratumError naming it.
-    later: dict[str, tuple[Any, list[Any]]] = {
-        "stratum_scene_add_closure_material": (c_int32, [p_void, ctypes.POINTER(_ClosureDesc),
-                                                         c_uint32, p_u32]),
-        "stratum_scene_add_texture": (c_int32, [p_void, ctypes.POINTER(_TextureDesc), p_u32]),
-        "stratum_scene_bind_texture": (c_int32, [p_void, ctypes.POINTER(_TextureBinding)]),
-        "stratum_scene_add_instance_ex": (c_int32, [p_void, ctypes.POINTER(_InstanceDesc)]),
-    }
-    for name, (restype, argtypes) in later.items():
-        fn = getattr(lib, name, None)
-        if fn is None:
-            _missing_symbols.add(name)
-            continue
-        fn.restype = restype
-        fn.argtypes = argtypes
-
-
-_missing_symbols: set[str] = set()
-
-
-def has_symbol(name: str) -> bool:
-    """True when the loaded library exports `name` (an issue-5 entry point may be missing
-    from a library built before it)."""
-    load_library()
-    return name not in _missing_symbols
-
-
-def _entry(lib: ctypes.CDLL, name: str) -> Any:
-    if name in _missing_symbols:
-        raise StratumError(ERROR_INTERNAL, f"the Stratum library lacks {name}: it was built "
-                           "before this feature; rebuild it (make build)")
-    return getattr(lib, name)
 
 
 def load_library(path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
@@ -795,7 +767,7 @@ class Scene(_Handle):
             _set_struct(descs[i].closure, values, f"closure {i}")
             _set_struct(descs[i], {"weight": weight}, f"closure {i}")
         out = ctypes.c_uint32()
-        fn = _entry(self._lib, "stratum_scene_add_closure_material")
+        fn = self._lib.stratum_scene_add_closure_material
         _check(self._lib, fn(self.handle, descs, n, ctypes.byref(out)),
                "stratum_scene_add_closure_material")
         return int(out.value)
@@ -828,7 +800,7 @@ class Scene(_Handle):
         desc.interpolation = int(texture.interpolation)
         desc.extension = int(texture.extension)
         out = ctypes.c_uint32()
-        fn = _entry(self._lib, "stratum_scene_add_texture")
+        fn = self._lib.stratum_scene_add_texture
         status = fn(self.handle, ctypes.byref(desc), ctypes.byref(out))
         del keep
         _check(self._lib, status, "stratum_scene_add_texture")
@@ -837,7 +809,7 @@ class Scene(_Handle):
     def bind_texture(self, binding: TextureBinding) -> None:
         desc = _TextureBinding()
         _set_struct(desc, _fields(binding), "texture binding")
-        fn = _entry(self._lib, "stratum_scene_bind_texture")
+        fn = self._lib.stratum_scene_bind_texture
         _check(self._lib, fn(self.handle, ctypes.byref(desc)), "stratum_scene_bind_texture")
 
     def add_mesh(
@@ -922,7 +894,7 @@ class Scene(_Handle):
             desc.motion = 1
         desc.visibility = _uint32(instance.visibility, "instance visibility")
         desc.holdout = 1 if instance.holdout else 0
-        fn = _entry(self._lib, "stratum_scene_add_instance_ex")
+        fn = self._lib.stratum_scene_add_instance_ex
         _check(self._lib, fn(self.handle, ctypes.byref(desc)), "stratum_scene_add_instance_ex")
 
     def add_light(self, light: Mapping[str, Any] | Light | None = None, **fields: Any) -> None:

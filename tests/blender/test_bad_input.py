@@ -22,7 +22,7 @@ from stratum.export import ExportError, export_scene
 from stratum.export import camera as camera_export
 from stratum.export.images import blender_ocio_config
 
-from conftest import read_image_pixels, skip_unless_integrators_apply_textures
+from conftest import read_image_pixels
 
 
 def _render(scene: Any, path: Path) -> np.ndarray | None:
@@ -74,7 +74,6 @@ def test_missing_image_exports_magenta_with_a_warning(scene_builder: Any,
 
 def test_missing_image_renders_with_a_warning(library: Any, scene_builder: Any,
                                               tmp_path: Path) -> None:
-    skip_unless_integrators_apply_textures(library)
     b = scene_builder().basic()
     b.scene.objects["Cube"].data.materials.append(_image_material(b, _missing_image()))
     pixels = _render(b.scene, tmp_path / "missing.exr")
@@ -126,8 +125,6 @@ def test_unknown_colour_space_warns_and_falls_back(scene_builder: Any,
 
 
 def test_native_names_an_unknown_colour_space(library: Any) -> None:
-    if not library.has_symbol("stratum_scene_add_texture"):
-        pytest.skip("the native library predates textures (stratum_scene_add_texture)")
     with library.Scene() as scene, pytest.raises(library.StratumError) as info:
         scene.add_texture(library.Texture(
             pixels=np.ones((2, 2, 3), dtype=np.float32), color_space="No Such Space",

@@ -1,6 +1,5 @@
 """Issue-5 export through real renders (native library needed): border regions handed to
-Blender as it expects, transparent film, holdout, image textures, motion blur. Each test is
-skipped while the library lacks the entry point or setting it needs (older builds)."""
+Blender as it expects, transparent film, holdout, image textures, motion blur."""
 
 from __future__ import annotations
 
@@ -12,26 +11,7 @@ import numpy as np
 import pytest
 from stratum.engine import StratumRenderEngine
 
-from conftest import (
-    read_image_pixels,
-    skip_unless_integrators_apply_textures,
-    skip_unless_integrators_honour_light_visibility,
-    skip_unless_integrators_honour_object_visibility,
-    skip_unless_integrators_write_alpha,
-)
-
-
-def _needs_setting(library: Any, name: str) -> None:
-    with library.Scene() as scene, library.Renderer(scene) as renderer:
-        try:
-            renderer.set(name, 0)
-        except library.StratumError:
-            pytest.skip(f"the native library has no '{name}' setting yet")
-
-
-def _needs_symbol(library: Any, name: str) -> None:
-    if not library.has_symbol(name):
-        pytest.skip(f"the native library lacks {name}")
+from conftest import read_image_pixels
 
 
 def _render(scene: Any, path: Path) -> np.ndarray:
@@ -48,7 +28,6 @@ def _render(scene: Any, path: Path) -> np.ndarray:
 @pytest.mark.parametrize("crop", [True, False])
 def test_border_render_fills_the_region(library: Any, scene_builder: Any, tmp_path: Path,
                                         crop: bool) -> None:
-    _needs_setting(library, "crop_x")
     b = scene_builder().basic()
     b.set_resolution(64, 32)
     r = b.scene.render
@@ -68,7 +47,6 @@ def test_border_render_fills_the_region(library: Any, scene_builder: Any, tmp_pa
 def test_border_region_matches_the_full_frame(library: Any, scene_builder: Any,
                                               tmp_path: Path) -> None:
     """The region's pixels are the full frame's pixels there (same seed, per-pixel streams)."""
-    _needs_setting(library, "crop_x")
     b = scene_builder().basic()
     b.set_resolution(64, 32)
     full = _render(b.scene, tmp_path / "full.exr")
@@ -82,8 +60,6 @@ def test_border_region_matches_the_full_frame(library: Any, scene_builder: Any,
 
 def test_film_transparent_background_alpha(library: Any, scene_builder: Any,
                                            tmp_path: Path) -> None:
-    _needs_setting(library, "film_transparent")
-    skip_unless_integrators_write_alpha(library)
     b = scene_builder().basic()
     b.scene.render.film_transparent = True
     pixels = _render(b.scene, tmp_path / "transparent.exr")
@@ -92,8 +68,6 @@ def test_film_transparent_background_alpha(library: Any, scene_builder: Any,
 
 
 def test_holdout_object_cuts_alpha(library: Any, scene_builder: Any, tmp_path: Path) -> None:
-    _needs_symbol(library, "stratum_scene_add_instance_ex")
-    skip_unless_integrators_write_alpha(library)
     b = scene_builder().basic()
     b.scene.objects["Cube"].is_holdout = True
     b.scene.render.film_transparent = True  # without it Cycles' holdout is black, alpha 1
@@ -107,7 +81,6 @@ def test_image_texture_reaches_the_render(library: Any, scene_builder: Any,
     """A left-black / right-white image as the colour of a diffuse camera-facing quad under a
     white world (radiance = albedo x 1): the render's left half is black, its right half
     lit."""
-    skip_unless_integrators_apply_textures(library)
     b = scene_builder()
     b.camera()
     b.world((1.0, 1.0, 1.0))
@@ -135,7 +108,6 @@ def test_image_texture_reaches_the_render(library: Any, scene_builder: Any,
 
 def test_motion_blur_render(library: Any, scene_builder: Any, tmp_path: Path) -> None:
     """A cube moving sideways over the shutter: its edges are blurred (partial coverage)."""
-    _needs_symbol(library, "stratum_scene_add_instance_ex")
     b = scene_builder().basic()
     b.scene.stratum.samples = 64
     cube = b.scene.objects["Cube"]
@@ -157,8 +129,6 @@ def test_motion_blur_render(library: Any, scene_builder: Any, tmp_path: Path) ->
 def test_object_camera_visibility_reaches_the_render(library: Any, scene_builder: Any,
                                                       tmp_path: Path) -> None:
     """A cube hidden from camera rays: the image is the world colour everywhere."""
-    _needs_symbol(library, "stratum_scene_add_instance_ex")
-    skip_unless_integrators_honour_object_visibility(library)
     b = scene_builder().basic()
     b.scene.objects["Cube"].visible_camera = False
     hidden = _render(b.scene, tmp_path / "hidden.exr")
@@ -168,7 +138,6 @@ def test_object_camera_visibility_reaches_the_render(library: Any, scene_builder
 def test_light_diffuse_visibility_reaches_the_render(library: Any, scene_builder: Any,
                                                      tmp_path: Path) -> None:
     """A light invisible to diffuse rays leaves the (diffuse) cube lit by the world only."""
-    skip_unless_integrators_honour_light_visibility(library)
     b = scene_builder().basic()
     lit = _render(b.scene, tmp_path / "lit.exr")[12:20, 12:20, :3].mean()
     b.scene.objects["Light"].visible_diffuse = False
@@ -196,7 +165,6 @@ def test_mixed_and_added_emission_closures_render_their_weights(
         library: Any, scene_builder: Any, tmp_path: Path) -> None:
     """Add(Mix(red, blue, 0.25), green x 0.5) emission on a quad filling the view, black world:
     every pixel is (0.75, 0.5, 0.25) -- the closure weights, end to end."""
-    _needs_symbol(library, "stratum_scene_add_closure_material")
     b = scene_builder()
     b.camera()
     b.world((0.0, 0.0, 0.0))

@@ -332,18 +332,13 @@ def test_set_environment_validates_and_renders(native: Any, tiny_scene: Any) -> 
     assert pixels.reshape(12, 16, 4)[0, 0, :3] == pytest.approx([0.2, 0.2, 0.2])
 
 
-# ---- issue-5 entry points (each skipped while the library predates it) ---------------------
+# ---- issue-5 entry points -------------------------------------------------------------------
 
 
 def _triangle_mesh(native: Any, scene: Any) -> int:
     mat = scene.add_material({"model": native.MATERIAL_DIFFUSE})
     return scene.add_mesh(np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=np.float32),
                           np.array([[0, 1, 2]], dtype=np.uint32), np.array([mat], np.uint32))
-
-
-def _needs(native: Any, symbol: str) -> None:
-    if not native.has_symbol(symbol):
-        pytest.skip(f"the library lacks {symbol}")
 
 
 def test_add_instances_places_each_transform(native: Any, tmp_path: Any) -> None:
@@ -363,16 +358,7 @@ def test_add_instances_rejects_a_bad_mesh_id(native: Any) -> None:
     assert info.value.status == native.ERROR_INVALID_ARGUMENT and "7" in str(info.value)
 
 
-def test_missing_entry_point_is_a_named_error(native: Any, monkeypatch: Any) -> None:
-    monkeypatch.setattr(native, "_missing_symbols", {"stratum_scene_add_texture"})
-    with native.Scene() as scene, pytest.raises(native.StratumError,
-                                                match="stratum_scene_add_texture"):
-        scene.add_texture(native.Texture(pixels=np.ones((1, 1, 3), np.float32)))
-
-
 def test_closure_material_and_texture_binding(native: Any) -> None:
-    _needs(native, "stratum_scene_add_closure_material")
-    _needs(native, "stratum_scene_bind_texture")
     with native.Scene() as scene:
         mat = scene.add_closure_material([
             ((0.5, 0.5, 0.5), native.Material(model=native.MATERIAL_TRANSPARENT,
@@ -389,7 +375,6 @@ def test_closure_material_and_texture_binding(native: Any) -> None:
 
 
 def test_add_instance_ex_motion_visibility_holdout(native: Any, tmp_path: Any) -> None:
-    _needs(native, "stratum_scene_add_instance_ex")
     with native.Scene() as scene:
         mesh = _triangle_mesh(native, scene)
         end = np.eye(4, dtype=np.float32)
