@@ -7,7 +7,11 @@ Source of the pixels, in Blender's order of precedence:
     C ABI takes them).
 Colour space: image.colorspace_settings.name, converted by the native side with OpenColorIO using
 Blender's own config (the one this Blender ships). Float pixel buffers are already scene-linear
-in Blender's memory, so they are sent as "Non-Color" (no conversion).
+(and premultiplied) in Blender's memory, so they are sent straight-alpha as "Non-Color" (no
+conversion). A colour space the native side cannot convert because its OpenColorIO cannot read
+Blender 4.x/5.x's config (color_management.py) is converted here with Blender's PyOpenColorIO:
+the pixels then come from Image.pixels (byte images: the file's values / 255, in the image's
+colour space; float images: scene linear already) and are sent scene-linear.
 
 Missing file: Cycles renders magenta (1, 0, 1) where an image cannot be loaded
 (intern/cycles/scene/image.cpp, TEX_IMAGE_MISSING_R/G/B); so does Stratum, with a warning naming
@@ -26,8 +30,11 @@ import bpy
 import numpy as np
 
 from .. import native
+from .color_management import SceneLinearConversion, conversion_for
 
 MISSING_RGBA = (1.0, 0.0, 1.0, 1.0)
+# The native side's name for scene-linear Rec.709 whatever config it has (built in without one).
+SCENE_LINEAR_BUILTIN = "Linear Rec.709"
 INTERPOLATIONS = {"Closest": native.TEXTURE_CLOSEST, "Linear": native.TEXTURE_LINEAR,
                   "Cubic": native.TEXTURE_LINEAR, "Smart": native.TEXTURE_LINEAR}
 EXTENSIONS = {"REPEAT": native.TEXTURE_REPEAT, "EXTEND": native.TEXTURE_EXTEND,
@@ -74,6 +81,48 @@ def _pixels(image: Any) -> np.ndarray:
     return buf.reshape(height, width, channels)
 
 
+def _float_pixels_straight(image: Any) -> np.ndarray:
+    """A float image's Image.pixels with straight alpha, as the C ABI takes them: Blender keeps
+    float buffers premultiplied (an EXR pixel (0.5, 0.25, 0.1, 0.5) read as sRGB comes back as
+    0.5 * linear(1.0, 0.5, 0.2)); colour where alpha is 0 is left as it is."""
+    px = _pixels(image)
+    if px.shape[2] == 4:
+        alpha = px[..., 3:4]
+        np.divide(px[..., :3], alpha, out=px[..., :3], where=alpha > 0.0)
+    return px
+
+
+def _rgba(px: np.ndarray) -> np.ndarray:
+    """(height, width, 1..4) pixels as (height, width, 4) RGBA: grey to RGB, opaque when there
+    is no alpha channel (as OpenImageIO's reading does natively)."""
+    channels = px.shape[2]
+    if channels == 4:
+        return np.ascontiguousarray(px, dtype=np.float32)
+    rgba = np.ones((*px.shape[:2], 4), dtype=np.float32)
+    rgba[..., :3] = px[..., :3] if channels >= 3 else px[..., :1]
+    if channels == 2:
+        rgba[..., 3] = px[..., 1]
+    return rgba
+
+
+def _converted_texture(image: Any, conversion: SceneLinearConversion,
+                       common: dict[str, Any], warn: Callable[[str], None],
+                       node: Any) -> native.Texture:
+    """The image's pixels converted to scene linear here (the native side cannot convert its
+    colour space): byte images from their colour space with Blender's PyOpenColorIO, float
+    images as Blender already converted them when it loaded them."""
+    width, height = (int(v) for v in image.size)
+    if width == 0 or height == 0 or not image.has_data:
+        warn(f"image '{image.name}' cannot be read; rendered magenta as Cycles does")
+        return missing_texture(node)
+    if image.is_float:
+        return native.Texture(pixels=_float_pixels_straight(image),
+                              **{**common, "color_space": "Non-Color"})
+    rgba = conversion.apply(_rgba(_pixels(image)))
+    space = "Non-Color" if conversion.is_data else SCENE_LINEAR_BUILTIN
+    return native.Texture(pixels=rgba, **{**common, "color_space": space})
+
+
 def missing_texture(node: Any) -> native.Texture:
     return native.Texture(pixels=np.array([[MISSING_RGBA]], dtype=np.float32),
                           color_space="Non-Color", interpolation=native.TEXTURE_CLOSEST,
@@ -98,7 +147,10 @@ def describe_image(node: Any, warn: Callable[[str], None]) -> native.Texture:
         warn(f"image '{image.name}' is a UDIM tile set, which is not supported; rendered "
              "magenta")
         return missing_texture(node)
+    conversion = conversion_for(common["ocio_config"], common["color_space"])
     if image.packed_file is not None:
+        if conversion is not None:
+            return _converted_texture(image, conversion, common, warn, node)
         return native.Texture(file_data=bytes(image.packed_file.data),
                               file_name=_file_name(image), **common)
     if image.source in {"FILE", "SEQUENCE", "MOVIE"} and image.filepath:
@@ -113,13 +165,18 @@ def describe_image(node: Any, warn: Callable[[str], None]) -> native.Texture:
                 warn(f"image '{image.name}': file '{path}' not found; rendered magenta as Cycles "
                      "does")
                 return missing_texture(node)
+            if conversion is not None:
+                return _converted_texture(image, conversion, common, warn, node)
             return native.Texture(path=path, **common)
     width, height = (int(v) for v in image.size)
     if width == 0 or height == 0 or not image.has_data:
         warn(f"image '{image.name}' has no pixels; rendered magenta as Cycles does")
         return missing_texture(node)
+    if conversion is not None:
+        return _converted_texture(image, conversion, common, warn, node)
     if image.is_float:
         common["color_space"] = "Non-Color"  # Blender keeps float buffers scene-linear
+        return native.Texture(pixels=_float_pixels_straight(image), **common)
     return native.Texture(pixels=_pixels(image), **common)
 
 
