@@ -7,8 +7,21 @@ namespace stratum {
 
 uint32_t LightSet::add(Light light, uint32_t object, uint32_t visibility) {
     if (std::holds_alternative<EnvironmentLight>(light)) environment_ = lights_.size();
-    if (std::holds_alternative<AreaLight>(light))
-        area_lights_.push_back(static_cast<uint32_t>(lights_.size()));
+    // Lamps with an emitting surface that rays can meet: area lamps, and point/spot lamps with a
+    // radius (their disk facing the ray's origin); a zero radius is a delta light no ray finds.
+    const bool hittable = std::visit(
+        [](const auto& l) {
+            using T = std::decay_t<decltype(l)>;
+            if constexpr (std::is_same_v<T, AreaLight>) {
+                return true;
+            } else if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>) {
+                return l.radius() > 0.0f;
+            } else {
+                return false;
+            }
+        },
+        light);
+    if (hittable) hittable_lamps_.push_back(static_cast<uint32_t>(lights_.size()));
     lights_.push_back(std::move(light));
     object_.push_back(object);
     visibility_.push_back(visibility);
@@ -90,11 +103,22 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
                             float* t_out) const {
     Rgb radiance(0.0f);
     float nearest = t_max, nearest_pdf = 0.0f;
-    for (const uint32_t i : area_lights_) {
+    for (const uint32_t i : hittable_lamps_) {
         if (!(visibility_[i] & visibility)) continue;
         float t, solid_angle_pdf;
         Rgb L;
-        if (std::get<AreaLight>(lights_[i]).intersect(origin, dir, nearest, &t, &L, &solid_angle_pdf)) {
+        const bool hit = std::visit(
+            [&](const auto& l) {
+                using T = std::decay_t<decltype(l)>;
+                if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, PointLight> ||
+                              std::is_same_v<T, SpotLight>) {
+                    return l.intersect(origin, dir, nearest, &t, &L, &solid_angle_pdf);
+                } else {
+                    return false;
+                }
+            },
+            lights_[i]);
+        if (hit) {
             nearest = t;
             radiance = L;
             nearest_pdf = probability_[i] * solid_angle_pdf;

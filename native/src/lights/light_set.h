@@ -40,7 +40,8 @@ public:
     bool sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const;
     // Pdf (choice × solid angle) with which sample() reaches `hit` on emissive triangle `index`.
     float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const;
-    // Radiance of the nearest area light whose visibility has bit `visibility` and whose
+    // Radiance of the nearest lamp surface (an area lamp, or the disk of a point/spot lamp with
+    // a radius, facing the ray's origin) whose visibility has bit `visibility` and whose
     // emitting face the ray (dir unit) meets before t_max; black if none. Lamps are not in the
     // BVH: this is how camera rays (Cycles' Object > Visibility > Camera on a light) and
     // BSDF-scattered rays find them. *pdf (if not null) = the pdf (choice × solid angle) with
@@ -54,10 +55,10 @@ public:
 
 private:
     std::vector<Light> lights_;
-    std::vector<uint32_t> object_;       // object of each light
-    std::vector<uint32_t> visibility_;   // StratumVisibility bits of each light
-    std::vector<uint32_t> area_lights_;  // indices of the area lights (lamp_radiance)
-    std::vector<float> cdf_;             // cdf_[i] = P(choice < i+1), last = 1
+    std::vector<uint32_t> object_;          // object of each light
+    std::vector<uint32_t> visibility_;      // StratumVisibility bits of each light
+    std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)
+    std::vector<float> cdf_;                // cdf_[i] = P(choice < i+1), last = 1
     std::vector<float> probability_;
     size_t environment_ = SIZE_MAX;  // index of the environment light, if any
 };

@@ -4,31 +4,62 @@
 
 namespace stratum {
 
+bool sample_facing_disk(Vec3 center, float radius, Vec3 p, Vec2 u, FacingDiskSample* out) {
+    const Vec3 to_center = center - p;
+    const float d = length(to_center);
+    if (!(d > 0.0f)) return false;
+    const Frame frame = Frame::from_normal(to_center / d);
+    const Vec2 disk = sample_uniform_disk_concentric(u);
+    const Vec3 to = to_center + (frame.s * disk.x + frame.t * disk.y) * radius;
+    const float dist = length(to);
+    const Vec3 wi = to / dist;
+    // The disk's normal is −axis (toward p); the ray meets it at cos θ_l = wi·axis = d/dist.
+    const float cos_light = d / dist;
+    out->wi = wi;
+    out->distance = dist;
+    out->pdf = dist * dist / (kPi * radius * radius * cos_light);
+    return true;
+}
+
+bool intersect_facing_disk(Vec3 center, float radius, Vec3 origin, Vec3 dir, float t_max, float* t,
+                           float* pdf) {
+    const Vec3 to_center = center - origin;
+    const float d = length(to_center);
+    if (!(d > 0.0f)) return false;
+    const Vec3 axis = to_center / d;  // the disk's normal is −axis
+    const float cos_light = dot(dir, axis);
+    if (!(cos_light > 0.0f)) return false;  // moving away from the disk's plane
+    const float hit_t = d / cos_light;
+    if (!(hit_t < t_max)) return false;
+    const Vec3 offset = origin + dir * hit_t - center;
+    if (dot(offset, offset) > radius * radius) return false;
+    *t = hit_t;
+    *pdf = hit_t * hit_t / (kPi * radius * radius * cos_light);
+    return true;
+}
+
 PointLight::PointLight(Vec3 position, Rgb power, float radius)
     : position_(position), power_(power), intensity_(power * kInv4Pi), radius_(radius) {}
 
 bool PointLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
-    const Vec3 to_center = position_ - p;
-    const float d2 = dot(to_center, to_center);
-    const float d = std::sqrt(d2);
-    if (!(d > 0.0f)) return false;
-    const Vec3 axis = to_center / d;
     if (radius_ <= 0.0f) {
-        *out = {axis, d, intensity_ / d2, 1.0f, false};
+        const Vec3 to_center = position_ - p;
+        const float d2 = dot(to_center, to_center);
+        const float d = std::sqrt(d2);
+        if (!(d > 0.0f)) return false;
+        *out = {to_center / d, d, intensity_ / d2, 1.0f, false};
         return true;
     }
-    if (d <= radius_) return false;  // inside the emitter: it emits outward only
-    const float sin2_max = sqr(radius_) / d2;
-    // 1 − cos θmax computed as sin²/(1 + cos) to avoid cancellation for small, far spheres.
-    const float cos_max = safe_sqrt(1.0f - sin2_max);
-    const float one_minus_cos = sin2_max / (1.0f + cos_max);
-    const Vec3 local = sample_uniform_cone(u, cos_max);
-    const Vec3 wi = Frame::from_normal(axis).to_world(local);
-    // Distance to the near side of the sphere along wi.
-    const float b = dot(wi, to_center);
-    const float t = b - safe_sqrt(b * b - (d2 - sqr(radius_)));
-    const Rgb radiance = intensity_ / (kPi * sqr(radius_));
-    *out = {wi, t, radiance, 1.0f / (2.0f * kPi * one_minus_cos), false};
+    FacingDiskSample s;
+    if (!sample_facing_disk(position_, radius_, p, u, &s)) return false;
+    *out = {s.wi, s.distance, intensity_ / (kPi * sqr(radius_)), s.pdf, true};
+    return true;
+}
+
+bool PointLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const {
+    if (radius_ <= 0.0f) return false;
+    if (!intersect_facing_disk(position_, radius_, origin, dir, t_max, t, pdf)) return false;
+    *radiance = intensity_ / (kPi * sqr(radius_));
     return true;
 }
 

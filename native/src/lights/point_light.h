@@ -1,12 +1,20 @@
-// Blender point light (Cycles conventions; see docs/cycles_models.md).
+// Blender point light (Cycles conventions; see docs/cycles_models.md §4 "Point light").
 //
 // | parameter | meaning |
 // |-----------|---------|
 // | power P   | Blender "Power" in W times colour; radiant intensity I = P / (4π) |
-// | radius r  | "Radius": a sphere of radiance I / (π r²), so its irradiance at distance d is I/d² |
+// | radius r  | "Radius" (shadow_soft_size): a disk of radius r that always faces the shading point |
 //
-// r = 0 is the textbook delta point light (textbook 5.11). A sphere is sampled by the uniform
-// cone of directions it subtends (pbrt-v4 §12.2.2), solid-angle pdf 1 / (2π(1 − cos θmax)).
+// r = 0 is the textbook delta point light (textbook 5.11): irradiance I/d² at normal incidence.
+// r > 0 is Cycles' "oriented disk" point light (3.x: kernel/light/light.h; 4.1+ with Soft
+// Falloff on, Blender's default: kernel/light/point.h, is_sphere false): a disk of radius r
+// centred on the light, its normal toward the shading point p, emitting the uniform radiance
+//     L = I / (π r²) = P / (4π² r²)
+// toward p. Directly below at distance d its irradiance is L·π·r²/(d² + r²) = I/(d² + r²)
+// (measured in Cycles 3.4 and 5.0.1, docs/features.md). It is sampled uniformly by area, solid
+// angle pdf dist² / (π r² cos θ_l), θ_l between the ray and the disk normal; a ray (camera or
+// scattered) meets the disk facing its own origin (Cycles' point_light_intersect), so
+// LightSet::lamp_radiance finds it and NEE is MIS-weighted.
 #pragma once
 
 #include "core/math.h"
@@ -14,12 +22,29 @@
 
 namespace stratum {
 
+// The disk of radius r at `center` facing `p`, shared by the point and spot lights.
+struct FacingDiskSample {
+    Vec3 wi;         // unit, from p toward the sampled point
+    float distance;  // from p to the sampled point
+    float pdf;       // solid angle
+};
+// Samples the disk uniformly by area with u; false if p is at the centre.
+bool sample_facing_disk(Vec3 center, float radius, Vec3 p, Vec2 u, FacingDiskSample* out);
+// Where the ray (origin, unit dir) meets the disk of radius r at `center` that faces the origin,
+// before t_max: *t and the solid-angle pdf sample_facing_disk gives that direction.
+bool intersect_facing_disk(Vec3 center, float radius, Vec3 origin, Vec3 dir, float t_max, float* t,
+                           float* pdf);
+
 class PointLight {
 public:
     PointLight(Vec3 position, Rgb power, float radius);
     bool sample(Vec3 p, Vec2 u, LightSample* out) const;
+    // The disk met by the ray (origin, unit dir) before t_max (radius > 0 only): distance,
+    // radiance and sample()'s solid-angle pdf of dir.
+    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
     // Emitted power in W, used to choose among lights.
     float power() const { return power_.average(); }
+    float radius() const { return radius_; }
 
 private:
     Vec3 position_;

@@ -1,7 +1,5 @@
 #include "lights/spot_light.h"
 
-#include "sampling/warps.h"
-
 namespace stratum {
 
 SpotLight::SpotLight(const Transform& light_to_world, Rgb power, float radius, float spot_size,
@@ -27,28 +25,31 @@ float SpotLight::attenuation(float cos_theta) const {
 }
 
 bool SpotLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
-    const Vec3 to_center = position_ - p;
-    const float d2 = dot(to_center, to_center);
-    const float d = std::sqrt(d2);
-    if (!(d > 0.0f)) return false;
-    const Vec3 axis = to_center / d;
     if (radius_ <= 0.0f) {
-        const float a = attenuation(-dot(axis, axis_));
+        const Vec3 to_center = position_ - p;
+        const float d2 = dot(to_center, to_center);
+        const float d = std::sqrt(d2);
+        if (!(d > 0.0f)) return false;
+        const Vec3 wi = to_center / d;
+        const float a = attenuation(-dot(wi, axis_));
         if (!(a > 0.0f)) return false;
-        *out = {axis, d, intensity_ * (a / d2), 1.0f, false};
+        *out = {wi, d, intensity_ * (a / d2), 1.0f, false};
         return true;
     }
-    if (d <= radius_) return false;  // inside the emitter: it emits outward only
-    const float sin2_max = sqr(radius_) / d2;
-    const float cos_max = safe_sqrt(1.0f - sin2_max);
-    const float one_minus_cos = sin2_max / (1.0f + cos_max);
-    const Vec3 wi = Frame::from_normal(axis).to_world(sample_uniform_cone(u, cos_max));
-    const float a = attenuation(-dot(wi, axis_));
+    FacingDiskSample s;
+    if (!sample_facing_disk(position_, radius_, p, u, &s)) return false;
+    const float a = attenuation(-dot(s.wi, axis_));
     if (!(a > 0.0f)) return false;
-    const float b = dot(wi, to_center);
-    const float t = b - safe_sqrt(b * b - (d2 - sqr(radius_)));
-    const Rgb radiance = intensity_ * (a / (kPi * sqr(radius_)));
-    *out = {wi, t, radiance, 1.0f / (2.0f * kPi * one_minus_cos), false};
+    *out = {s.wi, s.distance, intensity_ * (a / (kPi * sqr(radius_))), s.pdf, true};
+    return true;
+}
+
+bool SpotLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const {
+    if (radius_ <= 0.0f) return false;
+    const float a = attenuation(-dot(dir, axis_));
+    if (!(a > 0.0f)) return false;
+    if (!intersect_facing_disk(position_, radius_, origin, dir, t_max, t, pdf)) return false;
+    *radiance = intensity_ * (a / (kPi * sqr(radius_)));
     return true;
 }
 

@@ -1,26 +1,30 @@
 // Blender spot light (Cycles conventions; see docs/cycles_models.md §4 "Spot light").
 //
-// | parameter        | meaning |
-// |------------------|---------|
-// | power P          | Blender "Power" in W times colour; on the axis the intensity is P / (4π), as a point
-// light's (the cone does not concentrate the power) | | radius r         | "Radius" (shadow_soft_size): a
-// sphere of radiance I / (π r²), as the point light | | spot_size        | "Spot Size": full cone angle, in
-// (0, π]; half angle θ_h = spot_size / 2 | | spot_blend b     | "Blend" in [0, 1]: the smoothstep falloff
-// toward the edge | | cosine_falloff   | Cycles 3.x also multiplies by cos θ (θ to the axis); 4.x/5.x does
-// not |
+// | parameter      | meaning |
+// |----------------|---------|
+// | power P        | "Power" in W times colour; on the axis the intensity is P/(4π), as a point |
+// |                | light's (the cone does not concentrate the power) |
+// | radius r       | "Radius" (shadow_soft_size): a disk of radiance I/(π r²) facing the |
+// |                | shading point, as the point light's |
+// | spot_size      | "Spot Size": full cone angle in (0, π]; half angle θ_h = spot_size / 2 |
+// | spot_blend b   | "Blend" in [0, 1]: the smoothstep falloff toward the edge |
+// | cosine_falloff | Cycles 3.x also multiplies by cos θ (θ to the axis); 4.x/5.x does not |
 //
 // Intensity toward a direction at angle θ from the axis (the light's local −Z):
 //     I(θ) = P/(4π) · S(cos θ) · (cos θ if cosine_falloff),
 //     S(c) = smoothstep((c − cos θ_h) / ((1 − cos θ_h) b)),  smoothstep(x) = 3x² − 2x³ on [0, 1],
 // 0 below, 1 above; b = 0 makes a hard edge (S = 1 inside the cone, 0 outside). With radius r
-// the factor is evaluated for the direction from the sampled point on the sphere toward the
-// shading point, as Cycles does. The sphere is sampled as the point light's (uniform cone of
-// directions it subtends, pbrt-v4 §12.2.2). Non-uniform scale of the transform is ignored: the
-// axis is the transformed −Z, normalized, and the cone stays circular.
+// the emitter is the point light's disk facing the shading point (radiance I/(π r²), sampled
+// uniformly by area; Cycles 3.x and 4.1+ with Soft Falloff, kernel/light/spot.h) and the factor
+// is evaluated for the direction from the sampled point of the disk toward the shading point,
+// as Cycles does. Rays meet the disk as they meet the point light's (LightSet::lamp_radiance),
+// times the factor for −dir. Non-uniform scale of the transform is ignored: the axis is the
+// transformed −Z, normalized, and the cone stays circular.
 #pragma once
 
 #include "core/math.h"
 #include "lights/light_sample.h"
+#include "lights/point_light.h"
 
 namespace stratum {
 
@@ -29,10 +33,13 @@ public:
     SpotLight(const Transform& light_to_world, Rgb power, float radius, float spot_size, float spot_blend,
               bool cosine_falloff);
     bool sample(Vec3 p, Vec2 u, LightSample* out) const;
+    // As PointLight::intersect, with the angular factor of the direction −dir.
+    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
     // Emitted power in W as Blender states it (the point light's), used to choose among lights.
     float power() const { return power_.average(); }
     // The angular factor I(θ) / (P/(4π)) for cos θ = cos_theta (θ from the axis).
     float attenuation(float cos_theta) const;
+    float radius() const { return radius_; }
 
 private:
     Vec3 position_;
