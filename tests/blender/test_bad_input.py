@@ -193,3 +193,20 @@ def test_zero_focal_length_is_an_error_naming_the_camera(library: Any, scene_bui
     assert len(errors) == 1 and "Camera 'Camera'" in errors[0] and "lens" in errors[0]
     with library.Scene() as scene, pytest.raises(ExportError, match="Camera 'Camera'"):
         export_scene(b.depsgraph(), scene)
+
+
+def test_point_light_without_soft_falloff_warns(scene_builder: Any, recording_scene: Any) -> None:
+    """Cycles 4.1+ draws a radius with Soft Falloff off as a sphere, which Stratum lacks: one
+    warning naming the light, and the light is still exported (as the facing disk)."""
+    b = scene_builder().basic()
+    light = bpy.data.lights.new("Hard", "POINT")
+    light.shadow_soft_size = 0.5
+    light.energy = 50.0
+    if not hasattr(light, "use_soft_falloff"):
+        pytest.skip("Soft Falloff exists from Blender 4.1 on")
+    light.use_soft_falloff = False
+    b.link(bpy.data.objects.new("HardLamp", light))
+    summary = export_scene(b.depsgraph(), recording_scene)
+    warnings = [w for w in summary.warnings if "HardLamp" in w]
+    assert len(warnings) == 1 and "Soft Falloff" in warnings[0]
+    assert any(lamp.radius == pytest.approx(0.5) for lamp in recording_scene.lights)

@@ -6,9 +6,9 @@ tests/blender/test_light_agreement.py`). The rendering, EXR reading and noise es
 of test_cycles_agreement.py (imported, see its docstring for the statistics).
 
 Scene: a 6 m diffuse plane (Diffuse BSDF, 0.8), a spot light of 1000 W 2 m above it pointing
-down, spot_size 60 degrees, blend 0.5, radius 0 (Cycles 3.4 draws a radius as a disk, 4.x+ as a
-sphere: kept out of this test), black world, max_bounces 0 (direct light only), a camera 5 m up
-looking down whose view (3.2 m) holds the whole cone (edge radius 2 tan 30 = 1.15 m) and a
+down, spot_size 60 degrees, blend 0.5, radius 0 (a radius is a disk facing the shading point,
+covered by test_feature_agreement.py's lights scene), black world, max_bounces 0 (direct light
+only), a camera 5 m up looking down whose view (3.2 m) holds the whole cone (edge radius 2 tan 30 = 1.15 m) and a
 dark rim. RES x RES = 32 x 32, Blackman-Harris 1.5 px in both renderers, two seeds each.
 
 Asserted per RGB channel: image means within 2%, and 8 x 8 block means within 5% for every

@@ -61,6 +61,12 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
     transform = matrix_to_array(matrix_world)
     kind = light.type
     power = float(light.energy) * _exposure_scale(light)
+    if kind in ("POINT", "SPOT") and light.shadow_soft_size > 0.0 and not getattr(
+            light, "use_soft_falloff", True):
+        # Cycles 4.1+ with Soft Falloff off draws a radius as a uniform sphere; Stratum has
+        # only the facing disk of Soft Falloff on (and of Cycles 3.x).
+        summary.warn(f"Light '{ob.name}': 'Soft Falloff' off is not supported "
+                     "(rendered as with Soft Falloff on)")
     if kind == "POINT":
         return native.Light(type=native.LIGHT_POINT, color=color, strength=power,
                             radius=max(float(light.shadow_soft_size), 0.0), transform=transform,
