@@ -5,7 +5,6 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
-#include <cstring>
 #include <mutex>
 
 namespace stratum {
@@ -75,9 +74,11 @@ RTCGeometry new_triangles(RTCDevice device, const TriangleGeometry& g, const Tra
     rtcSetGeometryMask(geom, mask);
     auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
         geom, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), g.positions.size()));
-    auto* indices = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
-        geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), g.triangles.size()));
-    if (!vertices || !indices) {
+    // The index array is read in place (no copy of 12 bytes per triangle): TriangleGeometry's
+    // arrays outlive the EmbreeScene, and Embree needs no padding after an index buffer.
+    rtcSetSharedGeometryBuffer(geom, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, g.triangles.data(), 0,
+                               sizeof(g.triangles[0]), g.triangles.size());
+    if (!vertices) {
         rtcReleaseGeometry(geom);
         return nullptr;
     }
@@ -91,7 +92,6 @@ RTCGeometry new_triangles(RTCDevice device, const TriangleGeometry& g, const Tra
                               vertices[3 * v + 2] = p.z;
                           }
                       });
-    std::memcpy(indices, g.triangles.data(), g.triangles.size() * sizeof(g.triangles[0]));
     rtcCommitGeometry(geom);
     return geom;
 }
