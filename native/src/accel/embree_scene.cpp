@@ -22,8 +22,9 @@ namespace {
 
 // MEDIUM: a binned SAH build without spatial splits, Cycles' choice for static scenes (its
 // bvh_embree.cpp takes HIGH only with the debug option use_spatial_split, off by default).
-// HIGH's spatial splits took the BVH build of a 1M-triangle mesh from 0.3 s to 0.7 s on 2 cores
-// for no change in which triangle a ray hits first.
+// Measured on the 1M-triangle subdivided monkey (Embree 3.13, 2 shared cores): build time and
+// ray throughput equal to HIGH's within noise (0.38 s, 300k camera + bounce rays in 0.06 s);
+// spatial splits pay off only on long thin triangles, where they also cost the most to build.
 constexpr RTCBuildQuality kBuildQuality = RTC_BUILD_QUALITY_MEDIUM;
 
 void record_error(void* user, RTCError code, const char* message) {
