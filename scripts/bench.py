@@ -1,6 +1,7 @@
 """Stratum vs Cycles on the Cornell box: same resolution, samples, bounces, filter, threads.
 
     blender -b --factory-startup --python scripts/bench.py [-- --samples 64 --res 256]
+    blender -b --factory-startup --python scripts/bench.py -- --only export   # acceptance 3 only
 
 (also runs under the bpy wheel: .venv/bin/python scripts/bench.py). Prints a table and writes
 it to out/bench.txt. Reported:
@@ -83,6 +84,8 @@ def parse_args() -> argparse.Namespace:
     p.add_argument("--scene", type=Path, default=SCENE)
     p.add_argument("--repeats", type=int, default=3,
                    help="runs of each export measurement (the minimum is reported)")
+    p.add_argument("--only", choices=("render", "export"), default=None,
+                   help="run only the Cornell box render comparison or only the export section")
     return p.parse_args(argv)
 
 
@@ -438,11 +441,13 @@ def main() -> int:
         f"Blender {bpy.app.version_string}"),
         "",
     ]
-    cyc = bench_cycles(args)
     reason = stratum_reason()
     st = None
     st_total = None
-    if not reason:
+    cyc: dict[str, float | None] = {"total": None, "sync": None, "trace": None}
+    if args.only != "export":
+        cyc = bench_cycles(args)
+    if not reason and args.only != "export":
         try:
             st = bench_stratum_direct(args)
             st_total = bench_stratum_engine(args)
@@ -450,45 +455,47 @@ def main() -> int:
             traceback.print_exc()
             reason = f"Stratum failed: {type(exc).__name__}: {exc}"
 
-    lines += [
-        f"{'':28s}{'seconds':>10s}",
-        f"{'Cycles  sync (pre-sampling)':28s}{fmt(cyc['sync']):>10s}",
-        f"{'Cycles  path tracing':28s}{fmt(cyc['trace']):>10s}",
-        f"{'Cycles  total (F12)':28s}{fmt(cyc['total']):>10s}",
-    ]
-    if cyc["trace"] is None:
-        lines.append("  (Cycles split n/a: no status lines printed; the bpy module prints none)")
-    if st is not None:
-        rays_per_s = st["rays"] / st["trace"] if st["trace"] > 0 else 0.0
+    if args.only != "export":
         lines += [
-            f"{'Stratum export':28s}{fmt(st['export']):>10s}",
-            f"{'Stratum BVH build':28s}{fmt(st['build']):>10s}",
-            (f"{'Stratum path tracing':28s}{fmt(st['trace']):>10s}"
-            f"   ({rays_per_s / 1e6:.2f} M rays/s)"),
-            f"{'Stratum start->done':28s}{fmt(st['wall']):>10s}",
-            f"{'Stratum total (F12)':28s}{fmt(st_total):>10s}",
-            "",
-            f"ratio Stratum/Cycles, total (F12):    {ratio(st_total, cyc['total'])}",
-            f"ratio Stratum/Cycles, path tracing:   {ratio(st['trace'], cyc['trace'])}",
-            "",
-            f"{'raw Embree, same ray mix':28s}{st['raw_rays_per_s'] / 1e6:10.2f} M rays/s",
-            f"ratio Stratum/raw Embree, rays/s:     {ratio(rays_per_s, st['raw_rays_per_s'])}",
+            f"{'':28s}{'seconds':>10s}",
+            f"{'Cycles  sync (pre-sampling)':28s}{fmt(cyc['sync']):>10s}",
+            f"{'Cycles  path tracing':28s}{fmt(cyc['trace']):>10s}",
+            f"{'Cycles  total (F12)':28s}{fmt(cyc['total']):>10s}",
         ]
-    else:
-        lines += ["", f"Stratum: not measured ({reason})"]
+        if cyc["trace"] is None:
+            lines.append("  (Cycles split n/a: no status lines printed; the bpy module prints none)")
+        if st is not None:
+            rays_per_s = st["rays"] / st["trace"] if st["trace"] > 0 else 0.0
+            lines += [
+                f"{'Stratum export':28s}{fmt(st['export']):>10s}",
+                f"{'Stratum BVH build':28s}{fmt(st['build']):>10s}",
+                (f"{'Stratum path tracing':28s}{fmt(st['trace']):>10s}"
+                f"   ({rays_per_s / 1e6:.2f} M rays/s)"),
+                f"{'Stratum start->done':28s}{fmt(st['wall']):>10s}",
+                f"{'Stratum total (F12)':28s}{fmt(st_total):>10s}",
+                "",
+                f"ratio Stratum/Cycles, total (F12):    {ratio(st_total, cyc['total'])}",
+                f"ratio Stratum/Cycles, path tracing:   {ratio(st['trace'], cyc['trace'])}",
+                "",
+                f"{'raw Embree, same ray mix':28s}{st['raw_rays_per_s'] / 1e6:10.2f} M rays/s",
+                f"ratio Stratum/raw Embree, rays/s:     {ratio(rays_per_s, st['raw_rays_per_s'])}",
+            ]
+        else:
+            lines += ["", f"Stratum: not measured ({reason})"]
 
     heading = (f"Export and BVH build (1 spp, {EXPORT_RES}x{EXPORT_RES}, seconds, minimum of "
                f"{args.repeats} runs):")
     lines += ["", heading]
-    for name, build in (("monkey_1m", build_monkey_1m), ("instances_10k", build_instances_10k)):
-        runs = [bench_export_case(build, st is not None) for _ in range(args.repeats)]
+    cases = (("monkey_1m", build_monkey_1m), ("instances_10k", build_instances_10k))
+    for name, build in cases if args.only != "render" else ():
+        runs = [bench_export_case(build, not reason) for _ in range(args.repeats)]
         lines += export_lines(name, fastest(runs))
     table = "\n".join(lines)
     print(table)
     OUT.mkdir(parents=True, exist_ok=True)
     (OUT / "bench.txt").write_text(table + "\n")
     print(f"written {OUT / 'bench.txt'}")
-    return 0 if st is not None else 2
+    return 2 if reason else 0
 
 
 if __name__ == "__main__":

@@ -220,7 +220,7 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     slot_ids = slot_material_ids(ob, materials.id_for)
     uv_map = next((materials.uv_maps.get(int(i), "") for i in slot_ids
                    if materials.uv_maps.get(int(i))), "")
-    arrays = object_mesh_arrays(ob, depsgraph, uv_map)
+    arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids))
     if arrays is None or len(arrays.triangles) == 0:
         # A vertex/face instancer's own mesh often has no faces on purpose.
         if ob.type == "MESH" and not getattr(ob, "is_instancer", False):

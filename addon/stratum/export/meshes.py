@@ -39,6 +39,35 @@ def _corner_normals(mesh: Any, n_loops: int) -> np.ndarray:
     return _get(mesh.loops, "normal", n_loops, 3, np.float32)
 
 
+def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any) -> np.ndarray | None:
+    """Corner normals (T, 3, 3) of a Blender < 4.1 mesh without auto smooth, None otherwise.
+
+    Without auto smooth, calc_normals_split copies each corner's vertex normal (smooth face) or
+    its face normal (flat face) and nothing else (3.4 mesh_normals.cc, normals_loop_split with
+    use_split_normals false; custom normals are ignored then): the same floats, bit for bit,
+    are read here straight from vertex_normals / polygon_normals, which skips computing and
+    reading 3 normals per loop (a third of a 1M-triangle export). `polygons()` gives the
+    triangles' polygon indices, fetched only when some face is flat."""
+    if hasattr(mesh, "corner_normals") or mesh.use_auto_smooth:
+        return None
+    n_poly = len(mesh.polygons)
+    smooth = _get(mesh.polygons, "use_smooth", n_poly, 1, bool)
+
+    def vertex_normals() -> np.ndarray:
+        return _get(mesh.vertex_normals, "vector", len(mesh.vertices), 3, np.float32)[triangles]
+
+    if smooth.all():
+        return vertex_normals()
+    tri_poly = polygons()
+    face_normals = _get(mesh.polygon_normals, "vector", n_poly, 3, np.float32)
+    flat = ~smooth[tri_poly]
+    if flat.all():
+        return np.repeat(face_normals[tri_poly][:, None, :], 3, axis=1)
+    normals = vertex_normals()
+    normals[flat] = face_normals[tri_poly[flat]][:, None, :]
+    return normals
+
+
 def _uv_layer(mesh: Any, name: str) -> tuple[Any | None, bool]:
     """The UV layer `name` ("" = the active render layer, as Cycles' default UV), and whether
     a named layer was missing (then the active render layer is used)."""
@@ -57,9 +86,12 @@ def _corner_uvs(layer: Any, n_loops: int) -> np.ndarray:
     return _get(layer.data, "uv", n_loops, 2, np.float32)
 
 
-def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "") -> MeshArrays:
+def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
+                material_slots: int = 2) -> MeshArrays:
     """Triangulated arrays of an evaluated mesh (UVs from layer `uv_map`, "" = the active
-    render layer); ExportError naming the object on bad data."""
+    render layer); ExportError naming the object on bad data. With `material_slots` <= 1 every
+    triangle maps to the one slot (slot indices are clamped), so material indices are not read
+    and come back as zeros."""
     mesh.calc_loop_triangles()
     n_vert = len(mesh.vertices)
     n_loops = len(mesh.loops)
@@ -75,32 +107,73 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "") -> MeshArrays:
             f"vertex {bad} = {value}"
         )
 
-    loops = _get(mesh.loop_triangles, "loops", n_tri, 3, np.uint32)
+    # uint32: the dtype of Blender's MLoopTri fields, which foreach_get then copies in bulk
+    # (int32 makes it convert element by element, 5x slower).
     triangles = _get(mesh.loop_triangles, "vertices", n_tri, 3, np.uint32)
-    material_index = _get(mesh.loop_triangles, "material_index", n_tri, 1, np.int32)
+    tri_loops: np.ndarray | None = None
+    tri_polygons: np.ndarray | None = None
+
+    def loops() -> np.ndarray:
+        nonlocal tri_loops
+        if tri_loops is None:
+            tri_loops = _get(mesh.loop_triangles, "loops", n_tri, 3, np.uint32)
+        return tri_loops
+
+    def polygons() -> np.ndarray:
+        nonlocal tri_polygons
+        if tri_polygons is None:
+            tri_polygons = _get(mesh.loop_triangles, "polygon_index", n_tri, 1, np.uint32)
+        return tri_polygons
+
+    if material_slots > 1:
+        material_index = _get(mesh.loop_triangles, "material_index", n_tri, 1, np.int32)
+    else:
+        material_index = np.zeros(n_tri, dtype=np.int32)
 
     normals = None
     if n_tri:
-        per_loop = _corner_normals(mesh, n_loops)
-        normals = per_loop[loops]  # (T, 3, 3)
+        normals = _unsplit_normals(mesh, triangles, polygons)
+        if normals is None:
+            normals = _corner_normals(mesh, n_loops)[loops()]  # (T, 3, 3)
         if not np.isfinite(normals).all():
             normals = None  # degenerate faces; let the renderer use geometric normals
     uvs = None
     layer, missing = _uv_layer(mesh, uv_map)
     if n_tri and layer is not None:
-        uvs = _corner_uvs(layer, n_loops)[loops]  # (T, 3, 2)
+        uvs = _corner_uvs(layer, n_loops)[loops()]  # (T, 3, 2)
         if not np.isfinite(uvs).all():
             raise ExportError(f"Object '{object_name}' has non-finite UV coordinates")
     return MeshArrays(positions, triangles, material_index, normals, uvs,
                       uv_map if missing else "")
 
 
-def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "") -> MeshArrays | None:
-    """Evaluated, triangulated geometry of an object (None if it has no surface)."""
+def _readable_mesh_data(ob_eval: Any) -> Any | None:
+    """The evaluated mesh of a mesh object when it can be read in place, else None (then
+    to_mesh makes a copy, 10% of a 1M-triangle export). As Cycles 3.4 (blender/util.h
+    object_to_mesh) does: in place unless in edit mode (its evaluated layers can be empty) or,
+    before 4.1, with auto smooth, where calc_normals_split would write into the shared mesh.
+    Reading adds only Blender's own runtime caches (loop triangles, normals)."""
+    if ob_eval.type != "MESH":
+        return None
+    data = ob_eval.data
+    if data is None or data.is_editmode:
+        return None
+    if not hasattr(data, "corner_normals") and data.use_auto_smooth:
+        return None
+    return data
+
+
+def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "",
+                       material_slots: int = 2) -> MeshArrays | None:
+    """Evaluated, triangulated geometry of an object (None if it has no surface);
+    `material_slots` as in mesh_arrays."""
     # Depsgraph instances are evaluated already (and temporary: evaluated_get would find the
     # instancer of a geometry-nodes instance, not the instance's own data).
     evaluated = getattr(ob, "is_evaluated", False) or depsgraph is None
     ob_eval = ob if evaluated else ob.evaluated_get(depsgraph)
+    shared = _readable_mesh_data(ob_eval)
+    if shared is not None:
+        return mesh_arrays(shared, ob.name, uv_map, material_slots)
     try:
         mesh = ob_eval.to_mesh()
     except RuntimeError as exc:
@@ -108,7 +181,7 @@ def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "") -> MeshArrays 
     if mesh is None:
         return None
     try:
-        return mesh_arrays(mesh, ob.name, uv_map)
+        return mesh_arrays(mesh, ob.name, uv_map, material_slots)
     finally:
         ob_eval.to_mesh_clear()
 
@@ -133,6 +206,8 @@ def slot_material_ids(ob: Any, id_for: Any) -> np.ndarray:
 
 
 def triangle_material_ids(material_index: np.ndarray, slot_ids: np.ndarray) -> np.ndarray:
+    if len(slot_ids) == 1:  # every index clamps to the one slot
+        return np.full(len(material_index), slot_ids[0], dtype=np.uint32)
     idx = np.clip(material_index, 0, len(slot_ids) - 1)
     return np.ascontiguousarray(slot_ids.take(idx), dtype=np.uint32)
 

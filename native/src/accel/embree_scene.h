@@ -27,6 +27,8 @@
 
 namespace stratum {
 
+// A mesh's arrays. Embree reads `triangles` in place: it must outlive the EmbreeScene built
+// from it (RenderScene's meshes live in the Scene it was built from, which outlives it).
 struct TriangleGeometry {
     std::span<const Vec3> positions;
     std::span<const std::array<uint32_t, 3>> triangles;
