@@ -1,5 +1,6 @@
 #include "integrators/shading_point.h"
 
+#include "integrators/valid_reflection_normal.h"
 #include "texture/material_texturing.h"
 
 namespace stratum {
@@ -17,6 +18,7 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
     if (sp.backfacing) sp.ng = -sp.ng;
     // The shading normal is flipped to the viewer's side along with the geometric one.
     if (dot(sp.ns, sp.ng) < 0.0f) sp.ns = -sp.ns;
+    sp.ns = ensure_valid_reflection(sp.ng, wo_world, sp.ns);
     WeightedClosure* closures = sp.closures.closures();
     for (uint32_t i = 0; i < sp.closures.count(); ++i) {
         Material& m = closures[i].params;
