@@ -61,10 +61,11 @@ TEST(ValidReflectionNormal, RandomNormalsMeetTheDefinition) {
     int bent = 0, at_threshold = 0;
     for (int i = 0; i < 20000; ++i) {
         const Vec3 wo = polar(std::acos(u(rng)) * 0.999f, 2.0f * kPi * u(rng));
-        const Vec3 ns = polar(std::acos(u(rng)) * 0.999f, 2.0f * kPi * u(rng));
+        // Shading normals from the whole sphere: at a sharp fold of a smooth mesh the
+        // interpolated normal can point below the surface.
+        const Vec3 ns = polar(std::acos(2.0f * u(rng) - 1.0f) * 0.999f, 2.0f * kPi * u(rng));
         const Vec3 n = ensure_valid_reflection(ng, wo, ns);
         ASSERT_NEAR(length(n), 1.0f, 1e-4f);
-        ASSERT_GT(dot(n, ng), 0.0f);
         // In the plane of ns and ng: no component along their common perpendicular.
         const Vec3 perpendicular = cross(ns, ng);
         if (length(perpendicular) > 1e-3f) {
@@ -72,9 +73,12 @@ TEST(ValidReflectionNormal, RandomNormalsMeetTheDefinition) {
         }
         const float t = threshold(ng, wo);
         if (n.x == ns.x && n.y == ns.y && n.z == ns.z) {
+            // Kept as it is, even below the surface (as Cycles keeps it) when its reflection is
+            // high enough.
             ASSERT_GE(reflected_height(ng, wo, n), t);
         } else if (!(n.x == ng.x && n.y == ng.y && n.z == ng.z)) {
             ++bent;
+            ASSERT_GT(dot(n, ng), 0.0f);
             // Above the surface; at height t unless the root that would give t is one of the
             // squared equation's spurious ones (normal leaning the other way), when Cycles takes
             // the other root, whose reflection is still above the surface.

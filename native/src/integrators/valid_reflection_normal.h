@@ -5,7 +5,7 @@
 // |-------|--------------------------------------------------------------------------------|
 // | ng    | unit geometric normal, on the viewer's side (dot(ng, wo) > 0)                  |
 // | wo    | unit direction from the shading point toward the viewer                        |
-// | ns    | unit shading normal (interpolated / normal-mapped), on ng's side               |
+// | ns    | unit shading normal (interpolated / normal-mapped); may point below the surface |
 //
 // Reference: Cycles 3.x `ensure_valid_reflection(Ng, I, N)` (kernel/closure/bsdf_util.h),
 // applied by svm_node_closure_bsdf to the normal of every BSDF closure of a non-curve surface.
@@ -20,7 +20,8 @@
 // z wo.z, gives z^2 = (c +- b) / (2a) with a = wo.x^2 + wo.z^2, b = sqrt(wo.x^2 (a - t^2)),
 // c = wo.z t + a. A root is usable when 0 < z^2 <= 1; when both are, the one whose reflection is
 // above the surface and shallower (closer to the original normal) is taken; when neither is,
-// the geometric normal is.
+// the geometric normal is. A normal whose reflection is already high enough is kept as it is,
+// even one below the surface.
 #pragma once
 
 #include "core/math.h"
