@@ -1,5 +1,6 @@
 #include "integrators/shading_point.h"
 
+#include "integrators/valid_reflection_normal.h"
 #include "texture/material_texturing.h"
 
 namespace stratum {
@@ -14,9 +15,15 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
                                sp.closures.count(), &sp.ns, hit.bitangent_sign);
     }
     sp.backfacing = dot(hit.geometric_normal, wo_world) < 0.0f;
-    if (sp.backfacing) sp.ng = -sp.ng;
-    // The shading normal is flipped to the viewer's side along with the geometric one.
-    if (dot(sp.ns, sp.ng) < 0.0f) sp.ns = -sp.ns;
+    // Both normals turn to the viewer's side together (Cycles: SD_BACKFACING negates Ng and N).
+    // A shading normal that still points below the surface (a smooth mesh's interpolated normal
+    // at a sharp fold) is not mirrored: the bend below keeps the side it leans to, as Cycles 3.x
+    // does, and lifts it above the surface.
+    if (sp.backfacing) {
+        sp.ng = -sp.ng;
+        sp.ns = -sp.ns;
+    }
+    sp.ns = ensure_valid_reflection(sp.ng, wo_world, sp.ns);
     WeightedClosure* closures = sp.closures.closures();
     for (uint32_t i = 0; i < sp.closures.count(); ++i) {
         Material& m = closures[i].params;

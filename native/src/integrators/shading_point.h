@@ -6,7 +6,8 @@
 // | closures      | the hit material's closures; transmissive ones get the relative IOR of the |
 // |               | far side: 1/ior on back faces (Cycles: SD_BACKFACING inverts eta)          |
 // | ng            | geometric normal turned toward the incoming ray's origin (wo side)        |
-// | ns            | shading normal turned to ng's side                                        |
+// | ns            | shading normal, negated with ng on back faces, then bent so the view      |
+// |               | direction reflects above the surface (valid_reflection_normal.h)          |
 // | backfacing    | the ray hit the triangle's back (winding) face                            |
 #pragma once
 
