@@ -154,6 +154,22 @@ def test_generated_image_once_with_binding_and_named_uv_map(scene_builder: Any,
         assert mesh["corner_uvs"] == pytest.approx(np.full_like(mesh["corner_uvs"], 0.2))
 
 
+def test_uvs_are_read_only_for_textured_materials(scene_builder: Any,
+                                                   recording_scene: Any) -> None:
+    """As Cycles exports a UV attribute only for shaders that ask for it, an untextured mesh
+    sends no corner UVs (the largest per-corner array of a big mesh); a textured one does."""
+    b = scene_builder()
+    b.camera()
+    plain, _, surface = _material("Plain")
+    bsdf = plain.node_tree.nodes.new("ShaderNodeBsdfDiffuse")
+    plain.node_tree.links.new(bsdf.outputs[0], surface)
+    _uv_cube(b, "PlainCube", plain)
+    _uv_cube(b, "TexturedCube", _textured_material("Tex", _image("Ramp"))).location = (3, 0, 0)
+    export_scene(b.depsgraph(), recording_scene)
+    uvs = sorted((m["corner_uvs"] is None) for m in recording_scene.meshes)
+    assert uvs == [False, True]
+
+
 def test_file_and_packed_images_and_colour_space(scene_builder: Any, recording_scene: Any,
                                                  tmp_path: Path) -> None:
     b = scene_builder()

@@ -220,7 +220,8 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     slot_ids = slot_material_ids(ob, materials.id_for)
     uv_map = next((materials.uv_maps.get(int(i), "") for i in slot_ids
                    if materials.uv_maps.get(int(i))), "")
-    arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids))
+    textured = bool(materials.textured.intersection(int(i) for i in slot_ids))
+    arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids), read_uvs=textured)
     if arrays is None or len(arrays.triangles) == 0:
         # A vertex/face instancer's own mesh often has no faces on purpose.
         if ob.type == "MESH" and not getattr(ob, "is_instancer", False):
@@ -231,7 +232,7 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
                      "using the active render UV map")
     mat_ids = triangle_material_ids(arrays.material_index, slot_ids)
     uvs = arrays.corner_uvs
-    if uvs is None and materials.textured.intersection(int(i) for i in slot_ids):
+    if uvs is None and textured:
         # Cycles reads a missing UV attribute as (0, 0): textures show their corner texel.
         summary.warn(f"Object '{ob.name}': no UV map for its image textures; using UV (0, 0)")
         uvs = np.zeros((len(arrays.triangles), 3, 2), dtype=np.float32)

@@ -87,11 +87,13 @@ def _corner_uvs(layer: Any, n_loops: int) -> np.ndarray:
 
 
 def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
-                material_slots: int = 2) -> MeshArrays:
+                material_slots: int = 2, read_uvs: bool = True) -> MeshArrays:
     """Triangulated arrays of an evaluated mesh (UVs from layer `uv_map`, "" = the active
     render layer); ExportError naming the object on bad data. With `material_slots` <= 1 every
     triangle maps to the one slot (slot indices are clamped), so material indices are not read
-    and come back as zeros."""
+    and come back as zeros. With `read_uvs` false no UVs are read (corner_uvs None): as Cycles
+    exports a UV attribute only for shaders that ask for it, a mesh without textures skips the
+    largest per-corner array."""
     mesh.calc_loop_triangles()
     n_vert = len(mesh.vertices)
     n_loops = len(mesh.loops)
@@ -138,7 +140,7 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
         if not np.isfinite(normals).all():
             normals = None  # degenerate faces; let the renderer use geometric normals
     uvs = None
-    layer, missing = _uv_layer(mesh, uv_map)
+    layer, missing = _uv_layer(mesh, uv_map) if read_uvs else (None, False)
     if n_tri and layer is not None:
         uvs = _corner_uvs(layer, n_loops)[loops()]  # (T, 3, 2)
         if not np.isfinite(uvs).all():
@@ -164,7 +166,7 @@ def _readable_mesh_data(ob_eval: Any) -> Any | None:
 
 
 def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "",
-                       material_slots: int = 2) -> MeshArrays | None:
+                       material_slots: int = 2, read_uvs: bool = True) -> MeshArrays | None:
     """Evaluated, triangulated geometry of an object (None if it has no surface);
     `material_slots` as in mesh_arrays."""
     # Depsgraph instances are evaluated already (and temporary: evaluated_get would find the
@@ -173,7 +175,7 @@ def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "",
     ob_eval = ob if evaluated else ob.evaluated_get(depsgraph)
     shared = _readable_mesh_data(ob_eval)
     if shared is not None:
-        return mesh_arrays(shared, ob.name, uv_map, material_slots)
+        return mesh_arrays(shared, ob.name, uv_map, material_slots, read_uvs)
     try:
         mesh = ob_eval.to_mesh()
     except RuntimeError as exc:
@@ -181,7 +183,7 @@ def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "",
     if mesh is None:
         return None
     try:
-        return mesh_arrays(mesh, ob.name, uv_map, material_slots)
+        return mesh_arrays(mesh, ob.name, uv_map, material_slots, read_uvs)
     finally:
         ob_eval.to_mesh_clear()
 
