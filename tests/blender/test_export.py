@@ -23,8 +23,8 @@ def test_basic_scene(scene_builder: Any, recording_scene: Any) -> None:
     mesh = recording_scene.meshes[0]
     assert mesh["positions"].shape == (8, 3) and mesh["positions"].dtype == np.float32
     assert mesh["triangles"].shape == (12, 3) and mesh["triangles"].dtype == np.uint32
-    assert mesh["corner_normals"].shape == (12, 3, 3)
-    assert np.allclose(np.linalg.norm(mesh["corner_normals"], axis=2), 1.0, atol=1e-4)
+    # A flat-shaded cube: every triangle is shaded with its geometric normal, as in Cycles.
+    assert mesh["corner_normals"] is None
     # no material -> one default grey diffuse
     assert len(recording_scene.materials) == 1
     assert recording_scene.materials[0].model == native.MATERIAL_DIFFUSE
@@ -34,6 +34,19 @@ def test_basic_scene(scene_builder: Any, recording_scene: Any) -> None:
     m = np.asarray(cam.transform).reshape(4, 4)
     assert m[:3, 3] == pytest.approx([0.0, -6.0, 0.0], abs=1e-5)  # row-major translation
     assert recording_scene.background == pytest.approx((0.05, 0.05, 0.05))
+
+
+def test_smooth_faces_send_corner_normals(scene_builder: Any, recording_scene: Any) -> None:
+    b = scene_builder().basic()
+    cube = b.scene.objects["Cube"].data
+    for polygon in cube.polygons:
+        polygon.use_smooth = True
+    export_scene(b.depsgraph(), recording_scene)
+    normals = recording_scene.meshes[0]["corner_normals"]
+    assert normals.shape == (12, 3, 3)
+    assert np.allclose(np.linalg.norm(normals, axis=2), 1.0, atol=1e-4)
+    # smooth: the corners of a triangle carry their vertices' (different) normals
+    assert all(not np.allclose(t, t[0], atol=1e-6) for t in normals)
 
 
 def test_modifier_exports_evaluated_triangles(scene_builder: Any, recording_scene: Any) -> None:

@@ -39,6 +39,19 @@ def _corner_normals(mesh: Any, n_loops: int) -> np.ndarray:
     return _get(mesh.loops, "normal", n_loops, 3, np.float32)
 
 
+def _all_faces_flat(mesh: Any) -> bool:
+    """True when every face is flat-shaded and no custom normals apply: then each triangle is
+    shaded with its own geometric normal, as Cycles does for triangles that are not smooth, and
+    no corner normals need to be sent (a 1M-triangle flat mesh would send 36 MB of them)."""
+    if hasattr(mesh, "corner_normals"):  # 4.1+: custom normals apply whenever present
+        if getattr(mesh, "has_custom_normals", False):
+            return False
+    elif mesh.use_auto_smooth:  # before 4.1 custom normals and sharp edges need auto smooth
+        return False
+    n_poly = len(mesh.polygons)
+    return n_poly > 0 and not _get(mesh.polygons, "use_smooth", n_poly, 1, bool).any()
+
+
 def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any) -> np.ndarray | None:
     """Corner normals (T, 3, 3) of a Blender < 4.1 mesh without auto smooth, None otherwise.
 
@@ -133,7 +146,7 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
         material_index = np.zeros(n_tri, dtype=np.int32)
 
     normals = None
-    if n_tri:
+    if n_tri and not _all_faces_flat(mesh):
         normals = _unsplit_normals(mesh, triangles, polygons)
         if normals is None:
             normals = _corner_normals(mesh, n_loops)[loops()]  # (T, 3, 3)
