@@ -208,6 +208,7 @@ class _MeshDesc(ctypes.Structure):
         ("corner_normals", ctypes.POINTER(ctypes.c_float)),
         ("corner_uvs", ctypes.POINTER(ctypes.c_float)),
         ("material_ids", ctypes.POINTER(ctypes.c_uint32)),
+        ("vertex_normals", ctypes.POINTER(ctypes.c_float)),
     ]
 
 
@@ -819,10 +820,12 @@ class Scene(_Handle):
         material_ids: np.ndarray,
         corner_normals: np.ndarray | None = None,
         corner_uvs: np.ndarray | None = None,
+        vertex_normals: np.ndarray | None = None,
     ) -> int:
         """positions (N,3) float32, triangles (T,3) uint32, material_ids (T,) uint32,
-        corner_normals (T,3,3) float32, corner_uvs (T,3,2) float32. Arrays already of the
-        right dtype and contiguous are passed without a copy."""
+        corner_normals (T,3,3) float32, corner_uvs (T,3,2) float32, vertex_normals (N,3)
+        float32 (at most one kind of normals). Arrays already of the right dtype and contiguous
+        are passed without a copy."""
         pos = np.ascontiguousarray(positions, dtype=np.float32)
         tri = np.ascontiguousarray(triangles, dtype=np.uint32)
         mat = np.ascontiguousarray(material_ids, dtype=np.uint32)
@@ -839,7 +842,13 @@ class Scene(_Handle):
         desc.triangles = _uint_ptr(tri)
         desc.triangle_count = n_tri
         desc.material_ids = _uint_ptr(mat)
-        nrm = uvs = None
+        nrm = uvs = vnrm = None
+        if vertex_normals is not None:
+            vnrm = np.ascontiguousarray(vertex_normals, dtype=np.float32)
+            if vnrm.size != n_vert * 3:
+                raise ValueError(f"vertex_normals: {vnrm.size} floats for {n_vert} vertices "
+                                 f"(expected {n_vert * 3})")
+            desc.vertex_normals = _float_ptr(vnrm)
         if corner_normals is not None:
             nrm = np.ascontiguousarray(corner_normals, dtype=np.float32)
             if nrm.size != n_tri * 9:
@@ -856,7 +865,7 @@ class Scene(_Handle):
         status = self._lib.stratum_scene_add_mesh(self.handle, ctypes.byref(desc),
                                                   ctypes.byref(out))
         # keep the arrays alive until the (copying) call has returned
-        del pos, tri, mat, nrm, uvs
+        del pos, tri, mat, nrm, uvs, vnrm
         _check(self._lib, status, "stratum_scene_add_mesh")
         return int(out.value)
 

@@ -67,12 +67,14 @@ class RecordingScene:
 
     def add_mesh(self, positions: np.ndarray, triangles: np.ndarray, material_ids: np.ndarray,
                  corner_normals: np.ndarray | None = None,
-                 corner_uvs: np.ndarray | None = None) -> int:
+                 corner_uvs: np.ndarray | None = None,
+                 vertex_normals: np.ndarray | None = None) -> int:
         self.meshes.append({
             "positions": np.array(positions), "triangles": np.array(triangles),
             "material_ids": np.array(material_ids),
             "corner_normals": None if corner_normals is None else np.array(corner_normals),
             "corner_uvs": None if corner_uvs is None else np.array(corner_uvs),
+            "vertex_normals": None if vertex_normals is None else np.array(vertex_normals),
         })
         return len(self.meshes) - 1
 

@@ -42,11 +42,28 @@ def test_smooth_faces_send_corner_normals(scene_builder: Any, recording_scene: A
     for polygon in cube.polygons:
         polygon.use_smooth = True
     export_scene(b.depsgraph(), recording_scene)
-    normals = recording_scene.meshes[0]["corner_normals"]
+    mesh = recording_scene.meshes[0]
+    # all faces smooth, no split normals: one normal per vertex, as Cycles takes them
+    assert mesh["corner_normals"] is None
+    normals = mesh["vertex_normals"]
+    assert normals.shape == (8, 3)
+    assert np.allclose(np.linalg.norm(normals, axis=1), 1.0, atol=1e-4)
+    # a cube corner's smooth normal points along the diagonal
+    assert np.allclose(np.abs(normals), 1.0 / np.sqrt(3.0), atol=1e-4)
+
+
+def test_mixed_flat_and_smooth_faces_send_corner_normals(scene_builder: Any,
+                                                         recording_scene: Any) -> None:
+    b = scene_builder().basic()
+    cube = b.scene.objects["Cube"].data
+    for polygon in list(cube.polygons)[:3]:
+        polygon.use_smooth = True
+    export_scene(b.depsgraph(), recording_scene)
+    mesh = recording_scene.meshes[0]
+    assert mesh["vertex_normals"] is None
+    normals = mesh["corner_normals"]
     assert normals.shape == (12, 3, 3)
     assert np.allclose(np.linalg.norm(normals, axis=2), 1.0, atol=1e-4)
-    # smooth: the corners of a triangle carry their vertices' (different) normals
-    assert all(not np.allclose(t, t[0], atol=1e-6) for t in normals)
 
 
 def test_modifier_exports_evaluated_triangles(scene_builder: Any, recording_scene: Any) -> None:

@@ -238,7 +238,7 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
         uvs = np.zeros((len(arrays.triangles), 3, 2), dtype=np.float32)
     try:
         mesh_id = scene.add_mesh(arrays.positions, arrays.triangles, mat_ids,
-                                 arrays.corner_normals, uvs)
+                                 arrays.corner_normals, uvs, arrays.vertex_normals)
     except native.StratumError as exc:
         raise ExportError(f"Object '{ob.name}': {exc}") from exc
     summary.meshes += 1

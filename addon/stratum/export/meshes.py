@@ -21,6 +21,7 @@ class MeshArrays:
     corner_normals: np.ndarray | None  # (T, 3, 3) float32
     corner_uvs: np.ndarray | None  # (T, 3, 2) float32
     missing_uv: str = ""  # the UV map asked for, when the mesh has no layer of that name
+    vertex_normals: np.ndarray | None = None  # (N, 3) float32, instead of corner_normals
 
 
 def _get(collection: Any, attr: str, count: int, width: int, dtype: Any) -> np.ndarray:
@@ -50,6 +51,22 @@ def _all_faces_flat(mesh: Any) -> bool:
         return False
     n_poly = len(mesh.polygons)
     return n_poly > 0 and not _get(mesh.polygons, "use_smooth", n_poly, 1, bool).any()
+
+
+def _smooth_vertex_normals(mesh: Any) -> np.ndarray | None:
+    """Per-vertex normals (N, 3) when they are the whole story: every face smooth and no split
+    normals (4.1+: normals_domain 'POINT'; before: no auto smooth). Cycles takes such a mesh's
+    normals per vertex too; a third of the floats of per-corner normals is the win."""
+    if hasattr(mesh, "normals_domain"):  # 4.1+
+        if mesh.normals_domain != "POINT":
+            return None
+    else:
+        if mesh.use_auto_smooth:
+            return None
+        n_poly = len(mesh.polygons)
+        if not _get(mesh.polygons, "use_smooth", n_poly, 1, bool).all():
+            return None
+    return _get(mesh.vertex_normals, "vector", len(mesh.vertices), 3, np.float32)
 
 
 def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any) -> np.ndarray | None:
@@ -145,8 +162,13 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
     else:
         material_index = np.zeros(n_tri, dtype=np.int32)
 
-    normals = None
-    if n_tri and not _all_faces_flat(mesh):
+    normals = vertex_normals = None
+    shaded_smooth = bool(n_tri) and not _all_faces_flat(mesh)
+    if shaded_smooth:
+        vertex_normals = _smooth_vertex_normals(mesh)
+        if vertex_normals is not None and not np.isfinite(vertex_normals).all():
+            vertex_normals = None  # degenerate faces; the corner path below handles them
+    if shaded_smooth and vertex_normals is None:
         normals = _unsplit_normals(mesh, triangles, polygons)
         if normals is None:
             normals = _corner_normals(mesh, n_loops)[loops()]  # (T, 3, 3)
@@ -159,7 +181,7 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
         if not np.isfinite(uvs).all():
             raise ExportError(f"Object '{object_name}' has non-finite UV coordinates")
     return MeshArrays(positions, triangles, material_index, normals, uvs,
-                      uv_map if missing else "")
+                      uv_map if missing else "", vertex_normals)
 
 
 def _readable_mesh_data(ob_eval: Any) -> Any | None:

@@ -236,6 +236,10 @@ typedef struct StratumMeshDesc {
     const float* corner_normals;  /* optional: 9 floats per triangle (3 corners) */
     const float* corner_uvs;      /* optional: 6 floats per triangle (3 corners) */
     const uint32_t* material_ids; /* 1 scene material id per triangle; required */
+    /* Appended: optional 3 floats per vertex, interpolated over each triangle (a smooth mesh
+     * without split normals, as Cycles takes them: 12 bytes a vertex instead of 36 a triangle).
+     * At most one of corner_normals and vertex_normals; neither = geometric normals. */
+    const float* vertex_normals;
 } StratumMeshDesc;
 
 /* Adds a mesh (copied); its id (0, 1, 2, ...) is written to out_id. A mesh is drawn only

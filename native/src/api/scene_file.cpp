@@ -83,14 +83,17 @@ std::string save_scene_file(const Scene& scene, const char* path) {
     }
     j["meshes"] = json::array();
     for (const Mesh& mesh : scene.meshes) {
-        json pos = json::array(), tri = json::array(), nrm = json::array(), uv = json::array();
+        json pos = json::array(), tri = json::array(), nrm = json::array(), uv = json::array(),
+             vnrm = json::array();
         for (Vec3 p : mesh.positions) pos.insert(pos.end(), {p.x, p.y, p.z});
         for (const auto& t : mesh.triangles) tri.insert(tri.end(), {t[0], t[1], t[2]});
         for (Vec3 n : mesh.corner_normals) nrm.insert(nrm.end(), {n.x, n.y, n.z});
+        for (Vec3 n : mesh.vertex_normals) vnrm.insert(vnrm.end(), {n.x, n.y, n.z});
         for (Vec2 c : mesh.corner_uvs) uv.insert(uv.end(), {c.x, c.y});
         j["meshes"].push_back({{"positions", pos},
                                {"triangles", tri},
                                {"corner_normals", nrm},
+                               {"vertex_normals", vnrm},
                                {"corner_uvs", uv},
                                {"material_ids", mesh.material_ids}});
     }
@@ -217,10 +220,12 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             const auto tri = m.at("triangles").get<std::vector<uint32_t>>();
             const auto nrm = m.at("corner_normals").get<std::vector<float>>();
             const auto uv = m.at("corner_uvs").get<std::vector<float>>();
+            const auto vnrm = m.value("vertex_normals", std::vector<float>{});
             const auto mat = m.at("material_ids").get<std::vector<uint32_t>>();
             const size_t tris = tri.size() / 3;
             if (pos.size() % 3 || tri.size() % 3 || mat.size() != tris ||
-                (!nrm.empty() && nrm.size() != 9 * tris) || (!uv.empty() && uv.size() != 6 * tris)) {
+                (!nrm.empty() && nrm.size() != 9 * tris) || (!uv.empty() && uv.size() != 6 * tris) ||
+                (!vnrm.empty() && vnrm.size() != pos.size())) {
                 throw std::runtime_error("mesh arrays have inconsistent sizes");
             }
             const StratumMeshDesc d{pos.data(),
@@ -229,7 +234,8 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                                     static_cast<uint32_t>(tris),
                                     nrm.empty() ? nullptr : nrm.data(),
                                     uv.empty() ? nullptr : uv.data(),
-                                    mat.data()};
+                                    mat.data(),
+                                    vnrm.empty() ? nullptr : vnrm.data()};
             if ((status = stratum_scene_add_mesh(scene, &d, nullptr)) != STRATUM_OK)
                 return entry_point_failed(status);
         }

@@ -218,6 +218,13 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
         throw ValidationError("mesh corner normal " + std::to_string(k) + " is not finite " +
                               triple(d.corner_normals + 3 * k));
     }
+    if (d.corner_normals && d.vertex_normals)
+        throw ValidationError("mesh has both corner_normals and vertex_normals (give at most one)");
+    if (d.vertex_normals && !all_finite(d.vertex_normals, 3 * n_vert)) {
+        const size_t k = first_non_finite(d.vertex_normals, 3 * n_vert, 3);
+        throw ValidationError("mesh vertex normal " + std::to_string(k) + " is not finite " +
+                              triple(d.vertex_normals + 3 * k));
+    }
     if (d.corner_uvs && !all_finite(d.corner_uvs, 6 * n_tri)) {
         const size_t k = first_non_finite(d.corner_uvs, 6 * n_tri, 2);
         throw ValidationError("mesh corner uv " + std::to_string(k) + " is not finite (" +
@@ -230,6 +237,7 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
     std::memcpy(mesh.triangles.data(), d.triangles, n_tri * sizeof(mesh.triangles[0]));
     mesh.material_ids.assign(d.material_ids, d.material_ids + n_tri);
     if (d.corner_normals) copy_into(mesh.corner_normals, d.corner_normals, 3 * n_tri);
+    if (d.vertex_normals) copy_into(mesh.vertex_normals, d.vertex_normals, n_vert);
     if (d.corner_uvs) copy_into(mesh.corner_uvs, d.corner_uvs, 3 * n_tri);
     return mesh;
 }

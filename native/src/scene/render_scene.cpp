@@ -159,6 +159,13 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
                        unit_or(m.normal(mesh.corner_normals[k + 1]), fallback) * h.b1 +
                        unit_or(m.normal(mesh.corner_normals[k + 2]), fallback) * h.b2;
         hit->shading_normal = unit_or(n, hit->geometric_normal);
+    } else if (!mesh.vertex_normals.empty()) {
+        // The same arithmetic with the triangle's vertices' normals as its corners'.
+        const Vec3 fallback(0, 0, 1);
+        const Vec3 n = unit_or(m.normal(mesh.vertex_normals[tri[0]]), fallback) * b0 +
+                       unit_or(m.normal(mesh.vertex_normals[tri[1]]), fallback) * h.b1 +
+                       unit_or(m.normal(mesh.vertex_normals[tri[2]]), fallback) * h.b2;
+        hit->shading_normal = unit_or(n, hit->geometric_normal);
     }
     hit->uv = {0.0f, 0.0f};
     hit->dpdu = Vec3(0.0f, 0.0f, 0.0f);

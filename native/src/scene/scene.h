@@ -20,6 +20,7 @@ struct Mesh {
     std::vector<Vec3> positions;
     std::vector<std::array<uint32_t, 3>> triangles;
     std::vector<Vec3> corner_normals;    // empty, or 3 per triangle
+    std::vector<Vec3> vertex_normals;    // empty, or 1 per vertex (never both kinds)
     std::vector<Vec2> corner_uvs;        // empty, or 3 per triangle
     std::vector<uint32_t> material_ids;  // 1 per triangle
 };
