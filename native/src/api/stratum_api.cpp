@@ -10,6 +10,7 @@
 
 #include "api/abi_guard.h"
 #include "api/scene_file.h"
+#include "api/scene_handle.h"
 #include "api/validation.h"
 #include "integrators/integrator.h"
 #include "render/image_output.h"
@@ -20,10 +21,6 @@
 #include "sampling/sampler_registry.h"
 #include "scene/scene.h"
 #include "stratum/stratum.h"
-
-struct StratumScene {
-    stratum::Scene scene;
-};
 
 struct StratumRenderer {
     explicit StratumRenderer(stratum::Scene s) : renderer(std::move(s)) {}

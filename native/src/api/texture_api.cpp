@@ -2,14 +2,10 @@
 #include <string>
 
 #include "api/abi_guard.h"
+#include "api/scene_handle.h"
 #include "api/texture_validation.h"
 #include "stratum/stratum.h"
 #include "texture/image_reading.h"
-
-// Defined in api/stratum_api.cpp; only its `scene` member is used here.
-struct StratumScene {
-    stratum::Scene scene;
-};
 
 extern "C" {
 
