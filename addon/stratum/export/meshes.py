@@ -40,37 +40,36 @@ def _corner_normals(mesh: Any, n_loops: int) -> np.ndarray:
     return _get(mesh.loops, "normal", n_loops, 3, np.float32)
 
 
-def _all_faces_flat(mesh: Any) -> bool:
-    """True when every face is flat-shaded and no custom normals apply: then each triangle is
-    shaded with its own geometric normal, as Cycles does for triangles that are not smooth, and
-    no corner normals need to be sent (a 1M-triangle flat mesh would send 36 MB of them)."""
+def _all_faces_flat(mesh: Any, smooth: np.ndarray) -> bool:
+    """True when every face is flat-shaded (`smooth`: use_smooth per polygon) and no custom
+    normals apply: then each triangle is shaded with its own geometric normal, as Cycles does
+    for triangles that are not smooth, and no corner normals need to be sent (a 1M-triangle
+    flat mesh would send 36 MB of them)."""
     if hasattr(mesh, "corner_normals"):  # 4.1+: custom normals apply whenever present
         if getattr(mesh, "has_custom_normals", False):
             return False
     elif mesh.use_auto_smooth:  # before 4.1 custom normals and sharp edges need auto smooth
         return False
-    n_poly = len(mesh.polygons)
-    return n_poly > 0 and not _get(mesh.polygons, "use_smooth", n_poly, 1, bool).any()
+    return len(smooth) > 0 and not smooth.any()
 
 
-def _smooth_vertex_normals(mesh: Any) -> np.ndarray | None:
+def _smooth_vertex_normals(mesh: Any, smooth: np.ndarray) -> np.ndarray | None:
     """Per-vertex normals (N, 3) when they are the whole story: every face smooth and no split
     normals (4.1+: normals_domain 'POINT'; before: no auto smooth). Cycles takes such a mesh's
     normals per vertex too; a third of the floats of per-corner normals is the win."""
     if hasattr(mesh, "normals_domain"):  # 4.1+
         if mesh.normals_domain != "POINT":
             return None
-    else:
-        if mesh.use_auto_smooth:
-            return None
-        n_poly = len(mesh.polygons)
-        if not _get(mesh.polygons, "use_smooth", n_poly, 1, bool).all():
-            return None
+    elif mesh.use_auto_smooth or not smooth.all():
+        return None
     return _get(mesh.vertex_normals, "vector", len(mesh.vertices), 3, np.float32)
 
 
-def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any) -> np.ndarray | None:
-    """Corner normals (T, 3, 3) of a Blender < 4.1 mesh without auto smooth, None otherwise.
+def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any,
+                     smooth: np.ndarray) -> np.ndarray | None:
+    """Corner normals (T, 3, 3) of a Blender < 4.1 mesh without auto smooth whose faces are
+    partly smooth, partly flat (all-flat and all-smooth meshes are handled before), None for
+    other meshes.
 
     Without auto smooth, calc_normals_split copies each corner's vertex normal (smooth face) or
     its face normal (flat face) and nothing else (3.4 mesh_normals.cc, normals_loop_split with
@@ -80,20 +79,10 @@ def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any) -> np.ndar
     triangles' polygon indices, fetched only when some face is flat."""
     if hasattr(mesh, "corner_normals") or mesh.use_auto_smooth:
         return None
-    n_poly = len(mesh.polygons)
-    smooth = _get(mesh.polygons, "use_smooth", n_poly, 1, bool)
-
-    def vertex_normals() -> np.ndarray:
-        return _get(mesh.vertex_normals, "vector", len(mesh.vertices), 3, np.float32)[triangles]
-
-    if smooth.all():
-        return vertex_normals()
     tri_poly = polygons()
-    face_normals = _get(mesh.polygon_normals, "vector", n_poly, 3, np.float32)
+    face_normals = _get(mesh.polygon_normals, "vector", len(smooth), 3, np.float32)
     flat = ~smooth[tri_poly]
-    if flat.all():
-        return np.repeat(face_normals[tri_poly][:, None, :], 3, axis=1)
-    normals = vertex_normals()
+    normals = _get(mesh.vertex_normals, "vector", len(mesh.vertices), 3, np.float32)[triangles]
     normals[flat] = face_normals[tri_poly[flat]][:, None, :]
     return normals
 
@@ -162,18 +151,20 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
     else:
         material_index = np.zeros(n_tri, dtype=np.int32)
 
+    # use_smooth is read once: it decides between no normals (all flat), vertex normals (all
+    # smooth) and corner normals (mixed, or split normals).
     normals = vertex_normals = None
-    shaded_smooth = bool(n_tri) and not _all_faces_flat(mesh)
-    if shaded_smooth:
-        vertex_normals = _smooth_vertex_normals(mesh)
-        if vertex_normals is not None and not np.isfinite(vertex_normals).all():
-            vertex_normals = None  # degenerate faces; the corner path below handles them
-    if shaded_smooth and vertex_normals is None:
-        normals = _unsplit_normals(mesh, triangles, polygons)
-        if normals is None:
-            normals = _corner_normals(mesh, n_loops)[loops()]  # (T, 3, 3)
-        if not np.isfinite(normals).all():
-            normals = None  # degenerate faces; let the renderer use geometric normals
+    smooth = _get(mesh.polygons, "use_smooth", len(mesh.polygons), 1, bool)
+    if n_tri and not _all_faces_flat(mesh, smooth):
+        vertex_normals = _smooth_vertex_normals(mesh, smooth)
+        if vertex_normals is None:
+            normals = _unsplit_normals(mesh, triangles, polygons, smooth)
+            if normals is None:
+                normals = _corner_normals(mesh, n_loops)[loops()]  # (T, 3, 3)
+            if not np.isfinite(normals).all():
+                normals = None  # degenerate faces; let the renderer use geometric normals
+        elif not np.isfinite(vertex_normals).all():
+            vertex_normals = None  # the same for a smooth mesh's vertex normals
     uvs = None
     layer, missing = _uv_layer(mesh, uv_map) if read_uvs else (None, False)
     if n_tri and layer is not None:
