@@ -377,10 +377,15 @@ STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
  *   int:    width, height, samples, max_bounces, seed, threads (0 = all cores),
  *           crop_x, crop_y, crop_width, crop_height (the border region of the width x height
  *           frame in pixels, bottom-left origin; crop_width = 0 = the whole frame; the image
- *           read and written is the region), film_transparent (1: background alpha 0)
- *   float:  filter_width (pixels), ao_distance (scene units, > 0)
+ *           read and written is the region), film_transparent (1: background alpha 0),
+ *           rr_min_depth (first bounce Russian roulette may end a path, default 3)
+ *   float:  filter_width (pixels), ao_distance (scene units, > 0),
+ *           control_variate (ambient radiance L_a of the control variate, >= 0; 0 = off)
  *   string: sampler (registry name), filter_type ("box", "blackman_harris"),
- *           integrator (registry name), hemisphere (registry name)
+ *           integrator (registry name: path, light, direct, ao), hemisphere (registry name),
+ *           light_sampling ("mis", "nee", "bsdf"), mis_heuristic ("power", "balance", "max"),
+ *           light_selection ("mixed", "power", "uniform"),
+ *           rr_mode ("throughput", "albedo", "off")
  * Setting a name of the wrong kind or an unknown name is STRATUM_ERROR_INVALID_ARGUMENT. */
 STRATUM_API StratumStatus stratum_renderer_set_int(StratumRenderer* r, const char* name, int64_t value);
 STRATUM_API StratumStatus stratum_renderer_set_float(StratumRenderer* r, const char* name, double value);
@@ -389,6 +394,10 @@ STRATUM_API StratumStatus stratum_renderer_set_string(StratumRenderer* r, const 
 
 /* Starts rendering on native worker threads and returns at once. Builds the BVH on first start. */
 STRATUM_API StratumStatus stratum_renderer_start(StratumRenderer* r);
+/* What the chosen estimator cannot render in this scene and why (e.g. light_sampling "bsdf"
+ * never finds a point light), one sentence per line; "" when nothing. Set by
+ * stratum_renderer_start; *out stays valid until the next start or destroy. */
+STRATUM_API StratumStatus stratum_renderer_notices(const StratumRenderer* r, const char** out);
 /* Asks the render to stop; returns at once. Pixels keep the samples finished so far. */
 STRATUM_API StratumStatus stratum_renderer_cancel(StratumRenderer* r);
 /* Waits up to timeout_ms for the render to end; *out_done = 1 when it has ended. */

@@ -275,6 +275,14 @@ StratumStatus stratum_renderer_start(StratumRenderer* r) {
     });
 }
 
+StratumStatus stratum_renderer_notices(const StratumRenderer* r, const char** out) {
+    return guarded("stratum_renderer_notices", [&] {
+        require(r && out, "renderer or out is NULL");
+        *out = r->renderer.notices().c_str();
+        return STRATUM_OK;
+    });
+}
+
 StratumStatus stratum_renderer_cancel(StratumRenderer* r) {
     return guarded("stratum_renderer_cancel", [&] {
         require(r != nullptr, "renderer is NULL");

@@ -5,13 +5,17 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
+#include "integrators/estimator_options.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler.h"
 #include "sampling/sampler_registry.h"
 #include "scene/camera.h"
 #include "scene/render_scene.h"
+#include "scene/scene.h"
 
 namespace stratum {
 
@@ -29,6 +33,15 @@ struct IntegratorSettings {
     // Cycles' Film > Transparent: background seen directly (also through transparent closures)
     // gives alpha 0 instead of its radiance, and holdouts turn into alpha.
     bool film_transparent = false;
+    // The estimator ladder (integrators/estimator_options.h; textbook §4–§6).
+    LightSampling light_sampling = LightSampling::Mis;
+    MisHeuristic mis_heuristic = MisHeuristic::Power;
+    LightSelection light_selection = LightSelection::Mixed;
+    RouletteMode rr_mode = RouletteMode::Throughput;
+    // Roulette starts at this bounce (0 = at the first vertex).
+    uint32_t rr_min_depth = 3;
+    // The control variate's ambient radiance L_a (textbook 5.17–5.18); 0 = off.
+    float control_variate = 0.0f;
 };
 
 // One camera ray's estimate: the radiance, and the alpha the film stores (1 = covered; a
@@ -44,6 +57,12 @@ public:
     // `rays` is incremented by the number of rays traced.
     virtual RadianceSample radiance(const RenderScene& scene, const Sampler& sampler,
                                     const PixelSample& pixel, const CameraRay& ray, uint64_t& rays) const = 0;
+    // What this estimator cannot render in `scene` and why (e.g. BSDF sampling alone never
+    // finds a point light): one sentence each, shown to the user; the render still runs.
+    virtual std::vector<std::string> notices(const Scene& scene) const {
+        (void)scene;
+        return {};
+    }
 };
 
 struct IntegratorEntry {

@@ -13,10 +13,24 @@ std::unique_ptr<Integrator> make(const IntegratorSettings& settings) {
     return std::make_unique<T>(settings);
 }
 
+// Direct lighting is the path tracer stopped after its first vertex (max_bounces 0 in Cycles'
+// meaning): emission seen by the camera plus one scattering toward the lights, by the chosen
+// light_sampling strategy.
+std::unique_ptr<Integrator> make_direct(const IntegratorSettings& settings) {
+    IntegratorSettings direct = settings;
+    direct.max_bounces = 0;
+    return std::make_unique<PathIntegrator>(direct);
+}
+
 const std::array kIntegrators = {
     IntegratorEntry{{"path", "Path Tracing",
-                     "Path tracing with next-event estimation, MIS (power heuristic) and Russian roulette"},
+                     "Path tracing: BSDF sampling, next-event estimation or both by MIS (light_sampling), "
+                     "Russian roulette (rr_mode), optional control variate"},
                     &make<PathIntegrator>},
+    IntegratorEntry{{"direct", "Direct Lighting",
+                     "Direct lighting only: emission seen by the camera and one scattering toward the lights "
+                     "(the path tracer with max_bounces 0), by the light_sampling strategy"},
+                    &make_direct},
     IntegratorEntry{
         {"ao", "Ambient Occlusion",
          "Openness 1 - AO of the first hit (seed 000 eq. 20): 1 = unoccluded (white), 0 = occluded within "

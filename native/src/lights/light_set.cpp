@@ -22,6 +22,19 @@ uint32_t LightSet::add(Light light, uint32_t object, uint32_t visibility) {
         },
         light);
     if (hittable) hittable_lamps_.push_back(static_cast<uint32_t>(lights_.size()));
+    const bool delta = std::visit(
+        [](const auto& l) {
+            using T = std::decay_t<decltype(l)>;
+            if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>) {
+                return l.radius() <= 0.0f;
+            } else if constexpr (std::is_same_v<T, SunLight>) {
+                return l.is_delta();
+            } else {
+                return false;
+            }
+        },
+        light);
+    if (delta) ++delta_lights_;
     lights_.push_back(std::move(light));
     object_.push_back(object);
     visibility_.push_back(visibility);
@@ -46,6 +59,7 @@ void LightSet::finalize(float scene_radius) {
             },
             lights_[i]);
     }
+    power_ = power;
     double total = 0.0;
     std::unordered_map<uint32_t, double> object_power;
     for (size_t i = 0; i < lights_.size(); ++i) {
@@ -55,28 +69,48 @@ void LightSet::finalize(float scene_radius) {
     std::unordered_map<uint32_t, size_t> object_size;
     for (uint32_t o : object_) ++object_size[o];
     const double objects = static_cast<double>(object_power.size());
-    probability_.resize(lights_.size());
-    cdf_.resize(lights_.size());
-    double running = 0.0;
-    for (size_t i = 0; i < lights_.size(); ++i) {
-        // Zero total (or object) power: that half of the mixture is uniform instead.
-        const double by_power = total > 0.0 ? power[i] / total : 1.0 / static_cast<double>(lights_.size());
-        const double in_object = object_power[object_[i]] > 0.0
-                                     ? power[i] / object_power[object_[i]]
-                                     : 1.0 / static_cast<double>(object_size[object_[i]]);
-        const double p = 0.5 * by_power + 0.5 * in_object / objects;
-        probability_[i] = static_cast<float>(p);
-        running += p;
-        cdf_[i] = static_cast<float>(running);
+    const double uniform = 1.0 / static_cast<double>(std::max<size_t>(1, lights_.size()));
+    for (uint32_t mode = 0; mode < kLightSelectionModes; ++mode) {
+        probability_[mode].resize(lights_.size());
+        cdf_[mode].resize(lights_.size());
+        double running = 0.0;
+        for (size_t i = 0; i < lights_.size(); ++i) {
+            // Zero total (or object) power: the power-proportional part is uniform instead.
+            const double by_power = total > 0.0 ? power[i] / total : uniform;
+            double p = uniform;
+            switch (static_cast<LightSelection>(mode)) {
+                case LightSelection::Mixed: {
+                    const double in_object = object_power[object_[i]] > 0.0
+                                                 ? power[i] / object_power[object_[i]]
+                                                 : 1.0 / static_cast<double>(object_size[object_[i]]);
+                    p = 0.5 * by_power + 0.5 * in_object / objects;
+                    break;
+                }
+                case LightSelection::Power:
+                    p = by_power;
+                    break;
+                case LightSelection::Uniform:
+                    break;
+            }
+            probability_[mode][i] = static_cast<float>(p);
+            running += p;
+            cdf_[mode][i] = static_cast<float>(running);
+        }
+        if (!cdf_[mode].empty()) cdf_[mode].back() = 1.0f;
     }
-    if (!cdf_.empty()) cdf_.back() = 1.0f;
 }
 
-bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const {
+uint32_t LightSet::choose(float u, LightSelection selection) const {
+    if (lights_.empty()) return 0;
+    const std::vector<float>& cdf = cdf_[static_cast<size_t>(selection)];
+    const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
+    return static_cast<uint32_t>(std::min(static_cast<size_t>(it - cdf.begin()), lights_.size() - 1));
+}
+
+bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out, LightSelection selection) const {
     if (lights_.empty()) return false;
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u_choice);
-    const size_t index = std::min(static_cast<size_t>(it - cdf_.begin()), lights_.size() - 1);
-    const float choice = probability_[index];
+    const uint32_t index = choose(u_choice, selection);
+    const float choice = probability(index, selection);
     if (!(choice > 0.0f)) return false;
     const bool ok = std::visit(
         [&](const auto& l) {
@@ -94,13 +128,13 @@ bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const {
     return true;
 }
 
-float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const {
+float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit, LightSelection selection) const {
     const auto& tri = std::get<EmissiveTriangle>(lights_[index]);
-    return probability_[index] * tri.pdf(p, hit);
+    return probability(index, selection) * tri.pdf(p, hit);
 }
 
-Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf,
-                            float* t_out) const {
+Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf, float* t_out,
+                            LightSelection selection) const {
     Rgb radiance(0.0f);
     float nearest = t_max, nearest_pdf = 0.0f;
     for (const uint32_t i : hittable_lamps_) {
@@ -121,7 +155,7 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
         if (hit) {
             nearest = t;
             radiance = L;
-            nearest_pdf = probability_[i] * solid_angle_pdf;
+            nearest_pdf = probability(i, selection) * solid_angle_pdf;
         }
     }
     if (pdf) *pdf = nearest_pdf;
@@ -133,9 +167,10 @@ const EnvironmentLight* LightSet::environment() const {
     return environment_ == SIZE_MAX ? nullptr : &std::get<EnvironmentLight>(lights_[environment_]);
 }
 
-float LightSet::environment_pdf(Vec3 wi) const {
+float LightSet::environment_pdf(Vec3 wi, LightSelection selection) const {
     if (environment_ == SIZE_MAX) return 0.0f;
-    return probability_[environment_] * std::get<EnvironmentLight>(lights_[environment_]).pdf(wi);
+    return probability(static_cast<uint32_t>(environment_), selection) *
+           std::get<EnvironmentLight>(lights_[environment_]).pdf(wi);
 }
 
 }  // namespace stratum

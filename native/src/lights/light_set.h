@@ -1,18 +1,24 @@
-// All lights of a scene and the discrete distribution that next-event estimation chooses them
-// by. Pure power-proportional choice (textbook 5.14, p(j) = Φ_j / ΣΦ) starves a light whose
-// power estimate is small next to another's although it dominates somewhere (a dim lamp beside
-// a sun whose "power" is its flux through the whole scene): its few samples carry huge weights
-// and the image shows dark pixels where it was never chosen. So the choice is a defensive
-// mixture: half by power, half uniform over light objects (a Blender lamp, or all emissive
-// triangles of one object, chosen within the object by power):
-//     p(j) = ½ Φ_j / ΣΦ + ½ (1/G) Φ_j / Φ_g(j),   G objects, Φ_g the power of j's object.
-// Any p > 0 wherever a light contributes keeps NEE unbiased.
+// All lights of a scene and the discrete distributions that next-event estimation (and the
+// light tracer's emission) choose them by, one per LightSelection:
+// * power (textbook 5.14): p(j) = Φ_j / ΣΦ;
+// * uniform: p(j) = 1/N over the N light entries (each emissive triangle is an entry);
+// * mixed (the default): pure power-proportional choice starves a light whose power estimate is
+//   small next to another's although it dominates somewhere (a dim lamp beside a sun whose
+//   "power" is its flux through the whole scene): its few samples carry huge weights and the
+//   image shows dark pixels where it was never chosen. So the default is a defensive mixture:
+//   half by power, half uniform over light objects (a Blender lamp, or all emissive triangles
+//   of one object, chosen within the object by power):
+//       p(j) = ½ Φ_j / ΣΦ + ½ (1/G) Φ_j / Φ_g(j),   G objects, Φ_g the power of j's object.
+// Any p > 0 wherever a light contributes keeps NEE unbiased; a zero total power makes the
+// power choice uniform.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <variant>
 #include <vector>
 
+#include "integrators/estimator_options.h"
 #include "lights/area_light.h"
 #include "lights/emissive_triangle.h"
 #include "lights/environment_light.h"
@@ -36,10 +42,23 @@ public:
 
     bool empty() const { return lights_.empty(); }
     size_t size() const { return lights_.size(); }
+    const Light& light(uint32_t index) const { return lights_[index]; }
+    uint32_t visibility(uint32_t index) const { return visibility_[index]; }
+    // Power Φ_j of light `index` (W; the sun's and the environment's through the scene's
+    // cross-section), as the selection distributions use it.
+    double power(uint32_t index) const { return power_[index]; }
+    // The probability with which `selection` chooses light `index`.
+    float probability(uint32_t index, LightSelection selection = LightSelection::Mixed) const {
+        return probability_[static_cast<size_t>(selection)][index];
+    }
+    // The light `selection` chooses for u in [0,1); size() when there are no lights.
+    uint32_t choose(float u, LightSelection selection = LightSelection::Mixed) const;
     // Chooses a light with u_choice and samples it with u; out->pdf includes the choice.
-    bool sample(Vec3 p, float u_choice, Vec2 u, LightSample* out) const;
+    bool sample(Vec3 p, float u_choice, Vec2 u, LightSample* out,
+                LightSelection selection = LightSelection::Mixed) const;
     // Pdf (choice × solid angle) with which sample() reaches `hit` on emissive triangle `index`.
-    float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit) const;
+    float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit,
+                                LightSelection selection = LightSelection::Mixed) const;
     // Radiance of the nearest lamp surface (an area lamp, or the disk of a point/spot lamp with
     // a radius, facing the ray's origin) whose visibility has bit `visibility` and whose
     // emitting face the ray (dir unit) meets before t_max; black if none. Lamps are not in the
@@ -48,18 +67,24 @@ public:
     // which sample() at `origin` picks that direction, for MIS.
     // *t (if not null) = the distance to the lamp.
     Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
-                      float* t = nullptr) const;
+                      float* t = nullptr, LightSelection selection = LightSelection::Mixed) const;
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
     const EnvironmentLight* environment() const;
-    float environment_pdf(Vec3 wi) const;
+    float environment_pdf(Vec3 wi, LightSelection selection = LightSelection::Mixed) const;
+    // Whether some light can be reached only by light sampling: a point or spot lamp of radius
+    // 0 or a sun of angle 0 (delta lights no scattered ray finds).
+    bool has_delta_lights() const { return delta_lights_ > 0; }
+    uint32_t delta_light_count() const { return delta_lights_; }
 
 private:
     std::vector<Light> lights_;
     std::vector<uint32_t> object_;          // object of each light
     std::vector<uint32_t> visibility_;      // StratumVisibility bits of each light
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)
-    std::vector<float> cdf_;                // cdf_[i] = P(choice < i+1), last = 1
-    std::vector<float> probability_;
+    std::vector<double> power_;             // Φ_j, set by finalize()
+    // Per LightSelection: cdf[i] = P(choice < i+1) (last = 1), and the choice probabilities.
+    std::array<std::vector<float>, kLightSelectionModes> cdf_, probability_;
+    uint32_t delta_lights_ = 0;
     size_t environment_ = SIZE_MAX;  // index of the environment light, if any
 };
 

@@ -21,6 +21,8 @@ public:
     SunLight(Vec3 toward_sun, Rgb irradiance, float angle);
     bool sample(Vec2 u, LightSample* out) const;
     Rgb irradiance() const { return irradiance_; }
+    // Angle 0: a single direction, which no scattered ray finds.
+    bool is_delta() const { return cos_max_ >= 1.0f; }
 
 private:
     Frame frame_;

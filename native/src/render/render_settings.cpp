@@ -48,6 +48,7 @@ std::string set_int_setting(RenderSettings& s, std::string_view name, int64_t va
         {"crop_width", &RenderSettings::crop_width, 0, kMaxResolution},
         {"crop_height", &RenderSettings::crop_height, 0, kMaxResolution},
         {"film_transparent", &RenderSettings::film_transparent, 0, 1},
+        {"rr_min_depth", &RenderSettings::rr_min_depth, 0, kMaxBounces},
     };
     for (const Field& f : kFields) {
         if (f.name != name) continue;
@@ -72,6 +73,14 @@ std::string set_float_setting(RenderSettings& s, std::string_view name, double v
             return "setting 'ao_distance' = " + std::to_string(value) + " must be > 0 (scene units)";
         }
         s.ao_distance = static_cast<float>(value);
+        return {};
+    }
+    if (name == "control_variate") {
+        if (!std::isfinite(value) || value < 0.0 || !std::isfinite(static_cast<float>(value))) {
+            return "setting 'control_variate' = " + std::to_string(value) +
+                   " must be a finite ambient radiance >= 0 (0 = off)";
+        }
+        s.control_variate = static_cast<float>(value);
         return {};
     }
     return "unknown float setting '" + std::string(name) + "'";
@@ -103,6 +112,45 @@ std::string set_string_setting(RenderSettings& s, std::string_view name, std::st
             return "unknown hemisphere '" + std::string(value) + "' (known: " + names + ")";
         }
         s.hemisphere = value;
+        return {};
+    }
+    // The estimator options: each name is checked by its parser, the message lists the choices.
+    struct Option {
+        std::string_view name;
+        std::string RenderSettings::*member;
+        std::span<const std::string_view> (*names)();
+        bool (*valid)(std::string_view);
+    };
+    static constexpr Option kOptions[] = {
+        {"light_sampling", &RenderSettings::light_sampling, &light_sampling_names,
+         [](std::string_view v) {
+             LightSampling x;
+             return parse_light_sampling(v, &x);
+         }},
+        {"mis_heuristic", &RenderSettings::mis_heuristic, &mis_heuristic_names,
+         [](std::string_view v) {
+             MisHeuristic x;
+             return parse_mis_heuristic(v, &x);
+         }},
+        {"light_selection", &RenderSettings::light_selection, &light_selection_names,
+         [](std::string_view v) {
+             LightSelection x;
+             return parse_light_selection(v, &x);
+         }},
+        {"rr_mode", &RenderSettings::rr_mode, &rr_mode_names,
+         [](std::string_view v) {
+             RouletteMode x;
+             return parse_rr_mode(v, &x);
+         }},
+    };
+    for (const Option& o : kOptions) {
+        if (o.name != name) continue;
+        if (!o.valid(value)) {
+            std::string names;
+            for (std::string_view n : o.names()) names += (names.empty() ? "" : ", ") + std::string(n);
+            return "unknown " + std::string(name) + " '" + std::string(value) + "' (known: " + names + ")";
+        }
+        s.*o.member = value;
         return {};
     }
     if (name == "filter_type") {
@@ -147,6 +195,12 @@ IntegratorSettings integrator_settings(const RenderSettings& s) {
     parse_hemisphere(s.hemisphere, &out.hemisphere);
     out.ao_distance = s.ao_distance;
     out.film_transparent = s.film_transparent != 0;
+    parse_light_sampling(s.light_sampling, &out.light_sampling);
+    parse_mis_heuristic(s.mis_heuristic, &out.mis_heuristic);
+    parse_light_selection(s.light_selection, &out.light_selection);
+    parse_rr_mode(s.rr_mode, &out.rr_mode);
+    out.rr_min_depth = s.rr_min_depth;
+    out.control_variate = s.control_variate;
     return out;
 }
 

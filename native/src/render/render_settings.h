@@ -20,11 +20,18 @@ struct RenderSettings {
     uint32_t crop_x = 0, crop_y = 0, crop_width = 0, crop_height = 0;
     uint32_t film_transparent = 0;  // 1: the background has alpha 0 (Cycles' Film > Transparent)
     float filter_width = 1.5f;
-    float ao_distance = 1.0f;  // `ao` integrator: occlusion distance, scene units, > 0 (inf allowed)
+    float ao_distance = 1.0f;      // `ao` integrator: occlusion distance, scene units, > 0 (inf allowed)
+    uint32_t rr_min_depth = 3;     // first bounce at which Russian roulette may end a path
+    float control_variate = 0.0f;  // ambient radiance L_a of the control variate, >= 0; 0 = off
     std::string sampler = "random";
     std::string filter_type = "blackman_harris";
     std::string integrator = "path";
     std::string hemisphere = "cosine";  // sampling/hemisphere.h registry name
+    // integrators/estimator_options.h names.
+    std::string light_sampling = "mis";
+    std::string mis_heuristic = "power";
+    std::string light_selection = "mixed";
+    std::string rr_mode = "throughput";
 };
 
 // The rendered region in pixels of the full frame.

@@ -52,6 +52,10 @@ std::string Renderer::start() {
     const std::string crop_error = crop_region(settings_, &region);
     if (!crop_error.empty()) return crop_error;
     region_ = region;
+    notices_.clear();
+    for (const std::string& notice :
+         find_integrator(settings_.integrator)->create(integrator_settings(settings_))->notices(scene_))
+        notices_ += (notices_.empty() ? "" : "\n") + notice;
     width_ = region.width;
     height_ = region.height;
     image_.assign(static_cast<size_t>(width_) * height_ * 4, 0.0f);

@@ -43,6 +43,9 @@ public:
     bool running() const { return worker_.joinable() && !done_.load(); }
     // Validates the settings against the scene; returns an error message or "".
     std::string start();
+    // What the chosen integrator cannot render in this scene, one sentence per line ("" if
+    // nothing); set by start().
+    const std::string& notices() const { return notices_; }
     void cancel() { cancel_.store(true); }
     // True when the render has ended within the timeout.
     bool wait(int timeout_ms);
@@ -80,6 +83,7 @@ private:
     bool rendering_ = false;  // path tracing (not BVH build) in progress
     bool cancelled_ = false;
     std::string error_;
+    std::string notices_;
 };
 
 }  // namespace stratum
