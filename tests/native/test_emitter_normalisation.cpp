@@ -130,7 +130,7 @@ Measurement measure_irradiance(StratumScene* scene, const char* integrator) {
     Measurement m = measure(scene,
                             {{"width", 32},
                              {"height", 32},
-                             {"samples", light_tracer ? 16 : 64},
+                             {"samples", 64},
                              {"seed", 5u},
                              {"filter_type", "box"},
                              {"filter_width", 1.0},
