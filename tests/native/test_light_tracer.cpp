@@ -1,0 +1,292 @@
+// The light tracer (integrator `light`, textbook ch. 6) against the path tracer and closed
+// forms, its determinism, border renders and notices.
+//
+// Statistics. A light-tracer particle splats into every pixel within the filter radius, so
+// neighbouring pixels are correlated and the spread of pixel values does not give the standard
+// error of an image mean. Each comparison therefore renders S independent images per estimator
+// (seeds 1..S) and takes the image mean m_s of each: the m_s are independent and identically
+// distributed, their mean M estimates the expectation with standard error σ = sd(m_s)/√S.
+// Two estimators agree when |M_a − M_b| ≤ 4·√(σ_a² + σ_b²). With σ estimated from S = 8 seeds
+// the ratio is t-distributed with about 14 degrees of freedom; |t| > 4 has probability 1.3e-3
+// (seeds are fixed, so a passing test stays passing). Against a closed form the bound is
+// 4σ_a. Scenes are 16×16 pixels at 32 samples: a few tenths of a second each in Release.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "render_helpers.h"
+
+using namespace stratum_test;
+
+namespace {
+
+constexpr float kPiF = 3.14159265358979f;
+constexpr int kSeeds = 8;
+constexpr int64_t kSize = 16;
+
+struct Image {
+    std::vector<float> rgba;
+    std::string notices;
+};
+
+struct Options {
+    const char* integrator = "light";
+    int64_t samples = 32;
+    int64_t max_bounces = 12;
+    int64_t seed = 1;
+    int64_t threads = 0;
+    int64_t crop_x = 0, crop_y = 0, crop_width = 0, crop_height = 0;
+};
+
+Image render_image(StratumScene* scene, const Options& o) {
+    Image out;
+    StratumRenderer* r = nullptr;
+    EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK) << stratum_last_error();
+    for (const auto& [name, value] : {std::pair<const char*, int64_t>{"width", kSize},
+                                      {"height", kSize},
+                                      {"samples", o.samples},
+                                      {"max_bounces", o.max_bounces},
+                                      {"seed", o.seed},
+                                      {"threads", o.threads},
+                                      {"crop_x", o.crop_x},
+                                      {"crop_y", o.crop_y},
+                                      {"crop_width", o.crop_width},
+                                      {"crop_height", o.crop_height}}) {
+        EXPECT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK)
+            << name << ": " << stratum_last_error();
+    }
+    EXPECT_EQ(stratum_renderer_set_string(r, "integrator", o.integrator), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "sampler", "random"), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
+    int32_t done = 0;
+    while (!done) stratum_renderer_wait(r, 1000, &done);
+    const char* notices = nullptr;
+    EXPECT_EQ(stratum_renderer_notices(r, &notices), STRATUM_OK);
+    out.notices = notices ? notices : "";
+    const int64_t w = o.crop_width ? o.crop_width : kSize, h = o.crop_height ? o.crop_height : kSize;
+    out.rgba.resize(static_cast<size_t>(w * h * 4));
+    EXPECT_EQ(stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size()), STRATUM_OK);
+    stratum_renderer_destroy(r);
+    return out;
+}
+
+struct Estimate {
+    double mean[3], error[3];  // per channel: mean over seeds of the image mean, its standard error
+};
+
+Estimate estimate(StratumScene* scene, Options o) {
+    double sum[3] = {0, 0, 0}, sum2[3] = {0, 0, 0};
+    for (int s = 1; s <= kSeeds; ++s) {
+        o.seed = s;
+        const Image img = render_image(scene, o);
+        const size_t n = img.rgba.size() / 4;
+        for (int c = 0; c < 3; ++c) {
+            double m = 0;
+            for (size_t i = 0; i < n; ++i) m += img.rgba[4 * i + c];
+            m /= static_cast<double>(n);
+            sum[c] += m;
+            sum2[c] += m * m;
+        }
+    }
+    Estimate e{};
+    for (int c = 0; c < 3; ++c) {
+        e.mean[c] = sum[c] / kSeeds;
+        const double var = std::max(0.0, (sum2[c] - kSeeds * e.mean[c] * e.mean[c]) / (kSeeds - 1));
+        e.error[c] = std::sqrt(var / kSeeds);
+    }
+    return e;
+}
+
+void expect_agree(const Estimate& a, const Estimate& b, const char* what) {
+    for (int c = 0; c < 3; ++c) {
+        const double tolerance = 4.0 * std::hypot(a.error[c], b.error[c]);
+        EXPECT_NEAR(a.mean[c], b.mean[c], tolerance) << what << ", channel " << c;
+        EXPECT_GT(a.mean[c], 0.0) << what;
+    }
+}
+
+StratumMaterialDesc diffuse(float r, float g, float b) {
+    return {STRATUM_MATERIAL_DIFFUSE, {r, g, b}, 1.0f, 0.0f, 0.0f, 1.5f, {0, 0, 0}, STRATUM_MICROFACET_GGX};
+}
+
+StratumMaterialDesc emission(float radiance) {
+    return {STRATUM_MATERIAL_EMISSION, {0, 0, 0}, 1.0f, 0.0f, 0.0f, 1.5f, {radiance, radiance, radiance},
+            STRATUM_MICROFACET_GGX};
+}
+
+// An axis-aligned rectangle [x0,x1]×[y0,y1] at height z, wound so its normal is +Z (up) or −Z.
+void add_rectangle(StratumScene* scene, const StratumMaterialDesc& material, float x0, float x1, float y0,
+                   float y1, float z, bool up) {
+    uint32_t mat = 0, id = 0;
+    ASSERT_EQ(stratum_scene_add_material(scene, &material, &mat), STRATUM_OK);
+    const float positions[] = {x0, y0, z, x1, y0, z, x1, y1, z, x0, y1, z};
+    const uint32_t up_tris[] = {0, 1, 2, 0, 2, 3}, down_tris[] = {0, 2, 1, 0, 3, 2};
+    const uint32_t mats[] = {mat, mat};
+    const StratumMeshDesc mesh{positions, 4, up ? up_tris : down_tris, 2, nullptr, nullptr, mats};
+    ASSERT_EQ(stratum_scene_add_mesh(scene, &mesh, &id), STRATUM_OK);
+    ASSERT_EQ(stratum_scene_add_instance(scene, id, kIdentity), STRATUM_OK);
+}
+
+// Issue 6 point 3: a Lambertian a×b panel of radiance L₀ (flux πL₀ab per face) at height 1
+// lighting a diffuse floor, seen from a pinhole between them looking down.
+StratumScene* panel_over_floor() {
+    StratumScene* scene = nullptr;
+    EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
+    add_rectangle(scene, diffuse(0.8f, 0.5f, 0.2f), -3, 3, -3, 3, 0.0f, true);
+    add_rectangle(scene, emission(4.0f), -0.3f, 0.3f, -0.2f, 0.2f, 1.0f, false);
+    const StratumCameraDesc camera = camera_at(0.1f, 0.0f, 0.6f);
+    EXPECT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK);
+    return scene;
+}
+
+// A closed diffuse sphere of radius 1 (reflectance k per channel) with a light inside and the
+// camera inside: multiple bounces everywhere.
+StratumScene* sphere_with_light(const StratumLightDesc& light, float k) {
+    StratumScene* scene = make_sphere_interior(diffuse(k, 0.5f * k, 0.9f), 12, 0.1f, -0.2f, 0.3f);
+    EXPECT_NE(scene, nullptr) << stratum_last_error();
+    EXPECT_EQ(stratum_scene_add_light(scene, &light), STRATUM_OK) << stratum_last_error();
+    return scene;
+}
+
+StratumLightDesc point_light(float power) {
+    StratumLightDesc l{};
+    l.type = STRATUM_LIGHT_POINT;
+    l.color[0] = l.color[1] = l.color[2] = 1.0f;
+    l.strength = power;
+    std::copy(kIdentity, kIdentity + 16, l.transform);
+    l.transform[3] = -0.2f;
+    l.transform[7] = 0.3f;
+    l.transform[11] = -0.1f;
+    l.spot_size = kPiF;
+    return l;
+}
+
+StratumLightDesc area_light(float power) {
+    StratumLightDesc l = point_light(power);
+    l.type = STRATUM_LIGHT_AREA_RECTANGLE;
+    l.size_x = 0.4f;
+    l.size_y = 0.3f;
+    l.transform[11] = 0.5f;  // facing down (local −Z), near the top of the sphere
+    return l;
+}
+
+}  // namespace
+
+TEST(LightTracer, PanelOverFloorMatchesThePathTracer) {
+    StratumScene* scene = panel_over_floor();
+    const Estimate light = estimate(scene, {"light"});
+    const Estimate path = estimate(scene, {"path"});
+    expect_agree(light, path, "panel over floor");
+    stratum_scene_destroy(scene);
+}
+
+// Integrating sphere B (textbook §3.3, research digest test B) by light tracing: every wall
+// emits L_e, reflectance k; with the bounce cap b the radiance is L_e Σ_{m=0}^{b+1} k^m. The
+// camera-ray part gives L_e (m = 0), particles connecting at their m-th vertex give the rest.
+TEST(LightTracer, EmissiveSphereGivesTheClosedForm) {
+    const float k = 0.5f, le = 1.0f;
+    StratumMaterialDesc wall = diffuse(k, k, k);
+    wall.emission[0] = wall.emission[1] = wall.emission[2] = le;
+    StratumScene* scene = make_sphere_interior(wall, 12, 0.1f, -0.2f, 0.3f);
+    ASSERT_NE(scene, nullptr);
+    for (const int64_t bounces : {0, 2, 24}) {
+        Options o;
+        o.max_bounces = bounces;
+        const Estimate e = estimate(scene, o);
+        double expected = 0, term = le;
+        for (int m = 0; m <= bounces + 1; ++m, term *= k) expected += term;
+        for (int c = 0; c < 3; ++c)
+            EXPECT_NEAR(e.mean[c], expected, 4.0 * e.error[c])
+                << "max_bounces " << bounces << ", channel " << c;
+    }
+    stratum_scene_destroy(scene);
+}
+
+TEST(LightTracer, PointLightInADiffuseSphereMatchesThePathTracer) {
+    StratumScene* scene = sphere_with_light(point_light(20.0f), 0.7f);
+    for (const int64_t bounces : {1, 12}) {
+        Options light, path;
+        path.integrator = "path";
+        light.max_bounces = path.max_bounces = bounces;
+        expect_agree(estimate(scene, light), estimate(scene, path), "point light");
+    }
+    stratum_scene_destroy(scene);
+}
+
+TEST(LightTracer, AreaLampInADiffuseSphereMatchesThePathTracer) {
+    StratumScene* scene = sphere_with_light(area_light(20.0f), 0.7f);
+    Options path;
+    path.integrator = "path";
+    expect_agree(estimate(scene, {}), estimate(scene, path), "area lamp");
+    stratum_scene_destroy(scene);
+}
+
+TEST(LightTracer, ThinLensCameraMatchesThePathTracer) {
+    StratumScene* scene = panel_over_floor();
+    StratumCameraDesc camera = camera_at(0.1f, 0.0f, 0.6f);
+    camera.aperture_radius = 0.05f;
+    camera.focus_distance = 0.3f;  // the floor (0.6 below) is out of focus
+    ASSERT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK) << stratum_last_error();
+    Options path;
+    path.integrator = "path";
+    expect_agree(estimate(scene, {}), estimate(scene, path), "thin lens");
+    stratum_scene_destroy(scene);
+}
+
+TEST(LightTracer, SameSeedIsBitIdenticalForAnyThreadCount) {
+    StratumScene* scene = sphere_with_light(area_light(20.0f), 0.7f);
+    Options one, two;
+    one.threads = 1;
+    two.threads = 2;
+    one.samples = two.samples = 8;
+    const Image a = render_image(scene, one), b = render_image(scene, two), c = render_image(scene, two);
+    ASSERT_EQ(a.rgba.size(), b.rgba.size());
+    EXPECT_EQ(std::memcmp(a.rgba.data(), b.rgba.data(), a.rgba.size() * sizeof(float)), 0);
+    EXPECT_EQ(std::memcmp(b.rgba.data(), c.rgba.data(), b.rgba.size() * sizeof(float)), 0);
+    stratum_scene_destroy(scene);
+}
+
+TEST(LightTracer, BorderRenderEqualsTheCropOfTheFullRender) {
+    StratumScene* scene = sphere_with_light(area_light(20.0f), 0.7f);
+    Options full, border;
+    full.samples = border.samples = 8;
+    border.crop_x = 3;
+    border.crop_y = 5;
+    border.crop_width = 7;
+    border.crop_height = 6;
+    const Image f = render_image(scene, full), b = render_image(scene, border);
+    for (int64_t y = 0; y < border.crop_height; ++y) {
+        for (int64_t x = 0; x < border.crop_width; ++x) {
+            for (int c = 0; c < 4; ++c) {
+                const float in_full = f.rgba[4 * ((y + border.crop_y) * kSize + x + border.crop_x) + c];
+                EXPECT_EQ(b.rgba[4 * (y * border.crop_width + x) + c], in_full) << x << "," << y << "," << c;
+            }
+        }
+    }
+    stratum_scene_destroy(scene);
+}
+
+TEST(LightTracer, OrthographicCameraRendersWhatItSeesDirectlyAndSaysWhy) {
+    StratumScene* scene = panel_over_floor();
+    StratumCameraDesc camera = camera_at(0.0f, 0.0f, 0.6f);
+    camera.type = STRATUM_CAMERA_ORTHOGRAPHIC;
+    camera.ortho_scale = 2.0f;
+    ASSERT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK) << stratum_last_error();
+    const Image img = render_image(scene, {});
+    EXPECT_NE(img.notices.find("orthographic"), std::string::npos) << img.notices;
+    // Only the camera-ray part: the floor (not emissive) is black.
+    for (size_t i = 0; i < img.rgba.size(); i += 4) EXPECT_EQ(img.rgba[i], 0.0f);
+    Options path;
+    path.integrator = "path";
+    EXPECT_EQ(render_image(scene, path).notices, "");
+    stratum_scene_destroy(scene);
+}
+
+TEST(LightTracer, PerspectiveDiffuseSceneHasNoNotice) {
+    StratumScene* scene = panel_over_floor();
+    EXPECT_EQ(render_image(scene, {}).notices, "");
+    stratum_scene_destroy(scene);
+}
