@@ -48,6 +48,25 @@ float adjoint_correction(Vec3 arrival, Vec3 out, Vec3 ns, Vec3 ng) {
     return den > 0.0f ? std::abs(dot(arrival, ns)) * std::abs(dot(out, ng)) / den : 0.0f;
 }
 
+// The adjoint BSDF times the connection cosine, f*(ω_l → ω_o) |ω_o·n_s| with Veach's shading-normal
+// correction (eq. 5.19): f(ω_o, ω_l) |ω_l·n_s| |ω_o·n_g| / |ω_l·n_g|. Evaluating the closures
+// with wo = ω_o (the direction toward the camera side of the path), as a camera path evaluates
+// them, keeps non-reciprocal closures exact: Principled v2 scales its diffuse base by what its
+// coat reflects toward wo (Kulla–Conty layering), so f(ω_l, ω_o) ≠ f(ω_o, ω_l). The closures
+// take wo above the shading surface only; a transmitted ω_o (refraction toward the camera side)
+// is evaluated the other way round, exact for reciprocal lobes.
+Rgb adjoint_value(const ClosureSet& closures, Vec3 wo_local, Vec3 out_local, Vec3 arrival, Vec3 out,
+                  const ShadingPoint& sp, HemisphereDistribution hemisphere, uint32_t kinds) {
+    if (out_local.z > 0.0f && wo_local.z > 0.0f) {
+        const float den = std::abs(dot(arrival, sp.ng));
+        if (!(den > 0.0f)) return Rgb(0.0f);
+        return closures.eval(out_local, wo_local, hemisphere, kinds).value *
+               (std::abs(dot(out, sp.ng)) / den);
+    }
+    return closures.eval(wo_local, out_local, hemisphere, kinds).value *
+           adjoint_correction(arrival, out, sp.ns, sp.ng);
+}
+
 bool finite(Rgb c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
 
 // Adds the splats of a contribution reaching film point s: every pixel of the region whose
@@ -168,9 +187,9 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
                 const Vec3 wc = frame.to_local(c.to_camera);
                 if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) &&
                     (wc.z > 0.0f) == (side > 0.0f)) {
-                    const BsdfEval f = closures.eval(wo, wc, settings_.hemisphere, kinds);
-                    const Rgb value = beta0 * throughput * f.value *
-                                      (adjoint_correction(arrival, c.to_camera, sp.ns, sp.ng) * c.importance);
+                    const Rgb f = adjoint_value(closures, wo, wc, arrival, c.to_camera, sp,
+                                                settings_.hemisphere, kinds);
+                    const Rgb value = beta0 * throughput * f * c.importance;
                     if (!value.is_black() && finite(value)) {
                         const Vec3 o = offset_ray_origin(hit.position, side > 0.0f ? sp.ng : -sp.ng);
                         const float t_max = std::max(0.0f, c.unclipped - offset_distance(hit.position));
@@ -202,7 +221,14 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
             // lights only the kinds its visibility allows at the first vertex.
             if (depth >= settings_.max_bounces) break;
             if (!(kinds & scatter_kind_bit(bs.kind))) break;
-            throughput *= bs.weight * adjoint_correction(arrival, wi, sp.ns, sp.ng);
+            // The adjoint scattering weight f(ω_o, ω_l) |ω_l·n_s| |ω_o·n_g| / (|ω_l·n_g| p), by the
+            // same evaluation as the connection; delta lobes (mirror, refraction) keep the sampled
+            // weight with the shading-normal correction.
+            throughput *= bs.delta || bs.wi.z <= 0.0f
+                              ? bs.weight * adjoint_correction(arrival, wi, sp.ns, sp.ng)
+                              : adjoint_value(closures, wo, bs.wi, arrival, wi, sp, settings_.hemisphere,
+                                              ClosureSet::kAllKinds) *
+                                    (1.0f / bs.pdf);
             if (depth >= settings_.rr_min_depth && settings_.rr_mode != RouletteMode::Off) {
                 const float survive =
                     std::min(1.0f, settings_.rr_mode == RouletteMode::Throughput ? throughput.max_component()
