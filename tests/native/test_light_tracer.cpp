@@ -66,6 +66,11 @@ Image render_image(StratumScene* scene, const Options& o) {
     const char* notices = nullptr;
     EXPECT_EQ(stratum_renderer_notices(r, &notices), STRATUM_OK);
     out.notices = notices ? notices : "";
+    StratumProgress progress{};
+    EXPECT_EQ(stratum_renderer_progress(r, &progress), STRATUM_OK);
+    // Camera samples and particles both count toward the progress bar, which ends full.
+    EXPECT_DOUBLE_EQ(progress.fraction_done, 1.0);
+    EXPECT_EQ(progress.samples_done, o.samples);
     const int64_t w = o.crop_width ? o.crop_width : kSize, h = o.crop_height ? o.crop_height : kSize;
     out.rgba.resize(static_cast<size_t>(w * h * 4));
     EXPECT_EQ(stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size()), STRATUM_OK);
@@ -412,4 +417,23 @@ TEST(LightTracer, TransmissiveClosuresAreNoticed) {
     o.samples = 1;
     EXPECT_NE(render_image(scene, o).notices.find("refract"), std::string::npos);
     stratum_scene_destroy(scene);
+}
+
+// A constant background (Blender's world colour) lights the scene through escaping paths of the
+// path tracer; the light tracer emits it as a uniform sky, alone and shared with a lamp.
+TEST(LightTracer, ConstantBackgroundLightsLikeTheSky) {
+    Options path;
+    path.integrator = "path";
+    for (const bool with_lamp : {false, true}) {
+        StratumScene* scene = small_floor();
+        const float sky[3] = {0.3f, 0.5f, 0.8f};
+        ASSERT_EQ(stratum_scene_set_background(scene, sky), STRATUM_OK);
+        if (with_lamp) {
+            StratumLightDesc lamp = point_light(3.0f);
+            lamp.transform[11] = 0.4f;
+            ASSERT_EQ(stratum_scene_add_light(scene, &lamp), STRATUM_OK);
+        }
+        expect_agree(estimate(scene, {}), estimate(scene, path), with_lamp ? "sky and lamp" : "sky");
+        stratum_scene_destroy(scene);
+    }
 }

@@ -7,6 +7,7 @@
 #include "integrators/shading_point.h"
 #include "integrators/transparent_shadow.h"
 #include "sampling/dimensions.h"
+#include "sampling/warps.h"
 #include "stratum/stratum.h"
 
 namespace stratum {
@@ -65,6 +66,21 @@ Rgb adjoint_value(const ClosureSet& closures, Vec3 wo_local, Vec3 out_local, Vec
     }
     return closures.eval(wo_local, out_local, hemisphere, kinds).value *
            adjoint_correction(arrival, out, sp.ns, sp.ng);
+}
+
+// A constant background (no environment image) lights the scene like a uniform sky of radiance
+// L: the direction toward the sky uniform on the sphere (p_ω = 1/(4π)), then a parallel beam over
+// the disk of radius R tangent to the bounding sphere (p_A = 1/(πR²)): weight 4π·πR²·L.
+void sample_sky_emission(Rgb radiance, Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                         EmissionSample* out) {
+    const Vec3 toward_sky = sample_uniform_sphere(u_direction);
+    const Frame frame = Frame::from_normal(toward_sky);
+    const Vec2 d = sample_uniform_disk_concentric(u_position);
+    out->position = center + toward_sky * radius + (frame.s * d.x + frame.t * d.y) * radius;
+    out->direction = -toward_sky;
+    out->normal = toward_sky;
+    out->weight = radiance * (kPi * radius * radius / uniform_sphere_pdf());
+    out->soft_radius = 0.0f;
 }
 
 bool finite(Rgb c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
@@ -139,12 +155,24 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
                                  std::vector<Splat>& splats, uint64_t& rays) const {
     const LightSet& lights = scene.lights();
     EmissionSample e;
-    if (!lights.sample_emission(sampler.get_1d(particle, kDimEmissionLight),
-                                sampler.get_2d(particle, kDimEmissionPoint),
-                                sampler.get_2d(particle, kDimEmissionDirection), settings_.light_selection,
-                                scene.bounds_center(), scene.bounds_radius(), &e)) {
-        return;
+    const float u_choice = sampler.get_1d(particle, kDimEmissionLight);
+    const Vec2 u_position = sampler.get_2d(particle, kDimEmissionPoint);
+    const Vec2 u_direction = sampler.get_2d(particle, kDimEmissionDirection);
+    const float p_sky = film.sky_probability;
+    if (u_choice < p_sky) {
+        sample_sky_emission(scene.background(Vec3(0.0f, 0.0f, 1.0f)), u_position, u_direction,
+                            scene.bounds_center(), scene.bounds_radius(), &e);
+        e.weight = e.weight * (1.0f / p_sky);
+    } else {
+        // u_choice rescaled to [0, 1) for the lights' own choice.
+        const float u_light = std::min((u_choice - p_sky) / (1.0f - p_sky), kOneMinusEpsilon);
+        if (!lights.sample_emission(u_light, u_position, u_direction, settings_.light_selection,
+                                    scene.bounds_center(), scene.bounds_radius(), &e)) {
+            return;
+        }
+        e.weight = e.weight * (1.0f / (1.0f - p_sky));
     }
+    if (e.weight.is_black()) return;
     // W×H particles per sample index: each carries 1/(W H) of the flux estimate.
     const Rgb beta0 =
         e.weight * (1.0f / (static_cast<float>(film.frame_width) * static_cast<float>(film.frame_height)));
@@ -224,15 +252,16 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
             // The adjoint scattering weight f(ω_o, ω_l) |ω_l·n_s| |ω_o·n_g| / (|ω_l·n_g| p), by the
             // same evaluation as the connection; delta lobes (mirror, refraction) keep the sampled
             // weight with the shading-normal correction.
-            throughput *= bs.delta || bs.wi.z <= 0.0f
-                              ? bs.weight * adjoint_correction(arrival, wi, sp.ns, sp.ng)
-                              : adjoint_value(closures, wo, bs.wi, arrival, wi, sp, settings_.hemisphere,
-                                              ClosureSet::kAllKinds) *
-                                    (1.0f / bs.pdf);
+            const Rgb scattering = bs.delta || bs.wi.z <= 0.0f
+                                       ? bs.weight * adjoint_correction(arrival, wi, sp.ns, sp.ng)
+                                       : adjoint_value(closures, wo, bs.wi, arrival, wi, sp,
+                                                       settings_.hemisphere, ClosureSet::kAllKinds) *
+                                             (1.0f / bs.pdf);
+            throughput *= scattering;
             if (depth >= settings_.rr_min_depth && settings_.rr_mode != RouletteMode::Off) {
-                const float survive =
-                    std::min(1.0f, settings_.rr_mode == RouletteMode::Throughput ? throughput.max_component()
-                                                                                 : bs.weight.max_component());
+                const float survive = std::min(1.0f, settings_.rr_mode == RouletteMode::Throughput
+                                                         ? throughput.max_component()
+                                                         : scattering.max_component());
                 if (!(sampler.get_1d(particle, bounce_dimension(vertex, kDimRussianRoulette)) < survive))
                     break;
                 throughput *= 1.0f / survive;
@@ -244,6 +273,18 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
         origin = offset_ray_origin(hit.position, below ? -sp.ng : sp.ng);
         dir = wi;
     }
+}
+
+float LightTracer::sky_probability(const RenderScene& scene) {
+    const LightSet& lights = scene.lights();
+    if (lights.environment()) return 0.0f;  // the environment is one of the lights
+    const float sky = scene.background(Vec3(0.0f, 0.0f, 1.0f)).average();
+    if (!(sky > 0.0f)) return 0.0f;
+    double total = 0.0;
+    for (uint32_t i = 0; i < lights.size(); ++i) total += lights.power(i);
+    // The sky's power as LightSet rates an environment: π R² L̄.
+    const double sky_power = kPi * sqr(scene.bounds_radius()) * sky;
+    return total > 0.0 ? static_cast<float>(sky_power / (sky_power + total)) : 1.0f;
 }
 
 std::vector<std::string> LightTracer::notices(const Scene& scene) const {

@@ -53,6 +53,7 @@
 #include <vector>
 
 #include "integrators/integrator.h"
+#include "lights/emission_sample.h"
 #include "render/pixel_filter.h"
 #include "render/render_settings.h"
 
@@ -71,6 +72,8 @@ struct ParticleFilm {
     const PixelFilter& filter;
     PixelRegion region;
     uint32_t frame_width, frame_height;
+    // The share of particles a constant background emits (LightTracer::sky_probability).
+    float sky_probability;
 };
 
 class LightTracer final : public Integrator {
@@ -80,6 +83,9 @@ public:
     RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                             const CameraRay& ray, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;
+    // A constant background (no environment image) emits particles too, as a uniform sky, chosen
+    // by power against the lights (π R² L̄ for the sky, LightSet::power for each light).
+    static float sky_probability(const RenderScene& scene);
     // Traces particle (x, y, i) = `particle` and appends its splats.
     void trace_particle(const RenderScene& scene, const Sampler& sampler, const PixelSample& particle,
                         const ParticleFilm& film, std::vector<Splat>& splats, uint64_t& rays) const;

@@ -187,8 +187,9 @@ void Renderer::run() {
             });
             if (light_tracer && !cancel_.load()) {
                 trace_particles(*light_tracer, *sampler,
-                                ParticleFilm{camera, filter, region, s.width, s.height}, begin, end, arena,
-                                splat_sums);
+                                ParticleFilm{camera, filter, region, s.width, s.height,
+                                             LightTracer::sky_probability(*render_scene_)},
+                                begin, end, arena, splat_sums);
                 if (!cancel_.load()) {
                     std::unique_lock lock(image_mutex_);
                     // Pixel = camera-ray part mean + splat sum / sample indices done.
