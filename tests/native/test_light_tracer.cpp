@@ -437,3 +437,26 @@ TEST(LightTracer, ConstantBackgroundLightsLikeTheSky) {
         stratum_scene_destroy(scene);
     }
 }
+
+TEST(LightTracer, MovingEmissiveObjectsAreNoticed) {
+    StratumScene* scene = small_floor();
+    uint32_t mat = 0, id = 0;
+    const StratumMaterialDesc glow = emission(2.0f);
+    ASSERT_EQ(stratum_scene_add_material(scene, &glow, &mat), STRATUM_OK);
+    const float positions[] = {-0.1f, -0.1f, 0.3f, 0.1f, -0.1f, 0.3f, 0.1f, 0.1f, 0.3f};
+    const uint32_t triangles[] = {0, 2, 1}, mats[] = {mat};
+    const StratumMeshDesc mesh{positions, 3, triangles, 1, nullptr, nullptr, mats};
+    ASSERT_EQ(stratum_scene_add_mesh(scene, &mesh, &id), STRATUM_OK);
+    StratumInstanceDesc moving{};
+    moving.mesh_id = id;
+    std::copy(kIdentity, kIdentity + 16, moving.transform);
+    std::copy(kIdentity, kIdentity + 16, moving.transform_end);
+    moving.transform_end[3] = 0.2f;
+    moving.motion = 1;
+    moving.visibility = STRATUM_VISIBLE_ALL;
+    ASSERT_EQ(stratum_scene_add_instance_ex(scene, &moving), STRATUM_OK) << stratum_last_error();
+    Options o;
+    o.samples = 1;
+    EXPECT_NE(render_image(scene, o).notices.find("moving emissive"), std::string::npos);
+    stratum_scene_destroy(scene);
+}

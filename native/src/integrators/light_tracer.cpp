@@ -308,6 +308,20 @@ std::vector<std::string> LightTracer::notices(const Scene& scene) const {
             "light tracing does not apply the refraction factor eta^2 to particles: what is seen through "
             "refracting (glass, transmission) surfaces is too bright or too dark by that factor");
     }
+    // RenderScene makes lights only of static emissive triangles (a moving triangle has no single
+    // position to sample); camera and BSDF rays still find moving ones, particles never leave them.
+    for (const Instance& inst : scene.instances) {
+        if (!inst.motion || inst.object_to_world.m == inst.object_to_world_end.m) continue;
+        bool emits = false;
+        for (const uint32_t id : scene.meshes[inst.mesh_id].material_ids)
+            emits |= !material_emission(scene.materials[id]).is_black();
+        if (emits) {
+            out.emplace_back(
+                "light tracing emits no particles from moving emissive objects: the light they cast on other "
+                "surfaces is missing (the camera still sees them)");
+            break;
+        }
+    }
     if (scene.lights.size() > 0) {
         for (const LightParams& l : scene.lights) {
             if ((l.type == LightType::Point || l.type == LightType::Spot || l.type == LightType::SpotV1) &&

@@ -47,7 +47,8 @@
 // connection (only the camera-ray part renders). Refraction: the closures return radiance
 // BSDFs, and the importance a particle carries through a refraction differs by η², which the
 // closures do not expose, so scenes with transmissive closures differ behind refracting
-// surfaces. Point and spot lamps with a radius: see PointLight::sample_emission.
+// surfaces. Point and spot lamps with a radius: see PointLight::sample_emission. Moving
+// emissive meshes are no lights (RenderScene), so they emit no particles.
 #pragma once
 
 #include <vector>
