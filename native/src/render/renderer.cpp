@@ -21,9 +21,10 @@ constexpr uint32_t kTileSize = 16;
 constexpr uint32_t kMaxPassSamples = 64;
 // Light tracing: particles are traced in chunks of consecutive particle indices, a batch of
 // chunks in parallel; each chunk collects its splats, and the batch's chunks are added to the
-// film in chunk order, so the sums do not depend on the thread count or scheduling.
-constexpr uint32_t kParticleChunk = 1024;
-constexpr uint32_t kChunksPerBatch = 32;
+// film in chunk order, so the sums do not depend on the thread count or scheduling. A batch
+// holds 16384 particles' splats: at most (max_bounces + 1) connections × 16 pixels each.
+constexpr uint32_t kParticleChunk = 256;
+constexpr uint32_t kChunksPerBatch = 64;
 
 using Clock = std::chrono::steady_clock;
 
