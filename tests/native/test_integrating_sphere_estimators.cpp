@@ -6,16 +6,17 @@
 // Sphere A: the same mesh, walls not emitting, a point lamp Φ = 4π at the centre.
 // Each case is a combination of `integrator` (path, direct, light), `light_sampling` (bsdf, nee,
 // mis) × `mis_heuristic` (balance, power, max), `light_selection` (mixed, power, uniform; the
-// sphere's triangles differ in area, so the three choose differently), `rr_mode` (off,
-// throughput, albedo) with `rr_min_depth`, and `control_variate` L_a (a multiple of the
-// sphere's exact radiance, inside and outside (0, 2L)): every value of every setting appears at
-// least once, and every case runs against both spheres, except BSDF sampling alone with the
-// point lamp, which cannot see it (test_integrating_sphere_point_light.cpp checks that it
-// renders black and says why).
+// sphere's triangles differ in area, so uniform and power choose differently, while mixed equals
+// power with a single emissive object), `rr_mode` (off, throughput, albedo) with `rr_min_depth`,
+// and `control_variate` L_a (a multiple of the sphere's exact radiance, inside and outside (0,
+// 2L)): every value of every setting appears at least once, and every case runs against both
+// spheres, except BSDF sampling alone with the point lamp, which cannot see it
+// (test_integrating_sphere_point_light.cpp checks that it renders black and says why).
 //
-// Caps: most cases use max_bounces 2 (the cap cuts the series after 3 or 4 terms, (k(1−h))³ ≈
-// 0.09 of the total, so a wrong cap fails by far more than the tolerance); some use 30. The
-// `direct` integrator is the path tracer with max_bounces 0 whatever the setting (common.md).
+// Caps: most cases use max_bounces 2 (the cap cuts the series after 3 or 4 terms, (k(1−h))³ ≈ 0.09
+// of the total; each case asserts that its tolerance would fail a cap one bounce off, or for the
+// uncapped ones a sphere without the port); some use 30. The `direct` integrator is the path tracer
+// with max_bounces 0 whatever the setting (common.md).
 //
 // Standard error. Path-tracing estimators with the `random` sampler: each pixel is an
 // independent mean of spp samples, so the image mean has standard error s/√P (pixel_stats).
