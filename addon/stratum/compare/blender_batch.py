@@ -7,10 +7,14 @@ Blender start-up is paid once per batch.
 BATCH.json: {"mode": "render" | "probe", "addon_parent": folder holding stratum/,
 "output_dir": str, "threads": int | null, "configs": [entry, ...], "probe_output": str}, an
 entry as made by plan.batch_entry. For each entry the script sets scene.stratum (sampler,
-samples, seed, integrator, hemisphere, max_bounces, threads) and the render resolution, renders
-with the STRATUM engine, saves the Render Result as a linear 32-bit float OpenEXR (as
-scripts/render_to_files.py does), then writes the JSON sidecar (key, render time, EXR size and
-sha256). Both go to a temporary name first and are renamed into place, the sidecar last: a
+samples, seed, integrator, hemisphere, max_bounces, threads, and the estimator settings
+light_sampling, mis_heuristic, light_selection, rr_mode, rr_min_depth, control_variate) and the
+render resolution, renders with the STRATUM engine, saves the Render Result as a linear 32-bit
+float OpenEXR (as scripts/render_to_files.py does), then writes the JSON sidecar (key, render
+time, EXR size and sha256). An estimator setting whose scene.stratum property does not exist in
+this add-on fails the configuration, naming it, unless its value is the renderer's default
+(which the renderer then uses anyway): never a render with a silently different estimator.
+EXR and sidecar go to a temporary name first and are renamed into place, the sidecar last: a
 configuration counts as done only when its sidecar exists. A configuration that fails is
 reported and the batch goes on; the script then exits with status 1. After each one it prints
 `STRATUM_COMPARE_DONE {json}` on stdout (the runner's progress bar reads it).
@@ -123,12 +127,27 @@ def _render_size(scene: Any) -> list[int]:
     return [max(int(r.resolution_x * scale), 1), max(int(r.resolution_y * scale), 1)]
 
 
+def set_estimator_settings(props: Any, settings: dict[str, Any],
+                           defaults: dict[str, Any]) -> None:
+    """Sets every estimator setting on scene.stratum (`props`); a setting the add-on has no
+    property for is an error unless its value is the renderer's default."""
+    for name, value in settings.items():
+        if hasattr(props, name):
+            setattr(props, name, value)
+        elif value != defaults[name]:
+            raise RuntimeError(f"scene.stratum has no property {name!r}: cannot render "
+                               f"{name}={value!r} with this add-on")
+
+
 def _probe(payload: dict[str, Any]) -> None:
     bpy, scene = _setup_blender(payload)
+    from stratum.compare.estimators import SETTING_NAMES
+
     s = scene.stratum
     info = {"resolution": _render_size(scene), "integrator": str(s.integrator),
             "hemisphere": str(s.hemisphere), "max_bounces": int(s.max_bounces),
             "sampler": str(s.sampler), "samples": int(s.samples),
+            "estimator_settings": {n: getattr(s, n) for n in SETTING_NAMES if hasattr(s, n)},
             "blender_version": list(bpy.app.version)}
     write_json_atomic(Path(payload["probe_output"]), info)
 
@@ -136,6 +155,7 @@ def _probe(payload: dict[str, Any]) -> None:
 def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
     bpy, scene = _setup_blender(payload)
     from stratum import native
+    from stratum.compare.estimators import DEFAULTS
     from stratum.engine import StratumRenderEngine
 
     # Remember the native renderer's last progress report: its render_seconds is the path
@@ -171,6 +191,7 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
         s.samples = int(entry["samples"])
         s.seed = int(entry["seed"])
         s.integrator = entry["integrator"]
+        set_estimator_settings(s, entry["estimator_settings"], DEFAULTS)
         s.hemisphere = entry["hemisphere"]
         if entry.get("max_bounces") is not None:
             s.max_bounces = int(entry["max_bounces"])
