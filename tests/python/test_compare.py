@@ -684,3 +684,71 @@ def test_progress_bar_without_a_tty() -> None:
     assert "2/3 configurations" in lines[0] and "ETA" in lines[0]
     assert "now: mis-power random spp=1 seed=0" in lines[0]
     assert "3/3 configurations" in lines[1] and "ETA 0:00" in lines[1]
+
+
+# ---- the estimator study (scripts/study.py, scripts/study_estimators.py) -------------------
+
+
+def _study_estimators() -> Any:
+    sys.path.insert(0, str(REPO / "scripts"))
+    import study_estimators
+
+    return study_estimators
+
+
+def _synthetic_results(costs: dict[str, tuple[float, float]]) -> dict[str, Any]:
+    """results.json rows where series s has MSE = v/spp and trace time = c·spp for
+    costs[s] = (v, c): MSE·time = v·c at every spp."""
+    spps = [1, 4, 16]
+    summary = [{"series": s, "spp": n, "metric": metric, "mean": value}
+               for s, (v, c) in costs.items() for n in spps
+               for metric, value in (("mse", v / n), ("trace_seconds", c * n))]
+    return {"series": list(costs), "spp": spps, "summary": summary}
+
+
+def test_study_equal_time_interpolates_the_mse_time_curve() -> None:
+    """On MSE = v/N, t = c·N the MSE at time T is exactly v·c/T (a line of slope -1 in
+    log-log), whether T falls between measured points or below an estimator's cheapest."""
+    study = _study_estimators()
+    costs = {"bsdf": (4.0, 0.5), "nee": (1.0, 1.0), "mis-power": (1.5, 1.2),
+             "direct": (0.5, 0.1)}
+    budget, at = study.equal_time(_synthetic_results(costs))
+    assert budget == pytest.approx(0.5 * 16)  # bsdf is the cheapest unbiased at 16 spp
+    for series, (v, c) in costs.items():
+        assert at[series][0] == pytest.approx(v * c / budget)
+    assert not at["bsdf"][1] and not at["nee"][1] and at["direct"][1]  # direct ends at 1.6 s
+    text, numbers = study.table(_synthetic_results(costs))
+    assert numbers["series"]["nee"]["ratio_equal_spp"] == pytest.approx(1.0 / 1.5)
+    assert numbers["series"]["bsdf"]["ratio_equal_time"] == pytest.approx(2.0 / 1.8)
+    assert "| nee |" in text
+    lines = study.verdicts({"est_small": numbers})
+    small = next(line for line in lines if line.startswith("- NEE wins for small lights"))
+    assert "= 0.25 at equal spp (shown)" in small and "= 0.5 at equal time (shown)" in small
+    assert any("not measured" in line for line in lines)  # est_large was not given
+
+
+def test_study_quick_runs_the_estimator_ladder(native: Any, tmp_path: Path) -> None:
+    """`scripts/study.py --quick` on the estimator runs: the pipeline end to end through real
+    Blender at toy sizes (32x32, 1 and 4 spp, 2 seeds) into estimators.md."""
+    _need_blender(native)
+    out = tmp_path / "study"
+    started = time.perf_counter()
+    proc = subprocess.run([sys.executable, str(REPO / "scripts" / "study.py"), "--quick",
+                           "--only", "est_small,est_large,est_glossy", "--out", str(out)],
+                          check=False, capture_output=True, text=True, timeout=900)
+    print(f"study --quick (estimators): {time.perf_counter() - started:.0f} s")
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    page = (out / "estimators.md").read_text()
+    labels = ["bsdf", "nee", "mis-balance", "mis-power", "mis-max", "direct"]
+    if "light" in {e.name for e in native.registry("integrator")}:
+        labels.append("light")
+    for run in ("est_small", "est_large", "est_glossy"):
+        assert f"## {run}:" in page
+        results = json.loads((out / run / "results.json").read_text())
+        assert sorted(results["series"]) == sorted(labels)
+        assert (out / run / "report.html").is_file()
+    assert page.count("at equal spp (") >= 9
+    assert not [line for line in page.splitlines()
+                if "not measured" in line and "light tracing" not in line]
+    assert (out / "figures" / "estimators_mse.png").is_file()
+    assert "## Estimators (issue 6)" in (out / "summary.md").read_text()
