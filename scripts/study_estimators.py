@@ -67,7 +67,7 @@ def plan_runs(quick: bool, run_type: Any) -> list[Any]:
     if quick:
         spp, seeds, resolution, reference_spp = [1, 4], 2, "32x32", 64
     else:
-        spp, seeds, resolution, reference_spp = [1, 4, 16, 64], 4, "64x64", 2048
+        spp, seeds, resolution, reference_spp = [1, 4, 16, 64], 8, "64x64", 2048
     extra = ["--integrator", specs, "--reference-integrator", REFERENCE,
              "--reference-sampler", "sobol"]
     return [run_type(name, scene, SAMPLER, spp, seeds, resolution, reference_spp, list(extra))
