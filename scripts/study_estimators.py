@@ -82,9 +82,28 @@ def _means(results: dict[str, Any], metric: str) -> dict[tuple[str, int], float]
             for row in results["summary"] if row["metric"] == metric}
 
 
-def equal_time(results: dict[str, Any]) -> tuple[float, dict[str, tuple[float, bool]]]:
-    """(T, {series: (MSE at time T, extrapolated)}): see the module doc."""
-    mse, seconds = _means(results, "mse"), _means(results, "trace_seconds")
+def median_errors(run_dir: Path, results: dict[str, Any]) -> dict[tuple[str, int], float]:
+    """Per (series, spp): the mean over seeds of the median over pixels of the squared error
+    (averaged over RGB). MSE is a mean, so a handful of fireflies can decide it; the median
+    is the noise of a typical pixel, which is what the textbook's "NEE wins for small lights"
+    is about (and its "fireflies" what the MSE then adds)."""
+    import numpy as np
+    from stratum.compare.exr import read_rgb
+
+    reference = read_rgb(run_dir / results["reference"]["path"]).astype(np.float64)
+    per: dict[tuple[str, int], list[float]] = {}
+    for row in results["renders"]:
+        err = ((read_rgb(run_dir / row["path"]).astype(np.float64) - reference) ** 2).mean(-1)
+        per.setdefault((row["series"], int(row["spp"])), []).append(float(np.median(err)))
+    return {k: float(np.mean(v)) for k, v in per.items()}
+
+
+def equal_time(results: dict[str, Any], errors: dict[tuple[str, int], float] | None = None
+               ) -> tuple[float, dict[str, tuple[float, bool]]]:
+    """(T, {series: (error at time T, extrapolated)}): see the module doc. errors: per
+    (series, spp), default the mean MSE."""
+    mse = errors if errors is not None else _means(results, "mse")
+    seconds = _means(results, "trace_seconds")
     spps = sorted(int(s) for s in results["spp"])
     curves = {s: [(seconds[(s, n)], mse[(s, n)]) for n in spps] for s in results["series"]}
     # direct is left out of the budget: it is biased, and far cheaper than full transport.
@@ -108,18 +127,22 @@ def fmt(x: float | None, digits: int = 3) -> str:
     return f"{x:.{digits}g}"
 
 
-def table(results: dict[str, Any]) -> tuple[str, dict[str, Any]]:
+def table(results: dict[str, Any], medians: dict[tuple[str, int], float]
+          ) -> tuple[str, dict[str, Any]]:
     """Markdown: per series, MSE at every spp, ratio to mis-power at the largest spp, trace
-    time at the largest spp, MSE at equal time and its ratio to mis-power."""
+    time at the largest spp, MSE at equal time and its ratio to mis-power; then the median
+    pixel error (median_errors) at the largest spp and its ratios at equal spp and time."""
     spps = sorted(int(s) for s in results["spp"])
     top = spps[-1]
     mse, seconds = _means(results, "mse"), _means(results, "trace_seconds")
     budget, at_budget = equal_time(results)
+    _, med_budget = equal_time(results, medians)
     base = "mis-power" if "mis-power" in results["series"] else results["series"][0]
     lines = ["| estimator | " + " | ".join(f"MSE {n} spp" for n in spps)
              + f" | MSE / {base} at {top} spp | path-tracing s at {top} spp"
-             f" | MSE at {budget:.3g} s | MSE / {base} at equal time |",
-             "|---|" + "---|" * (len(spps) + 4)]
+             f" | MSE at {budget:.3g} s | MSE / {base} at equal time"
+             f" | median px error {top} spp | its / {base} at equal spp | at equal time |",
+             "|---|" + "---|" * (len(spps) + 7)]
     numbers: dict[str, Any] = {"equal_time_seconds": budget, "series": {}}
     for s in results["series"]:
         m_budget, extrapolated = at_budget[s]
@@ -127,12 +150,17 @@ def table(results: dict[str, Any]) -> tuple[str, dict[str, Any]]:
                "ratio_equal_spp": mse[(s, top)] / mse[(base, top)],
                "trace_seconds": seconds[(s, top)], "mse_equal_time": m_budget,
                "ratio_equal_time": m_budget / at_budget[base][0],
-               "extrapolated": extrapolated}
+               "extrapolated": extrapolated,
+               "median": {str(n): medians[(s, n)] for n in spps},
+               "median_ratio_equal_spp": medians[(s, top)] / medians[(base, top)],
+               "median_ratio_equal_time": med_budget[s][0] / med_budget[base][0]}
         numbers["series"][s] = row
         lines.append(f"| {s} | " + " | ".join(fmt(mse[(s, n)]) for n in spps)
                      + f" | {fmt(row['ratio_equal_spp'], 2)} | {fmt(seconds[(s, top)], 2)}"
                      f" | {fmt(m_budget)}{'*' if extrapolated else ''}"
-                     f" | {fmt(row['ratio_equal_time'], 2)} |")
+                     f" | {fmt(row['ratio_equal_time'], 2)} | {fmt(medians[(s, top)])}"
+                     f" | {fmt(row['median_ratio_equal_spp'], 2)}"
+                     f" | {fmt(row['median_ratio_equal_time'], 2)} |")
     return "\n".join(lines), numbers
 
 
@@ -147,12 +175,15 @@ def verdicts(numbers: dict[str, dict[str, Any]]) -> list[str]:
 
     def say(claim: str, run: str, winner: str, loser: str) -> str:
         parts = []
-        for key, what in (("ratio_equal_spp", "equal spp"), ("ratio_equal_time", "equal time")):
+        for key, what in (("ratio_equal_spp", "MSE, equal spp"),
+                          ("ratio_equal_time", "MSE, equal time"),
+                          ("median_ratio_equal_spp", "median px error, equal spp"),
+                          ("median_ratio_equal_time", "median px error, equal time")):
             r = ratio(run, winner, loser, key)
             if r is None:
                 return f"- {claim}: not measured ({run} has no {winner} or {loser})"
-            parts.append(f"MSE({winner}) / MSE({loser}) = {r:.3g} at {what} "
-                         f"({'shown' if r < 1 else 'refuted'})")
+            parts.append(f"{winner}/{loser} = {r:.3g} ({what}: "
+                         f"{'shown' if r < 1 else 'refuted'})")
         return f"- {claim} [{run}]: " + "; ".join(parts)
 
     lines = [say("NEE wins for small lights", "est_small", "nee", "bsdf"),
@@ -175,8 +206,11 @@ def write_page(out: Path, load: Any) -> tuple[str, dict[str, Any]]:
               "results.json. MSE is the mean over seeds against the reference; ratios < 1 "
               "mean the estimator beats mis-power (the path tracer's default). Equal time: "
               "MSE interpolated in log-log at the largest path-tracing time every estimator "
-              "reached (* = extrapolated below an estimator's cheapest render). direct is "
-              "one bounce only: biased against the full-transport reference."), ""]
+              "reached (* = extrapolated outside an estimator's measured times). Median "
+              "px error = mean over seeds of the median over pixels of the squared error: "
+              "the noise of a typical pixel, which a few fireflies cannot decide as they "
+              "decide the MSE. direct is one bounce only: biased against the full-transport "
+              "reference."), ""]
     numbers: dict[str, Any] = {}
     for name, scene, what in SCENES:
         res = load(out, name)
@@ -188,7 +222,7 @@ def write_page(out: Path, load: Any) -> tuple[str, dict[str, Any]]:
                    f"{len(res['seeds'])} seeds, reference {(ref.get('estimator') or {}).get('spec')}"
                    f" {ref.get('sampler')} {ref.get('spp')} spp x {len(ref.get('seeds') or [])},"
                    f" noise floor MSE {fmt((ref.get('noise_floor') or {}).get('mse'), 2)})"), ""]
-        text, numbers[name] = table(res)
+        text, numbers[name] = table(res, median_errors(out / name, res))
         parts += [text, ""]
     parts += ["## The textbook's claims against these numbers", "", *verdicts(numbers), ""]
     text = "\n".join(parts)
