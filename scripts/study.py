@@ -18,7 +18,11 @@ The runs (the source documents' experiments, with more samplers, seeds and spp):
   the article (uniform_angles, uniform, cosine) x {random ("pseudo-random"), fibonacci (random
   per-pixel shift = rotation about the normal), fibonacci_static (one shift for every pixel)}
   at 8, 16, 32 rays (= spp, one AO ray per sample), 4 seeds. The three runs share one
-  reference (rendered by the cosine run; every estimator is unbiased, so it is the same image).
+  reference (rendered by the cosine run; every estimator is unbiased, so it is the same image);
+* est_small, est_large, est_glossy: the estimator ladder of issue 6 (bsdf, nee, mis-balance /
+  power / max, light, direct) on the Cornell box with a small light, a large light and glossy
+  surfaces (scripts/study_estimators.py); out/study/estimators.md has their tables (MSE at
+  equal samples and at equal time) and the textbook's claims checked against them.
 
     .venv/bin/python scripts/study.py [--out out/study] [--jobs 2] [--only cornell,wolf]
                                       [--quick] [--dry-run] [--summary-only]
@@ -32,6 +36,7 @@ from __future__ import annotations
 import argparse
 import json
 import math
+import os
 import subprocess
 import sys
 import time
@@ -40,6 +45,10 @@ from pathlib import Path
 from typing import Any
 
 REPO = Path(__file__).resolve().parent.parent
+sys.path.insert(0, str(REPO / "addon"))  # this checkout's stratum, for study_estimators
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import study_estimators
+
 BASELINE = "lcg"  # the coursework's "Standard" sampler
 AO_HEMISPHERES = ("uniform_angles", "uniform", "cosine")
 AO_SAMPLERS = ("random", "fibonacci", "fibonacci_static")
@@ -95,7 +104,7 @@ def plan_runs(quick: bool) -> list[Run]:
         runs.append(Run(name, "scenes/ao_study.blend", ",".join(AO_SAMPLERS), ao_spp, ao_seeds,
                         ao_res, ao_ref, ["--integrator", "ao", "--hemisphere", hemisphere],
                         None if name == AO_REFERENCE_RUN else AO_REFERENCE_RUN))
-    return runs
+    return runs + study_estimators.plan_runs(quick, Run)
 
 
 # ---- running ---------------------------------------------------------------------------------
@@ -109,7 +118,10 @@ def run_all(runs: list[Run], out: Path, jobs: int, dry_run: bool) -> list[dict[s
         if dry_run:
             continue
         start = time.monotonic()
-        code = subprocess.call(cmd, cwd=REPO)
+        # This checkout's add-on, not whichever one the venv has installed (editable).
+        path = os.pathsep.join(p for p in (str(REPO / "addon"), os.environ.get("PYTHONPATH"))
+                               if p)
+        code = subprocess.call(cmd, cwd=REPO, env={**os.environ, "PYTHONPATH": path})
         seconds = time.monotonic() - start
         print(f"study: {run.name} finished in {seconds / 60:.1f} min (exit {code})", flush=True)
         log.append({"name": run.name, "command": cmd, "seconds": seconds, "exit_code": code})
@@ -301,6 +313,10 @@ def write_summary(out: Path, log: list[dict[str, Any]]) -> None:
               "is ~1/16 for independent pixel errors and ~1 for banding."), "",
               table, ""]
     headline["ao_mse"] = numbers
+    estimator_text, headline["estimators"] = study_estimators.write_page(out, load_results)
+    if headline["estimators"]:
+        parts += ["## Estimators (issue 6)", "", "Also in estimators.md:", "",
+                  estimator_text.split("\n", 1)[1].replace("\n## ", "\n### "), ""]
     if log:
         total = sum(r["seconds"] for r in log)
         parts += ["## Run time", "", "| run | minutes |", "|---|---|"]
@@ -452,7 +468,8 @@ def ratio_plot(out: Path) -> Path | None:
 def make_figures(out: Path) -> None:
     (out / "figures").mkdir(parents=True, exist_ok=True)
     made = [image_grid(out, "cornell", 8, gain=2.0), image_grid(out, "wolf", 1, gain=1.0),
-            image_grid(out, "wolf", 8, gain=1.0), ratio_plot(out), *ao_grids(out)]
+            image_grid(out, "wolf", 8, gain=1.0), ratio_plot(out), *ao_grids(out),
+            study_estimators.mse_figure(out, load_results)]
     for p in made:
         if p is not None:
             print(f"study: wrote {p}")
@@ -467,6 +484,10 @@ DOC_FIGURES = (
     ("wolf/figures/convergence_flip_ldr.png", "wolf_convergence_flip_ldr.png"),
     ("figures/ao_table2_distributions.png", "ao_table2_distributions.png"),
     ("figures/ao_table3_fibonacci.png", "ao_table3_fibonacci.png"),
+    ("figures/estimators_mse.png", "estimators_mse.png"),
+    ("est_small/figures/convergence_mse.png", "est_small_convergence_mse.png"),
+    ("est_large/figures/convergence_mse.png", "est_large_convergence_mse.png"),
+    ("est_glossy/figures/convergence_mse.png", "est_glossy_convergence_mse.png"),
 )
 DOC_MAX_BYTES = 300_000
 
@@ -495,7 +516,8 @@ def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--out", default=str(REPO / "out" / "study"))
     p.add_argument("--jobs", type=int, default=2)
-    p.add_argument("--only", help="comma-separated run names (cornell, wolf, ao_cosine, ...)")
+    p.add_argument("--only", help="comma-separated run names (cornell, wolf, ao_cosine, "
+                   "est_small, est_large, est_glossy, ...)")
     p.add_argument("--quick", action="store_true", help="toy sizes, to test the pipeline")
     p.add_argument("--dry-run", action="store_true", help="print the commands only")
     p.add_argument("--summary-only", action="store_true",

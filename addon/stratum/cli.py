@@ -4,8 +4,8 @@ through Blender with Stratum.
 Works without bpy: `render` runs Blender ($STRATUM_BLENDER or `blender`) in the background
 with a small script that registers the add-on from this checkout and renders one frame;
 `points` calls the native library directly (matplotlib only for --plot); `compare` renders
-many configurations through Blender and compares them (stratum.compare; Dask, OpenEXR and FLIP
-are imported only when it runs).
+many configurations (estimators x samplers x spp x seeds) through Blender and compares them
+(stratum.compare; Dask, OpenEXR and FLIP are imported only when it runs).
 """
 
 from __future__ import annotations
@@ -358,9 +358,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=_cmd_render)
 
     p = sub.add_parser(
-        "compare", help="compare samplers on a .blend: renders, metrics, report",
-        description="Renders every (sampler x spp x seed) of SCENE through Blender with the "
-        "scene's render settings changed, plus a reference (mean of --reference-renders "
+        "compare", help="compare estimators and samplers on a .blend: renders, metrics, report",
+        description="Renders every (estimator x sampler x spp x seed) of SCENE through Blender "
+        "with the scene's render settings changed, plus a reference (mean of --reference-renders "
         "high-spp renders, or --reference FILE.exr); writes linear EXRs, results.json, "
         "results.csv and a report into --out. Finished configurations are not rendered again.")
     _compare_arguments(p)

@@ -170,3 +170,14 @@ def test_points_rejects_bad_values_naming_them(native: Any, args: list[str], nam
     assert proc.returncode != 0
     assert named in proc.stderr, proc.stderr
     assert not proc.stdout
+
+
+def test_compare_help_documents_the_estimator_specs(capsys: pytest.CaptureFixture[str]) -> None:
+    with pytest.raises(SystemExit) as info:
+        cli.main(["compare", "--help"])
+    assert info.value.code == 0
+    text = " ".join(capsys.readouterr().out.split())  # argparse wraps lines
+    for expected in ("INTEGRATOR[:NAME=VALUE,...]", "light_sampling=mis|nee|bsdf",
+                     "mis_heuristic=power|balance|max", "rr_mode=throughput|albedo|off",
+                     "--set NAME=VALUE", "--reference-integrator SPEC", "mis-<heuristic>"):
+        assert expected in text, expected

@@ -18,11 +18,12 @@ from typing import Any
 import numpy as np
 import pytest
 from stratum import cli
-from stratum.compare import exr, metrics, plan
+from stratum.compare import estimators, exr, metrics, plan
 
 REPO = Path(__file__).resolve().parents[2]
 CORNELL = REPO / "scenes" / "cornell_box.blend"
 TIMING_COLUMNS = ("seconds", "trace_seconds")
+INTEGRATORS = ("path", "direct", "ao", "light")
 
 
 # ---- metrics -------------------------------------------------------------------------------
@@ -135,36 +136,152 @@ def test_exr_round_trip(tmp_path: Path) -> None:
 # ---- plan ----------------------------------------------------------------------------------
 
 
+def _estimator(spec: str = "path", common: dict[str, Any] | None = None) -> Any:
+    return estimators.resolve(estimators.parse_spec(spec, INTEGRATORS), common or {})
+
+
 def test_cache_key_changes_with_every_setting() -> None:
-    base = plan.SceneSettings("abc", (16, 16), "path", "cosine", 8)
-    key = plan.cache_key(base, "sobol", 4, 0)
-    assert key == plan.cache_key(plan.SceneSettings("abc", (16, 16), "path", "cosine", 8),
-                                 "sobol", 4, 0)
-    others = [plan.cache_key(plan.SceneSettings("abd", (16, 16), "path", "cosine", 8), "sobol",
+    base = plan.SceneSettings("abc", (16, 16), "cosine", 8)
+    path = _estimator()
+    key = plan.cache_key(base, path, "sobol", 4, 0)
+    assert key == plan.cache_key(plan.SceneSettings("abc", (16, 16), "cosine", 8),
+                                 _estimator("path:light_sampling=mis"), "sobol", 4, 0)
+    others = [plan.cache_key(plan.SceneSettings("abd", (16, 16), "cosine", 8), path, "sobol",
                              4, 0),
-              plan.cache_key(plan.SceneSettings("abc", (16, 8), "path", "cosine", 8), "sobol",
+              plan.cache_key(plan.SceneSettings("abc", (16, 8), "cosine", 8), path, "sobol",
                              4, 0),
-              plan.cache_key(plan.SceneSettings("abc", (16, 16), "ao", "cosine", 8), "sobol",
-                             4, 0),
-              plan.cache_key(plan.SceneSettings("abc", (16, 16), "path", "uniform", 8),
+              plan.cache_key(plan.SceneSettings("abc", (16, 16), "uniform", 8), path,
                              "sobol", 4, 0),
-              plan.cache_key(plan.SceneSettings("abc", (16, 16), "path", "cosine", 2),
+              plan.cache_key(plan.SceneSettings("abc", (16, 16), "cosine", 2), path,
                              "sobol", 4, 0),
-              plan.cache_key(base, "random", 4, 0), plan.cache_key(base, "sobol", 8, 0),
-              plan.cache_key(base, "sobol", 4, 1)]
+              plan.cache_key(base, path, "random", 4, 0), plan.cache_key(base, path, "sobol", 8, 0),
+              plan.cache_key(base, path, "sobol", 4, 1),
+              plan.cache_key(base, _estimator("ao"), "sobol", 4, 0),
+              plan.cache_key(base, _estimator("direct"), "sobol", 4, 0)]
+    # Every estimator setting is in the key, whether a spec or --set gives it.
+    for name, value in (("light_sampling", "nee"), ("mis_heuristic", "balance"),
+                        ("light_selection", "power"), ("rr_mode", "off"), ("rr_min_depth", 5),
+                        ("control_variate", 0.25)):
+        others.append(plan.cache_key(base, _estimator(f"path:{name}={value}"), "sobol", 4, 0))
+        assert plan.cache_key(base, _estimator("path", {name: value}), "sobol", 4, 0) == \
+            others[-1]
     assert len({key, *others}) == len(others) + 1
 
 
 def test_batches_balance_cost() -> None:
-    settings = plan.SceneSettings("abc", (16, 16), "path", "cosine", 8)
-    tests, refs = plan.plan(settings, ["a", "b", "c"], [1, 4, 16], [0, 1], "sobol", 256,
-                            [100000, 100001])
+    settings = plan.SceneSettings("abc", (16, 16), "cosine", 8)
+    path = _estimator()
+    tests, refs = plan.plan(settings, [path], ["a", "b", "c"], [1, 4, 16], [0, 1], path,
+                            "sobol", 256, [100000, 100001])
     batches = plan.split_batches(refs + tests, 2)
     assert len(batches) == 2
     assert sorted(c.key for b in batches for c in b) == sorted(c.key for c in refs + tests)
     loads = [sum(c.cost for c in b) for b in batches]
     assert max(loads) - min(loads) <= 258  # within one reference render
     assert not {r.seed for r in refs} & {t.seed for t in tests}
+
+
+# ---- estimator specs ---------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(("text", "expected"), [
+    ("path", [("path", "mis-power", {})]),
+    ("path:light_sampling=bsdf,path:light_sampling=nee,direct",
+     [("path", "bsdf", {"light_sampling": "bsdf"}), ("path", "nee", {"light_sampling": "nee"}),
+      ("direct", "direct", {})]),
+    ("path:light_sampling=mis,mis_heuristic=balance,path:mis_heuristic=max",
+     [("path", "mis-balance", {"light_sampling": "mis", "mis_heuristic": "balance"}),
+      ("path", "mis-max", {"mis_heuristic": "max"})]),
+    (" light , path:rr_mode=off,rr_min_depth=0,control_variate=0.5 ",
+     [("light", "light", {}),
+      ("path", "mis-power+rr-off+rrmin0+cv0.5",
+       {"rr_mode": "off", "rr_min_depth": 0, "control_variate": 0.5})]),
+    ("direct:light_selection=uniform,ao",
+     [("direct", "direct+sel-uniform", {"light_selection": "uniform"}), ("ao", "ao", {})]),
+])
+def test_estimator_specs_parse_resolve_and_label(text: str, expected: list[Any]) -> None:
+    resolved = estimators.resolve_all(estimators.parse_specs(text, INTEGRATORS), {})
+    assert [(e.integrator, e.label) for e, _ in zip(resolved, expected, strict=True)] == [
+        (i, label) for i, label, _ in expected]
+    for est, (_, _, given) in zip(resolved, expected, strict=True):
+        assert dict(est.settings) == {**estimators.DEFAULTS, **given}
+        assert [n for n, _ in est.settings] == list(estimators.SETTING_NAMES)
+
+
+def test_common_settings_apply_under_the_specs_own() -> None:
+    common = estimators.parse_settings(["rr_mode=albedo", "light_sampling=nee"], "--set")
+    specs = estimators.parse_specs("path,path:light_sampling=bsdf", INTEGRATORS)
+    scene = {"rr_mode": "off", "rr_min_depth": 7}  # the scene's own values, under --set
+    nee, bsdf = estimators.resolve_all(specs, common, scene)
+    assert (nee.label, nee.setting("light_sampling"), nee.setting("rr_mode")) == (
+        "nee", "nee", "albedo")
+    assert (bsdf.label, bsdf.setting("light_sampling"), bsdf.setting("rr_min_depth")) == (
+        "bsdf", "bsdf", 7)
+
+
+@pytest.mark.parametrize(("text", "named"), [
+    ("bogus", "'bogus'"),
+    ("path,pathh", "'pathh'"),
+    ("path:light_sampling=sometimes", "'sometimes'"),
+    ("path:mis_heuristic=cubic", "'cubic'"),
+    ("path:light_selection=random", "'random'"),
+    ("path:rr_mode=never", "'never'"),
+    ("path:rr_min_depth=two", "'two'"),
+    ("path:rr_min_depth=-1", "-1"),
+    ("path:rr_min_depth=5000", "5000"),
+    ("path:control_variate=-0.5", "'-0.5'"),
+    ("path:control_variate=nan", "'nan'"),
+    ("path:control_variate=much", "'much'"),
+    ("path:max_bouncez=3", "'max_bouncez'"),
+    ("path:light_sampling", "'light_sampling'"),
+    ("path:", "'path:'"),
+    ("light_sampling=nee", "'light_sampling=nee'"),
+    ("path,,direct", "empty item"),
+    ("path:light_sampling=nee,light_sampling=bsdf", "light_sampling given twice"),
+    ("path,path:light_sampling=mis", "same estimator"),
+    ("path:light_sampling=nee,path:light_sampling=nee,mis_heuristic=max", "same label"),
+])
+def test_bad_estimator_specs_name_the_bad_part(text: str, named: str) -> None:
+    with pytest.raises(estimators.SpecError) as info:
+        estimators.resolve_all(estimators.parse_specs(text, INTEGRATORS), {})
+    assert named in str(info.value)
+
+
+def test_setting_values_are_the_native_renderers(native: Any, tiny_scene: Any) -> None:
+    """The Python table of estimator settings against the renderer's own validation: every
+    value the spec parser accepts is accepted natively, and a value it rejects is too."""
+    for name, values in estimators.CHOICES.items():
+        for value in values:
+            with native.Renderer(tiny_scene, **{name: value}):
+                pass
+        with pytest.raises(native.StratumError):
+            native.Renderer(tiny_scene, **{name: values[0] + "x"})
+    for value in (0, estimators.RR_MIN_DEPTH_MAX):
+        with native.Renderer(tiny_scene, rr_min_depth=value):
+            pass
+    with pytest.raises(native.StratumError):
+        native.Renderer(tiny_scene, rr_min_depth=estimators.RR_MIN_DEPTH_MAX + 1)
+    with native.Renderer(tiny_scene, control_variate=0.5):
+        pass
+    with pytest.raises(native.StratumError):
+        native.Renderer(tiny_scene, control_variate=-0.5)
+    assert {e.name for e in native.registry("integrator")} >= {"path", "direct", "ao"}
+
+
+def test_batch_sets_every_estimator_setting_or_passes_it_on_or_fails_naming_it() -> None:
+    from types import SimpleNamespace
+
+    from stratum.compare.blender_batch import set_estimator_settings
+
+    props = SimpleNamespace(light_sampling="mis", rr_mode="throughput")
+    engine = SimpleNamespace(renderer_settings=lambda scene: {})
+    natively = set_estimator_settings(props, {"light_sampling": "nee", "rr_mode": "off",
+                                              "control_variate": 0.5}, engine)
+    assert (props.light_sampling, props.rr_mode) == ("nee", "off")
+    assert natively == {"control_variate": 0.5}
+    assert set_estimator_settings(props, {"rr_mode": "albedo"}, SimpleNamespace()) == {}
+    with pytest.raises(RuntimeError, match="no property 'control_variate'.*control_variate=0.5"):
+        set_estimator_settings(props, {"control_variate": 0.5}, SimpleNamespace())
 
 
 # ---- a fake Blender: writes known EXRs, logs what it renders -------------------------------
@@ -197,7 +314,9 @@ def render(entry, path):
     w, h = entry["resolution"]
     y, x = np.mgrid[0:h, 0:w]
     truth = np.stack([(x + 1) / w, (y + 1) / h, np.full((h, w), 0.5)], -1)
-    seed = zlib.crc32(f"{{entry['sampler']}}{{entry['seed']}}{{entry['samples']}}".encode())
+    settings = json.dumps(entry["estimator_settings"], sort_keys=True)
+    seed = zlib.crc32(f"{{entry['integrator']}}{{settings}}{{entry['sampler']}}"
+                      f"{{entry['seed']}}{{entry['samples']}}".encode())
     noise = np.random.default_rng(seed).normal(0, 0.3, truth.shape)
     write_rgb(path.with_suffix(".exr"), truth + noise / np.sqrt(entry["samples"]))
     return {{"seconds": 0.001 * entry["samples"], "trace_seconds": 0.0005 * entry["samples"]}}
@@ -279,7 +398,8 @@ def test_results_json_schema_and_values(native: Any, fake_blender: Path, tmp_pat
     assert (rows[0]["mean"], rows[0]["ci95_low"], rows[0]["ci95_high"]) == pytest.approx(
         (mean_, low, high))
     assert {s["metric"] for s in results["summary"]} == {"mse", "rel_mse", "flip_ldr",
-                                                         "flip_hdr", "seconds"}
+                                                         "flip_hdr", "seconds",
+                                                         "trace_seconds"}
     # The fake's noise falls as 1/sqrt(spp): MSE ~ spp^-1 (plus the reference's floor).
     for sampler in ("random", "sobol"):
         slopes = results["slopes"][sampler]
@@ -287,6 +407,71 @@ def test_results_json_schema_and_values(native: Any, fake_blender: Path, tmp_pat
         assert -1.1 < slopes["mse"] < -0.8, slopes
     with open(out / "results.csv") as f:
         assert len(list(csv.DictReader(f))) == 12
+
+
+def test_two_estimators_are_an_axis_like_samplers(native: Any, fake_blender: Path,
+                                                 tmp_path: Path,
+                                                 no_report: list[dict[str, Any]]) -> None:
+    out = tmp_path / "out"
+    specs = "path:light_sampling=bsdf,path:light_sampling=nee"
+    assert cli.main(["compare", str(CORNELL), "--samplers", "random", "--integrator", specs,
+                     "--set", "rr_mode=off", "--spp", "1,4", "--seeds", "2",
+                     "--reference-spp", "16", "--reference-renders", "2",
+                     "--out", str(out)]) == 0
+    results = json.loads((out / "results.json").read_text())
+    assert results["series"] == ["bsdf", "nee"] and results["samplers"] == ["random"]
+    assert [e["label"] for e in results["estimators"]] == ["bsdf", "nee"]
+    assert results["common_settings"] == {"rr_mode": "off"}
+    ref = results["reference"]["estimator"]
+    assert (ref["label"], ref["integrator"]) == ("mis-power", "path")
+    assert ref["settings"]["rr_mode"] == "off"  # --set applies to the reference too
+    assert len(results["renders"]) == 2 * 2 * 2
+    for r in results["renders"]:
+        assert r["series"] == r["estimator"] and r["integrator"] == "path"
+        assert r["estimator_settings"]["light_sampling"] == r["estimator"]
+        assert r["estimator_settings"]["rr_mode"] == "off"
+    assert {(s["series"], s["spp"]) for s in results["summary"]} == {
+        (e, n) for e in ("bsdf", "nee") for n in (1, 4)}
+    assert set(results["slopes"]) == {"bsdf", "nee"}
+    with open(out / "results.csv") as f:
+        rows = list(csv.DictReader(f))
+    assert {r["estimator"] for r in rows} == {"bsdf", "nee"}
+    assert json.loads(rows[0]["estimator_settings"])["rr_mode"] == "off"
+    # Every configuration rendered once, all keys distinct; the same estimators again
+    # (in the other order) render nothing.
+    keys = [k for c in _calls(fake_blender) for k in c["keys"]]
+    assert len(keys) == len(set(keys)) == 8 + 2
+    fake_blender.write_text("")
+    assert cli.main(["compare", str(CORNELL), "--samplers", "random", "--integrator",
+                     "path:light_sampling=nee,path:light_sampling=bsdf", "--set",
+                     "rr_mode=off", "--spp", "1,4", "--seeds", "2", "--reference-spp", "16",
+                     "--reference-renders", "2", "--out", str(out)]) == 0
+    assert [c["mode"] for c in _calls(fake_blender)] == ["probe"]
+    # Several estimators and several samplers: series label/sampler.
+    assert cli.main(["compare", str(CORNELL), "--samplers", "random,sobol", "--integrator",
+                     specs, "--spp", "1", "--seeds", "2", "--reference-spp", "16",
+                     "--reference-renders", "2", "--out", str(tmp_path / "both")]) == 0
+    assert no_report[-1]["series"] == ["bsdf/random", "bsdf/sobol", "nee/random", "nee/sobol"]
+
+
+@pytest.mark.parametrize(("args", "named"), [
+    (["--integrator", "path,bogus_integrator"], "bogus_integrator"),
+    (["--integrator", "path:light_sampling=sometimes"], "sometimes"),
+    (["--set", "rr_mode=never"], "never"),
+    (["--set", "no_such_setting=1"], "no_such_setting"),
+    (["--reference-integrator", "path:mis_heuristic=cubic"], "cubic"),
+])
+def test_bad_estimator_options_exit_non_zero_naming_the_value(
+        native: Any, fake_blender: Path, tmp_path: Path, args: list[str], named: str) -> None:
+    out = tmp_path / "out"
+    proc = subprocess.run([sys.executable, "-m", "stratum.cli", "compare", str(CORNELL),
+                           "--out", str(out), *args], check=False, capture_output=True,
+                          text=True, timeout=120, env=dict(os.environ))
+    assert proc.returncode == 2
+    lines = proc.stderr.strip().splitlines()
+    assert len(lines) == 1 and lines[0].startswith("stratum compare:") and named in lines[0]
+    assert not out.exists()
+    assert _calls(fake_blender) == []
 
 
 def test_resume_skips_finished_configurations(native: Any, fake_blender: Path, tmp_path: Path,
@@ -307,7 +492,7 @@ def test_resume_skips_finished_configurations(native: Any, fake_blender: Path, t
 
     # A crash after the EXR but before the sidecar, a truncated EXR, a temporary left behind:
     # exactly those two configurations are rendered again.
-    sidecars = sorted((out / "renders").glob("random_spp4_*.json"))
+    sidecars = sorted((out / "renders").glob("*_random_spp4_*.json"))
     sidecars[0].unlink()
     damaged = json.loads(sidecars[1].read_text())
     (out / damaged["exr"]).write_bytes((out / damaged["exr"]).read_bytes()[:100])
@@ -333,10 +518,10 @@ def test_a_failing_render_leaves_the_others_and_no_trusted_file(
     monkeypatch.setenv("FAKE_BLENDER_FAIL", "sobol")
     assert _compare(out, "--reference-sampler", "random") == 1
     err = capsys.readouterr().err.strip().splitlines()[-1]
-    assert "fake failure of sobol" in err and "6 of 16 renders failed" in err
+    assert "fake failure of mis-power sobol" in err and "6 of 16 renders failed" in err
     assert not (out / "results.json").exists()
-    assert not list((out / "renders").glob("sobol_*"))
-    assert len(list((out / "renders").glob("random_*.json"))) == 6  # the others went on
+    assert not list((out / "renders").glob("*_sobol_*"))
+    assert len(list((out / "renders").glob("*_random_*.json"))) == 6  # the others went on
     monkeypatch.delenv("FAKE_BLENDER_FAIL")
     fake_blender.write_text("")
     assert _compare(out, "--reference-sampler", "random") == 0
@@ -487,8 +672,9 @@ def test_progress_bar_without_a_tty() -> None:
 
     from stratum.compare.runner import ProgressBar
 
-    settings = plan.SceneSettings("abc", (16, 16), "path", "cosine", 8)
-    tests, _ = plan.plan(settings, ["random"], [1, 4], [0], None, None, [])
+    settings = plan.SceneSettings("abc", (16, 16), "cosine", 8)
+    tests, _ = plan.plan(settings, [_estimator()], ["random"], [1, 4], [0], None, None, None,
+                         [])
     stream = io.StringIO()
     bar = ProgressBar(tests, stream=stream, already_done=1)
     bar.event("start", {"key": tests[0].key})
@@ -499,5 +685,82 @@ def test_progress_bar_without_a_tty() -> None:
     lines = stream.getvalue().splitlines()
     assert len(lines) == 2 and "\r" not in stream.getvalue()
     assert "2/3 configurations" in lines[0] and "ETA" in lines[0]
-    assert "now: random spp=1 seed=0" in lines[0]
+    assert "now: mis-power random spp=1 seed=0" in lines[0]
     assert "3/3 configurations" in lines[1] and "ETA 0:00" in lines[1]
+
+
+# ---- the estimator study (scripts/study.py, scripts/study_estimators.py) -------------------
+
+
+def _study_estimators() -> Any:
+    sys.path.insert(0, str(REPO / "scripts"))
+    import study_estimators
+
+    return study_estimators
+
+
+def _synthetic_results(costs: dict[str, tuple[float, float]]) -> dict[str, Any]:
+    """results.json rows where series s has MSE = v/spp and trace time = c·spp for
+    costs[s] = (v, c): MSE·time = v·c at every spp."""
+    spps = [1, 4, 16]
+    summary = [{"series": s, "spp": n, "metric": metric, "mean": value}
+               for s, (v, c) in costs.items() for n in spps
+               for metric, value in (("mse", v / n), ("trace_seconds", c * n))]
+    return {"series": list(costs), "spp": spps, "summary": summary}
+
+
+def test_study_equal_time_interpolates_the_mse_time_curve() -> None:
+    """On MSE = v/N, t = c·N the MSE at time T is exactly v·c/T (a line of slope -1 in
+    log-log), whether T falls between measured points or below an estimator's cheapest."""
+    study = _study_estimators()
+    costs = {"bsdf": (4.0, 0.5), "nee": (1.0, 1.0), "mis-power": (1.5, 1.2),
+             "direct": (0.5, 0.1)}
+    budget, at = study.equal_time(_synthetic_results(costs))
+    assert budget == pytest.approx(0.5 * 16)  # bsdf is the cheapest unbiased at 16 spp
+    for series, (v, c) in costs.items():
+        assert at[series][0] == pytest.approx(v * c / budget)
+    assert not at["bsdf"][1] and not at["nee"][1] and at["direct"][1]  # direct ends at 1.6 s
+    # Median pixel errors a tenth of the MSE, except nee's, which a hundredth: the ratios
+    # to mis-power follow.
+    medians = {(s, n): v / n / (100.0 if s == "nee" else 10.0)
+               for s, (v, _) in costs.items() for n in (1, 4, 16)}
+    text, numbers = study.table(_synthetic_results(costs), medians)
+    nee = numbers["series"]["nee"]
+    assert nee["ratio_equal_spp"] == pytest.approx(1.0 / 1.5)
+    assert nee["median_ratio_equal_spp"] == pytest.approx(0.1 / 1.5)
+    assert nee["median_ratio_equal_time"] == pytest.approx(0.1 * 1.0 / 1.8)
+    assert numbers["series"]["bsdf"]["ratio_equal_time"] == pytest.approx(2.0 / 1.8)
+    assert "| nee |" in text
+    lines = study.verdicts({"est_small": numbers})
+    small = next(line for line in lines if line.startswith("- NEE wins for small lights"))
+    assert "nee/bsdf = 0.25 (MSE, equal spp: shown)" in small
+    assert "nee/bsdf = 0.5 (MSE, equal time: shown)" in small
+    assert "nee/bsdf = 0.025 (median px error, equal spp: shown)" in small
+    assert any("not measured" in line for line in lines)  # est_large was not given
+
+
+def test_study_quick_runs_the_estimator_ladder(native: Any, tmp_path: Path) -> None:
+    """`scripts/study.py --quick` on the estimator runs: the pipeline end to end through real
+    Blender at toy sizes (32x32, 1 and 4 spp, 2 seeds) into estimators.md."""
+    _need_blender(native)
+    out = tmp_path / "study"
+    started = time.perf_counter()
+    proc = subprocess.run([sys.executable, str(REPO / "scripts" / "study.py"), "--quick",
+                           "--only", "est_small,est_large,est_glossy", "--out", str(out)],
+                          check=False, capture_output=True, text=True, timeout=900)
+    print(f"study --quick (estimators): {time.perf_counter() - started:.0f} s")
+    assert proc.returncode == 0, proc.stderr[-3000:]
+    page = (out / "estimators.md").read_text()
+    labels = ["bsdf", "nee", "mis-balance", "mis-power", "mis-max", "direct"]
+    if "light" in {e.name for e in native.registry("integrator")}:
+        labels.append("light")
+    for run in ("est_small", "est_large", "est_glossy"):
+        assert f"## {run}:" in page
+        results = json.loads((out / run / "results.json").read_text())
+        assert sorted(results["series"]) == sorted(labels)
+        assert (out / run / "report.html").is_file()
+    assert page.count("(MSE, equal spp: ") >= 9
+    assert not [line for line in page.splitlines()
+                if "not measured" in line and "light tracing" not in line]
+    assert (out / "figures" / "estimators_mse.png").is_file()
+    assert "## Estimators (issue 6)" in (out / "summary.md").read_text()

@@ -236,3 +236,33 @@ def test_report_given_crop_and_no_summary_or_slopes(native: Any, tmp_path: Path)
     assert "x=40, y=20, 24x12 px" in text  # clipped to the 64x48 image
     assert "Missing renders: sobol 16 spp" in text
     assert "fitted here from the means" in text
+
+
+def test_report_of_an_estimator_comparison_shows_estimators_as_series(native: Any,
+                                                                      tmp_path: Path) -> None:
+    """Results of `--integrator A,B,C --samplers random`: one series per estimator label, in
+    the tables, the convergence legends and the image grid; the sample-point section still
+    draws the one sampler."""
+    from stratum.compare.report import write_report
+
+    results = build_out_dir(tmp_path, crop=None, with_summary=True)
+    label = {"random": "bsdf", "sobol": "nee", "bluenoise": "mis-power"}
+    for row in results["renders"] + results["summary"]:
+        row["series"] = row["estimator"] = label[row["sampler"]]
+        row["sampler"] = "random"
+    results["slopes"] = {label[s]: v for s, v in results["slopes"].items()}
+    results["series"] = list(label.values())
+    results["samplers"] = ["random"]
+    results["estimators"] = [{"label": v, "spec": f"path:light_sampling={v}"}
+                             for v in label.values()]
+    text = write_report(tmp_path, results).read_text(encoding="utf-8")
+    assert "could not be drawn" not in text and "Missing renders" not in text
+    for name in label.values():
+        assert f'<td class="name">{name}</td>' in text  # slopes table row
+        assert f'<th class="name">{name}</th>' in text  # image grid row
+        assert f"{name} = path:light_sampling={name}" in text  # settings
+    points = sorted(p.name for p in (tmp_path / "figures" / "points").glob("*.png"))
+    assert points == ["random.png"]
+    grid = sorted(p.name for p in (tmp_path / "figures" / "images").glob("*_full.png"))
+    assert grid == sorted([f"{n}_{s}_full.png" for n in label.values() for s in SPP]
+                          + ["reference_full.png"])

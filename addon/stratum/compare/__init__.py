@@ -1,6 +1,12 @@
-"""`stratum compare`: render a scene with several samplers, sample counts and seeds through
-Blender, compare every render with a reference, and write results.json, results.csv and the
-report (stratum.compare.report.write_report).
+"""`stratum compare`: render a scene with several estimators, samplers, sample counts and seeds
+through Blender, compare every render with a reference, and write results.json, results.csv and
+the report (stratum.compare.report.write_report).
+
+Estimators (--integrator, a list of specs such as `path:light_sampling=bsdf`; estimators.py)
+are an axis like samplers: configurations are estimator x sampler x spp x seed. Each
+(estimator, sampler) pair is one series of the tables and plots, named by the estimator's label
+when several estimators are compared with one sampler, by the sampler when one estimator is
+compared with several samplers (the sampler study), and `label/sampler` when both vary.
 
 Flow: validate every argument (nothing is written before that succeeds) -> open the scene in
 Blender once to read its resolution and Stratum settings -> plan configurations and skip the
@@ -29,7 +35,8 @@ from . import plan as planning
 from .plan import Config, SceneSettings
 
 METRICS = ("mse", "rel_mse", "flip_ldr", "flip_hdr")
-CSV_COLUMNS = ("sampler", "spp", "seed", "path", "seconds", "trace_seconds", "mse", "rel_mse",
+CSV_COLUMNS = ("series", "estimator", "integrator", "estimator_settings", "sampler", "spp",
+               "seed", "path", "seconds", "trace_seconds", "mse", "rel_mse",
                "flip_ldr", "flip_hdr", "below_noise_floor")
 DEFAULT_SPP = "1,4,16"
 DEFAULT_SEEDS = 4
@@ -66,7 +73,25 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    f"(default {DEFAULT_REFERENCE_RENDERS})")
     p.add_argument("--reference-sampler", dest="reference_sampler", metavar="NAME",
                    help="sampler of the reference renders (default sobol)")
-    p.add_argument("--integrator", help="integrator (default: the scene's)")
+    p.add_argument("--integrator", metavar="SPECS",
+                   help="comma-separated estimator specs INTEGRATOR[:NAME=VALUE,...], e.g. "
+                   "'path:light_sampling=bsdf,path:light_sampling=nee,"
+                   "path:light_sampling=mis,mis_heuristic=balance,direct' (an item NAME=VALUE "
+                   "continues the spec before it). INTEGRATOR: path, direct, ao, light (the "
+                   "native registry). NAME=VALUE: light_sampling=mis|nee|bsdf, "
+                   "mis_heuristic=power|balance|max, light_selection=mixed|power|uniform, "
+                   "rr_mode=throughput|albedo|off, rr_min_depth=N, control_variate=L_a. "
+                   "Each spec gets a short label for tables and plots (path: bsdf, nee, "
+                   "mis-<heuristic>; others: the integrator's name; +<setting> for other "
+                   "settings it names). Default: the scene's integrator and settings")
+    p.add_argument("--set", dest="set_values", action="append", default=[],
+                   metavar="NAME=VALUE",
+                   help="an estimator setting for every configuration and the reference "
+                   "(repeatable; a spec's own value wins)")
+    p.add_argument("--reference-integrator", dest="reference_integrator", metavar="SPEC",
+                   help="estimator of the reference renders (default: the one --integrator "
+                   "estimator, or 'path', the path tracer's default, when several are "
+                   "compared)")
     p.add_argument("--hemisphere", help="hemisphere distribution (default: the scene's)")
     p.add_argument("--max-bounces", dest="max_bounces", help="default: the scene's")
     p.add_argument("--resolution", metavar="WxH", help="default: the scene's render size")
@@ -200,9 +225,8 @@ class Options:
         else:
             self.reference_sampler = None
             self.reference_seeds = []
-        _check_name(args.integrator, "integrator", "--integrator")
+        self._parse_estimators(args)
         _check_name(args.hemisphere, "hemisphere", "--hemisphere")
-        self.integrator: str | None = args.integrator
         self.hemisphere: str | None = args.hemisphere
         self.max_bounces = _int(args.max_bounces, "--max-bounces", 0)
         self.resolution = _resolution(args.resolution) if args.resolution else None
@@ -213,6 +237,50 @@ class Options:
         self.jobs = _int(args.jobs, "--jobs", 1)
         self.threads = _int(args.threads, "--threads", 0)
         self.scheduler: str | None = args.scheduler
+
+    def _parse_estimators(self, args: argparse.Namespace) -> None:
+        from . import estimators as est
+
+        try:
+            self.common = est.parse_settings(getattr(args, "set_values", None) or [], "--set")
+            integrators = _registry("integrator")
+            self.specs = (est.parse_specs(args.integrator, integrators)
+                          if args.integrator is not None else None)
+            ref_text = getattr(args, "reference_integrator", None)
+            if ref_text is not None and self.reference_file is not None:
+                raise UsageError("--reference-integrator renders a reference; it cannot be "
+                                 "combined with --reference FILE.exr")
+            self.reference_spec = (est.parse_spec(ref_text, integrators)
+                                   if ref_text is not None else None)
+            if self.specs is not None:
+                est.resolve_all(self.specs, self.common)  # duplicates, before any rendering
+        except est.SpecError as exc:
+            raise UsageError(str(exc)) from None
+
+    def estimators(self, probe: dict[str, Any]) -> tuple[list[Any], Any]:
+        """(estimators compared, reference estimator or None): the specs resolved against
+        --set and the scene's settings (probe); without --integrator, the scene's own
+        integrator and settings."""
+        from . import estimators as est
+
+        scene = probe.get("estimator_settings") or {}
+        try:
+            specs = self.specs
+            if specs is None:
+                specs = [est.Spec(str(probe["integrator"]), (), str(probe["integrator"]))]
+            compared = est.resolve_all(specs, self.common, scene)
+            if self.reference_file is not None:
+                return compared, None
+            if self.reference_spec is not None:
+                reference = est.resolve(self.reference_spec, self.common, scene)
+            elif len(compared) == 1:
+                reference = compared[0]
+            else:
+                reference = est.resolve(est.parse_spec(est.PATH, [est.PATH]), self.common,
+                                        scene)
+        except est.SpecError as exc:
+            raise UsageError(str(exc)) from None
+        return compared, reference
 
     def check_against(self, resolution: tuple[int, int]) -> None:
         """Checks that need the render size (known after the scene was opened)."""
@@ -231,17 +299,28 @@ class Options:
 # ---- results ------------------------------------------------------------------------------
 
 
-def _summaries(renders: list[dict[str, Any]], samplers: list[str], spps: list[int],
+def series_name(label: str, sampler: str, several_estimators: bool,
+                several_samplers: bool) -> str:
+    """The name of an (estimator, sampler) series in tables and plots (module doc)."""
+    if several_estimators and several_samplers:
+        return f"{label}/{sampler}"
+    return label if several_estimators else sampler
+
+
+def _summaries(renders: list[dict[str, Any]], series: list[str], spps: list[int],
                noise_floor: dict[str, float | None]) -> list[dict[str, Any]]:
     from .metrics import NOISE_FLOOR_FACTOR, mean_ci95
 
     rows = []
-    for sampler in samplers:
+    for name in series:
         for spp in spps:
-            group = [r for r in renders if r["sampler"] == sampler and r["spp"] == spp]
-            for metric in (*METRICS, "seconds"):
+            group = [r for r in renders if r["series"] == name and r["spp"] == spp]
+            first = group[0]
+            for metric in (*METRICS, "seconds", "trace_seconds"):
                 mean, low, high = mean_ci95([r[metric] for r in group])
-                row: dict[str, Any] = {"sampler": sampler, "spp": spp, "metric": metric,
+                row: dict[str, Any] = {"series": name, "estimator": first["estimator"],
+                                       "sampler": first["sampler"], "spp": spp,
+                                       "metric": metric,
                                        "mean": mean, "ci95_low": low, "ci95_high": high,
                                        "n": len(group)}
                 floor = noise_floor.get(metric)
@@ -252,24 +331,21 @@ def _summaries(renders: list[dict[str, Any]], samplers: list[str], spps: list[in
     return rows
 
 
-def _slopes(summary: list[dict[str, Any]], renders: list[dict[str, Any]],
-            samplers: list[str]) -> dict[str, dict[str, float | None]]:
-    import numpy as np
-
+def _slopes(summary: list[dict[str, Any]],
+            series: list[str]) -> dict[str, dict[str, float | None]]:
     from .metrics import loglog_slope
 
     out: dict[str, dict[str, float | None]] = {}
-    for sampler in samplers:
-        means = {(r["metric"], r["spp"]): r["mean"] for r in summary if r["sampler"] == sampler}
+    for name in series:
+        means = {(r["metric"], r["spp"]): r["mean"] for r in summary if r["series"] == name}
         spps = sorted({spp for _, spp in means})
         entry: dict[str, float | None] = {
             m: loglog_slope(spps, [means[(m, n)] for n in spps]) for m in METRICS}
         mse = [means[("mse", n)] for n in spps]
         entry["mse_vs_seconds"] = loglog_slope([means[("seconds", n)] for n in spps], mse)
-        trace = [float(np.mean([r["trace_seconds"] for r in renders
-                                if r["sampler"] == sampler and r["spp"] == n])) for n in spps]
-        entry["mse_vs_trace_seconds"] = loglog_slope(trace, mse)
-        out[sampler] = entry
+        entry["mse_vs_trace_seconds"] = loglog_slope(
+            [means[("trace_seconds", n)] for n in spps], mse)
+        out[name] = entry
     return out
 
 
@@ -285,12 +361,15 @@ def _csv_text(renders: list[dict[str, Any]]) -> str:
                             lineterminator="\n")
     writer.writeheader()
     for r in renders:
-        writer.writerow({k: (repr(v) if isinstance(v, float) else v) for k, v in r.items()})
+        writer.writerow({k: (repr(v) if isinstance(v, float) else
+                             json.dumps(v, sort_keys=True) if isinstance(v, dict) else v)
+                         for k, v in r.items()})
     return buf.getvalue()
 
 
 def compute_results(opts: Options, out: Path, settings: SceneSettings, tests: list[Config],
-                    refs: list[Config]) -> dict[str, Any]:
+                    refs: list[Config], estimators: list[Any],
+                    reference_estimator: Any) -> dict[str, Any]:
     """Reference (mean + noise floor, written to renders/reference.exr), metrics per render,
     summary and slopes: the results.json document."""
     import numpy as np
@@ -307,6 +386,10 @@ def compute_results(opts: Options, out: Path, settings: SceneSettings, tests: li
     write_rgb(out / planning.REFERENCE_PATH, reference.astype(np.float32))
     ref_region = crop_region(np.asarray(reference, dtype=np.float32), opts.crop)
 
+    several_estimators = len(estimators) > 1
+    several_samplers = len(opts.samplers) > 1
+    series = [series_name(e.label, s, several_estimators, several_samplers)
+              for e in estimators for s in opts.samplers]
     renders: list[dict[str, Any]] = []
     for config in tests:
         sidecar = planning.read_sidecar(out, config)
@@ -316,30 +399,45 @@ def compute_results(opts: Options, out: Path, settings: SceneSettings, tests: li
         values = all_metrics(image, ref_region)
         below = {m: bool(floor[m] is not None and values[m] <= NOISE_FLOOR_FACTOR * floor[m])
                  for m in ("mse", "rel_mse")}
-        renders.append({"sampler": config.sampler, "spp": config.spp, "seed": config.seed,
+        est = config.estimator
+        renders.append({"series": series_name(est.label, config.sampler, several_estimators,
+                                              several_samplers),
+                        "estimator": est.label, "integrator": est.integrator,
+                        "estimator_settings": dict(est.settings),
+                        "sampler": config.sampler, "spp": config.spp, "seed": config.seed,
                         "path": config.exr, "seconds": float(sidecar["seconds"]),
                         "trace_seconds": float(sidecar.get("trace_seconds", sidecar["seconds"])),
                         **values, "below_noise_floor": below["mse"] or below["rel_mse"],
                         "mse_below_noise_floor": below["mse"],
                         "rel_mse_below_noise_floor": below["rel_mse"]})
-    summary = _summaries(renders, opts.samplers, opts.spp, floor)
+    summary = _summaries(renders, series, opts.spp, floor)
     return {
         "scene": str(opts.scene), "scene_sha256": settings.scene_sha256,
         "resolution": list(settings.resolution),
         "crop": list(opts.crop) if opts.crop else None,
-        "integrator": settings.integrator, "hemisphere": settings.hemisphere,
+        "integrator": (estimators[0].integrator if len(estimators) == 1
+                       else [e.integrator for e in estimators]),
+        "estimators": [{"label": e.label, "spec": e.spec, "integrator": e.integrator,
+                        "settings": dict(e.settings)} for e in estimators],
+        "common_settings": dict(opts.common),
+        "hemisphere": settings.hemisphere,
         "max_bounces": settings.max_bounces,
-        "samplers": opts.samplers, "spp": opts.spp, "seeds": opts.seeds,
+        "series": series, "samplers": opts.samplers, "spp": opts.spp, "seeds": opts.seeds,
         "reference": {"path": planning.REFERENCE_PATH,
                       "spp": opts.reference_spp if opts.reference_image is None else None,
                       "seeds": opts.reference_seeds,
                       "source": "file" if opts.reference_image is not None else "rendered",
                       "sampler": opts.reference_sampler,
+                      "estimator": (None if reference_estimator is None else {
+                          "label": reference_estimator.label,
+                          "spec": reference_estimator.spec,
+                          "integrator": reference_estimator.integrator,
+                          "settings": dict(reference_estimator.settings)}),
                       "file": str(opts.reference_file) if opts.reference_file else None,
                       "parts": [c.exr for c in refs],
                       "noise_floor": floor, "noise_floor_factor": NOISE_FLOOR_FACTOR},
         "renders": renders, "summary": summary,
-        "slopes": _slopes(summary, renders, opts.samplers),
+        "slopes": _slopes(summary, series),
         "metric_notes": {
             "rel_mse_epsilon": 1e-2,
             "flip_ldr": "mean LDR-FLIP of sRGB(clamp(linear, 0, 1)) images",
@@ -373,15 +471,18 @@ def run_compare(args: argparse.Namespace) -> int:
     except runner.BatchError as exc:
         return _fail(f"cannot open {opts.scene} in Blender: {exc}", 2)
 
+    try:
+        estimators, reference_estimator = opts.estimators(probe)
+    except UsageError as exc:
+        return _fail(str(exc), 2)
     settings = SceneSettings(
         scene_sha256=planning.sha256_file(opts.scene), resolution=resolution,
-        integrator=opts.integrator or str(probe["integrator"]),
         hemisphere=opts.hemisphere or str(probe["hemisphere"]),
         max_bounces=(opts.max_bounces if opts.max_bounces is not None
                      else int(probe["max_bounces"])))
-    tests, refs = planning.plan(settings, opts.samplers, opts.spp, opts.seeds,
-                                opts.reference_sampler, opts.reference_spp,
-                                opts.reference_seeds)
+    tests, refs = planning.plan(settings, estimators, opts.samplers, opts.spp, opts.seeds,
+                                reference_estimator, opts.reference_sampler,
+                                opts.reference_spp, opts.reference_seeds)
     out = opts.out
     try:
         (out / planning.REFERENCE_DIR).mkdir(parents=True, exist_ok=True)
@@ -415,7 +516,8 @@ def run_compare(args: argparse.Namespace) -> int:
                          "resume)", 130)
 
     try:
-        results = compute_results(opts, out, settings, tests, refs)
+        results = compute_results(opts, out, settings, tests, refs, estimators,
+                                  reference_estimator)
     except Exception as exc:  # noqa: BLE001 - one line, not a traceback
         return _fail(f"cannot compute the results: {type(exc).__name__}: {exc}", 1)
     _write_text_atomic(out / "results.json", json.dumps(results, indent=1))

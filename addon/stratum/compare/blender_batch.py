@@ -7,10 +7,16 @@ Blender start-up is paid once per batch.
 BATCH.json: {"mode": "render" | "probe", "addon_parent": folder holding stratum/,
 "output_dir": str, "threads": int | null, "configs": [entry, ...], "probe_output": str}, an
 entry as made by plan.batch_entry. For each entry the script sets scene.stratum (sampler,
-samples, seed, integrator, hemisphere, max_bounces, threads) and the render resolution, renders
-with the STRATUM engine, saves the Render Result as a linear 32-bit float OpenEXR (as
-scripts/render_to_files.py does), then writes the JSON sidecar (key, render time, EXR size and
-sha256). Both go to a temporary name first and are renamed into place, the sidecar last: a
+samples, seed, integrator, hemisphere, max_bounces, threads, and the estimator settings
+light_sampling, mis_heuristic, light_selection, rr_mode, rr_min_depth, control_variate) and the
+render resolution, renders with the STRATUM engine, saves the Render Result as a linear 32-bit
+float OpenEXR (as scripts/render_to_files.py does), then writes the JSON sidecar (key, render
+time, EXR size and sha256). An estimator setting whose scene.stratum property does not exist in
+the add-on (one older than issue 6's Blender side) is passed to the native renderer directly,
+by extending stratum.engine.renderer_settings: announced on stderr and recorded in the sidecar
+(`set_natively`); without renderer_settings to extend, the configuration fails naming the
+property. Never a render with a silently different estimator.
+EXR and sidecar go to a temporary name first and are renamed into place, the sidecar last: a
 configuration counts as done only when its sidecar exists. A configuration that fails is
 reported and the batch goes on; the script then exits with status 1. After each one it prints
 `STRATUM_COMPARE_DONE {json}` on stdout (the runner's progress bar reads it).
@@ -37,7 +43,7 @@ from typing import Any
 DONE_PREFIX = "STRATUM_COMPARE_DONE "
 START_PREFIX = "STRATUM_COMPARE_START "
 
-RenderFn = Callable[[dict[str, Any], Path], dict[str, float]]
+RenderFn = Callable[[dict[str, Any], Path], dict[str, Any]]
 
 
 def _sha256(path: Path) -> str:
@@ -88,7 +94,7 @@ def _first_line(exc: BaseException) -> str:
     return f"{type(exc).__name__}: {text.splitlines()[0] if text else ''}"
 
 
-def _render_entry(out_dir: Path, entry: dict[str, Any], render_fn: RenderFn) -> dict[str, float]:
+def _render_entry(out_dir: Path, entry: dict[str, Any], render_fn: RenderFn) -> dict[str, Any]:
     exr = out_dir / entry["exr"]
     exr.parent.mkdir(parents=True, exist_ok=True)
     tmp = _tmp_name(exr)
@@ -123,19 +129,41 @@ def _render_size(scene: Any) -> list[int]:
     return [max(int(r.resolution_x * scale), 1), max(int(r.resolution_y * scale), 1)]
 
 
+def set_estimator_settings(props: Any, settings: dict[str, Any],
+                           engine: Any) -> dict[str, Any]:
+    """Sets every estimator setting on scene.stratum (`props`); returns those the add-on has
+    no property for, which the caller passes to the renderer through
+    engine.renderer_settings. Raises, naming the first, when there are such settings and the
+    engine has no renderer_settings."""
+    natively: dict[str, Any] = {}
+    for name, value in settings.items():
+        if hasattr(props, name):
+            setattr(props, name, value)
+        else:
+            natively[name] = value
+    if natively and not callable(getattr(engine, "renderer_settings", None)):
+        name = next(iter(natively))
+        raise RuntimeError(f"scene.stratum has no property {name!r} and stratum.engine has no "
+                           f"renderer_settings to pass {name}={natively[name]!r} through")
+    return natively
+
+
 def _probe(payload: dict[str, Any]) -> None:
     bpy, scene = _setup_blender(payload)
+    from stratum.compare.estimators import SETTING_NAMES
+
     s = scene.stratum
     info = {"resolution": _render_size(scene), "integrator": str(s.integrator),
             "hemisphere": str(s.hemisphere), "max_bounces": int(s.max_bounces),
             "sampler": str(s.sampler), "samples": int(s.samples),
+            "estimator_settings": {n: getattr(s, n) for n in SETTING_NAMES if hasattr(s, n)},
             "blender_version": list(bpy.app.version)}
     write_json_atomic(Path(payload["probe_output"]), info)
 
 
 def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
     bpy, scene = _setup_blender(payload)
-    from stratum import native
+    from stratum import engine, native
     from stratum.engine import StratumRenderEngine
 
     # Remember the native renderer's last progress report: its render_seconds is the path
@@ -150,6 +178,17 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
 
     native.Renderer.progress = progress  # type: ignore[method-assign]
 
+    # Estimator settings scene.stratum has no property for: added to what the engine gives
+    # the renderer (set_estimator_settings).
+    natively: dict[str, Any] = {}
+    announced: set[str] = set()
+    original_settings = getattr(engine, "renderer_settings", None)
+    if callable(original_settings):
+        def renderer_settings(scene: Any) -> dict[str, Any]:
+            return {**original_settings(scene), **natively}
+
+        engine.renderer_settings = renderer_settings
+
     scene.render.engine = "STRATUM"
     scene.render.use_compositing = False
     scene.render.use_sequencer = False
@@ -160,7 +199,7 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
     threads = payload.get("threads")
     warmed: set[str] = set()
 
-    def render(entry: dict[str, Any], path: Path) -> dict[str, float]:
+    def render(entry: dict[str, Any], path: Path) -> dict[str, Any]:
         if entry["sampler"] not in warmed:
             # Untimed: a sampler's one-off set-up (bluenoise builds its texture, ~1-2 s, once
             # per process) would otherwise land on whichever render comes first.
@@ -171,6 +210,12 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
         s.samples = int(entry["samples"])
         s.seed = int(entry["seed"])
         s.integrator = entry["integrator"]
+        natively.clear()
+        natively.update(set_estimator_settings(s, entry["estimator_settings"], engine))
+        for name in sorted(set(natively) - announced):
+            print(f"stratum compare: warning: scene.stratum has no property {name!r}; it is "
+                  "set on the native renderer directly", file=sys.stderr, flush=True)
+            announced.add(name)
         s.hemisphere = entry["hemisphere"]
         if entry.get("max_bounces") is not None:
             s.max_bounces = int(entry["max_bounces"])
@@ -188,7 +233,11 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
         bpy.data.images["Render Result"].save_render(filepath=str(path), scene=scene)
         trace = last.get("progress")
         return {"seconds": seconds,
-                "trace_seconds": float(trace.render_seconds) if trace else seconds}
+                "trace_seconds": float(trace.render_seconds) if trace else seconds,
+                "set_natively": sorted(natively),
+                # e.g. the renderer's notices (what the estimator cannot render in this scene)
+                "warnings": [m for level, m in StratumRenderEngine.last_reports
+                             if level == "WARNING"]}
 
     return render
 

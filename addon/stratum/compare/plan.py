@@ -1,9 +1,10 @@
-"""What `stratum compare` renders: the configurations (sampler x spp x seed, plus the
-reference renders), their cache keys and file names, and which of them are already done.
+"""What `stratum compare` renders: the configurations (estimator x sampler x spp x seed, plus
+the reference renders), their cache keys and file names, and which of them are already done.
 
 Cache key = sha256 of the scene file's bytes (its sha256) and every setting that changes the
-image: resolution, integrator, hemisphere, max_bounces, sampler, spp, seed (threads do not:
-the renderer is bit-identical for any thread count). A configuration is done when its JSON
+image: resolution, hemisphere, max_bounces, the estimator (integrator and every estimator
+setting, resolved: estimators.py), sampler, spp, seed (threads do not: the renderer is
+bit-identical for any thread count). A configuration is done when its JSON
 sidecar exists, names the same key, and the EXR it describes exists with the recorded size and
 sha256. Renders write the EXR first and the sidecar last, each under a temporary name renamed
 into place, so a crash leaves nothing a resume would trust.
@@ -18,7 +19,11 @@ from dataclasses import asdict, dataclass
 from pathlib import Path
 from typing import Any
 
-CACHE_VERSION = 1
+from .estimators import Estimator
+
+# 2: the estimator (integrator + its settings) moved from the shared settings into each
+# configuration.
+CACHE_VERSION = 2
 RENDERS_DIR = "renders"
 REFERENCE_DIR = "renders/reference_parts"
 REFERENCE_PATH = "renders/reference.exr"
@@ -32,15 +37,15 @@ class SceneSettings:
 
     scene_sha256: str
     resolution: tuple[int, int]
-    integrator: str
     hemisphere: str
     max_bounces: int | None
 
 
 @dataclass(frozen=True)
 class Config:
-    """One render: a sampler at spp samples per pixel with one seed."""
+    """One render: an estimator and a sampler at spp samples per pixel with one seed."""
 
+    estimator: Estimator
     sampler: str
     spp: int
     seed: int
@@ -52,7 +57,7 @@ class Config:
     @property
     def label(self) -> str:
         prefix = "reference " if self.role == "reference" else ""
-        return f"{prefix}{self.sampler} spp={self.spp} seed={self.seed}"
+        return f"{prefix}{self.estimator.label} {self.sampler} spp={self.spp} seed={self.seed}"
 
     @property
     def cost(self) -> float:
@@ -68,33 +73,42 @@ def sha256_file(path: str | os.PathLike[str]) -> str:
     return h.hexdigest()
 
 
-def cache_key(settings: SceneSettings, sampler: str, spp: int, seed: int) -> str:
+def cache_key(settings: SceneSettings, estimator: Estimator, sampler: str, spp: int,
+              seed: int) -> str:
+    """The label is not part of the key: it is derived from the settings, which are."""
     payload = {"version": CACHE_VERSION, **asdict(settings),
-               "resolution": list(settings.resolution), "sampler": sampler, "spp": spp,
+               "resolution": list(settings.resolution), "integrator": estimator.integrator,
+               "estimator_settings": dict(estimator.settings), "sampler": sampler, "spp": spp,
                "seed": seed}
     return hashlib.sha256(json.dumps(payload, sort_keys=True).encode()).hexdigest()
 
 
-def make_config(settings: SceneSettings, sampler: str, spp: int, seed: int,
-                role: str) -> Config:
-    key = cache_key(settings, sampler, spp, seed)
+def file_safe(text: str) -> str:
+    return "".join(c if c.isalnum() or c in "-_." else "_" for c in text)
+
+
+def make_config(settings: SceneSettings, estimator: Estimator, sampler: str, spp: int,
+                seed: int, role: str) -> Config:
+    key = cache_key(settings, estimator, sampler, spp, seed)
     folder = REFERENCE_DIR if role == "reference" else RENDERS_DIR
-    stem = f"{folder}/{sampler}_spp{spp}_seed{seed}_{key[:16]}"
-    return Config(sampler=sampler, spp=spp, seed=seed, role=role, key=key, exr=f"{stem}.exr",
-                  sidecar=f"{stem}.json")
+    stem = f"{folder}/{file_safe(estimator.label)}_{sampler}_spp{spp}_seed{seed}_{key[:16]}"
+    return Config(estimator=estimator, sampler=sampler, spp=spp, seed=seed, role=role, key=key,
+                  exr=f"{stem}.exr", sidecar=f"{stem}.json")
 
 
-def plan(settings: SceneSettings, samplers: list[str], spps: list[int], seeds: list[int],
+def plan(settings: SceneSettings, estimators: list[Estimator], samplers: list[str],
+         spps: list[int], seeds: list[int], reference_estimator: Estimator | None,
          reference_sampler: str | None, reference_spp: int | None,
          reference_seeds: list[int]) -> tuple[list[Config], list[Config]]:
     """(test configurations, reference configurations); no reference renders when
-    reference_sampler is None (a reference file was given)."""
-    tests = [make_config(settings, s, n, seed, "test")
-             for s in samplers for n in spps for seed in seeds]
+    reference_sampler or reference_estimator is None (a reference file was given)."""
+    tests = [make_config(settings, e, s, n, seed, "test")
+             for e in estimators for s in samplers for n in spps for seed in seeds]
     refs: list[Config] = []
-    if reference_sampler is not None and reference_spp is not None:
-        refs = [make_config(settings, reference_sampler, reference_spp, seed, "reference")
-                for seed in reference_seeds]
+    if (reference_estimator is not None and reference_sampler is not None
+            and reference_spp is not None):
+        refs = [make_config(settings, reference_estimator, reference_sampler, reference_spp,
+                            seed, "reference") for seed in reference_seeds]
     return tests, refs
 
 
@@ -122,7 +136,8 @@ def batch_entry(config: Config, settings: SceneSettings) -> dict[str, Any]:
     """What the Blender batch script needs to render one configuration."""
     return {"key": config.key, "label": config.label, "exr": config.exr,
             "sidecar": config.sidecar, "sampler": config.sampler, "samples": config.spp,
-            "seed": config.seed, "integrator": settings.integrator,
+            "seed": config.seed, "integrator": config.estimator.integrator,
+            "estimator_settings": dict(config.estimator.settings),
             "hemisphere": settings.hemisphere, "max_bounces": settings.max_bounces,
             "resolution": list(settings.resolution)}
 

@@ -91,6 +91,10 @@ def problem(text: str) -> str:
 # ---- results, read defensively -----------------------------------------------------------------
 
 
+def _series(row: dict[str, Any]) -> str:
+    return str(row.get("series", row.get("sampler")))
+
+
 class Results:
     """Accessors over the results dict that tolerate missing or null fields."""
 
@@ -99,8 +103,13 @@ class Results:
         self.raw = raw
         self.renders: list[dict[str, Any]] = [r for r in raw.get("renders") or []
                                               if isinstance(r, dict)]
-        self.samplers: list[str] = list(raw.get("samplers") or
-                                        dict.fromkeys(str(r.get("sampler")) for r in self.renders))
+        # The series of the tables and plots: (estimator, sampler) pairs named as in
+        # stratum.compare.series_name; results without `series` (sampler comparisons written
+        # before estimators were an axis) have one series per sampler.
+        self.sampler_names: list[str] = list(
+            raw.get("samplers") or dict.fromkeys(str(r.get("sampler")) for r in self.renders))
+        self.samplers: list[str] = list(
+            raw.get("series") or dict.fromkeys(_series(r) for r in self.renders))
         spp = raw.get("spp") or sorted({int(r["spp"]) for r in self.renders if "spp" in r})
         self.spp: list[int] = sorted(int(s) for s in spp)
         seeds = raw.get("seeds") or sorted({int(r["seed"]) for r in self.renders if "seed" in r})
@@ -143,14 +152,14 @@ class Results:
 
     def render(self, sampler: str, spp: int, seed: int | None) -> dict[str, Any] | None:
         for r in self.renders:
-            if (r.get("sampler") == sampler and int(r.get("spp", -1)) == spp
+            if (_series(r) == sampler and int(r.get("spp", -1)) == spp
                     and (seed is None or int(r.get("seed", -1)) == seed)):
                 return r
         return None
 
     def values(self, sampler: str, spp: int, metric: str) -> np.ndarray:
         vals = [r.get(metric) for r in self.renders
-                if r.get("sampler") == sampler and int(r.get("spp", -1)) == spp]
+                if _series(r) == sampler and int(r.get("spp", -1)) == spp]
         return np.array([float(v) for v in vals if isinstance(v, int | float)], dtype=float)
 
     def below_floor(self, sampler: str, spp: int, metric: str | None = None) -> bool:
@@ -158,7 +167,7 @@ class Results:
         runner gives it, else by `below_noise_floor`."""
         key = f"{metric}_below_noise_floor" if metric else "below_noise_floor"
         return any(bool(r.get(key, r.get("below_noise_floor"))) for r in self.renders
-                   if r.get("sampler") == sampler and int(r.get("spp", -1)) == spp)
+                   if _series(r) == sampler and int(r.get("spp", -1)) == spp)
 
     @staticmethod
     def _index_summary(rows: Sequence[Any]) -> dict[tuple[str, int, str], tuple[float, ...]]:
@@ -167,7 +176,7 @@ class Results:
             if not isinstance(row, dict):
                 continue
             try:
-                key = (str(row["sampler"]), int(row["spp"]), str(row["metric"]))
+                key = (_series(row), int(row["spp"]), str(row["metric"]))
                 index[key] = tuple(float(row[k]) if row.get(k) is not None else math.nan
                                    for k in ("mean", "ci95_low", "ci95_high", "n"))
             except (KeyError, TypeError, ValueError):
@@ -335,7 +344,7 @@ def write_report(out_dir: Path, results: dict[str, Any]) -> Path:
         "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n"
         f"<title>Stratum compare: {esc(Path(str(scene)).name)}</title>\n"
         f"<style>{_CSS}</style>\n</head>\n<body>\n"
-        f"<h1>Stratum sampler comparison: {esc(Path(str(scene)).name)}</h1>\n"
+        f"<h1>Stratum comparison: {esc(Path(str(scene)).name)}</h1>\n"
         f"<p>{toc}</p>\n{body}</body>\n</html>\n"
     )
     path = out_dir / "report.html"

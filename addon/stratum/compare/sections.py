@@ -61,7 +61,11 @@ def settings(res: Results, _: Path) -> str:
         ("scene sha256", raw.get("scene_sha256")),
         ("resolution", "x".join(str(v) for v in raw.get("resolution") or []) or None),
         ("crop", raw.get("crop")),
-        ("integrator", raw.get("integrator")),
+        ("estimators", "; ".join(f"{e.get('label')} = {e.get('spec')}"
+                                 for e in raw.get("estimators") or [] if isinstance(e, dict))
+         or raw.get("integrator")),
+        ("settings for every configuration (--set)",
+         ", ".join(f"{k}={v}" for k, v in (raw.get("common_settings") or {}).items()) or None),
         ("hemisphere", raw.get("hemisphere")),
         ("max bounces", raw.get("max_bounces")),
         ("samplers", ", ".join(res.samplers)),
@@ -69,6 +73,8 @@ def settings(res: Results, _: Path) -> str:
         ("seeds", ", ".join(str(s) for s in res.seeds)),
         ("reference", f"{ref.get('path', 'renders/reference.exr')} ({ref.get('source', '?')}, "
                       f"{ref.get('spp', '?')} spp, seeds {ref.get('seeds', '?')})"),
+        ("reference estimator", (ref.get("estimator") or {}).get("spec")
+         if isinstance(ref.get("estimator"), dict) else None),
         ("reference noise floor", f"MSE {fmt(floor.get('mse'))}, "
                                   f"relative MSE {fmt(floor.get('rel_mse'))}"),
     ]
@@ -86,7 +92,7 @@ def _cell(res: Results, sampler: str, spp: int, metric: str) -> str:
 
 
 def results_table(res: Results, _: Path) -> str:
-    head = ("<tr><th class=\"name\">sampler</th><th>spp</th><th>seeds</th>"
+    head = ("<tr><th class=\"name\">series</th><th>spp</th><th>seeds</th>"
             + "".join(f"<th>{esc(label)} mean [95% CI]</th>" for label in METRICS.values())
             + "<th>seconds (mean)</th></tr>")
     rows = []
@@ -104,7 +110,7 @@ def results_table(res: Results, _: Path) -> str:
 
 
 def slopes_table(res: Results, _: Path) -> str:
-    head = ('<tr><th class="name">sampler</th>'
+    head = ('<tr><th class="name">series</th>'
             + "".join(f"<th>{esc(k)}</th>" for k in SLOPE_KEYS) + "</tr>")
     rows, computed = [], False
     for sampler in res.samplers:
@@ -204,9 +210,10 @@ def image_grid(res: Results, fig_dir: Path) -> str:
             cells.append(f"<td>{pair(f'{safe_name(sampler)}_{spp}', img)}</td>")
         rows.append(f'<tr><th class="name">{esc(sampler)}</th>{"".join(cells)}'
                     f"<td>{ref_cell}</td></tr>")
-    note = (f"Seed {seed}. Rows: samplers; columns: samples per pixel; the reference on the "
-            "right. Top of each cell: the full image, display-transformed (linear RGB clamped "
-            "to [0, 1], then the sRGB transfer function; no tone mapping). Below: the crop "
+    note = (f"Seed {seed}. Rows: the series (estimators and/or samplers); columns: samples "
+            "per pixel; the reference on the right. Top of each cell: the full image, "
+            "display-transformed (linear RGB clamped to [0, 1], then the sRGB transfer "
+            "function; no tone mapping). Below: the crop "
             f"x={x}, y={y}, {w}x{h} px from the top-left corner (red box on the reference) — "
             f"{how} — magnified with nearest-neighbour pixels and brightened by ×{gain:g} "
             "(a power of two taking the reference crop's mean luminance towards 0.18; the same "
@@ -244,7 +251,7 @@ def error_spectra(res: Results, fig_dir: Path) -> str:
             ratios[(sampler, spp)] = low_frequency_ratio(err)
         panels.append((f"error spectrum at {spp} spp (seed {seed})", curves))
     path = figures.error_spectra_figure(fig_dir / "error_spectra.png", panels, res.samplers)
-    head = ('<tr><th class="name">sampler</th>'
+    head = ('<tr><th class="name">series</th>'
             + "".join(f"<th>low-frequency ratio, {s} spp</th>" for s in levels) + "</tr>")
     rows = "".join(f'<tr><td class="name">{esc(s)}</td>'
                    + "".join(f"<td>{fmt(ratios.get((s, spp)))}</td>" for spp in levels)
@@ -289,7 +296,7 @@ def sample_points(res: Results, fig_dir: Path) -> str:
     width, height = res.resolution()
     seed = res.first_seed or 0
     parts = []
-    for sampler in res.samplers:
+    for sampler in res.sampler_names:
         if sampler not in known:
             parts.append(problem(f"{sampler}: not in the native sampler registry"))
             continue

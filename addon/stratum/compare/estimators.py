@@ -1,0 +1,214 @@
+"""Estimator specs of `stratum compare --integrator`: which integrator and which estimator
+settings (issue 6) one configuration renders with, and the short label tables and plots use.
+
+| setting         | kind   | values (default first)         | label part       |
+|-----------------|--------|--------------------------------|------------------|
+| light_sampling  | choice | mis, nee, bsdf                 | path: bsdf / nee / mis-<heuristic> |
+| mis_heuristic   | choice | power, balance, max            | (in mis-<heuristic>) |
+| light_selection | choice | mixed, power, uniform          | sel-<value>      |
+| rr_mode         | choice | throughput, albedo, off        | rr-<value>       |
+| rr_min_depth    | int    | >= 0 (default 3)               | rrmin<value>     |
+| control_variate | float  | >= 0 (default 0 = off)         | cv<value>        |
+
+The names and values are the render settings of native/include/stratum/stratum.h (parsed by
+native/src/integrators/estimator_options.cpp and render/render_settings.cpp); the Blender
+properties scene.stratum.<name> carry the same names.
+
+Spec syntax: `INTEGRATOR[:NAME=VALUE[,NAME=VALUE...]]`, INTEGRATOR a name of the native
+integrator registry (path, direct, ao, light). In the comma-separated --integrator list an item
+of the form NAME=VALUE (no colon) continues the settings of the spec before it, so
+`path:light_sampling=mis,mis_heuristic=balance,direct` is two specs.
+
+Resolution of one configuration's settings: the spec's value, else --set's, else the scene's
+(read by the probe when the property exists), else the default above. Every configuration
+carries all of them, so its cache key and its render do not depend on what the scene stored.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable, Mapping, Sequence
+from dataclasses import dataclass
+
+Value = str | int | float
+
+CHOICES: dict[str, tuple[str, ...]] = {
+    "light_sampling": ("mis", "nee", "bsdf"),
+    "mis_heuristic": ("power", "balance", "max"),
+    "light_selection": ("mixed", "power", "uniform"),
+    "rr_mode": ("throughput", "albedo", "off"),
+}
+# rr_min_depth's upper bound is the renderer's kMaxBounces (render_settings.cpp).
+RR_MIN_DEPTH_MAX = 1024
+DEFAULTS: dict[str, Value] = {**{k: v[0] for k, v in CHOICES.items()}, "rr_min_depth": 3,
+                              "control_variate": 0.0}
+SETTING_NAMES: tuple[str, ...] = tuple(DEFAULTS)
+PATH = "path"  # the integrator whose label names its light-sampling strategy
+_SUFFIX = {"light_selection": "sel-", "rr_mode": "rr-", "rr_min_depth": "rrmin",
+           "control_variate": "cv"}
+
+
+class SpecError(ValueError):
+    """A bad estimator spec or setting; the message names the bad part."""
+
+
+@dataclass(frozen=True)
+class Estimator:
+    """One resolved estimator: integrator, every setting of SETTING_NAMES, and its label."""
+
+    integrator: str
+    settings: tuple[tuple[str, Value], ...]
+    label: str
+    spec: str  # as written (or as made up for the scene's default)
+
+    def setting(self, name: str) -> Value:
+        return dict(self.settings)[name]
+
+
+@dataclass(frozen=True)
+class Spec:
+    """A parsed spec before resolution: the integrator and the settings it names."""
+
+    integrator: str
+    given: tuple[tuple[str, Value], ...]
+    text: str
+
+
+def parse_value(name: str, text: str, where: str) -> Value:
+    """The typed value of setting `name`; SpecError naming `where`, the name and the value."""
+    if name not in DEFAULTS:
+        raise SpecError(f"{where}: unknown setting {name!r}; settings: {', '.join(DEFAULTS)}")
+    text = text.strip()
+    if name in CHOICES:
+        if text not in CHOICES[name]:
+            raise SpecError(f"{where}: bad value {text!r} for {name}; values: "
+                            f"{', '.join(CHOICES[name])}")
+        return text
+    if name == "rr_min_depth":
+        try:
+            depth = int(text)
+        except ValueError:
+            raise SpecError(f"{where}: bad value {text!r} for rr_min_depth; expected an "
+                            "integer") from None
+        if not 0 <= depth <= RR_MIN_DEPTH_MAX:
+            raise SpecError(f"{where}: bad value {depth} for rr_min_depth; expected 0.."
+                            f"{RR_MIN_DEPTH_MAX}")
+        return depth
+    try:
+        radiance = float(text)
+    except ValueError:
+        raise SpecError(f"{where}: bad value {text!r} for control_variate; expected a number "
+                        ">= 0") from None
+    if not radiance >= 0.0 or radiance == float("inf"):  # also rejects nan
+        raise SpecError(f"{where}: bad value {text!r} for control_variate; expected a finite "
+                        "number >= 0")
+    return radiance
+
+
+def parse_assignment(text: str, where: str) -> tuple[str, Value]:
+    name, eq, value = text.partition("=")
+    if not eq or not name.strip() or not value.strip():
+        raise SpecError(f"{where}: {text!r} is not NAME=VALUE")
+    return name.strip(), parse_value(name.strip(), value, where)
+
+
+def parse_settings(items: Iterable[str], where: str) -> dict[str, Value]:
+    """NAME=VALUE items (e.g. the --set options) -> {name: value}; a name given twice with
+    different values is an error."""
+    out: dict[str, Value] = {}
+    for item in items:
+        name, value = parse_assignment(item, where)
+        if name in out and out[name] != value:
+            raise SpecError(f"{where}: {name} given twice ({out[name]!r} and {value!r})")
+        out[name] = value
+    return out
+
+
+def split_specs(text: str) -> list[str]:
+    """The comma-separated --integrator list -> one string per spec (see the module doc)."""
+    specs: list[str] = []
+    for item in (t.strip() for t in str(text).split(",")):
+        if not item:
+            raise SpecError(f"--integrator {text!r}: empty item")
+        if "=" in item and ":" not in item:
+            if not specs:
+                raise SpecError(f"--integrator {text!r}: {item!r} names a setting before any "
+                                "integrator (write INTEGRATOR:NAME=VALUE)")
+            sep = "," if ":" in specs[-1] else ":"
+            specs[-1] += sep + item
+        else:
+            specs.append(item)
+    return specs
+
+
+def parse_spec(text: str, integrators: Sequence[str]) -> Spec:
+    """`INTEGRATOR[:NAME=VALUE,...]` -> Spec; SpecError naming the bad integrator or value."""
+    head, colon, rest = text.strip().partition(":")
+    integrator = head.strip()
+    if integrator not in integrators:
+        raise SpecError(f"--integrator: unknown integrator {integrator!r} in {text!r}; "
+                        f"available: {', '.join(integrators)}")
+    if colon and not rest.strip():
+        raise SpecError(f"--integrator: {text!r} has no settings after ':'")
+    items = [t for t in rest.split(",")] if colon else []
+    if any(not t.strip() for t in items):
+        raise SpecError(f"--integrator {text!r}: empty setting")
+    given = parse_settings(items, f"--integrator {text!r}")
+    return Spec(integrator, tuple(sorted(given.items())), text.strip())
+
+
+def parse_specs(text: str, integrators: Sequence[str]) -> list[Spec]:
+    return [parse_spec(s, integrators) for s in split_specs(text)]
+
+
+def _fmt(value: Value) -> str:
+    return f"{value:g}" if isinstance(value, float) else str(value)
+
+
+def make_label(integrator: str, values: Mapping[str, Value], given: Iterable[str]) -> str:
+    """bsdf / nee / mis-<heuristic> for the path tracer (from its resolved settings), else the
+    integrator's name; then `+<part>` for every other setting the spec itself names (a
+    setting common to every configuration does not tell them apart)."""
+    named = set(given)
+    if integrator == PATH:
+        strategy = str(values["light_sampling"])
+        parts = [f"mis-{values['mis_heuristic']}" if strategy == "mis" else strategy]
+        covered = {"light_sampling", "mis_heuristic"}
+    else:
+        parts, covered = [integrator], set()
+    for name in SETTING_NAMES:
+        if name in named and name not in covered:
+            prefix = _SUFFIX.get(name, f"{name}-")
+            parts.append(f"{prefix}{_fmt(values[name])}")
+    return "+".join(parts)
+
+
+def resolve(spec: Spec, common: Mapping[str, Value],
+            scene: Mapping[str, Value] | None = None) -> Estimator:
+    """The spec's settings over --set's over the scene's over the defaults."""
+    values: dict[str, Value] = dict(DEFAULTS)
+    for name, value in (scene or {}).items():
+        if name in values:
+            values[name] = parse_value(name, str(value), "the scene's setting")
+    values.update(common)
+    values.update(dict(spec.given))
+    label = make_label(spec.integrator, values, (n for n, _ in spec.given))
+    return Estimator(spec.integrator, tuple((n, values[n]) for n in SETTING_NAMES), label,
+                     spec.text)
+
+
+def resolve_all(specs: Sequence[Spec], common: Mapping[str, Value],
+                scene: Mapping[str, Value] | None = None) -> list[Estimator]:
+    """Resolved estimators, in order; two specs that resolve to the same estimator, or to the
+    same label, are an error (their rows could not be told apart)."""
+    out: list[Estimator] = []
+    for spec in specs:
+        est = resolve(spec, common, scene)
+        for other in out:
+            if (other.integrator, other.settings) == (est.integrator, est.settings):
+                raise SpecError(f"--integrator: {spec.text!r} and {other.spec!r} are the same "
+                                "estimator")
+            if other.label == est.label:
+                raise SpecError(f"--integrator: {spec.text!r} and {other.spec!r} have the same "
+                                f"label {est.label!r}")
+        out.append(est)
+    return out
