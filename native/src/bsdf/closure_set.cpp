@@ -4,7 +4,7 @@ namespace stratum {
 
 namespace {
 
-float albedo_estimate(const Material& m) {
+float sample_weight_estimate(const Material& m) {
     switch (m.model) {
         case MaterialModel::Diffuse:
         case MaterialModel::Glossy:
@@ -19,6 +19,24 @@ float albedo_estimate(const Material& m) {
             break;
     }
     return 0.0f;
+}
+
+// The colour albedo Russian roulette by albedo survives with (see the header's table).
+Rgb albedo_colour_estimate(const Material& m) {
+    switch (m.model) {
+        case MaterialModel::Diffuse:
+        case MaterialModel::Glossy:
+        case MaterialModel::Glass:
+        case MaterialModel::Transparent:
+            return m.base_color;
+        case MaterialModel::PrincipledV1:
+        case MaterialModel::PrincipledV2:
+            return m.base_color + Rgb(0.04f);
+        case MaterialModel::Emission:
+        case MaterialModel::Holdout:
+            break;
+    }
+    return Rgb(0.0f);
 }
 
 uint32_t closure_kinds(const Material& m, Vec3 wi) {
@@ -53,20 +71,33 @@ ClosureSet::ClosureSet(const SceneMaterial& material) {
 
 void ClosureSet::finalize() {
     sample_weight_sum_ = 0.0f;
-    emission_ = holdout_ = transparency_ = Rgb(0.0f);
+    emission_ = holdout_ = transparency_ = lambertian_albedo_ = albedo_estimate_ = Rgb(0.0f);
     has_transmission_ = has_non_delta_ = false;
     for (uint32_t i = 0; i < count_; ++i) {
         const WeightedClosure& c = closures_[i];
         emission_ += c.weight * c.params.emission;
         if (c.params.model == MaterialModel::Holdout) holdout_ += c.weight;
         if (c.params.model == MaterialModel::Transparent) transparency_ += c.weight * c.params.base_color;
-        sample_weight_[i] = std::abs(c.weight.average()) * albedo_estimate(c.params);
+        sample_weight_[i] = std::abs(c.weight.average()) * sample_weight_estimate(c.params);
         sample_weight_sum_ += sample_weight_[i];
         if (sample_weight_[i] > 0.0f) {
+            if (c.params.model == MaterialModel::Diffuse)
+                lambertian_albedo_ += c.weight * c.params.base_color;
+            albedo_estimate_ += c.weight * albedo_colour_estimate(c.params);
             has_transmission_ = has_transmission_ || bsdf_has_transmission(c.params);
             has_non_delta_ = has_non_delta_ || !bsdf_is_delta(c.params);
         }
     }
+}
+
+Rgb ClosureSet::lambertian_value(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) const {
+    Rgb sum(0.0f);
+    for (uint32_t i = 0; i < count_; ++i) {
+        const Material& m = closures_[i].params;
+        if (sample_weight_[i] <= 0.0f || m.model != MaterialModel::Diffuse) continue;
+        sum += closures_[i].weight * bsdf_eval(m, wo, wi, hemisphere).value;
+    }
+    return sum;
 }
 
 BsdfEval ClosureSet::eval(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere, uint32_t kinds) const {

@@ -11,6 +11,11 @@
 // | emission         | Sum_i w_i emission_i                                                      |
 // | holdout          | Sum of the weights of Holdout closures (Cycles shader_holdout_apply)     |
 // | transparency     | Sum_i w_i base_color_i over Transparent closures (transparent shadows)   |
+// | lambertian albedo| Sum_i w_i base_color_i over Diffuse (Lambertian) closures: their exact    |
+// |                  | directional albedo, the control variate's known integral (textbook 5.17) |
+// | albedo estimate  | Sum_i w_i a_i, a_i = base_color (single-lobe models), base_color + 0.04  |
+// |                  | dielectric specular (Principled), clamped to 1: Russian roulette by      |
+// |                  | albedo (textbook 5.5); any positive survival keeps it unbiased           |
 //
 // Sampling picks closure i with u_lobe, rescales u_lobe to [0,1) for the closure's own lobe
 // choice, and samples it. A non-delta pick reports the full mixture value and pdf (so weight =
@@ -43,6 +48,8 @@ public:
     Rgb emission() const { return emission_; }
     Rgb holdout() const { return holdout_; }
     Rgb transparency() const { return transparency_; }
+    Rgb lambertian_albedo() const { return lambertian_albedo_; }
+    Rgb albedo_estimate() const { return albedo_estimate_; }
     bool has_transmission() const { return has_transmission_; }
     // Whether any closure has a non-delta part that next-event estimation can evaluate.
     bool has_non_delta() const { return has_non_delta_; }
@@ -54,6 +61,8 @@ public:
     // Diffuse and Glossy). The pdf is always the full sampling density.
     BsdfEval eval(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere, uint32_t kinds = kAllKinds) const;
     bool sample(Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out, HemisphereDistribution hemisphere) const;
+    // Sum_i w_i f_i(wo, wi) cos_i over the Lambertian Diffuse closures only.
+    Rgb lambertian_value(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) const;
 
     static constexpr uint32_t kAllKinds = 0xf;
 
@@ -62,7 +71,7 @@ private:
     std::array<float, kMaxClosures> sample_weight_{};
     uint32_t count_ = 0;
     float sample_weight_sum_ = 0.0f;
-    Rgb emission_, holdout_, transparency_;
+    Rgb emission_, holdout_, transparency_, lambertian_albedo_, albedo_estimate_;
     bool has_transmission_ = false, has_non_delta_ = false;
 };
 

@@ -1,6 +1,5 @@
 #include "integrators/estimator_options.h"
 
-#include <algorithm>
 #include <array>
 
 namespace stratum {
@@ -44,22 +43,22 @@ bool parse_light_sampling(std::string_view name, LightSampling* out) {
 bool parse_mis_heuristic(std::string_view name, MisHeuristic* out) {
     return parse_by_index(kMisHeuristic, name, out);
 }
-bool parse_rr_mode(std::string_view name, RouletteMode* out) { return parse_by_index(kRouletteMode, name, out); }
+bool parse_rr_mode(std::string_view name, RouletteMode* out) {
+    return parse_by_index(kRouletteMode, name, out);
+}
 bool parse_light_selection(std::string_view name, LightSelection* out) {
     return parse_by_index(kLightSelection, name, out);
 }
 
 float mis_weight(MisHeuristic heuristic, float pdf_a, float pdf_b) {
     if (!(pdf_a > 0.0f)) return 0.0f;
+    // In terms of r = p_b / p_a, so that pdfs near FLT_MAX (and their squares) do not overflow.
+    const float r = pdf_b / pdf_a;
     switch (heuristic) {
         case MisHeuristic::Balance:
-            return pdf_a / (pdf_a + pdf_b);
-        case MisHeuristic::Power: {
-            // Squares of pdfs near FLT_MAX overflow: divide by the larger pdf first.
-            const float scale = std::max(pdf_a, pdf_b);
-            const float a = pdf_a / scale, b = pdf_b / scale;
-            return a * a / (a * a + b * b);
-        }
+            return 1.0f / (1.0f + r);
+        case MisHeuristic::Power:
+            return 1.0f / (1.0f + r * r);
         case MisHeuristic::Maximum:
             // Ties split evenly so the two weights of one path still sum to 1.
             return pdf_a > pdf_b ? 1.0f : (pdf_a == pdf_b ? 0.5f : 0.0f);

@@ -5,10 +5,12 @@
 //
 // | setting         | values                         | reference |
 // |-----------------|--------------------------------|-----------|
-// | light_sampling  | bsdf, nee, mis                 | §5: (5.2) BSDF sampling only; (5.7–5.16) NEE, emission hit by a scattered ray counted only after a camera or delta vertex (5.16); §5.5 MIS of the two |
-// | mis_heuristic   | balance, power, max            | §4.4: w_a = p_a/(p_a+p_b); p_a²/(p_a²+p_b²) (β = 2); 1 for the larger pdf |
-// | rr_mode         | off, throughput, albedo        | (5.5–5.6): survival min(1, max β) or min(1, max ρ), ρ the closures' albedo |
-// | light_selection | mixed, power, uniform          | (5.14) p_j = Φ_j/ΣΦ; uniform 1/N; mixed = ½ power + ½ uniform over objects (lights/light_set.h) |
+// | light_sampling  | bsdf, nee, mis                 | §5: (5.2) BSDF sampling only; (5.7–5.16) NEE, emission
+// hit by a scattered ray counted only after a camera or delta vertex (5.16); §5.5 MIS of the two | |
+// mis_heuristic   | balance, power, max            | §4.4: w_a = p_a/(p_a+p_b); p_a²/(p_a²+p_b²) (β = 2); 1
+// for the larger pdf | | rr_mode         | off, throughput, albedo        | (5.5–5.6): survival min(1, max β)
+// or min(1, max ρ), ρ the closures' albedo | | light_selection | mixed, power, uniform          | (5.14) p_j
+// = Φ_j/ΣΦ; uniform 1/N; mixed = ½ power + ½ uniform over objects (lights/light_set.h) |
 #pragma once
 
 #include <cstdint>

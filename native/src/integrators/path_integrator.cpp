@@ -10,13 +10,6 @@ namespace stratum {
 
 namespace {
 
-constexpr uint32_t kRouletteStartBounce = 3;
-
-float power_heuristic(float pdf_a, float pdf_b) {
-    const float a = pdf_a * pdf_a, b = pdf_b * pdf_b;
-    return a > 0.0f ? a / (a + b) : 0.0f;
-}
-
 // The ray visibility bit of a ray scattered by a lobe of this kind (StratumVisibility).
 uint32_t ray_visibility(ScatterKind kind, uint32_t previous) {
     switch (kind) {
@@ -43,6 +36,35 @@ uint32_t lit_kinds(uint32_t light_visibility) {
 
 }  // namespace
 
+float PathIntegrator::hit_weight(float scatter_pdf, float light_pdf) const {
+    // A camera ray or a delta scatter: no light sample could have found this emission (5.16).
+    // Emission light sampling cannot reach (light_pdf 0) is found by rays alone.
+    if (!(scatter_pdf > 0.0f) || !(light_pdf > 0.0f)) return 1.0f;
+    switch (settings_.light_sampling) {
+        case LightSampling::Bsdf:
+            return 1.0f;
+        case LightSampling::Nee:
+            return 0.0f;
+        case LightSampling::Mis:
+            break;
+    }
+    return mis_weight(settings_.mis_heuristic, scatter_pdf, light_pdf);
+}
+
+std::vector<std::string> PathIntegrator::notices(const Scene& scene) const {
+    if (settings_.light_sampling != LightSampling::Bsdf) return {};
+    uint32_t unreachable = 0;
+    for (const LightParams& l : scene.lights) {
+        const bool point_like =
+            l.type == LightType::Point || l.type == LightType::Spot || l.type == LightType::SpotV1;
+        if ((point_like && l.radius <= 0.0f) || (l.type == LightType::Sun && l.angle <= 0.0f)) ++unreachable;
+    }
+    if (unreachable == 0) return {};
+    return {"light_sampling 'bsdf' finds emission only by hitting it: " + std::to_string(unreachable) +
+            " light(s) without a surface (point or spot of radius 0, sun of angle 0) add nothing; "
+            "choose light_sampling 'nee' or 'mis' to see them"};
+}
+
 RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler,
                                         const PixelSample& pixel, const CameraRay& camera_ray,
                                         uint64_t& rays) const {
@@ -57,7 +79,9 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
     bool camera_visible_path = true;
     uint32_t bounce = 0, transparent_bounce = 0;
     const LightSet& lights = scene.lights();
+    const LightSelection selection = settings_.light_selection;
     const uint32_t max_shadow_surfaces = settings_.transparent_max_bounces;
+    const float ambient = settings_.control_variate;  // L_a of the control variate (5.17)
 
     // `vertex` numbers every surface the path meets (bounces and pass-throughs), so each owns a
     // block of sample dimensions.
@@ -73,8 +97,8 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
             float lamp_pdf = 0.0f, lamp_t = 0.0f;
             const Rgb lamp = lights.lamp_radiance(
                 origin, dir, found ? hit.t : t_max,
-                camera_visible_path ? uint32_t{STRATUM_VISIBLE_CAMERA} : query.visibility, &lamp_pdf,
-                &lamp_t);
+                camera_visible_path ? uint32_t{STRATUM_VISIBLE_CAMERA} : query.visibility, &lamp_pdf, &lamp_t,
+                selection);
             if (!lamp.is_black()) {
                 float w = 1.0f;
                 if (!camera_visible_path && scatter_pdf > 0.0f) {
@@ -83,7 +107,7 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
                     const Vec3 lamp_point = origin + dir * lamp_t;
                     const float scale = dot(lamp_point - scatter_origin, lamp_point - scatter_origin) /
                                         std::max(lamp_t * lamp_t, 1e-30f);
-                    w = power_heuristic(scatter_pdf, lamp_pdf * scale);
+                    w = hit_weight(scatter_pdf, lamp_pdf * scale);
                 }
                 L += beta * lamp * w;
             }
@@ -94,10 +118,8 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
                 break;
             }
             // The environment is also sampled by NEE: MIS against it, as for emissive triangles.
-            float w = 1.0f;
-            if (scatter_pdf > 0.0f && lights.environment()) {
-                w = power_heuristic(scatter_pdf, lights.environment_pdf(dir));
-            }
+            const float w =
+                hit_weight(scatter_pdf, lights.environment() ? lights.environment_pdf(dir, selection) : 0.0f);
             L += beta * scene.background(dir) * w;
             break;
         }
@@ -112,12 +134,11 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         }
         const Rgb emission = closures.emission();
         if (!emission.is_black()) {
-            float w = 1.0f;
-            if (scatter_pdf > 0.0f && hit.emissive_light != kNoLight) {
-                w = power_heuristic(scatter_pdf, lights.emissive_triangle_pdf(hit.emissive_light,
-                                                                              scatter_origin, hit.position));
-            }
-            L += beta * emission * w;
+            const float light_pdf = hit.emissive_light != kNoLight
+                                        ? lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin,
+                                                                       hit.position, selection)
+                                        : 0.0f;
+            L += beta * emission * hit_weight(scatter_pdf, light_pdf);
         }
         if (bounce > settings_.max_bounces) {
             // Past the last bounce Cycles still follows transparent closures to collect the
@@ -139,9 +160,9 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         // Next-event estimation (textbook 5.7–5.16), MIS-weighted against BSDF sampling. Lights
         // below the surface count only for closures that transmit.
         LightSample ls;
-        if (closures.has_non_delta() &&
+        if (settings_.light_sampling != LightSampling::Bsdf && closures.has_non_delta() &&
             lights.sample(hit.position, sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
-                          sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), &ls)) {
+                          sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), &ls, selection)) {
             const float side = dot(ls.wi, sp.ng);
             const uint32_t kinds = lit_kinds(ls.visibility);
             if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) && kinds != 0) {
@@ -165,12 +186,21 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
                                                  {query.time, STRATUM_VISIBLE_SHADOW}, left, rays);
                     }
                     if (!transmittance.is_black()) {
-                        const float w = ls.found_by_bsdf_rays ? power_heuristic(ls.pdf, f.pdf) : 1.0f;
+                        const float w =
+                            ls.found_by_bsdf_rays && settings_.light_sampling == LightSampling::Mis
+                                ? mis_weight(settings_.mis_heuristic, ls.pdf, f.pdf)
+                                : 1.0f;
                         L += beta * f.value * transmittance * ls.radiance * (w / ls.pdf);
                     }
                 }
             }
         }
+
+        // Control variate (textbook 5.17–5.18): the Lambertian closures' share of the scattered
+        // radiance is estimated as L_a ρ_L (known exactly) plus f_L cos (L_i − L_a)/p, so the
+        // vertex adds β L_a ρ_L now and the continued path subtracts β L_a f_L cos/p below.
+        const bool control_variate = ambient > 0.0f && !closures.lambertian_albedo().is_black();
+        if (control_variate) L += beta * closures.lambertian_albedo() * ambient;
 
         BsdfSample bs;
         if (!closures.sample(wo, sampler.get_1d(pixel, bounce_dimension(vertex, kDimBsdfLobe)),
@@ -178,11 +208,22 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
                              settings_.hemisphere)) {
             break;
         }
+        // L_a f_L cos / p of this sample: the control variate's Monte Carlo part. A delta sample
+        // carries no Lambertian density (closures.sample's one-sample MIS covers f_L with the
+        // non-delta picks only).
+        const Rgb cv_subtract =
+            control_variate && !bs.delta
+                ? closures.lambertian_value(wo, bs.wi, settings_.hemisphere) * (ambient / bs.pdf)
+                : Rgb(0.0f);
         const Vec3 wi = frame.to_world(bs.wi);
         // A direction the shading normal allows but the true surface does not: light cannot
-        // get there, so the path ends.
+        // get there, so the path ends (its incoming radiance is 0, the control variate's part stays).
         const bool below = dot(wi, sp.ng) < 0.0f;
-        if ((bs.wi.z < 0.0f) != below || dot(wi, sp.ng) == 0.0f) break;
+        if ((bs.wi.z < 0.0f) != below || dot(wi, sp.ng) == 0.0f) {
+            L = L - beta * cv_subtract;
+            break;
+        }
+        const Rgb beta_at_vertex = beta;
         beta *= bs.weight;
         if (bs.kind == ScatterKind::Transparent) {
             // Pass-through: not a bounce; the MIS pdf and origin of the last real scatter stay.
@@ -191,11 +232,20 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
             camera_visible_path = false;
             scatter_pdf = bs.delta ? 0.0f : bs.pdf;
             scatter_origin = hit.position;
-            if (bounce >= kRouletteStartBounce) {
-                const float survive = std::min(1.0f, beta.max_component());
-                if (sampler.get_1d(pixel, bounce_dimension(vertex, kDimRussianRoulette)) >= survive) break;
+            float survive = 1.0f;
+            if (settings_.rr_mode != RouletteMode::Off && bounce >= settings_.rr_min_depth) {
+                // (5.5): survival = throughput, or the closures' albedo (then β stays constant
+                // along a Lambertian path, 5.6). A terminated path's continued term is 0, so
+                // the control variate's subtraction goes with it.
+                survive = std::min(1.0f, settings_.rr_mode == RouletteMode::Throughput
+                                             ? beta.max_component()
+                                             : closures.albedo_estimate().max_component());
+                if (!(survive > 0.0f) ||
+                    sampler.get_1d(pixel, bounce_dimension(vertex, kDimRussianRoulette)) >= survive)
+                    break;
                 beta *= 1.0f / survive;
             }
+            L = L - beta_at_vertex * cv_subtract * (1.0f / survive);
             ++bounce;
         }
         query.visibility = ray_visibility(bs.kind, query.visibility);

@@ -1,13 +1,21 @@
-// `path`: unidirectional path tracing with next-event estimation, multiple importance sampling
-// and Russian roulette (textbook §5: estimator 5.2 with NEE 5.7–5.16 and MIS §5.5; Veach 1997
-// ch. 9 power heuristic β = 2), over materials that are mixtures of closures (bsdf/closure_set.h).
+// `path` (and `direct`): unidirectional path tracing, the textbook's ladder of estimators
+// (§5: estimator 5.2; NEE 5.7–5.16; MIS §5.5 with Veach 1997 ch. 9's heuristics; Russian
+// roulette 5.5–5.6; the control variate 5.17–5.18), over materials that are mixtures of
+// closures (bsdf/closure_set.h).
 //
 // | parameter               | meaning |
 // |-------------------------|---------|
 // | max_bounces             | Cycles' meaning: vertices 0..max_bounces scatter; 0 = direct lighting only |
-// | transparent_max_bounces | Transparent pass-throughs per path (and per shadow ray); not bounces |
-// | film_transparent        | background seen through camera/transparent rays gives alpha 0 |
-// | hemisphere              | distribution diffuse lobes sample directions from (sampling/hemisphere.h) |
+// | light_sampling          | bsdf: emission found by scattered rays only (5.2); nee: by light samples, a hit
+// counts only after the camera or a delta scatter (5.16); mis: both, weighted | | mis_heuristic           |
+// balance / power (β = 2) / max, for every emission a scattered ray hits (lamps, emissive triangles,
+// environment) and every light sample | | light_selection         | the light choice distribution of NEE
+// (lights/light_set.h) | | rr_mode, rr_min_depth   | Russian roulette from bounce rr_min_depth on: off,
+// survival min(1, max β), or min(1, max albedo estimate) | | control_variate         | L_a: each vertex adds
+// β L_a ρ_L and subtracts β L_a f_L cos/p (÷ survival) for its Lambertian closures (ρ_L exact); 0 = off | |
+// transparent_max_bounces | Transparent pass-throughs per path (and per shadow ray); not bounces | |
+// film_transparent        | background seen through camera/transparent rays gives alpha 0 | | hemisphere |
+// distribution diffuse lobes sample directions from (sampling/hemisphere.h) |
 //
 // Cycles conventions followed (Cycles 3.4 and 4.x `integrator/intersect_closest.h`,
 // `shade_surface.h`, `shade_shadow.h`, `film/accumulate.h`):
@@ -27,7 +35,9 @@
 //   closure adds no light; a holdout object ends the path (black, whatever the film).
 // * Light visibility: a light's DIFFUSE / GLOSSY / TRANSMISSION bits select which closures NEE
 //   lights; with its SHADOW bit off no occlusion is tested (Cycles cast_shadow off).
-// Russian roulette from the 4th bounce on, survival = min(1, max throughput).
+// The control variate is unbiased whatever L_a (the added and subtracted terms have equal
+// expectation); with BSDF sampling, albedo roulette and L_a equal to the radiance of a closed
+// uniform enclosure every path returns exactly L_a (5.17; research/textbook.md §2.1 test B).
 #pragma once
 
 #include "integrators/integrator.h"
@@ -39,8 +49,13 @@ public:
     explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
     RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                             const CameraRay& ray, uint64_t& rays) const override;
+    std::vector<std::string> notices(const Scene& scene) const override;
 
 private:
+    // MIS weight of emission a scattered ray hits (scatter_pdf 0 after a camera or delta
+    // vertex) against the light sample that could have drawn it (light_pdf 0: none could).
+    float hit_weight(float scatter_pdf, float light_pdf) const;
+
     IntegratorSettings settings_;
 };
 
