@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any
 
 import bpy
@@ -20,6 +21,7 @@ from stratum import engine, native, properties
 from stratum.engine import StratumRenderEngine
 
 from conftest import read_image_pixels
+from test_registration import _RecordingLayout
 
 ENUMS = ("light_sampling", "mis_heuristic", "light_selection", "rr_mode")
 DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection": "mixed",
@@ -152,41 +154,37 @@ def test_strategies_that_sample_the_point_light_have_no_notice(
     assert pixels is not None and pixels[..., :3].max() > 0.0
 
 
+class _Layout(_RecordingLayout):
+    """test_registration's recording layout, plus the label the AO case draws."""
+
+    def label(self, **_: Any) -> None:
+        pass
+
+
 def test_light_paths_panel_draws_for_every_integrator(library: Any, scene_builder: Any) -> None:
-    """The panel's draw runs for each integrator and light-sampling choice (a typo in a property
-    name would raise here); the registry decides which integrators exist."""
+    """The panel shows each option only where it matters (a typo in a property name raises
+    here); the native registry decides which integrators exist."""
     from stratum import ui
 
     b = scene_builder()
     drawn: list[str] = []
-
-    class Layout:
-        use_property_split = use_property_decorate = False
-
-        def column(self, **_: Any) -> Layout:
-            return self
-
-        def prop(self, data: Any, name: str, **_: Any) -> None:
-            assert hasattr(data, name), name
-            drawn.append(name)
-
-        def label(self, **_: Any) -> None:
-            pass
-
-    class Context:
-        scene = b.scene
-
-    panel = type("Probe", (), {"layout": Layout()})()
+    panel = SimpleNamespace(layout=_Layout(drawn))
     for integrator in (e.name for e in native.registry("integrator")):
         b.scene.stratum.integrator = integrator
         for light_sampling in _enum_identifiers("light_sampling"):
-            b.scene.stratum.light_sampling = light_sampling
-            drawn.clear()
-            ui.STRATUM_RENDER_PT_light_paths.draw(panel, Context())
-            if integrator == "ao":
-                assert drawn == []
-                continue
-            assert "rr_mode" in drawn and "light_selection" in drawn
-            assert ("mis_heuristic" in drawn) == (integrator != "light"
-                                                 and light_sampling == "mis")
+            for rr_mode in _enum_identifiers("rr_mode"):
+                b.scene.stratum.light_sampling = light_sampling
+                b.scene.stratum.rr_mode = rr_mode
+                drawn.clear()
+                ui.STRATUM_RENDER_PT_light_paths.draw(panel, SimpleNamespace(scene=b.scene))
+                if integrator == "ao":
+                    assert drawn == []
+                    continue
+                path_tracer = integrator != "light"
+                assert {"rr_mode", "light_selection"} <= set(drawn)
+                assert ("max_bounces" in drawn) == (integrator != "direct")
+                assert ("light_sampling" in drawn) == path_tracer
+                assert ("control_variate" in drawn) == path_tracer
+                assert ("mis_heuristic" in drawn) == (path_tracer and light_sampling == "mis")
+                assert ("rr_min_depth" in drawn) == (rr_mode != "off")
     assert properties.load_error == ""
