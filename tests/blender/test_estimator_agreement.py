@@ -60,8 +60,8 @@ samples: r_S ~ 0.28 passes with N_S = 2 x SPP_PER_SEED = 1024 (4.3%); BSDF sampl
 small lamp needs N_S > 1.0 / (0.0125^2 - 0.28^2 / 2048) ~ 8700, so `bsdf` renders 2 x
 BSDF_SPP_PER_SEED (measured worst 4.3%). NEE with the control variate on the variant measured
 5.6% at 2 x 512 and 3.4% at 2 x 2048 (bpy 5.0.1), i.e. 16 * (1707 / N_S + 618 / N_C) (%^2):
-4.3% at 2 x 1024, 3.7% at 2 x NEE_SPP_PER_SEED = 3072. The numbers of each run are printed and written to
-out/agreement/blender-<version>/estimators/<name>/report.txt.
+4.3% at 2 x 1024, 3.7% at 2 x NEE_SPP_PER_SEED = 3072. The numbers of each run are printed
+and written to out/agreement/blender-<version>/estimators/<name>/report.txt.
 """
 
 from __future__ import annotations
