@@ -134,3 +134,24 @@ TEST(Api, NullPointersAreErrorsNotCrashes) {
     stratum_scene_destroy(nullptr);
     stratum_renderer_destroy(nullptr);
 }
+
+TEST(Api, LightIntegratorIsAcceptedAndBadIntegratorNamesAreRejected) {
+    SceneHandle scene;
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene.s, &r), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "integrator", "light"), STRATUM_OK) << last_error();
+    EXPECT_EQ(stratum_renderer_set_string(r, "integrator", "Light"), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(last_error().find("'Light'"), std::string::npos) << last_error();
+    EXPECT_NE(last_error().find("light"), std::string::npos) << last_error();
+    EXPECT_EQ(stratum_renderer_set_string(r, "integrator", "light_tracer"), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_renderer_set_int(r, "integrator", 1), STRATUM_ERROR_INVALID_ARGUMENT);
+    bool listed = false;
+    for (int32_t i = 0; i < stratum_registry_count(STRATUM_REGISTRY_INTEGRATOR); ++i) {
+        const char *name = nullptr, *label = nullptr, *description = nullptr;
+        ASSERT_EQ(stratum_registry_entry(STRATUM_REGISTRY_INTEGRATOR, i, &name, &label, &description),
+                  STRATUM_OK);
+        listed |= std::string(name) == "light";
+    }
+    EXPECT_TRUE(listed);
+    stratum_renderer_destroy(r);
+}

@@ -2,6 +2,7 @@
 
 #include "integrators/ao_integrator.h"
 #include "integrators/integrator.h"
+#include "integrators/light_tracer.h"
 #include "integrators/path_integrator.h"
 
 namespace stratum {
@@ -27,6 +28,11 @@ const std::array kIntegrators = {
                      "Path tracing: BSDF sampling, next-event estimation or both by MIS (light_sampling), "
                      "Russian roulette (rr_mode), optional control variate"},
                     &make<PathIntegrator>},
+    IntegratorEntry{
+        {"light", "Light Tracing",
+         "Light tracing: particles from the lights, scattered by the BSDFs and connected to the camera "
+         "(textbook ch. 6), splatted through the pixel filter; the camera sees emission directly"},
+        &make<LightTracer>},
     IntegratorEntry{{"direct", "Direct Lighting",
                      "Direct lighting only: emission seen by the camera and one scattering toward the lights "
                      "(the path tracer with max_bounces 0), by the light_sampling strategy"},

@@ -30,13 +30,15 @@ AreaLight::AreaLight(const Transform& light_to_world, float size_x, float size_y
     if (spread >= kPi) {
         tan_half_spread_ = kInfinity;
         normalize_spread_ = 1.0f;
+        sin_half_spread_ = 1.0f;
     } else {
         tan_half_spread_ = std::tan(half);
+        sin_half_spread_ = std::sin(half);
         normalize_spread_ = half > 0.05f ? 1.0f / (tan_half_spread_ - half) : 3.0f / (half * half * half);
     }
 }
 
-bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
+Vec3 AreaLight::point(Vec2 u) const {
     float a, b;
     if (ellipse_) {
         const Vec2 d = sample_uniform_disk_concentric(u);
@@ -46,8 +48,11 @@ bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
         a = 2.0f * u.x - 1.0f;
         b = 2.0f * u.y - 1.0f;
     }
-    const Vec3 q = center_ + axis_x_ * a + axis_y_ * b;
-    const Vec3 to = q - p;
+    return center_ + axis_x_ * a + axis_y_ * b;
+}
+
+bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
+    const Vec3 to = point(u) - p;
     const float d2 = dot(to, to);
     const float d = std::sqrt(d2);
     if (!(d > 0.0f)) return false;
@@ -79,6 +84,19 @@ bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* rad
     *pdf = hit_t * hit_t / (area_ * cos_light);  // sample()'s solid-angle pdf of this direction
     *radiance = radiance_ * area_light_spread_attenuation(cos_light, tan_half_spread_, normalize_spread_);
     return true;
+}
+
+void AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const {
+    const Vec2 unit = sample_uniform_disk_concentric(u_direction);
+    const Vec2 d{unit.x * sin_half_spread_, unit.y * sin_half_spread_};
+    const float cos_theta = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
+    const Frame frame = Frame::from_normal(normal_);
+    out->position = point(u_position);
+    out->direction = frame.to_world(Vec3(d.x, d.y, cos_theta));
+    out->normal = normal_;
+    out->soft_radius = 0.0f;
+    const float f = area_light_spread_attenuation(cos_theta, tan_half_spread_, normalize_spread_);
+    out->weight = radiance_ * (f * kPi * sin_half_spread_ * sin_half_spread_ * area_);
 }
 
 }  // namespace stratum

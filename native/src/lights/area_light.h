@@ -26,6 +26,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "lights/emission_sample.h"
 #include "lights/light_sample.h"
 
 namespace stratum {
@@ -45,8 +46,14 @@ public:
     // sample() at the origin produces this direction. False for the back side or a miss.
     bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
     float power() const { return power_.average(); }
+    // A light-tracing particle (textbook 6.3): point uniform in area (p_A = 1/A), direction
+    // cosine-distributed about the normal within the spread's cone of half angle h (a uniform
+    // point of the disk of radius sin h lifted to the sphere: p_ω = cos/(π sin²h), h = π/2
+    // without spread), weight L f(a) cos/(p_A p_ω) = L f(a) π sin²h A (= P without spread).
+    void sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const;
 
 private:
+    Vec3 point(Vec2 u) const;
     Vec3 center_, axis_x_, axis_y_;  // half extents along the local axes, in world units
     Vec3 normal_;                    // emitting side
     bool ellipse_;
@@ -55,6 +62,7 @@ private:
     Rgb radiance_;
     float tan_half_spread_;   // infinity when spread = π
     float normalize_spread_;  // N
+    float sin_half_spread_;   // sin h (1 without spread)
 };
 
 }  // namespace stratum

@@ -35,4 +35,19 @@ float EmissiveTriangle::pdf(Vec3 p, Vec3 hit) const {
     return d2 / (area_ * cos_light);
 }
 
+bool EmissiveTriangle::sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const {
+    if (!(area_ > 0.0f)) return false;
+    const Vec3 b = sample_uniform_triangle(u_position);
+    const bool front = u_direction.x < 0.5f;
+    const float u_side = front ? 2.0f * u_direction.x : 2.0f * u_direction.x - 1.0f;
+    const Vec3 n = front ? normal_ : -normal_;
+    out->position = p0_ + e1_ * b.y + e2_ * b.z;
+    out->direction = Frame::from_normal(n).to_world(
+        sample_cosine_hemisphere({std::min(u_side, kOneMinusEpsilon), u_direction.y}));
+    out->normal = n;
+    out->weight = radiance_ * (2.0f * kPi * area_);
+    out->soft_radius = 0.0f;
+    return true;
+}
+
 }  // namespace stratum

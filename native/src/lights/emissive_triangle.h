@@ -12,6 +12,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "lights/emission_sample.h"
 #include "lights/light_sample.h"
 
 namespace stratum {
@@ -24,6 +25,11 @@ public:
     float pdf(Vec3 p, Vec3 hit) const;
     // Emitted flux of both faces, π A L_e each (used to choose among lights).
     float power() const { return 2.0f * kPi * area_ * radiance_.average(); }
+    // A light-tracing particle (textbook 6.3): point uniform in area (p_A = 1/A), a face chosen
+    // with probability ½ by u_direction.x (rescaled and reused), direction cosine-distributed
+    // about that face's normal (p_ω = cos/π): weight L cos/(½ p_A p_ω) = 2π A L_e.
+    // False for a degenerate triangle.
+    bool sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const;
 
 private:
     Vec3 p0_, e1_, e2_, normal_;

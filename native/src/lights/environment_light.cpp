@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "sampling/warps.h"
+
 namespace stratum {
 
 namespace {
@@ -121,6 +123,20 @@ bool EnvironmentLight::sample(Vec2 u, LightSample* out) const {
     const float pdf = density_[static_cast<size_t>(j) * width_ + i] / (2.0f * kPi * kPi * sin_theta);
     if (!(pdf > 0.0f)) return false;
     *out = {wi, kInfinity, at(i, j), pdf, true};
+    return true;
+}
+
+bool EnvironmentLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                                       EmissionSample* out) const {
+    LightSample s;
+    if (!sample(u_direction, &s)) return false;
+    const Frame frame = Frame::from_normal(s.wi);
+    const Vec2 d = sample_uniform_disk_concentric(u_position);
+    out->position = center + s.wi * radius + (frame.s * d.x + frame.t * d.y) * radius;
+    out->direction = -s.wi;
+    out->normal = s.wi;
+    out->weight = s.radiance * (kPi * radius * radius / s.pdf);
+    out->soft_radius = 0.0f;
     return true;
 }
 

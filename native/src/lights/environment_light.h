@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "lights/emission_sample.h"
 #include "lights/light_sample.h"
 
 namespace stratum {
@@ -39,6 +40,12 @@ public:
     float pdf(Vec3 world_dir) const;
     // Radiance averaged over the sphere (solid-angle weighted): the power estimate's input.
     Rgb average() const { return average_; }
+    // A light-tracing particle: the direction toward the sky ω by sample() (p_ω), then a
+    // parallel beam along −ω over the disk of radius R perpendicular to ω and tangent to the
+    // scene's bounding sphere (center, R) on the sky's side, point uniform (p_A = 1/(πR²)):
+    // weight L(ω) πR² / p_ω (every ray from the sky that meets the scene crosses the disk).
+    bool sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                         EmissionSample* out) const;
 
 private:
     struct Texel {

@@ -173,4 +173,32 @@ float LightSet::environment_pdf(Vec3 wi, LightSelection selection) const {
            std::get<EnvironmentLight>(lights_[environment_]).pdf(wi);
 }
 
+bool LightSet::sample_emission(float u_choice, Vec2 u_position, Vec2 u_direction, LightSelection selection,
+                               Vec3 center, float radius, EmissionSample* out) const {
+    if (lights_.empty()) return false;
+    const uint32_t index = choose(u_choice, selection);
+    const float choice = probability(index, selection);
+    if (!(choice > 0.0f)) return false;
+    const bool ok = std::visit(
+        [&](const auto& l) {
+            using T = std::decay_t<decltype(l)>;
+            if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, EnvironmentLight>) {
+                return l.sample_emission(u_position, u_direction, center, radius, out);
+            } else if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>) {
+                l.sample_emission(u_direction, out);
+                return true;
+            } else if constexpr (std::is_same_v<T, AreaLight>) {
+                l.sample_emission(u_position, u_direction, out);
+                return true;
+            } else {
+                return l.sample_emission(u_position, u_direction, out);
+            }
+        },
+        lights_[index]);
+    if (!ok || out->weight.is_black()) return false;
+    out->weight = out->weight * (1.0f / choice);
+    out->visibility = visibility_[index];
+    return true;
+}
+
 }  // namespace stratum

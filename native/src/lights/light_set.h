@@ -56,6 +56,12 @@ public:
     // Chooses a light with u_choice and samples it with u; out->pdf includes the choice.
     bool sample(Vec3 p, float u_choice, Vec2 u, LightSample* out,
                 LightSelection selection = LightSelection::Mixed) const;
+    // Light tracing: chooses a light with u_choice by `selection` and emits a particle from it
+    // (the lights' sample_emission); out->weight is divided by the choice probability, so it
+    // estimates the scene's total emitted flux. The sun and the environment shine over the
+    // scene's bounding sphere (center, radius). False when the chosen light emits nothing.
+    bool sample_emission(float u_choice, Vec2 u_position, Vec2 u_direction, LightSelection selection,
+                         Vec3 center, float radius, EmissionSample* out) const;
     // Pdf (choice × solid angle) with which sample() reaches `hit` on emissive triangle `index`.
     float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit,
                                 LightSelection selection = LightSelection::Mixed) const;

@@ -63,4 +63,12 @@ bool PointLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* ra
     return true;
 }
 
+void PointLight::sample_emission(Vec2 u_direction, EmissionSample* out) const {
+    out->position = position_;
+    out->direction = sample_uniform_sphere(u_direction);
+    out->normal = Vec3(0.0f, 0.0f, 0.0f);
+    out->weight = intensity_ * (1.0f / uniform_sphere_pdf());
+    out->soft_radius = radius_;
+}
+
 }  // namespace stratum

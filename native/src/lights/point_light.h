@@ -18,6 +18,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "lights/emission_sample.h"
 #include "lights/light_sample.h"
 
 namespace stratum {
@@ -45,6 +46,13 @@ public:
     // Emitted power in W, used to choose among lights.
     float power() const { return power_.average(); }
     float radius() const { return radius_; }
+    // A light-tracing particle (textbook 6.4): from the centre, direction uniform on the sphere
+    // (p_ω = 1/(4π)), weight I/p_ω = P. A radius r is Cycles' disk facing each receiver, which
+    // no emitter in space reproduces: the particle leaves the centre and its first hit at
+    // distance d takes d²/(d² + r²) (soft_radius), the facing disk's irradiance I/(d² + r²)
+    // over the point's I/d² — exact for a receiver facing the lamp with nothing in the way;
+    // tilted receivers differ by O(r²/d²) and shadows are those of the centre (hard).
+    void sample_emission(Vec2 u_direction, EmissionSample* out) const;
 
 private:
     Vec3 position_;

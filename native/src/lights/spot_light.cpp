@@ -1,5 +1,7 @@
 #include "lights/spot_light.h"
 
+#include "sampling/warps.h"
+
 namespace stratum {
 
 SpotLight::SpotLight(const Transform& light_to_world, Rgb power, float radius, float spot_size,
@@ -51,6 +53,17 @@ bool SpotLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* rad
     if (!intersect_facing_disk(position_, radius_, origin, dir, t_max, t, pdf)) return false;
     *radiance = intensity_ * (a / (kPi * sqr(radius_)));
     return true;
+}
+
+void SpotLight::sample_emission(Vec2 u_direction, EmissionSample* out) const {
+    const Frame frame = Frame::from_normal(axis_);
+    const Vec3 local = sample_uniform_cone(u_direction, cos_half_);
+    out->position = position_;
+    out->direction = frame.to_world(local);
+    out->normal = Vec3(0.0f, 0.0f, 0.0f);
+    // 1/p_ω written out: the pdf helper returns 0 at the rim by rounding, where I(θ) is 0 anyway.
+    out->weight = intensity_ * (attenuation(local.z) * 2.0f * kPi * (1.0f - cos_half_));
+    out->soft_radius = radius_;
 }
 
 }  // namespace stratum

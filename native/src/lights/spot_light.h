@@ -23,6 +23,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "lights/emission_sample.h"
 #include "lights/light_sample.h"
 #include "lights/point_light.h"
 
@@ -40,6 +41,10 @@ public:
     // The angular factor I(θ) / (P/(4π)) for cos θ = cos_theta (θ from the axis).
     float attenuation(float cos_theta) const;
     float radius() const { return radius_; }
+    // A light-tracing particle (textbook 6.4): from the centre, direction uniform in the cone
+    // of half angle θ_h (p_ω = 1/(2π(1 − cos θ_h))), weight I(θ)/p_ω. A radius is treated as
+    // the point light's (soft_radius; see PointLight::sample_emission).
+    void sample_emission(Vec2 u_direction, EmissionSample* out) const;
 
 private:
     Vec3 position_;

@@ -24,4 +24,25 @@ bool SunLight::sample(Vec2 u, LightSample* out) const {
     return true;
 }
 
+bool SunLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                               EmissionSample* out) const {
+    if (cos_max_ < 0.1f) return false;
+    const float sin_max = safe_sqrt(1.0f - cos_max_ * cos_max_);
+    const float disk_radius = radius * (1.0f + sin_max) / cos_max_;
+    const float disk_area = kPi * disk_radius * disk_radius;
+    const Vec2 d = sample_uniform_disk_concentric(u_position);
+    out->position = center + frame_.n * radius + (frame_.s * d.x + frame_.t * d.y) * disk_radius;
+    out->normal = frame_.n;
+    out->soft_radius = 0.0f;
+    if (cos_max_ >= 1.0f) {
+        out->direction = -frame_.n;
+        out->weight = irradiance_ * disk_area;
+        return true;
+    }
+    const Vec3 local = sample_uniform_cone(u_direction, cos_max_);
+    out->direction = -frame_.to_world(local);
+    out->weight = radiance_ * (local.z * disk_area / pdf_);
+    return true;
+}
+
 }  // namespace stratum

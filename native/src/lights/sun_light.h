@@ -11,6 +11,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "lights/emission_sample.h"
 #include "lights/light_sample.h"
 
 namespace stratum {
@@ -23,6 +24,14 @@ public:
     Rgb irradiance() const { return irradiance_; }
     // Angle 0: a single direction, which no scattered ray finds.
     bool is_delta() const { return cos_max_ >= 1.0f; }
+    // A light-tracing particle (textbook 6.5): a parallel beam over a disk that covers the
+    // scene's bounding sphere (center, radius R) seen from any direction of the sun's cone: the
+    // disk is tangent to the sphere on the sun's side, radius R(1 + sin α/2)/cos α/2 (the
+    // sphere's oblique shadow on that plane), point uniform on it (p_A = 1/A). The direction
+    // toward the sun is uniform in the cone (p_ω as sample()), weight L cos/(p_A p_ω); angle 0
+    // gives E·A. False when the cone is too wide for a covering disk (α/2 > 84°).
+    bool sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                         EmissionSample* out) const;
 
 private:
     Frame frame_;

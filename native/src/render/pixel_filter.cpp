@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 
 namespace stratum {
 
@@ -61,6 +62,14 @@ float PixelFilter::sample_1d(float u) const {
     const float t = span > 0.0f ? (u - cdf_[i]) / span : 0.5f;
     const float step = 2.0f * radius_ / static_cast<float>(kTableSize - 1);
     return -radius_ + step * (static_cast<float>(i) + t);
+}
+
+float PixelFilter::pdf_1d(float x) const {
+    if (!(std::abs(x) <= radius_)) return 0.0f;
+    // sample_1d is uniform within table interval i with probability cdf[i+1] − cdf[i].
+    const float step = 2.0f * radius_ / static_cast<float>(kTableSize - 1);
+    const size_t i = std::min(static_cast<size_t>((x + radius_) / step), kTableSize - 2);
+    return (cdf_[i + 1] - cdf_[i]) / step;
 }
 
 }  // namespace stratum

@@ -33,9 +33,14 @@ public:
     // Offset from the pixel centre, in pixels.
     Vec2 sample(Vec2 u) const { return {sample_1d(u.x), sample_1d(u.y)}; }
     float radius() const { return radius_; }
+    // The density sample() draws offsets from (per pixel², 0 outside [−R, R]²): the light
+    // tracer splats a film point at offset d from a pixel centre with weight pdf(d), so a
+    // pixel's splats and its camera samples estimate the same ∫ h(x − p) L(x) dx.
+    float pdf(Vec2 offset) const { return pdf_1d(offset.x) * pdf_1d(offset.y); }
 
 private:
     float sample_1d(float u) const;
+    float pdf_1d(float x) const;
     float radius_;
     std::vector<float> cdf_;  // cdf_[i] = CDF at x_i = −R + 2R i / (n − 1)
 };

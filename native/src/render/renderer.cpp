@@ -8,6 +8,7 @@
 #include <chrono>
 
 #include "integrators/integrator.h"
+#include "integrators/light_tracer.h"
 #include "render/pixel_filter.h"
 #include "sampling/dimensions.h"
 #include "sampling/sampler_registry.h"
@@ -18,6 +19,12 @@ namespace {
 
 constexpr uint32_t kTileSize = 16;
 constexpr uint32_t kMaxPassSamples = 64;
+// Light tracing: particles are traced in chunks of consecutive particle indices, a batch of
+// chunks in parallel; each chunk collects its splats, and the batch's chunks are added to the
+// film in chunk order, so the sums do not depend on the thread count or scheduling. A batch
+// holds 16384 particles' splats: at most (max_bounces + 1) connections × 16 pixels each.
+constexpr uint32_t kParticleChunk = 256;
+constexpr uint32_t kChunksPerBatch = 64;
 
 using Clock = std::chrono::steady_clock;
 
@@ -53,11 +60,17 @@ std::string Renderer::start() {
     if (!crop_error.empty()) return crop_error;
     region_ = region;
     notices_.clear();
-    for (const std::string& notice :
-         find_integrator(settings_.integrator)->create(integrator_settings(settings_))->notices(scene_))
+    const std::unique_ptr<Integrator> integrator =
+        find_integrator(settings_.integrator)->create(integrator_settings(settings_));
+    for (const std::string& notice : integrator->notices(scene_))
         notices_ += (notices_.empty() ? "" : "\n") + notice;
     width_ = region.width;
     height_ = region.height;
+    // Work per sample index: one camera sample per pixel of the region, plus, when light
+    // tracing, one particle per pixel of the full frame.
+    work_per_sample_ = static_cast<double>(width_) * height_;
+    if (dynamic_cast<const LightTracer*>(integrator.get()))
+        work_per_sample_ += static_cast<double>(settings_.width) * settings_.height;
     image_.assign(static_cast<size_t>(width_) * height_ * 4, 0.0f);
     cancel_.store(false);
     done_.store(false);
@@ -104,9 +117,13 @@ void Renderer::run() {
         // border render is bit-identical to the same pixel of the full render.
         const Camera camera(*scene_.camera, s.width, s.height);
         const bool motion = render_scene_->has_motion();
+        // Light tracing adds a particle pass after each camera pass (the Integrator interface
+        // is per camera ray; the particle part is the light tracer's own).
+        const auto* light_tracer = dynamic_cast<const LightTracer*>(integrator.get());
         std::vector<Rgb> sums(static_cast<size_t>(region.width) * region.height);
         std::vector<float> alpha_sums(sums.size(), 0.0f);
         std::vector<uint32_t> counts(sums.size(), 0);
+        std::vector<double> splat_sums(light_tracer ? 3 * sums.size() : 0, 0.0);
 
         uint32_t begin = 0;
         while (begin < s.samples && !cancel_.load()) {
@@ -152,6 +169,7 @@ void Renderer::run() {
                         }
                         rays_.fetch_add(rays, std::memory_order_relaxed);
                         pixel_samples_done_.fetch_add(pixel_samples, std::memory_order_relaxed);
+                        if (light_tracer) return;  // published with the particles, below
                         std::shared_lock lock(image_mutex_);
                         for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
                             for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
@@ -168,6 +186,25 @@ void Renderer::run() {
                         update_serial_.fetch_add(1);
                     });
             });
+            if (light_tracer && !cancel_.load()) {
+                trace_particles(*light_tracer, *sampler,
+                                ParticleFilm{camera, filter, region, s.width, s.height,
+                                             LightTracer::sky_probability(*render_scene_)},
+                                begin, end, arena, splat_sums);
+                if (!cancel_.load()) {
+                    std::unique_lock lock(image_mutex_);
+                    // Pixel = camera-ray part mean + splat sum / sample indices done.
+                    for (size_t p = 0; p < sums.size(); ++p) {
+                        const Rgb v = sums[p] / static_cast<float>(end);
+                        float* px = &image_[4 * p];
+                        px[0] = static_cast<float>(v.r + splat_sums[3 * p] / end);
+                        px[1] = static_cast<float>(v.g + splat_sums[3 * p + 1] / end);
+                        px[2] = static_cast<float>(v.b + splat_sums[3 * p + 2] / end);
+                        px[3] = alpha_sums[p] / static_cast<float>(end);
+                    }
+                    update_serial_.fetch_add(1);
+                }
+            }
             if (!cancel_.load()) samples_done_.store(end);
             begin = end;
         }
@@ -183,6 +220,43 @@ void Renderer::run() {
     done_.store(true);
     update_serial_.fetch_add(1);
     done_cv_.notify_all();
+}
+
+void Renderer::trace_particles(const LightTracer& tracer, const Sampler& sampler, const ParticleFilm& film,
+                               uint32_t begin, uint32_t end, tbb::task_arena& arena,
+                               std::vector<double>& splat_sums) {
+    const uint32_t frame_width = film.frame_width;
+    const uint64_t particles = static_cast<uint64_t>(frame_width) * film.frame_height;
+    const uint64_t chunks = (particles + kParticleChunk - 1) / kParticleChunk;
+    std::vector<std::vector<Splat>> batch(kChunksPerBatch);
+    for (uint32_t i = begin; i < end; ++i) {
+        for (uint64_t first = 0; first < chunks; first += kChunksPerBatch) {
+            if (cancel_.load()) return;
+            const uint64_t last = std::min<uint64_t>(chunks, first + kChunksPerBatch);
+            arena.execute([&] {
+                tbb::parallel_for(first, last, [&](uint64_t chunk) {
+                    std::vector<Splat>& out = batch[chunk - first];
+                    out.clear();
+                    uint64_t rays = 0;
+                    const uint64_t k_end = std::min(particles, (chunk + 1) * kParticleChunk);
+                    for (uint64_t k = chunk * kParticleChunk; k < k_end; ++k) {
+                        const PixelSample particle{static_cast<uint32_t>(k % frame_width),
+                                                   static_cast<uint32_t>(k / frame_width), i};
+                        tracer.trace_particle(*render_scene_, sampler, particle, film, out, rays);
+                    }
+                    rays_.fetch_add(rays, std::memory_order_relaxed);
+                    pixel_samples_done_.fetch_add(k_end - chunk * kParticleChunk, std::memory_order_relaxed);
+                });
+            });
+            for (uint64_t chunk = first; chunk < last; ++chunk) {
+                for (const Splat& sp : batch[chunk - first]) {
+                    splat_sums[3 * sp.pixel] += sp.value.r;
+                    splat_sums[3 * sp.pixel + 1] += sp.value.g;
+                    splat_sums[3 * sp.pixel + 2] += sp.value.b;
+                }
+            }
+        }
+    }
 }
 
 bool Renderer::wait(int timeout_ms) {
@@ -202,7 +276,7 @@ RenderProgress Renderer::progress() const {
     p.rays = static_cast<double>(rays_.load());
     p.build_seconds = build_seconds_;
     p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;
-    const double pixel_samples_total = static_cast<double>(width_) * height_ * p.samples_total;
+    const double pixel_samples_total = work_per_sample_ * p.samples_total;
     p.fraction_done =
         pixel_samples_total > 0 ? static_cast<double>(pixel_samples_done_.load()) / pixel_samples_total : 0.0;
     p.error = error_;

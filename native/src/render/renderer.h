@@ -5,7 +5,12 @@
 // intermediate image holds a power-of-two-aligned prefix of each pixel's samples, so
 // low-discrepancy properties hold at every update (research/samplers.md §5.6). Each pixel sums
 // its own samples in index order, so the image is bit-identical for any thread count.
+// Light tracing (integrator `light`) adds, per pass, W×H particles per sample index over the
+// full frame, whose splats are summed in a fixed chunk order (trace_particles); its image is
+// published once per pass: the camera-ray mean plus the splat sums over the samples done.
 #pragma once
+
+#include <tbb/task_arena.h>
 
 #include <atomic>
 #include <chrono>
@@ -17,6 +22,7 @@
 #include <thread>
 #include <vector>
 
+#include "integrators/light_tracer.h"
 #include "render/render_settings.h"
 #include "scene/render_scene.h"
 #include "scene/scene.h"
@@ -59,12 +65,18 @@ public:
 private:
     void run();
     void join();
+    // Light tracing: the particles of sample indices [begin, end), splatted into splat_sums
+    // (RGB per region pixel) deterministically; returns early on cancel.
+    void trace_particles(const LightTracer& tracer, const Sampler& sampler, const ParticleFilm& film,
+                         uint32_t begin, uint32_t end, tbb::task_arena& arena,
+                         std::vector<double>& splat_sums);
 
     Scene scene_;
     RenderSettings settings_;
     std::unique_ptr<RenderScene> render_scene_;
     PixelRegion region_;               // of the current render, set by start()
     uint32_t width_ = 0, height_ = 0;  // the region's size
+    double work_per_sample_ = 0;       // progress units per sample index (fraction_done)
 
     // Published image (RGBA, averaged). Tiles write disjoint regions under a shared lock;
     // read_pixels takes it exclusively.

@@ -23,6 +23,17 @@ enum BounceDimension : uint32_t {
     kDimBsdfLobe = 6,         // 1D: lobe of a layered BSDF
 };
 
+// A light-tracing particle (x, y, i) draws from PixelSample{x, y, i} in the same layout: its
+// emission takes the camera block (time stays at kDimTime, so motion blur samples the shutter
+// as camera rays do), and surface vertex k owns bounce block k, where the lens point of the
+// camera connection takes the slot NEE's light point has in a camera path.
+enum ParticleDimension : uint32_t {
+    kDimEmissionPoint = 0,      // 2D: point on the light (or its beam disk)
+    kDimEmissionDirection = 2,  // 2D: direction of emission
+    kDimEmissionLight = 5,      // 1D: which light emits
+};
+inline constexpr BounceDimension kDimConnectionLens = kDimLightPoint;  // 2D: lens point
+
 inline constexpr uint32_t kCameraDimensions = 6;
 inline constexpr uint32_t kBounceStride = 8;
 

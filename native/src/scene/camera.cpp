@@ -20,10 +20,33 @@ Vec2 sample_aperture(Vec2 u, int32_t blades, float rotation) {
     return {w0 * std::cos(a0) + w1 * std::cos(a1), w0 * std::sin(a0) + w1 * std::sin(a1)};
 }
 
+namespace {
+
+// Inverse of an affine transform (3x3 by cofactors, then the translation).
+Transform inverse(const Transform& t) {
+    const auto& m = t.m;
+    const Vec3 c0(m[0], m[4], m[8]), c1(m[1], m[5], m[9]), c2(m[2], m[6], m[10]);
+    const Vec3 r0 = cross(c1, c2), r1 = cross(c2, c0), r2 = cross(c0, c1);
+    const float inv_det = 1.0f / dot(c0, r0);
+    Transform inv;
+    const Vec3 rows[3] = {r0 * inv_det, r1 * inv_det, r2 * inv_det};
+    const Vec3 tr = t.translation();
+    for (int i = 0; i < 3; ++i) {
+        inv.m[4 * i + 0] = rows[i].x;
+        inv.m[4 * i + 1] = rows[i].y;
+        inv.m[4 * i + 2] = rows[i].z;
+        inv.m[4 * i + 3] = -dot(rows[i], tr);
+    }
+    return inv;
+}
+
+}  // namespace
+
 Camera::Camera(const CameraParams& params, uint32_t width, uint32_t height)
     : params_(params),
       inv_width_(1.0f / static_cast<float>(width)),
-      inv_height_(1.0f / static_cast<float>(height)) {
+      inv_height_(1.0f / static_cast<float>(height)),
+      world_to_camera_(inverse(params.camera_to_world)) {
     const float w = static_cast<float>(width), h = static_cast<float>(height);
     // Blender: AUTO fits sensor_width to the larger side; VERTICAL fits sensor_height to the
     // height; HORIZONTAL fits sensor_width to the width.
@@ -97,6 +120,44 @@ CameraRay Camera::generate_ray(float fx, float fy, Vec2 lens) const {
     const Vec3 dir = normalize(params_.camera_to_world.vector(local));
     return {params_.camera_to_world.point(origin), dir, params_.clip_start / inv_len,
             params_.clip_end / inv_len};
+}
+
+bool Camera::connect(Vec3 x, Vec2 lens, CameraConnection* out) const {
+    if (params_.type != CameraType::Perspective) return false;
+    const Vec3 local_x = world_to_camera_.point(x);
+    Vec3 lens_local(0.0f, 0.0f, 0.0f);
+    if (params_.aperture_radius > 0.0f) {
+        const Vec2 a = sample_aperture(lens, params_.aperture_blades, params_.aperture_rotation);
+        lens_local = Vec3(a.x * params_.aperture_radius, a.y * params_.aperture_radius, 0.0f);
+    }
+    const Vec3 v = local_x - lens_local;
+    const float depth = -v.z;  // the camera looks down its −Z
+    // generate_ray clips by depth along the view axis (clip_start / clip_end).
+    if (!(depth > params_.clip_start && depth < params_.clip_end)) return false;
+    // The view-plane point at unit depth whose pinhole ray the thin-lens ray z→x follows: the
+    // ray crosses the focus plane at z + v·(focus/depth), seen from the pinhole at depth focus.
+    float px, py;
+    if (params_.aperture_radius > 0.0f) {
+        const float f = params_.focus_distance;
+        px = (lens_local.x + v.x * (f / depth)) / f;
+        py = (lens_local.y + v.y * (f / depth)) / f;
+    } else {
+        px = v.x / depth;
+        py = v.y / depth;
+    }
+    const float local_length = length(v);
+    const float cos_theta = depth / local_length;
+    out->lens_point = params_.camera_to_world.point(lens_local);
+    const Vec3 to = out->lens_point - x;
+    out->distance = length(to);
+    if (!(out->distance > 0.0f)) return false;
+    out->to_camera = to / out->distance;
+    out->unclipped = out->distance * (1.0f - params_.clip_start / depth);
+    out->film = {(px - left_) / (right_ - left_) / inv_width_,
+                 (py - bottom_) / (top_ - bottom_) / inv_height_};
+    const float pixel_area = (right_ - left_) * (top_ - bottom_) * inv_width_ * inv_height_;
+    out->importance = 1.0f / (out->distance * out->distance * pixel_area * cos_theta * cos_theta * cos_theta);
+    return true;
 }
 
 }  // namespace stratum

@@ -72,6 +72,25 @@ struct CameraRay {
     float time = 0.5f;
 };
 
+// A scene point seen from a point of the lens (light tracing's camera connection, textbook
+// 6.8–6.9). With the film in pixels and the view plane at unit depth, a pixel covers
+// A_pix = (right − left)(top − bottom)/(W H) of it; the solid angle of film area ds seen at
+// angle θ from the axis is A_pix cos³θ ds, and from a scene point x at distance r with
+// surface cosine c_x, dω = c_x dA/r². A pixel's measurement ∫ h(s) L ds (h the filter's
+// normalised weight) is therefore ∫ h(s(x)) L(x→z) c_x / (r² A_pix cos³θ) dA_x. The thin
+// lens gives the same factor: for a fixed lens point z, film point s maps to the point of the
+// focus plane the ray z→x crosses, dω = cos³θ A_pix ds again (θ the angle of that ray to the
+// axis); the uniform lens pdf 1/A_apert of the camera rays cancels against sampling z
+// uniformly on the aperture (6.9: p(z) = 1/A_apert).
+struct CameraConnection {
+    Vec3 lens_point;   // z, world
+    Vec3 to_camera;    // unit, from x toward z
+    float distance;    // |z − x|
+    float unclipped;   // the part of the segment from x that lies beyond the near clip plane
+    Vec2 film;         // film position of x in pixels (as generate_ray's fx, fy)
+    float importance;  // 1 / (r² A_pix cos³θ): times c_x, the density conversion above
+};
+
 // Maps u in [0,1)^2 uniformly onto the unit aperture: the unit disk (blades 0, concentric map)
 // or the regular n-gon inscribed in it (blades n >= 3) whose vertices lie at the angles
 // rotation + (2k+1) pi/n, as Cycles' regular_polygon_sample (an edge faces the angle
@@ -87,6 +106,12 @@ public:
     // `lens` in [0,1)^2 picks the point on the aperture (ignored for a pinhole).
     CameraRay generate_ray(float fx, float fy, Vec2 lens = {0.5f, 0.5f}) const;
     bool has_aperture() const { return params_.aperture_radius > 0.0f; }
+    // Perspective cameras (pinhole or thin lens): connects the world point x to the lens point
+    // `lens` picks (as generate_ray uses it; ignored for a pinhole). False when x lies outside
+    // the clipping depths or the camera is not perspective (orthographic and panoramic cameras
+    // have no connection: a particle never reaches their film by a finite lens).
+    bool connect(Vec3 x, Vec2 lens, CameraConnection* out) const;
+    CameraType type() const { return params_.type; }
     // The view plane: at unit distance in front of the camera (perspective) or at the camera
     // (orthographic, scene units): [left,right] x [bottom,top].
     float left() const { return left_; }
@@ -99,6 +124,7 @@ private:
 
     CameraParams params_;
     float inv_width_, inv_height_;
+    Transform world_to_camera_;  // inverse of camera_to_world
     float left_, right_, bottom_, top_;
 };
 

@@ -128,7 +128,11 @@ RenderScene::RenderScene(const Scene& scene)
         lights_.add(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation), light_object++);
     }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.
-    lights_.finalize(world.empty() ? 1.0f : std::max(1.0f, 0.5f * length(world.hi - world.lo)));
+    if (!world.empty()) {
+        bounds_center_ = (world.lo + world.hi) * 0.5f;
+        bounds_radius_ = std::max(1.0f, 0.5f * length(world.hi - world.lo));
+    }
+    lights_.finalize(bounds_radius_);
 
     const std::string error = embree_.build(prototypes, placements);
     if (!error.empty()) throw std::runtime_error(error);

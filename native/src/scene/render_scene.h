@@ -62,6 +62,10 @@ public:
     const TextureBindings& textures() const { return textures_; }
     // True if some instance moves over the shutter (the renderer then samples ray times).
     bool has_motion() const { return has_motion_; }
+    // A sphere bounding the scene's geometry (radius >= 1), over which the light tracer emits
+    // the sun's and the environment's parallel beams.
+    Vec3 bounds_center() const { return bounds_center_; }
+    float bounds_radius() const { return bounds_radius_; }
     // Radiance of a ray that leaves the scene in direction `dir`: the environment image if
     // there is one, else the constant background.
     Rgb background(Vec3 dir) const {
@@ -85,6 +89,8 @@ private:
     LightSet lights_;
     Rgb background_;
     bool has_motion_ = false;
+    Vec3 bounds_center_{0.0f, 0.0f, 0.0f};
+    float bounds_radius_ = 1.0f;
 };
 
 }  // namespace stratum
