@@ -73,9 +73,10 @@ seconds for both seeds:
     bsdf (2 x 5120 spp)          4.29% / +0.14%  255 s         4.59% / -0.04%  197 s
     diffuse_nee_cv (2 x 1536)    3.80% / +0.27%   72 s         3.62% / +0.17%  132 s
     direct                       1.55% / -0.09%   16 s         1.53% / -0.17%   21 s
-    light (pre-merge branch)     2.90% / -0.13%   39 s
+    light                        2.90% / -0.13%   26 s         3.26% / -0.19%   20 s
 
-Largest block difference of any estimator: 2.1% (diffuse_nee_cv, 3.4.1). The whole file took
+Largest block difference of any estimator: 2.1% (diffuse_nee_cv, 3.4.1); the only one beyond
+3 sigma is direct's (1.4% in a green-wall block, z = 7.6, 3.4.1 only; 0.4% in 5.0.1). The whole file took
 10 min in each Blender at that load (Cycles 40-90 s per 1024-spp seed against test_cycles_
 agreement's 12-24 s on a quieter machine: ~4 min unloaded); `bsdf` is 40% of it.
 """
