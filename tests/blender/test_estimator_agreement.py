@@ -76,9 +76,10 @@ seconds for both seeds:
     light                        2.90% / -0.13%   26 s         3.26% / -0.19%   20 s
 
 Largest block difference of any estimator: 2.1% (diffuse_nee_cv, 3.4.1); the only one beyond
-3 sigma is direct's (1.4% in a green-wall block, z = 7.6, 3.4.1 only; 0.4% in 5.0.1). The whole file took
-10 min in each Blender at that load (Cycles 40-90 s per 1024-spp seed against test_cycles_
-agreement's 12-24 s on a quieter machine: ~4 min unloaded); `bsdf` is 40% of it.
+3 sigma is direct's (1.4% in a green-wall block, z = 7.6, 3.4.1 only; 0.4% in 5.0.1). At that
+load the file took 10 min in each Blender; re-run at load ~1-3 (uptime ~24000-24400 s): ~4 min
+in Blender 3.4.1 (Cycles 55 s, Stratum 190 s of which `bsdf` 115 s) and 2.5 min under the bpy
+5.0.1 wheel (`bsdf` 60 s); same numbers (fixed seeds, deterministic renders).
 """
 
 from __future__ import annotations
