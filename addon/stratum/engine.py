@@ -74,6 +74,12 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
         "hemisphere": str(s.hemisphere),
         "integrator": str(s.integrator),
         "ao_distance": float(s.ao_distance),
+        "light_sampling": str(s.light_sampling),
+        "mis_heuristic": str(s.mis_heuristic),
+        "light_selection": str(s.light_selection),
+        "rr_mode": str(s.rr_mode),
+        "rr_min_depth": int(s.rr_min_depth),
+        "control_variate": float(s.control_variate),
     } | extra
 
 
@@ -183,6 +189,9 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             started = time.perf_counter()
             self.update_stats("", "Building BVH / starting")
             renderer.start()
+            # What this estimator cannot render in this scene: a warning, the render goes on.
+            for notice in renderer.notices():
+                self._report("WARNING", f"Stratum: {notice}")
             last_serial: int | None = None
             cancelled_at: float | None = None
             while True:

@@ -444,6 +444,7 @@ def _declare(lib: ctypes.CDLL) -> None:
         "stratum_renderer_set_float": (c_int32, [p_void, p_char, ctypes.c_double]),
         "stratum_renderer_set_string": (c_int32, [p_void, p_char, p_char]),
         "stratum_renderer_start": (c_int32, [p_void]),
+        "stratum_renderer_notices": (c_int32, [p_void, pp_char]),
         "stratum_renderer_cancel": (c_int32, [p_void]),
         "stratum_renderer_wait": (c_int32, [p_void, c_int32, p_i32]),
         "stratum_renderer_progress": (c_int32, [p_void, ctypes.POINTER(_Progress)]),
@@ -1027,6 +1028,15 @@ class Renderer(_Handle):
     def start(self) -> None:
         _check(self._lib, self._lib.stratum_renderer_start(self.handle), "stratum_renderer_start")
         self._started = True
+
+    def notices(self) -> list[str]:
+        """What the chosen estimator cannot render in this scene and why (e.g. BSDF sampling
+        alone never finds a point light), one sentence each; [] when nothing. Set by start()."""
+        out = ctypes.c_char_p()
+        _check(self._lib, self._lib.stratum_renderer_notices(self.handle, ctypes.byref(out)),
+               "stratum_renderer_notices")
+        text = out.value.decode("utf-8", "replace") if out.value else ""
+        return [line for line in text.split("\n") if line]
 
     def cancel(self) -> None:
         _check(self._lib, self._lib.stratum_renderer_cancel(self.handle),

@@ -15,6 +15,39 @@ from . import native
 
 EnumItems = list[tuple[str, str, str]]
 
+# The estimator options (textbook §4–§6). The identifiers are the native setting values
+# (integrators/estimator_options.h), default first; tests/blender/test_estimator_settings.py
+# renders with every item, so an identifier the library does not know fails there.
+LIGHT_SAMPLING_ITEMS: EnumItems = [
+    ("mis", "Multiple Importance",
+     "Light sampling (next-event estimation) and BSDF sampling combined by multiple "
+     "importance sampling (textbook §5.5)"),
+    ("nee", "Light Sampling",
+     "Next-event estimation only: emission is found by shadow rays to sampled lights; a "
+     "scattered ray counts emission only after the camera or a delta vertex (eq. 5.16)"),
+    ("bsdf", "BSDF Sampling",
+     "BSDF sampling only: emission is found by scattered rays hitting lights (eq. 5.2); point "
+     "and sun lights cannot be hit and stay black"),
+]
+MIS_HEURISTIC_ITEMS: EnumItems = [
+    ("power", "Power", "Power heuristic with beta = 2: w = p_a^2 / (p_a^2 + p_b^2) (§4.4)"),
+    ("balance", "Balance", "Balance heuristic: w = p_a / (p_a + p_b) (§4.4)"),
+    ("max", "Maximum", "Maximum heuristic: weight 1 for the strategy with the larger pdf (§4.4)"),
+]
+LIGHT_SELECTION_ITEMS: EnumItems = [
+    ("mixed", "Mixed",
+     "Half proportional to power, half uniform over the lights (a defensive mixture)"),
+    ("power", "Power", "Proportional to each light's power: p_j = Phi_j / sum Phi (eq. 5.14)"),
+    ("uniform", "Uniform", "Every light with the same probability 1/N"),
+]
+RR_MODE_ITEMS: EnumItems = [
+    ("throughput", "Throughput",
+     "Survival probability min(1, max channel of the path throughput) (eq. 5.5-5.6)"),
+    ("albedo", "Albedo",
+     "Survival probability min(1, max channel of the surface reflectance) (eq. 5.5-5.6)"),
+    ("off", "Off", "No Russian roulette: paths end only at the bounce limit or on escaping"),
+]
+
 FALLBACK_SAMPLERS: EnumItems = [("random", "Random", "Independent uniform random numbers")]
 FALLBACK_HEMISPHERES: EnumItems = [
     ("cosine", "Cosine-Weighted", "Cosine-weighted directions (pdf cos(theta)/pi)"),
@@ -101,6 +134,38 @@ def _make_property_group(samplers: EnumItems, filters: EnumItems, hemispheres: E
                 name="Filter Width",
                 description="Pixel filter width in pixels, as Cycles' filter_width",
                 default=1.5, min=0.01, max=10.0, subtype="PIXEL",
+            ),
+            "light_sampling": EnumProperty(
+                name="Light Sampling",
+                description="How the path tracer finds emission",
+                items=LIGHT_SAMPLING_ITEMS, default=LIGHT_SAMPLING_ITEMS[0][0],
+            ),
+            "mis_heuristic": EnumProperty(
+                name="MIS Heuristic",
+                description="Weights of light and BSDF samples under multiple importance "
+                "sampling",
+                items=MIS_HEURISTIC_ITEMS, default=MIS_HEURISTIC_ITEMS[0][0],
+            ),
+            "light_selection": EnumProperty(
+                name="Light Selection",
+                description="Probability of choosing each light for a light sample",
+                items=LIGHT_SELECTION_ITEMS, default=LIGHT_SELECTION_ITEMS[0][0],
+            ),
+            "rr_mode": EnumProperty(
+                name="Russian Roulette",
+                description="How a path's survival probability is chosen",
+                items=RR_MODE_ITEMS, default=RR_MODE_ITEMS[0][0],
+            ),
+            "rr_min_depth": IntProperty(
+                name="Roulette Min Depth",
+                description="First bounce at which Russian roulette may end a path",
+                default=3, min=0, max=1024,
+            ),
+            "control_variate": FloatProperty(
+                name="Control Variate",
+                description="Ambient radiance L_a of the control variate (textbook 5.17); "
+                "0 = off",
+                default=0.0, min=0.0, soft_max=10.0,
             ),
             "threads": IntProperty(
                 name="Threads",

@@ -61,8 +61,31 @@ class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
         layout = self.layout
         layout.use_property_split = True
         layout.use_property_decorate = False
-        col = layout.column(align=True)
-        col.prop(context.scene.stratum, "max_bounces", text="Total")
+        settings = context.scene.stratum
+        integrator = settings.integrator
+        if integrator == "ao":
+            # Ambient occlusion traces no light paths: no bounce limit or estimator applies.
+            layout.label(text="Ambient occlusion has no light-path settings")
+            return
+        # Each option only where it changes the estimator: `direct` is the path tracer with
+        # max_bounces 0; the light tracer starts at the lights, so light sampling, its MIS
+        # heuristic and the control variate are path-tracer choices; the heuristic only weighs
+        # the two strategies of MIS; the minimum depth only matters while roulette is on.
+        path_tracer = integrator != "light"
+        if integrator != "direct":
+            layout.column().prop(settings, "max_bounces", text="Max Bounces")
+        col = layout.column()
+        if path_tracer:
+            col.prop(settings, "light_sampling", text="Light Sampling")
+            if settings.light_sampling == "mis":
+                col.prop(settings, "mis_heuristic", text="MIS Heuristic")
+        col.prop(settings, "light_selection", text="Light Selection")
+        col = layout.column()
+        col.prop(settings, "rr_mode", text="Russian Roulette")
+        if settings.rr_mode != "off":
+            col.prop(settings, "rr_min_depth", text="Min Depth")
+        if path_tracer:
+            layout.column().prop(settings, "control_variate", text="Control Variate")
 
 
 class STRATUM_RENDER_PT_film(StratumButtonsPanel, bpy.types.Panel):

@@ -221,12 +221,14 @@ def _blocks(img: np.ndarray, block: int = BLOCK) -> np.ndarray:
     return img.reshape(nb, block, nb, block, img.shape[-1])
 
 
-def _render_two_seeds(name: str, configure) -> Renders:
+def _render_two_seeds(name: str, configure, out: Path = OUT) -> Renders:
+    """The Cornell box rendered with seeds SEEDS, configure(scene, seed) choosing the renderer
+    and its settings; EXRs in out/<name>_seed<seed>.exr. Shared by test_estimator_agreement."""
     images, seconds = [], []
     for seed in SEEDS:
         scene = _open_scene()
         configure(scene, seed)
-        img, sec = _render_exr(scene, OUT / f"{name}_seed{seed}.exr")
+        img, sec = _render_exr(scene, out / f"{name}_seed{seed}.exr")
         images.append(img)
         seconds.append(sec)
     renders = Renders(name, images, seconds)
@@ -271,9 +273,9 @@ def stratum_renders(library) -> Renders:
 # ---- output for humans -----------------------------------------------------------------------
 
 
-def _save_png(name: str, rgb: np.ndarray, *, linear_to_srgb: bool) -> None:
-    """Writes rgb (rows bottom to top, linear unless told) as an 8-bit PNG in OUT."""
-    OUT.mkdir(parents=True, exist_ok=True)
+def _save_png(name: str, rgb: np.ndarray, *, linear_to_srgb: bool, out: Path = OUT) -> None:
+    """Writes rgb (rows bottom to top, linear unless told) as an 8-bit PNG in out."""
+    out.mkdir(parents=True, exist_ok=True)
     x = np.clip(rgb, 0.0, 1.0)
     if linear_to_srgb:  # the 'Standard' view transform: plain sRGB encoding
         x = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
@@ -281,7 +283,7 @@ def _save_png(name: str, rgb: np.ndarray, *, linear_to_srgb: bool) -> None:
     image = bpy.data.images.new(name, RES, RES, alpha=True)  # byte buffer: stored as is
     try:
         image.pixels.foreach_set(rgba.ravel())
-        image.filepath_raw = str(OUT / f"{name}.png")
+        image.filepath_raw = str(out / f"{name}.png")
         image.file_format = "PNG"
         image.save()
     finally:
@@ -326,51 +328,71 @@ def test_cycles_noise_level_allows_comparison(cycles: Renders) -> None:
         f"{BLOCK_TOL:.0%} (pixel correlation factor {cycles.inflation:.2f}); raise SPP_PER_SEED")
 
 
-def test_noise_level_allows_comparison(cycles: Renders, stratum_renders: Renders) -> None:
-    """With both renderers' measured noise: 4 sigma_D below the tolerances, everywhere."""
-    c_img = cycles.mean.mean(axis=(0, 1))
-    sd_img = np.sqrt(cycles.image_var() + stratum_renders.image_var())
-    assert (K_SIGMA * sd_img < 0.5 * IMAGE_TOL * c_img).all(), (
-        f"image-mean noise too high for a {IMAGE_TOL:.0%} test: 4 sigma_D = "
-        f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}")
-    cb = cycles.block_mean()
+def noise_failures(reference: Renders, candidate: Renders) -> list[str]:
+    """Why the two renders' noise would make a comparison at IMAGE_TOL / BLOCK_TOL meaningless
+    ([] when it does not): 4 sigma_D of the image-mean difference must be below half the image
+    tolerance, and below the block tolerance for every compared block (those whose reference
+    mean is >= DARK_BLOCK). Relative to the reference's means. Shared by
+    test_estimator_agreement."""
+    failures = []
+    c_img = reference.mean.mean(axis=(0, 1))
+    sd_img = np.sqrt(reference.image_var() + candidate.image_var())
+    if not (K_SIGMA * sd_img < 0.5 * IMAGE_TOL * c_img).all():
+        failures.append(
+            f"image-mean noise too high for a {IMAGE_TOL:.0%} test: 4 sigma_D = "
+            f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}")
+    cb = reference.block_mean()
     lit = cb >= DARK_BLOCK
-    rel = K_SIGMA * np.sqrt(cycles.block_var() + stratum_renders.block_var()) / np.maximum(cb, 1e-12)
+    rel = K_SIGMA * np.sqrt(reference.block_var() + candidate.block_var()) / np.maximum(cb, 1e-12)
     bad = np.argwhere(lit & (rel >= BLOCK_TOL))
-    assert bad.size == 0, (
-        f"{len(bad)} blocks too noisy for a {BLOCK_TOL:.0%} test (4 sigma_D >= tolerance); worst "
-        f"{float(rel[lit].max()):.2%}; Stratum correlation factor "
-        f"{stratum_renders.inflation:.2f}, Cycles {cycles.inflation:.2f}; raise SPP_PER_SEED")
+    if bad.size:
+        failures.append(
+            f"{len(bad)} blocks too noisy for a {BLOCK_TOL:.0%} test (4 sigma_D >= tolerance); "
+            f"worst {float(rel[lit].max()):.2%}; correlation factors {candidate.name} "
+            f"{candidate.inflation:.2f}, {reference.name} {reference.inflation:.2f}")
+    return failures
 
 
-def test_stratum_agrees_with_cycles(cycles: Renders, stratum_renders: Renders) -> None:
-    s, c = stratum_renders.mean, cycles.mean
-    _save_png("cycles", c, linear_to_srgb=True)
-    _save_png("stratum", s, linear_to_srgb=True)
-    _save_png("difference", _difference_image(s, c), linear_to_srgb=False)
+def block_noise(reference: Renders, candidate: Renders) -> tuple[float, float]:
+    """(median, worst) 4 sigma_D of the compared blocks, relative to the reference's means."""
+    cb = reference.block_mean()
+    lit = cb >= DARK_BLOCK
+    rel = K_SIGMA * np.sqrt(reference.block_var() + candidate.block_var()) / np.maximum(cb, 1e-12)
+    return float(np.median(rel[lit])), float(rel[lit].max())
+
+
+def compare(reference: Renders, candidate: Renders, out: Path, header: str) -> tuple[str, bool]:
+    """Compares candidate with reference (image means within IMAGE_TOL, every compared block
+    within BLOCK_TOL, relative to the reference) and writes out/report.txt, the sRGB images
+    and the difference image. Returns (report, agree). Shared by test_estimator_agreement."""
+    s, c = candidate.mean, reference.mean
+    _save_png(reference.name, c, linear_to_srgb=True, out=out)
+    _save_png(candidate.name, s, linear_to_srgb=True, out=out)
+    _save_png("difference", _difference_image(s, c), linear_to_srgb=False, out=out)
 
     c_img, s_img = c.mean(axis=(0, 1)), s.mean(axis=(0, 1))
     img_rel = (s_img - c_img) / c_img
-    img_sigma = np.sqrt(cycles.image_var() + stratum_renders.image_var()) / c_img
-    cb, sb = cycles.block_mean(), stratum_renders.block_mean()
-    sigma_b = np.sqrt(cycles.block_var() + stratum_renders.block_var())
+    img_sigma = np.sqrt(reference.image_var() + candidate.image_var()) / c_img
+    cb, sb = reference.block_mean(), candidate.block_mean()
+    sigma_b = np.sqrt(reference.block_var() + candidate.block_var())
     lit = cb >= DARK_BLOCK
     blk_rel = np.where(lit, (sb - cb) / np.maximum(cb, 1e-12), 0.0)
     bad = np.argwhere(lit & (np.abs(blk_rel) > BLOCK_TOL))
 
     nb = RES // BLOCK
+    width = max(len(reference.name), len(candidate.name))
     lines = [
-        (f"Cornell box {RES}x{RES}, {2 * SPP_PER_SEED} spp ({len(SEEDS)} seeds x {SPP_PER_SEED}),"
-        f" max_bounces {MAX_BOUNCES}, Blender {bpy.app.version_string}"),
-        f"render seconds: cycles {cycles.seconds}, stratum {stratum_renders.seconds}",
-        f"image mean cycles : {_fmt3(c_img)}",
-        f"image mean stratum: {_fmt3(s_img)}",
+        header,
+        (f"render seconds: {reference.name} {reference.seconds}, {candidate.name} "
+         f"{candidate.seconds}"),
+        f"image mean {reference.name:<{width}}: {_fmt3(c_img)}",
+        f"image mean {candidate.name:<{width}}: {_fmt3(s_img)}",
         f"relative diff     : {_fmt3(img_rel, '{:+.3%}')}   (tolerance {IMAGE_TOL:.0%})",
         f"1 sigma of diff   : {_fmt3(img_sigma, '{:.3%}')}",
-        (f"pixel-correlation factors: cycles {cycles.inflation:.2f}, "
-        f"stratum {stratum_renders.inflation:.2f}"),
+        (f"pixel-correlation factors: {reference.name} {reference.inflation:.2f}, "
+         f"{candidate.name} {candidate.inflation:.2f}"),
         (f"blocks ({BLOCK}x{BLOCK}, row 0 = top), relative diff per channel"
-        f" (tolerance {BLOCK_TOL:.0%}; '.' = dark, not compared):"),
+         f" (tolerance {BLOCK_TOL:.0%}; '.' = dark, not compared):"),
     ]
     for by in reversed(range(nb)):  # print top row first
         row = []
@@ -385,13 +407,24 @@ def test_stratum_agrees_with_cycles(cycles: Renders, stratum_renders: Renders) -
     for flat in order:
         by, bx = divmod(int(flat), nb)
         z = (sb[by, bx] - cb[by, bx]) / np.maximum(sigma_b[by, bx], 1e-12)
-        lines.append(f"  ({nb - 1 - by},{bx}) cycles {_fmt3(cb[by, bx])}  "
+        lines.append(f"  ({nb - 1 - by},{bx}) {reference.name} {_fmt3(cb[by, bx])}  "
                      f"rel {_fmt3(blk_rel[by, bx], '{:+.2%}')}  z {_fmt3(z, '{:+.1f}')}")
     report = "\n".join(lines)
-    (OUT / "report.txt").write_text(report + "\n")
-    print(report)
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "report.txt").write_text(report + "\n")
+    agree = bool((np.abs(img_rel) <= IMAGE_TOL).all()) and bad.size == 0
+    return report, agree
 
-    assert (np.abs(img_rel) <= IMAGE_TOL).all(), (
-        f"image means differ beyond {IMAGE_TOL:.0%}:\n{report}\nsee {OUT}")
-    assert bad.size == 0, (
-        f"{len(bad)} (block, channel) values differ beyond {BLOCK_TOL:.0%}:\n{report}\nsee {OUT}")
+
+def test_noise_level_allows_comparison(cycles: Renders, stratum_renders: Renders) -> None:
+    """With both renderers' measured noise: 4 sigma_D below the tolerances, everywhere."""
+    failures = noise_failures(cycles, stratum_renders)
+    assert not failures, "; ".join(failures) + "; raise SPP_PER_SEED"
+
+
+def test_stratum_agrees_with_cycles(cycles: Renders, stratum_renders: Renders) -> None:
+    header = (f"Cornell box {RES}x{RES}, {2 * SPP_PER_SEED} spp ({len(SEEDS)} seeds x "
+              f"{SPP_PER_SEED}), max_bounces {MAX_BOUNCES}, Blender {bpy.app.version_string}")
+    report, agree = compare(cycles, stratum_renders, OUT, header)
+    print(report)
+    assert agree, f"Stratum and Cycles differ beyond the tolerances:\n{report}\nsee {OUT}"

@@ -12,6 +12,8 @@ from typing import Any
 import numpy as np
 import pytest
 
+from conftest import look_at_origin_from
+
 
 def test_import_without_bpy() -> None:
     code = ("import sys, stratum, stratum.native, stratum.cli; "
@@ -383,3 +385,55 @@ def test_add_instance_ex_motion_visibility_holdout(native: Any, tmp_path: Any) -
                                               native.VISIBLE_CAMERA, holdout=True))
         with pytest.raises(native.StratumError):
             scene.add_instance_ex(native.Instance(mesh + 1, np.eye(4)))
+
+
+@pytest.mark.parametrize(("name", "bad"), [
+    ("light_sampling", "bsdf_only"), ("mis_heuristic", "cube"), ("light_selection", "random"),
+    ("rr_mode", "russian"), ("rr_min_depth", -1), ("rr_min_depth", 1025),
+    ("control_variate", -0.5), ("control_variate", float("nan")),
+])
+def test_estimator_settings_reject_bad_values_naming_them(native: Any, tiny_scene: Any,
+                                                          name: str, bad: Any) -> None:
+    with native.Renderer(tiny_scene) as renderer, pytest.raises(native.StratumError) as excinfo:
+        renderer.set(name, bad)
+    message = str(excinfo.value)
+    assert name in message and str(bad) in message, message
+
+
+def _point_lit_quad(native: Any) -> Any:
+    """The tiny scene's quad lit only by a point light of radius 0 (no surface to hit), black
+    background: every pixel's light comes from the point light."""
+    scene = native.Scene()
+    grey = scene.add_material({"model": native.MATERIAL_DIFFUSE, "base_color": (0.8, 0.8, 0.8)})
+    positions = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float32)
+    triangles = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
+    mesh = scene.add_mesh(positions, triangles, np.full(2, grey, dtype=np.uint32))
+    scene.add_instance(mesh, np.eye(4, dtype=np.float32))
+    light = np.eye(4, dtype=np.float32)
+    light[2, 3] = 2.0
+    scene.add_light(type=native.LIGHT_POINT, strength=100.0, radius=0.0, transform=light)
+    scene.set_camera(native.Camera(transform=look_at_origin_from(4.0)))
+    scene.set_background((0.0, 0.0, 0.0))
+    return scene
+
+
+@pytest.mark.parametrize("light_sampling", ["mis", "nee", "bsdf"])
+def test_notices_say_what_bsdf_sampling_cannot_see(native: Any, light_sampling: str) -> None:
+    """BSDF sampling alone cannot hit a point light: a notice says so and the image is black;
+    the strategies that sample the light have no notice and a lit quad."""
+    with _point_lit_quad(native) as scene, native.Renderer(
+            scene, width=8, height=8, samples=2, max_bounces=1,
+            light_sampling=light_sampling) as renderer:
+        assert renderer.notices() == []  # nothing before start
+        renderer.start()
+        while not renderer.wait(100):
+            pass
+        notices = renderer.notices()
+        rgb = renderer.read_pixels().reshape(-1, 4)[:, :3]
+    assert np.isfinite(rgb).all()
+    if light_sampling == "bsdf":
+        assert notices and all(n.strip() for n in notices), notices
+        assert rgb.max() == 0.0
+    else:
+        assert notices == []
+        assert rgb.max() > 0.0

@@ -1,0 +1,190 @@
+"""The estimator settings of issue 6 in Blender: scene.stratum.light_sampling, mis_heuristic,
+light_selection, rr_mode, rr_min_depth, control_variate; the renderer's notices as WARNING
+reports. Runs in Blender 3.4 (run_in_blender.py) and under the bpy 5.0.1 wheel.
+
+The Python enum items and the native value names are two lists that could drift apart: every
+item of every enum property is sent through the engine's settings to a native renderer, which
+rejects unknown values (with a message naming them, checked below), so a drift fails here.
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from types import SimpleNamespace
+from typing import Any
+
+import bpy
+import numpy as np
+import pytest
+from stratum import engine, native, properties
+from stratum.engine import StratumRenderEngine
+
+from conftest import read_image_pixels
+from test_registration import _RecordingLayout
+
+ENUMS = ("light_sampling", "mis_heuristic", "light_selection", "rr_mode")
+DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection": "mixed",
+            "rr_mode": "throughput", "rr_min_depth": 3, "control_variate": 0.0}
+
+
+def _reports(level: str) -> list[str]:
+    return [m for lvl, m in StratumRenderEngine.last_reports if lvl == level]
+
+
+def _render(scene: Any, path: Path) -> np.ndarray | None:
+    """Renders to an EXR and returns its pixels (None if nothing was written). An ERROR report
+    may surface as RuntimeError from the operator in background mode (Blender's reporting, not
+    an exception escaping the engine)."""
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.filepath = str(path)
+    scene.render.use_file_extension = False
+    try:
+        bpy.ops.render.render(write_still=True)
+    except RuntimeError:
+        pass
+    return read_image_pixels(path) if path.is_file() else None
+
+
+def _enum_identifiers(name: str) -> list[str]:
+    prop = bpy.types.Scene.bl_rna.properties["stratum"].fixed_type.properties[name]
+    return [item.identifier for item in prop.enum_items]
+
+
+def test_properties_exist_with_the_contract_defaults(library: Any, scene_builder: Any) -> None:
+    s = scene_builder().scene.stratum
+    for name, value in DEFAULTS.items():
+        assert getattr(s, name) == value, name
+    rna = type(s).bl_rna.properties
+    assert (rna["rr_min_depth"].hard_min, rna["rr_min_depth"].hard_max) == (0, 1024)
+    assert rna["control_variate"].hard_min == 0.0
+    # The first item of each menu is the native default (the contract's "first value").
+    for name in ENUMS:
+        assert _enum_identifiers(name)[0] == DEFAULTS[name], name
+
+
+@pytest.mark.parametrize("name", ENUMS)
+def test_every_enum_item_is_accepted_by_the_native_renderer(library: Any, scene_builder: Any,
+                                                            name: str) -> None:
+    """Each item goes the engine's way (scene.stratum -> renderer_settings -> Renderer.set)."""
+    b = scene_builder()
+    items = _enum_identifiers(name)
+    assert len(items) == 3, items
+    with native.Scene() as scene:
+        for item in items:
+            setattr(b.scene.stratum, name, item)
+            settings = engine.renderer_settings(b.scene)
+            assert settings[name] == item
+            with native.Renderer(scene, **settings):
+                pass  # every setting accepted (StratumError otherwise)
+
+
+def test_numeric_settings_reach_the_renderer(library: Any, scene_builder: Any) -> None:
+    b = scene_builder()
+    b.scene.stratum.rr_min_depth = 1024
+    b.scene.stratum.control_variate = 0.25
+    settings = engine.renderer_settings(b.scene)
+    assert settings["rr_min_depth"] == 1024 and isinstance(settings["rr_min_depth"], int)
+    assert settings["control_variate"] == 0.25 and isinstance(settings["control_variate"], float)
+    with native.Scene() as scene, native.Renderer(scene, **settings):
+        pass
+
+
+@pytest.mark.parametrize(("name", "bad"), [
+    ("light_sampling", "bsdf_only"), ("mis_heuristic", "cube"), ("light_selection", "random"),
+    ("rr_mode", "russian"), ("rr_min_depth", -1), ("rr_min_depth", 1025),
+    ("control_variate", -0.5), ("control_variate", math.inf),
+])
+def test_bad_native_values_are_rejected_naming_them(library: Any, name: str, bad: Any) -> None:
+    with (native.Scene() as scene, native.Renderer(scene) as renderer,
+          pytest.raises(native.StratumError) as excinfo):
+        renderer.set(name, bad)
+    message = str(excinfo.value)
+    assert name in message and str(bad) in message, message
+
+
+def test_a_rejected_value_is_an_error_report_not_an_exception(
+        library: Any, scene_builder: Any, monkeypatch: Any, tmp_path: Path) -> None:
+    """RNA keeps the properties valid; should a value still be rejected natively (a library
+    older than the add-on), the engine reports it and the render ends cleanly."""
+    b = scene_builder().basic()
+    original = engine.renderer_settings
+    monkeypatch.setattr(engine, "renderer_settings",
+                        lambda scene: original(scene) | {"rr_mode": "no_such_mode"})
+    _render(b.scene, tmp_path / "rejected.exr")
+    errors = _reports("ERROR")
+    assert len(errors) == 1 and "no_such_mode" in errors[0], StratumRenderEngine.last_reports
+
+
+def _point_lit_scene(b: Any) -> Any:
+    """A cube lit only by a point light of radius 0 (nothing a ray can hit), black world."""
+    b.camera()
+    b.mesh_object("Cube")
+    light = b.point_light()
+    light.data.shadow_soft_size = 0.0
+    b.world((0.0, 0.0, 0.0))
+    b.set_resolution(16, 16)
+    b.scene.stratum.samples = 4
+    b.scene.stratum.max_bounces = 2
+    return b.scene
+
+
+def test_bsdf_sampling_of_a_point_light_warns_and_renders_black(
+        library: Any, scene_builder: Any, tmp_path: Path) -> None:
+    """BSDF sampling alone never finds a point light: the renderer's notice becomes a WARNING
+    report saying why, and the render finishes (black: that light is all there is)."""
+    scene = _point_lit_scene(scene_builder())
+    scene.stratum.light_sampling = "bsdf"
+    pixels = _render(scene, tmp_path / "bsdf.exr")
+    assert not _reports("ERROR"), StratumRenderEngine.last_reports
+    warnings = [m for m in _reports("WARNING") if m.startswith("Stratum: ")]
+    assert warnings, f"no notice reported: {StratumRenderEngine.last_reports}"
+    assert any("point" in m.lower() for m in warnings), warnings
+    assert pixels is not None and pixels.shape[:2] == (16, 16)
+    assert np.isfinite(pixels).all() and pixels[..., :3].max() == 0.0
+
+
+@pytest.mark.parametrize("light_sampling", ["mis", "nee"])
+def test_strategies_that_sample_the_point_light_have_no_notice(
+        library: Any, scene_builder: Any, tmp_path: Path, light_sampling: str) -> None:
+    scene = _point_lit_scene(scene_builder())
+    scene.stratum.light_sampling = light_sampling
+    pixels = _render(scene, tmp_path / f"{light_sampling}.exr")
+    assert StratumRenderEngine.last_reports == []
+    assert pixels is not None and pixels[..., :3].max() > 0.0
+
+
+class _Layout(_RecordingLayout):
+    """test_registration's recording layout, plus the label the AO case draws."""
+
+    def label(self, **_: Any) -> None:
+        pass
+
+
+def test_light_paths_panel_draws_for_every_integrator(library: Any, scene_builder: Any) -> None:
+    """The panel shows each option only where it matters (a typo in a property name raises
+    here); the native registry decides which integrators exist."""
+    from stratum import ui
+
+    b = scene_builder()
+    drawn: list[str] = []
+    panel = SimpleNamespace(layout=_Layout(drawn))
+    for integrator in (e.name for e in native.registry("integrator")):
+        b.scene.stratum.integrator = integrator
+        for light_sampling in _enum_identifiers("light_sampling"):
+            for rr_mode in _enum_identifiers("rr_mode"):
+                b.scene.stratum.light_sampling = light_sampling
+                b.scene.stratum.rr_mode = rr_mode
+                drawn.clear()
+                ui.STRATUM_RENDER_PT_light_paths.draw(panel, SimpleNamespace(scene=b.scene))
+                if integrator == "ao":
+                    assert drawn == []
+                    continue
+                path_tracer = integrator != "light"
+                assert {"rr_mode", "light_selection"} <= set(drawn)
+                assert ("max_bounces" in drawn) == (integrator != "direct")
+                assert ("light_sampling" in drawn) == path_tracer
+                assert ("control_variate" in drawn) == path_tracer
+                assert ("mis_heuristic" in drawn) == (path_tracer and light_sampling == "mis")
+                assert ("rr_min_depth" in drawn) == (rr_mode != "off")
+    assert properties.load_error == ""
