@@ -11,11 +11,9 @@ samples, seed, integrator, hemisphere, max_bounces, threads, and the estimator s
 light_sampling, mis_heuristic, light_selection, rr_mode, rr_min_depth, control_variate) and the
 render resolution, renders with the STRATUM engine, saves the Render Result as a linear 32-bit
 float OpenEXR (as scripts/render_to_files.py does), then writes the JSON sidecar (key, render
-time, EXR size and sha256). An estimator setting whose scene.stratum property does not exist in
-the add-on (one older than issue 6's Blender side) is passed to the native renderer directly,
-by extending stratum.engine.renderer_settings: announced on stderr and recorded in the sidecar
-(`set_natively`); without renderer_settings to extend, the configuration fails naming the
-property. Never a render with a silently different estimator.
+time, EXR size and sha256). An estimator setting without a scene.stratum property (an add-on
+older than issue 6's Blender side) fails the configuration, naming the property: never a
+render with a silently different estimator.
 EXR and sidecar go to a temporary name first and are renamed into place, the sidecar last: a
 configuration counts as done only when its sidecar exists. A configuration that fails is
 reported and the batch goes on; the script then exits with status 1. After each one it prints
@@ -129,23 +127,14 @@ def _render_size(scene: Any) -> list[int]:
     return [max(int(r.resolution_x * scale), 1), max(int(r.resolution_y * scale), 1)]
 
 
-def set_estimator_settings(props: Any, settings: dict[str, Any],
-                           engine: Any) -> dict[str, Any]:
-    """Sets every estimator setting on scene.stratum (`props`); returns those the add-on has
-    no property for, which the caller passes to the renderer through
-    engine.renderer_settings. Raises, naming the first, when there are such settings and the
-    engine has no renderer_settings."""
-    natively: dict[str, Any] = {}
+def set_estimator_settings(props: Any, settings: dict[str, Any]) -> None:
+    """Sets every estimator setting on scene.stratum (`props`). Raises, naming it, when the
+    add-on has no property for one."""
     for name, value in settings.items():
-        if hasattr(props, name):
-            setattr(props, name, value)
-        else:
-            natively[name] = value
-    if natively and not callable(getattr(engine, "renderer_settings", None)):
-        name = next(iter(natively))
-        raise RuntimeError(f"scene.stratum has no property {name!r} and stratum.engine has no "
-                           f"renderer_settings to pass {name}={natively[name]!r} through")
-    return natively
+        if not hasattr(props, name):
+            raise RuntimeError(f"scene.stratum has no property {name!r} (needed for "
+                               f"{name}={value!r}): the add-on predates this setting")
+        setattr(props, name, value)
 
 
 def _probe(payload: dict[str, Any]) -> None:
@@ -163,7 +152,7 @@ def _probe(payload: dict[str, Any]) -> None:
 
 def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
     bpy, scene = _setup_blender(payload)
-    from stratum import engine, native
+    from stratum import native
     from stratum.engine import StratumRenderEngine
 
     # Remember the native renderer's last progress report: its render_seconds is the path
@@ -177,17 +166,6 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
         return p
 
     native.Renderer.progress = progress  # type: ignore[method-assign]
-
-    # Estimator settings scene.stratum has no property for: added to what the engine gives
-    # the renderer (set_estimator_settings).
-    natively: dict[str, Any] = {}
-    announced: set[str] = set()
-    original_settings = getattr(engine, "renderer_settings", None)
-    if callable(original_settings):
-        def renderer_settings(scene: Any) -> dict[str, Any]:
-            return {**original_settings(scene), **natively}
-
-        engine.renderer_settings = renderer_settings
 
     scene.render.engine = "STRATUM"
     scene.render.use_compositing = False
@@ -210,12 +188,7 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
         s.samples = int(entry["samples"])
         s.seed = int(entry["seed"])
         s.integrator = entry["integrator"]
-        natively.clear()
-        natively.update(set_estimator_settings(s, entry["estimator_settings"], engine))
-        for name in sorted(set(natively) - announced):
-            print(f"stratum compare: warning: scene.stratum has no property {name!r}; it is "
-                  "set on the native renderer directly", file=sys.stderr, flush=True)
-            announced.add(name)
+        set_estimator_settings(s, entry["estimator_settings"])
         s.hemisphere = entry["hemisphere"]
         if entry.get("max_bounces") is not None:
             s.max_bounces = int(entry["max_bounces"])
@@ -234,7 +207,6 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
         trace = last.get("progress")
         return {"seconds": seconds,
                 "trace_seconds": float(trace.render_seconds) if trace else seconds,
-                "set_natively": sorted(natively),
                 # e.g. the renderer's notices (what the estimator cannot render in this scene)
                 "warnings": [m for level, m in StratumRenderEngine.last_reports
                              if level == "WARNING"]}
