@@ -16,6 +16,8 @@
 // The bounce cap is 1024 (the maximum): the chance that a path reaches it is k^1025 ≈ 0.
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "render_helpers.h"
 
 using namespace stratum_test;
@@ -95,6 +97,9 @@ TEST(ControlVariate, VarianceFollowsTheTextbookCurveOverTheAmbientSweep) {
         const double c = kEmission - (1.0 - k) * ambient;
         const double variance = c * c * k / (p * p);
         const double variance_se = variance * std::sqrt((8.0 + p * p / k) / n);
+        // The table docs/study.md quotes (the book's claim 9: the curve of eq. 4.32).
+        std::printf("control variate L_a = %.2f L: per-path variance %.4f, expected %.4f +- %.4f\n", fraction,
+                    st.variance, variance, variance_se);
         EXPECT_NEAR(st.variance, variance, 4.0 * variance_se)
             << "L_a = " << fraction << " L: variance " << st.variance << " expected " << variance;
         EXPECT_NEAR(st.mean, kRadiance, 4.0 * std::sqrt(variance / n)) << "L_a = " << fraction << " L";

@@ -18,7 +18,8 @@ namespace {
 struct RendererFixture : ::testing::Test {
     void SetUp() override {
         const StratumMaterialDesc wall{
-            STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, 0.0f, 1.5f, {0, 0, 0}, STRATUM_MICROFACET_GGX};
+            STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, 0.0f, 1.5f, {0, 0, 0},
+            STRATUM_MICROFACET_GGX};
         scene = make_sphere_interior(wall, 8, 0.0f, 0.0f, 0.0f);
         ASSERT_NE(scene, nullptr) << stratum_last_error();
         ASSERT_EQ(stratum_renderer_create(scene, &renderer), STRATUM_OK) << stratum_last_error();
@@ -87,7 +88,8 @@ TEST_F(RendererFixture, NumericEstimatorSettingsAreRangeChecked) {
     EXPECT_EQ(stratum_renderer_set_float(renderer, "control_variate", 0.0), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_float(renderer, "control_variate", 2.5), STRATUM_OK);
     for (const double bad : {-0.5, std::nan(""), double(INFINITY), 1e300}) {
-        EXPECT_EQ(stratum_renderer_set_float(renderer, "control_variate", bad), STRATUM_ERROR_INVALID_ARGUMENT)
+        EXPECT_EQ(stratum_renderer_set_float(renderer, "control_variate", bad),
+                  STRATUM_ERROR_INVALID_ARGUMENT)
             << bad;
         EXPECT_NE(std::string(stratum_last_error()).find("control_variate"), std::string::npos);
     }
