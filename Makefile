@@ -62,9 +62,11 @@ bench: build
 	mkdir -p out
 	$(BLENDER_BG) --python scripts/bench.py
 
-# The sampler study (issue 4): Cornell box, Wolf and AO runs of `stratum compare` into
-# out/study/, then out/study/summary.md and figures (24.6 min measured on 2 shared cores). Not part of
-# `make test`. Re-running renders only what is missing.
+# The study: the sampler runs of issue 4 (Cornell box, Wolf, AO; 24.6 min measured on 2 shared
+# cores) and the estimator ladder of issue 6 (small-light, large-light and glossy Cornell boxes;
+# 30 min measured under load), `stratum compare` runs into out/study/, then out/study/summary.md,
+# out/study/estimators.md and figures. Not part of `make test`. Re-running renders only what is
+# missing.
 study: build
 	$(PY) scripts/study.py --out out/study --jobs 2
 
