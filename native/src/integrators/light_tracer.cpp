@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "integrators/ray_offset.h"
+#include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
 #include "integrators/transparent_shadow.h"
 #include "sampling/dimensions.h"
@@ -16,30 +17,6 @@ namespace {
 
 constexpr uint32_t kNonCameraRays =
     STRATUM_VISIBLE_DIFFUSE | STRATUM_VISIBLE_GLOSSY | STRATUM_VISIBLE_TRANSMISSION | STRATUM_VISIBLE_SHADOW;
-
-// The ray visibility bit of a particle scattered by a lobe of this kind (as the path tracer's).
-uint32_t ray_visibility(ScatterKind kind, uint32_t previous) {
-    switch (kind) {
-        case ScatterKind::Diffuse:
-            return STRATUM_VISIBLE_DIFFUSE;
-        case ScatterKind::Glossy:
-            return STRATUM_VISIBLE_GLOSSY;
-        case ScatterKind::Transmission:
-            return STRATUM_VISIBLE_TRANSMISSION;
-        case ScatterKind::Transparent:
-            break;
-    }
-    return previous;
-}
-
-// The closure kinds a light's visibility bits let it light directly.
-uint32_t lit_kinds(uint32_t light_visibility) {
-    uint32_t kinds = 0;
-    if (light_visibility & STRATUM_VISIBLE_DIFFUSE) kinds |= scatter_kind_bit(ScatterKind::Diffuse);
-    if (light_visibility & STRATUM_VISIBLE_GLOSSY) kinds |= scatter_kind_bit(ScatterKind::Glossy);
-    if (light_visibility & STRATUM_VISIBLE_TRANSMISSION) kinds |= scatter_kind_bit(ScatterKind::Transmission);
-    return kinds;
-}
 
 // Veach 1997 eq. 5.19: the adjoint BSDF with shading normals is f(ω_l, ω_o) |ω_l·n_s| |ω_o·n_g|
 // / (|ω_l·n_g| |ω_o·n_s|) times the radiance form's |ω_o·n_s|; this returns the ratio (1 where

@@ -1,40 +1,13 @@
 #include "integrators/path_integrator.h"
 
 #include "integrators/ray_offset.h"
+#include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
 #include "integrators/transparent_shadow.h"
 #include "sampling/dimensions.h"
 #include "stratum/stratum.h"
 
 namespace stratum {
-
-namespace {
-
-// The ray visibility bit of a ray scattered by a lobe of this kind (StratumVisibility).
-uint32_t ray_visibility(ScatterKind kind, uint32_t previous) {
-    switch (kind) {
-        case ScatterKind::Diffuse:
-            return STRATUM_VISIBLE_DIFFUSE;
-        case ScatterKind::Glossy:
-            return STRATUM_VISIBLE_GLOSSY;
-        case ScatterKind::Transmission:
-            return STRATUM_VISIBLE_TRANSMISSION;
-        case ScatterKind::Transparent:
-            break;  // a pass-through keeps the kind of the ray that arrived
-    }
-    return previous;
-}
-
-// The closure kinds a light's visibility bits let NEE illuminate.
-uint32_t lit_kinds(uint32_t light_visibility) {
-    uint32_t kinds = 0;
-    if (light_visibility & STRATUM_VISIBLE_DIFFUSE) kinds |= scatter_kind_bit(ScatterKind::Diffuse);
-    if (light_visibility & STRATUM_VISIBLE_GLOSSY) kinds |= scatter_kind_bit(ScatterKind::Glossy);
-    if (light_visibility & STRATUM_VISIBLE_TRANSMISSION) kinds |= scatter_kind_bit(ScatterKind::Transmission);
-    return kinds;
-}
-
-}  // namespace
 
 float PathIntegrator::hit_weight(float scatter_pdf, float light_pdf) const {
     // A camera ray or a delta scatter: no light sample could have found this emission (5.16).

@@ -1,0 +1,37 @@
+// How StratumVisibility bits follow a path, shared by the path and light tracers: the bit a
+// scattered ray carries (Cycles' PATH_RAY_DIFFUSE / GLOSSY / TRANSMISSION), and the closure kinds
+// a light's bits let it light directly (Cycles' light visibility).
+#pragma once
+
+#include <cstdint>
+
+#include "bsdf/closure_set.h"
+#include "stratum/stratum.h"
+
+namespace stratum {
+
+// The ray visibility bit of a ray scattered by a lobe of this kind.
+inline uint32_t ray_visibility(ScatterKind kind, uint32_t previous) {
+    switch (kind) {
+        case ScatterKind::Diffuse:
+            return STRATUM_VISIBLE_DIFFUSE;
+        case ScatterKind::Glossy:
+            return STRATUM_VISIBLE_GLOSSY;
+        case ScatterKind::Transmission:
+            return STRATUM_VISIBLE_TRANSMISSION;
+        case ScatterKind::Transparent:
+            break;  // a pass-through keeps the kind of the ray that arrived
+    }
+    return previous;
+}
+
+// The closure kinds (scatter_kind_bit) a light with these visibility bits lights directly.
+inline uint32_t lit_kinds(uint32_t light_visibility) {
+    uint32_t kinds = 0;
+    if (light_visibility & STRATUM_VISIBLE_DIFFUSE) kinds |= scatter_kind_bit(ScatterKind::Diffuse);
+    if (light_visibility & STRATUM_VISIBLE_GLOSSY) kinds |= scatter_kind_bit(ScatterKind::Glossy);
+    if (light_visibility & STRATUM_VISIBLE_TRANSMISSION) kinds |= scatter_kind_bit(ScatterKind::Transmission);
+    return kinds;
+}
+
+}  // namespace stratum
