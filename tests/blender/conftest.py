@@ -219,3 +219,25 @@ def read_image_pixels(path: Path) -> np.ndarray:
     finally:
         bpy.data.images.remove(image)
 
+
+
+def engine_reports(level: str) -> list[str]:
+    """The messages the Stratum engine reported at `level` ("ERROR", "WARNING", ...) during the
+    last render."""
+    from stratum.engine import StratumRenderEngine
+
+    return [m for lvl, m in StratumRenderEngine.last_reports if lvl == level]
+
+
+def render_still(scene: Any, path: Path) -> np.ndarray | None:
+    """Renders to an EXR and returns its pixels (None if nothing was written). An ERROR report
+    may surface as RuntimeError from the operator in background mode: that is Blender's
+    reporting, not an exception escaping the engine."""
+    scene.render.image_settings.file_format = "OPEN_EXR"
+    scene.render.filepath = str(path)
+    scene.render.use_file_extension = False
+    try:
+        bpy.ops.render.render(write_still=True)
+    except RuntimeError:
+        pass
+    return read_image_pixels(path) if path.is_file() else None

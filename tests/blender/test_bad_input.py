@@ -22,25 +22,7 @@ from stratum.export import ExportError, export_scene
 from stratum.export import camera as camera_export
 from stratum.export.images import blender_ocio_config
 
-from conftest import read_image_pixels
-
-
-def _render(scene: Any, path: Path) -> np.ndarray | None:
-    """Renders to an EXR; returns its pixels (None if nothing was written). An ERROR report
-    may surface as RuntimeError from the operator in background mode; that is Blender's
-    reporting, not an exception from the engine."""
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.filepath = str(path)
-    scene.render.use_file_extension = False
-    try:
-        bpy.ops.render.render(write_still=True)
-    except RuntimeError:
-        pass
-    return read_image_pixels(path) if path.is_file() else None
-
-
-def _reports(level: str) -> list[str]:
-    return [m for lvl, m in StratumRenderEngine.last_reports if lvl == level]
+from conftest import engine_reports, render_still
 
 
 def _image_material(b: Any, image: Any) -> Any:
@@ -76,9 +58,9 @@ def test_missing_image_renders_with_a_warning(library: Any, scene_builder: Any,
                                               tmp_path: Path) -> None:
     b = scene_builder().basic()
     b.scene.objects["Cube"].data.materials.append(_image_material(b, _missing_image()))
-    pixels = _render(b.scene, tmp_path / "missing.exr")
-    assert not _reports("ERROR")
-    assert any("'Lost'" in w for w in _reports("WARNING"))
+    pixels = render_still(b.scene, tmp_path / "missing.exr")
+    assert not engine_reports("ERROR")
+    assert any("'Lost'" in w for w in engine_reports("WARNING"))
     assert pixels is not None
     centre = pixels[12:20, 12:20, :3].reshape(-1, 3).mean(axis=0)
     assert centre[0] > 2.0 * centre[1] and centre[2] > 2.0 * centre[1]  # magenta-lit cube
@@ -140,9 +122,9 @@ def test_zero_size_area_light_is_skipped_with_a_warning(library: Any, scene_buil
     light.size = 0.0
     light.energy = 100.0
     b.link(bpy.data.objects.new("FlatPanel", light))
-    pixels = _render(b.scene, tmp_path / "zero_light.exr")
-    assert not _reports("ERROR")
-    warnings = [w for w in _reports("WARNING") if "FlatPanel" in w]
+    pixels = render_still(b.scene, tmp_path / "zero_light.exr")
+    assert not engine_reports("ERROR")
+    warnings = [w for w in engine_reports("WARNING") if "FlatPanel" in w]
     assert len(warnings) == 1 and "skipped" in warnings[0]
     assert pixels is not None and pixels[..., :3].max() > 0.0  # the point light still lights
     assert StratumRenderEngine.last_summary.lights == 1
@@ -154,9 +136,9 @@ def test_mesh_without_faces_is_skipped_with_a_warning(library: Any, scene_builde
     wire = bpy.data.meshes.new("Wire")
     wire.from_pydata([(0, 0, 0), (1, 0, 0), (1, 1, 0)], [(0, 1), (1, 2)], [])
     b.link(bpy.data.objects.new("WireOnly", wire))
-    pixels = _render(b.scene, tmp_path / "no_faces.exr")
-    assert not _reports("ERROR")
-    warnings = [w for w in _reports("WARNING") if "WireOnly" in w]
+    pixels = render_still(b.scene, tmp_path / "no_faces.exr")
+    assert not engine_reports("ERROR")
+    warnings = [w for w in engine_reports("WARNING") if "WireOnly" in w]
     assert len(warnings) == 1 and "no faces" in warnings[0]
     assert pixels is not None and pixels.shape[:2] == (32, 32)
 
@@ -188,8 +170,8 @@ def test_zero_focal_length_is_an_error_naming_the_camera(library: Any, scene_bui
         return cam
 
     monkeypatch.setattr("stratum.export.convert_camera", zero_lens)
-    _render(b.scene, tmp_path / "zero_lens.exr")
-    errors = _reports("ERROR")
+    render_still(b.scene, tmp_path / "zero_lens.exr")
+    errors = engine_reports("ERROR")
     assert len(errors) == 1 and "Camera 'Camera'" in errors[0] and "lens" in errors[0]
     with library.Scene() as scene, pytest.raises(ExportError, match="Camera 'Camera'"):
         export_scene(b.depsgraph(), scene)

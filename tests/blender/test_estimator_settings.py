@@ -20,30 +20,12 @@ import pytest
 from stratum import engine, native, properties
 from stratum.engine import StratumRenderEngine
 
-from conftest import read_image_pixels
+from conftest import engine_reports, render_still
 from test_registration import _RecordingLayout
 
 ENUMS = ("light_sampling", "mis_heuristic", "light_selection", "rr_mode")
 DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection": "mixed",
             "rr_mode": "throughput", "rr_min_depth": 3, "control_variate": 0.0}
-
-
-def _reports(level: str) -> list[str]:
-    return [m for lvl, m in StratumRenderEngine.last_reports if lvl == level]
-
-
-def _render(scene: Any, path: Path) -> np.ndarray | None:
-    """Renders to an EXR and returns its pixels (None if nothing was written). An ERROR report
-    may surface as RuntimeError from the operator in background mode (Blender's reporting, not
-    an exception escaping the engine)."""
-    scene.render.image_settings.file_format = "OPEN_EXR"
-    scene.render.filepath = str(path)
-    scene.render.use_file_extension = False
-    try:
-        bpy.ops.render.render(write_still=True)
-    except RuntimeError:
-        pass
-    return read_image_pixels(path) if path.is_file() else None
 
 
 def _enum_identifiers(name: str) -> list[str]:
@@ -111,8 +93,8 @@ def test_a_rejected_value_is_an_error_report_not_an_exception(
     original = engine.renderer_settings
     monkeypatch.setattr(engine, "renderer_settings",
                         lambda scene: original(scene) | {"rr_mode": "no_such_mode"})
-    _render(b.scene, tmp_path / "rejected.exr")
-    errors = _reports("ERROR")
+    render_still(b.scene, tmp_path / "rejected.exr")
+    errors = engine_reports("ERROR")
     assert len(errors) == 1 and "no_such_mode" in errors[0], StratumRenderEngine.last_reports
 
 
@@ -135,9 +117,9 @@ def test_bsdf_sampling_of_a_point_light_warns_and_renders_black(
     report saying why, and the render finishes (black: that light is all there is)."""
     scene = _point_lit_scene(scene_builder())
     scene.stratum.light_sampling = "bsdf"
-    pixels = _render(scene, tmp_path / "bsdf.exr")
-    assert not _reports("ERROR"), StratumRenderEngine.last_reports
-    warnings = [m for m in _reports("WARNING") if m.startswith("Stratum: ")]
+    pixels = render_still(scene, tmp_path / "bsdf.exr")
+    assert not engine_reports("ERROR"), StratumRenderEngine.last_reports
+    warnings = [m for m in engine_reports("WARNING") if m.startswith("Stratum: ")]
     assert warnings, f"no notice reported: {StratumRenderEngine.last_reports}"
     assert any("point" in m.lower() for m in warnings), warnings
     assert pixels is not None and pixels.shape[:2] == (16, 16)
@@ -149,7 +131,7 @@ def test_strategies_that_sample_the_point_light_have_no_notice(
         library: Any, scene_builder: Any, tmp_path: Path, light_sampling: str) -> None:
     scene = _point_lit_scene(scene_builder())
     scene.stratum.light_sampling = light_sampling
-    pixels = _render(scene, tmp_path / f"{light_sampling}.exr")
+    pixels = render_still(scene, tmp_path / f"{light_sampling}.exr")
     assert StratumRenderEngine.last_reports == []
     assert pixels is not None and pixels[..., :3].max() > 0.0
 

@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 from stratum.engine import StratumRenderEngine
 
-from conftest import read_image_pixels
+from conftest import engine_reports, read_image_pixels
 
 
 def _render(scene: Any, path: Path) -> np.ndarray:
@@ -20,7 +20,7 @@ def _render(scene: Any, path: Path) -> np.ndarray:
     scene.render.filepath = str(path)
     scene.render.use_file_extension = False
     bpy.ops.render.render(write_still=True)
-    errors = [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
+    errors = engine_reports("ERROR")
     assert not errors, errors
     return read_image_pixels(path)
 

@@ -13,7 +13,7 @@ import numpy as np
 import pytest
 from stratum.engine import StratumRenderEngine
 
-from conftest import REPO, read_image_pixels
+from conftest import REPO, engine_reports, read_image_pixels
 
 CORNELL = REPO / "scenes" / "cornell_box.blend"
 
@@ -23,14 +23,10 @@ def _render_to_exr(scene: Any, path: Path) -> np.ndarray:
     scene.render.filepath = str(path)
     scene.render.use_file_extension = False
     bpy.ops.render.render(write_still=True)
-    errors = [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
+    errors = engine_reports("ERROR")
     assert not errors, errors
     assert path.is_file(), f"render did not write {path}"
     return read_image_pixels(path)
-
-
-def _errors() -> list[str]:
-    return [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
 
 
 def test_render_small_scene(library: Any, scene_builder: Any, tmp_path: Path) -> None:
@@ -53,7 +49,7 @@ def test_nan_vertex_render_reports_error(library: Any, scene_builder: Any) -> No
         bpy.ops.render.render()
     except RuntimeError as exc:
         message = str(exc)
-    errors = _errors()
+    errors = engine_reports("ERROR")
     assert errors, "the engine did not report an error"
     assert "BrokenMesh" in errors[0]
     if message:
@@ -71,7 +67,7 @@ def test_missing_library_is_reported(stratum_addon: Any, scene_builder: Any,
         bpy.ops.render.render()
     except RuntimeError:
         pass
-    errors = _errors()
+    errors = engine_reports("ERROR")
     assert errors and "libstratum.so" in errors[0]
 
 
