@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import pytest
 
-from conftest import look_at_origin_from
+from conftest import lit_quad_scene
 
 
 def test_import_without_bpy() -> None:
@@ -403,18 +403,7 @@ def test_estimator_settings_reject_bad_values_naming_them(native: Any, tiny_scen
 def _point_lit_quad(native: Any) -> Any:
     """The tiny scene's quad lit only by a point light of radius 0 (no surface to hit), black
     background: every pixel's light comes from the point light."""
-    scene = native.Scene()
-    grey = scene.add_material({"model": native.MATERIAL_DIFFUSE, "base_color": (0.8, 0.8, 0.8)})
-    positions = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float32)
-    triangles = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
-    mesh = scene.add_mesh(positions, triangles, np.full(2, grey, dtype=np.uint32))
-    scene.add_instance(mesh, np.eye(4, dtype=np.float32))
-    light = np.eye(4, dtype=np.float32)
-    light[2, 3] = 2.0
-    scene.add_light(type=native.LIGHT_POINT, strength=100.0, radius=0.0, transform=light)
-    scene.set_camera(native.Camera(transform=look_at_origin_from(4.0)))
-    scene.set_background((0.0, 0.0, 0.0))
-    return scene
+    return lit_quad_scene(native, light_radius=0.0, background=0.0)
 
 
 @pytest.mark.parametrize("light_sampling", ["mis", "nee", "bsdf"])
