@@ -221,12 +221,13 @@ def _blocks(img: np.ndarray, block: int = BLOCK) -> np.ndarray:
     return img.reshape(nb, block, nb, block, img.shape[-1])
 
 
-def _render_two_seeds(name: str, configure, out: Path = OUT) -> Renders:
-    """The Cornell box rendered with seeds SEEDS, configure(scene, seed) choosing the renderer
-    and its settings; EXRs in out/<name>_seed<seed>.exr. Shared by test_estimator_agreement."""
+def _render_two_seeds(name: str, configure, out: Path = OUT, open_scene=_open_scene) -> Renders:
+    """The scene open_scene() opens (the Cornell box by default) rendered with seeds SEEDS,
+    configure(scene, seed) choosing the renderer and its settings; EXRs in
+    out/<name>_seed<seed>.exr. Shared by test_estimator_agreement and test_feature_agreement."""
     images, seconds = [], []
     for seed in SEEDS:
-        scene = _open_scene()
+        scene = open_scene()
         configure(scene, seed)
         img, sec = _render_exr(scene, out / f"{name}_seed{seed}.exr")
         images.append(img)

@@ -45,7 +45,6 @@ from __future__ import annotations
 import json
 import os
 import subprocess
-import time
 from pathlib import Path
 
 import bpy
@@ -63,6 +62,7 @@ from test_cycles_agreement import (
 )
 from test_cycles_agreement import _configure_cycles as configure_cycles
 from test_cycles_agreement import _configure_stratum as configure_stratum
+from test_cycles_agreement import _render_two_seeds as render_two_seeds
 
 REPO = Path(__file__).resolve().parents[2]
 FEATURES = REPO / "scenes" / "features"
@@ -115,32 +115,15 @@ def _open_case(case: str) -> bpy.types.Scene:
     return scene
 
 
-def _render(case: str, engine: str, seed: int) -> tuple[np.ndarray, float]:
-    scene = _open_case(case)
+def _render_two_seeds(case: str, engine: str) -> Renders:
+    """The case rendered by `engine` with seeds SEEDS; EXRs in
+    FEATURE_OUT/<case>_<engine>_seed<seed>.exr."""
     spp = CASES[case][2]
     configure = configure_cycles if engine == "cycles" else configure_stratum
-    configure(scene, seed, samples=spp, max_bounces=MAX_BOUNCES)
-    path = FEATURE_OUT / f"{case}_{engine}_seed{seed}.exr"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if path.exists():
-        path.unlink()
-    scene.render.filepath = str(path)
-    t0 = time.perf_counter()
-    bpy.ops.render.render(write_still=True)
-    seconds = time.perf_counter() - t0
-    assert path.is_file(), f"{case}: {engine} did not write {path}"
-    return _load_exr(path, RES), seconds
-
-
-def _render_two_seeds(case: str, engine: str) -> Renders:
-    images, seconds = [], []
-    for seed in SEEDS:
-        img, sec = _render(case, engine, seed)
-        images.append(img)
-        seconds.append(sec)
-    renders = Renders(engine, images, seconds, BLOCK)
-    renders.calibrate()
-    return renders
+    return render_two_seeds(f"{case}_{engine}",
+                            lambda scene, seed: configure(scene, seed, samples=spp,
+                                                          max_bounces=MAX_BOUNCES),
+                            FEATURE_OUT, lambda: _open_case(case))
 
 
 # ---- FLIP --------------------------------------------------------------------------------------
