@@ -20,7 +20,7 @@
 namespace stratum {
 namespace {
 
-constexpr int kChiSquareTests = 10;
+constexpr int kChiSquareTests = 12;
 constexpr double kSignificance = 0.01 / kChiSquareTests;
 constexpr int kSampleCount = 1'000'000;
 
@@ -150,6 +150,38 @@ TEST(Warps, UniformTriangleBarycentrics) {
     }
     const ChiSquare r = pearson(observed, expected);
     EXPECT_GT(r.p_value, kSignificance) << "chi2 = " << r.statistic << ", dof = " << r.dof;
+}
+
+// The bilinear warp on a 16 × 16 grid of cells of the unit square. A bilinear function's mean
+// over a cell is its value at the cell's centre (it is linear in each variable), so the expected
+// count of a cell is N · pdf(centre) / 256 exactly. Two weight sets: skewed, and one corner 0.
+TEST(Warps, BilinearMatchesItsDensity) {
+    constexpr int kGrid = 16;
+    const BilinearWeights cases[] = {{{0.1f, 1.0f, 2.0f, 0.5f}}, {{0.0f, 0.3f, 0.3f, 1.0f}}};
+    uint64_t seed = 21;
+    for (const BilinearWeights& w : cases) {
+        std::vector<double> expected(kGrid * kGrid), observed(kGrid * kGrid, 0.0);
+        for (int i = 0; i < kGrid; ++i)
+            for (int j = 0; j < kGrid; ++j)
+                expected[i * kGrid + j] =
+                    kSampleCount * bilinear_pdf({(float(i) + 0.5f) / kGrid, (float(j) + 0.5f) / kGrid}, w) /
+                    (kGrid * kGrid);
+        std::mt19937_64 rng(seed++);
+        std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+        for (int s = 0; s < kSampleCount; ++s) {
+            const Vec2 p = sample_bilinear({uniform(rng), uniform(rng)}, w);
+            ASSERT_TRUE(p.x >= 0.0f && p.x < 1.0f && p.y >= 0.0f && p.y < 1.0f) << p.x << ", " << p.y;
+            observed[int(p.x * kGrid) * kGrid + int(p.y * kGrid)] += 1;
+        }
+        const ChiSquare r = pearson(observed, expected);
+        EXPECT_GT(r.p_value, kSignificance) << "chi2 = " << r.statistic << ", dof = " << r.dof;
+    }
+    // Equal weights: the identity, density 1.
+    const BilinearWeights flat{{2.0f, 2.0f, 2.0f, 2.0f}};
+    const Vec2 u(0.3f, 0.7f);
+    EXPECT_NEAR(sample_bilinear(u, flat).x, u.x, 1e-6f);
+    EXPECT_NEAR(sample_bilinear(u, flat).y, u.y, 1e-6f);
+    EXPECT_FLOAT_EQ(bilinear_pdf(u, flat), 1.0f);
 }
 
 TEST(Warps, ChiSquareRejectsAWrongDensity) {

@@ -10,6 +10,8 @@
 // | sample_uniform_cone               | 1/(2 pi (1 - cos_max))          | uniform in cos(theta) on a cap  |
 // | sample_uniform_triangle           | 2 (barycentric area measure)    | textbook 4.38, fold method      |
 // | sample_ggx_visible_normal         | G1(wo) max(0,wo.h) D(h) / wo.z  | Heitz 2018, JCGT 7(4)           |
+// | sample_bilinear                   | bilinear in the corner weights  | marginal then conditional,      |
+// |                                   | (unit-square measure)           | each linear (inverse CDF)       |
 //
 // Directions are in a local frame with z up; densities are per unit solid angle unless stated.
 #pragma once
@@ -90,6 +92,37 @@ inline Vec3 sample_uniform_triangle(Vec2 u) {
         b2 = 1.0f - b2;
     }
     return {1.0f - b1 - b2, b1, b2};
+}
+
+// Density on [0,1] proportional to (1 − t) a + t b (a, b >= 0, not both 0):
+// p(t) = 2 ((1 − t) a + t b) / (a + b). Inverting F(t) = (a t + (b − a) t²/2) / ((a + b)/2) = u
+// gives t = (−a + √(a² + u (b² − a²))) / (b − a); multiplied through by the conjugate,
+// t = u (a + b) / (a + √((1 − u) a² + u b²)), which has no cancellation and holds for a = b.
+inline float sample_linear(float u, float a, float b) {
+    const float t = u * (a + b) / (a + std::sqrt((1.0f - u) * a * a + u * b * b));
+    return std::min(t, kOneMinusEpsilon);
+}
+inline float linear_pdf(float t, float a, float b) { return 2.0f * ((1.0f - t) * a + t * b) / (a + b); }
+
+// Corner weights of a bilinear density on the unit square: w[0] at (0,0), w[1] at (1,0),
+// w[2] at (0,1), w[3] at (1,1); all >= 0, not all 0.
+struct BilinearWeights {
+    float w[4];
+};
+// p(x, y) = 4 ((1−x)(1−y) w0 + x(1−y) w1 + (1−x) y w2 + x y w3) / (w0 + w1 + w2 + w3).
+inline float bilinear_pdf(Vec2 u, const BilinearWeights& b) {
+    const float sum = b.w[0] + b.w[1] + b.w[2] + b.w[3];
+    return 4.0f *
+           ((1 - u.x) * (1 - u.y) * b.w[0] + u.x * (1 - u.y) * b.w[1] + (1 - u.x) * u.y * b.w[2] +
+            u.x * u.y * b.w[3]) /
+           sum;
+}
+// y from its marginal (linear between the bottom and top edge sums), then x from the
+// conditional at that y (linear between the left and right edge weights there).
+inline Vec2 sample_bilinear(Vec2 u, const BilinearWeights& b) {
+    const float y = sample_linear(u.y, b.w[0] + b.w[1], b.w[2] + b.w[3]);
+    const float x = sample_linear(u.x, (1 - y) * b.w[0] + y * b.w[2], (1 - y) * b.w[1] + y * b.w[3]);
+    return {x, y};
 }
 
 // Heitz 2018, "Sampling the GGX Distribution of Visible Normals" (JCGT 7(4)), isotropic alpha:
