@@ -77,6 +77,7 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
         "light_sampling": str(s.light_sampling),
         "mis_heuristic": str(s.mis_heuristic),
         "light_selection": str(s.light_selection),
+        "triangle_sampling": str(s.triangle_sampling),
         "rr_mode": str(s.rr_mode),
         "rr_min_depth": int(s.rr_min_depth),
         "control_variate": float(s.control_variate),

@@ -40,6 +40,14 @@ LIGHT_SELECTION_ITEMS: EnumItems = [
     ("power", "Power", "Proportional to each light's power: p_j = Phi_j / sum Phi (eq. 5.14)"),
     ("uniform", "Uniform", "Every light with the same probability 1/N"),
 ]
+TRIANGLE_SAMPLING_ITEMS: EnumItems = [
+    ("solid_angle", "Solid Angle",
+     "A direction uniform in the solid angle the triangle subtends (Arvo 1995): no fireflies "
+     "next to emissive meshes"),
+    ("area", "Area",
+     "A point uniform in the triangle's area (textbook eq. 5.9): its weight grows as 1/r^2 "
+     "near the emitter"),
+]
 RR_MODE_ITEMS: EnumItems = [
     ("throughput", "Throughput",
      "Survival probability min(1, max channel of the path throughput) (eq. 5.5-5.6)"),
@@ -150,6 +158,11 @@ def _make_property_group(samplers: EnumItems, filters: EnumItems, hemispheres: E
                 name="Light Selection",
                 description="Probability of choosing each light for a light sample",
                 items=LIGHT_SELECTION_ITEMS, default=LIGHT_SELECTION_ITEMS[0][0],
+            ),
+            "triangle_sampling": EnumProperty(
+                name="Triangle Sampling",
+                description="How a light sample takes a point on an emissive triangle",
+                items=TRIANGLE_SAMPLING_ITEMS, default=TRIANGLE_SAMPLING_ITEMS[0][0],
             ),
             "rr_mode": EnumProperty(
                 name="Russian Roulette",

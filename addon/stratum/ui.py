@@ -79,6 +79,8 @@ class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
             col.prop(settings, "light_sampling", text="Light Sampling")
             if settings.light_sampling == "mis":
                 col.prop(settings, "mis_heuristic", text="MIS Heuristic")
+            if settings.light_sampling != "bsdf":
+                col.prop(settings, "triangle_sampling", text="Triangle Sampling")
         col.prop(settings, "light_selection", text="Light Selection")
         col = layout.column()
         col.prop(settings, "rr_mode", text="Russian Roulette")

@@ -1,5 +1,5 @@
 """The estimator settings of issue 6 in Blender: scene.stratum.light_sampling, mis_heuristic,
-light_selection, rr_mode, rr_min_depth, control_variate; the renderer's notices as WARNING
+light_selection, triangle_sampling, rr_mode, rr_min_depth, control_variate; the renderer's notices as WARNING
 reports. Runs in Blender 3.4 (run_in_blender.py) and under the bpy 5.0.1 wheel.
 
 The Python enum items and the native value names are two lists that could drift apart: every
@@ -23,9 +23,12 @@ from stratum.engine import StratumRenderEngine
 from conftest import engine_reports, render_still
 from test_registration import _RecordingLayout
 
-ENUMS = ("light_sampling", "mis_heuristic", "light_selection", "rr_mode")
+ENUMS = ("light_sampling", "mis_heuristic", "light_selection", "triangle_sampling", "rr_mode")
 DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection": "mixed",
-            "rr_mode": "throughput", "rr_min_depth": 3, "control_variate": 0.0}
+            "triangle_sampling": "solid_angle", "rr_mode": "throughput", "rr_min_depth": 3,
+            "control_variate": 0.0}
+# Values per enum: the native lists (native/src/integrators/estimator_options.cpp).
+ENUM_SIZES = {"triangle_sampling": 2}
 
 
 def _enum_identifiers(name: str) -> list[str]:
@@ -51,7 +54,7 @@ def test_every_enum_item_is_accepted_by_the_native_renderer(library: Any, scene_
     """Each item goes the engine's way (scene.stratum -> renderer_settings -> Renderer.set)."""
     b = scene_builder()
     items = _enum_identifiers(name)
-    assert len(items) == 3, items
+    assert len(items) == ENUM_SIZES.get(name, 3), items
     with native.Scene() as scene:
         for item in items:
             setattr(b.scene.stratum, name, item)
@@ -74,8 +77,8 @@ def test_numeric_settings_reach_the_renderer(library: Any, scene_builder: Any) -
 
 @pytest.mark.parametrize(("name", "bad"), [
     ("light_sampling", "bsdf_only"), ("mis_heuristic", "cube"), ("light_selection", "random"),
-    ("rr_mode", "russian"), ("rr_min_depth", -1), ("rr_min_depth", 1025),
-    ("control_variate", -0.5), ("control_variate", math.inf),
+    ("triangle_sampling", "spherical"), ("rr_mode", "russian"), ("rr_min_depth", -1),
+    ("rr_min_depth", 1025), ("control_variate", -0.5), ("control_variate", math.inf),
 ])
 def test_bad_native_values_are_rejected_naming_them(library: Any, name: str, bad: Any) -> None:
     with (native.Scene() as scene, native.Renderer(scene) as renderer,
@@ -168,5 +171,6 @@ def test_light_paths_panel_draws_for_every_integrator(library: Any, scene_builde
                 assert ("light_sampling" in drawn) == path_tracer
                 assert ("control_variate" in drawn) == path_tracer
                 assert ("mis_heuristic" in drawn) == (path_tracer and light_sampling == "mis")
+                assert ("triangle_sampling" in drawn) == (path_tracer and light_sampling != "bsdf")
                 assert ("rr_min_depth" in drawn) == (rr_mode != "off")
     assert properties.load_error == ""

@@ -152,7 +152,7 @@ TEST(AreaLightSpread, LightVisibilityReachesTheSamples) {
     set.add(PointLight(Vec3(0, 0, 2), Rgb(1.0f), 0.0f), 0, STRATUM_VISIBLE_DIFFUSE | STRATUM_VISIBLE_SHADOW);
     set.finalize(1.0f);
     LightSample ls;
-    ASSERT_TRUE(set.sample({0, 0, 0}, 0.5f, {0.5f, 0.5f}, &ls));
+    ASSERT_TRUE(set.sample({0, 0, 0}, {0, 0, 0}, 0.5f, {0.5f, 0.5f}, &ls));
     EXPECT_EQ(ls.visibility, static_cast<uint32_t>(STRATUM_VISIBLE_DIFFUSE | STRATUM_VISIBLE_SHADOW));
 
     using namespace stratum_test;

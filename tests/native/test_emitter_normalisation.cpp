@@ -28,6 +28,8 @@
 // (seed_stats). Agreement is accepted within 4σ of the difference, σ = √(σ₁² + σ₂²).
 #include <gtest/gtest.h>
 
+#include <cstdio>
+
 #include "api/scene_handle.h"
 #include "render_helpers.h"
 #include "scene/render_scene.h"
@@ -37,13 +39,22 @@ using namespace stratum_test;
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr float kA = 0.6f, kB = 0.4f, kL0 = 2.0f, kHeight = 1.0f, kRho = 0.8f;
-constexpr float kCentreX = 0.15f, kCentreY = 0.05f;
+constexpr float kA = 0.6f, kB = 0.4f, kL0 = 2.0f, kRho = 0.8f;
 constexpr double kHalfView = 0.5;  // the floor square the camera sees: 90° from height 0.5
+
+// Where the panel's centre is.
+struct Panel {
+    float centre_x, centre_y, height;
+};
+constexpr Panel kOverhead = {0.15f, 0.05f, 1.0f};
+// 2 cm over the floor, just outside the view: its near edge x = 0.52 at z = 0.02 projects to
+// 0.52 · 0.5/0.48 = 0.54 > 0.5 on the floor, so the camera sees floor only, down to 2.8 cm from
+// the edge (the gap over the Cornell box's ceiling: test_triangle_sampling_near_an_emitter).
+constexpr Panel kBeside = {0.82f, 0.0f, 0.02f};
 
 enum class Emitter { MeshQuad, AreaLamp };
 
-StratumScene* make_panel_scene(Emitter emitter) {
+StratumScene* make_panel_scene(Emitter emitter, const Panel& panel = kOverhead) {
     StratumScene* scene = nullptr;
     if (stratum_scene_create(&scene) != STRATUM_OK) return nullptr;
     const StratumMaterialDesc floor_material{
@@ -52,14 +63,14 @@ StratumScene* make_panel_scene(Emitter emitter) {
     const StratumMaterialDesc panel_material{
         STRATUM_MATERIAL_EMISSION, {0.0f, 0.0f, 0.0f},    1.0f, 0.0f, 0.0f, 1.5f,
         {kL0, kL0, kL0},           STRATUM_MICROFACET_GGX};
-    const float x0 = kCentreX - 0.5f * kA, x1 = kCentreX + 0.5f * kA;
-    const float y0 = kCentreY - 0.5f * kB, y1 = kCentreY + 0.5f * kB;
+    const float x0 = panel.centre_x - 0.5f * kA, x1 = panel.centre_x + 0.5f * kA;
+    const float y0 = panel.centre_y - 0.5f * kB, y1 = panel.centre_y + 0.5f * kB;
+    const float z = panel.height;
     std::vector<float> positions = {-20, -20, 0, 20, -20, 0, 20, 20, 0, -20, 20, 0};
     std::vector<uint32_t> triangles = {0, 1, 2, 0, 2, 3};
     std::vector<uint32_t> materials = {0, 0};
     if (emitter == Emitter::MeshQuad) {
-        positions.insert(positions.end(),
-                         {x0, y0, kHeight, x1, y0, kHeight, x1, y1, kHeight, x0, y1, kHeight});
+        positions.insert(positions.end(), {x0, y0, z, x1, y0, z, x1, y1, z, x0, y1, z});
         triangles.insert(triangles.end(), {4, 6, 5, 4, 7, 6});  // wound to face −Z
         materials.insert(materials.end(), {1, 1});
     }
@@ -84,9 +95,9 @@ StratumScene* make_panel_scene(Emitter emitter) {
         lamp.size_x = kA;
         lamp.size_y = kB;
         std::copy(kIdentity, kIdentity + 16, lamp.transform);  // local −Z = world −Z: faces the floor
-        lamp.transform[3] = kCentreX;
-        lamp.transform[7] = kCentreY;
-        lamp.transform[11] = kHeight;
+        lamp.transform[3] = panel.centre_x;
+        lamp.transform[7] = panel.centre_y;
+        lamp.transform[11] = panel.height;
         ok = stratum_scene_add_light(scene, &lamp) == STRATUM_OK;
     }
     if (!ok) {
@@ -97,8 +108,8 @@ StratumScene* make_panel_scene(Emitter emitter) {
 }
 
 // Irradiance at the floor point (px, py) from the panel (Howell B-3 by superposition).
-double panel_irradiance(double px, double py) {
-    const double c = kHeight;
+double panel_irradiance(double px, double py, const Panel& panel = kOverhead) {
+    const double c = panel.height;
     // Signed corner term: the rectangle [0, u] × [0, v] (u, v may be negative) above the point.
     const auto corner = [c](double u, double v) {
         const double su = u < 0 ? -1.0 : 1.0, sv = v < 0 ? -1.0 : 1.0;
@@ -107,35 +118,36 @@ double panel_irradiance(double px, double py) {
         const double F = (X / rx * std::atan(Y / rx) + Y / ry * std::atan(X / ry)) / (2.0 * kPi);
         return su * sv * F;
     };
-    const double x0 = kCentreX - 0.5 * kA - px, x1 = kCentreX + 0.5 * kA - px;
-    const double y0 = kCentreY - 0.5 * kB - py, y1 = kCentreY + 0.5 * kB - py;
+    const double x0 = panel.centre_x - 0.5 * kA - px, x1 = panel.centre_x + 0.5 * kA - px;
+    const double y0 = panel.centre_y - 0.5 * kB - py, y1 = panel.centre_y + 0.5 * kB - py;
     const double F = corner(x1, y1) - corner(x0, y1) - corner(x1, y0) + corner(x0, y0);
     return kPi * kL0 * F;
 }
 
-// The average of the closed form over the viewed square (midpoint rule, 64 × 64).
-double viewed_irradiance() {
-    constexpr int kN = 64;
+// The average of the closed form over the viewed square (midpoint rule, kN × kN).
+template <int kN = 64>
+double viewed_irradiance(const Panel& panel = kOverhead) {
     double sum = 0;
     for (int i = 0; i < kN; ++i)
         for (int j = 0; j < kN; ++j)
             sum += panel_irradiance(-kHalfView + 2 * kHalfView * (i + 0.5) / kN,
-                                    -kHalfView + 2 * kHalfView * (j + 0.5) / kN);
+                                    -kHalfView + 2 * kHalfView * (j + 0.5) / kN, panel);
     return sum / (kN * kN);
 }
 
 // The floor's irradiance averaged over the view, E = π·(image mean)/ρ, and its standard error.
-Measurement measure_irradiance(StratumScene* scene, const char* integrator) {
+// `estimator`: further settings (light_sampling, triangle_sampling). `seeds` > 1 measures the
+// standard error from the spread of the image means (render_helpers.h); with 1 it comes from
+// the pixels' spread, which also counts the image's own variation (an upper bound, tight when the
+// image is uniform; the light tracer's pixels are correlated, so it always takes 8 seeds).
+Measurement measure_irradiance(StratumScene* scene, const char* integrator, const Settings& estimator = {},
+                               uint32_t seeds = 1) {
     const bool light_tracer = std::string_view(integrator) == "light";
-    Measurement m = measure(scene,
-                            {{"width", 32},
-                             {"height", 32},
-                             {"samples", 64},
-                             {"seed", 5u},
-                             {"filter_type", "box"},
-                             {"filter_width", 1.0},
-                             {"integrator", integrator}},
-                            light_tracer ? 8 : 1);
+    Settings settings = {
+        {"width", 32},          {"height", 32},        {"samples", 64},           {"seed", 5u},
+        {"filter_type", "box"}, {"filter_width", 1.0}, {"integrator", integrator}};
+    settings.insert(settings.end(), estimator.begin(), estimator.end());
+    Measurement m = measure(scene, settings, light_tracer ? 8 : seeds);
     m.mean *= kPi / kRho;
     m.standard_error *= kPi / kRho;
     return m;
@@ -155,7 +167,7 @@ double light_set_power(StratumScene* scene) {
 // at height 1 has F = (1/2π)·2·(1/√2)·atan(1/√2) = 0.13853 (Howell B-3 table value 0.1385).
 TEST(EmitterNormalisation, ClosedFormReproducesItsLimits) {
     EXPECT_NEAR(2.0 * (1.0 / std::sqrt(2.0)) * std::atan(1.0 / std::sqrt(2.0)) / (2.0 * kPi), 0.1385, 1e-4);
-    const double centre = panel_irradiance(kCentreX, kCentreY);
+    const double centre = panel_irradiance(kOverhead.centre_x, kOverhead.centre_y);
     // Small-panel limit at the centre: E ≈ L₀·ab/c² (solid angle × cos², cos ≈ 1), slightly less.
     EXPECT_LT(centre, kL0 * kA * kB);
     EXPECT_GT(centre, 0.8 * kL0 * kA * kB);
@@ -207,4 +219,41 @@ TEST(EmitterNormalisation, LightTracingMeasuresWhatPathTracingMeasures) {
         EXPECT_LT(light.standard_error, 0.02 * expected) << name;
         stratum_scene_destroy(scene);
     }
+}
+
+// The panel 2 cm over the floor (kBeside): every strategy of finding the emitter measures the
+// same irradiance, with either way of sampling its triangles (lights/emissive_triangle.h; the
+// bound on solid-angle sampling's weight is test_triangle_light_sampling.cpp's). Floor points 2.8 cm from the
+// panel's edge get area samples of weight up to ρ/π · L₀ · A/r² ≈ 0.8/π · 2 · 0.12/0.0008 ≈ 76 (against an
+// image mean of ≈ 0.15), the Cornell box's ceiling gap in small. The closed form varies on the panel's height
+// scale there, so it is averaged on a 1024² grid: the midpoint rule's error (h²/24)·|∇²E| with h = 1/1024 and
+// |∇²E| ≤ 8E/c², c = 0.02, is ≤ 8e-4 E in the strip next to the panel and far less elsewhere, below the
+// tolerances.
+TEST(EmitterNormalisation, EveryWayOfFindingAPanelTwoCentimetresAwayMeasuresTheClosedForm) {
+    const double expected = viewed_irradiance<1024>(kBeside);
+    StratumScene* scene = make_panel_scene(Emitter::MeshQuad, kBeside);
+    ASSERT_NE(scene, nullptr) << stratum_last_error();
+    struct Case {
+        const char* label;
+        Settings settings;
+    };
+    const Case cases[] = {
+        {"bsdf", {{"light_sampling", "bsdf"}}},
+        {"nee, area", {{"light_sampling", "nee"}, {"triangle_sampling", "area"}}},
+        {"nee, solid angle", {{"light_sampling", "nee"}, {"triangle_sampling", "solid_angle"}}},
+        {"mis, area", {{"light_sampling", "mis"}, {"triangle_sampling", "area"}}},
+        {"mis, solid angle", {{"light_sampling", "mis"}, {"triangle_sampling", "solid_angle"}}},
+    };
+    for (const Case& c : cases) {
+        // 16 seeds: the image is far from uniform (lit in a strip next to the panel), so the
+        // pixels' spread would overstate the standard error.
+        const Measurement m = measure_irradiance(scene, "path", c.settings, 16);
+        ASSERT_TRUE(m.error.empty()) << c.label << ": " << m.error;
+        EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error)
+            << c.label << ": E " << m.mean << " expected " << expected << " se " << m.standard_error;
+        EXPECT_GT(m.standard_error, 0.0) << c.label;
+        std::printf("%-17s E %.5f (closed form %.5f), standard error %.2e\n", c.label, m.mean, expected,
+                    m.standard_error);
+    }
+    stratum_scene_destroy(scene);
 }

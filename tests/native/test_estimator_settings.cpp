@@ -59,13 +59,12 @@ struct RendererFixture : ::testing::Test {
 
 TEST_F(RendererFixture, EveryOptionValueIsAcceptedAndUnknownOnesAreNamed) {
     const std::pair<const char*, std::span<const std::string_view> (*)()> options[] = {
-        {"light_sampling", &light_sampling_names},
-        {"mis_heuristic", &mis_heuristic_names},
-        {"light_selection", &light_selection_names},
-        {"rr_mode", &rr_mode_names},
+        {"light_sampling", &light_sampling_names},       {"mis_heuristic", &mis_heuristic_names},
+        {"light_selection", &light_selection_names},     {"rr_mode", &rr_mode_names},
+        {"triangle_sampling", &triangle_sampling_names},
     };
     for (const auto& [name, names] : options) {
-        ASSERT_EQ(names().size(), 3u) << name;
+        ASSERT_EQ(names().size(), name == std::string_view("triangle_sampling") ? 2u : 3u) << name;
         for (std::string_view value : names()) {
             EXPECT_EQ(stratum_renderer_set_string(renderer, name, std::string(value).c_str()), STRATUM_OK)
                 << name << "=" << value << ": " << stratum_last_error();

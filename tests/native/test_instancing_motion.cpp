@@ -243,7 +243,7 @@ TEST(InstanceShading, EmissiveLightsSumTheClosuresAndSkipMovingEmitters) {
     EXPECT_TRUE(rs.has_motion());
     EXPECT_EQ(rs.lights().size(), 4u);  // the two static squares' triangles
     LightSample ls;
-    ASSERT_TRUE(rs.lights().sample({0, 0, 1}, 0.1f, {0.3f, 0.3f}, &ls));
+    ASSERT_TRUE(rs.lights().sample({0, 0, 1}, {0, 0, 0}, 0.1f, {0.3f, 0.3f}, &ls));
     EXPECT_EQ(ls.radiance.r, 1.5f);
     EXPECT_EQ(ls.radiance.b, 1.5f);
     SurfaceHit hit;

@@ -7,7 +7,9 @@
 // Each case is a combination of `integrator` (path, direct, light), `light_sampling` (bsdf, nee,
 // mis) × `mis_heuristic` (balance, power, max), `light_selection` (mixed, power, uniform; the
 // sphere's triangles differ in area, so uniform and power choose differently, while mixed equals
-// power with a single emissive object), `rr_mode` (off, throughput, albedo) with `rr_min_depth`,
+// power with a single emissive object), `triangle_sampling` (solid_angle, the default, and area;
+// the walls' own and nearly coplanar neighbouring triangles take the area branch either way:
+// lights/emissive_triangle.h), `rr_mode` (off, throughput, albedo) with `rr_min_depth`,
 // and `control_variate` L_a (a multiple of the sphere's exact radiance, inside and outside (0,
 // 2L)): every value of every setting appears at least once, and every case runs against both
 // spheres, except BSDF sampling alone with the point lamp, which cannot see it
@@ -77,6 +79,14 @@ const std::vector<EstimatorCase>& path_cases() {
          30,
          0},
         {"nee, rr off", {{"light_sampling", "nee"}, {"rr_mode", "off"}}, 2, 0},
+        {"nee, area triangle sampling, rr off",
+         {{"light_sampling", "nee"}, {"triangle_sampling", "area"}, {"rr_mode", "off"}},
+         2,
+         0},
+        {"mis balance, area triangle sampling",
+         {{"light_sampling", "mis"}, {"mis_heuristic", "balance"}, {"triangle_sampling", "area"}},
+         30,
+         0},
         {"nee, uniform selection, rr throughput from 0",
          {{"light_sampling", "nee"},
           {"light_selection", "uniform"},

@@ -160,7 +160,8 @@ def test_cache_key_changes_with_every_setting() -> None:
               plan.cache_key(base, _estimator("direct"), "sobol", 4, 0)]
     # Every estimator setting is in the key, whether a spec or --set gives it.
     for name, value in (("light_sampling", "nee"), ("mis_heuristic", "balance"),
-                        ("light_selection", "power"), ("rr_mode", "off"), ("rr_min_depth", 5),
+                        ("light_selection", "power"), ("triangle_sampling", "area"),
+                        ("rr_mode", "off"), ("rr_min_depth", 5),
                         ("control_variate", 0.25)):
         others.append(plan.cache_key(base, _estimator(f"path:{name}={value}"), "sobol", 4, 0))
         assert plan.cache_key(base, _estimator("path", {name: value}), "sobol", 4, 0) == \
@@ -198,6 +199,9 @@ def test_batches_balance_cost() -> None:
        {"rr_mode": "off", "rr_min_depth": 0, "control_variate": 0.5})]),
     ("direct:light_selection=uniform,ao",
      [("direct", "direct+sel-uniform", {"light_selection": "uniform"}), ("ao", "ao", {})]),
+    ("path:light_sampling=nee,triangle_sampling=area,path:light_sampling=nee",
+     [("path", "nee+tri-area", {"light_sampling": "nee", "triangle_sampling": "area"}),
+      ("path", "nee", {"light_sampling": "nee"})]),
 ])
 def test_estimator_specs_parse_resolve_and_label(text: str, expected: list[Any]) -> None:
     resolved = estimators.resolve_all(estimators.parse_specs(text, INTEGRATORS), {})
@@ -709,29 +713,30 @@ def test_study_equal_time_interpolates_the_mse_time_curve() -> None:
     """On MSE = v/N, t = c·N the MSE at time T is exactly v·c/T (a line of slope -1 in
     log-log), whether T falls between measured points or below an estimator's cheapest."""
     study = _study_estimators()
-    costs = {"bsdf": (4.0, 0.5), "nee": (1.0, 1.0), "mis-power": (1.5, 1.2),
+    nee_area = study.BOOK_NEE
+    costs = {"bsdf": (4.0, 0.5), nee_area: (1.0, 1.0), "mis-power": (1.5, 1.2),
              "direct": (0.5, 0.1)}
     budget, at = study.equal_time(_synthetic_results(costs))
     assert budget == pytest.approx(0.5 * 16)  # bsdf is the cheapest unbiased at 16 spp
     for series, (v, c) in costs.items():
         assert at[series][0] == pytest.approx(v * c / budget)
-    assert not at["bsdf"][1] and not at["nee"][1] and at["direct"][1]  # direct ends at 1.6 s
-    # Median pixel errors a tenth of the MSE, except nee's, which a hundredth: the ratios
+    assert not at["bsdf"][1] and not at[nee_area][1] and at["direct"][1]  # direct ends at 1.6 s
+    # Median pixel errors a tenth of the MSE, except the NEE's, which a hundredth: the ratios
     # to mis-power follow.
-    medians = {(s, n): v / n / (100.0 if s == "nee" else 10.0)
+    medians = {(s, n): v / n / (100.0 if s == nee_area else 10.0)
                for s, (v, _) in costs.items() for n in (1, 4, 16)}
     text, numbers = study.table(_synthetic_results(costs), medians)
-    nee = numbers["series"]["nee"]
+    nee = numbers["series"][nee_area]
     assert nee["ratio_equal_spp"] == pytest.approx(1.0 / 1.5)
     assert nee["median_ratio_equal_spp"] == pytest.approx(0.1 / 1.5)
     assert nee["median_ratio_equal_time"] == pytest.approx(0.1 * 1.0 / 1.8)
     assert numbers["series"]["bsdf"]["ratio_equal_time"] == pytest.approx(2.0 / 1.8)
-    assert "| nee |" in text
+    assert f"| {nee_area} |" in text
     lines = study.verdicts({"est_small": numbers})
     small = next(line for line in lines if line.startswith("- NEE wins for small lights"))
-    assert "nee/bsdf = 0.25 (MSE, equal spp: shown)" in small
-    assert "nee/bsdf = 0.5 (MSE, equal time: shown)" in small
-    assert "nee/bsdf = 0.025 (median px error, equal spp: shown)" in small
+    assert f"{nee_area}/bsdf = 0.25 (MSE, equal spp: shown)" in small
+    assert f"{nee_area}/bsdf = 0.5 (MSE, equal time: shown)" in small
+    assert f"{nee_area}/bsdf = 0.025 (median px error, equal spp: shown)" in small
     assert any("not measured" in line for line in lines)  # est_large was not given
 
 
@@ -747,7 +752,8 @@ def test_study_quick_runs_the_estimator_ladder(native: Any, tmp_path: Path) -> N
     print(f"study --quick (estimators): {time.perf_counter() - started:.0f} s")
     assert proc.returncode == 0, proc.stderr[-3000:]
     page = (out / "estimators.md").read_text()
-    labels = ["bsdf", "nee", "mis-balance", "mis-power", "mis-max", "direct"]
+    labels = ["bsdf", "nee+tri-area", "nee", "mis-balance", "mis-power", "mis-max",
+              "mis-power+tri-area", "direct"]
     if "light" in {e.name for e in native.registry("integrator")}:
         labels.append("light")
     for run in ("est_small", "est_large", "est_glossy"):

@@ -389,8 +389,8 @@ def test_add_instance_ex_motion_visibility_holdout(native: Any, tmp_path: Any) -
 
 @pytest.mark.parametrize(("name", "bad"), [
     ("light_sampling", "bsdf_only"), ("mis_heuristic", "cube"), ("light_selection", "random"),
-    ("rr_mode", "russian"), ("rr_min_depth", -1), ("rr_min_depth", 1025),
-    ("control_variate", -0.5), ("control_variate", float("nan")),
+    ("triangle_sampling", "spherical"), ("rr_mode", "russian"), ("rr_min_depth", -1),
+    ("rr_min_depth", 1025), ("control_variate", -0.5), ("control_variate", float("nan")),
 ])
 def test_estimator_settings_reject_bad_values_naming_them(native: Any, tiny_scene: Any,
                                                           name: str, bad: Any) -> None:

@@ -80,6 +80,7 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    "continues the spec before it). INTEGRATOR: path, direct, ao, light (the "
                    "native registry). NAME=VALUE: light_sampling=mis|nee|bsdf, "
                    "mis_heuristic=power|balance|max, light_selection=mixed|power|uniform, "
+                   "triangle_sampling=solid_angle|area, "
                    "rr_mode=throughput|albedo|off, rr_min_depth=N, control_variate=L_a. "
                    "Each spec gets a short label for tables and plots (path: bsdf, nee, "
                    "mis-<heuristic>; others: the integrator's name; +<setting> for other "

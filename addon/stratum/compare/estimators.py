@@ -6,6 +6,7 @@ settings (issue 6) one configuration renders with, and the short label tables an
 | light_sampling  | choice | mis, nee, bsdf                 | path: bsdf / nee / mis-<heuristic> |
 | mis_heuristic   | choice | power, balance, max            | (in mis-<heuristic>) |
 | light_selection | choice | mixed, power, uniform          | sel-<value>      |
+| triangle_sampling | choice | solid_angle, area            | tri-<value>      |
 | rr_mode         | choice | throughput, albedo, off        | rr-<value>       |
 | rr_min_depth    | int    | >= 0 (default 3)               | rrmin<value>     |
 | control_variate | float  | >= 0 (default 0 = off)         | cv<value>        |
@@ -35,6 +36,7 @@ CHOICES: dict[str, tuple[str, ...]] = {
     "light_sampling": ("mis", "nee", "bsdf"),
     "mis_heuristic": ("power", "balance", "max"),
     "light_selection": ("mixed", "power", "uniform"),
+    "triangle_sampling": ("solid_angle", "area"),
     "rr_mode": ("throughput", "albedo", "off"),
 }
 # rr_min_depth's upper bound is the renderer's kMaxBounces (render_settings.cpp).
@@ -43,8 +45,8 @@ DEFAULTS: dict[str, Value] = {**{k: v[0] for k, v in CHOICES.items()}, "rr_min_d
                               "control_variate": 0.0}
 SETTING_NAMES: tuple[str, ...] = tuple(DEFAULTS)
 PATH = "path"  # the integrator whose label names its light-sampling strategy
-_SUFFIX = {"light_selection": "sel-", "rr_mode": "rr-", "rr_min_depth": "rrmin",
-           "control_variate": "cv"}
+_SUFFIX = {"light_selection": "sel-", "triangle_sampling": "tri-", "rr_mode": "rr-",
+           "rr_min_depth": "rrmin", "control_variate": "cv"}
 
 
 class SpecError(ValueError):

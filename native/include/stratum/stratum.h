@@ -385,7 +385,8 @@ STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
  *           integrator (registry name: path, light, direct, ao), hemisphere (registry name),
  *           light_sampling ("mis", "nee", "bsdf"), mis_heuristic ("power", "balance", "max"),
  *           light_selection ("mixed", "power", "uniform"),
- *           rr_mode ("throughput", "albedo", "off")
+ *           triangle_sampling ("solid_angle", "area": how NEE takes a point on an emissive
+ *           triangle), rr_mode ("throughput", "albedo", "off")
  * Setting a name of the wrong kind or an unknown name is STRATUM_ERROR_INVALID_ARGUMENT. */
 STRATUM_API StratumStatus stratum_renderer_set_int(StratumRenderer* r, const char* name, int64_t value);
 STRATUM_API StratumStatus stratum_renderer_set_float(StratumRenderer* r, const char* name, double value);

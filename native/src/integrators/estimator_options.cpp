@@ -24,6 +24,7 @@ constexpr std::array<std::string_view, 3> kLightSampling = {"bsdf", "nee", "mis"
 constexpr std::array<std::string_view, 3> kMisHeuristic = {"balance", "power", "max"};
 constexpr std::array<std::string_view, 3> kRouletteMode = {"off", "throughput", "albedo"};
 constexpr std::array<std::string_view, 3> kLightSelection = {"mixed", "power", "uniform"};
+constexpr std::array<std::string_view, 2> kTriangleSampling = {"solid_angle", "area"};
 
 // Default-first lists for hosts (the UI's order).
 constexpr std::array<std::string_view, 3> kLightSamplingNames = {"mis", "nee", "bsdf"};
@@ -36,6 +37,7 @@ std::span<const std::string_view> light_sampling_names() { return kLightSampling
 std::span<const std::string_view> mis_heuristic_names() { return kMisHeuristicNames; }
 std::span<const std::string_view> rr_mode_names() { return kRouletteModeNames; }
 std::span<const std::string_view> light_selection_names() { return kLightSelection; }
+std::span<const std::string_view> triangle_sampling_names() { return kTriangleSampling; }
 
 bool parse_light_sampling(std::string_view name, LightSampling* out) {
     return parse_by_index(kLightSampling, name, out);
@@ -48,6 +50,9 @@ bool parse_rr_mode(std::string_view name, RouletteMode* out) {
 }
 bool parse_light_selection(std::string_view name, LightSelection* out) {
     return parse_by_index(kLightSelection, name, out);
+}
+bool parse_triangle_sampling(std::string_view name, TriangleSampling* out) {
+    return parse_by_index(kTriangleSampling, name, out);
 }
 
 float mis_weight(MisHeuristic heuristic, float pdf_a, float pdf_b) {

@@ -37,6 +37,7 @@ struct IntegratorSettings {
     LightSampling light_sampling = LightSampling::Mis;
     MisHeuristic mis_heuristic = MisHeuristic::Power;
     LightSelection light_selection = LightSelection::Mixed;
+    TriangleSampling triangle_sampling = TriangleSampling::SolidAngle;
     RouletteMode rr_mode = RouletteMode::Throughput;
     // Roulette starts at this bounce (0 = at the first vertex).
     uint32_t rr_min_depth = 3;

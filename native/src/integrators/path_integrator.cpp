@@ -46,7 +46,7 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
     Vec3 origin = camera_ray.origin, dir = camera_ray.direction;
     float t_min = camera_ray.t_min, t_max = camera_ray.t_max;
     float scatter_pdf = 0.0f;  // solid-angle pdf of the last scattering; 0 for camera and delta rays
-    Vec3 scatter_origin;
+    Vec3 scatter_origin, scatter_normal;  // the last scattering vertex and its shading normal
     RayQuery query{camera_ray.time, STRATUM_VISIBLE_CAMERA};
     // Cycles' PATH_RAY_TRANSPARENT_BACKGROUND: only camera and transparent vertices so far.
     bool camera_visible_path = true;
@@ -107,10 +107,11 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         }
         const Rgb emission = closures.emission();
         if (!emission.is_black()) {
-            const float light_pdf = hit.emissive_light != kNoLight
-                                        ? lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin,
-                                                                       hit.position, selection)
-                                        : 0.0f;
+            const float light_pdf =
+                hit.emissive_light != kNoLight
+                    ? lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin, scatter_normal,
+                                                   hit.position, selection, settings_.triangle_sampling)
+                    : 0.0f;
             L += beta * emission * hit_weight(scatter_pdf, light_pdf);
         }
         if (bounce > settings_.max_bounces) {
@@ -134,8 +135,10 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         // below the surface count only for closures that transmit.
         LightSample ls;
         if (settings_.light_sampling != LightSampling::Bsdf && closures.has_non_delta() &&
-            lights.sample(hit.position, sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
-                          sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), &ls, selection)) {
+            lights.sample(hit.position, sp.ns,
+                          sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
+                          sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), &ls, selection,
+                          settings_.triangle_sampling)) {
             const float side = dot(ls.wi, sp.ng);
             const uint32_t kinds = lit_kinds(ls.visibility);
             if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) && kinds != 0) {
@@ -205,6 +208,7 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
             camera_visible_path = false;
             scatter_pdf = bs.delta ? 0.0f : bs.pdf;
             scatter_origin = hit.position;
+            scatter_normal = sp.ns;
             float survive = 1.0f;
             if (settings_.rr_mode != RouletteMode::Off && bounce >= settings_.rr_min_depth) {
                 // (5.5): survival = throughput, or the closures' albedo (then β stays constant

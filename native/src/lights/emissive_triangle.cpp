@@ -1,6 +1,7 @@
 #include "lights/emissive_triangle.h"
 
-#include "sampling/warps.h"
+#include <algorithm>
+#include <cmath>
 
 namespace stratum {
 
@@ -12,7 +13,50 @@ EmissiveTriangle::EmissiveTriangle(Vec3 p0, Vec3 p1, Vec3 p2, Rgb radiance)
     normal_ = twice_area > 0.0f ? c / twice_area : Vec3(0, 0, 1);
 }
 
-bool EmissiveTriangle::sample(Vec3 p, Vec2 u, LightSample* out) const {
+BilinearWeights EmissiveTriangle::cosine_weights(Vec3 p, Vec3 n) const {
+    if (dot(n, n) == 0.0f) return {{1.0f, 1.0f, 1.0f, 1.0f}};
+    const auto weight = [&](Vec3 v) {
+        return std::max(kMinCosineWeight, std::abs(dot(normalize(v - p), n)));
+    };
+    const float w0 = weight(p0_), w1 = weight(p0_ + e1_), w2 = weight(p0_ + e2_);
+    return {{w1, w1, w0, w2}};
+}
+
+std::optional<SphericalTriangle> EmissiveTriangle::spherical_view(Vec3 p) const {
+    const Vec3 p1 = p0_ + e1_, p2 = p0_ + e2_;
+    float magnitude = 0.0f;
+    for (Vec3 v : {p0_, p1, p2})
+        magnitude = std::max({magnitude, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    if (!(std::abs(dot(p - p0_, normal_)) > kCoplanarTolerance * magnitude)) return std::nullopt;
+    SphericalTriangle spherical(p, p0_, p1, p2);
+    if (spherical.solid_angle() < kMinSphericalSolidAngle) return std::nullopt;
+    return spherical;
+}
+
+bool EmissiveTriangle::sample(Vec3 p, Vec3 n, Vec2 u, LightSample* out, TriangleSampling mode) const {
+    if (mode == TriangleSampling::Area) return sample_area(p, u, out);
+    const std::optional<SphericalTriangle> spherical = spherical_view(p);
+    if (!spherical) return sample_area(p, u, out);
+    const BilinearWeights weights = cosine_weights(p, n);
+    const Vec2 warped = sample_bilinear(u, weights);
+    const Vec3 wi = spherical->sample(warped);
+    // The light point is where wi meets the triangle's plane.
+    const float distance = dot(p0_ - p, normal_) / dot(wi, normal_);
+    if (!(distance > 0.0f) || !std::isfinite(distance)) return false;
+    const float pdf = static_cast<float>(bilinear_pdf(warped, weights) / spherical->solid_angle());
+    *out = {wi, distance, radiance_, pdf, true};
+    return true;
+}
+
+float EmissiveTriangle::pdf(Vec3 p, Vec3 n, Vec3 hit, TriangleSampling mode) const {
+    if (mode == TriangleSampling::Area) return pdf_area(p, hit);
+    const std::optional<SphericalTriangle> spherical = spherical_view(p);
+    if (!spherical) return pdf_area(p, hit);
+    const Vec2 u = spherical->invert(normalize(hit - p));
+    return static_cast<float>(bilinear_pdf(u, cosine_weights(p, n)) / spherical->solid_angle());
+}
+
+bool EmissiveTriangle::sample_area(Vec3 p, Vec2 u, LightSample* out) const {
     if (!(area_ > 0.0f)) return false;
     const Vec3 b = sample_uniform_triangle(u);
     const Vec3 q = p0_ + e1_ * b.y + e2_ * b.z;
@@ -27,7 +71,7 @@ bool EmissiveTriangle::sample(Vec3 p, Vec2 u, LightSample* out) const {
     return true;
 }
 
-float EmissiveTriangle::pdf(Vec3 p, Vec3 hit) const {
+float EmissiveTriangle::pdf_area(Vec3 p, Vec3 hit) const {
     const Vec3 to = hit - p;
     const float d2 = dot(to, to);
     const float cos_light = std::abs(dot(to, normal_)) / std::sqrt(d2);

@@ -6,23 +6,51 @@
 // | p0, p1, p2| world-space vertices |
 // | radiance  | emitted radiance, both faces |
 //
-// Points are sampled uniformly in area (textbook 4.38, folded square), converted to solid
-// angle: pdf = r² / (A |cos θ_light|); the same expression is the MIS pdf for a BSDF ray that
-// hits the triangle.
+// Next-event estimation takes a point on the triangle in one of two ways (TriangleSampling):
+// * solid_angle (the default; pbrt-v4's triangle sampling, as Cycles for near triangles): a
+//   direction in the solid angle Ω the triangle subtends at the shading point
+//   (sampling/spherical_triangle.h), with the square's sample first warped by the bilinear
+//   density of cos θ at the three vertex directions (floored at kMinCosineWeight), so that the
+//   density is ≈ cos θ / ∫cos θ dω: pdf = bilinear_pdf(u) / Ω. NEE's weight f L cos θ / pdf is
+//   then bounded and nearly constant, where area sampling's cos θ cos θ_l A / r² explodes next
+//   to the emitter (a ceiling 2 cm above a two-sided lamp: up to A/0.02²). Without the cosine
+//   warp the weight would vary with cos θ, which is worse than area sampling where cos θ and
+//   cos θ_l / r² cancel (inside a sphere cos θ cos θ_l / r² = 1/(2R)² everywhere). With no
+//   normal (n = 0) the direction is uniform in Ω. Below kMinSphericalSolidAngle the triangle
+//   is far (r² ≫ A) and area sampling's weight varies as little, while Arvo's formula loses
+//   digits to cancellation: area sampling is used there (pbrt-v4's cut-off). Area sampling is
+//   also used when p lies in the triangle's plane to within float precision of the
+//   coordinates (kCoplanarTolerance × their magnitude): the triangle p itself lies on, or a
+//   coplanar neighbour. There the solid angle is decided by rounding (anything from 0 to 2π
+//   for a point on the triangle, and on which side), and a sample of weight Ω/p_choice toward
+//   the triangle under the surface would be a firefly; area sampling's weight cos θ_l ≈ 0 is
+//   right.
+// * area: a point uniform in area (textbook 4.38, folded square), converted to solid angle:
+//   pdf = r² / (A |cos θ_light|), the textbook's NEE (5.9).
+// The pdf of the mode in use is also the MIS pdf for a BSDF ray that hits the triangle; it
+// depends only on the shading point, its normal and the triangle, so both strategies agree on
+// it.
 #pragma once
 
+#include <optional>
+
 #include "core/math.h"
+#include "integrators/estimator_options.h"
 #include "lights/emission_sample.h"
 #include "lights/light_sample.h"
+#include "sampling/spherical_triangle.h"
+#include "sampling/warps.h"
 
 namespace stratum {
 
 class EmissiveTriangle {
 public:
     EmissiveTriangle(Vec3 p0, Vec3 p1, Vec3 p2, Rgb radiance);
-    bool sample(Vec3 p, Vec2 u, LightSample* out) const;
-    // Solid-angle pdf of reaching `hit` on this triangle from `p` by sample().
-    float pdf(Vec3 p, Vec3 hit) const;
+    // A light sample for the shading point p with normal n (unit, or 0 when it has none).
+    bool sample(Vec3 p, Vec3 n, Vec2 u, LightSample* out,
+                TriangleSampling mode = TriangleSampling::SolidAngle) const;
+    // Solid-angle pdf of reaching `hit` on this triangle from (p, n) by sample() in `mode`.
+    float pdf(Vec3 p, Vec3 n, Vec3 hit, TriangleSampling mode = TriangleSampling::SolidAngle) const;
     // Emitted flux of both faces, π A L_e each (used to choose among lights).
     float power() const { return 2.0f * kPi * area_ * radiance_.average(); }
     // A light-tracing particle (textbook 6.3): point uniform in area (p_A = 1/A), a face chosen
@@ -31,7 +59,23 @@ public:
     // False for a degenerate triangle.
     bool sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const;
 
+    // Steradians, and the cosine weight's floor (a vertex below the horizon still gets some
+    // samples: the support stays the whole spherical triangle); see the header comment.
+    static constexpr double kMinSphericalSolidAngle = 3e-4;
+    static constexpr float kMinCosineWeight = 0.01f;
+    // Barycentric interpolation puts a hit point within a few ulps (≈ 2e-7 × the coordinates'
+    // magnitude) of its triangle's plane; 50 times that.
+    static constexpr float kCoplanarTolerance = 1e-5f;
+
 private:
+    bool sample_area(Vec3 p, Vec2 u, LightSample* out) const;
+    float pdf_area(Vec3 p, Vec3 hit) const;
+    // The triangle as seen from p when solid-angle sampling applies to p, else nullopt.
+    std::optional<SphericalTriangle> spherical_view(Vec3 p) const;
+    // The bilinear weights of the cosine warp: |cos θ| toward the vertices at the corners the
+    // spherical map sends to them (SphericalTriangle::sample); all 1 without a normal.
+    BilinearWeights cosine_weights(Vec3 p, Vec3 n) const;
+
     Vec3 p0_, e1_, e2_, normal_;
     float area_;
     Rgb radiance_;

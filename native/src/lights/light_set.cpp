@@ -107,7 +107,8 @@ uint32_t LightSet::choose(float u, LightSelection selection) const {
     return static_cast<uint32_t>(std::min(static_cast<size_t>(it - cdf.begin()), lights_.size() - 1));
 }
 
-bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out, LightSelection selection) const {
+bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, LightSelection selection,
+                      TriangleSampling triangle) const {
     if (lights_.empty()) return false;
     const uint32_t index = choose(u_choice, selection);
     const float choice = probability(index, selection);
@@ -117,6 +118,8 @@ bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out, LightSel
             using T = std::decay_t<decltype(l)>;
             if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, EnvironmentLight>) {
                 return l.sample(u, out);
+            } else if constexpr (std::is_same_v<T, EmissiveTriangle>) {
+                return l.sample(p, n, u, out, triangle);
             } else {
                 return l.sample(p, u, out);
             }
@@ -128,9 +131,10 @@ bool LightSet::sample(Vec3 p, float u_choice, Vec2 u, LightSample* out, LightSel
     return true;
 }
 
-float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit, LightSelection selection) const {
+float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit, LightSelection selection,
+                                      TriangleSampling triangle) const {
     const auto& tri = std::get<EmissiveTriangle>(lights_[index]);
-    return probability(index, selection) * tri.pdf(p, hit);
+    return probability(index, selection) * tri.pdf(p, n, hit, triangle);
 }
 
 Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf, float* t_out,

@@ -53,18 +53,23 @@ public:
     }
     // The light `selection` chooses for u in [0,1); size() when there are no lights.
     uint32_t choose(float u, LightSelection selection = LightSelection::Mixed) const;
-    // Chooses a light with u_choice and samples it with u; out->pdf includes the choice.
-    bool sample(Vec3 p, float u_choice, Vec2 u, LightSample* out,
-                LightSelection selection = LightSelection::Mixed) const;
+    // Chooses a light with u_choice and samples it with u for the shading point p of normal n
+    // (unit; 0 when it has none); out->pdf includes the choice. `triangle` is how a point on a
+    // chosen emissive triangle is taken (n shapes it: lights/emissive_triangle.h).
+    bool sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out,
+                LightSelection selection = LightSelection::Mixed,
+                TriangleSampling triangle = TriangleSampling::SolidAngle) const;
     // Light tracing: chooses a light with u_choice by `selection` and emits a particle from it
     // (the lights' sample_emission); out->weight is divided by the choice probability, so it
     // estimates the scene's total emitted flux. The sun and the environment shine over the
     // scene's bounding sphere (center, radius). False when the chosen light emits nothing.
     bool sample_emission(float u_choice, Vec2 u_position, Vec2 u_direction, LightSelection selection,
                          Vec3 center, float radius, EmissionSample* out) const;
-    // Pdf (choice × solid angle) with which sample() reaches `hit` on emissive triangle `index`.
-    float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 hit,
-                                LightSelection selection = LightSelection::Mixed) const;
+    // Pdf (choice × solid angle) with which sample() at (p, n) reaches `hit` on emissive
+    // triangle `index`.
+    float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit,
+                                LightSelection selection = LightSelection::Mixed,
+                                TriangleSampling triangle = TriangleSampling::SolidAngle) const;
     // Radiance of the nearest lamp surface (an area lamp, or the disk of a point/spot lamp with
     // a radius, facing the ray's origin) whose visibility has bit `visibility` and whose
     // emitting face the ray (dir unit) meets before t_max; black if none. Lamps are not in the

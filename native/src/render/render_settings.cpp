@@ -137,6 +137,11 @@ std::string set_string_setting(RenderSettings& s, std::string_view name, std::st
              LightSelection x;
              return parse_light_selection(v, &x);
          }},
+        {"triangle_sampling", &RenderSettings::triangle_sampling, &triangle_sampling_names,
+         [](std::string_view v) {
+             TriangleSampling x;
+             return parse_triangle_sampling(v, &x);
+         }},
         {"rr_mode", &RenderSettings::rr_mode, &rr_mode_names,
          [](std::string_view v) {
              RouletteMode x;
@@ -198,6 +203,7 @@ IntegratorSettings integrator_settings(const RenderSettings& s) {
     parse_light_sampling(s.light_sampling, &out.light_sampling);
     parse_mis_heuristic(s.mis_heuristic, &out.mis_heuristic);
     parse_light_selection(s.light_selection, &out.light_selection);
+    parse_triangle_sampling(s.triangle_sampling, &out.triangle_sampling);
     parse_rr_mode(s.rr_mode, &out.rr_mode);
     out.rr_min_depth = s.rr_min_depth;
     out.control_variate = s.control_variate;

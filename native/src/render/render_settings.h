@@ -31,6 +31,7 @@ struct RenderSettings {
     std::string light_sampling = "mis";
     std::string mis_heuristic = "power";
     std::string light_selection = "mixed";
+    std::string triangle_sampling = "solid_angle";
     std::string rr_mode = "throughput";
 };
 
