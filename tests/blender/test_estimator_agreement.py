@@ -10,7 +10,7 @@ block, with both renderers' measured noise.
 The estimators and their peers
 ------------------------------
 The default path tracer (light_sampling mis, mis_heuristic power, rr_mode throughput,
-light_selection mixed) is test_cycles_agreement's subject. Here every other value of every
+light_selection mixed, triangle_sampling solid_angle) is test_cycles_agreement's subject. Here every other value of every
 estimator setting is rendered at least once; values that cannot interact wrongly share a render
 (its name lists them), which keeps the file within its time budget:
 
@@ -20,28 +20,34 @@ estimator setting is rendered at least once; values that cannot interact wrongly
                                 are Principled: the control-variate term applies to Lambertian
                                 closures only, so here it must change nothing in expectation)
     bsdf                        BSDF sampling only (the lamp is found by hitting it)
+    nee                         light sampling only (emission hit by scattered rays ignored),
+                                its triangles sampled by solid angle (the default)
     light                       the light tracer (when the native registry has it)
       -- against Cycles on the same scene, max_bounces MAX_BOUNCES;
-    diffuse_nee_cv              light sampling only, and the control variate L_a = CV_RADIANCE,
-                                on the "diffuse, low lamp" variant: every Principled BSDF replaced
-                                by a Diffuse BSDF of its base colour (Lambertian: the control
-                                variate's term is live) and the lamp LAMP_DROP lower (below),
-                                against Cycles rendering the same variant;
+    diffuse_nee_cv              light sampling only with the textbook's area sampling of the
+                                triangles (5.9), and the control variate L_a = CV_RADIANCE, on the
+                                "diffuse, low lamp" variant: every Principled BSDF replaced by a
+                                Diffuse BSDF of its base colour (Lambertian: the control variate's
+                                term is live) and the lamp LAMP_DROP lower (below), against Cycles
+                                rendering the same variant;
     direct                      integrator direct (scene max_bounces left at MAX_BOUNCES: the
                                 integrator itself must cap it), against Cycles with max_bounces 0.
 The light selection modes differ little here (one emissive quad of two equal triangles and a
 black world), so they cost nothing extra riding along with other settings.
 
-Why NEE alone is tested on a variant with a lower lamp: the box's lamp hangs 2 cm under the
-ceiling and mesh emission is two-sided, so the ceiling above and around it is lit from 2 cm:
-for such a point a light sample's geometry term cos cos / r^2 reaches 1/0.02^2 = 2500, a rare,
-huge sample (the book's "large light" case for NEE; BSDF sampling and MIS do not have it).
-Measured (Blender 3.4, 2 x 512 spp, original box): NEE's image mean agrees (-0.26% +- 0.72%),
-but 4 sigma_D is 2.9% of the image mean and 40% in the worst block, single samples reach
-~2500 (a red-wall pixel of 0.17 at one seed, 4.9 at the other); the gate would need ~(40/4.3)^2
-~ 90 times more samples (~90 k spp, ~45 min), far beyond the budget. With the lamp
-LAMP_DROP = 0.18 lower (20 cm under the ceiling: the geometry term's peak 100 times smaller) NEE
-passes the gate at NEE_SPP_PER_SEED.
+Why area-sampled NEE is tested on a variant with a lower lamp: the box's lamp hangs 2 cm under
+the ceiling and mesh emission is two-sided, so the ceiling above and around it is lit from 2 cm:
+for such a point an area light sample's geometry term cos cos / r^2 reaches 1/0.02^2 = 2500, a
+rare, huge sample (the book's "large light" case for NEE; BSDF sampling and MIS do not have it).
+Measured (Blender 3.4, 2 x 512 spp, original box, triangle_sampling area): NEE's image mean
+agrees (-0.26% +- 0.72%), but 4 sigma_D is 2.9% of the image mean and 40% in the worst block,
+single samples reach ~2500 (a red-wall pixel of 0.17 at one seed, 4.9 at the other); the gate
+would need ~(40/4.3)^2 ~ 90 times more samples (~90 k spp, ~45 min), far beyond the budget. With
+the lamp LAMP_DROP = 0.18 lower (20 cm under the ceiling: the geometry term's peak 100 times
+smaller) it passes the gate at NEE_SPP_PER_SEED. Sampling the triangles by solid angle (the
+default; lights/emissive_triangle.h) bounds the sample's weight by the triangle's solid angle
+instead: on the original box the same 2 x 512 spp give a worst block of 5.4% instead of 40%,
+and `nee` passes at NEE_SPP_PER_SEED.
 
 "Agree with each other": every estimator of the first group is compared with the same Cycles
 images under the same tolerance, so by the triangle inequality any two of them (and the
@@ -60,7 +66,8 @@ samples: r_S ~ 0.28 passes with N_S = 2 x SPP_PER_SEED = 1024 (4.3%); BSDF sampl
 small lamp needs N_S > 1.0 / (0.0125^2 - 0.28^2 / 2048) ~ 8700, so `bsdf` renders 2 x
 BSDF_SPP_PER_SEED (measured worst 4.3%). NEE with the control variate on the variant measured
 5.6% at 2 x 512 and 3.4% at 2 x 2048 (bpy 5.0.1), i.e. 16 * (1707 / N_S + 618 / N_C) (%^2):
-4.3% at 2 x 1024, 3.7% at 2 x NEE_SPP_PER_SEED = 3072. The numbers of each run are printed
+4.3% at 2 x 1024, 3.7% at 2 x NEE_SPP_PER_SEED = 3072. `nee` (solid angle) on the original box:
+5.4% at 2 x 512, 2.8% at 2 x NEE_SPP_PER_SEED. The numbers of each run are printed
 and written to out/agreement/blender-<version>/estimators/<name>/report.txt.
 
 Measured (uptime ~22000-23000 s, 2 cores shared with three other builds/tests, load ~10):
@@ -162,8 +169,9 @@ ESTIMATORS: dict[str, tuple[str, dict[str, Any], int]] = {
                    "rr_min_depth": 1, "light_selection": "power",
                    "control_variate": CV_RADIANCE}, SPP_PER_SEED),
     "bsdf": ("cycles", {"light_sampling": "bsdf"}, BSDF_SPP_PER_SEED),
+    "nee": ("cycles", {"light_sampling": "nee"}, NEE_SPP_PER_SEED),
     "light": ("cycles", {"integrator": "light"}, SPP_PER_SEED),
-    "diffuse_nee_cv": ("cycles_diffuse", {"light_sampling": "nee",
+    "diffuse_nee_cv": ("cycles_diffuse", {"light_sampling": "nee", "triangle_sampling": "area",
                                           "control_variate": CV_RADIANCE}, NEE_SPP_PER_SEED),
     "direct": ("cycles_direct", {"integrator": "direct"}, SPP_PER_SEED),
 }
