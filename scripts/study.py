@@ -19,8 +19,8 @@ The runs (the source documents' experiments, with more samplers, seeds and spp):
   per-pixel shift = rotation about the normal), fibonacci_static (one shift for every pixel)}
   at 8, 16, 32 rays (= spp, one AO ray per sample), 4 seeds. The three runs share one
   reference (rendered by the cosine run; every estimator is unbiased, so it is the same image);
-* est_small, est_large, est_glossy: the estimator ladder of issue 6 (bsdf, nee, mis-balance /
-  power / max, light, direct) on the Cornell box with a small light, a large light and glossy
+* est_small, est_large, est_glossy: the estimator ladder of issue 6 (bsdf, nee by area and by
+  solid angle, mis-balance / power / max, mis-power by area, light, direct) on the Cornell box with a small light, a large light and glossy
   surfaces (scripts/study_estimators.py); out/study/estimators.md has their tables (MSE at
   equal samples and at equal time) and the textbook's claims checked against them.
 

@@ -8,8 +8,10 @@ equal samples and at equal time; out/study/estimators.md. scripts/study.py runs 
 | est_large    | scenes/cornell_large_light.blend   | BSDF sampling wins for large lights (7)    |
 | est_glossy   | scenes/cornell_glossy.blend        | BSDF sampling wins for glossy surfaces (7) |
 
-The ladder: path tracing with BSDF sampling only (bsdf), NEE only (nee), both weighted by MIS
-with the balance, power and maximum heuristics (mis-balance, mis-power, mis-max), light tracing
+The ladder: path tracing with BSDF sampling only (bsdf), NEE only with the light's triangles
+sampled by area as in the textbook (nee+tri-area, eq. 5.9) and by solid angle (nee, the
+renderer's default: lights/emissive_triangle.h), both weighted by MIS with the balance, power and
+maximum heuristics (mis-balance, mis-power, mis-max; and mis-power+tri-area), light tracing
 (light, when the native registry has it: claim 11, its variance is usually higher) and direct
 lighting only (direct: one bounce, a biased reference point for the NEE studies: its MSE against
 the full-transport reference is mostly its missing indirect light). One sampler, `random`
@@ -32,13 +34,17 @@ from typing import Any
 
 LADDER: tuple[tuple[str, str], ...] = (
     ("bsdf", "path:light_sampling=bsdf"),
+    ("nee+tri-area", "path:light_sampling=nee,triangle_sampling=area"),
     ("nee", "path:light_sampling=nee"),
     ("mis-balance", "path:light_sampling=mis,mis_heuristic=balance"),
     ("mis-power", "path:light_sampling=mis,mis_heuristic=power"),
     ("mis-max", "path:light_sampling=mis,mis_heuristic=max"),
+    ("mis-power+tri-area", "path:light_sampling=mis,mis_heuristic=power,triangle_sampling=area"),
     ("light", "light"),
     ("direct", "direct"),
 )
+# The textbook's NEE (area sampling, eq. 5.9): the claims are about it.
+BOOK_NEE = "nee+tri-area"
 SCENES: tuple[tuple[str, str, str], ...] = (
     ("est_small", "scenes/cornell_box.blend", "small light (0.5 m quad, 1/16 of the ceiling)"),
     ("est_large", "scenes/cornell_large_light.blend",
@@ -186,11 +192,16 @@ def verdicts(numbers: dict[str, dict[str, Any]]) -> list[str]:
                          f"{'shown' if r < 1 else 'refuted'})")
         return f"- {claim} [{run}]: " + "; ".join(parts)
 
-    lines = [say("NEE wins for small lights", "est_small", "nee", "bsdf"),
-             say("BSDF sampling wins for large lights", "est_large", "bsdf", "nee"),
-             say("BSDF sampling wins for glossy surfaces", "est_glossy", "bsdf", "nee")]
+    lines = [say("NEE wins for small lights", "est_small", BOOK_NEE, "bsdf"),
+             say("BSDF sampling wins for large lights", "est_large", "bsdf", BOOK_NEE),
+             say("BSDF sampling wins for glossy surfaces", "est_glossy", "bsdf", BOOK_NEE)]
     for run in ("est_small", "est_large", "est_glossy"):
-        for rival in ("nee", "bsdf"):
+        lines.append(say("solid-angle sampling of the light's triangles beats area sampling "
+                         "(NEE)", run, "nee", BOOK_NEE))
+        lines.append(say("solid-angle sampling of the light's triangles beats area sampling "
+                         "(MIS)", run, "mis-power", "mis-power+tri-area"))
+        lines.append(say("NEE by solid angle beats BSDF sampling", run, "nee", "bsdf"))
+        for rival in (BOOK_NEE, "nee", "bsdf"):
             lines.append(say(f"MIS (power) is at least as good as {rival}", run, "mis-power",
                              rival))
         lines.append(say("light tracing has higher variance than path tracing (MIS)", run,
