@@ -67,8 +67,7 @@ Vec3 SphericalTriangle::sample(Vec2 u) const {
     Dir toward_c;
     if (!orthogonal_unit(c_, a_, &toward_c)) toward_c = c_;
     const Dir c_hat = a_ * q + toward_c * std::sqrt(std::max(0.0, 1.0 - q * q));
-    // Along the arc b→ĉ the cosine to b is uniform in [b·ĉ, 1] (Arvo): the strip of the
-    // sub-triangles grows linearly in the cosine.
+    // Given ĉ, Arvo takes the point on the arc b→ĉ whose cosine to b is uniform in [b·ĉ, 1].
     const double z = 1.0 - double(u.y) * (1.0 - dot(c_hat, b_));
     Dir toward_c_hat;
     if (!orthogonal_unit(c_hat, b_, &toward_c_hat)) return {float(b_.x), float(b_.y), float(b_.z)};

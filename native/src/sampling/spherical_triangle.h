@@ -32,6 +32,7 @@ public:
     // u₁Ω, and u₂ = (1 − w·v1) / (1 − ĉ·v1).
     Vec2 invert(Vec3 w) const;
 
+    // A direction in double precision (the arithmetic of the .cpp).
     struct Dir {
         double x, y, z;
     };
