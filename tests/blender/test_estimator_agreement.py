@@ -70,23 +70,22 @@ BSDF_SPP_PER_SEED (measured worst 4.3%). NEE with the control variate on the var
 5.4% at 2 x 512, 2.8% at 2 x NEE_SPP_PER_SEED. The numbers of each run are printed
 and written to out/agreement/blender-<version>/estimators/<name>/report.txt.
 
-Measured (uptime ~22000-23000 s, 2 cores shared with three other builds/tests, load ~10):
-4 sigma_D in the worst compared block / image-mean difference (max over RGB), then Stratum's
-seconds for both seeds:
+Measured in a fresh-clone CI run (uptime ~33000-34300 s, nothing else running): 4 sigma_D in
+the worst compared block / image-mean difference (max over RGB), then Stratum's seconds for
+both seeds:
 
     estimator                    Blender 3.4.1                 bpy 5.0.1
-    mis_balance_rr_off_uniform   3.47% / -0.09%   55 s         4.27% / -0.09%   43 s
-    mis_max_rr_albedo_power_cv   4.04% / -0.11%   42 s         4.61% / -0.13%   27 s
-    bsdf (2 x 5120 spp)          4.29% / +0.14%  255 s         4.59% / -0.04%  197 s
-    diffuse_nee_cv (2 x 1536)    3.80% / +0.27%   72 s         3.62% / +0.17%  132 s
-    direct                       1.55% / -0.09%   16 s         1.53% / -0.17%   21 s
-    light                        2.90% / -0.13%   26 s         3.26% / -0.19%   20 s
+    mis_balance_rr_off_uniform   3.31% / -0.05%   14 s         3.83% / -0.12%   17 s
+    mis_max_rr_albedo_power_cv   3.71% / -0.06%   11 s         4.49% / -0.13%   13 s
+    bsdf (2 x 5120 spp)          4.29% / +0.14%   63 s         4.59% / -0.04%   70 s
+    nee (2 x 1536 spp)           2.80% / +0.08%   34 s         3.54% / -0.10%   34 s
+    diffuse_nee_cv (2 x 1536)    3.80% / +0.27%   20 s         3.62% / +0.17%   22 s
+    direct                       1.56% / -0.09%    5 s         1.56% / -0.15%    5 s
+    light                        2.90% / -0.13%   11 s         3.26% / -0.19%   10 s
 
-Largest block difference of any estimator: 2.1% (diffuse_nee_cv, 3.4.1); the only one beyond
-3 sigma is direct's (1.4% in a green-wall block, z = 7.6, 3.4.1 only; 0.4% in 5.0.1). At that
-load the file took 10 min in each Blender; re-run at load ~1-3 (uptime ~24000-24400 s): ~4 min
-in Blender 3.4.1 (Cycles 55 s, Stratum 190 s of which `bsdf` 115 s) and 2.5 min under the bpy
-5.0.1 wheel (`bsdf` 60 s); same numbers (fixed seeds, deterministic renders).
+The MIS rows are less noisy than with area sampling of the lamp (3.47% / 4.04% in 3.4.1, 4.27% /
+4.61% in 5.0.1, measured at the previous stop). Largest block difference of any estimator: 2.1%
+(diffuse_nee_cv, 3.4.1).
 """
 
 from __future__ import annotations
