@@ -91,8 +91,9 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
                 break;
             }
             // The environment is also sampled by NEE: MIS against it, as for emissive triangles.
-            const float w =
-                hit_weight(scatter_pdf, lights.environment() ? lights.environment_pdf(dir, selection) : 0.0f);
+            const float w = hit_weight(scatter_pdf, light_pdf_matters(scatter_pdf) && lights.environment()
+                                                        ? lights.environment_pdf(dir, selection)
+                                                        : 0.0f);
             L += beta * scene.background(dir) * w;
             break;
         }
@@ -108,7 +109,7 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         const Rgb emission = closures.emission();
         if (!emission.is_black()) {
             const float light_pdf =
-                hit.emissive_light != kNoLight
+                light_pdf_matters(scatter_pdf) && hit.emissive_light != kNoLight
                     ? lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin, scatter_normal,
                                                    hit.position, selection, settings_.triangle_sampling)
                     : 0.0f;
@@ -175,8 +176,9 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         // Control variate (textbook 5.17–5.18): the Lambertian closures' share of the scattered
         // radiance is estimated as L_a ρ_L (known exactly) plus f_L cos (L_i − L_a)/p, so the
         // vertex adds β L_a ρ_L now and the continued path subtracts β L_a f_L cos/p below.
-        const bool control_variate = ambient > 0.0f && !closures.lambertian_albedo().is_black();
-        if (control_variate) L += beta * closures.lambertian_albedo() * ambient;
+        const Rgb lambertian_albedo = ambient > 0.0f ? closures.lambertian_albedo() : Rgb(0.0f);
+        const bool control_variate = !lambertian_albedo.is_black();
+        if (control_variate) L += beta * lambertian_albedo * ambient;
 
         BsdfSample bs;
         if (!closures.sample(wo, sampler.get_1d(pixel, bounce_dimension(vertex, kDimBsdfLobe)),

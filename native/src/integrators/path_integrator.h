@@ -55,6 +55,12 @@ private:
     // MIS weight of emission a scattered ray hits (scatter_pdf 0 after a camera or delta
     // vertex) against the light sample that could have drawn it (light_pdf 0: none could).
     float hit_weight(float scatter_pdf, float light_pdf) const;
+    // Whether hit_weight reads light_pdf's value: not after a camera or delta vertex, nor under
+    // BSDF sampling alone. Evaluating the light pdf (for a triangle, its spherical view) is
+    // skipped otherwise.
+    bool light_pdf_matters(float scatter_pdf) const {
+        return scatter_pdf > 0.0f && settings_.light_sampling != LightSampling::Bsdf;
+    }
 
     IntegratorSettings settings_;
 };
