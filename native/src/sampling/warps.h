@@ -102,7 +102,6 @@ inline float sample_linear(float u, float a, float b) {
     const float t = u * (a + b) / (a + std::sqrt((1.0f - u) * a * a + u * b * b));
     return std::min(t, kOneMinusEpsilon);
 }
-inline float linear_pdf(float t, float a, float b) { return 2.0f * ((1.0f - t) * a + t * b) / (a + b); }
 
 // Corner weights of a bilinear density on the unit square: w[0] at (0,0), w[1] at (1,0),
 // w[2] at (0,1), w[3] at (1,1); all >= 0, not all 0.
