@@ -182,6 +182,10 @@ TEST(Warps, BilinearMatchesItsDensity) {
     EXPECT_NEAR(sample_bilinear(u, flat).x, u.x, 1e-6f);
     EXPECT_NEAR(sample_bilinear(u, flat).y, u.y, 1e-6f);
     EXPECT_FLOAT_EQ(bilinear_pdf(u, flat), 1.0f);
+    // A zero corner: u = 0 maps to that corner (not to 0/0).
+    const Vec2 corner = sample_bilinear({0.0f, 0.0f}, cases[1]);
+    EXPECT_EQ(corner.x, 0.0f);
+    EXPECT_EQ(corner.y, 0.0f);
 }
 
 TEST(Warps, ChiSquareRejectsAWrongDensity) {

@@ -98,9 +98,11 @@ inline Vec3 sample_uniform_triangle(Vec2 u) {
 // p(t) = 2 ((1 − t) a + t b) / (a + b). Inverting F(t) = (a t + (b − a) t²/2) / ((a + b)/2) = u
 // gives t = (−a + √(a² + u (b² − a²))) / (b − a); multiplied through by the conjugate,
 // t = u (a + b) / (a + √((1 − u) a² + u b²)), which has no cancellation and holds for a = b.
+// Its denominator is 0 only for a = 0 and u = 0, where t = 0.
 inline float sample_linear(float u, float a, float b) {
-    const float t = u * (a + b) / (a + std::sqrt((1.0f - u) * a * a + u * b * b));
-    return std::min(t, kOneMinusEpsilon);
+    const float denominator = a + std::sqrt((1.0f - u) * a * a + u * b * b);
+    if (!(denominator > 0.0f)) return 0.0f;
+    return std::min(u * (a + b) / denominator, kOneMinusEpsilon);
 }
 
 // Corner weights of a bilinear density on the unit square: w[0] at (0,0), w[1] at (1,0),
