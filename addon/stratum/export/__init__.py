@@ -7,8 +7,9 @@ one instance per depsgraph object instance (objects, collection instances, parti
 geometry-nodes instances). Instances carry the object's ray visibility and holdout (Object >
 Visibility in Cycles) and, with motion blur, the transforms at shutter open and close.
 Collections excluded from the view layer or disabled for render never reach
-depsgraph.object_instances, so nothing else is needed for them. Transforms are checked before
-they reach the native scene (stratum/placement.py).
+depsgraph.object_instances, so nothing else is needed for them. Objects Stratum does not render
+are reported once per kind (unsupported.py); transforms are checked before they reach the
+native scene (stratum/placement.py).
 """
 
 from __future__ import annotations
@@ -34,6 +35,7 @@ from .meshes import (
     triangle_material_ids,
 )
 from .motion import instance_key, shutter_transforms
+from .unsupported import UnsupportedObjects
 from .world import convert_environment, convert_world
 
 __all__ = [
@@ -124,6 +126,7 @@ def export_scene(
         raise ExportError(f"World '{getattr(bl_scene.world, 'name', '')}': {exc}") from exc
 
     flags = _InstanceFlags(getattr(depsgraph, "view_layer", None))
+    unsupported = UnsupportedObjects()
     # Per geometry identity (original object, evaluated data): (mesh id, triangles); LIGHT_ID
     # for lights, -1 for nothing to draw.
     objects: dict[tuple[int, int], tuple[int, int]] = {}
@@ -144,7 +147,8 @@ def export_scene(
         ident = _identity(ob)
         found = objects.get(ident)
         if found is None:
-            found = _object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
+            found = (-1, 0) if unsupported.skip(ob) else \
+                _object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
             objects[ident] = found
         mesh_id = found[0]
         parent = instance.parent if is_instance else None
@@ -154,6 +158,7 @@ def export_scene(
             moved = motion.get(instance_key(instance, ob)) if motion else None
             visibility, holdout = flags.get(ob, ident, parent)
             placed.append((index, mesh_id, ob.name, found[1], visibility, holdout, moved))
+    unsupported.report(summary)
     matrices = instance_matrices(depsgraph, index + 1)
     placed = _renderable(placed, matrices, summary)
 
@@ -261,8 +266,10 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     textured = bool(materials.textured.intersection(int(i) for i in slot_ids))
     arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids), read_uvs=textured)
     if arrays is None or len(arrays.triangles) == 0:
-        # A vertex/face instancer's own mesh often has no faces on purpose.
-        if ob.type == "MESH" and not getattr(ob, "is_instancer", False):
+        # A vertex/face instancer's own mesh often has no faces on purpose; a mesh without
+        # vertices is empty (e.g. geometry nodes turned it into points, reported as such).
+        if ob.type == "MESH" and not getattr(ob, "is_instancer", False) and \
+                arrays is not None and len(arrays.positions):
             summary.warn(f"Object '{ob.name}': mesh has no faces (skipped)")
         return (-1, 0)
     if arrays.missing_uv:
