@@ -4,7 +4,7 @@ Blender's RNA stores NaN in shader sockets, light, world and camera properties, 
 takes any float, whatever its UI range (measured in 3.4.1 and 5.0.1: `default_value = nan`,
 `-1`, `3e38` are all kept; +Inf is stored as FLT_MAX; colour sockets clamp negatives to 0).
 Old or foreign .blend files carry the same. Cycles reads every such value through its own
-clamps, and the fallbacks here are those clamps (docs/cycles_models.md "Invalid values"):
+clamps, and the fallbacks here are those clamps (docs/invalid_values.md):
 
 * Cycles clamps with `max(x, lo)` / `fmaxf(x, lo)` / `saturatef(x)` (kernel/svm/closure.h,
   util/math_base.h). Each of them turns NaN into the lower bound: `max(a, b)` is

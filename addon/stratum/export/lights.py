@@ -6,7 +6,7 @@ cos θ in Cycles 3.x), sun strength is irradiance, and an area light of power P
 and area A has radiance P/(πA) in Cycles 4.x/5.x but P/(4A) in Cycles 3.x. The native library
 implements the physical P/(πA), so a 3.x area light's power is scaled by π/4.
 
-Invalid values (docs/cycles_models.md "Invalid values"): a NaN or infinite power, exposure,
+Invalid values (docs/invalid_values.md): a NaN or infinite power, exposure,
 radius, spot size, blend, angle, size or spread makes every sample of the light non-finite in
 Cycles, whose film drops such samples (ensure_finite), so the light renders as nothing; here it
 is skipped, with a warning naming the field. A negative power (Cycles subtracts light) cannot

@@ -10,7 +10,7 @@ colour space gives a warning (OCIO conversion is pending) and its pixels are use
 gives them. The native side looks the image up nearest-texel (Cycles' "Closest"); Cycles'
 default "Linear" differs only within a texel.
 
-Invalid values (docs/cycles_models.md "Invalid values"): a NaN colour component or strength is
+Invalid values (docs/invalid_values.md): a NaN colour component or strength is
 0 and a negative strength 0 (Cycles' film drops the non-finite samples, and Stratum has no
 light that subtracts), colour x strength is limited to the largest float, and environment
 pixels that are NaN, infinite or negative are 0; each with one warning naming the world.
