@@ -195,3 +195,28 @@ def test_rotated_and_scaled_instances_stay_untouched(scene_builder: Any,
         ob.scale = tuple(10.0 ** rng.uniform(-3, 3, 3))
     summary = export_scene(b.depsgraph(), recording_scene)
     assert summary.instances == 201 and not summary.warnings
+
+
+@pytest.mark.parametrize("path", ["lens", "ortho_scale", "clip_end", "shift_x",
+                                  "dof.aperture_fstop", "dof.focus_distance"])
+def test_nan_camera_property_is_an_error_naming_it(scene_builder: Any, recording_scene: Any,
+                                                   path: str) -> None:
+    b = scene_builder().basic()
+    cam = b.scene.camera.data
+    cam.dof.use_dof = True
+    owner, _, attr = path.rpartition(".")
+    setattr(cam.dof if owner else cam, attr, NAN)
+    with pytest.raises(ExportError) as info:
+        export_scene(b.depsgraph(), recording_scene)
+    assert str(info.value) == f"Camera 'Camera': '{path}' = nan is not a finite number"
+
+
+@pytest.mark.parametrize("shutter", [NAN, 1e30])
+def test_shutter_blender_cannot_evaluate_renders_without_motion_blur(
+        scene_builder: Any, recording_scene: Any, shutter: float) -> None:
+    b = scene_builder().basic()
+    b.scene.render.use_motion_blur = True
+    b.scene.render.motion_blur_shutter = shutter
+    summary = export_scene(b.depsgraph(), recording_scene)
+    (warning,) = [w for w in summary.warnings if "motion blur" in w]
+    assert warning.startswith("Scene 'Scene': ") and summary.moving_instances == 0

@@ -109,7 +109,7 @@ def export_scene(
     bl_scene = depsgraph.scene_eval if hasattr(depsgraph, "scene_eval") else depsgraph.scene
     materials = MaterialTable(scene, summary)
     mesh_ids: dict[tuple[Any, ...], tuple[int, int]] = {}  # key -> (mesh id, triangles)
-    motion = shutter_transforms(depsgraph, bl_scene, frame_set)
+    motion = shutter_transforms(depsgraph, bl_scene, frame_set, summary.warn)
 
     try:
         # Blender clamps lens to >= 1 mm, so a zero focal length comes only from files other
