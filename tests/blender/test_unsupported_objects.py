@@ -120,6 +120,30 @@ def test_liquid_domain_mesh_is_rendered_as_cycles_does(fluid_scene: Any,
     assert summary.object_instances.get("LiquidDomain") == 1
 
 
+def test_curves_text_metaballs_and_surfaces_render_as_meshes(scene_builder: Any,
+                                                               recording_scene: Any) -> None:
+    """GEOMETRY_TYPES: every one is triangulated by to_mesh in both Blenders."""
+    b = scene_builder().basic()
+    tube = bpy.data.curves.new("Tube", "CURVE")
+    tube.dimensions, tube.bevel_depth = "3D", 0.2
+    spline = tube.splines.new("POLY")
+    spline.points.add(1)
+    spline.points[0].co, spline.points[1].co = (0, 0, 0, 1), (2, 0, 0, 1)
+    b.link(bpy.data.objects.new("Tube", tube))
+    label = bpy.data.curves.new("Label", "FONT")
+    label.body = "Hi"
+    b.link(bpy.data.objects.new("Label", label))
+    blob = bpy.data.metaballs.new("Blob")
+    blob.elements.new()
+    b.link(bpy.data.objects.new("Blob", blob))
+    # A 2D NURBS patch cannot be built through bpy.data (Spline.point_count_v is read-only).
+    bpy.ops.surface.primitive_nurbs_surface_surface_add()
+    summary = export_scene(b.depsgraph(), recording_scene)
+    kinds = {ob.name: ob.type for ob in b.scene.objects}
+    drawn = {kinds[name] for name, count in summary.object_triangles.items() if count > 0}
+    assert drawn == GEOMETRY_TYPES and not summary.warnings
+
+
 def test_every_object_type_renders_or_is_nothing_to_render_or_warns(stratum_addon: Any) -> None:
     """The object types of the running Blender: each is drawn (to_mesh), or has nothing to
     draw in Cycles either, or is reported by kind. A new type fails this test until it is
