@@ -91,6 +91,18 @@ def test_nan_transform_is_an_error_naming_object_and_element(scene_builder: Any,
     assert engine_reports("ERROR") == [f"Stratum: {info.value}"]
 
 
+@pytest.mark.parametrize("kind", ["POINT", "AREA"])
+def test_nan_light_transform_is_an_error_naming_the_light(scene_builder: Any,
+                                                          recording_scene: Any,
+                                                          kind: str) -> None:
+    b = scene_builder().basic()
+    lamp = b.link(bpy.data.objects.new("Lamp", bpy.data.lights.new("Lamp", kind)))
+    lamp.location = (0.0, NAN, 0.0)
+    with pytest.raises(ExportError) as info:
+        export_scene(b.depsgraph(), recording_scene)
+    assert str(info.value) == "Light 'Lamp': transform element 7 = nan is not finite"
+
+
 class _RejectingScene:
     """A recording scene whose add_instances refuses the row translated to x >= 7, as the
     native library reports a refused row of the batch (StratumError.index)."""

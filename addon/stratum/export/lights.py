@@ -11,7 +11,8 @@ radius, spot size, blend, angle, size or spread makes every sample of the light 
 Cycles, whose film drops such samples (ensure_finite), so the light renders as nothing; here it
 is skipped, with a warning naming the field. A negative power (Cycles subtracts light) cannot
 be rendered: skipped too. A NaN colour component is 0 (Cycles' film zeroes it per channel);
-a power beyond the largest float is limited to it.
+a power beyond the largest float is limited to it. A NaN or infinite transform is an error
+naming the light, as for objects.
 """
 
 from __future__ import annotations
@@ -24,7 +25,8 @@ import numpy as np
 
 from .. import native
 from ..fallbacks import FLT_MAX, NON_NEGATIVE, clamp_rgb
-from .common import ExportSummary, matrix_to_array, rgb
+from ..placement import first_non_finite
+from .common import ExportError, ExportSummary, matrix_to_array, rgb
 
 # Object > Visibility > Ray Visibility (Object properties in Blender 3.0+, lights too).
 _RAY_VISIBILITY = (
@@ -81,6 +83,10 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
     if problem is not None:
         summary.warn(f"Light '{ob.name}': 'color' {problem}")
     transform = matrix_to_array(matrix_world)
+    bad = first_non_finite(transform)
+    if bad is not None:  # as for objects (an area light's would read as "no area" below)
+        raise ExportError(f"Light '{ob.name}': transform element {bad[0]} = {bad[1]:g} is not "
+                          "finite")
     power = float(light.energy) * _exposure_scale(light)
     if power > FLT_MAX:
         summary.warn(f"Light '{ob.name}': power {power:g} W (with the exposure) exceeds the "
