@@ -112,12 +112,22 @@ SENSOR_FITS: dict[str, int] = {
 
 
 class StratumError(RuntimeError):
-    """A native call failed (status != OK) or the library could not be loaded."""
+    """A native call failed (status != OK) or the library could not be loaded.
 
-    def __init__(self, status: int, message: str) -> None:
+    stratum_last_error() reads "stratum_function: detail"; the function is kept apart
+    (`function`) so that what a user sees, str(error), is the detail alone: Blender's messages
+    name the object and field, not the ABI entry point. `message` is the whole text. `index`
+    is the failing element of a batched call (add_instances), else None."""
+
+    def __init__(self, status: int, message: str, index: int | None = None) -> None:
         self.status = status
         self.message = message
-        super().__init__(message or STATUS_NAMES.get(status, f"status {status}"))
+        self.index = index
+        head, sep, rest = message.partition(": ")
+        is_function = sep and head.startswith("stratum_") and head.isidentifier()
+        self.function = head if is_function else ""
+        self.detail = rest if is_function else message
+        super().__init__(self.detail or STATUS_NAMES.get(status, f"status {status}"))
 
 
 class LibraryLoadError(StratumError):
@@ -878,7 +888,8 @@ class Scene(_Handle):
 
     def add_instances(self, mesh_ids: np.ndarray, transforms: np.ndarray) -> None:
         """Static instances in bulk: mesh_ids (N,) and transforms (N, 4, 4) row-major. One C
-        call per instance without per-instance array conversion (scenes place 10 000s)."""
+        call per instance without per-instance array conversion (scenes place 10 000s). A
+        rejected instance raises StratumError whose `index` is its row."""
         ids = np.ascontiguousarray(mesh_ids, dtype=np.uint32).reshape(-1)
         mats = np.ascontiguousarray(transforms, dtype=np.float32).reshape(-1, 16)
         if len(ids) != len(mats):
@@ -888,8 +899,11 @@ class Scene(_Handle):
         base = mats.ctypes.data
         pointer = ctypes.POINTER(ctypes.c_float)
         for i, mesh_id in enumerate(ids.tolist()):
-            _check(self._lib, fn(handle, mesh_id, ctypes.cast(base + 64 * i, pointer)),
-                   "stratum_scene_add_instance")
+            try:
+                _check(self._lib, fn(handle, mesh_id, ctypes.cast(base + 64 * i, pointer)),
+                       "stratum_scene_add_instance")
+            except StratumError as exc:
+                raise StratumError(exc.status, exc.message, index=i) from None
 
     def add_instance_ex(self, instance: Instance) -> None:
         """An instance with motion (transform_end not None), ray visibility and holdout."""

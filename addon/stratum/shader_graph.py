@@ -30,24 +30,39 @@ textures that drive their parameters (StratumTextureBinding).
 
 `*`: an Image Texture node linked directly (Color or Alpha output), or through a Normal Map node
 (tangent space) for Normal. Anything else linked to an input: one warning naming the material
-and the node, and the socket's own value. This module never imports bpy: nodes are read by
-duck typing (bl_idname, name, inputs, outputs, links), so the unit tests use plain objects.
+and the node, and the socket's own value. A socket value that is NaN or outside what the
+renderer takes (stratum.fallbacks: Cycles' own clamps) is replaced, with one warning per node
+and socket. This module never imports bpy: nodes are read by duck typing (bl_idname, name,
+inputs, outputs, links), so the unit tests use plain objects.
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field, replace
 from typing import Any
 
 from . import native
+from .fallbacks import (
+    COAT,
+    COAT_IOR,
+    IOR,
+    NON_NEGATIVE,
+    SPECULAR,
+    UNIT,
+    Range,
+    clamp,
+    clamp_rgb,
+    finite_product,
+)
 
 Rgb = tuple[float, float, float]
 
 IMAGE_NODE = "ShaderNodeTexImage"
 NORMAL_MAP_NODE = "ShaderNodeNormalMap"
 GLOSSY_NODES = ("ShaderNodeBsdfGlossy", "ShaderNodeBsdfAnisotropic")
+VOLUME_NODES = frozenset({"ShaderNodeVolumeScatter", "ShaderNodeVolumeAbsorption",
+                          "ShaderNodeVolumePrincipled", "ShaderNodeVolumeCoefficients"})
 DEFAULT_GREY: Rgb = (0.8, 0.8, 0.8)
 # Parameters the native contract does not take textures for (stratum.h: emissive triangles are
 # light-sampled with a constant emission; transmission waits for a per-material weight).
@@ -82,18 +97,19 @@ class Closure:
 
 class Flattener:
     """Walks one material's surface tree. `warn(node, message)` is called at most once per
-    node (the caller prefixes the material name)."""
+    node and subject (a socket, or the node itself; the caller prefixes the material name)."""
 
     def __init__(self, version: tuple[int, int, int], warn: Callable[[Any, str], None]) -> None:
         self.version = version
         self._warn = warn
-        self._warned: set[str] = set()
+        self._warned: set[tuple[str, str]] = set()
+        self._bound: set[tuple[str, str]] = set()  # (node, socket) driven by a texture
         self.closures: list[Closure] = []
 
     # ---- warnings and socket reading ------------------------------------------------------
 
-    def warn(self, node: Any, message: str) -> None:
-        key = getattr(node, "name", str(id(node)))
+    def warn(self, node: Any, message: str, subject: str = "") -> None:
+        key = (getattr(node, "name", str(id(node))), subject)
         if key in self._warned:
             return
         self._warned.add(key)
@@ -135,14 +151,36 @@ class Flattener:
             return fallback
         return socket.default_value
 
-    def scalar(self, node: Any, name: str, fallback: float) -> float:
-        v = float(self.value(node, name, fallback))
-        return v if math.isfinite(v) else fallback
+    def raw(self, node: Any, name: str, fallback: float) -> float:
+        """An input's value as stored (NaN included): for tests of "is this feature used"."""
+        return float(self.value(node, name, fallback))
 
-    def color(self, node: Any, name: str, fallback: Rgb) -> Rgb:
-        v = self.value(node, name, fallback)
-        c = tuple(float(x) for x in tuple(v)[:3])
-        return (c[0], c[1], c[2]) if all(math.isfinite(x) for x in c) else fallback
+    def scalar(self, node: Any, name: str, fallback: float, valid: Range) -> float:
+        """An input's value within `valid` (fallbacks.clamp); a replacement is warned about
+        unless a texture drives the input (then the value is not used)."""
+        fixed, problem = clamp(self.raw(node, name, fallback), valid)
+        if problem is not None and (node.name, name) not in self._bound:
+            self.warn(node, f"'{name}' of '{node.name}' {problem}", name)
+        return fixed
+
+    def color(self, node: Any, name: str, fallback: Rgb, valid: Range) -> Rgb:
+        """scalar() for a colour input (its first three components)."""
+        c = tuple(float(x) for x in tuple(self.value(node, name, fallback))[:3])
+        fixed, problem = clamp_rgb((c[0], c[1], c[2]), valid)
+        if problem is not None and (node.name, name) not in self._bound:
+            self.warn(node, f"'{name}' of '{node.name}' {problem}", name)
+        return fixed
+
+    def emission(self, node: Any, color_name: str, strength_name: str, color_fallback: Rgb,
+                 strength_fallback: float) -> Rgb:
+        """Emitted radiance: colour x strength, each >= 0, the product at most FLT_MAX."""
+        color = self.color(node, color_name, color_fallback, NON_NEGATIVE)
+        strength = self.scalar(node, strength_name, strength_fallback, NON_NEGATIVE)
+        radiance, limited = finite_product(color, strength)
+        if limited:
+            self.warn(node, f"'{color_name}' x '{strength_name}' of '{node.name}' exceeds the "
+                            "largest float (3.4e38); limited to it", strength_name)
+        return radiance
 
     def texture(self, node: Any, name: str, param: int, bindings: list[Binding]) -> None:
         """Records a binding if `name` is linked to an image (or, for Normal, to a Normal Map
@@ -161,13 +199,14 @@ class Flattener:
             if src.bl_idname == NORMAL_MAP_NODE and getattr(src, "space", "TANGENT") == "TANGENT":
                 image = self._source(src.inputs["Color"])
                 if image is not None and image[0].bl_idname == IMAGE_NODE:
-                    strength = self.scalar(src, "Strength", 1.0)
+                    strength = self.scalar(src, "Strength", 1.0, NON_NEGATIVE)
                     if self.version >= (4, 0, 0) and not 0.0 <= strength <= 1.0:
                         # Cycles 4.x+ scales the tangent-space normal; the renderer follows
                         # 3.4's lerp, which agrees only for strengths in [0, 1].
                         self.warn(src, f"Normal Map '{src.name}': strength {strength:g} outside "
                                        "[0, 1] renders as Cycles 3.x does")
                     bindings.append(Binding(param, self._image(image[0]), -1, strength))
+                    self._bound.add((node.name, name))
                     return
                 if image is None:
                     return  # a Normal Map with a constant colour: the flat normal
@@ -179,6 +218,7 @@ class Flattener:
         if src.bl_idname == IMAGE_NODE:
             channel = 3 if out.name == "Alpha" else -1
             bindings.append(Binding(param, self._image(src), channel, 1.0, 0.0))
+            self._bound.add((node.name, name))
             return
         self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' is not "
                        "supported; using the socket's value")
@@ -210,6 +250,11 @@ class Flattener:
             self.walk(node.inputs[1], weight, weight_binding)
         elif kind == "ShaderNodeBsdfPrincipled":
             self._principled(node, weight, weight_binding)
+        elif kind in VOLUME_NODES:
+            # Cycles evaluates volume closures in volume shaders only (svm_node_closure_volume
+            # returns for a surface), so on a surface input they add nothing.
+            self.warn(node, f"volume shader '{node.name}' ({kind}) on a surface input adds "
+                            "nothing, as in Cycles")
         else:
             made = self._simple(node)
             if made is None:
@@ -229,7 +274,6 @@ class Flattener:
 
     def _mix(self, node: Any, weight: Rgb, weight_binding: Binding | None) -> None:
         fac_socket = node.inputs[0]
-        fac = min(max(float(fac_socket.default_value), 0.0), 1.0)
         found = self._source(fac_socket)
         if found is not None and found[0].bl_idname == IMAGE_NODE:
             if weight_binding is None:
@@ -243,7 +287,8 @@ class Flattener:
                 return
             self.warn(node, f"Mix Shader '{node.name}': an image factor inside another "
                             "image-driven mix is not supported; using its Fac value")
-        elif found is not None:
+        fac = self.scalar(node, fac_socket.name, 0.5, UNIT)
+        if found is not None and found[0].bl_idname != IMAGE_NODE:
             self.warn(found[0], f"node '{found[0].name}' ({found[0].bl_idname}) on the Fac of "
                                 f"'{node.name}' is not supported; using the Fac value {fac:g}")
         self.walk(node.inputs[1], _scale(weight, 1.0 - fac), weight_binding)
@@ -258,15 +303,11 @@ class Flattener:
 
     # ---- BSDF nodes ---------------------------------------------------------------------------
 
-    def _clamped_color(self, node: Any, name: str) -> Rgb:
-        c = self.color(node, name, DEFAULT_GREY)
-        clamped = (min(max(c[0], 0.0), 1.0), min(max(c[1], 0.0), 1.0), min(max(c[2], 0.0), 1.0))
-        if clamped != c:
-            self.warn(node, f"'{name}' of '{node.name}' outside [0, 1] is clamped")
-        return clamped
+    def _reflectance(self, node: Any, name: str) -> Rgb:
+        return self.color(node, name, DEFAULT_GREY, UNIT)
 
     def _roughness(self, node: Any) -> float:
-        return min(max(self.scalar(node, "Roughness", 0.5), 0.0), 1.0)
+        return self.scalar(node, "Roughness", 0.5, UNIT)
 
     def _distribution(self, node: Any, roughness: float) -> int:
         dist = getattr(node, "distribution", "GGX")
@@ -284,38 +325,37 @@ class Flattener:
             self.texture(node, "Color", native.PARAM_BASE_COLOR, bindings)
             self.texture(node, "Normal", native.PARAM_NORMAL, bindings)
             self.unsupported_link(node, "Roughness")
-            if self.scalar(node, "Roughness", 0.0) != 0.0:
+            if self.raw(node, "Roughness", 0.0) != 0.0:
                 self.warn(node, f"Diffuse '{node.name}': roughness (Oren-Nayar) is rendered as "
                                 "Lambertian")
             return native.Material(model=native.MATERIAL_DIFFUSE,
-                                   base_color=self._clamped_color(node, "Color")), bindings
+                                   base_color=self._reflectance(node, "Color")), bindings
         if kind in GLOSSY_NODES or kind == "ShaderNodeBsdfGlass":
             self.texture(node, "Color", native.PARAM_BASE_COLOR, bindings)
             self.texture(node, "Roughness", native.PARAM_ROUGHNESS, bindings)
             self.texture(node, "Normal", native.PARAM_NORMAL, bindings)
             roughness = 0.0 if getattr(node, "distribution", "") == "SHARP" else \
                 self._roughness(node)
-            if kind in GLOSSY_NODES and self.scalar(node, "Anisotropy", 0.0) != 0.0:
+            if kind in GLOSSY_NODES and self.raw(node, "Anisotropy", 0.0) != 0.0:
                 self.warn(node, f"'{node.name}': anisotropy is rendered as isotropic")
             glass = kind == "ShaderNodeBsdfGlass"
             if glass:
                 self.unsupported_link(node, "IOR")
             return native.Material(
                 model=native.MATERIAL_GLASS if glass else native.MATERIAL_GLOSSY,
-                base_color=self._clamped_color(node, "Color"), roughness=roughness,
-                ior=max(self.scalar(node, "IOR", 1.5), 1e-3),
+                base_color=self._reflectance(node, "Color"), roughness=roughness,
+                ior=self.scalar(node, "IOR", 1.5, IOR),
                 distribution=self._distribution(node, roughness)), bindings
         if kind == "ShaderNodeBsdfTransparent":
             self.texture(node, "Color", native.PARAM_BASE_COLOR, bindings)
             return native.Material(model=native.MATERIAL_TRANSPARENT,
-                                   base_color=self._clamped_color(node, "Color")), bindings
+                                   base_color=self._reflectance(node, "Color")), bindings
         if kind == "ShaderNodeEmission":
-            strength = self.scalar(node, "Strength", 1.0)
             self.unsupported_link(node, "Strength")
             self.texture(node, "Color", native.PARAM_EMISSION, bindings)
-            color = self.color(node, "Color", (1.0, 1.0, 1.0))
+            emission = self.emission(node, "Color", "Strength", (1.0, 1.0, 1.0), 1.0)
             return native.Material(model=native.MATERIAL_EMISSION, base_color=(0.0, 0.0, 0.0),
-                                   emission=_emission(color, strength)), bindings
+                                   emission=emission), bindings
         if kind == "ShaderNodeHoldout":
             return native.Material(model=native.MATERIAL_HOLDOUT,
                                    base_color=(0.0, 0.0, 0.0)), bindings
@@ -331,7 +371,6 @@ class Flattener:
             self.warn(node, f"Principled '{node.name}': " + ", ".join(f"'{n}'" for n in unsupported)
                       + " not supported (rendered without)")
         bindings: list[Binding] = []
-        strength = self.scalar(node, "Emission Strength", 1.0)
         for name, param in names["bindable"]:
             self.texture(node, name, param, bindings)
         for name in names["constant"]:
@@ -339,20 +378,21 @@ class Flattener:
         roughness = self._roughness(node)
         material = native.Material(
             model=native.MATERIAL_PRINCIPLED_V2 if v2 else native.MATERIAL_PRINCIPLED_V1,
-            base_color=self._clamped_color(node, "Base Color"),
+            base_color=self._reflectance(node, "Base Color"),
             roughness=roughness,
-            metallic=min(max(self.scalar(node, "Metallic", 0.0), 0.0), 1.0),
-            specular=max(self.scalar(node, names["specular"], 0.5), 0.0),
-            ior=max(self.scalar(node, "IOR", 1.5), 1e-3),
-            emission=_emission(self.color(node, names["emission"], (0.0, 0.0, 0.0)), strength),
+            metallic=self.scalar(node, "Metallic", 0.0, UNIT),
+            specular=self.scalar(node, names["specular"], 0.5, SPECULAR),
+            ior=self.scalar(node, "IOR", 1.5, IOR),
+            emission=self.emission(node, names["emission"], "Emission Strength", (0.0, 0.0, 0.0),
+                                   1.0),
             distribution=(native.MICROFACET_MULTISCATTER_GGX
                           if v2 and getattr(node, "distribution", "GGX") == "MULTI_GGX"
                           else native.MICROFACET_GGX),
-            transmission=min(max(self.scalar(node, names["transmission"], 0.0), 0.0), 1.0),
-            coat=max(self.scalar(node, names["coat"], 0.0), 0.0),
-            coat_roughness=min(max(self.scalar(node, names["coat_roughness"], 0.03), 0.0), 1.0),
-            coat_ior=max(self.scalar(node, "Coat IOR", 1.5), 1e-3),
-            coat_tint=_clamp01(self.color(node, "Coat Tint", (1.0, 1.0, 1.0))),
+            transmission=self.scalar(node, names["transmission"], 0.0, UNIT),
+            coat=self.scalar(node, names["coat"], 0.0, COAT),
+            coat_roughness=self.scalar(node, names["coat_roughness"], 0.03, UNIT),
+            coat_ior=self.scalar(node, "Coat IOR", 1.5, COAT_IOR),
+            coat_tint=self.color(node, "Coat Tint", (1.0, 1.0, 1.0), UNIT),
         )
         if not v2 and getattr(node, "distribution", "GGX") == "MULTI_GGX":
             self.warn(node, f"Principled '{node.name}': Multiscatter GGX is rendered as GGX "
@@ -376,7 +416,7 @@ class Flattener:
             self._emit(weight, replace(alpha, scale=-1.0, offset=1.0), transparent, [])
             self._emit(weight, alpha, material, bindings)
             return
-        alpha = min(max(self.scalar(node, "Alpha", 1.0), 0.0), 1.0)
+        alpha = self.scalar(node, "Alpha", 1.0, UNIT)
         if alpha < 1.0:
             self._emit(_scale(weight, 1.0 - alpha), weight_binding, transparent, [])
         self._emit(_scale(weight, alpha), weight_binding, material, bindings)
@@ -412,15 +452,6 @@ PRINCIPLED_V2: dict[str, Any] = {
 
 def _scale(weight: Rgb, factor: float) -> Rgb:
     return (weight[0] * factor, weight[1] * factor, weight[2] * factor)
-
-
-def _clamp01(c: Rgb) -> Rgb:
-    return (min(max(c[0], 0.0), 1.0), min(max(c[1], 0.0), 1.0), min(max(c[2], 0.0), 1.0))
-
-
-def _emission(color: Rgb, strength: float) -> Rgb:
-    return (max(color[0] * strength, 0.0), max(color[1] * strength, 0.0),
-            max(color[2] * strength, 0.0))
 
 
 def flatten_surface(surface: Any, version: tuple[int, int, int],

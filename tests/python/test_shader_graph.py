@@ -298,3 +298,38 @@ def test_normal_map_strength_outside_unit_range_warns_in_4x_only() -> None:
         closures, warnings = flatten(output_with(node), version)
         assert len(warnings) == expected
         assert closures[0].bindings[0].scale == pytest.approx(2.0)
+
+
+NAN = float("nan")
+
+
+def test_invalid_socket_values_warn_once_per_socket() -> None:
+    """Each bad socket of a node is its own warning (the once-per-node rule of unsupported
+    links must not swallow the second); the values become Cycles' clamps."""
+    node = principled_v2(**{"Roughness": NAN, "Metallic": NAN, "IOR": -1.0,
+                            "Base Color": (NAN, 0.5, 2.0, 1.0)})
+    noise = Node("ShaderNodeTexNoise", "Noise", {}, ("Fac", "Color"))
+    link(noise, "Fac", node, "Coat Weight")
+    closures, warnings = flatten(output_with(node))
+    assert len(warnings) == 5, warnings  # Roughness, Metallic, IOR, Base Color, the Noise link
+    for socket in ("'Roughness'", "'Metallic'", "'IOR'", "'Base Color'", "'Noise'"):
+        assert sum(socket in w for w in warnings) == 1, socket
+    material = closures[0].material
+    assert (material.roughness, material.metallic, material.ior) == (0.0, 0.0, 1e-5)
+    assert material.base_color == (0.0, 0.5, 1.0)
+
+
+def test_a_texture_driven_socket_value_is_not_read_so_not_warned() -> None:
+    node = principled_v1(Roughness=NAN)
+    link(image("Rough"), "Color", node, "Roughness")
+    closures, warnings = flatten(output_with(node), V3)
+    assert warnings == []
+    assert closures[0].bindings[0].param == native.PARAM_ROUGHNESS
+    assert closures[0].material.roughness == 0.0  # a valid placeholder for the ABI
+
+
+def test_volume_shader_on_a_surface_adds_no_closure() -> None:
+    scatter = Node("ShaderNodeVolumeScatter", "Volume Scatter",
+                   {"Color": (1, 1, 1, 1), "Density": 1.0}, ("Volume",))
+    closures, warnings = flatten(output_with(scatter, "Volume"))
+    assert closures == [] and len(warnings) == 1 and "'Volume Scatter'" in warnings[0]

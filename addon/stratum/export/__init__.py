@@ -7,7 +7,9 @@ one instance per depsgraph object instance (objects, collection instances, parti
 geometry-nodes instances). Instances carry the object's ray visibility and holdout (Object >
 Visibility in Cycles) and, with motion blur, the transforms at shutter open and close.
 Collections excluded from the view layer or disabled for render never reach
-depsgraph.object_instances, so nothing else is needed for them.
+depsgraph.object_instances, so nothing else is needed for them. Objects Stratum does not render
+are reported once per kind (unsupported.py); transforms are checked before they reach the
+native scene (stratum/placement.py).
 """
 
 from __future__ import annotations
@@ -19,6 +21,7 @@ from typing import Any
 import numpy as np
 
 from .. import native
+from ..placement import degenerate, first_non_finite
 from .camera import convert_camera
 from .common import ExportCancelled, ExportError, ExportSummary, instance_matrices
 from .lights import convert_light, object_visibility
@@ -32,6 +35,7 @@ from .meshes import (
     triangle_material_ids,
 )
 from .motion import instance_key, shutter_transforms
+from .unsupported import UnsupportedObjects
 from .world import convert_environment, convert_world
 
 __all__ = [
@@ -105,7 +109,7 @@ def export_scene(
     bl_scene = depsgraph.scene_eval if hasattr(depsgraph, "scene_eval") else depsgraph.scene
     materials = MaterialTable(scene, summary)
     mesh_ids: dict[tuple[Any, ...], tuple[int, int]] = {}  # key -> (mesh id, triangles)
-    motion = shutter_transforms(depsgraph, bl_scene, frame_set)
+    motion = shutter_transforms(depsgraph, bl_scene, frame_set, summary.warn)
 
     try:
         # Blender clamps lens to >= 1 mm, so a zero focal length comes only from files other
@@ -113,17 +117,20 @@ def export_scene(
         scene.set_camera(convert_camera(bl_scene, depsgraph))
     except native.StratumError as exc:
         raise ExportError(f"Camera '{bl_scene.camera.name}': {exc}") from exc
-    scene.set_background(convert_world(bl_scene, summary))
-    environment = convert_environment(bl_scene, summary)
-    if environment is not None:
-        scene.set_environment(environment.rgb, environment.strength, environment.rotation)
+    try:
+        scene.set_background(convert_world(bl_scene, summary))
+        environment = convert_environment(bl_scene, summary)
+        if environment is not None:
+            scene.set_environment(environment.rgb, environment.strength, environment.rotation)
+    except native.StratumError as exc:
+        raise ExportError(f"World '{getattr(bl_scene.world, 'name', '')}': {exc}") from exc
 
     flags = _InstanceFlags(getattr(depsgraph, "view_layer", None))
+    unsupported = UnsupportedObjects()
     # Per geometry identity (original object, evaluated data): (mesh id, triangles); LIGHT_ID
     # for lights, -1 for nothing to draw.
     objects: dict[tuple[int, int], tuple[int, int]] = {}
-    # (row, mesh id, object name, triangles, visibility, holdout, (open, close) or None)
-    placed: list[tuple[int, int, str, int, int, bool, Any]] = []
+    placed: list[Placement] = []
     index = -1
     for index, instance in enumerate(depsgraph.object_instances):
         if should_stop is not None and index % 256 == 0 and should_stop():
@@ -140,7 +147,8 @@ def export_scene(
         ident = _identity(ob)
         found = objects.get(ident)
         if found is None:
-            found = _object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
+            found = (-1, 0) if unsupported.skip(ob) else \
+                _object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
             objects[ident] = found
         mesh_id = found[0]
         parent = instance.parent if is_instance else None
@@ -150,14 +158,18 @@ def export_scene(
             moved = motion.get(instance_key(instance, ob)) if motion else None
             visibility, holdout = flags.get(ob, ident, parent)
             placed.append((index, mesh_id, ob.name, found[1], visibility, holdout, moved))
+    unsupported.report(summary)
     matrices = instance_matrices(depsgraph, index + 1)
+    placed = _renderable(placed, matrices, summary)
 
     plain_ids: list[int] = []
     plain_rows: list[int] = []
+    plain_names: list[str] = []
     for row, mesh_id, name, n_tri, visibility, holdout, moved in placed:
         if moved is None and visibility == native.VISIBLE_ALL and not holdout:
             plain_ids.append(mesh_id)
             plain_rows.append(row)
+            plain_names.append(name)
         else:
             start_m, end_m = moved if moved is not None else (matrices[row], None)
             summary.moving_instances += moved is not None
@@ -172,7 +184,8 @@ def export_scene(
     try:
         scene.add_instances(np.asarray(plain_ids, dtype=np.uint32), matrices[plain_rows])
     except native.StratumError as exc:
-        raise ExportError(f"Instances: {exc}") from exc
+        where = f"Object '{plain_names[exc.index]}'" if exc.index is not None else "Instances"
+        raise ExportError(f"{where}: {exc}") from exc
     summary.instances = len(placed)
 
     summary.textures = materials.textures.count
@@ -181,6 +194,36 @@ def export_scene(
 
 
 LIGHT_ID = -2
+# (row, mesh id, object name, triangles, visibility, holdout, (open, close) or None)
+Placement = tuple[int, int, str, int, int, bool, Any]
+
+
+def _renderable(placed: list[Placement], matrices: np.ndarray,
+                summary: ExportSummary) -> list[Placement]:
+    """The placements whose transforms can be rendered. A NaN or infinite element is an
+    ExportError naming the object; a degenerate transform (stratum/placement.py) is skipped
+    with a warning naming the object."""
+    if not placed:
+        return placed
+    first = matrices[[p[0] for p in placed]]
+    moving = [i for i, p in enumerate(placed) if p[6] is not None]
+    ends = np.empty((0, 4, 4), dtype=np.float32)
+    if moving:
+        first[moving] = np.stack([placed[i][6][0] for i in moving])
+        ends = np.stack([placed[i][6][1] for i in moving])
+    for transforms, owners in ((first, range(len(placed))), (ends, moving)):
+        finite = np.isfinite(transforms).all(axis=(1, 2))
+        if not finite.all():
+            i = int(np.flatnonzero(~finite)[0])
+            element, value = first_non_finite(transforms[i]) or (0, 0.0)
+            raise ExportError(f"Object '{placed[owners[i]][2]}': transform element {element} = "
+                              f"{value:g} is not finite")
+    skip = degenerate(first)
+    skip[moving] |= degenerate(ends)
+    for i in np.flatnonzero(skip):
+        summary.warn(f"Object '{placed[i][2]}': its transform has (nearly) zero scale along some "
+                     "axis (a linear part too close to singular to trace); skipped")
+    return [p for p, s in zip(placed, skip, strict=True) if not s]
 
 
 def _object_geometry(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
@@ -223,8 +266,10 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     textured = bool(materials.textured.intersection(int(i) for i in slot_ids))
     arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids), read_uvs=textured)
     if arrays is None or len(arrays.triangles) == 0:
-        # A vertex/face instancer's own mesh often has no faces on purpose.
-        if ob.type == "MESH" and not getattr(ob, "is_instancer", False):
+        # A vertex/face instancer's own mesh often has no faces on purpose; a mesh without
+        # vertices is empty (e.g. geometry nodes turned it into points, reported as such).
+        if ob.type == "MESH" and not getattr(ob, "is_instancer", False) and \
+                arrays is not None and len(arrays.positions):
             summary.warn(f"Object '{ob.name}': mesh has no faces (skipped)")
         return (-1, 0)
     if arrays.missing_uv:

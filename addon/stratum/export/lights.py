@@ -5,6 +5,14 @@ point power P has intensity P/(4π) (a spot's too, on its axis; its cone falloff
 cos θ in Cycles 3.x), sun strength is irradiance, and an area light of power P
 and area A has radiance P/(πA) in Cycles 4.x/5.x but P/(4A) in Cycles 3.x. The native library
 implements the physical P/(πA), so a 3.x area light's power is scaled by π/4.
+
+Invalid values (docs/invalid_values.md): a NaN or infinite power, exposure,
+radius, spot size, blend, angle, size or spread makes every sample of the light non-finite in
+Cycles, whose film drops such samples (ensure_finite), so the light renders as nothing; here it
+is skipped, with a warning naming the field. A negative power (Cycles subtracts light) cannot
+be rendered: skipped too. A NaN colour component is 0 (Cycles' film zeroes it per channel);
+a power beyond the largest float is limited to it. A NaN or infinite transform is an error
+naming the light, as for objects.
 """
 
 from __future__ import annotations
@@ -16,7 +24,9 @@ import bpy
 import numpy as np
 
 from .. import native
-from .common import ExportSummary, matrix_to_array, rgb
+from ..fallbacks import FLT_MAX, NON_NEGATIVE, clamp_rgb
+from ..placement import first_non_finite
+from .common import ExportError, ExportSummary, matrix_to_array, rgb
 
 # Object > Visibility > Ray Visibility (Object properties in Blender 3.0+, lights too).
 _RAY_VISIBILITY = (
@@ -26,6 +36,13 @@ _RAY_VISIBILITY = (
     ("visible_transmission", native.VISIBLE_TRANSMISSION),
     ("visible_shadow", native.VISIBLE_SHADOW),
 )
+# Fields each light type reads, beyond energy and exposure (all: colour).
+_SHAPE_FIELDS = {
+    "POINT": ("shadow_soft_size",),
+    "SPOT": ("shadow_soft_size", "spot_size", "spot_blend"),
+    "SUN": ("angle",),
+    "AREA": ("size", "spread"),
+}
 # Cycles' spread is (0, pi]; 5.x lets it reach 0 (3.x stops at 1 degree), the native side reads
 # 0 as pi, so a 0 is sent as this smallest positive spread.
 MIN_SPREAD = 1e-3
@@ -57,10 +74,24 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
         visibility &= ~native.VISIBLE_SHADOW
     if visibility & ~native.VISIBLE_SHADOW == 0:
         return None  # seen by no ray: contributes nothing (native 0 would mean "all")
-    color = rgb(light.color)
-    transform = matrix_to_array(matrix_world)
     kind = light.type
+    reason = _unrenderable(light, kind)
+    if reason is not None:
+        summary.warn(f"Light '{ob.name}': {reason}; the light is skipped")
+        return None
+    color, problem = clamp_rgb(rgb(light.color), NON_NEGATIVE)
+    if problem is not None:
+        summary.warn(f"Light '{ob.name}': 'color' {problem}")
+    transform = matrix_to_array(matrix_world)
+    bad = first_non_finite(transform)
+    if bad is not None:  # as for objects (an area light's would read as "no area" below)
+        raise ExportError(f"Light '{ob.name}': transform element {bad[0]} = {bad[1]:g} is not "
+                          "finite")
     power = float(light.energy) * _exposure_scale(light)
+    if power > FLT_MAX:
+        summary.warn(f"Light '{ob.name}': power {power:g} W (with the exposure) exceeds the "
+                     "largest float; limited to it")
+        power = FLT_MAX
     if kind in ("POINT", "SPOT") and light.shadow_soft_size > 0.0 and not getattr(
             light, "use_soft_falloff", True):
         # Cycles 4.1+ with Soft Falloff off draws a radius as a uniform sphere; Stratum has
@@ -103,6 +134,25 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
                             visibility=visibility,
                             spread=max(float(getattr(light, "spread", math.pi)), MIN_SPREAD))
     summary.warn(f"Light '{ob.name}': type {kind} is not supported (skipped)")
+    return None
+
+
+def _unrenderable(light: Any, kind: str) -> str | None:
+    """Why a light cannot be rendered (a field NaN, infinite, or a negative power), or None."""
+    fields = ["energy", "exposure", *_SHAPE_FIELDS.get(kind, ())]
+    if kind == "AREA" and light.shape in {"RECTANGLE", "ELLIPSE"}:
+        fields.append("size_y")
+    for field in fields:
+        if not hasattr(light, field):
+            continue
+        value = float(getattr(light, field))
+        if math.isnan(value):
+            return f"'{field}' is not a number (Cycles renders such a light as nothing)"
+        if math.isinf(value):
+            return f"'{field}' = {value:g} is infinite (Cycles renders such a light as nothing)"
+    energy = float(light.energy)
+    if energy < 0.0:
+        return f"'energy' = {energy:g} W is negative (a light that subtracts is not supported)"
     return None
 
 

@@ -15,6 +15,7 @@ from typing import Any
 import bpy
 
 from .. import native
+from ..fallbacks import UNIT, clamp_rgb
 from ..shader_graph import DEFAULT_GREY, Closure, flatten_surface
 from .common import ExportError, ExportSummary, active_output, linked_from, rgb, uses_nodes
 from .images import TextureTable
@@ -27,11 +28,6 @@ class ConvertedMaterial:
     warnings: list[str] = field(default_factory=list)  # each names the material and node
 
 
-def _clamp01(color: tuple[float, float, float]) -> tuple[float, float, float]:
-    return (min(max(color[0], 0.0), 1.0), min(max(color[1], 0.0), 1.0),
-            min(max(color[2], 0.0), 1.0))
-
-
 def _single(material: native.Material) -> list[Closure]:
     return [Closure((1.0, 1.0, 1.0), material)]
 
@@ -42,11 +38,23 @@ def convert_material(material: Any | None) -> ConvertedMaterial:
         return ConvertedMaterial(_single(native.Material(model=native.MATERIAL_DIFFUSE,
                                                          base_color=DEFAULT_GREY)))
     if not uses_nodes(material):
-        color = _clamp01(rgb(material.diffuse_color))
-        return ConvertedMaterial(_single(native.Material(model=native.MATERIAL_DIFFUSE,
-                                                         base_color=color)))
+        color, problem = clamp_rgb(rgb(material.diffuse_color), UNIT)
+        return ConvertedMaterial(
+            _single(native.Material(model=native.MATERIAL_DIFFUSE, base_color=color)),
+            warnings=[f"Material '{material.name}': 'Color' {problem}"] if problem else [])
     output = active_output(material.node_tree, "ShaderNodeOutputMaterial")
     surface = output.inputs.get("Surface") if output is not None else None
+    volume = output.inputs.get("Volume") if output is not None else None
+    has_volume = volume is not None and linked_from(volume) is not None
+    volume_warning = (f"Material '{material.name}': its Volume shader is not rendered "
+                      "(Stratum renders surfaces only)")
+    if has_volume and (surface is None or linked_from(surface) is None):
+        # Cycles makes the surface of a volume-only material a transparent boundary
+        # (scene/shader.cpp: SD_HAS_ONLY_VOLUME, "we can assume transparent surface").
+        return ConvertedMaterial(
+            _single(native.Material(model=native.MATERIAL_TRANSPARENT,
+                                    base_color=(1.0, 1.0, 1.0))),
+            warnings=[volume_warning + "; its surface is transparent, as in Cycles"])
     if surface is None or linked_from(surface) is None:
         # Cycles renders an unconnected surface black; keep it visible but say so.
         return ConvertedMaterial(
@@ -59,6 +67,8 @@ def convert_material(material: Any | None) -> ConvertedMaterial:
         warnings.append(f"Material '{material.name}': {message}")
 
     closures, uv_map = flatten_surface(surface, tuple(bpy.app.version), warn)
+    if has_volume:
+        warnings.append(volume_warning)
     if not closures:
         # Every closure had weight 0: Cycles shades the surface black (and opaque).
         closures = _single(native.Material(model=native.MATERIAL_DIFFUSE,

@@ -5,7 +5,9 @@ ends with RenderEngine.frame_set and keeps, per object, the transforms there. Th
 motion_blur_shutter frames around the current frame, placed by the motion blur position
 (3.x: scene.cycles.motion_blur_position, 4.x+: scene.render.motion_blur_position; default
 CENTER): START [f, f + s], CENTER [f - s/2, f + s/2], END [f - s, f].
-Only instances whose transform differs between the two ends are sent as moving.
+Only instances whose transform differs between the two ends are sent as moving. A shutter that
+is NaN, or reaches beyond Blender's frame range (RNA keeps 1e30), renders without motion blur,
+with a warning.
 """
 
 from __future__ import annotations
@@ -17,6 +19,8 @@ from typing import Any
 import numpy as np
 
 from .common import instance_matrices
+
+MAXFRAME = 1048574  # Blender's largest frame number (DNA_scene_types.h MAXFRAME)
 
 
 def instance_key(instance: Any, ob: Any) -> tuple[Any, ...]:
@@ -59,11 +63,17 @@ def _split(frame: float) -> tuple[int, float]:
 
 
 def shutter_transforms(depsgraph: Any, bl_scene: Any,
-                       frame_set: Callable[[int, float], None] | None
+                       frame_set: Callable[[int, float], None] | None,
+                       warn: Callable[[str], None]
                        ) -> dict[tuple[Any, ...], tuple[np.ndarray, np.ndarray]] | None:
     """{instance key: (transform at open, transform at close)} of the instances that move over
     the shutter, or None without motion blur. Leaves the depsgraph at the current frame."""
-    if not bl_scene.render.use_motion_blur or bl_scene.render.motion_blur_shutter <= 0.0:
+    shutter = float(bl_scene.render.motion_blur_shutter)
+    if not bl_scene.render.use_motion_blur or shutter <= 0.0:
+        return None
+    if not all(math.isfinite(t) and abs(t) <= MAXFRAME for t in shutter_interval(bl_scene)):
+        warn(f"Scene '{bl_scene.name}': motion blur shutter = {shutter:g} frames is not a frame "
+             "interval Blender can evaluate; rendered without motion blur")
         return None
     if frame_set is None:
         original = getattr(bl_scene, "original", bl_scene)

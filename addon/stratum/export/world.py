@@ -9,6 +9,11 @@ colour space. Only images whose colour space is linear are converted exactly; an
 colour space gives a warning (OCIO conversion is pending) and its pixels are used as Blender
 gives them. The native side looks the image up nearest-texel (Cycles' "Closest"); Cycles'
 default "Linear" differs only within a texel.
+
+Invalid values (docs/invalid_values.md): a NaN colour component or strength is
+0 and a negative strength 0 (Cycles' film drops the non-finite samples, and Stratum has no
+light that subtracts), colour x strength is limited to the largest float, and environment
+pixels that are NaN, infinite or negative are 0; each with one warning naming the world.
 """
 
 from __future__ import annotations
@@ -19,6 +24,7 @@ from typing import Any
 
 import numpy as np
 
+from ..fallbacks import NON_NEGATIVE, Rgb, clamp, clamp_rgb, finite_product
 from .common import (
     ExportSummary,
     active_output,
@@ -93,12 +99,27 @@ def _environment_node(background: Any) -> Any | None:
     return node if node is not None and node.bl_idname == "ShaderNodeTexEnvironment" else None
 
 
-def convert_world(scene: Any, summary: ExportSummary) -> tuple[float, float, float]:
+def _color(world: Any, label: str, value: Any, summary: ExportSummary) -> Rgb:
+    """A colour >= 0 (`label` names it in the warning, e.g. "'Color' of 'Background'")."""
+    color, problem = clamp_rgb(rgb(value), NON_NEGATIVE)
+    if problem is not None:
+        summary.warn(f"World '{world.name}': {label} {problem}")
+    return color
+
+
+def _strength(world: Any, background: Any, summary: ExportSummary) -> float:
+    strength, problem = clamp(float(socket_value(background, "Strength")), NON_NEGATIVE)
+    if problem is not None:
+        summary.warn(f"World '{world.name}': 'Strength' of '{background.name}' {problem}")
+    return strength
+
+
+def convert_world(scene: Any, summary: ExportSummary) -> Rgb:
     world = scene.world
     if world is None:
         return (0.0, 0.0, 0.0)
     if not uses_nodes(world):
-        return rgb(world.color)
+        return _color(world, "'Color'", world.color, summary)
     node_tree = world.node_tree
     output = active_output(node_tree, "ShaderNodeOutputWorld")
     surface = output.inputs.get("Surface") if output is not None else None
@@ -108,17 +129,19 @@ def convert_world(scene: Any, summary: ExportSummary) -> tuple[float, float, flo
     if node.bl_idname != "ShaderNodeBackground":
         summary.warn(f"World '{world.name}': shader node '{node.name}' ({node.bl_idname}) is "
                      "not supported; using the world colour (constant background only)")
-        return rgb(world.color)
+        return _color(world, "'Color'", world.color, summary)
     # An Environment Texture on Color is exported by convert_environment (it replaces this).
     linked = [s for s in ("Color", "Strength") if node.inputs[s].is_linked
               and not (s == "Color" and _environment_node(node) is not None)]
     if linked:
         summary.warn(f"World '{world.name}': linked Background {', '.join(linked)} is not "
                      "supported; using the socket values as a constant background")
-    color = rgb(socket_value(node, "Color"))
-    strength = float(socket_value(node, "Strength"))
-    return (max(color[0] * strength, 0.0), max(color[1] * strength, 0.0),
-            max(color[2] * strength, 0.0))
+    color = _color(world, f"'Color' of '{node.name}'", socket_value(node, "Color"), summary)
+    radiance, limited = finite_product(color, _strength(world, node, summary))
+    if limited:
+        summary.warn(f"World '{world.name}': 'Color' x 'Strength' of '{node.name}' exceeds the "
+                     "largest float; limited to it")
+    return radiance
 
 
 def convert_environment(scene: Any, summary: ExportSummary) -> Environment | None:
@@ -162,6 +185,10 @@ def convert_environment(scene: Any, summary: ExportSummary) -> Environment | Non
         img = pixels[:, :, :3]
     else:
         img = np.repeat(pixels[:, :, :1], 3, axis=2)
-    img = np.nan_to_num(np.maximum(img, 0.0), nan=0.0, posinf=0.0)
-    strength = max(float(socket_value(background, "Strength")), 0.0)
-    return Environment(np.ascontiguousarray(img, dtype=np.float32), strength, rotation)
+    img = np.ascontiguousarray(img, dtype=np.float32)
+    invalid = ~(img >= 0.0) | np.isinf(img)  # NaN fails >= 0
+    if invalid.any():
+        summary.warn(f"World '{world.name}': image '{image.name}' has {int(invalid.sum())} "
+                     "NaN, infinite or negative pixel values; rendered as 0")
+        img[invalid] = 0.0
+    return Environment(img, _strength(world, background, summary), rotation)
