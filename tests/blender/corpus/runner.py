@@ -137,10 +137,10 @@ def _log_tail(log: Path, lines: int = 12) -> str:
         return ""
     tail = text[-lines:]
     causes = [line for line in tail if any(c in line for c in _CAUSES)]
-    return "\n".join(([_short(causes[-1])] if causes else []) + tail)
+    return "\n".join(([short_cause(causes[-1])] if causes else []) + tail)
 
 
-def _short(line: str) -> str:
+def short_cause(line: str) -> str:
     """An assertion as file:line and its condition (the function signature between them is
     hundreds of characters of Embree templates)."""
     found = re.search(r"([\w./-]+:\d+): .*?(Assertion .*)", line)
