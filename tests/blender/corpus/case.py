@@ -16,8 +16,8 @@ On top of that the expectation says which outcome the issue demands:
   SURVIVE  an ERROR naming the culprit, or a finished render (warnings allowed): for extreme
            values with no single right picture (a lens of 1e9 mm, clip start after clip end),
            where the issue asks only for "a correct image or a clear message".
-`names` must all appear in one message; of `words`, at least one must (case-insensitive): the
-field, socket or kind. `pixels` is an extra check of a finished image, `same_as` builds a scene
+`names` must all appear in one message ("A|B": either A or B, e.g. an instance or its
+instancer); of `words`, at least one must (case-insensitive): the field, socket or kind. `pixels` is an extra check of a finished image, `same_as` builds a scene
 that must render to the identical image (e.g. the scene without a skipped object: the same
 settings and seed give the same samples, so nothing but the skipped object may differ).
 """
@@ -174,7 +174,7 @@ class Render:
 
 
 def _names_culprit(message: str, expect: Expect) -> bool:
-    if not all(n in message for n in expect.names):
+    if not all(any(alt in message for alt in n.split("|")) for n in expect.names):
         return False
     low = message.lower()
     return not expect.words or any(w.lower() in low for w in expect.words)

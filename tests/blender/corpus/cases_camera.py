@@ -58,7 +58,7 @@ _camera_case("cam_clip_start_after_end", "clip start 10 m, clip end 1 m",
              survive("Clipped", words=("clip",)), "Clipped", clip_start=10.0, clip_end=1.0)
 _camera_case("cam_nan_clip_end", "clip end NaN", culprit("NanClip", words=("clip",)), "NanClip",
              clip_end=NAN)
-_camera_case("cam_clip_end_1e30", "clip end 1e30 m", clean(quiet=True, pixels=lit_centre),
+_camera_case("cam_clip_end_1e30", "clip end 1e30 m", clean(pixels=lit_centre),
              "DeepClip", clip_end=1e30)
 _camera_case("cam_fstop_zero", "depth of field with f-stop 0 (an aperture of thousands of m)",
              survive("WideAperture", words=("aperture", "f-stop", "fstop")), "WideAperture",

@@ -226,6 +226,13 @@ def geo_motion_scale_flt_max(s: Stage) -> None:
     _moving(s, "Swell", "scale", (-3.4e38, 1.0, 1.0))
 
 
+@case("geo_motion_to_minus_flt_max", "geometry",
+      "a motion-blurred linked duplicate moving to x = -3.4e38 (a 1-sample render never ended)",
+      culprit("Flung", words=("transform", "motion", "position", "location", "large")))
+def geo_motion_to_minus_flt_max(s: Stage) -> None:
+    _moving(s, "Flung", "location", (-3.4e38, 0.0, 0.0))
+
+
 @case("geo_material_index_out_of_range", "geometry",
       "faces whose material index (7) is beyond the object's one slot", clean(quiet=True))
 def geo_material_index_out_of_range(s: Stage) -> None:

@@ -44,6 +44,12 @@ _file_case("img_fifo", "an image path that is a FIFO (blocked forever natively)"
            "PipeTexture", lambda path: os.mkfifo(path))
 
 
+@case("img_dev_zero", "images", "an image path that is /dev/zero (endless zeros)",
+      warning("ZeroDevice", pixels=magenta_centre))
+def img_dev_zero(s: Stage) -> None:
+    s.textured_cube(s.file_image("ZeroDevice", "/dev/zero"))
+
+
 @case("img_packed_garbage", "images", "a packed image whose bytes are no image",
       warning("PackedGarbage", pixels=magenta_centre))
 def img_packed_garbage(s: Stage) -> None:

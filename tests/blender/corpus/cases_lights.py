@@ -32,7 +32,7 @@ def _lamp_case(name: str, what: str, expect: Any, kind: str, lamp: str, energy: 
     case(name, "lights", what, expect)(lambda s: _lamp(s, kind, lamp, energy, **fields))
 
 
-_lamp_case("light_zero_power", "a point light of 0 W", clean(quiet=True), "POINT", "Off", 0.0)
+_lamp_case("light_zero_power", "a point light of 0 W", clean(), "POINT", "Off", 0.0)
 _lamp_case("light_negative_power", "a point light of -500 W (Cycles subtracts light)", clean(),
            "POINT", "Sink", -500.0)
 _lamp_case("light_nan_power", "a point light of NaN W",
@@ -53,9 +53,9 @@ _lamp_case("light_nan_spot_size", "a spot light of cone NaN",
            warning("NanSpot", words=("spot", "size", "cone")), "SPOT", "NanSpot", 500.0,
            spot_size=NAN)
 _lamp_case("light_sun_angle_0", "a sun of angle 0 (a delta light)",
-           clean(quiet=True, pixels=lit_centre), "SUN", "Pinpoint", 3.0, angle=0.0)
+           clean(pixels=lit_centre), "SUN", "Pinpoint", 3.0, angle=0.0)
 _lamp_case("light_sun_angle_pi", "a sun of angle 180 degrees (a whole hemisphere)",
-           clean(quiet=True, pixels=lit_centre), "SUN", "Dome", 3.0, angle=math.pi)
+           clean(pixels=lit_centre), "SUN", "Dome", 3.0, angle=math.pi)
 _lamp_case("light_nan_sun_angle", "a sun of angle NaN", warning("NanSun", words=("angle",)),
            "SUN", "NanSun", 3.0, angle=NAN)
 _lamp_case("light_nan_colour", "a point light of colour NaN",
@@ -70,7 +70,7 @@ _lamp_case("light_huge_radius", "a point light of radius FLT_MAX (its disk holds
 
 @case("light_tiny_spot", "lights",
       "a spot light of the smallest cone (1 degree), 40 m away: a 0.7 m disk on the cube",
-      clean(quiet=True, pixels=lit_centre))
+      clean(pixels=lit_centre))
 def light_tiny_spot(s: Stage) -> None:
     ob = _lamp(s, "SPOT", "Needle", 5000.0, spot_size=math.radians(1.0))
     ob.location, ob.rotation_euler = (0.0, -40.0, 0.0), (math.pi / 2, 0.0, 0.0)
@@ -93,7 +93,7 @@ def light_far_away(s: Stage) -> None:
     _lamp(s, "POINT", "Distant", 500.0).location = (0.0, -1e19, 1e19)
 
 
-@case("light_none", "lights", "no lights and a black world: a black image", clean(quiet=True))
+@case("light_none", "lights", "no lights and a black world: a black image", clean())
 def light_none(s: Stage) -> None:
     s.camera()
     s.mesh("Cube")

@@ -172,7 +172,7 @@ def obj_collection_instance_zero_scale(s: Stage) -> None:
 
 @case("obj_many_instancers_zero_scale", "objects",
       "the same collection instanced twice, once scaled 0: the mesh is a real Embree instance",
-      warning("Part", same_as=lambda s: _collection_instancer(s, 1.0)))
+      warning("'Part'|FlatInstancer", same_as=lambda s: _collection_instancer(s, 1.0)))
 def obj_many_instancers_zero_scale(s: Stage) -> None:
     _collection_instancer(s, 1.0)
     second = s.link(bpy.data.objects.new("FlatInstancer", None))

@@ -96,7 +96,7 @@ def world_emission_shader(s: Stage) -> None:
     nt.links.new(emission.outputs[0], nt.nodes["World Output"].inputs["Surface"])
 
 
-@case("world_none", "world", "a scene without a world", clean(quiet=True))
+@case("world_none", "world", "a scene without a world", clean())
 def world_none(s: Stage) -> None:
     s.base()
     s.scene.world = None
