@@ -10,7 +10,7 @@ CMAKE_ARGS ?= -DCMAKE_BUILD_TYPE=Release -DSTRATUM_WERROR=ON
 LIB        := addon/stratum/lib/libstratum.so
 
 .PHONY: all setup build test test-native test-python test-blender test-blender-3 test-blender-wheel \
-        lint render bench sanitize format clean study
+        lint render bench sanitize format clean study test-corpus test-sessions corpus-asan
 
 all: build
 
@@ -33,13 +33,33 @@ test-python: build
 	$(PY) -m pytest tests/python -q
 
 # The same Blender tests in Blender 3.4 (Debian, `blender -b`) and in the bpy wheel (4.5/5.0).
-test-blender: test-blender-3 test-blender-wheel
+test-blender: test-blender-3 test-blender-wheel test-corpus test-sessions
 
 test-blender-3: build
 	$(BLENDER_BG) --python tests/blender/run_in_blender.py -- tests/blender -q
 
 test-blender-wheel: build
 	$(PY) -m pytest tests/blender -q
+
+# The hostile-scene corpus (issue 12): every case in Blender 3.4 and in the bpy wheel, each in
+# worker subprocesses so that a crash fails one case; table in out/corpus/outcomes.md. ~30 s.
+test-corpus: build
+	BLENDER=$(BLENDER) $(PY) -m pytest tests/blender/corpus -q
+
+# Long sessions (200 renders, resident memory) and cancel latency, each Blender in a fresh
+# process. ~30 s.
+test-sessions: build
+	$(BLENDER_BG) --python tests/blender/run_in_blender.py -- tests/blender/session -q
+	$(PY) -m pytest tests/blender/session -q
+
+# The native part of the corpus under a sanitizer build: every case's scene captured through the
+# bpy wheel and rendered again by $(CORPUS_NATIVE) (default: the CLI of `make sanitize`'s
+# build); fails on a sanitizer report, an assertion or a non-finite pixel. Table in
+# out/corpus-native/replay.md.
+CORPUS_NATIVE ?= $(BUILD)-asan/stratum-native
+corpus-asan: build
+	@test -x "$(CORPUS_NATIVE)" || { echo "corpus-asan: no $(CORPUS_NATIVE): run make sanitize or set CORPUS_NATIVE"; false; }
+	BLENDER=$(BLENDER) PYTHONPATH=tests/blender $(PY) -m corpus.replay $(CORPUS_NATIVE)
 
 lint: setup
 	$(VENV)/bin/ruff check addon tests scenes scripts

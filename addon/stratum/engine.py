@@ -84,6 +84,12 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
     } | extra
 
 
+def stop_requested(engine: Any) -> bool:
+    """Blender's Esc: engine.test_break(). A module function so that tests can stand in for it
+    (test_break is an RNA function, which a Python subclass or monkeypatch cannot override)."""
+    return bool(engine.test_break())
+
+
 def format_stats(progress: native.Progress, elapsed: float) -> str:
     rate = progress.rays / progress.render_seconds if progress.render_seconds > 0 else 0.0
     if rate >= 1e6:
@@ -171,11 +177,14 @@ class StratumRenderEngine(bpy.types.RenderEngine):
 
         self.update_stats("", "Exporting scene")
         with native.Scene() as native_scene:
-            summary = export_scene(depsgraph, native_scene, should_stop=self.test_break,
+            summary = export_scene(depsgraph, native_scene,
+                                   should_stop=lambda: stop_requested(self),
                                    frame_set=self.frame_set)
             type(self).last_summary = summary
             for warning in summary.warnings:
                 self._report("WARNING", warning)
+            if stop_requested(self):  # Esc during export: no renderer, no BVH build
+                return
             renderer = native.Renderer(native_scene)
         with renderer:
             for name, value in settings.items():
@@ -197,7 +206,7 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             cancelled_at: float | None = None
             while True:
                 done = renderer.wait(POLL_MS)
-                if cancelled_at is None and self.test_break():
+                if cancelled_at is None and stop_requested(self):
                     renderer.cancel()
                     cancelled_at = time.perf_counter()
                 progress = renderer.progress()

@@ -4,8 +4,10 @@
 //   stratum-native samplers
 //   stratum-native render SCENE.json OUT.(exr|png) [name=value ...]
 //
-// Settings are passed as name=value and typed by the name (see stratum.h); an unknown name or
-// bad value exits with status 2 and the library's message.
+// Settings are passed as name=value and typed by the value: an integer is set_int, another number
+// (with a point or an exponent: 1.5, 1e-05, 1.0) is set_float, anything else set_string;
+// filter_width is always a float. An unknown name or bad value exits with status 2 and the
+// library's message.
 #include <stratum/stratum.h>
 
 #include <cstdio>
@@ -45,10 +47,16 @@ bool is_integer(const std::string& s) {
     return !s.empty() && *end == '\0';
 }
 
+bool is_number(const std::string& s) {
+    char* end = nullptr;
+    std::strtod(s.c_str(), &end);
+    return !s.empty() && *end == '\0';
+}
+
 StratumStatus apply_setting(StratumRenderer* r, const std::string& arg) {
     const auto eq = arg.find('=');
     const std::string name = arg.substr(0, eq), value = eq == std::string::npos ? "" : arg.substr(eq + 1);
-    if (name == "filter_width")
+    if (name == "filter_width" || (!is_integer(value) && is_number(value)))
         return stratum_renderer_set_float(r, name.c_str(), std::strtod(value.c_str(), nullptr));
     if (is_integer(value))
         return stratum_renderer_set_int(r, name.c_str(), std::strtoll(value.c_str(), nullptr, 10));

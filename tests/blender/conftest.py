@@ -16,6 +16,11 @@ import numpy as np
 import pytest
 
 REPO = Path(__file__).resolve().parents[2]
+# Run by their own targets, not by the general runs of this folder: the hostile-scene corpus
+# starts Blender in subprocesses from the venv (make test-corpus), the long-session tests want a
+# fresh Blender process each (make test-sessions). An explicit `pytest tests/blender/<dir>`
+# still runs them.
+collect_ignore = ["corpus", "session"]
 ADDON_DIR = REPO / "addon"
 if str(ADDON_DIR) not in sys.path:
     sys.path.insert(0, str(ADDON_DIR))
