@@ -198,8 +198,9 @@ class Flattener:
         if param == native.PARAM_NORMAL:
             if src.bl_idname == NORMAL_MAP_NODE and getattr(src, "space", "TANGENT") == "TANGENT":
                 image = self._source(src.inputs["Color"])
+                # Read (and a bad value warned about) even without an image: the user's value.
+                strength = self.scalar(src, "Strength", 1.0, NON_NEGATIVE)
                 if image is not None and image[0].bl_idname == IMAGE_NODE:
-                    strength = self.scalar(src, "Strength", 1.0, NON_NEGATIVE)
                     if self.version >= (4, 0, 0) and not 0.0 <= strength <= 1.0:
                         # Cycles 4.x+ scales the tangent-space normal; the renderer follows
                         # 3.4's lerp, which agrees only for strengths in [0, 1].
