@@ -55,6 +55,7 @@ from .fallbacks import (
     clamp_rgb,
     finite_product,
 )
+from .shader_flow import propagate
 
 Rgb = tuple[float, float, float]
 
@@ -86,6 +87,16 @@ class Binding:
     channel: int = -1  # -1 = RGB (luminance for a scalar parameter), 3 = alpha
     scale: float = 1.0
     offset: float = 0.0
+
+
+@dataclass(frozen=True)
+class _Key:
+    """A shader node as the walk meets it: by name (unique in its tree), with the image weight
+    of the image-driven Mix Shader above it, if any. The node itself is carried, not compared."""
+
+    name: str
+    node: Any = field(compare=False)
+    binding: Binding | None = None
 
 
 @dataclass
@@ -235,22 +246,79 @@ class Flattener:
 
     # ---- the walk ---------------------------------------------------------------------------
 
-    def walk(self, socket: Any, weight: Rgb, weight_binding: Binding | None = None) -> None:
+    def walk(self, socket: Any, weight: Rgb) -> None:
+        """Closures of the tree feeding `socket`, scaled by `weight`.
+
+        The tree is walked as the graph it is, as Cycles compiles each node once: every
+        (node, image weight) pair is visited once with the sum of the weights of the paths
+        reaching it (stratum.shader_flow), so nesting depth and shared inputs cost nothing
+        extra. A tree without sharing gives its closures left to right, each weight the product
+        of the factors along its path."""
+        root = self._visit(socket, None)
+        if root is None:
+            return
+        order, weights = propagate(root, weight, self._inputs, self._cut_cycle)
+        for key in order:
+            if not _is_combiner(key.node):
+                self._leaf(key, weights[key])
+
+    def _cut_cycle(self, child: _Key, parent: _Key) -> None:
+        self.warn(child.node, f"node '{child.name}' feeds itself through '{parent.name}' (a "
+                              "cycle); that link is ignored", "cycle")
+
+    def _visit(self, socket: Any, binding: Binding | None) -> _Key | None:
+        """The (node, image weight) feeding `socket`; None for nothing (unlinked: Cycles adds no
+        closure; muted: rendered as nothing, with a warning)."""
         found = self._source(socket)
         if found is None:
-            return  # an unlinked shader input adds no closure (Cycles: black)
+            return None
         node = found[0]
         if getattr(node, "mute", False):
             self.warn(node, f"muted node '{node.name}' is rendered as nothing")
-            return
+            return None
+        return _Key(node.name, node, binding)
+
+    def _inputs(self, key: _Key) -> list[tuple[_Key, float]]:
+        """The shader inputs of a Mix or Add Shader with the factor each scales its weight by
+        (Mix: 1 - Fac and Fac; an image Fac moves into the inputs' image weights); [] for a
+        closure node."""
+        node, binding = key.node, key.binding
         kind = node.bl_idname
-        if kind == "ShaderNodeMixShader":
-            self._mix(node, weight, weight_binding)
-        elif kind == "ShaderNodeAddShader":
-            self.walk(node.inputs[0], weight, weight_binding)
-            self.walk(node.inputs[1], weight, weight_binding)
-        elif kind == "ShaderNodeBsdfPrincipled":
-            self._principled(node, weight, weight_binding)
+        pairs: list[tuple[Any, float, Binding | None]] = []
+        if kind == "ShaderNodeAddShader":
+            pairs = [(node.inputs[0], 1.0, binding), (node.inputs[1], 1.0, binding)]
+        elif kind == "ShaderNodeMixShader":
+            pairs = self._mix_inputs(node, binding)
+        found = ((self._visit(socket, b), f) for socket, f, b in pairs)
+        return [(child, f) for child, f in found if child is not None]
+
+    def _mix_inputs(self, node: Any,
+                    binding: Binding | None) -> list[tuple[Any, float, Binding | None]]:
+        fac_socket = node.inputs[0]
+        found = self._source(fac_socket)
+        if found is not None and found[0].bl_idname == IMAGE_NODE:
+            if binding is None:
+                channel = 3 if found[1].name == "Alpha" else -1
+                image = self._image(found[0])
+                # first input x (1 - fac), second x fac (fac from the image, per shading point)
+                return [(node.inputs[1], 1.0, Binding(native.PARAM_WEIGHT, image, channel, -1.0,
+                                                      1.0)),
+                        (node.inputs[2], 1.0, Binding(native.PARAM_WEIGHT, image, channel, 1.0,
+                                                      0.0))]
+            self.warn(node, f"Mix Shader '{node.name}': an image factor inside another "
+                            "image-driven mix is not supported; using its Fac value")
+        fac = self.scalar(node, fac_socket.name, 0.5, UNIT)
+        if found is not None and found[0].bl_idname != IMAGE_NODE:
+            self.warn(found[0], f"node '{found[0].name}' ({found[0].bl_idname}) on the Fac of "
+                                f"'{node.name}' is not supported; using the Fac value {fac:g}")
+        return [(node.inputs[1], 1.0 - fac, binding), (node.inputs[2], fac, binding)]
+
+    def _leaf(self, key: _Key, weight: Rgb) -> None:
+        """The closures of one shader node that is not a Mix or Add Shader."""
+        node, binding = key.node, key.binding
+        kind = node.bl_idname
+        if kind == "ShaderNodeBsdfPrincipled":
+            self._principled(node, weight, binding)
         elif kind in VOLUME_NODES:
             # Cycles evaluates volume closures in volume shaders only (svm_node_closure_volume
             # returns for a surface), so on a surface input they add nothing.
@@ -262,7 +330,7 @@ class Flattener:
                 self.warn(node, f"shader node '{node.name}' ({kind}) is not supported; using a "
                                 "default Principled BSDF")
                 made = (self._default_principled(), [])
-            self._emit(weight, weight_binding, *made)
+            self._emit(weight, binding, *made)
 
     def _emit(self, weight: Rgb, weight_binding: Binding | None, material: native.Material,
               bindings: list[Binding]) -> None:
@@ -272,28 +340,6 @@ class Flattener:
         if weight_binding is not None:
             all_bindings.append(weight_binding)
         self.closures.append(Closure(weight, material, all_bindings))
-
-    def _mix(self, node: Any, weight: Rgb, weight_binding: Binding | None) -> None:
-        fac_socket = node.inputs[0]
-        found = self._source(fac_socket)
-        if found is not None and found[0].bl_idname == IMAGE_NODE:
-            if weight_binding is None:
-                channel = 3 if found[1].name == "Alpha" else -1
-                image = self._image(found[0])
-                # first input x (1 - fac), second x fac (fac from the image, per shading point)
-                self.walk(node.inputs[1], weight,
-                          Binding(native.PARAM_WEIGHT, image, channel, -1.0, 1.0))
-                self.walk(node.inputs[2], weight,
-                          Binding(native.PARAM_WEIGHT, image, channel, 1.0, 0.0))
-                return
-            self.warn(node, f"Mix Shader '{node.name}': an image factor inside another "
-                            "image-driven mix is not supported; using its Fac value")
-        fac = self.scalar(node, fac_socket.name, 0.5, UNIT)
-        if found is not None and found[0].bl_idname != IMAGE_NODE:
-            self.warn(found[0], f"node '{found[0].name}' ({found[0].bl_idname}) on the Fac of "
-                                f"'{node.name}' is not supported; using the Fac value {fac:g}")
-        self.walk(node.inputs[1], _scale(weight, 1.0 - fac), weight_binding)
-        self.walk(node.inputs[2], _scale(weight, fac), weight_binding)
 
     def _default_principled(self) -> native.Material:
         v2 = self.version >= (4, 0, 0)
@@ -453,6 +499,10 @@ PRINCIPLED_V2: dict[str, Any] = {
 
 def _scale(weight: Rgb, factor: float) -> Rgb:
     return (weight[0] * factor, weight[1] * factor, weight[2] * factor)
+
+
+def _is_combiner(node: Any) -> bool:
+    return node.bl_idname in ("ShaderNodeMixShader", "ShaderNodeAddShader")
 
 
 def flatten_surface(surface: Any, version: tuple[int, int, int],

@@ -143,7 +143,55 @@ def test_add_of_same_input_twice_doubles_and_zero_weights_are_dropped() -> None:
     link(m, "Shader", top, 0)
     link(m, "Shader", top, 1)
     closures, _ = flatten(output_with(top, "Shader"))
-    assert [cl.weight for cl in closures] == [(1.0, 1.0, 1.0), (1.0, 1.0, 1.0)]
+    # Both paths reach B: one closure with the summed weight renders the same as two.
+    assert [cl.weight for cl in closures] == [(2.0, 2.0, 2.0)]
+
+
+def test_deep_mix_chain_flattens_without_recursion() -> None:
+    below = diffuse("Bottom")
+    output = "BSDF"
+    for i in range(5000):
+        m = mix(f"Mix{i}", 0.0)
+        link(below, output, m, 1)
+        below, output = m, "Shader"
+    closures, warnings = flatten(output_with(below, "Shader"))
+    assert warnings == []
+    assert [cl.weight for cl in closures] == [(1.0, 1.0, 1.0)]
+
+
+def test_shared_inputs_are_walked_once_per_node() -> None:
+    # Each Add Shader takes the one below on both inputs: 2^60 paths to the bottom BSDF, whose
+    # weight is 2^60 (exact in floating point); a walk per path would never end.
+    below = diffuse("Bottom")
+    output = "BSDF"
+    for i in range(60):
+        a = add(f"Add{i}")
+        link(below, output, a, 0)
+        link(below, output, a, 1)
+        below, output = a, "Shader"
+    closures, _ = flatten(output_with(below, "Shader"))
+    assert [cl.weight for cl in closures] == [(2.0**60, 2.0**60, 2.0**60)]
+
+
+def test_tree_closures_keep_depth_first_order_and_path_products() -> None:
+    a, b, c = diffuse("A"), diffuse("B"), diffuse("C")
+    inner, top = mix("Inner", 0.25), mix("Top", 0.5)
+    link(a, "BSDF", inner, 1)
+    link(b, "BSDF", inner, 2)
+    link(inner, "Shader", top, 1)
+    link(c, "BSDF", top, 2)
+    closures, _ = flatten(output_with(top, "Shader"))
+    assert [cl.weight[0] for cl in closures] == [0.5 * 0.75, 0.5 * 0.25, 0.5]
+
+
+def test_a_cycle_is_cut_with_a_warning() -> None:
+    first, second, leaf = mix("First", 0.5), mix("Second", 0.5), diffuse("Leaf")
+    link(second, "Shader", first, 1)
+    link(first, "Shader", second, 1)
+    link(leaf, "BSDF", second, 2)
+    closures, warnings = flatten(output_with(first, "Shader"))
+    assert [cl.weight for cl in closures] == [(0.25, 0.25, 0.25)]
+    assert any("cycle" in w and "'First'" in w for w in warnings)
 
 
 def test_principled_v1_mapping() -> None:
