@@ -150,6 +150,10 @@ def export_scene(
             found = (-1, 0) if unsupported.skip(ob) else \
                 _object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
             objects[ident] = found
+            # A big mesh takes a tenth of a second or more to read out of Blender: Esc is
+            # honoured after each one, not only every 256 instances.
+            if should_stop is not None and found[1] > 0 and should_stop():
+                raise ExportCancelled("export cancelled")
         mesh_id = found[0]
         parent = instance.parent if is_instance else None
         if mesh_id == LIGHT_ID:
