@@ -211,6 +211,28 @@ def mat_deep_mix_chain(s: Stage) -> None:
     s.mesh("Cube", material=mat)
 
 
+# A Mix Shader taking the one below on both inputs: the weight stays 1 at every level, but there
+# are 2^SHARED_CHAIN paths to the bottom BSDF; a walk per path would never finish.
+SHARED_CHAIN = 40
+
+
+@case("mat_shared_mix_chain", "materials",
+      f"{SHARED_CHAIN} Mix Shaders, each taking the one below on both inputs (2^{SHARED_CHAIN} "
+      "paths)", clean(pixels=lit_centre))
+def mat_shared_mix_chain(s: Stage) -> None:
+    s.base(cube=False)
+    mat, principled = s.material("Shared")
+    nt = mat.node_tree
+    below = principled.outputs[0]
+    for _ in range(SHARED_CHAIN):
+        mix = nt.nodes.new("ShaderNodeMixShader")
+        nt.links.new(below, mix.inputs[1])
+        nt.links.new(below, mix.inputs[2])
+        below = mix.outputs[0]
+    nt.links.new(below, nt.nodes["Material Output"].inputs["Surface"])
+    s.mesh("Cube", material=mat)
+
+
 @case("mat_node_cycle", "materials", "two Mix Shaders feeding each other (a cycle)", clean())
 def mat_node_cycle(s: Stage) -> None:
     s.base(cube=False)
