@@ -199,9 +199,10 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             started = time.perf_counter()
             self.update_stats("", "Building BVH / starting")
             renderer.start()
-            # What this estimator cannot render in this scene: a warning, the render goes on.
-            for notice in renderer.notices():
-                self._report("WARNING", f"Stratum: {notice}")
+            # What this render cannot show (the estimator's limits at start; skipped objects and
+            # dropped samples as the render learns them): warnings, the render goes on.
+            reported: set[str] = set()
+            self._report_notices(renderer, reported)
             last_serial: int | None = None
             cancelled_at: float | None = None
             while True:
@@ -223,8 +224,16 @@ class StratumRenderEngine(bpy.types.RenderEngine):
                     break
             # Final pixels (also the partial image after Esc).
             writer.write(renderer, render_pass)
+            self._report_notices(renderer, reported)
         finally:
             self.end_result(result)
+
+    def _report_notices(self, renderer: native.Renderer, reported: set[str]) -> None:
+        """Reports the renderer's notices not reported yet, once each."""
+        for notice in renderer.notices():
+            if notice not in reported:
+                reported.add(notice)
+                self._report("WARNING", f"Stratum: {notice}")
 
 
 def register() -> None:

@@ -1044,8 +1044,10 @@ class Renderer(_Handle):
         self._started = True
 
     def notices(self) -> list[str]:
-        """What the chosen estimator cannot render in this scene and why (e.g. BSDF sampling
-        alone never finds a point light), one sentence each; [] when nothing. Set by start()."""
+        """What the render cannot show and why, one sentence each; [] when nothing: what the
+        chosen estimator cannot render in this scene (e.g. BSDF sampling alone never finds a
+        point light; set by start()), placements skipped by the scene build (added when the
+        build ends) and samples or rays dropped as not finite (added when the render ends)."""
         out = ctypes.c_char_p()
         _check(self._lib, self._lib.stratum_renderer_notices(self.handle, ctypes.byref(out)),
                "stratum_renderer_notices")

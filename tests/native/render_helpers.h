@@ -47,7 +47,7 @@ inline SphereMesh make_sphere(float r, uint32_t rings, uint32_t segments) {
 struct RenderOutput {
     std::vector<float> rgba;
     StratumProgress progress{};
-    std::string notices;  // stratum_renderer_notices after start
+    std::string notices;  // stratum_renderer_notices when the render has ended
     std::string error;    // stratum_last_error() of the first failed call; "" on success
 };
 
@@ -163,10 +163,11 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
         }
     }
     if (stratum_renderer_start(r) == STRATUM_OK) {
-        const char* notices = nullptr;
-        if (stratum_renderer_notices(r, &notices) == STRATUM_OK && notices) out.notices = notices;
         int32_t done = 0;
         while (!done) stratum_renderer_wait(r, 1000, &done);
+        // After the render: the notices of start, of the scene build and of the render's end.
+        const char* notices = nullptr;
+        if (stratum_renderer_notices(r, &notices) == STRATUM_OK && notices) out.notices = notices;
         stratum_renderer_progress(r, &out.progress);
         out.rgba.resize(static_cast<size_t>(width * height * 4));
         stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size());

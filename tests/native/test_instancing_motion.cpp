@@ -63,7 +63,7 @@ TEST(InstanceMotion, DecompositionRecomposesAtBothEnds) {
     const TriangleGeometry proto{m.positions, m.triangles};
     const InstancePlacement p{0, a, b, true, 31};
     EmbreeScene embree;
-    ASSERT_EQ(embree.build(std::span(&proto, 1), std::span(&p, 1)), "");
+    ASSERT_EQ(embree.build(std::span(&proto, 1), std::span(&p, 1), 1e6f), "");
     for (const auto& [time, expected] : {std::pair{0.0f, a}, std::pair{1.0f, b}}) {
         const Transform got = embree.motion_transform(0, time);
         for (int i = 0; i < 12; ++i)
@@ -279,7 +279,9 @@ TEST(InstanceVisibility, AbiValidatesInstancesByName) {
     d.motion = 1;  // transform_end all zero: not affine
     EXPECT_NE(error(d).find("instance transform_end is not affine"), std::string::npos) << error(d);
     d.transform_end[15] = 1;
-    EXPECT_NE(error(d).find("instance transform_end is singular"), std::string::npos) << error(d);
+    // A singular end (all zero) is no ABI error: the render scene skips the placement with a
+    // notice (test_degenerate_instances.cpp).
+    EXPECT_EQ(error(d), "");
     std::copy(kIdentity, kIdentity + 16, d.transform_end);
     d.transform_end[0] = std::nanf("");
     EXPECT_NE(error(d).find("instance transform_end element 0 = nan is not finite"), std::string::npos)

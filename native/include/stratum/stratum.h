@@ -7,6 +7,11 @@
  *   - every input is validated here: a bad value returns STRATUM_ERROR_INVALID_ARGUMENT and
  *     stratum_last_error() names the value; nothing aborts the host process;
  *   - matrices are 4x4, row-major, object-to-world, as Blender's Matrix (m[row*4 + col]);
+ *   - coordinates are bounded so that no ray can leave the range Embree accepts (its
+ *     assertions abort the process): a vertex, a translation, a placed mesh's extent, a lamp or
+ *     camera position at most 1e12 from the origin; a linear transform element at most 1e12;
+ *     lens 1e-3..1e6 mm, sensor 1e-3..1e4 mm; ortho_scale, aperture radius, focus distance, lamp
+ *     radius and size at most 1e12. Beyond them a call fails naming the value;
  *   - render settings are named values; an unknown name is an error, so a host setting and its
  *     native meaning cannot drift apart silently.
  */
@@ -246,7 +251,9 @@ typedef struct StratumMeshDesc {
  * through instances. */
 STRATUM_API StratumStatus stratum_scene_add_mesh(StratumScene* scene, const StratumMeshDesc* mesh,
                                                  uint32_t* out_id);
-/* Places mesh `mesh_id` with an object-to-world transform (16 floats, row-major). */
+/* Places mesh `mesh_id` with an object-to-world transform (16 floats, row-major). A singular or
+ * nearly singular transform (scale (nearly) 0 along some axis) is accepted, and the placement
+ * is skipped when the render scene is built, with a notice (stratum_renderer_notices). */
 STRATUM_API StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id,
                                                      const float transform[16]);
 
@@ -395,9 +402,13 @@ STRATUM_API StratumStatus stratum_renderer_set_string(StratumRenderer* r, const 
 
 /* Starts rendering on native worker threads and returns at once. Builds the BVH on first start. */
 STRATUM_API StratumStatus stratum_renderer_start(StratumRenderer* r);
-/* What the chosen estimator cannot render in this scene and why (e.g. light_sampling "bsdf"
- * never finds a point light), one sentence per line; "" when nothing. Set by
- * stratum_renderer_start; *out stays valid until the next start or destroy. */
+/* What the render cannot show and why, one sentence per line; "" when nothing. Lines come as
+ * the render learns them: what the chosen estimator cannot render in this scene (e.g.
+ * light_sampling "bsdf" never finds a point light) at stratum_renderer_start; instances skipped
+ * as degenerate (a scale of (nearly) 0: their inverse would send rays beyond what Embree
+ * accepts) when the scene build ends; the number of samples dropped because their radiance was
+ * NaN or infinite, and of rays refused as out of range, when the render ends. *out stays valid
+ * until the next call of this function, start or destroy. */
 STRATUM_API StratumStatus stratum_renderer_notices(const StratumRenderer* r, const char** out);
 /* Asks the render to stop; returns at once. Pixels keep the samples finished so far. */
 STRATUM_API StratumStatus stratum_renderer_cancel(StratumRenderer* r);

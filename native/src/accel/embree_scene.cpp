@@ -5,6 +5,7 @@
 #include <tbb/parallel_for.h>
 
 #include <cmath>
+#include <limits>
 #include <mutex>
 
 namespace stratum {
@@ -16,6 +17,9 @@ struct EmbreeScene::Impl {
     std::vector<RTCGeometry> moving;   // per placement: its instance if moving, else null
     std::mutex error_mutex;
     std::string error;
+    float origin_limit = 0.0f;
+    const std::atomic<bool>* cancel = nullptr;
+    mutable std::atomic<uint64_t> refused{0};
 };
 
 namespace {
@@ -33,6 +37,23 @@ void record_error(void* user, RTCError code, const char* message) {
     if (impl->error.empty())
         impl->error =
             "Embree error " + std::to_string(static_cast<int>(code)) + ": " + (message ? message : "");
+}
+
+// Embree's progress callback: returning false makes the commit fail with RTC_ERROR_CANCELLED.
+bool continue_build(void* user, double) {
+    const auto* impl = static_cast<const EmbreeScene::Impl*>(user);
+    return !(impl->cancel && impl->cancel->load(std::memory_order_relaxed));
+}
+
+// What Embree 3.13 asserts of a ray (RayK::valid() and bvh_intersector1.cpp), tightened: the
+// direction is unit within rounding (every caller normalises it), so its bound also keeps
+// each instance's object-space direction below FLT_LARGE (scene/placement_conditioning.h).
+bool ray_is_valid(Vec3 o, Vec3 d, float t_min, float t_max, float time, float origin_limit) {
+    const bool origin =
+        std::abs(o.x) <= origin_limit && std::abs(o.y) <= origin_limit && std::abs(o.z) <= origin_limit;
+    const bool direction = std::abs(d.x) <= 1.01f && std::abs(d.y) <= 1.01f && std::abs(d.z) <= 1.01f;
+    return origin && direction && t_min >= 0.0f && t_min <= std::numeric_limits<float>::max() &&
+           !std::isnan(t_max) && time >= 0.0f && time <= 1.0f;
 }
 
 // Unit quaternion (r, i, j, k) of the rotation matrix with rows r0, r1, r2 (Shepperd's method:
@@ -150,7 +171,10 @@ EmbreeScene::~EmbreeScene() {
 }
 
 std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
-                               std::span<const InstancePlacement> placements) {
+                               std::span<const InstancePlacement> placements, float ray_origin_limit,
+                               const std::atomic<bool>* cancel) {
+    impl_->origin_limit = ray_origin_limit;
+    impl_->cancel = cancel;
     impl_->device = rtcNewDevice(nullptr);
     if (!impl_->device)
         return "Embree: cannot create a device (error " +
@@ -176,15 +200,18 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
         // Robust traversal: watertight triangle tests, so rays do not leak through shared edges.
         rtcSetSceneFlags(proto, RTC_SCENE_FLAG_ROBUST);
         rtcSetSceneBuildQuality(proto, kBuildQuality);
+        rtcSetSceneProgressMonitorFunction(proto, &continue_build, impl_);
         RTCGeometry geom = new_triangles(impl_->device, prototypes[k], nullptr, 0xffffffffu);
         if (!geom) return "Embree: out of memory for mesh buffers";
         rtcAttachGeometryByID(proto, geom, 0);
         rtcReleaseGeometry(geom);
         rtcCommitScene(proto);
+        if (!continue_build(impl_, 0.0)) return kBuildCancelled;
     }
     impl_->scene = rtcNewScene(impl_->device);
     rtcSetSceneFlags(impl_->scene, RTC_SCENE_FLAG_ROBUST);
     rtcSetSceneBuildQuality(impl_->scene, kBuildQuality);
+    rtcSetSceneProgressMonitorFunction(impl_->scene, &continue_build, impl_);
     impl_->moving.assign(placements.size(), nullptr);
     for (size_t i = 0; i < placements.size(); ++i) {
         const InstancePlacement& p = placements[i];
@@ -223,9 +250,12 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
             rtcReleaseGeometry(inst);
     }
     rtcCommitScene(impl_->scene);
+    if (!continue_build(impl_, 0.0)) return kBuildCancelled;
     std::lock_guard lock(impl_->error_mutex);
     return impl_->error;
 }
+
+uint64_t EmbreeScene::refused_rays() const { return impl_->refused.load(std::memory_order_relaxed); }
 
 Transform EmbreeScene::motion_transform(uint32_t instance, float time) const {
     Transform t;
@@ -235,6 +265,10 @@ Transform EmbreeScene::motion_transform(uint32_t instance, float time) const {
 
 bool EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, float time, uint32_t mask,
                             RayHit* hit) const {
+    if (!ray_is_valid(origin, direction, t_min, t_max, time, impl_->origin_limit)) {
+        impl_->refused.fetch_add(1, std::memory_order_relaxed);
+        return false;
+    }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRayHit rh{};
@@ -260,6 +294,10 @@ bool EmbreeScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
 
 bool EmbreeScene::occluded(Vec3 origin, Vec3 direction, float t_min, float t_max, float time,
                            uint32_t mask) const {
+    if (!ray_is_valid(origin, direction, t_min, t_max, time, impl_->origin_limit)) {
+        impl_->refused.fetch_add(1, std::memory_order_relaxed);
+        return true;
+    }
     RTCIntersectContext context;
     rtcInitIntersectContext(&context);
     RTCRay ray{};

@@ -18,6 +18,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -57,8 +58,13 @@ public:
     EmbreeScene& operator=(const EmbreeScene&) = delete;
 
     // Builds the BVHs. Returns an empty string on success, otherwise Embree's error message.
+    // ray_origin_limit: the largest |coordinate| a ray origin may have (scene/scene_limits.h);
+    // placements must be traceable for it (scene/placement_conditioning.h). The build stops
+    // early, returning kBuildCancelled, once *cancel becomes true (cancel may be null).
     std::string build(std::span<const TriangleGeometry> prototypes,
-                      std::span<const InstancePlacement> placements);
+                      std::span<const InstancePlacement> placements, float ray_origin_limit,
+                      const std::atomic<bool>* cancel = nullptr);
+    static constexpr const char* kBuildCancelled = "BVH build cancelled";
     // Closest hit with t in (t_min, t_max) at shutter time `time` in [0,1], among instances whose
     // mask shares a bit with `mask`; false if none.
     bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, float time, uint32_t mask,
@@ -68,6 +74,11 @@ public:
     // Object-to-world transform of a moving placement at `time`, interpolated by Embree exactly
     // as the traversal interpolates it.
     Transform motion_transform(uint32_t instance, float time) const;
+    // Rays refused so far because Embree would have rejected them (an origin beyond the
+    // limit, a direction that is not finite or not at most unit length, t_min < 0 or not
+    // finite, t_max NaN, a time outside [0, 1]): a refused intersect() misses, a refused
+    // occluded() is occluded. A bug or an extreme input upstream; counted to be reported.
+    uint64_t refused_rays() const;
 
     struct Impl;  // Embree handles; public so Embree's C error callback can reach it
 

@@ -25,6 +25,9 @@
 struct StratumRenderer {
     explicit StratumRenderer(stratum::Scene s) : renderer(std::move(s)) {}
     stratum::Renderer renderer;
+    // The notices as last handed out by stratum_renderer_notices (the renderer's grow while
+    // it renders; the host's pointer must stay valid until its next call).
+    mutable std::string notices;
 };
 
 namespace {
@@ -148,8 +151,7 @@ StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id, 
         d.mesh_id = mesh_id;
         std::copy(transform, transform + 16, d.transform);
         d.visibility = STRATUM_VISIBLE_ALL;
-        scene->scene.instances.push_back(
-            stratum::validate_instance(d, static_cast<uint32_t>(scene->scene.meshes.size())));
+        scene->scene.instances.push_back(stratum::validate_instance(d, scene->scene.meshes));
         return STRATUM_OK;
     });
 }
@@ -157,8 +159,7 @@ StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id, 
 StratumStatus stratum_scene_add_instance_ex(StratumScene* scene, const StratumInstanceDesc* instance) {
     return guarded("stratum_scene_add_instance_ex", [&] {
         require(scene && instance, "scene or instance is NULL");
-        scene->scene.instances.push_back(
-            stratum::validate_instance(*instance, static_cast<uint32_t>(scene->scene.meshes.size())));
+        scene->scene.instances.push_back(stratum::validate_instance(*instance, scene->scene.meshes));
         return STRATUM_OK;
     });
 }
@@ -278,7 +279,8 @@ StratumStatus stratum_renderer_start(StratumRenderer* r) {
 StratumStatus stratum_renderer_notices(const StratumRenderer* r, const char** out) {
     return guarded("stratum_renderer_notices", [&] {
         require(r && out, "renderer or out is NULL");
-        *out = r->renderer.notices().c_str();
+        r->notices = r->renderer.notices();
+        *out = r->notices.c_str();
         return STRATUM_OK;
     });
 }

@@ -6,6 +6,8 @@
 #include <sstream>
 #include <type_traits>
 
+#include "scene/scene_limits.h"
+
 namespace stratum {
 
 namespace {
@@ -28,6 +30,13 @@ float finite_in(float v, float lo, float hi, const char* what) {
     return v;
 }
 
+// v in (lo, hi].
+float finite_in_open(float v, float lo, float hi, const char* what) {
+    check(std::isfinite(v) && v > lo && v <= hi,
+          std::string(what) + " = " + fmt(v) + " must be in (" + fmt(lo) + ", " + fmt(hi) + "]");
+    return v;
+}
+
 float finite_positive(float v, const char* what) {
     check(std::isfinite(v) && v > 0.0f, std::string(what) + " = " + fmt(v) + " must be finite and > 0");
     return v;
@@ -43,6 +52,23 @@ Rgb rgb_in(const float* c, float lo, float hi, const char* what) {
 }
 
 std::string triple(const float* v) { return "(" + fmt(v[0]) + ", " + fmt(v[1]) + ", " + fmt(v[2]) + ")"; }
+
+// A camera's view directions are its linear part applied to view-plane vectors, then
+// normalised: each axis needs a length that neither underflows nor overflows, and the three
+// must span space (Blender's camera matrices are rotations; the exporter drops their scale, as
+// Cycles does). The bound 1e-6 on |det| / (|a0| |a1| |a2|) (the sine-like volume of the unit
+// axes) refuses frames flat enough to map two view directions onto one.
+void check_camera_frame(const Transform& t) {
+    const Vec3 a0 = t.column(0), a1 = t.column(1), a2 = t.column(2);
+    const float l0 = length(a0), l1 = length(a1), l2 = length(a2);
+    for (float l : {l0, l1, l2}) {
+        check(l >= 1e-6f && l <= 1e6f, "camera transform has an axis of length " + fmt(l) +
+                                           " (its linear part must be a rotation, scale in [1e-6, 1e6])");
+    }
+    const float volume = std::abs(dot(a0, cross(a1, a2))) / (l0 * l1 * l2);
+    check(volume >= 1e-6f, "camera transform is (nearly) singular: its axes span a volume of " + fmt(volume) +
+                               " of a rotation's");
+}
 
 }  // namespace
 
@@ -102,6 +128,20 @@ Transform validate_transform(const float* m, const char* what) {
     }
     check(m[12] == 0.0f && m[13] == 0.0f && m[14] == 0.0f && m[15] == 1.0f,
           std::string(what) + " is not affine: its last row must be (0, 0, 0, 1)");
+    // Bounds of scene/scene_limits.h: no ray of the scene can leave Embree's valid range.
+    for (int row = 0; row < 3; ++row) {
+        for (int col = 0; col < 3; ++col) {
+            const float v = m[4 * row + col];
+            check(std::abs(v) <= kMaxLinear, std::string(what) + " element " + std::to_string(4 * row + col) +
+                                                 " = " + fmt(v) + " is beyond the largest scale " +
+                                                 fmt(kMaxLinear));
+        }
+    }
+    const float t[3] = {m[3], m[7], m[11]};
+    check(std::abs(t[0]) <= kMaxCoordinate && std::abs(t[1]) <= kMaxCoordinate &&
+              std::abs(t[2]) <= kMaxCoordinate,
+          std::string(what) + " places its origin at " + triple(t) + ", more than " + fmt(kMaxCoordinate) +
+              " from the world origin");
     return Transform::from_row_major(m);
 }
 
@@ -199,6 +239,17 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
         throw ValidationError("mesh vertex " + std::to_string(v) + " has a non-finite position " +
                               triple(d.positions + 3 * v));
     }
+    // The largest |coordinate| (NaN excluded above): one vectorisable pass, the search for the
+    // vertex to name only when it fails.
+    float largest = 0.0f;
+    for (size_t i = 0; i < 3 * n_vert; ++i) largest = std::max(largest, std::abs(d.positions[i]));
+    if (largest > kMaxCoordinate) {
+        size_t i = 0;
+        while (std::abs(d.positions[i]) <= kMaxCoordinate) ++i;
+        throw ValidationError("mesh vertex " + std::to_string(i / 3) + " position " +
+                              triple(d.positions + 3 * (i / 3)) + " is more than " + fmt(kMaxCoordinate) +
+                              " from the origin");
+    }
     if (max_of(d.triangles, 3 * n_tri) >= d.vertex_count) {
         size_t i = 0;
         while (d.triangles[i] < d.vertex_count) ++i;
@@ -239,13 +290,16 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
     if (d.corner_normals) copy_into(mesh.corner_normals, d.corner_normals, 3 * n_tri);
     if (d.vertex_normals) copy_into(mesh.vertex_normals, d.vertex_normals, n_vert);
     if (d.corner_uvs) copy_into(mesh.corner_uvs, d.corner_uvs, 3 * n_tri);
+    for (const Vec3& p : mesh.positions) {
+        mesh.bounds_lo = Vec3(std::min(mesh.bounds_lo.x, p.x), std::min(mesh.bounds_lo.y, p.y),
+                              std::min(mesh.bounds_lo.z, p.z));
+        mesh.bounds_hi = Vec3(std::max(mesh.bounds_hi.x, p.x), std::max(mesh.bounds_hi.y, p.y),
+                              std::max(mesh.bounds_hi.z, p.z));
+    }
     return mesh;
 }
 
 namespace {
-
-// The determinant of a transform's linear part.
-float linear_determinant(const Transform& t) { return dot(t.column(0), cross(t.column(1), t.column(2))); }
 
 uint32_t validate_visibility(uint32_t bits, const char* what) {
     check((bits & ~static_cast<uint32_t>(STRATUM_VISIBLE_ALL)) == 0,
@@ -255,9 +309,26 @@ uint32_t validate_visibility(uint32_t bits, const char* what) {
 
 }  // namespace
 
-Instance validate_instance(const StratumInstanceDesc& d, uint32_t mesh_count) {
-    check(d.mesh_id < mesh_count, "instance mesh_id " + std::to_string(d.mesh_id) + " out of range [0, " +
-                                      std::to_string(mesh_count) + ")");
+namespace {
+
+// The largest |world coordinate| of a mesh's bounding box placed by `m` (its 8 corners).
+float placed_extent(const Mesh& mesh, const Transform& m) {
+    float extent = 0.0f;
+    for (int c = 0; c < 8; ++c) {
+        const Vec3 corner(c & 1 ? mesh.bounds_hi.x : mesh.bounds_lo.x,
+                          c & 2 ? mesh.bounds_hi.y : mesh.bounds_lo.y,
+                          c & 4 ? mesh.bounds_hi.z : mesh.bounds_lo.z);
+        const Vec3 w = m.point(corner);
+        extent = std::max({extent, std::abs(w.x), std::abs(w.y), std::abs(w.z)});
+    }
+    return extent;
+}
+
+}  // namespace
+
+Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>& meshes) {
+    check(d.mesh_id < meshes.size(), "instance mesh_id " + std::to_string(d.mesh_id) + " out of range [0, " +
+                                         std::to_string(meshes.size()) + ")");
     check(d.motion == 0 || d.motion == 1,
           "instance motion = " + std::to_string(d.motion) + " must be 0 or 1");
     check(d.holdout == 0 || d.holdout == 1,
@@ -267,14 +338,18 @@ Instance validate_instance(const StratumInstanceDesc& d, uint32_t mesh_count) {
     inst.object_to_world = validate_transform(d.transform, "instance transform");
     inst.motion = d.motion == 1;
     inst.object_to_world_end = inst.object_to_world;
-    if (inst.motion) {
-        inst.object_to_world_end = validate_transform(d.transform_end, "instance transform_end");
-        // The motion decomposition (rotation x scale) needs an invertible linear part.
-        check(linear_determinant(inst.object_to_world) != 0.0f,
-              "instance transform of a moving instance is singular (determinant 0)");
-        check(linear_determinant(inst.object_to_world_end) != 0.0f,
-              "instance transform_end is singular (determinant 0)");
-    }
+    if (inst.motion) inst.object_to_world_end = validate_transform(d.transform_end, "instance transform_end");
+    // A singular or nearly singular transform is not an error here: the render scene skips such
+    // a placement with a notice (scene/placement_conditioning.h), as a zero-scale object is a
+    // normal modelling state. Its world extent is bounded like every coordinate. (Motion
+    // interpolates between the ends affinely in scale and translation and by rotation
+    // otherwise, so the ends bound every intermediate box up to the rotation's bulge of √3.)
+    const Mesh& mesh = meshes[d.mesh_id];
+    const float extent =
+        std::max(placed_extent(mesh, inst.object_to_world), placed_extent(mesh, inst.object_to_world_end));
+    check(extent <= kMaxCoordinate, "instance transform places mesh " + std::to_string(d.mesh_id) +
+                                        " up to " + fmt(extent) + " from the origin, more than " +
+                                        fmt(kMaxCoordinate));
     inst.visibility = validate_visibility(d.visibility, "instance visibility");
     inst.holdout = d.holdout == 1;
     return inst;
@@ -287,11 +362,11 @@ LightParams validate_light(const StratumLightDesc& d) {
     l.type = static_cast<LightType>(d.type);
     l.color = validate_radiance(d.color, "light color");
     l.strength = finite_in(d.strength, 0.0f, std::numeric_limits<float>::max(), "light strength");
-    l.radius = finite_in(d.radius, 0.0f, std::numeric_limits<float>::max(), "light radius");
+    l.radius = finite_in(d.radius, 0.0f, kMaxCoordinate, "light radius");
     l.angle = finite_in(d.angle, 0.0f, kPi, "light angle");
     if (l.type == LightType::AreaRectangle || l.type == LightType::AreaEllipse) {
-        l.size_x = finite_positive(d.size_x, "area light size_x");
-        l.size_y = finite_positive(d.size_y, "area light size_y");
+        l.size_x = finite_in_open(d.size_x, 0.0f, kMaxCoordinate, "area light size_x");
+        l.size_y = finite_in_open(d.size_y, 0.0f, kMaxCoordinate, "area light size_y");
     }
     if (l.type == LightType::Spot || l.type == LightType::SpotV1) {
         check(std::isfinite(d.spot_size) && d.spot_size > 0.0f && d.spot_size <= kPi,
@@ -312,9 +387,9 @@ LightParams validate_light(const StratumLightDesc& d) {
 
 CameraParams validate_camera(const StratumCameraDesc& d) {
     CameraParams c;
-    c.lens_mm = finite_positive(d.lens_mm, "camera lens_mm");
-    c.sensor_width_mm = finite_positive(d.sensor_width_mm, "camera sensor_width_mm");
-    c.sensor_height_mm = finite_positive(d.sensor_height_mm, "camera sensor_height_mm");
+    c.lens_mm = finite_in(d.lens_mm, kMinLensMm, kMaxLensMm, "camera lens_mm");
+    c.sensor_width_mm = finite_in(d.sensor_width_mm, kMinSensorMm, kMaxSensorMm, "camera sensor_width_mm");
+    c.sensor_height_mm = finite_in(d.sensor_height_mm, kMinSensorMm, kMaxSensorMm, "camera sensor_height_mm");
     check(d.sensor_fit >= STRATUM_SENSOR_FIT_AUTO && d.sensor_fit <= STRATUM_SENSOR_FIT_VERTICAL,
           "camera sensor_fit " + std::to_string(d.sensor_fit) + " is not a StratumSensorFit");
     c.fit = static_cast<SensorFit>(d.sensor_fit);
@@ -325,6 +400,7 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
     check(c.clip_start < c.clip_end,
           "camera clip_start = " + fmt(c.clip_start) + " must be below clip_end = " + fmt(c.clip_end));
     c.camera_to_world = validate_transform(d.transform, "camera transform");
+    check_camera_frame(c.camera_to_world);
     check(d.type == STRATUM_CAMERA_PERSPECTIVE || d.type == STRATUM_CAMERA_ORTHOGRAPHIC ||
               d.type == STRATUM_CAMERA_EQUIRECTANGULAR,
           "camera type " + std::to_string(d.type) + " is not a StratumCameraType");
@@ -343,11 +419,11 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
                   " must be below longitude_max = " + fmt(c.longitude_max));
     }
     if (c.type == CameraType::Orthographic)
-        c.ortho_scale = finite_positive(d.ortho_scale, "camera ortho_scale");
-    const float kMax = std::numeric_limits<float>::max();
-    c.aperture_radius = finite_in(d.aperture_radius, 0.0f, kMax, "camera aperture_radius");
+        c.ortho_scale = finite_in_open(d.ortho_scale, 0.0f, kMaxCoordinate, "camera ortho_scale");
+    c.aperture_radius = finite_in(d.aperture_radius, 0.0f, kMaxCoordinate, "camera aperture_radius");
     if (c.aperture_radius > 0.0f) {
-        c.focus_distance = finite_positive(d.focus_distance, "camera focus_distance (with an aperture)");
+        c.focus_distance = finite_in_open(d.focus_distance, 0.0f, kMaxCoordinate,
+                                          "camera focus_distance (with an aperture)");
         check(d.aperture_blades == 0 || (d.aperture_blades >= 3 && d.aperture_blades <= 1000000),
               "camera aperture_blades = " + std::to_string(d.aperture_blades) +
                   " must be 0 (round) or in [3, 1000000]");

@@ -20,8 +20,8 @@ Material validate_material(const StratumMaterialDesc& desc);
 // A closure material: 1..kMaxClosures closures, weights finite and >= 0.
 SceneMaterial validate_closure_material(const StratumClosureDesc* closures, uint32_t count);
 Mesh validate_mesh(const StratumMeshDesc& desc, uint32_t material_count);
-// mesh_count: meshes in the scene (mesh_id must be below it).
-Instance validate_instance(const StratumInstanceDesc& desc, uint32_t mesh_count);
+// meshes: the scene's meshes (mesh_id must index one; its bounds limit the placement).
+Instance validate_instance(const StratumInstanceDesc& desc, const std::vector<Mesh>& meshes);
 LightParams validate_light(const StratumLightDesc& desc);
 CameraParams validate_camera(const StratumCameraDesc& desc);
 Transform validate_transform(const float* m, const char* what);

@@ -133,6 +133,21 @@ struct Transform {
 };
 
 inline float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }
+
+// The mean of the channels in double: (r + g + b) / 3 in float overflows for channels near
+// FLT_MAX (a lamp of 3e38 W), which made such a lamp's selection probability NaN.
+inline double mean(Rgb c) { return (static_cast<double>(c.r) + c.g + c.b) / 3.0; }
+
+// c × s in double, saturating at ±FLT_MAX: a radiance derived from an input near FLT_MAX (a
+// lamp's power over a small area) stays finite instead of becoming Inf, which would be dropped
+// as a non-finite sample and leave the lamp black.
+inline float saturate_to_float(double v) {
+    constexpr double kMax = 3.4028234663852886e38;  // FLT_MAX
+    return static_cast<float>(std::clamp(v, -kMax, kMax));
+}
+inline Rgb saturating_product(Rgb c, double s) {
+    return {saturate_to_float(c.r * s), saturate_to_float(c.g * s), saturate_to_float(c.b * s)};
+}
 inline float sqr(float x) { return x * x; }
 
 }  // namespace stratum

@@ -25,7 +25,7 @@ AreaLight::AreaLight(const Transform& light_to_world, float size_x, float size_y
     area_ = ellipse ? parallelogram * (kPi / 4.0f) : parallelogram;
     // Local −Z; in world the normal follows the handedness of the transform.
     normal_ = normalize(light_to_world.normal(Vec3(0, 0, -1)));
-    radiance_ = power * (kInvPi / area_);
+    radiance_ = saturating_product(power, 1.0 / (kPi * static_cast<double>(area_)));
     const float half = 0.5f * spread;
     if (spread >= kPi) {
         tan_half_spread_ = kInfinity;

@@ -52,7 +52,7 @@ public:
     // Solid-angle pdf of reaching `hit` on this triangle from (p, n) by sample() in `mode`.
     float pdf(Vec3 p, Vec3 n, Vec3 hit, TriangleSampling mode = TriangleSampling::SolidAngle) const;
     // Emitted flux of both faces, π A L_e each (used to choose among lights).
-    float power() const { return 2.0f * kPi * area_ * radiance_.average(); }
+    double power() const { return 2.0 * kPi * static_cast<double>(area_) * mean(radiance_); }
     // A light-tracing particle (textbook 6.3): point uniform in area (p_A = 1/A), a face chosen
     // with probability ½ by u_direction.x (rescaled and reused), direction cosine-distributed
     // about that face's normal (p_ω = cos/π): weight L cos/(½ p_A p_ω) = 2π A L_e.

@@ -9,7 +9,8 @@ namespace stratum {
 
 namespace {
 
-float luminance(Rgb c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; }
+// In double: the weights of an image near FLT_MAX (strength 3e38) must not overflow.
+double luminance(Rgb c) { return 0.2126 * c.r + 0.7152 * c.g + 0.0722 * c.b; }
 
 // Index k with cdf[k] <= u < cdf[k+1], skipping empty intervals.
 uint32_t find_interval(const float* cdf, uint32_t n, float u) {
@@ -28,19 +29,22 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, uint32_t width, uint3
     const size_t w = width_, h = height_;
     std::vector<double> weight(w * h);
     double total = 0.0;
-    Rgb sum(0.0f);
+    double sum[3] = {0.0, 0.0, 0.0};
     double solid_angle = 0.0;
     for (size_t j = 0; j < h; ++j) {
         const double sin_theta = std::sin(kPi * (static_cast<double>(j) + 0.5) / static_cast<double>(h));
         for (size_t i = 0; i < w; ++i) {
             const Rgb c = at(static_cast<uint32_t>(i), static_cast<uint32_t>(j));
-            weight[j * w + i] = static_cast<double>(luminance(c)) * sin_theta;
+            weight[j * w + i] = luminance(c) * sin_theta;
             total += weight[j * w + i];
-            sum += c * static_cast<float>(sin_theta);
+            sum[0] += c.r * sin_theta;
+            sum[1] += c.g * sin_theta;
+            sum[2] += c.b * sin_theta;
         }
         solid_angle += sin_theta * static_cast<double>(w);
     }
-    average_ = sum / static_cast<float>(solid_angle);
+    average_ = Rgb(saturate_to_float(sum[0] / solid_angle), saturate_to_float(sum[1] / solid_angle),
+                   saturate_to_float(sum[2] / solid_angle));
     if (!(total > 0.0)) {  // black image: sample by solid angle
         total = 0.0;
         for (size_t j = 0; j < h; ++j) {
@@ -70,6 +74,17 @@ EnvironmentLight::EnvironmentLight(std::vector<float> rgb, uint32_t width, uint3
     row_cdf_[h] = 1.0f;
 }
 
+namespace {
+
+// floor(x) clamped to [0, n): a NaN x (a direction that is not a number reaches no texel
+// sensibly, but must not index outside the image either) reads texel 0.
+uint32_t texel_index(float x, uint32_t n) {
+    if (!(x > 0.0f)) return 0;
+    return x >= static_cast<float>(n) ? n - 1 : static_cast<uint32_t>(x);
+}
+
+}  // namespace
+
 EnvironmentLight::Texel EnvironmentLight::texel(Vec3 world_dir) const {
     const auto& r = rotation_;
     const Vec3 d(r[0] * world_dir.x + r[1] * world_dir.y + r[2] * world_dir.z,
@@ -81,8 +96,8 @@ EnvironmentLight::Texel EnvironmentLight::texel(Vec3 world_dir) const {
     float u = 0.5f - std::atan2(d.y, d.x) / (2.0f * kPi);
     const float v = 1.0f - std::atan2(rho, d.z) / kPi;
     u -= std::floor(u);
-    const uint32_t i = std::min(static_cast<uint32_t>(u * static_cast<float>(width_)), width_ - 1);
-    const uint32_t j = std::min(static_cast<uint32_t>((1.0f - v) * static_cast<float>(height_)), height_ - 1);
+    const uint32_t i = texel_index(u * static_cast<float>(width_), width_);
+    const uint32_t j = texel_index((1.0f - v) * static_cast<float>(height_), height_);
     return {i, j, u, v, rho / length(d)};
 }
 

@@ -50,9 +50,9 @@ void LightSet::finalize(float scene_radius) {
                 // The sun's flux through the scene's cross-section; the environment's likewise,
                 // from its average radiance (π·R²·L̄, the flux of a uniform sky through a disk).
                 if constexpr (std::is_same_v<T, SunLight>) {
-                    return l.irradiance().average() * kPi * scene_radius * scene_radius;
+                    return mean(l.irradiance()) * kPi * scene_radius * scene_radius;
                 } else if constexpr (std::is_same_v<T, EnvironmentLight>) {
-                    return l.average().average() * kPi * scene_radius * scene_radius;
+                    return mean(l.average()) * kPi * scene_radius * scene_radius;
                 } else {
                     return l.power();
                 }

@@ -39,7 +39,11 @@ bool intersect_facing_disk(Vec3 center, float radius, Vec3 origin, Vec3 dir, flo
 }
 
 PointLight::PointLight(Vec3 position, Rgb power, float radius)
-    : position_(position), power_(power), intensity_(power * kInv4Pi), radius_(radius) {}
+    : position_(position),
+      power_(power),
+      intensity_(power * kInv4Pi),
+      disk_radiance_(saturating_product(intensity_, 1.0 / (kPi * static_cast<double>(radius) * radius))),
+      radius_(radius) {}
 
 bool PointLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
     if (radius_ <= 0.0f) {
@@ -52,14 +56,14 @@ bool PointLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
     }
     FacingDiskSample s;
     if (!sample_facing_disk(position_, radius_, p, u, &s)) return false;
-    *out = {s.wi, s.distance, intensity_ / (kPi * sqr(radius_)), s.pdf, true};
+    *out = {s.wi, s.distance, disk_radiance_, s.pdf, true};
     return true;
 }
 
 bool PointLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const {
     if (radius_ <= 0.0f) return false;
     if (!intersect_facing_disk(position_, radius_, origin, dir, t_max, t, pdf)) return false;
-    *radiance = intensity_ / (kPi * sqr(radius_));
+    *radiance = disk_radiance_;
     return true;
 }
 

@@ -44,7 +44,7 @@ public:
     // radiance and sample()'s solid-angle pdf of dir.
     bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
     // Emitted power in W, used to choose among lights.
-    float power() const { return power_.average(); }
+    double power() const { return mean(power_); }
     float radius() const { return radius_; }
     // A light-tracing particle (textbook 6.4): from the centre, direction uniform on the sphere
     // (p_ω = 1/(4π)), weight I/p_ω = P. A radius r is Cycles' disk facing each receiver, which
@@ -57,7 +57,8 @@ public:
 private:
     Vec3 position_;
     Rgb power_;
-    Rgb intensity_;  // W/sr
+    Rgb intensity_;      // W/sr
+    Rgb disk_radiance_;  // of the facing disk of a lamp with a radius: I / (π r²)
     float radius_;
 };
 

@@ -42,7 +42,7 @@ bool SpotLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
     if (!sample_facing_disk(position_, radius_, p, u, &s)) return false;
     const float a = attenuation(-dot(s.wi, axis_));
     if (!(a > 0.0f)) return false;
-    *out = {s.wi, s.distance, intensity_ * (a / (kPi * sqr(radius_))), s.pdf, true};
+    *out = {s.wi, s.distance, disk_radiance(a), s.pdf, true};
     return true;
 }
 
@@ -51,7 +51,7 @@ bool SpotLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* rad
     const float a = attenuation(-dot(dir, axis_));
     if (!(a > 0.0f)) return false;
     if (!intersect_facing_disk(position_, radius_, origin, dir, t_max, t, pdf)) return false;
-    *radiance = intensity_ * (a / (kPi * sqr(radius_)));
+    *radiance = disk_radiance(a);
     return true;
 }
 

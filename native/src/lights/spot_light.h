@@ -37,9 +37,14 @@ public:
     // As PointLight::intersect, with the angular factor of the direction −dir.
     bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
     // Emitted power in W as Blender states it (the point light's), used to choose among lights.
-    float power() const { return power_.average(); }
+    double power() const { return mean(power_); }
     // The angular factor I(θ) / (P/(4π)) for cos θ = cos_theta (θ from the axis).
     float attenuation(float cos_theta) const;
+    // Radiance of the facing disk of a lamp with a radius at angular factor a: I a / (π r²),
+    // saturating (a 3e38 W lamp of radius 1 cm would overflow).
+    Rgb disk_radiance(float a) const {
+        return saturating_product(intensity_, a / (kPi * static_cast<double>(radius_) * radius_));
+    }
     float radius() const { return radius_; }
     // A light-tracing particle (textbook 6.4): from the centre, direction uniform in the cone
     // of half angle θ_h (p_ω = 1/(2π(1 − cos θ_h))), weight I(θ)/p_ω. A radius is treated as

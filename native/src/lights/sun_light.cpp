@@ -10,7 +10,7 @@ SunLight::SunLight(Vec3 toward_sun, Rgb irradiance, float angle)
     if (half > 0.0f) {
         const float s = std::sin(half);
         cos_max_ = std::cos(half);
-        radiance_ = irradiance / (kPi * s * s);
+        radiance_ = saturating_product(irradiance, 1.0 / (kPi * static_cast<double>(s) * s));
         pdf_ = 1.0f / (2.0f * kPi * (s * s / (1.0f + cos_max_)));
     }
 }

@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 
 #include "integrators/integrator.h"
 #include "integrators/light_tracer.h"
@@ -33,6 +35,19 @@ size_t pixel_index(const PixelRegion& region, uint32_t x, uint32_t y) {
     return static_cast<size_t>(y - region.y) * region.width + (x - region.x);
 }
 
+// A pixel's running sum of radiance samples. In double: a float sum of samples near FLT_MAX
+// (an emitter of strength 3e38 seen directly) overflows to Inf although their mean is finite.
+struct RadianceSum {
+    double r = 0, g = 0, b = 0;
+    void add(const Rgb& c) {
+        r += c.r;
+        g += c.g;
+        b += c.b;
+    }
+};
+
+bool is_finite(const Rgb& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
+
 double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
@@ -59,11 +74,17 @@ std::string Renderer::start() {
     const std::string crop_error = crop_region(settings_, &region);
     if (!crop_error.empty()) return crop_error;
     region_ = region;
-    notices_.clear();
+    {
+        std::lock_guard lock(notices_mutex_);
+        notices_.clear();
+    }
+    dropped_samples_.store(0);
     const std::unique_ptr<Integrator> integrator =
         find_integrator(settings_.integrator)->create(integrator_settings(settings_));
-    for (const std::string& notice : integrator->notices(scene_))
-        notices_ += (notices_.empty() ? "" : "\n") + notice;
+    for (const std::string& notice : integrator->notices(scene_)) add_notice(notice);
+    // A scene already built keeps its build notices for every render of it.
+    if (render_scene_)
+        for (const std::string& notice : render_scene_->notices()) add_notice(notice);
     width_ = region.width;
     height_ = region.height;
     // Work per sample index: one camera sample per pixel of the region, plus, when light
@@ -96,10 +117,12 @@ void Renderer::run() {
         tbb::task_arena arena(s.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(s.threads));
         if (!render_scene_) {
             const auto t0 = Clock::now();
-            arena.execute([&] { render_scene_ = std::make_unique<RenderScene>(scene_); });
+            arena.execute([&] { render_scene_ = std::make_unique<RenderScene>(scene_, &cancel_); });
             std::lock_guard lock(state_mutex_);
             build_seconds_ = seconds_since(t0);
+            for (const std::string& notice : render_scene_->notices()) add_notice(notice);
         }
+        const uint64_t refused_before = render_scene_->refused_rays();
         const auto t0 = Clock::now();
         {
             std::lock_guard lock(state_mutex_);
@@ -120,8 +143,8 @@ void Renderer::run() {
         // Light tracing adds a particle pass after each camera pass (the Integrator interface
         // is per camera ray; the particle part is the light tracer's own).
         const auto* light_tracer = dynamic_cast<const LightTracer*>(integrator.get());
-        std::vector<Rgb> sums(static_cast<size_t>(region.width) * region.height);
-        std::vector<float> alpha_sums(sums.size(), 0.0f);
+        std::vector<RadianceSum> sums(static_cast<size_t>(region.width) * region.height);
+        std::vector<double> alpha_sums(sums.size(), 0.0);
         std::vector<uint32_t> counts(sums.size(), 0);
         std::vector<double> splat_sums(light_tracer ? 3 * sums.size() : 0, 0.0);
 
@@ -133,14 +156,18 @@ void Renderer::run() {
                     tbb::blocked_range2d<uint32_t>(region.y, region.y + region.height, kTileSize, region.x,
                                                    region.x + region.width, kTileSize),
                     [&](const tbb::blocked_range2d<uint32_t>& tile) {
-                        uint64_t rays = 0, pixel_samples = 0;
+                        uint64_t rays = 0, pixel_samples = 0, dropped = 0;
                         for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
                             for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                                 if (cancel_.load(std::memory_order_relaxed)) break;
                                 const size_t p = pixel_index(region, x, y);
-                                Rgb sum = sums[p];
-                                float alpha_sum = alpha_sums[p];
-                                for (uint32_t i = begin; i < end; ++i) {
+                                RadianceSum sum = sums[p];
+                                double alpha_sum = alpha_sums[p];
+                                uint32_t i = begin;
+                                for (; i < end; ++i) {
+                                    // Per sample, not per pixel: one sample of a 1024-bounce
+                                    // path is already long, a pass holds up to 64 of them.
+                                    if (cancel_.load(std::memory_order_relaxed)) break;
                                     const PixelSample ps{x, y, i};
                                     const Vec2 offset = filter.sample(sampler->get_2d(ps, kDimFilter));
                                     // The lens pair is drawn only by a thin-lens camera, so
@@ -154,13 +181,17 @@ void Renderer::run() {
                                     if (motion) ray.time = sampler->get_1d(ps, kDimTime);
                                     const RadianceSample r =
                                         integrator->radiance(*render_scene_, *sampler, ps, ray, rays);
-                                    const Rgb& L = r.radiance;
-                                    // A NaN or Inf sample would poison the pixel forever; it
-                                    // is a bug upstream, so it is dropped visibly (counted, 0).
-                                    if (std::isfinite(L.r) && std::isfinite(L.g) && std::isfinite(L.b))
-                                        sum += L;
-                                    alpha_sum += r.alpha;
+                                    // A NaN or Inf sample would poison the pixel forever: it
+                                    // is dropped (0), counted, and reported when the render ends.
+                                    if (is_finite(r.radiance) && std::isfinite(r.alpha)) {
+                                        sum.add(r.radiance);
+                                        alpha_sum += r.alpha;
+                                    } else {
+                                        ++dropped;
+                                    }
                                 }
+                                // A pixel cancelled mid-pass keeps its previous, complete sum.
+                                if (i < end) break;
                                 sums[p] = sum;
                                 alpha_sums[p] = alpha_sum;
                                 counts[p] = end;
@@ -169,18 +200,19 @@ void Renderer::run() {
                         }
                         rays_.fetch_add(rays, std::memory_order_relaxed);
                         pixel_samples_done_.fetch_add(pixel_samples, std::memory_order_relaxed);
+                        dropped_samples_.fetch_add(dropped, std::memory_order_relaxed);
                         if (light_tracer) return;  // published with the particles, below
                         std::shared_lock lock(image_mutex_);
                         for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
                             for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                                 const size_t p = pixel_index(region, x, y);
                                 if (counts[p] == 0) continue;
-                                const Rgb v = sums[p] / static_cast<float>(counts[p]);
+                                const double n = counts[p];
                                 float* px = &image_[4 * p];
-                                px[0] = v.r;
-                                px[1] = v.g;
-                                px[2] = v.b;
-                                px[3] = alpha_sums[p] / static_cast<float>(counts[p]);
+                                px[0] = saturate_to_float(sums[p].r / n);
+                                px[1] = saturate_to_float(sums[p].g / n);
+                                px[2] = saturate_to_float(sums[p].b / n);
+                                px[3] = saturate_to_float(alpha_sums[p] / n);
                             }
                         }
                         update_serial_.fetch_add(1);
@@ -195,12 +227,12 @@ void Renderer::run() {
                     std::unique_lock lock(image_mutex_);
                     // Pixel = camera-ray part mean + splat sum / sample indices done.
                     for (size_t p = 0; p < sums.size(); ++p) {
-                        const Rgb v = sums[p] / static_cast<float>(end);
+                        const double n = end;
                         float* px = &image_[4 * p];
-                        px[0] = static_cast<float>(v.r + splat_sums[3 * p] / end);
-                        px[1] = static_cast<float>(v.g + splat_sums[3 * p + 1] / end);
-                        px[2] = static_cast<float>(v.b + splat_sums[3 * p + 2] / end);
-                        px[3] = alpha_sums[p] / static_cast<float>(end);
+                        px[0] = saturate_to_float((sums[p].r + splat_sums[3 * p]) / n);
+                        px[1] = saturate_to_float((sums[p].g + splat_sums[3 * p + 1]) / n);
+                        px[2] = saturate_to_float((sums[p].b + splat_sums[3 * p + 2]) / n);
+                        px[3] = saturate_to_float(alpha_sums[p] / n);
                     }
                     update_serial_.fetch_add(1);
                 }
@@ -208,8 +240,11 @@ void Renderer::run() {
             if (!cancel_.load()) samples_done_.store(end);
             begin = end;
         }
+        report_dropped(render_scene_->refused_rays() - refused_before);
         std::lock_guard lock(state_mutex_);
         render_seconds_ = seconds_since(t0);
+    } catch (const RenderScene::BuildCancelled&) {
+        // Esc during the BVH build: the render ends cancelled, with nothing to report.
     } catch (const std::exception& e) {
         error = e.what();
     }
@@ -250,12 +285,41 @@ void Renderer::trace_particles(const LightTracer& tracer, const Sampler& sampler
             });
             for (uint64_t chunk = first; chunk < last; ++chunk) {
                 for (const Splat& sp : batch[chunk - first]) {
+                    if (!is_finite(sp.value)) {
+                        dropped_samples_.fetch_add(1, std::memory_order_relaxed);
+                        continue;
+                    }
                     splat_sums[3 * sp.pixel] += sp.value.r;
                     splat_sums[3 * sp.pixel + 1] += sp.value.g;
                     splat_sums[3 * sp.pixel + 2] += sp.value.b;
                 }
             }
         }
+    }
+}
+
+void Renderer::add_notice(const std::string& notice) {
+    std::lock_guard lock(notices_mutex_);
+    notices_ += (notices_.empty() ? "" : "\n") + notice;
+}
+
+std::string Renderer::notices() const {
+    std::lock_guard lock(notices_mutex_);
+    return notices_;
+}
+
+void Renderer::report_dropped(uint64_t refused_rays) {
+    const uint64_t samples = dropped_samples_.load();
+    if (samples > 0) {
+        add_notice(std::to_string(samples) +
+                   " samples were not finite (NaN or infinite radiance) and were dropped: the "
+                   "pixels they belong to are darker there. A value in the scene is beyond what "
+                   "floating point carries (e.g. an emitter or light near 3.4e38).");
+    }
+    if (refused_rays > 0) {
+        add_notice(std::to_string(refused_rays) +
+                   " rays left the range the ray tracer accepts (an origin far outside the scene, "
+                   "or a direction that is not a number) and were treated as missing everything.");
     }
 }
 

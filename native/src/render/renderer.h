@@ -49,9 +49,11 @@ public:
     bool running() const { return worker_.joinable() && !done_.load(); }
     // Validates the settings against the scene; returns an error message or "".
     std::string start();
-    // What the chosen integrator cannot render in this scene, one sentence per line ("" if
-    // nothing); set by start().
-    const std::string& notices() const { return notices_; }
+    // What the render cannot show and why, one sentence per line ("" if nothing): what the
+    // chosen integrator cannot render in this scene (set by start()), placements the scene
+    // build skipped (added when the build ends), samples and rays dropped as not finite or
+    // out of range (added when the render ends).
+    std::string notices() const;
     void cancel() { cancel_.store(true); }
     // True when the render has ended within the timeout.
     bool wait(int timeout_ms);
@@ -65,6 +67,9 @@ public:
 private:
     void run();
     void join();
+    void add_notice(const std::string& notice);
+    // Adds the notices of the samples (dropped_samples_) and rays dropped by this render.
+    void report_dropped(uint64_t refused_rays);
     // Light tracing: the particles of sample indices [begin, end), splatted into splat_sums
     // (RGB per region pixel) deterministically; returns early on cancel.
     void trace_particles(const LightTracer& tracer, const Sampler& sampler, const ParticleFilm& film,
@@ -95,7 +100,9 @@ private:
     bool rendering_ = false;  // path tracing (not BVH build) in progress
     bool cancelled_ = false;
     std::string error_;
+    mutable std::mutex notices_mutex_;
     std::string notices_;
+    std::atomic<uint64_t> dropped_samples_{0};
 };
 
 }  // namespace stratum

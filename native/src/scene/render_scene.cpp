@@ -1,7 +1,11 @@
 #include "scene/render_scene.h"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
+#include <string>
+
+#include "scene/placement_conditioning.h"
 
 namespace stratum {
 
@@ -25,6 +29,38 @@ void add_transformed(Bounds& world, const Bounds& object, const Transform& m) {
     }
 }
 
+float largest_coordinate(const Bounds& b) {
+    if (b.empty()) return 0.0f;
+    return std::max({std::abs(b.lo.x), std::abs(b.lo.y), std::abs(b.lo.z), std::abs(b.hi.x), std::abs(b.hi.y),
+                     std::abs(b.hi.z)});
+}
+
+// The largest |coordinate| of anything a ray can start from besides geometry: lamps (with their
+// size) and the camera (with its lens and, orthographic, its view plane).
+float lamp_and_camera_extent(const Scene& scene) {
+    float extent = 0.0f;
+    for (const LightParams& l : scene.lights) {
+        const Vec3 p = l.light_to_world.translation();
+        const float reach = l.radius + std::max(l.size_x, l.size_y);
+        extent = std::max({extent, std::abs(p.x) + reach, std::abs(p.y) + reach, std::abs(p.z) + reach});
+    }
+    if (scene.camera) {
+        const CameraParams& c = *scene.camera;
+        const Vec3 p = c.camera_to_world.translation();
+        const float reach =
+            c.aperture_radius + c.ortho_scale * (1.0f + std::abs(c.shift_x) + std::abs(c.shift_y));
+        extent = std::max({extent, std::abs(p.x) + reach, std::abs(p.y) + reach, std::abs(p.z) + reach});
+    }
+    return extent;
+}
+
+// Ray origins lie on geometry, lamps or the lens, or, for the light tracer's sun and sky
+// particles, on a disk of radius up to 20 R at distance R from the scene's bounding sphere
+// centre (lights/sun_light.cpp: R (1 + sin)/cos with cos >= 0.1, R <= √3 × the extent): all
+// within 40 times the scene's extent, so 64 times it (at least 64) bounds them with room for
+// rounding. ABI bounds keep it below 64 × 1e12 (scene/scene_limits.h).
+float ray_origin_limit(float extent) { return 64.0f * std::max(extent, 1.0f); }
+
 Vec3 unit_or(Vec3 v, Vec3 fallback) {
     const float len = length(v);
     return len > 0.0f ? v / len : fallback;
@@ -38,8 +74,24 @@ Rgb material_emission(const SceneMaterial& material) {
     return sum;
 }
 
-RenderScene::RenderScene(const Scene& scene)
+RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
     : materials_(scene.materials), textures_(scene), background_(scene.background) {
+    // The scene's extent first: it decides which placements can be traced at all.
+    std::vector<Bounds> mesh_bounds(scene.meshes.size());
+    std::vector<bool> bounded(scene.meshes.size(), false);
+    Bounds all;
+    for (const Instance& inst : scene.instances) {
+        Bounds& b = mesh_bounds.at(inst.mesh_id);
+        if (!bounded[inst.mesh_id]) {
+            for (Vec3 p : scene.meshes[inst.mesh_id].positions) b.add(p);
+            bounded[inst.mesh_id] = true;
+        }
+        add_transformed(all, b, inst.object_to_world);
+        if (inst.motion) add_transformed(all, b, inst.object_to_world_end);
+    }
+    // Motion can bulge a box past both ends' boxes by its rotation, up to √3 of its size.
+    const float limit =
+        ray_origin_limit(std::max(1.7321f * largest_coordinate(all), lamp_and_camera_extent(scene)));
     // One prototype BVH per mesh that is placed at least once.
     std::vector<uint32_t> prototype_of(scene.meshes.size(), kNoLight);
     std::vector<TriangleGeometry> prototypes;
@@ -48,19 +100,27 @@ RenderScene::RenderScene(const Scene& scene)
     placements.reserve(scene.instances.size());
     instances_.reserve(scene.instances.size());
     Bounds world;
-    for (const Instance& inst : scene.instances) {
+    for (size_t index = 0; index < scene.instances.size(); ++index) {
+        const Instance& inst = scene.instances[index];
         const Mesh& mesh = scene.meshes.at(inst.mesh_id);
-        if (prototype_of[inst.mesh_id] == kNoLight) {
-            prototype_of[inst.mesh_id] = static_cast<uint32_t>(prototypes.size());
-            prototypes.push_back({mesh.positions, mesh.triangles});
-            Bounds b;
-            for (Vec3 p : mesh.positions) b.add(p);
-            object_bounds.push_back(b);
-        }
-        const uint32_t proto = prototype_of[inst.mesh_id];
         // An exporter may flag every object as moving when motion blur is on: equal ends are
         // static (flattened if placed once, emissive triangles kept as lights).
         const bool moving = inst.motion && inst.object_to_world.m != inst.object_to_world_end.m;
+        const double inverse = inverse_norm_bound(inst.object_to_world, inst.object_to_world_end, moving);
+        if (!traceable(inverse, translation_bound(inst.object_to_world, inst.object_to_world_end), limit)) {
+            notices_.push_back("instance " + std::to_string(index) + " (mesh " +
+                               std::to_string(inst.mesh_id) +
+                               ") has a degenerate transform (scale (nearly) 0 along some axis" +
+                               (moving ? ", or through 0 over the shutter" : "") +
+                               "): it cannot be ray traced and is skipped");
+            continue;
+        }
+        if (prototype_of[inst.mesh_id] == kNoLight) {
+            prototype_of[inst.mesh_id] = static_cast<uint32_t>(prototypes.size());
+            prototypes.push_back({mesh.positions, mesh.triangles});
+            object_bounds.push_back(mesh_bounds[inst.mesh_id]);
+        }
+        const uint32_t proto = prototype_of[inst.mesh_id];
         placements.push_back(
             {proto, inst.object_to_world, inst.object_to_world_end, moving, inst.visibility});
         add_transformed(world, object_bounds[proto], inst.object_to_world);
@@ -84,6 +144,9 @@ RenderScene::RenderScene(const Scene& scene)
         const Mesh& mesh = *g.mesh;
         const uint32_t object = light_object++;
         for (size_t t = 0; t < mesh.triangles.size(); ++t) {
+            // A mesh of millions of emissive triangles takes a while to list: cancel is
+            // honoured here as in Embree's build.
+            if (t % 65536 == 0 && cancel && cancel->load(std::memory_order_relaxed)) throw BuildCancelled();
             const Rgb& e = emission[mesh.material_ids[t]];
             if (e.is_black()) continue;
             if (g.emissive_light.empty()) g.emissive_light.assign(mesh.triangles.size(), kNoLight);
@@ -124,7 +187,8 @@ RenderScene::RenderScene(const Scene& scene)
     if (scene.environment) {
         const Environment& e = *scene.environment;
         std::vector<float> rgb(e.rgb.size());
-        for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = e.rgb[i] * e.strength;
+        // Saturating: a strength of 3e38 on a bright texel must not give an infinite sky.
+        for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = saturating_product(Rgb(e.rgb[i]), e.strength).r;
         lights_.add(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation), light_object++);
     }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.
@@ -134,7 +198,8 @@ RenderScene::RenderScene(const Scene& scene)
     }
     lights_.finalize(bounds_radius_);
 
-    const std::string error = embree_.build(prototypes, placements);
+    const std::string error = embree_.build(prototypes, placements, limit, cancel);
+    if (error == EmbreeScene::kBuildCancelled) throw BuildCancelled();
     if (!error.empty()) throw std::runtime_error(error);
 }
 

@@ -4,8 +4,10 @@
 // (at the ray's time for a moving instance).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -47,8 +49,17 @@ Rgb material_emission(const SceneMaterial& material);
 
 class RenderScene {
 public:
-    // Throws std::runtime_error with a readable message (caught at the C ABI).
-    explicit RenderScene(const Scene& scene);
+    // Throws std::runtime_error with a readable message (caught at the C ABI), BuildCancelled
+    // when *cancel (may be null) becomes true during the build.
+    explicit RenderScene(const Scene& scene, const std::atomic<bool>* cancel = nullptr);
+
+    struct BuildCancelled : std::runtime_error {
+        BuildCancelled() : std::runtime_error("the scene build was cancelled") {}
+    };
+    // What the build left out and why, one sentence each (placements that cannot be traced).
+    const std::vector<std::string>& notices() const { return notices_; }
+    // Rays refused before Embree could reject them (EmbreeScene::refused_rays).
+    uint64_t refused_rays() const { return embree_.refused_rays(); }
 
     bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, SurfaceHit* hit,
                    const RayQuery& query = {}) const;
@@ -91,6 +102,7 @@ private:
     bool has_motion_ = false;
     Vec3 bounds_center_{0.0f, 0.0f, 0.0f};
     float bounds_radius_ = 1.0f;
+    std::vector<std::string> notices_;
 };
 
 }  // namespace stratum

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -23,6 +24,9 @@ struct Mesh {
     std::vector<Vec3> vertex_normals;    // empty, or 1 per vertex (never both kinds)
     std::vector<Vec2> corner_uvs;        // empty, or 3 per triangle
     std::vector<uint32_t> material_ids;  // 1 per triangle
+    // Bounding box of `positions` (object space), for the ABI's bound on placed extents.
+    Vec3 bounds_lo{kHuge, kHuge, kHuge}, bounds_hi{-kHuge, -kHuge, -kHuge};
+    static constexpr float kHuge = std::numeric_limits<float>::infinity();
 };
 
 // One closure of a material with its weight (Blender's Mix / Add Shader trees flattened).
