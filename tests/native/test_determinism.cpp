@@ -1,11 +1,15 @@
 // Determinism (DESIGN.md): same scene + settings + seed => bit-identical image, whatever the
 // thread count, and however many renders the process has made before. Every registered
 // sampler x integrator renders a Cornell box many times in this one process, with threads 1, 2
-// and 7 in turn. `make sanitize` also runs this test under valgrind memcheck: a read of
-// uninitialised memory would show there even when it happens not to change a pixel here.
+// and 7 in turn. `make sanitize` also runs this test under valgrind memcheck, with
+// STRATUM_DETERMINISM_RENDERS=3 (renders per sampler x integrator, default 10: memcheck is about
+// 50 times slower, and a read of uninitialised memory shows there on the first render that
+// makes it, whether or not it changes a pixel).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -15,7 +19,12 @@ using namespace stratum_test;
 
 namespace {
 
-constexpr int kRepeats = 10;
+// Renders per sampler x integrator: STRATUM_DETERMINISM_RENDERS if set (at least 2, so that two
+// renders are compared), else 10.
+int renders_per_case() {
+    const char* value = std::getenv("STRATUM_DETERMINISM_RENDERS");
+    return value ? std::max(2, std::atoi(value)) : 10;
+}
 constexpr int64_t kThreadCounts[] = {1, 2, 7};
 
 StratumMaterialDesc principled_v1(float r, float g, float b) {
@@ -163,10 +172,11 @@ TEST(Determinism, EverySamplerAndIntegratorRepeatsOneImageForAnyThreadCount) {
     const std::vector<const char*> integrators = registry_names(STRATUM_REGISTRY_INTEGRATOR);
     ASSERT_GE(samplers.size(), 12u);
     ASSERT_GE(integrators.size(), 4u);
+    const int renders = renders_per_case();
     for (const char* integrator : integrators) {
         for (const char* sampler : samplers) {
             std::vector<float> first;
-            for (int i = 0; i < kRepeats; ++i) {
+            for (int i = 0; i < renders; ++i) {
                 const int64_t threads = kThreadCounts[i % 3];
                 const RenderOutput out = render(scene, Settings{{"width", 16},
                                                                 {"height", 16},
