@@ -1,8 +1,8 @@
 """Vertex normals that are the same on every export of the same mesh.
 
 Blender before 4.1 computes a mesh's vertex normals in parallel, 1024 faces per task, each
-face adding its contribution to its vertices' normals with an atomic float add (3.4
-mesh_normals.cc, mesh_calc_normals_poly_and_vertex: add_v3_v3_atomic). Float addition is not
+face adding its contribution to its vertices' normals with an atomic float add (3.x
+mesh_normals.cc: add_v3_v3_atomic). Float addition is not
 associative, so a vertex whose faces fall into two tasks gets a sum whose last bits depend on
 which task ran first: the same .blend gives slightly different `vertex_normals` on every
 evaluation (measured in 3.4.1: 16 different arrays in 20 evaluations of a 32 768-face
@@ -15,8 +15,10 @@ The normals are Blender's definition, recomputed in a fixed order: a vertex's no
 normalized sum over its face corners of (face normal) x (the corner's interior angle), the
 angle-weighted pseudo-normal of Thürmer & Wüthrich 1998 that Blender uses. Per-corner terms
 are float32 as in Blender; they are summed in float64 in corner order (np.bincount is a
-sequential loop), so the result is a pure function of the mesh and within a few float32 ulps
-of Blender's own value.
+sequential loop), so the result is a pure function of the mesh. Measured against Blender 3.4's
+own: within 3 float32 ulps on a coarse sphere; up to 5e-6 on a 64 x 32 sphere, where it is
+Blender's float32 sum that strays from the exact value (ours is within 1e-7 of a float64
+evaluation).
 """
 
 from __future__ import annotations
