@@ -11,6 +11,7 @@ DEB_PACKAGES=(
   nlohmann-json3-dev googletest libgtest-dev
   python3-numpy python3-pytest python3-venv
   chromium chromium-driver
+  valgrind  # make sanitize: memcheck of the native determinism tests
 )
 
 missing=()

@@ -8,6 +8,7 @@ from typing import Any
 import numpy as np
 
 from .common import ExportError
+from .vertex_normals import angle_weighted_vertex_normals
 
 # Object types that to_mesh() can turn into triangles.
 GEOMETRY_TYPES = {"MESH", "CURVE", "SURFACE", "FONT", "META"}
@@ -40,6 +41,21 @@ def _corner_normals(mesh: Any, n_loops: int) -> np.ndarray:
     return _get(mesh.loops, "normal", n_loops, 3, np.float32)
 
 
+def _vertex_normals(mesh: Any, positions: np.ndarray) -> np.ndarray:
+    """Vertex normals (N, 3), the same floats on every export: Blender 4.1+'s own; before 4.1
+    recomputed in a fixed order, because Blender's own vary in their last bits from one
+    evaluation to the next (export/vertex_normals.py)."""
+    if hasattr(mesh, "corner_normals"):  # 4.1+
+        return _get(mesh.vertex_normals, "vector", len(positions), 3, np.float32)
+    n_poly = len(mesh.polygons)
+    # uint32 / int32: the dtypes of MLoop.v and MPoly's fields, so foreach_get copies in bulk.
+    return angle_weighted_vertex_normals(
+        positions, _get(mesh.loops, "vertex_index", len(mesh.loops), 1, np.uint32),
+        _get(mesh.polygons, "loop_start", n_poly, 1, np.int32),
+        _get(mesh.polygons, "loop_total", n_poly, 1, np.int32),
+        _get(mesh.polygon_normals, "vector", n_poly, 3, np.float32))
+
+
 def _all_faces_flat(mesh: Any, smooth: np.ndarray) -> bool:
     """True when every face is flat-shaded (`smooth`: use_smooth per polygon) and no custom
     normals apply: then each triangle is shaded with its own geometric normal, as Cycles does
@@ -53,7 +69,8 @@ def _all_faces_flat(mesh: Any, smooth: np.ndarray) -> bool:
     return len(smooth) > 0 and not smooth.any()
 
 
-def _smooth_vertex_normals(mesh: Any, smooth: np.ndarray) -> np.ndarray | None:
+def _smooth_vertex_normals(mesh: Any, smooth: np.ndarray,
+                           positions: np.ndarray) -> np.ndarray | None:
     """Per-vertex normals (N, 3) when they are the whole story: every face smooth and no split
     normals (4.1+: normals_domain 'POINT'; before: no auto smooth). Cycles takes such a mesh's
     normals per vertex too; a third of the floats of per-corner normals is the win."""
@@ -62,19 +79,19 @@ def _smooth_vertex_normals(mesh: Any, smooth: np.ndarray) -> np.ndarray | None:
             return None
     elif mesh.use_auto_smooth or not smooth.all():
         return None
-    return _get(mesh.vertex_normals, "vector", len(mesh.vertices), 3, np.float32)
+    return _vertex_normals(mesh, positions)
 
 
 def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any,
-                     smooth: np.ndarray) -> np.ndarray | None:
+                     smooth: np.ndarray, positions: np.ndarray) -> np.ndarray | None:
     """Corner normals (T, 3, 3) of a Blender < 4.1 mesh without auto smooth whose faces are
     partly smooth, partly flat (all-flat and all-smooth meshes are handled before), None for
     other meshes.
 
     Without auto smooth, calc_normals_split copies each corner's vertex normal (smooth face) or
     its face normal (flat face) and nothing else (3.4 mesh_normals.cc, normals_loop_split with
-    use_split_normals false; custom normals are ignored then): the same floats, bit for bit,
-    are read here straight from vertex_normals / polygon_normals, which skips computing and
+    use_split_normals false; custom normals are ignored then): the same normals are made here
+    from the vertex normals (_vertex_normals) and polygon_normals, which skips computing and
     reading 3 normals per loop (a third of a 1M-triangle export). `polygons()` gives the
     triangles' polygon indices, fetched only when some face is flat."""
     if hasattr(mesh, "corner_normals") or mesh.use_auto_smooth:
@@ -82,7 +99,7 @@ def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any,
     tri_poly = polygons()
     face_normals = _get(mesh.polygon_normals, "vector", len(smooth), 3, np.float32)
     flat = ~smooth[tri_poly]
-    normals = _get(mesh.vertex_normals, "vector", len(mesh.vertices), 3, np.float32)[triangles]
+    normals = _vertex_normals(mesh, positions)[triangles]
     normals[flat] = face_normals[tri_poly[flat]][:, None, :]
     return normals
 
@@ -156,9 +173,9 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
     normals = vertex_normals = None
     smooth = _get(mesh.polygons, "use_smooth", len(mesh.polygons), 1, bool)
     if n_tri and not _all_faces_flat(mesh, smooth):
-        vertex_normals = _smooth_vertex_normals(mesh, smooth)
+        vertex_normals = _smooth_vertex_normals(mesh, smooth, positions)
         if vertex_normals is None:
-            normals = _unsplit_normals(mesh, triangles, polygons, smooth)
+            normals = _unsplit_normals(mesh, triangles, polygons, smooth, positions)
             if normals is None:
                 normals = _corner_normals(mesh, n_loops)[loops()]  # (T, 3, 3)
             if not np.isfinite(normals).all():
