@@ -43,18 +43,17 @@ def cause(output: str) -> str:
         if match:
             found = text.format(*(Path(g).name if "/" in g else g for g in match.groups()))
             # Numbers vary between inputs of one cause (pixel coordinates, sizes).
-            found = NUMBER.sub("N", found) if found.startswith("finding") else found
+            found = NUMBER.sub("N", found) if found.startswith(("finding", "UBSan")) else found
             frame = PROJECT_FRAME.search(output)
             return found + (f" [{frame.group(2)}:{frame.group(3)} {frame.group(1)}]" if frame else "")
     return "no crash on replay"
 
 
 def running_call(output: str) -> str:
-    """The last traced ABI call without a result: the one that crashed or hung."""
+    """The last traced ABI call: the one that crashed or hung, or (when it returned) the one
+    after which the harness found a violated invariant or a render thread crashed."""
     calls = [line.strip() for line in output.splitlines() if line.startswith("  stratum_")]
-    unfinished = [c for c in calls if " -> " not in c and not c.endswith(");")]
-    name = (unfinished or calls or ["(none)"])[-1]
-    return name.split("(", 1)[0]
+    return (calls or ["(none)"])[-1].split("(", 1)[0]
 
 
 def replay(binary: Path, path: Path) -> str:

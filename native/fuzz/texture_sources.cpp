@@ -210,6 +210,9 @@ TextureArrays draw_texture(ByteReader& in) {
     const uint8_t config = in.u8();
     t.null_color_space = config == 255;
     switch (config % 8) {
+        case 3:
+            t.ocio_config = temp_dir() + "/fifo.png";
+            break;
         case 4:
             t.ocio_config = "/usr/share/blender/datafiles/colormanagement/config.ocio";
             break;
