@@ -503,6 +503,11 @@ def known_crashes() -> dict[str, bytes]:
     k["issue12-png-65535"] = huge_png_texture(7, 7)
     k["issue12-texture-dev-zero"] = special_path_texture(5)
     k["issue12-texture-fifo"] = special_path_texture(2)
+    # Found by the fuzzer: finite texels that OpenColorIO's or the sRGB curve's conversion turns
+    # into Inf (1e19 ** 2.4), which a scene file then writes as null and cannot load back.
+    k["texture-srgb-1e19-save-load"] = pixels_texture(1, 1, 1, "1e19") + save_load(0)
+    # Found by the fuzzer: an OCIO config path that is a FIFO blocks in OpenColorIO's read.
+    k["texture-ocio-config-fifo"] = pixels_texture(2, 2, 3, 0.5)[:-4] + bytes([3, 3, 1, 0])
     return k
 
 
