@@ -10,7 +10,7 @@ CMAKE_ARGS ?= -DCMAKE_BUILD_TYPE=Release -DSTRATUM_WERROR=ON
 LIB        := addon/stratum/lib/libstratum.so
 
 .PHONY: all setup build test test-native test-python test-blender test-blender-3 test-blender-wheel \
-        lint render bench sanitize build-sanitize fuzz fuzz-smoke format clean study
+        lint render bench sanitize format clean study
 
 all: build
 
@@ -72,6 +72,7 @@ study: build
 
 # One clang build with ASan, UBSan (findings abort) and libFuzzer coverage serves the sanitized
 # test suite and the ABI fuzzer (native/fuzz/README.md).
+.PHONY: build-sanitize fuzz fuzz-smoke
 FUZZ_BUILD    ?= $(BUILD)-fuzz
 FUZZ_SECONDS  ?= 600
 FUZZ_JOBS     ?= 1
