@@ -73,7 +73,7 @@ study: build
 # One clang build with ASan, UBSan (findings abort) and libFuzzer coverage serves the sanitized
 # test suite and the ABI fuzzer (native/fuzz/README.md).
 .PHONY: build-sanitize fuzz fuzz-smoke
-FUZZ_BUILD    ?= $(BUILD)-fuzz
+FUZZ_BUILD    ?= $(BUILD)-asan
 FUZZ_SECONDS  ?= 600
 FUZZ_JOBS     ?= 1
 SANITIZER_ENV := LSAN_OPTIONS=suppressions=$(CURDIR)/native/fuzz/lsan.supp UBSAN_OPTIONS=print_stacktrace=1
@@ -97,4 +97,4 @@ fuzz-smoke: build-sanitize
 	$(SANITIZER_ENV) bash scripts/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz 90 0
 
 clean:
-	rm -rf $(BUILD) $(FUZZ_BUILD) $(BUILD).configure.log $(FUZZ_BUILD).configure.log addon/stratum/lib out
+	rm -rf $(BUILD) $(BUILD)-asan $(BUILD).configure.log addon/stratum/lib out

@@ -1,6 +1,6 @@
 """Groups the ABI fuzzer's crashing inputs by cause.
 
-    python scripts/fuzz_triage.py [ARTIFACT_DIR_OR_FILES...] [--binary build-fuzz/stratum_fuzz]
+    python scripts/fuzz_triage.py [ARTIFACT_DIR_OR_FILES...] [--binary build-asan/stratum_fuzz]
 
 Each input is replayed with its ABI calls traced (STRATUM_FUZZ_TRACE=1); its cause is the
 first report found in the output (the harness's own finding, an Embree assertion, a UBSan or
@@ -77,7 +77,7 @@ def replay(binary: Path, path: Path) -> str:
 def main() -> int:
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("inputs", nargs="*", default=[str(ROOT / "out/fuzz/artifacts")])
-    parser.add_argument("--binary", default=str(ROOT / "build-fuzz/stratum_fuzz"))
+    parser.add_argument("--binary", default=str(ROOT / "build-asan/stratum_fuzz"))
     args = parser.parse_args()
     files = []
     for item in map(Path, args.inputs):
