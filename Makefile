@@ -24,7 +24,7 @@ build: setup
 	# Copy then rename: overwriting the file in place would crash a process that has it loaded.
 	cp -f $(BUILD)/libstratum.so $(LIB).tmp && mv -f $(LIB).tmp $(LIB)
 
-test: build lint test-native test-python test-blender
+test: build lint test-native test-python test-blender sanitize fuzz-smoke
 
 test-native: build
 	cd $(BUILD) && ctest --output-on-failure -j2
@@ -90,11 +90,31 @@ bench: build
 study: build
 	$(PY) scripts/study.py --out out/study --jobs 2
 
-# ASan/UBSan build of the core and its tests.
-sanitize: setup
-	cmake -S . -B $(BUILD)-asan -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSTRATUM_SANITIZE=ON > /dev/null
-	cmake --build $(BUILD)-asan
-	cd $(BUILD)-asan && ctest --output-on-failure -j2
+# One clang build with ASan, UBSan (findings abort) and libFuzzer coverage serves the sanitized
+# test suite and the ABI fuzzer (native/fuzz/README.md).
+.PHONY: build-sanitize fuzz fuzz-smoke
+FUZZ_BUILD    ?= $(BUILD)-asan
+FUZZ_SECONDS  ?= 600
+FUZZ_JOBS     ?= 1
+SANITIZER_ENV := LSAN_OPTIONS=suppressions=$(CURDIR)/native/fuzz/lsan.supp UBSAN_OPTIONS=print_stacktrace=1
+
+build-sanitize: setup
+	cmake -S . -B $(FUZZ_BUILD) -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+		"-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O2 -gline-tables-only" -DSTRATUM_FUZZ=ON \
+		> $(FUZZ_BUILD).configure.log || (cat $(FUZZ_BUILD).configure.log; false)
+	cmake --build $(FUZZ_BUILD)
+
+# Every C++ test under ASan+UBSan, with the fuzzer's seed corpus and regression inputs replayed.
+sanitize: build-sanitize
+	cd $(FUZZ_BUILD) && $(SANITIZER_ENV) ctest --output-on-failure -j2
+
+# The fuzzer for FUZZ_SECONDS with FUZZ_JOBS workers, collecting every crash in out/fuzz/artifacts.
+fuzz: build-sanitize
+	$(SANITIZER_ENV) bash scripts/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
+
+# The bounded run of `make test`: 90 s, stops at the first crash.
+fuzz-smoke: build-sanitize
+	$(SANITIZER_ENV) bash scripts/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz 90 0
 
 # Valgrind memcheck of the native determinism test (every sampler x integrator renders a box 3
 # times in one process, threads 1, 2 and 7): uninitialised reads, which ASan/UBSan do not

@@ -6,6 +6,7 @@ cd "$(dirname "$0")/.."
 
 DEB_PACKAGES=(
   build-essential cmake ninja-build pkg-config clang-format
+  clang libclang-rt-14-dev
   blender
   libembree-dev libopenimageio-dev libopencolorio-dev libtbb-dev
   nlohmann-json3-dev googletest libgtest-dev

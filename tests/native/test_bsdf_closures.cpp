@@ -114,10 +114,11 @@ TEST(Closures, WeightIsValueOverPdf) {
             const Vec3 wo = direction(theta, 1.1f);
             for (int i = 0; i < 2000; ++i) {
                 BsdfSample s;
-                if (!set.sample(wo, uniform(rng), {uniform(rng), uniform(rng)}, &s,
-                                HemisphereDistribution::Cosine) ||
-                    s.delta)
-                    continue;
+                // Drawn in sequence: the order of evaluation of function arguments is unspecified
+                // (GCC and clang differ), and the test must see the same numbers with either.
+                const Vec2 u{uniform(rng), uniform(rng)};
+                const float lobe = uniform(rng);
+                if (!set.sample(wo, lobe, u, &s, HemisphereDistribution::Cosine) || s.delta) continue;
                 const BsdfEval e = set.eval(wo, s.wi, HemisphereDistribution::Cosine);
                 ASSERT_NEAR(s.pdf, e.pdf, 1e-3f * e.pdf);
                 for (int c = 0; c < 3; ++c)
@@ -138,8 +139,11 @@ Albedo sampled_albedo(const ClosureSet& set, Vec3 wo, int channel, int n, uint64
     for (int i = 0; i < n; ++i) {
         BsdfSample s;
         double w = 0;
-        if (set.sample(wo, uniform(rng), {uniform(rng), uniform(rng)}, &s, HemisphereDistribution::Cosine))
-            w = ch(s.weight, channel);
+        // Drawn in sequence: the order of evaluation of function arguments is unspecified
+        // (GCC and clang differ), and the test must see the same numbers with either.
+        const Vec2 u{uniform(rng), uniform(rng)};
+        const float lobe = uniform(rng);
+        if (set.sample(wo, lobe, u, &s, HemisphereDistribution::Cosine)) w = ch(s.weight, channel);
         sum += w;
         sum2 += w * w;
     }

@@ -139,7 +139,7 @@ TEST(SphericalTriangle, InvertUndoesSample) {
         const SphericalTriangle spherical(c.p, c.v0, c.v1, c.v2);
         for (int i = 1; i < 20; ++i) {
             for (int j = 1; j < 20; ++j) {
-                const Vec2 u(float(i) / 20.0f, float(j) / 20.0f);
+                const Vec2 u{float(i) / 20.0f, float(j) / 20.0f};
                 const Vec2 back = spherical.invert(spherical.sample(u));
                 EXPECT_NEAR(back.x, u.x, 1e-4f) << c.label << " u = " << u.x << ", " << u.y;
                 EXPECT_NEAR(back.y, u.y, 1e-4f) << c.label << " u = " << u.x << ", " << u.y;

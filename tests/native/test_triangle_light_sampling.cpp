@@ -136,7 +136,7 @@ TEST(TriangleLightSampling, SolidAngleWeightIsBoundedNextToTheEmitter) {
     std::mt19937_64 rng(3);
     std::uniform_real_distribution<float> u(0.0f, kOneMinusEpsilon);
     for (int k = 0; k < 200'000; ++k) {
-        const Vec2 s(u(rng), u(rng));
+        const Vec2 s{u(rng), u(rng)};
         LightSample ls;
         if (tri.sample(c.p, c.n, s, &ls, TriangleSampling::SolidAngle))
             max_solid = std::max(max_solid, weight(ls, c.n));
@@ -158,7 +158,7 @@ TEST(TriangleLightSampling, CutOffsFallBackToAreaSampling) {
     ASSERT_LT(SphericalTriangle(points[2], kA, kB, kC).solid_angle(),
               EmissiveTriangle::kMinSphericalSolidAngle);
     for (const Vec3& p : points) {
-        for (const Vec2 s : {Vec2(0.2f, 0.3f), Vec2(0.7f, 0.1f), Vec2(0.5f, 0.9f)}) {
+        for (const Vec2 s : {Vec2{0.2f, 0.3f}, Vec2{0.7f, 0.1f}, Vec2{0.5f, 0.9f}}) {
             LightSample a, b;
             const bool ok_a = tri.sample(p, up, s, &a, TriangleSampling::Area);
             const bool ok_b = tri.sample(p, up, s, &b, TriangleSampling::SolidAngle);

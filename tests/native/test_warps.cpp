@@ -178,7 +178,7 @@ TEST(Warps, BilinearMatchesItsDensity) {
     }
     // Equal weights: the identity, density 1.
     const BilinearWeights flat{{2.0f, 2.0f, 2.0f, 2.0f}};
-    const Vec2 u(0.3f, 0.7f);
+    const Vec2 u{0.3f, 0.7f};
     EXPECT_NEAR(sample_bilinear(u, flat).x, u.x, 1e-6f);
     EXPECT_NEAR(sample_bilinear(u, flat).y, u.y, 1e-6f);
     EXPECT_FLOAT_EQ(bilinear_pdf(u, flat), 1.0f);

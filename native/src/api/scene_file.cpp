@@ -1,15 +1,23 @@
 #include "api/scene_file.h"
 
 #include <array>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <vector>
+
+#include "api/scene_file_numbers.h"
 
 namespace stratum {
 
 namespace {
 
 using nlohmann::json;
+using scene_file::element;
+using scene_file::field;
+using scene_file::field_or;
+using scene_file::numbers;
+using scene_file::read_numbers;
 
 constexpr const char* kFormat = "stratum-scene";
 constexpr int kVersion = 1;
@@ -20,13 +28,6 @@ json matrix(const Transform& t) {
     for (float v : t.m) m.push_back(v);
     for (float v : {0.0f, 0.0f, 0.0f, 1.0f}) m.push_back(v);
     return m;
-}
-
-template <typename T, size_t N>
-void read_floats(const json& j, T (&out)[N]) {
-    if (!j.is_array() || j.size() != N)
-        throw std::runtime_error("expected " + std::to_string(N) + " numbers");
-    for (size_t i = 0; i < N; ++i) out[i] = j[i].get<T>();
 }
 
 json closure_json(const WeightedClosure& c) {
@@ -51,20 +52,39 @@ json closure_json(const WeightedClosure& c) {
 // all-zero "none" of StratumMaterialDesc when an older file lacks them.
 StratumMaterialDesc material_desc(const json& m) {
     StratumMaterialDesc d{};
-    d.model = m.at("model").get<int32_t>();
-    read_floats(m.at("base_color"), d.base_color);
-    d.roughness = m.at("roughness").get<float>();
-    d.metallic = m.at("metallic").get<float>();
-    d.specular = m.at("specular").get<float>();
-    d.ior = m.at("ior").get<float>();
-    read_floats(m.at("emission"), d.emission);
-    d.distribution = m.at("distribution").get<int32_t>();
-    d.transmission = m.value("transmission", 0.0f);
-    d.coat = m.value("coat", 0.0f);
-    d.coat_roughness = m.value("coat_roughness", 0.0f);
-    d.coat_ior = m.value("coat_ior", 0.0f);
-    if (m.contains("coat_tint")) read_floats(m.at("coat_tint"), d.coat_tint);
+    d.model = field<int32_t>(m, "model");
+    read_numbers(m, "base_color", d.base_color);
+    d.roughness = field<float>(m, "roughness");
+    d.metallic = field<float>(m, "metallic");
+    d.specular = field<float>(m, "specular");
+    d.ior = field<float>(m, "ior");
+    read_numbers(m, "emission", d.emission);
+    d.distribution = field<int32_t>(m, "distribution");
+    d.transmission = field_or(m, "transmission", 0.0f);
+    d.coat = field_or(m, "coat", 0.0f);
+    d.coat_roughness = field_or(m, "coat_roughness", 0.0f);
+    d.coat_ior = field_or(m, "coat_ior", 0.0f);
+    if (m.contains("coat_tint")) read_numbers(m, "coat_tint", d.coat_tint);
     return d;
+}
+
+// What `path` is when it exists and is not a regular file ("a FIFO", ...), else nullptr. Opening
+// a FIFO blocks until the other end opens it, and /dev/zero never ends: the ABI would hang.
+const char* special_file(const char* path) {
+    std::error_code ec;
+    switch (std::filesystem::status(path, ec).type()) {
+        case std::filesystem::file_type::directory:
+            return "a directory";
+        case std::filesystem::file_type::fifo:
+            return "a FIFO";
+        case std::filesystem::file_type::character:
+        case std::filesystem::file_type::block:
+            return "a device";
+        case std::filesystem::file_type::socket:
+            return "a socket";
+        default:
+            return nullptr;  // regular, absent, or unknown (left to the open to report)
+    }
 }
 
 }  // namespace
@@ -167,6 +187,8 @@ std::string save_scene_file(const Scene& scene, const char* path) {
         }
         j["textures"] = {{"images", textures}, {"bindings", bindings}};
     }
+    if (const char* kind = special_file(path))
+        return std::string("'") + path + "' is " + kind + ", not a regular file";
     std::ofstream out(path, std::ios::binary);
     if (!out) return std::string("cannot open '") + path + "' for writing";
     out << j.dump();
@@ -174,6 +196,10 @@ std::string save_scene_file(const Scene& scene, const char* path) {
 }
 
 StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string* error) {
+    if (const char* kind = special_file(path)) {
+        *error = std::string("it is ") + kind + ", not a regular file";
+        return STRATUM_ERROR_IO;
+    }
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         *error = "cannot open the file";
@@ -192,7 +218,7 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
         return status;
     };
     try {
-        if (j.value("format", "") != kFormat || j.value("version", 0) != kVersion) {
+        if (j.value("format", "") != kFormat || !j.contains("version") || j.at("version") != kVersion) {
             *error = std::string("not a ") + kFormat + " version " + std::to_string(kVersion) + " file";
             return STRATUM_ERROR_IO;
         }
@@ -207,7 +233,7 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             std::vector<StratumClosureDesc> closures;
             for (const json& c : m.at("closures")) {
                 StratumClosureDesc cd{};
-                read_floats(c.at("weight"), cd.weight);
+                read_numbers(c, "weight", cd.weight);
                 cd.closure = material_desc(c);
                 closures.push_back(cd);
             }
@@ -216,12 +242,12 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                 return entry_point_failed(status);
         }
         for (const json& m : j.at("meshes")) {
-            const auto pos = m.at("positions").get<std::vector<float>>();
-            const auto tri = m.at("triangles").get<std::vector<uint32_t>>();
-            const auto nrm = m.at("corner_normals").get<std::vector<float>>();
-            const auto uv = m.at("corner_uvs").get<std::vector<float>>();
-            const auto vnrm = m.value("vertex_normals", std::vector<float>{});
-            const auto mat = m.at("material_ids").get<std::vector<uint32_t>>();
+            const auto pos = numbers<float>(m, "positions");
+            const auto tri = numbers<uint32_t>(m, "triangles");
+            const auto nrm = numbers<float>(m, "corner_normals");
+            const auto uv = numbers<float>(m, "corner_uvs");
+            const auto vnrm = numbers<float>(m, "vertex_normals", true);
+            const auto mat = numbers<uint32_t>(m, "material_ids");
             const size_t tris = tri.size() / 3;
             if (pos.size() % 3 || tri.size() % 3 || mat.size() != tris ||
                 (!nrm.empty() && nrm.size() != 9 * tris) || (!uv.empty() && uv.size() != 6 * tris) ||
@@ -241,89 +267,87 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
         }
         for (const json& i : j.at("instances")) {
             StratumInstanceDesc d{};
-            d.mesh_id = i.at("mesh").get<uint32_t>();
-            read_floats(i.at("transform"), d.transform);
+            d.mesh_id = field<uint32_t>(i, "mesh");
+            read_numbers(i, "transform", d.transform);
             // Files written before motion blur and ray visibility: a static instance seen by all rays.
-            d.motion = i.value("motion", 0);
-            if (d.motion) read_floats(i.at("transform_end"), d.transform_end);
-            d.visibility = i.value("visibility", static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
-            d.holdout = i.value("holdout", 0);
+            d.motion = field_or<int32_t>(i, "motion", 0);
+            if (d.motion) read_numbers(i, "transform_end", d.transform_end);
+            d.visibility = field_or(i, "visibility", static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
+            d.holdout = field_or<int32_t>(i, "holdout", 0);
             if ((status = stratum_scene_add_instance_ex(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
         for (const json& l : j.at("lights")) {
             StratumLightDesc d{};
-            d.type = l.at("type").get<int32_t>();
-            read_floats(l.at("color"), d.color);
-            d.strength = l.at("strength").get<float>();
-            d.radius = l.at("radius").get<float>();
-            d.angle = l.at("angle").get<float>();
-            d.size_x = l.at("size").at(0).get<float>();
-            d.size_y = l.at("size").at(1).get<float>();
+            d.type = field<int32_t>(l, "type");
+            read_numbers(l, "color", d.color);
+            d.strength = field<float>(l, "strength");
+            d.radius = field<float>(l, "radius");
+            d.angle = field<float>(l, "angle");
+            d.size_x = element<float>(l, "size", 0);
+            d.size_y = element<float>(l, "size", 1);
             // Files written before spot lights have no "spot": the defaults of LightParams.
-            const json spot = l.value("spot", json::array({kPi, 0.0f}));
-            d.spot_size = spot.at(0).get<float>();
-            d.spot_blend = spot.at(1).get<float>();
-            read_floats(l.at("transform"), d.transform);
+            d.spot_size = l.contains("spot") ? element<float>(l, "spot", 0) : kPi;
+            d.spot_blend = l.contains("spot") ? element<float>(l, "spot", 1) : 0.0f;
+            read_numbers(l, "transform", d.transform);
             // Absent in older files: 0 reads as all rays and as spread pi.
-            d.visibility = l.value("visibility", 0u);
-            d.spread = l.value("spread", 0.0f);
+            d.visibility = field_or(l, "visibility", 0u);
+            d.spread = field_or(l, "spread", 0.0f);
             if ((status = stratum_scene_add_light(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
         if (j.contains("camera")) {
             const json& c = j["camera"];
             StratumCameraDesc d{};
-            d.lens_mm = c.at("lens_mm").get<float>();
-            d.sensor_width_mm = c.at("sensor_mm").at(0).get<float>();
-            d.sensor_height_mm = c.at("sensor_mm").at(1).get<float>();
-            d.sensor_fit = c.at("sensor_fit").get<int32_t>();
-            d.shift_x = c.at("shift").at(0).get<float>();
-            d.shift_y = c.at("shift").at(1).get<float>();
-            d.clip_start = c.at("clip").at(0).get<float>();
-            d.clip_end = c.at("clip").at(1).get<float>();
-            read_floats(c.at("transform"), d.transform);
+            d.lens_mm = field<float>(c, "lens_mm");
+            d.sensor_width_mm = element<float>(c, "sensor_mm", 0);
+            d.sensor_height_mm = element<float>(c, "sensor_mm", 1);
+            d.sensor_fit = field<int32_t>(c, "sensor_fit");
+            d.shift_x = element<float>(c, "shift", 0);
+            d.shift_y = element<float>(c, "shift", 1);
+            d.clip_start = element<float>(c, "clip", 0);
+            d.clip_end = element<float>(c, "clip", 1);
+            read_numbers(c, "transform", d.transform);
             // Absent in files written before orthographic and thin-lens cameras: a pinhole.
-            d.type = c.value("type", 0);
-            d.ortho_scale = c.value("ortho_scale", 0.0f);
-            d.aperture_radius = c.value("aperture_radius", 0.0f);
-            d.focus_distance = c.value("focus_distance", 0.0f);
-            d.aperture_blades = c.value("aperture_blades", 0);
-            d.aperture_rotation = c.value("aperture_rotation", 0.0f);
-            const json latitude = c.value("latitude", json::array({-0.5f * kPi, 0.5f * kPi}));
-            const json longitude = c.value("longitude", json::array({-kPi, kPi}));
-            d.latitude_min = latitude.at(0).get<float>();
-            d.latitude_max = latitude.at(1).get<float>();
-            d.longitude_min = longitude.at(0).get<float>();
-            d.longitude_max = longitude.at(1).get<float>();
+            d.type = field_or<int32_t>(c, "type", 0);
+            d.ortho_scale = field_or(c, "ortho_scale", 0.0f);
+            d.aperture_radius = field_or(c, "aperture_radius", 0.0f);
+            d.focus_distance = field_or(c, "focus_distance", 0.0f);
+            d.aperture_blades = field_or<int32_t>(c, "aperture_blades", 0);
+            d.aperture_rotation = field_or(c, "aperture_rotation", 0.0f);
+            const bool latitude = c.contains("latitude"), longitude = c.contains("longitude");
+            d.latitude_min = latitude ? element<float>(c, "latitude", 0) : -0.5f * kPi;
+            d.latitude_max = latitude ? element<float>(c, "latitude", 1) : 0.5f * kPi;
+            d.longitude_min = longitude ? element<float>(c, "longitude", 0) : -kPi;
+            d.longitude_max = longitude ? element<float>(c, "longitude", 1) : kPi;
             if ((status = stratum_scene_set_camera(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
         float bg[3];
-        read_floats(j.at("background"), bg);
+        read_numbers(j, "background", bg);
         if ((status = stratum_scene_set_background(scene, bg)) != STRATUM_OK)
             return entry_point_failed(status);
         if (j.contains("environment")) {
             const json& e = j.at("environment");
-            const auto rgb = e.at("rgb").get<std::vector<float>>();
-            const auto rotation = e.at("rotation").get<std::array<float, 9>>();
-            const auto width = e.at("width").get<uint32_t>(), height = e.at("height").get<uint32_t>();
+            const auto rgb = numbers<float>(e, "rgb");
+            float rotation[9];
+            read_numbers(e, "rotation", rotation);
+            const auto width = field<uint32_t>(e, "width"), height = field<uint32_t>(e, "height");
             if (rgb.size() != static_cast<size_t>(width) * height * 3) {
                 *error = "malformed scene: environment rgb has " + std::to_string(rgb.size()) +
                          " values, expected " + std::to_string(static_cast<size_t>(width) * height * 3);
                 return STRATUM_ERROR_IO;
             }
             if ((status = stratum_scene_set_environment(scene, rgb.data(), width, height,
-                                                        e.at("strength").get<float>(), rotation.data())) !=
-                STRATUM_OK)
+                                                        field<float>(e, "strength"), rotation)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
         if (j.contains("textures")) {
             for (const json& t : j.at("textures").at("images")) {
-                const auto rgba = t.at("rgba").get<std::vector<float>>();
+                const auto rgba = numbers<float>(t, "rgba");
                 StratumTextureDesc d{};
-                d.width = t.at("width").get<uint32_t>();
-                d.height = t.at("height").get<uint32_t>();
+                d.width = field<uint32_t>(t, "width");
+                d.height = field<uint32_t>(t, "height");
                 if (rgba.size() != static_cast<size_t>(d.width) * d.height * 4) {
                     *error = "malformed scene: texture rgba has " + std::to_string(rgba.size()) +
                              " values, expected " +
@@ -333,20 +357,20 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                 d.pixels = rgba.data();
                 d.channels = 4;
                 d.color_space = "Non-Color";
-                d.interpolation = t.at("interpolation").get<int32_t>();
-                d.extension = t.at("extension").get<int32_t>();
+                d.interpolation = field<int32_t>(t, "interpolation");
+                d.extension = field<int32_t>(t, "extension");
                 if ((status = stratum_scene_add_texture(scene, &d, nullptr)) != STRATUM_OK)
                     return entry_point_failed(status);
             }
             for (const json& b : j.at("textures").at("bindings")) {
                 StratumTextureBinding d{};
-                d.material_id = b.at("material").get<uint32_t>();
-                d.closure_index = b.at("closure").get<uint32_t>();
-                d.param = b.at("param").get<int32_t>();
-                d.texture_id = b.at("texture").get<uint32_t>();
-                d.channel = b.at("channel").get<int32_t>();
-                d.scale = b.at("scale").get<float>();
-                d.offset = b.at("offset").get<float>();
+                d.material_id = field<uint32_t>(b, "material");
+                d.closure_index = field<uint32_t>(b, "closure");
+                d.param = field<int32_t>(b, "param");
+                d.texture_id = field<uint32_t>(b, "texture");
+                d.channel = field<int32_t>(b, "channel");
+                d.scale = field<float>(b, "scale");
+                d.offset = field<float>(b, "offset");
                 if ((status = stratum_scene_bind_texture(scene, &d)) != STRATUM_OK)
                     return entry_point_failed(status);
             }

@@ -22,7 +22,7 @@ float integrate(float mu, float alpha, float eta) {
     double sum = 0.0;
     for (int a = 0; a < kStrata; ++a) {
         for (int b = 0; b < kStrata; ++b) {
-            const Vec2 u((static_cast<float>(a) + 0.5f) / kStrata, (static_cast<float>(b) + 0.5f) / kStrata);
+            const Vec2 u{(static_cast<float>(a) + 0.5f) / kStrata, (static_cast<float>(b) + 0.5f) / kStrata};
             const Vec3 h = sample_ggx_visible_normal(wo, alpha, u);
             const float cos_oh = dot(wo, h);
             if (cos_oh <= 0.0f) continue;

@@ -1,0 +1,56 @@
+#include "program.h"
+
+#include <string>
+
+#include "checked_call.h"
+
+namespace stratum::fuzz {
+
+ProgramState::~ProgramState() {
+    // The renderer first: destroying it cancels and joins its render.
+    if (renderer) {
+        if (tracing()) trace_line("stratum_renderer_destroy(renderer)");
+        stratum_renderer_destroy(renderer);
+    }
+    if (scene) {
+        if (tracing()) trace_line("stratum_scene_destroy(scene)");
+        stratum_scene_destroy(scene);
+    }
+}
+
+void ProgramState::new_scene() {
+    if (scene) {
+        if (tracing()) trace_line("stratum_scene_destroy(scene)");
+        stratum_scene_destroy(scene);
+        scene = nullptr;
+    }
+    closures.clear();
+    meshes = textures = instances = lights = 0;
+    if (checked(
+            "stratum_scene_create", [&] { return stratum_scene_create(&scene); }, [] { return "&scene"; }) !=
+        STRATUM_OK)
+        finding("stratum_scene_create failed");
+    if (!scene) finding("stratum_scene_create returned STRATUM_OK and a NULL scene");
+}
+
+void run_program(ByteReader& in) {
+    using Operation = void (*)(ByteReader&, ProgramState&);
+    // The opcode is the operation's index; the order is part of the corpus encoding (README).
+    static constexpr Operation kOperations[] = {
+        op_add_material,    op_add_closure_material,
+        op_add_texture,     op_bind_texture,
+        op_add_mesh,        op_add_instance,
+        op_add_instance_ex, op_add_light,
+        op_set_camera,      op_set_background,
+        op_set_environment, op_new_scene,
+        op_save_load,       op_render,
+        op_rerender,        op_measure_throughput,
+        op_sampling,        op_registry,
+    };
+    constexpr size_t kCount = sizeof kOperations / sizeof kOperations[0];
+    ProgramState state;
+    state.new_scene();
+    for (unsigned i = 0; i < kMaxOperations && !in.exhausted(); ++i) kOperations[in.u8() % kCount](in, state);
+}
+
+}  // namespace stratum::fuzz
