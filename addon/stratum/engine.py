@@ -121,6 +121,14 @@ class PixelWriter:
             render_pass.rect.foreach_set(data)
 
 
+def report_notices(engine: Any, renderer: native.Renderer, reported: set[str]) -> None:
+    """Reports the renderer's notices not reported yet, once each, through engine._report."""
+    for notice in renderer.notices():
+        if notice not in reported:
+            reported.add(notice)
+            engine._report("WARNING", f"Stratum: {notice}")
+
+
 def combined_pass(result: Any) -> Any:
     layer = result.layers[0]
     passes = layer.passes
@@ -202,7 +210,7 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             # What this render cannot show (the estimator's limits at start; skipped objects and
             # dropped samples as the render learns them): warnings, the render goes on.
             reported: set[str] = set()
-            self._report_notices(renderer, reported)
+            report_notices(self, renderer, reported)
             last_serial: int | None = None
             cancelled_at: float | None = None
             while True:
@@ -224,16 +232,9 @@ class StratumRenderEngine(bpy.types.RenderEngine):
                     break
             # Final pixels (also the partial image after Esc).
             writer.write(renderer, render_pass)
-            self._report_notices(renderer, reported)
+            report_notices(self, renderer, reported)
         finally:
             self.end_result(result)
-
-    def _report_notices(self, renderer: native.Renderer, reported: set[str]) -> None:
-        """Reports the renderer's notices not reported yet, once each."""
-        for notice in renderer.notices():
-            if notice not in reported:
-                reported.add(notice)
-                self._report("WARNING", f"Stratum: {notice}")
 
 
 def register() -> None:
