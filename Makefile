@@ -81,6 +81,7 @@ bench: build
 	bash scripts/install_addon.sh
 	mkdir -p out
 	$(BLENDER_BG) --python scripts/bench.py
+	$(PY) scripts/bench_textures.py
 
 # The study: the sampler runs of issue 4 (Cornell box, Wolf, AO; 24.6 min measured on 2 shared
 # cores) and the estimator ladder of issue 6 (small-light, large-light and glossy Cornell boxes;

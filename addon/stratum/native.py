@@ -185,6 +185,14 @@ class _TextureDesc(ctypes.Structure):
     ]
 
 
+class _TextureInfo(ctypes.Structure):
+    _fields_ = [
+        ("width", ctypes.c_uint32),
+        ("height", ctypes.c_uint32),
+        ("replaced_texels", ctypes.c_uint64),
+    ]
+
+
 class _TextureBinding(ctypes.Structure):
     _fields_ = [
         ("material_id", ctypes.c_uint32),
@@ -311,6 +319,16 @@ class Texture:
     ocio_config: str | None = None
     interpolation: int = TEXTURE_LINEAR
     extension: int = TEXTURE_REPEAT
+
+
+@dataclass(frozen=True)
+class TextureInfo:
+    """What loading a texture found: its size and its texels that were NaN or infinite after
+    conversion to scene linear, which the renderer holds as (0, 0, 0, 0) as Cycles does."""
+
+    width: int
+    height: int
+    replaced_texels: int
 
 
 @dataclass
@@ -463,6 +481,8 @@ def _declare(lib: ctypes.CDLL) -> None:
         "stratum_scene_add_closure_material": (c_int32, [p_void, ctypes.POINTER(_ClosureDesc),
                                                          c_uint32, p_u32]),
         "stratum_scene_add_texture": (c_int32, [p_void, ctypes.POINTER(_TextureDesc), p_u32]),
+        "stratum_scene_texture_info": (c_int32, [p_void, ctypes.c_uint32,
+                                                 ctypes.POINTER(_TextureInfo)]),
         "stratum_scene_bind_texture": (c_int32, [p_void, ctypes.POINTER(_TextureBinding)]),
         "stratum_scene_add_instance_ex": (c_int32, [p_void, ctypes.POINTER(_InstanceDesc)]),
     }
@@ -817,6 +837,13 @@ class Scene(_Handle):
         del keep
         _check(self._lib, status, "stratum_scene_add_texture")
         return int(out.value)
+
+    def texture_info(self, texture_id: int) -> TextureInfo:
+        out = _TextureInfo()
+        fn = self._lib.stratum_scene_texture_info
+        _check(self._lib, fn(self.handle, int(texture_id), ctypes.byref(out)),
+               "stratum_scene_texture_info")
+        return TextureInfo(int(out.width), int(out.height), int(out.replaced_texels))
 
     def bind_texture(self, binding: TextureBinding) -> None:
         desc = _TextureBinding()

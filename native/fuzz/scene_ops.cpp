@@ -74,6 +74,19 @@ void op_add_texture(ByteReader& in, ProgramState& s) {
     if (status != STRATUM_OK) return;
     expect_id("stratum_scene_add_texture", id, s.textures);
     ++s.textures;
+    // The texture's info: a size the source can have and at most every texel replaced.
+    StratumTextureInfo info{};
+    if (checked(
+            "stratum_scene_texture_info", [&] { return stratum_scene_texture_info(s.scene, id, &info); },
+            [&] { return "scene, " + std::to_string(id) + ", &info"; }) != STRATUM_OK)
+        finding("stratum_scene_texture_info failed for texture " + std::to_string(id));
+    if (info.width == 0 || info.height == 0 ||
+        info.replaced_texels > static_cast<uint64_t>(info.width) * info.height ||
+        (t.use_pixels && (info.width != t.desc.width || info.height != t.desc.height))) {
+        finding("stratum_scene_texture_info: " + std::to_string(info.width) + " x " +
+                std::to_string(info.height) + " with " + std::to_string(info.replaced_texels) +
+                " replaced texels");
+    }
 }
 
 void op_bind_texture(ByteReader& in, ProgramState& s) {

@@ -16,7 +16,11 @@ colour space; float images: scene linear already) and are sent scene-linear.
 Missing file: Cycles renders magenta (1, 0, 1) where an image cannot be loaded
 (intern/cycles/scene/image.cpp, TEX_IMAGE_MISSING_R/G/B); so does Stratum, with a warning naming
 the image. A colour space the native side does not know: a warning, then the image is read as
-Blender's default for its kind (sRGB for byte images, linear for float ones).
+Blender's default for its kind (sRGB for byte images, linear for float ones). Texels that are NaN
+or infinite (in the file, in Image.pixels, or after the colour conversion) become transparent
+black natively, as in Cycles, and the image's count is warned about by name. An image whose
+header claims more pixels than half of the machine's memory can hold as float RGBA (a 165-byte
+PNG may claim 65535 x 65535) is refused before it is read: magenta, with the reason.
 """
 
 from __future__ import annotations
@@ -208,6 +212,15 @@ class TextureTable:
         return texture_id
 
     def _add(self, node: Any, texture: native.Texture) -> int:
+        texture_id = self._add_or_fallback(node, texture)
+        replaced = self._scene.texture_info(texture_id).replaced_texels
+        if replaced:
+            self._warn(node, f"image '{node.image.name}': {replaced} texel(s) are NaN or infinite "
+                             "(in the file, or after conversion to scene linear); rendered as "
+                             "black, as Cycles does")
+        return texture_id
+
+    def _add_or_fallback(self, node: Any, texture: native.Texture) -> int:
         try:
             return self._scene.add_texture(texture)
         except native.StratumError as exc:

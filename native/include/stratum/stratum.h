@@ -193,9 +193,23 @@ typedef struct StratumTextureDesc {
     int32_t extension;     /* StratumTextureExtension */
 } StratumTextureDesc;
 
-/* Adds a texture; its id (0, 1, 2, ...) is written to out_id. */
+/* Adds a texture; its id (0, 1, 2, ...) is written to out_id. Pixels may be NaN or infinite, and
+ * a colour conversion may overflow (an sRGB value of 1e19): a texel with any channel not finite
+ * after conversion becomes (0, 0, 0, 0), as in Cycles, and is counted (stratum_scene_texture_info).
+ * A file is read only when it is a regular file (a FIFO or a device is STRATUM_ERROR_IO), and
+ * only when its header's size fits in half of the machine's memory as float RGBA (else
+ * STRATUM_ERROR_IO naming the image and the memory it would need); likewise `pixels`. */
 STRATUM_API StratumStatus stratum_scene_add_texture(StratumScene* scene, const StratumTextureDesc* texture,
                                                     uint32_t* out_id);
+
+/* What loading a texture found: its size and how many texels were NaN or infinite (replaced). */
+typedef struct StratumTextureInfo {
+    uint32_t width, height;
+    uint64_t replaced_texels;
+} StratumTextureInfo;
+
+STRATUM_API StratumStatus stratum_scene_texture_info(const StratumScene* scene, uint32_t texture_id,
+                                                     StratumTextureInfo* out);
 
 typedef enum StratumMaterialParam {
     STRATUM_PARAM_BASE_COLOR = 0, /* RGB */

@@ -1,4 +1,5 @@
-// The texture entry points: stratum_scene_add_texture and stratum_scene_bind_texture.
+// The texture entry points: stratum_scene_add_texture, stratum_scene_texture_info and
+// stratum_scene_bind_texture.
 #include <string>
 
 #include "api/abi_guard.h"
@@ -22,6 +23,21 @@ StratumStatus stratum_scene_add_texture(StratumScene* scene, const StratumTextur
         }
         scene->scene.textures.push_back(std::move(loaded));
         if (out_id) *out_id = static_cast<uint32_t>(scene->scene.textures.size() - 1);
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_texture_info(const StratumScene* scene, uint32_t texture_id,
+                                         StratumTextureInfo* out) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_texture_info", [&] {
+        require(scene && out, "scene or out is NULL");
+        const auto& textures = scene->scene.textures;
+        require(texture_id < textures.size(), "texture_id " + std::to_string(texture_id) +
+                                                  " is not a texture (the scene has " +
+                                                  std::to_string(textures.size()) + ")");
+        const stratum::Texture& t = *textures[texture_id];
+        *out = StratumTextureInfo{t.width, t.height, t.replaced_texels};
         return STRATUM_OK;
     });
 }

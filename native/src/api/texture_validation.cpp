@@ -3,11 +3,14 @@
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <new>
+#include <optional>
 #include <string>
 
 #include "api/validation.h"
 #include "texture/color_conversion.h"
 #include "texture/image_reading.h"
+#include "texture/texture_building.h"
 
 namespace stratum {
 
@@ -47,11 +50,8 @@ void validate_source(const StratumTextureDesc& d) {
                 "texture height " + std::to_string(d.height) + " is outside [1, 65536]");
         require(d.channels >= 1 && d.channels <= 4,
                 "texture channels " + std::to_string(d.channels) + " is outside [1, 4]");
-        const size_t n = static_cast<size_t>(d.width) * d.height * d.channels;
-        for (size_t i = 0; i < n; ++i) {
-            require(std::isfinite(d.pixels[i]), "texture pixels[" + std::to_string(i) +
-                                                    "] = " + std::to_string(d.pixels[i]) + " is not finite");
-        }
+        // Non-finite values are allowed: they become transparent black texels, as from files.
+        check_decode_memory("pixels", d.width, d.height, d.channels, sizeof(float));
     } else {
         require(
             d.width == 0 && d.height == 0 && d.channels == 0,
@@ -72,19 +72,31 @@ std::shared_ptr<const Texture> load_texture(const StratumTextureDesc& d) {
         d.extension >= STRATUM_TEXTURE_REPEAT && d.extension <= STRATUM_TEXTURE_MIRROR,
         "texture extension " + std::to_string(d.extension) + " is not 0..3 (repeat, extend, clip, mirror)");
 
-    DecodedImage image = d.path        ? read_image_file(d.path)
-                         : d.file_data ? read_image_memory(d.file_data, d.file_size, d.file_name)
-                                       : image_from_pixels(d.pixels, d.width, d.height, d.channels);
+    // The colour space first: a wrong name is refused before a large image is read.
+    std::optional<SceneLinearConversion> conversion;
     try {
-        convert_to_scene_linear(d.ocio_config, d.color_space, image.rgba.data(),
-                                static_cast<size_t>(image.width) * image.height);
+        conversion.emplace(conversion_to_scene_linear(d.ocio_config, d.color_space));
     } catch (const std::invalid_argument& e) {
         throw ValidationError(std::string("texture color_space: ") + e.what());
     }
+    const StoredImage image = d.path        ? read_image_file(d.path)
+                              : d.file_data ? read_image_memory(d.file_data, d.file_size, d.file_name)
+                                            : image_from_pixels(d.pixels, d.width, d.height, d.channels);
     auto texture = std::make_shared<Texture>();
+    try {
+        SceneLinearTexels texels = scene_linear_texels(image, *conversion);
+        texture->rgba = std::move(texels.rgba);
+        texture->replaced_texels = texels.replaced_texels;
+    } catch (const std::bad_alloc&) {
+        throw ImageReadError("not enough memory for the " + std::to_string(image.width) + " x " +
+                             std::to_string(image.height) + " texture of image '" +
+                             (d.path        ? d.path
+                              : d.file_data ? d.file_name
+                                            : "pixels") +
+                             "'");
+    }
     texture->width = image.width;
     texture->height = image.height;
-    texture->rgba = std::move(image.rgba);
     texture->interpolation = static_cast<TextureInterpolation>(d.interpolation);
     texture->extension = static_cast<TextureExtension>(d.extension);
     return texture;

@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <limits>
 #include <map>
+#include <memory>
 #include <mutex>
 #include <stdexcept>
 #include <utility>
@@ -33,12 +36,19 @@ bool builtin_conversion(const std::string& name, Builtin* out) {
     return false;
 }
 
+}  // namespace
+
 // What converting from one colour space does: nothing, the built-in sRGB curve, or an OCIO
-// processor.
-struct Conversion {
+// processor (then also its versions optimised for 8- and 16-bit input).
+struct SceneLinearConversion::Impl {
     Builtin builtin = Builtin::Identity;
-    OCIO::ConstCPUProcessorRcPtr processor;  // set: use it instead of `builtin`
+    OCIO::ConstCPUProcessorRcPtr processor;  // set: use these instead of `builtin`
+    OCIO::ConstCPUProcessorRcPtr processor_u8, processor_u16;
 };
+
+namespace {
+
+using Conversion = SceneLinearConversion::Impl;
 
 struct LoadedConfig {
     OCIO::ConstConfigRcPtr config;  // null when the file could not be read
@@ -48,7 +58,7 @@ struct LoadedConfig {
 struct Cache {
     std::mutex mutex;
     std::map<std::string, LoadedConfig> configs;
-    std::map<std::pair<std::string, std::string>, Conversion> conversions;
+    std::map<std::pair<std::string, std::string>, std::shared_ptr<const Conversion>> conversions;
 };
 
 Cache& cache() {
@@ -88,10 +98,15 @@ Conversion make_conversion(const std::string& config_path, const std::string& sp
     auto found = c.configs.find(config_path);
     if (found == c.configs.end()) {
         LoadedConfig loaded;
-        try {
-            loaded.config = OCIO::Config::CreateFromFile(config_path.c_str());
-        } catch (const OCIO::Exception& e) {
-            loaded.error = e.what();
+        std::error_code ec;
+        if (!std::filesystem::is_regular_file(config_path, ec)) {
+            loaded.error = "it is not a regular file";
+        } else {
+            try {
+                loaded.config = OCIO::Config::CreateFromFile(config_path.c_str());
+            } catch (const OCIO::Exception& e) {
+                loaded.error = e.what();
+            }
         }
         found = c.configs.emplace(config_path, std::move(loaded)).first;
     }
@@ -111,8 +126,13 @@ Conversion make_conversion(const std::string& config_path, const std::string& sp
     if (source->isData() || (linear && std::string(linear->getName()) == source->getName()))
         return conversion;
     try {
-        conversion.processor =
-            config.getProcessor(source->getName(), OCIO::ROLE_SCENE_LINEAR)->getDefaultCPUProcessor();
+        const OCIO::ConstProcessorRcPtr processor =
+            config.getProcessor(source->getName(), OCIO::ROLE_SCENE_LINEAR);
+        conversion.processor = processor->getDefaultCPUProcessor();
+        conversion.processor_u8 = processor->getOptimizedCPUProcessor(
+            OCIO::BIT_DEPTH_UINT8, OCIO::BIT_DEPTH_F32, OCIO::OPTIMIZATION_DEFAULT);
+        conversion.processor_u16 = processor->getOptimizedCPUProcessor(
+            OCIO::BIT_DEPTH_UINT16, OCIO::BIT_DEPTH_F32, OCIO::OPTIMIZATION_DEFAULT);
     } catch (const OCIO::Exception& e) {
         throw std::invalid_argument("colour space '" + space + "' cannot be converted to scene_linear by '" +
                                     config_path + "': " + e.what());
@@ -127,29 +147,77 @@ float srgb_to_linear(float encoded) {
     return encoded <= 0.04045f ? encoded / 12.92f : std::pow((encoded + 0.055f) / 1.055f, 2.4f);
 }
 
-void convert_to_scene_linear(const char* config_path, const std::string& color_space, float* rgba,
-                             size_t count) {
-    Conversion conversion;
-    {
-        Cache& c = cache();
-        const std::string path = config_path ? config_path : "";
-        std::lock_guard<std::mutex> lock(c.mutex);
-        const auto key = std::make_pair(path, color_space);
-        auto found = c.conversions.find(key);
-        if (found == c.conversions.end())
-            found = c.conversions.emplace(key, make_conversion(path, color_space, c)).first;
-        conversion = found->second;
+SceneLinearConversion conversion_to_scene_linear(const char* config_path, const std::string& color_space) {
+    Cache& c = cache();
+    const std::string path = config_path ? config_path : "";
+    std::lock_guard<std::mutex> lock(c.mutex);
+    const auto key = std::make_pair(path, color_space);
+    auto found = c.conversions.find(key);
+    if (found == c.conversions.end()) {
+        found = c.conversions
+                    .emplace(key, std::make_shared<const Conversion>(make_conversion(path, color_space, c)))
+                    .first;
     }
-    if (conversion.processor) {
+    return SceneLinearConversion(found->second);
+}
+
+void SceneLinearConversion::apply(float* rgba, size_t count) const {
+    if (impl_->processor) {
         // Packed RGBA, 4 floats per pixel: OCIO leaves the alpha channel as it is.
         OCIO::PackedImageDesc image(rgba, static_cast<long>(count), 1, 4);
-        conversion.processor->apply(image);
+        impl_->processor->apply(image);
         return;
     }
-    if (conversion.builtin == Builtin::Srgb) {
+    if (impl_->builtin == Builtin::Srgb) {
         for (size_t i = 0; i < count; ++i)
             for (size_t k = 0; k < 3; ++k) rgba[4 * i + k] = srgb_to_linear(rgba[4 * i + k]);
     }
+}
+
+namespace {
+
+// Stored integers to floats: through the processor optimised for that depth, else v / max and
+// the built-in curve from a table (`lut`, built on first use, one entry per stored value).
+template <typename T, OCIO::BitDepth kDepth>
+void apply_integers(const SceneLinearConversion::Impl& impl, const OCIO::ConstCPUProcessorRcPtr& processor,
+                    const T* rgba, float* out, size_t count, const std::vector<float>& lut) {
+    if (processor) {
+        OCIO::PackedImageDesc src(const_cast<T*>(rgba), static_cast<long>(count), 1, 4, kDepth, sizeof(T),
+                                  4 * sizeof(T), static_cast<ptrdiff_t>(4 * sizeof(T) * count));
+        OCIO::PackedImageDesc dst(out, static_cast<long>(count), 1, 4, OCIO::BIT_DEPTH_F32, sizeof(float),
+                                  4 * sizeof(float), static_cast<ptrdiff_t>(4 * sizeof(float) * count));
+        processor->apply(src, dst);
+        return;
+    }
+    constexpr float kScale = 1.0f / static_cast<float>(std::numeric_limits<T>::max());
+    const bool srgb = impl.builtin == Builtin::Srgb;
+    for (size_t i = 0; i < 4 * count; ++i) {
+        const bool colour = (i & 3) != 3;
+        out[i] = (srgb && colour) ? lut[rgba[i]] : static_cast<float>(rgba[i]) * kScale;
+    }
+}
+
+template <typename T>
+const std::vector<float>& srgb_table() {
+    static const std::vector<float> table = [] {
+        std::vector<float> t(static_cast<size_t>(std::numeric_limits<T>::max()) + 1);
+        const float scale = 1.0f / static_cast<float>(std::numeric_limits<T>::max());
+        for (size_t v = 0; v < t.size(); ++v) t[v] = srgb_to_linear(static_cast<float>(v) * scale);
+        return t;
+    }();
+    return table;
+}
+
+}  // namespace
+
+void SceneLinearConversion::apply(const uint8_t* rgba, float* out, size_t count) const {
+    apply_integers<uint8_t, OCIO::BIT_DEPTH_UINT8>(*impl_, impl_->processor_u8, rgba, out, count,
+                                                   srgb_table<uint8_t>());
+}
+
+void SceneLinearConversion::apply(const uint16_t* rgba, float* out, size_t count) const {
+    apply_integers<uint16_t, OCIO::BIT_DEPTH_UINT16>(*impl_, impl_->processor_u16, rgba, out, count,
+                                                     srgb_table<uint16_t>());
 }
 
 }  // namespace stratum

@@ -15,20 +15,39 @@
 // library ("minor version 4 is not supported"). For such a config the built-in names are
 // converted with the built-in transforms, which equal what Blender 5.0's config defines for
 // them (its sRGB is the same piecewise curve, its scene_linear is Linear Rec.709); any other
-// name is an error that says why. Alpha is never converted. Processors are cached per
-// (config, colour space); the cache is shared by all threads.
+// name is an error that says why. Alpha is never converted. Conversions are cached per
+// (config, colour space); the cache is shared by all threads. A config path that is no regular
+// file (a directory, a FIFO, a device) is treated as unreadable without being opened: reading a
+// FIFO would block forever.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <memory>
 #include <string>
 
 namespace stratum {
 
-// Converts `count` straight-alpha RGBA pixels in place from `color_space` to scene linear.
-// config_path NULL or empty: built-in names only. Throws std::invalid_argument naming an
-// unknown colour space (and listing some valid names).
-void convert_to_scene_linear(const char* config_path, const std::string& color_space, float* rgba,
-                             size_t count);
+// One colour space's conversion to scene linear, applied to runs of straight-alpha RGBA pixels.
+// Stored 8- and 16-bit values are normalised (v / 255, v / 65535) as OpenImageIO does; for them
+// the conversion is a lookup table (the built-in sRGB curve) or OCIO's processor optimised for
+// that input depth, which turns the per-channel prefix of the transform into a table. Thread-safe.
+class SceneLinearConversion {
+public:
+    struct Impl;
+    explicit SceneLinearConversion(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+
+    void apply(float* rgba, size_t count) const;  // in place
+    void apply(const uint8_t* rgba, float* out, size_t count) const;
+    void apply(const uint16_t* rgba, float* out, size_t count) const;
+
+private:
+    std::shared_ptr<const Impl> impl_;
+};
+
+// The conversion from `color_space` to scene linear. config_path NULL or empty: built-in names
+// only. Throws std::invalid_argument naming an unknown colour space (and listing valid names).
+SceneLinearConversion conversion_to_scene_linear(const char* config_path, const std::string& color_space);
 
 // The built-in sRGB decoding curve (IEC 61966-2-1): sRGB-encoded value to linear.
 float srgb_to_linear(float encoded);

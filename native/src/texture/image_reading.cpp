@@ -8,39 +8,12 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <new>
+#include <system_error>
 
 namespace stratum {
 
 namespace {
-
-// Copies interleaved `channels`-channel pixels (rows in `top_to_bottom` order or not) into
-// RGBA with row 0 at the bottom. alpha_channel < 0: no alpha (reads 1).
-DecodedImage to_rgba(const float* src, uint32_t width, uint32_t height, int channels, int alpha_channel,
-                     bool top_to_bottom, bool associated_alpha) {
-    DecodedImage image;
-    image.width = width;
-    image.height = height;
-    image.rgba.resize(static_cast<size_t>(width) * height * 4);
-    const int colour_channels = channels - (alpha_channel >= 0 ? 1 : 0);
-    // The colour channels are the first ones other than alpha.
-    int colour[3] = {0, 0, 0};
-    for (int c = 0, k = 0; c < channels && k < 3; ++c) {
-        if (c != alpha_channel) colour[k++] = c;
-    }
-    if (colour_channels < 3) colour[1] = colour[2] = colour[0];  // grey
-    for (uint32_t y = 0; y < height; ++y) {
-        const uint32_t src_row = top_to_bottom ? height - 1 - y : y;
-        for (uint32_t x = 0; x < width; ++x) {
-            const float* p = src + (static_cast<size_t>(src_row) * width + x) * channels;
-            float* q = &image.rgba[(static_cast<size_t>(y) * width + x) * 4];
-            const float a = alpha_channel >= 0 ? p[alpha_channel] : 1.0f;
-            const float unassociate = (associated_alpha && a > 0.0f) ? 1.0f / a : 1.0f;
-            for (int k = 0; k < 3; ++k) q[k] = p[colour[k]] * unassociate;
-            q[3] = a;
-        }
-    }
-    return image;
-}
 
 int alpha_channel_of(const OIIO::ImageSpec& spec) {
     if (spec.alpha_channel >= 0 && spec.alpha_channel < spec.nchannels) return spec.alpha_channel;
@@ -49,24 +22,50 @@ int alpha_channel_of(const OIIO::ImageSpec& spec) {
     return -1;
 }
 
+std::string gib(double bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f GiB", bytes / (1024.0 * 1024.0 * 1024.0));
+    return text;
+}
+
 // Reads the first subimage of an opened input; `what` names the image in messages.
-DecodedImage read_opened(OIIO::ImageInput& in, const std::string& what) {
+StoredImage read_opened(OIIO::ImageInput& in, const std::string& what) {
     const OIIO::ImageSpec& spec = in.spec();
     if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0 || spec.depth > 1) {
         throw ImageReadError("image '" + what + "' has an unsupported shape (" + std::to_string(spec.width) +
                              " x " + std::to_string(spec.height) + " x " + std::to_string(spec.depth) + ", " +
                              std::to_string(spec.nchannels) + " channels)");
     }
-    std::vector<float> pixels(static_cast<size_t>(spec.width) * spec.height * spec.nchannels);
-    if (!in.read_image(0, 0, 0, spec.nchannels, OIIO::TypeDesc::FLOAT, pixels.data())) {
-        throw ImageReadError("cannot read image '" + what + "': " + in.geterror());
-    }
-    const int alpha = alpha_channel_of(spec);
+    StoredImage image;
+    image.width = static_cast<uint32_t>(spec.width);
+    image.height = static_cast<uint32_t>(spec.height);
+    image.channels = spec.nchannels;
+    image.alpha_channel = alpha_channel_of(spec);
     // With oiio:UnassociatedAlpha requested, readers of straight-alpha formats report 1 here;
     // formats that store associated alpha (OpenEXR) do not.
-    const bool associated = alpha >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
-    return to_rgba(pixels.data(), static_cast<uint32_t>(spec.width), static_cast<uint32_t>(spec.height),
-                   spec.nchannels, alpha, true, associated);
+    image.associated_alpha =
+        image.alpha_channel >= 0 && spec.get_int_attribute("oiio:UnassociatedAlpha", 0) == 0;
+    const OIIO::TypeDesc::BASETYPE base = static_cast<OIIO::TypeDesc::BASETYPE>(spec.format.basetype);
+    image.format = image.associated_alpha           ? StoredFormat::F32
+                   : base == OIIO::TypeDesc::UINT8  ? StoredFormat::U8
+                   : base == OIIO::TypeDesc::UINT16 ? StoredFormat::U16
+                                                    : StoredFormat::F32;
+    const OIIO::TypeDesc type = image.format == StoredFormat::U8    ? OIIO::TypeDesc::UINT8
+                                : image.format == StoredFormat::U16 ? OIIO::TypeDesc::UINT16
+                                                                    : OIIO::TypeDesc::FLOAT;
+    check_decode_memory(what, image.width, image.height, static_cast<uint64_t>(spec.nchannels), type.size());
+    try {
+        image.storage.resize(static_cast<size_t>(image.width) * image.height * spec.nchannels * type.size());
+    } catch (const std::bad_alloc&) {
+        throw ImageReadError("not enough memory to read image '" + what + "' (" + std::to_string(spec.width) +
+                             " x " + std::to_string(spec.height) + ")");
+    }
+    if (!in.read_image(0, 0, 0, spec.nchannels, type, image.storage.data())) {
+        throw ImageReadError("cannot read image '" + what + "': " + in.geterror());
+    }
+    image.data = image.storage.data();
+    image.top_to_bottom = true;
+    return image;
 }
 
 OIIO::ImageSpec read_config() {
@@ -104,14 +103,37 @@ private:
 
 }  // namespace
 
-DecodedImage read_image_file(const std::string& path) {
+void check_decode_memory(const std::string& what, uint64_t width, uint64_t height, uint64_t channels,
+                         uint64_t bytes_per_channel) {
+    // Sides are at most 2^31 (OIIO's int), so the products below stay under 2^64 / 16.
+    const double texels = static_cast<double>(width) * static_cast<double>(height);
+    const double needed = texels * static_cast<double>(channels * bytes_per_channel + 4 * sizeof(float));
+    const long pages = sysconf(_SC_PHYS_PAGES), page_size = sysconf(_SC_PAGE_SIZE);
+    const double budget = pages > 0 && page_size > 0
+                              ? 0.5 * static_cast<double>(pages) * static_cast<double>(page_size)
+                              : 4.0 * (1u << 30);
+    if (needed > budget) {
+        throw ImageReadError("image '" + what + "' is " + std::to_string(width) + " x " +
+                             std::to_string(height) + " with " + std::to_string(channels) +
+                             " channels: reading it as a texture needs " + gib(needed) +
+                             ", more than half of this machine's " + gib(2.0 * budget) + " of memory");
+    }
+}
+
+StoredImage read_image_file(const std::string& path) {
+    std::error_code ec;
+    const std::filesystem::file_status status = std::filesystem::status(path, ec);
+    if (!std::filesystem::exists(status)) throw ImageReadError("image file '" + path + "' does not exist");
+    if (!std::filesystem::is_regular_file(status)) {
+        throw ImageReadError("image '" + path + "' is not a regular file (a directory, device or pipe)");
+    }
     const OIIO::ImageSpec config = read_config();
     std::unique_ptr<OIIO::ImageInput> in = OIIO::ImageInput::open(path, &config);
     if (!in) throw ImageReadError("cannot open image '" + path + "': " + OIIO::geterror());
     return read_opened(*in, path);
 }
 
-DecodedImage read_image_memory(const void* data, size_t size, const std::string& file_name) {
+StoredImage read_image_memory(const void* data, size_t size, const std::string& file_name) {
     const std::string extension = std::filesystem::path(file_name).extension().string();
     const std::string what = file_name + " (in memory, " + std::to_string(size) + " bytes)";
     OIIO::Filesystem::IOMemReader proxy(const_cast<void*>(data), size);
@@ -136,10 +158,16 @@ DecodedImage read_image_memory(const void* data, size_t size, const std::string&
     return read_opened(*from_file, what);
 }
 
-DecodedImage image_from_pixels(const float* pixels, uint32_t width, uint32_t height, uint32_t channels) {
-    const int c = static_cast<int>(channels);
-    const int alpha = (c == 2 || c == 4) ? c - 1 : -1;
-    return to_rgba(pixels, width, height, c, alpha, false, false);
+StoredImage image_from_pixels(const float* pixels, uint32_t width, uint32_t height, uint32_t channels) {
+    StoredImage image;
+    image.width = width;
+    image.height = height;
+    image.channels = static_cast<int>(channels);
+    image.alpha_channel = (channels == 2 || channels == 4) ? static_cast<int>(channels) - 1 : -1;
+    image.top_to_bottom = false;
+    image.format = StoredFormat::F32;
+    image.data = pixels;
+    return image;
 }
 
 }  // namespace stratum

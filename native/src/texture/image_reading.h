@@ -11,11 +11,17 @@
 // |           | a private temporary file that is read and removed                       |
 // | pixels    | copied; rows already bottom to top                                      |
 //
-// Channels: 1 grey, 2 grey + alpha, 3 RGB, 4 or more RGB + alpha (OIIO's alpha channel, else
-// the fourth). Missing alpha reads 1. Alpha is returned straight: OIIO is asked to keep the
-// file's unassociated alpha (PNG, TIFF), and associated data (OpenEXR) is divided by alpha
-// where alpha > 0, as Blender's Straight/Premultiplied image handling gives the shader.
-// Rows of the result run bottom to top (OIIO's top-to-bottom scanlines are flipped).
+// The pixels are kept as the file stores them: 8-bit and 16-bit unsigned integers as such (a
+// quarter or half of the memory of floats, and converted to scene linear through tables),
+// everything else as 32-bit floats. Channels: 1 grey, 2 grey + alpha, 3 RGB, 4 or more RGB +
+// alpha (OIIO's alpha channel, else the fourth). OIIO is asked to keep the file's unassociated
+// alpha (PNG, TIFF); associated data (OpenEXR) is marked so and read as floats, to be divided by
+// alpha as Blender's Straight/Premultiplied image handling gives the shader.
+//
+// Before any pixel memory is allocated, the header's size is checked against this machine's
+// memory (kept image plus the float RGBA texture made from it, at most half of the physical
+// memory): a 165-byte PNG may claim 65535 x 65535 pixels. Only regular files are opened: a
+// FIFO or a device would block or never end.
 #pragma once
 
 #include <cstddef>
@@ -23,6 +29,8 @@
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "core/uninitialized_allocator.h"
 
 namespace stratum {
 
@@ -33,15 +41,28 @@ public:
     using std::runtime_error::runtime_error;
 };
 
-struct DecodedImage {
+enum class StoredFormat { U8, U16, F32 };
+
+struct StoredImage {
     uint32_t width = 0, height = 0;
-    std::vector<float> rgba;  // width*height*4, row 0 at the bottom
+    int channels = 0;
+    int alpha_channel = -1;         // -1: none (alpha reads 1)
+    bool associated_alpha = false;  // colour premultiplied by alpha (F32 only)
+    bool top_to_bottom = true;      // row order of `data`
+    StoredFormat format = StoredFormat::F32;
+    UninitializedVector<unsigned char> storage;  // the pixels read from a file
+    const void* data = nullptr;                  // the pixels: storage.data() or the caller's array
 };
 
-DecodedImage read_image_file(const std::string& path);
+// Throws ImageReadError when decoding a width x height image of `channels` channels of
+// `bytes_per_channel` bytes into a float RGBA texture needs more than the memory budget.
+void check_decode_memory(const std::string& what, uint64_t width, uint64_t height, uint64_t channels,
+                         uint64_t bytes_per_channel);
+
+StoredImage read_image_file(const std::string& path);
 // `file_name` (e.g. Blender's packed file's name) chooses the reader by its extension.
-DecodedImage read_image_memory(const void* data, size_t size, const std::string& file_name);
-// `pixels`: width*height*channels floats, rows bottom to top, channels 1..4.
-DecodedImage image_from_pixels(const float* pixels, uint32_t width, uint32_t height, uint32_t channels);
+StoredImage read_image_memory(const void* data, size_t size, const std::string& file_name);
+// `pixels`: width*height*channels floats, rows bottom to top, channels 1..4; not copied.
+StoredImage image_from_pixels(const float* pixels, uint32_t width, uint32_t height, uint32_t channels);
 
 }  // namespace stratum

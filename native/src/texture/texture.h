@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "core/uninitialized_allocator.h"
 
 namespace stratum {
 
@@ -29,9 +30,10 @@ struct Rgba {
 
 struct Texture {
     uint32_t width = 0, height = 0;
-    std::vector<float> rgba;  // width*height*4, row 0 at v = 0 (bottom)
+    UninitializedVector<float> rgba;  // width*height*4, row 0 at v = 0 (bottom)
     TextureInterpolation interpolation = TextureInterpolation::Linear;
     TextureExtension extension = TextureExtension::Repeat;
+    uint64_t replaced_texels = 0;  // texels that were NaN or infinite, now (0, 0, 0, 0)
 
     // The texel in column x (left to right) and row y (bottom to top); both in range.
     Rgba texel(uint32_t x, uint32_t y) const {

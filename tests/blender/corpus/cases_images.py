@@ -79,12 +79,17 @@ _png_case("img_wrong_extension", "a PNG named .jpg (red; read by content, as Ble
 
 
 def _float_exr(s: Stage, name: str, value: float, path: Path) -> None:
-    """Writes a 4x4 float EXR whose RGB are all `value` through Blender's image writer."""
+    """Writes a 4x4 32-bit float EXR whose RGB are all `value` through Blender's image writer.
+    Image.save() would write half floats in Blender 3.4, where a NaN came back as -0.125; the
+    render settings' 32-bit depth keeps the value."""
     source = bpy.data.images.new(f"{name}Source", 4, 4, float_buffer=True)
     source.pixels.foreach_set([value, value, value, 1.0] * 16)
-    source.filepath_raw = str(path)
-    source.file_format = "OPEN_EXR"
-    source.save()
+    settings = s.scene.render.image_settings
+    kept = (settings.file_format, settings.color_depth)
+    settings.file_format = "OPEN_EXR"
+    settings.color_depth = "32"
+    source.save_render(str(path), scene=s.scene)
+    settings.file_format, settings.color_depth = kept
     bpy.data.images.remove(source)
 
 
