@@ -227,6 +227,7 @@ class _MeshDesc(ctypes.Structure):
         ("corner_uvs", ctypes.POINTER(ctypes.c_float)),
         ("material_ids", ctypes.POINTER(ctypes.c_uint32)),
         ("vertex_normals", ctypes.POINTER(ctypes.c_float)),
+        ("corner_tangents", ctypes.POINTER(ctypes.c_float)),
     ]
 
 
@@ -859,10 +860,12 @@ class Scene(_Handle):
         corner_normals: np.ndarray | None = None,
         corner_uvs: np.ndarray | None = None,
         vertex_normals: np.ndarray | None = None,
+        corner_tangents: np.ndarray | None = None,
     ) -> int:
         """positions (N,3) float32, triangles (T,3) uint32, material_ids (T,) uint32,
         corner_normals (T,3,3) float32, corner_uvs (T,3,2) float32, vertex_normals (N,3)
-        float32 (at most one kind of normals). Arrays already of the right dtype and contiguous
+        float32 (at most one kind of normals), corner_tangents (T,3,4) float32 (MikkTSpace
+        tangent and bitangent sign per corner). Arrays already of the right dtype and contiguous
         are passed without a copy."""
         pos = np.ascontiguousarray(positions, dtype=np.float32)
         tri = np.ascontiguousarray(triangles, dtype=np.uint32)
@@ -880,7 +883,13 @@ class Scene(_Handle):
         desc.triangles = _uint_ptr(tri)
         desc.triangle_count = n_tri
         desc.material_ids = _uint_ptr(mat)
-        nrm = uvs = vnrm = None
+        nrm = uvs = vnrm = tangents = None
+        if corner_tangents is not None:
+            tangents = np.ascontiguousarray(corner_tangents, dtype=np.float32)
+            if tangents.size != n_tri * 12:
+                raise ValueError(f"corner_tangents: {tangents.size} floats for {n_tri} triangles "
+                                 f"(expected {n_tri * 12})")
+            desc.corner_tangents = _float_ptr(tangents)
         if vertex_normals is not None:
             vnrm = np.ascontiguousarray(vertex_normals, dtype=np.float32)
             if vnrm.size != n_vert * 3:
@@ -903,7 +912,7 @@ class Scene(_Handle):
         status = self._lib.stratum_scene_add_mesh(self.handle, ctypes.byref(desc),
                                                   ctypes.byref(out))
         # keep the arrays alive until the (copying) call has returned
-        del pos, tri, mat, nrm, uvs, vnrm
+        del pos, tri, mat, nrm, uvs, vnrm, tangents
         _check(self._lib, status, "stratum_scene_add_mesh")
         return int(out.value)
 

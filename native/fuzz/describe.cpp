@@ -125,7 +125,8 @@ std::string describe(const StratumMeshDesc& d) {
            field("corner_normals", array_or_null(d.corner_normals, 9 * t)) + ", " +
            field("corner_uvs", array_or_null(d.corner_uvs, 6 * t)) + ", " +
            field("material_ids", indices(d.material_ids, t)) + ", " +
-           field("vertex_normals", array_or_null(d.vertex_normals, 3 * v)) + "}";
+           field("vertex_normals", array_or_null(d.vertex_normals, 3 * v)) + ", " +
+           field("corner_tangents", array_or_null(d.corner_tangents, 12 * t)) + "}";
 }
 
 std::string describe(const StratumTextureDesc& d) {

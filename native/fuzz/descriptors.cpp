@@ -222,6 +222,7 @@ StratumMeshDesc MeshArrays::desc() const {
     d.corner_uvs = with_corner_uvs ? corner_uvs.data() : nullptr;
     d.material_ids = null_material_ids ? nullptr : material_ids.data();
     d.vertex_normals = with_vertex_normals ? vertex_normals.data() : nullptr;
+    d.corner_tangents = with_corner_tangents ? corner_tangents.data() : nullptr;
     return d;
 }
 
@@ -279,6 +280,18 @@ MeshArrays draw_mesh(ByteReader& in, uint32_t material_count) {
         for (unsigned i = 0; i < n && !array->empty(); ++i) {
             const size_t k = in.u8() % array->size();
             (*array)[k] = in.f32(FloatKind::Signed);
+        }
+    }
+    // Tangents (+x, sign +1), mutated: read only with the flag, so inputs without it keep their
+    // meaning.
+    m.with_corner_tangents = flags & 0x80;
+    if (m.with_corner_tangents) {
+        for (size_t c = 0; c < 3 * t; ++c)
+            m.corner_tangents.insert(m.corner_tangents.end(), {1.0f, 0.0f, 0.0f, 1.0f});
+        const unsigned n = in.u8() % 4;
+        for (unsigned i = 0; i < n && !m.corner_tangents.empty(); ++i) {
+            const size_t k = in.u8() % m.corner_tangents.size();
+            m.corner_tangents[k] = in.f32(FloatKind::Signed);
         }
     }
     const uint32_t material = in.id(material_count);

@@ -31,11 +31,12 @@ StratumInstanceDesc draw_instance(ByteReader& in, uint32_t mesh_count);
 
 // A mesh's arrays, owned here; desc() points into them (NULL where the draw asked for NULL).
 struct MeshArrays {
-    std::vector<float> positions, corner_normals, corner_uvs, vertex_normals;
+    std::vector<float> positions, corner_normals, corner_uvs, vertex_normals, corner_tangents;
     std::vector<uint32_t> triangles, material_ids;
     uint32_t vertex_count = 0, triangle_count = 0;
     bool null_positions = false, null_triangles = false, null_material_ids = false;
-    bool with_corner_normals = false, with_vertex_normals = false, with_corner_uvs = false;
+    bool with_corner_normals = false, with_vertex_normals = false, with_corner_uvs = false,
+         with_corner_tangents = false;
     StratumMeshDesc desc() const;
 };
 MeshArrays draw_mesh(ByteReader& in, uint32_t material_count);

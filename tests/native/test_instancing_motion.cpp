@@ -94,8 +94,8 @@ TEST(InstanceMotion, RotationInterpolatesAsAQuaternion) {
     EXPECT_NEAR(hit.position.z, 0.0f, 1e-5f);
     // The shading frame is the transform at the ray's time: uv along the bar and dpdu at 45°.
     EXPECT_NEAR(hit.uv.x, 0.75f, 1e-4f);
-    EXPECT_NEAR(hit.dpdu.x, 2.0f * std::cos(0.25f * kPi), 1e-4f);
-    EXPECT_NEAR(hit.dpdu.y, 2.0f * std::sin(0.25f * kPi), 1e-4f);
+    EXPECT_NEAR(hit.tangent_frame.dpdu.x, 2.0f * std::cos(0.25f * kPi), 1e-4f);
+    EXPECT_NEAR(hit.tangent_frame.dpdu.y, 2.0f * std::sin(0.25f * kPi), 1e-4f);
     EXPECT_FALSE(probe(0.0f, 0.5f, &hit));
     EXPECT_TRUE(probe(0.0f, 0.0f, &hit));
     EXPECT_TRUE(probe(0.5f * kPi, 1.0f, &hit));
@@ -206,15 +206,15 @@ TEST(InstanceShading, UvAndTangentFollowTheTransform) {
     ASSERT_TRUE(rs.intersect({0.5f, 0.5f, 5}, {0, 0, -1}, 0, kInfinity, &hit));
     EXPECT_NEAR(hit.uv.x, 0.625f, 1e-5f);
     EXPECT_NEAR(hit.uv.y, 0.375f, 1e-5f);
-    EXPECT_NEAR(hit.dpdu.x, 0.0f, 1e-5f);
-    EXPECT_NEAR(hit.dpdu.y, 4.0f, 1e-5f);
-    EXPECT_NEAR(hit.dpdu.z, 0.0f, 1e-5f);
+    EXPECT_NEAR(hit.tangent_frame.dpdu.x, 0.0f, 1e-5f);
+    EXPECT_NEAR(hit.tangent_frame.dpdu.y, 4.0f, 1e-5f);
+    EXPECT_NEAR(hit.tangent_frame.dpdu.z, 0.0f, 1e-5f);
     EXPECT_NEAR(hit.geometric_normal.z, 1.0f, 1e-6f);
     // A mesh without uvs: uv 0 and dpdu 0.
     scene.meshes[0].corner_uvs.clear();
     const RenderScene plain(scene);
     ASSERT_TRUE(plain.intersect({0.5f, 0.5f, 5}, {0, 0, -1}, 0, kInfinity, &hit));
-    EXPECT_EQ(hit.dpdu.y, 0.0f);
+    EXPECT_EQ(hit.tangent_frame.dpdu.y, 0.0f);
     EXPECT_EQ(hit.uv.x, 0.0f);
 }
 

@@ -45,7 +45,10 @@ struct Textured {
     }
     void apply(Vec3 dpdu = {1.0f, 0.0f, 0.0f}, float sign = 1.0f) {
         const TextureBindings data(scene);
-        apply_texture_bindings(data, 0, {0.5f, 0.5f}, dpdu, closures.data(), 2, &normal, sign);
+        TangentFrame frame;
+        frame.dpdu = dpdu;
+        frame.bitangent_sign = sign;
+        apply_texture_bindings(data, 0, {0.5f, 0.5f}, frame, closures.data(), 2, &normal);
     }
 };
 

@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -116,14 +117,18 @@ TEST(TextureHostile, NonFinitePixelsBecomeTransparentBlackAndAreCounted) {
     EXPECT_EQ(a.info.replaced_texels, 3u);
 }
 
-// sRGB decoding of 1e19 is ((1e19 + 0.055) / 1.055)^2.4 > FLT_MAX: Inf after conversion, which
-// the same rule replaces (a saved scene holding it could not be loaded back).
+// A conversion that overflows: 3e38 through Blender 3.4's "Linear ACES" (an AP0 -> Rec.709
+// matrix with coefficients up to 2.5) exceeds FLT_MAX; the texel is replaced (a saved scene
+// holding Inf could not be loaded back).
 TEST(TextureHostile, ColourConversionOverflowIsReplaced) {
-    EXPECT_TRUE(std::isinf(srgb_to_linear(1e19f)));
-    const std::vector<float> pixels = {1e19f, 0.5f, 0.5f, 1.0f};
-    StratumTextureDesc d = describe("sRGB");
+    const char* config = "/usr/share/blender/datafiles/colormanagement/config.ocio";
+    if (!std::filesystem::exists(config)) GTEST_SKIP() << "no Blender 3.4 OCIO config at " << config;
+    const std::vector<float> pixels = {3e38f, 3e38f, 3e38f, 1.0f, 0.5f, 0.5f, 0.5f, 1.0f};
+    StratumTextureDesc d = describe("Linear ACES");
+    d.ocio_config = config;
     d.pixels = pixels.data();
-    d.width = d.height = 1;
+    d.width = 2;
+    d.height = 1;
     d.channels = 4;
     const Added a = add(d);
     ASSERT_EQ(a.status, STRATUM_OK) << a.message;
@@ -138,6 +143,25 @@ TEST(TextureHostile, ColourConversionOverflowIsReplaced) {
     StratumScene* loaded = nullptr;
     EXPECT_EQ(stratum_scene_load(saved.c_str(), &loaded), STRATUM_OK) << stratum_last_error();
     stratum_scene_destroy(loaded);
+}
+
+// sRGB images stay encoded and decode after interpolation (Cycles' compress_as_srgb): an
+// encoded 1e19 decodes beyond FLT_MAX ((1e19 / 1.055)^2.4) and saturates there instead.
+TEST(TextureHostile, SrgbTexelDecodingBeyondFloatMaxSaturates) {
+    EXPECT_TRUE(std::isinf(srgb_to_linear(1e19f)));
+    const std::vector<float> pixels = {1e19f, 0.5f, -0.25f, 1.0f};
+    StratumTextureDesc d = describe("sRGB");
+    d.pixels = pixels.data();
+    d.width = d.height = 1;
+    d.channels = 4;
+    const auto texture = load_texture(d);
+    EXPECT_TRUE(texture->srgb_encoded);
+    EXPECT_EQ(texture->replaced_texels, 0u);
+    const Rgba v = texture_lookup(*texture, {0.5f, 0.5f});
+    EXPECT_EQ(v.r, std::numeric_limits<float>::max());
+    EXPECT_FLOAT_EQ(v.g, srgb_to_linear(0.5f));
+    EXPECT_EQ(v.b, 0.0f);  // negative encoded values decode to 0, as in Cycles
+    EXPECT_EQ(v.a, 1.0f);
 }
 
 TEST(TextureHostile, NonFiniteTexelsOfAFileAreReplaced) {
@@ -243,10 +267,13 @@ TEST(TextureHostile, IntegerFilesConvertLikeTheirFloatValues) {
                     out->close());
         for (const char* config : configs) {
             if (config && !std::filesystem::exists(config)) continue;
-            StratumTextureDesc from_file = describe("sRGB");
+            // Without a config the built-in sRGB (kept encoded: v / max exactly); with Blender
+            // 3.4's, Filmic Log, whose OCIO transform is converted at load.
+            const char* space = config ? "Filmic Log" : "sRGB";
+            StratumTextureDesc from_file = describe(space);
             from_file.path = path.c_str();
             from_file.ocio_config = config;
-            StratumTextureDesc from_floats = describe("sRGB");
+            StratumTextureDesc from_floats = describe(space);
             from_floats.pixels = values.data();  // rows bottom to top: compare row y with height-1-y
             from_floats.width = width;
             from_floats.height = height;

@@ -176,18 +176,38 @@ TEST(TextureLoading, OneToFourChannelsBecomeRgba) {
     expect_texel(*load_texture(from_pixels(rgba, 1, 1, 4)), 0, 0, {0.1f, 0.2f, 0.3f, 0.4f});
 }
 
+// sRGB textures keep their encoded texels and decode after the lookup's interpolation, as
+// Cycles does for images whose colour space is the sRGB curve (compress_as_srgb).
 TEST(TextureColour, BuiltinSrgbIsTheClosedFormCurve) {
     EXPECT_NEAR(srgb_to_linear(0.5f), 0.2140411f, 1e-6f);  // ((0.5 + 0.055)/1.055)^2.4
     EXPECT_FLOAT_EQ(srgb_to_linear(0.04f), 0.04f / 12.92f);
     const std::vector<float> px = {0.5f, 0.04f, 1.0f, 0.5f};
     const auto t = load_texture(from_pixels(px, 1, 1, 4, "sRGB"));
-    expect_texel(*t, 0, 0, {srgb_to_linear(0.5f), 0.04f / 12.92f, 1.0f, 0.5f});
+    EXPECT_TRUE(t->srgb_encoded);
+    expect_texel(*t, 0, 0, {0.5f, 0.04f, 1.0f, 0.5f});
+    const Rgba v = texture_lookup(*t, {0.5f, 0.5f});
+    EXPECT_FLOAT_EQ(v.r, srgb_to_linear(0.5f));
+    EXPECT_FLOAT_EQ(v.g, 0.04f / 12.92f);
+    EXPECT_FLOAT_EQ(v.b, 1.0f);
+    EXPECT_FLOAT_EQ(v.a, 0.5f);
 }
 
-// Blender 3.4's config: sRGB -> scene_linear ("Linear") is a 65561-entry 1D LUT (srgb.spi1d)
-// with linear interpolation. Interpolation error h^2/8 max|f''| ~ 2e-9 (h = 7.6e-5,
-// |f''| <= 3); the rest is float32 rounding of the table and of OCIO's arithmetic, a few ulps
-// of 1 (2.4e-7 each): tolerance 1e-6 absolute.
+// Bilinear interpolation half way between an encoded 0 and 1 gives decode(0.5) = 0.214, not the
+// 0.5 of interpolating linear values: Cycles' svm_image_texture decodes after interpolating.
+TEST(TextureColour, SrgbDecodesAfterInterpolation) {
+    const std::vector<float> px = {0.0f, 0.0f, 0.0f, 1.0f, 1.0f, 1.0f, 1.0f, 1.0f};
+    StratumTextureDesc d = from_pixels(px, 2, 1, 4, "sRGB");
+    d.interpolation = STRATUM_TEXTURE_LINEAR;
+    d.extension = STRATUM_TEXTURE_EXTEND;
+    const auto t = load_texture(d);
+    EXPECT_FLOAT_EQ(texture_lookup(*t, {0.5f, 0.5f}).r, srgb_to_linear(0.5f));
+    EXPECT_FLOAT_EQ(texture_lookup(*t, {0.5f, 0.5f}).a, 1.0f);
+}
+
+// Blender 3.4's config: sRGB -> scene_linear ("Linear") is a 65561-entry 1D LUT (srgb.spi1d),
+// which Cycles' test (256 levels within 1e-4) finds to be the sRGB curve: the texture keeps the
+// encoded values and decodes with the closed form, exactly as the built-in "sRGB". A matrix
+// space ("Linear ACES") is not the curve and is converted by OCIO at load.
 TEST(TextureColour, Blender34ConfigSrgbMatchesTheClosedFormAndNonColorIsIdentity) {
     if (!std::filesystem::exists(kBlender34Config)) GTEST_SKIP() << "Blender 3.4 is not installed";
     std::vector<float> ramp;
@@ -197,13 +217,18 @@ TEST(TextureColour, Blender34ConfigSrgbMatchesTheClosedFormAndNonColorIsIdentity
     }
     const auto srgb = load_texture(from_pixels(ramp, 101, 1, 4, "sRGB", kBlender34Config.c_str()));
     const auto data = load_texture(from_pixels(ramp, 101, 1, 4, "Non-Color", kBlender34Config.c_str()));
+    EXPECT_TRUE(srgb->srgb_encoded);
+    EXPECT_FALSE(data->srgb_encoded);
     for (uint32_t i = 0; i <= 100; ++i) {
         const float c = static_cast<float>(i) / 100.0f;
-        EXPECT_NEAR(srgb->texel(i, 0).r, srgb_to_linear(c), 1e-6f) << c;
-        EXPECT_EQ(srgb->texel(i, 0).a, 0.3f) << "alpha is not converted";
+        const Rgba v = texture_lookup(*srgb, {(static_cast<float>(i) + 0.5f) / 101.0f, 0.5f});
+        EXPECT_EQ(v.r, srgb_to_linear(c)) << c;
+        EXPECT_EQ(v.a, 0.3f) << "alpha is not converted";
         EXPECT_EQ(data->texel(i, 0).g, c) << "Non-Color is data: unchanged";
     }
-    EXPECT_NEAR(srgb->texel(50, 0).r, 0.21404f, 1e-5f);
+    const auto aces = load_texture(from_pixels(ramp, 101, 1, 4, "Linear ACES", kBlender34Config.c_str()));
+    EXPECT_FALSE(aces->srgb_encoded);
+    EXPECT_NE(aces->texel(50, 0).r, 0.5f) << "Linear ACES is converted to Rec.709 at load";
 }
 
 // OpenColorIO 2.1.2 (Debian 12) cannot read Blender 5.0's version-2.4 config: the built-in
@@ -212,7 +237,7 @@ TEST(TextureColour, UnreadableConfigFallsBackToBuiltinNamesOnly) {
     if (!std::filesystem::exists(kBlender50Config)) GTEST_SKIP() << "the bpy 5.0 wheel is not installed";
     const std::vector<float> px = {0.5f, 0.5f, 0.5f, 1.0f};
     const auto t = load_texture(from_pixels(px, 1, 1, 4, "sRGB", kBlender50Config.c_str()));
-    EXPECT_FLOAT_EQ(t->texel(0, 0).r, srgb_to_linear(0.5f));
+    EXPECT_FLOAT_EQ(texture_lookup(*t, {0.5f, 0.5f}).r, srgb_to_linear(0.5f));
     const auto [status, message] = add_texture(from_pixels(px, 1, 1, 4, "ACEScg", kBlender50Config.c_str()));
     EXPECT_EQ(status, STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(message.find("'ACEScg'"), std::string::npos) << message;

@@ -268,7 +268,9 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     uv_map = next((materials.uv_maps.get(int(i), "") for i in slot_ids
                    if materials.uv_maps.get(int(i))), "")
     textured = bool(materials.textured.intersection(int(i) for i in slot_ids))
-    arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids), read_uvs=textured)
+    normal_mapped = bool(materials.normal_mapped.intersection(int(i) for i in slot_ids))
+    arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids), read_uvs=textured,
+                                read_tangents=normal_mapped)
     if arrays is None or len(arrays.triangles) == 0:
         # A vertex/face instancer's own mesh often has no faces on purpose; a mesh without
         # vertices is empty (e.g. geometry nodes turned it into points, reported as such).
@@ -285,9 +287,14 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
         # Cycles reads a missing UV attribute as (0, 0): textures show their corner texel.
         summary.warn(f"Object '{ob.name}': no UV map for its image textures; using UV (0, 0)")
         uvs = np.zeros((len(arrays.triangles), 3, 2), dtype=np.float32)
+    if arrays.tangents_failed:
+        summary.warn(f"Object '{ob.name}': no MikkTSpace tangents for its normal map "
+                     f"({arrays.tangents_failed}); using per-triangle tangents, which show "
+                     "facets on curved surfaces (Cycles triangulates n-gons first: so can you)")
     try:
         mesh_id = scene.add_mesh(arrays.positions, arrays.triangles, mat_ids,
-                                 arrays.corner_normals, uvs, arrays.vertex_normals)
+                                 arrays.corner_normals, uvs, arrays.vertex_normals,
+                                 arrays.corner_tangents)
     except native.StratumError as exc:
         raise ExportError(f"Object '{ob.name}': {exc}") from exc
     summary.meshes += 1

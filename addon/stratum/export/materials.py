@@ -89,6 +89,7 @@ class MaterialTable:
         self.textures = TextureTable(scene, self._texture_warning)
         self.uv_maps: dict[int, str] = {}  # material id -> UV layer its textures read
         self.textured: set[int] = set()  # material ids with texture bindings
+        self.normal_mapped: set[int] = set()  # material ids with a Normal Map binding
 
     def _texture_warning(self, node: Any, message: str) -> None:
         self._summary.warn(f"Material '{self._material_name}': {message}")
@@ -134,4 +135,6 @@ class MaterialTable:
         self.uv_maps[mat_id] = converted.uv_map
         if any(c.bindings for c in closures):
             self.textured.add(mat_id)
+        if any(b.param == native.PARAM_NORMAL for c in closures for b in c.bindings):
+            self.normal_mapped.add(mat_id)
         return mat_id

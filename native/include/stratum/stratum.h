@@ -259,6 +259,12 @@ typedef struct StratumMeshDesc {
      * without split normals, as Cycles takes them: 12 bytes a vertex instead of 36 a triangle).
      * At most one of corner_normals and vertex_normals; neither = geometric normals. */
     const float* vertex_normals;
+    /* Appended (issue 12): optional 12 floats per triangle, per corner the tangent (x, y, z) and
+     * the bitangent sign, object space: Blender's MikkTSpace tangents (Mesh.calc_tangents,
+     * MeshLoop.tangent and .bitangent_sign), which Cycles' Normal Map node uses. Interpolated
+     * over the triangle, unnormalised, as Cycles does; B = sign cross(N, T). Without them a
+     * Normal Map binding uses the triangle's dpdu (constant per triangle). */
+    const float* corner_tangents;
 } StratumMeshDesc;
 
 /* Adds a mesh (copied); its id (0, 1, 2, ...) is written to out_id. A mesh is drawn only

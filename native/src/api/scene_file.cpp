@@ -104,17 +104,22 @@ std::string save_scene_file(const Scene& scene, const char* path) {
     j["meshes"] = json::array();
     for (const Mesh& mesh : scene.meshes) {
         json pos = json::array(), tri = json::array(), nrm = json::array(), uv = json::array(),
-             vnrm = json::array();
+             vnrm = json::array(), tangents = json::array();
         for (Vec3 p : mesh.positions) pos.insert(pos.end(), {p.x, p.y, p.z});
         for (const auto& t : mesh.triangles) tri.insert(tri.end(), {t[0], t[1], t[2]});
         for (Vec3 n : mesh.corner_normals) nrm.insert(nrm.end(), {n.x, n.y, n.z});
         for (Vec3 n : mesh.vertex_normals) vnrm.insert(vnrm.end(), {n.x, n.y, n.z});
         for (Vec2 c : mesh.corner_uvs) uv.insert(uv.end(), {c.x, c.y});
+        for (size_t c = 0; c < mesh.corner_tangents.size(); ++c) {
+            const Vec3 t = mesh.corner_tangents[c];
+            tangents.insert(tangents.end(), {t.x, t.y, t.z, mesh.corner_signs[c]});
+        }
         j["meshes"].push_back({{"positions", pos},
                                {"triangles", tri},
                                {"corner_normals", nrm},
                                {"vertex_normals", vnrm},
                                {"corner_uvs", uv},
+                               {"corner_tangents", tangents},
                                {"material_ids", mesh.material_ids}});
     }
     j["instances"] = json::array();
@@ -166,14 +171,16 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                             {"rgb", e.rgb}};
     }
     if (!scene.textures.empty()) {
-        // Textures are saved decoded (linear RGBA, rows bottom to top) and reloaded as 4-channel
-        // Non-Color pixels, so a file replays without the original images or OCIO config.
+        // Textures are saved as the renderer holds them (RGBA, rows bottom to top: linear, or
+        // sRGB-encoded for sRGB images) and reloaded as 4-channel pixels in "Non-Color" or the
+        // built-in "sRGB", so a file replays without the original images or OCIO config.
         json textures = json::array(), bindings = json::array();
         for (const auto& t : scene.textures) {
             textures.push_back({{"width", t->width},
                                 {"height", t->height},
                                 {"interpolation", static_cast<int>(t->interpolation)},
                                 {"extension", static_cast<int>(t->extension)},
+                                {"color_space", t->srgb_encoded ? "sRGB" : "Non-Color"},
                                 {"rgba", t->rgba}});
         }
         for (const TextureBinding& b : scene.texture_bindings) {
@@ -247,11 +254,13 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             const auto nrm = numbers<float>(m, "corner_normals");
             const auto uv = numbers<float>(m, "corner_uvs");
             const auto vnrm = numbers<float>(m, "vertex_normals", true);
+            const auto tangents = numbers<float>(m, "corner_tangents", true);
             const auto mat = numbers<uint32_t>(m, "material_ids");
             const size_t tris = tri.size() / 3;
             if (pos.size() % 3 || tri.size() % 3 || mat.size() != tris ||
                 (!nrm.empty() && nrm.size() != 9 * tris) || (!uv.empty() && uv.size() != 6 * tris) ||
-                (!vnrm.empty() && vnrm.size() != pos.size())) {
+                (!vnrm.empty() && vnrm.size() != pos.size()) ||
+                (!tangents.empty() && tangents.size() != 12 * tris)) {
                 throw std::runtime_error("mesh arrays have inconsistent sizes");
             }
             const StratumMeshDesc d{pos.data(),
@@ -261,7 +270,8 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                                     nrm.empty() ? nullptr : nrm.data(),
                                     uv.empty() ? nullptr : uv.data(),
                                     mat.data(),
-                                    vnrm.empty() ? nullptr : vnrm.data()};
+                                    vnrm.empty() ? nullptr : vnrm.data(),
+                                    tangents.empty() ? nullptr : tangents.data()};
             if ((status = stratum_scene_add_mesh(scene, &d, nullptr)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
@@ -356,7 +366,12 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                 }
                 d.pixels = rgba.data();
                 d.channels = 4;
-                d.color_space = "Non-Color";
+                const auto space = t.find("color_space");
+                const std::string color_space = space == t.end() ? "Non-Color" : space->get<std::string>();
+                if (color_space != "Non-Color" && color_space != "sRGB")
+                    throw std::runtime_error("texture color_space '" + color_space +
+                                             "' is not Non-Color or sRGB");
+                d.color_space = color_space == "sRGB" ? "sRGB" : "Non-Color";
                 d.interpolation = field<int32_t>(t, "interpolation");
                 d.extension = field<int32_t>(t, "extension");
                 if ((status = stratum_scene_add_texture(scene, &d, nullptr)) != STRATUM_OK)

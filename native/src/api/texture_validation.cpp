@@ -87,6 +87,7 @@ std::shared_ptr<const Texture> load_texture(const StratumTextureDesc& d) {
         SceneLinearTexels texels = scene_linear_texels(image, *conversion);
         texture->rgba = std::move(texels.rgba);
         texture->replaced_texels = texels.replaced_texels;
+        texture->srgb_encoded = texels.srgb_encoded;
     } catch (const std::bad_alloc&) {
         throw ImageReadError("not enough memory for the " + std::to_string(image.width) + " x " +
                              std::to_string(image.height) + " texture of image '" +

@@ -281,6 +281,12 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
         throw ValidationError("mesh corner uv " + std::to_string(k) + " is not finite (" +
                               fmt(d.corner_uvs[2 * k]) + ", " + fmt(d.corner_uvs[2 * k + 1]) + ")");
     }
+    if (d.corner_tangents && !all_finite(d.corner_tangents, 12 * n_tri)) {
+        const size_t k = first_non_finite(d.corner_tangents, 12 * n_tri, 4);
+        throw ValidationError("mesh corner tangent " + std::to_string(k) + " is not finite " +
+                              triple(d.corner_tangents + 4 * k) + ", sign " +
+                              fmt(d.corner_tangents[4 * k + 3]));
+    }
     // All valid: one bulk copy per array.
     Mesh mesh;
     copy_into(mesh.positions, d.positions, n_vert);
@@ -290,6 +296,15 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
     if (d.corner_normals) copy_into(mesh.corner_normals, d.corner_normals, 3 * n_tri);
     if (d.vertex_normals) copy_into(mesh.vertex_normals, d.vertex_normals, n_vert);
     if (d.corner_uvs) copy_into(mesh.corner_uvs, d.corner_uvs, 3 * n_tri);
+    if (d.corner_tangents) {
+        mesh.corner_tangents.resize(3 * n_tri);
+        mesh.corner_signs.resize(3 * n_tri);
+        for (size_t c = 0; c < 3 * n_tri; ++c) {
+            const float* t = d.corner_tangents + 4 * c;
+            mesh.corner_tangents[c] = Vec3(t[0], t[1], t[2]);
+            mesh.corner_signs[c] = t[3];
+        }
+    }
     for (const Vec3& p : mesh.positions) {
         mesh.bounds_lo = Vec3(std::min(mesh.bounds_lo.x, p.x), std::min(mesh.bounds_lo.y, p.y),
                               std::min(mesh.bounds_lo.z, p.z));

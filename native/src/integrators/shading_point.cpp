@@ -11,8 +11,8 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
     // Textures first, on the winding-oriented normal: a normal map's tangent frame (T, sign
     // cross(N, T), N) is defined for it, and the flip below then applies to the mapped normal.
     if (!scene.textures().of_material(hit.material_id).empty()) {
-        apply_texture_bindings(scene.textures(), hit.material_id, hit.uv, hit.dpdu, sp.closures.closures(),
-                               sp.closures.count(), &sp.ns, hit.bitangent_sign);
+        apply_texture_bindings(scene.textures(), hit.material_id, hit.uv, hit.tangent_frame,
+                               sp.closures.closures(), sp.closures.count(), &sp.ns);
     }
     sp.backfacing = dot(hit.geometric_normal, wo_world) < 0.0f;
     // Both normals turn to the viewer's side together (Cycles: SD_BACKFACING negates Ng and N).

@@ -203,6 +203,38 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
     if (!error.empty()) throw std::runtime_error(error);
 }
 
+namespace {
+
+// Cycles' normal-map frame at barycentrics (b0, b1, b2) of triangle `tri` (corners k..k+2): the
+// unnormalised interpolated tangent and sign, and the unnormalised interpolated smooth normal
+// (or, flat, the object-space geometric normal turned as the world one), in object space, then
+// through the normal transform (see TangentFrame).
+void mikktspace_frame(const Mesh& mesh, size_t k, const std::array<uint32_t, 3>& tri, float b0, float b1,
+                      float b2, const Transform& m, SurfaceHit* hit) {
+    const Vec3 t =
+        mesh.corner_tangents[k] * b0 + mesh.corner_tangents[k + 1] * b1 + mesh.corner_tangents[k + 2] * b2;
+    const float sign =
+        mesh.corner_signs[k] * b0 + mesh.corner_signs[k + 1] * b1 + mesh.corner_signs[k + 2] * b2;
+    Vec3 n;
+    if (!mesh.corner_normals.empty()) {
+        n = mesh.corner_normals[k] * b0 + mesh.corner_normals[k + 1] * b1 + mesh.corner_normals[k + 2] * b2;
+    } else if (!mesh.vertex_normals.empty()) {
+        n = mesh.vertex_normals[tri[0]] * b0 + mesh.vertex_normals[tri[1]] * b1 +
+            mesh.vertex_normals[tri[2]] * b2;
+    } else {
+        const Vec3 p0 = mesh.positions[tri[0]];
+        n = unit_or(cross(mesh.positions[tri[1]] - p0, mesh.positions[tri[2]] - p0), Vec3(0.0f, 0.0f, 1.0f));
+        if (dot(m.normal(n), hit->geometric_normal) < 0.0f) n = -n;
+    }
+    TangentFrame& f = hit->tangent_frame;
+    f.mikktspace = true;
+    f.tangent = m.normal(t);
+    f.bitangent = m.normal(cross(n, t) * sign);
+    f.normal = m.normal(n);
+}
+
+}  // namespace
+
 bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, SurfaceHit* hit,
                             const RayQuery& query) const {
     RayHit h;
@@ -237,8 +269,8 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
         hit->shading_normal = unit_or(n, hit->geometric_normal);
     }
     hit->uv = {0.0f, 0.0f};
-    hit->dpdu = Vec3(0.0f, 0.0f, 0.0f);
-    hit->bitangent_sign = 1.0f;
+    hit->tangent_frame = TangentFrame{};
+    if (!mesh.corner_tangents.empty()) mikktspace_frame(mesh, k, tri, b0, h.b1, h.b2, m, hit);
     if (!mesh.corner_uvs.empty()) {
         const Vec2 t0 = mesh.corner_uvs[k], t1 = mesh.corner_uvs[k + 1], t2 = mesh.corner_uvs[k + 2];
         hit->uv = {t0.x * b0 + t1.x * h.b1 + t2.x * h.b2, t0.y * b0 + t1.y * h.b1 + t2.y * h.b2};
@@ -247,8 +279,8 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
         const float du1 = t1.x - t0.x, dv1 = t1.y - t0.y, du2 = t2.x - t0.x, dv2 = t2.y - t0.y;
         const float det = du1 * dv2 - du2 * dv1;
         if (det != 0.0f) {
-            hit->dpdu = (e1 * dv2 - e2 * dv1) / det;
-            hit->bitangent_sign = det < 0.0f ? -1.0f : 1.0f;
+            hit->tangent_frame.dpdu = (e1 * dv2 - e2 * dv1) / det;
+            hit->tangent_frame.bitangent_sign = det < 0.0f ? -1.0f : 1.0f;
         }
     }
     hit->material_id = mesh.material_ids[h.triangle];

@@ -23,6 +23,8 @@ struct Mesh {
     std::vector<Vec3> corner_normals;    // empty, or 3 per triangle
     std::vector<Vec3> vertex_normals;    // empty, or 1 per vertex (never both kinds)
     std::vector<Vec2> corner_uvs;        // empty, or 3 per triangle
+    std::vector<Vec3> corner_tangents;   // empty, or 3 per triangle (MikkTSpace, object space)
+    std::vector<float> corner_signs;     // bitangent signs, 3 per triangle with corner_tangents
     std::vector<uint32_t> material_ids;  // 1 per triangle
     // Bounding box of `positions` (object space), for the ABI's bound on placed extents.
     Vec3 bounds_lo{kHuge, kHuge, kHuge}, bounds_hi{-kHuge, -kHuge, -kHuge};

@@ -42,6 +42,7 @@ bool builtin_conversion(const std::string& name, Builtin* out) {
 // processor (then also its versions optimised for 8- and 16-bit input).
 struct SceneLinearConversion::Impl {
     Builtin builtin = Builtin::Identity;
+    bool srgb_curve = false;                 // the conversion is the sRGB curve per channel
     OCIO::ConstCPUProcessorRcPtr processor;  // set: use these instead of `builtin`
     OCIO::ConstCPUProcessorRcPtr processor_u8, processor_u16;
 };
@@ -90,7 +91,26 @@ Conversion builtin_or_throw(const std::string& space, const std::string& why_no_
         throw std::invalid_argument("unknown colour space '" + space + "' (" + why_no_config +
                                     "; the built-in colour spaces are " + kBuiltinNames + ")");
     }
+    c.srgb_curve = c.builtin == Builtin::Srgb;
     return c;
+}
+
+// Whether `processor` is the sRGB curve on each channel alone, by Cycles' test (see the header).
+bool is_srgb_curve(const OCIO::CPUProcessor& processor) {
+    for (int i = 0; i < 256; ++i) {
+        const float v = static_cast<float>(i) / 255.0f;
+        float r[3] = {v, 0, 0}, g[3] = {0, v, 0}, b[3] = {0, 0, v}, w[3] = {v, v, v};
+        for (float* c : {r, g, b, w}) processor.applyRGB(c);
+        const float crosstalk = std::max(
+            {std::abs(r[1]), std::abs(r[2]), std::abs(g[0]), std::abs(g[2]), std::abs(b[0]), std::abs(b[1])});
+        const float expected = srgb_to_linear(v);
+        const auto near = [](float x, float y, float tolerance) { return std::abs(x - y) <= tolerance; };
+        if (crosstalk > 1e-5f || !near(r[0], w[0], 1e-6f) || !near(g[1], w[1], 1e-6f) ||
+            !near(b[2], w[2], 1e-6f) || !near(w[0], w[1], 1e-6f) || !near(w[1], w[2], 1e-6f) ||
+            !near((w[0] + w[1] + w[2]) / 3.0f, expected, 1e-4f))
+            return false;
+    }
+    return true;
 }
 
 Conversion make_conversion(const std::string& config_path, const std::string& space, Cache& c) {
@@ -129,6 +149,7 @@ Conversion make_conversion(const std::string& config_path, const std::string& sp
         const OCIO::ConstProcessorRcPtr processor =
             config.getProcessor(source->getName(), OCIO::ROLE_SCENE_LINEAR);
         conversion.processor = processor->getDefaultCPUProcessor();
+        conversion.srgb_curve = is_srgb_curve(*conversion.processor);
         conversion.processor_u8 = processor->getOptimizedCPUProcessor(
             OCIO::BIT_DEPTH_UINT8, OCIO::BIT_DEPTH_F32, OCIO::OPTIMIZATION_DEFAULT);
         conversion.processor_u16 = processor->getOptimizedCPUProcessor(
@@ -160,6 +181,8 @@ SceneLinearConversion conversion_to_scene_linear(const char* config_path, const 
     }
     return SceneLinearConversion(found->second);
 }
+
+bool SceneLinearConversion::is_srgb_curve() const { return impl_->srgb_curve; }
 
 void SceneLinearConversion::apply(float* rgba, size_t count) const {
     if (impl_->processor) {

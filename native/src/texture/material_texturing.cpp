@@ -38,16 +38,22 @@ TextureBindings::TextureBindings(const Scene& scene)
     }
 }
 
-Vec3 apply_normal_map(Rgb color, float strength, Vec3 normal, Vec3 dpdu, float bitangent_sign) {
-    const Vec3 tangent_raw = dpdu - normal * dot(normal, dpdu);
-    const float tangent_length = length(tangent_raw);
-    if (!(tangent_length > 1e-12f)) return normal;
-    const Vec3 tangent = tangent_raw / tangent_length;
-    const Vec3 bitangent = cross(normal, tangent) * bitangent_sign;
+Vec3 apply_normal_map(Rgb color, float strength, Vec3 normal, const TangentFrame& frame) {
     const Vec3 c(2.0f * color.r - 1.0f, 2.0f * color.g - 1.0f, 2.0f * color.b - 1.0f);
-    const Vec3 mapped = tangent * c.x + bitangent * c.y + normal * c.z;
+    Vec3 mapped;
+    if (frame.mikktspace) {
+        mapped = frame.tangent * c.x + frame.bitangent * c.y + frame.normal * c.z;
+    } else {
+        const Vec3 tangent_raw = frame.dpdu - normal * dot(normal, frame.dpdu);
+        const float tangent_length = length(tangent_raw);
+        if (!(tangent_length > 1e-12f)) return normal;
+        const Vec3 tangent = tangent_raw / tangent_length;
+        const Vec3 bitangent = cross(normal, tangent) * frame.bitangent_sign;
+        mapped = tangent * c.x + bitangent * c.y + normal * c.z;
+    }
     const float mapped_length = length(mapped);
-    if (!(mapped_length > 0.0f)) return normal;
+    // Cycles keeps sd->N where the mapped normal is zero or not finite.
+    if (!(mapped_length > 0.0f) || !std::isfinite(mapped_length)) return normal;
     Vec3 result = mapped / mapped_length;
     if (strength != 1.0f) {
         const Vec3 blended = normal + (result - normal) * std::max(strength, 0.0f);
@@ -58,9 +64,9 @@ Vec3 apply_normal_map(Rgb color, float strength, Vec3 normal, Vec3 dpdu, float b
     return result;
 }
 
-void apply_texture_bindings(const TextureBindings& data, uint32_t material_id, Vec2 uv, Vec3 dpdu,
-                            WeightedClosure* closures, uint32_t count, Vec3* shading_normal,
-                            float bitangent_sign) {
+void apply_texture_bindings(const TextureBindings& data, uint32_t material_id, Vec2 uv,
+                            const TangentFrame& frame, WeightedClosure* closures, uint32_t count,
+                            Vec3* shading_normal) {
     for (const TextureBindings::Bound& bound : data.of_material(material_id)) {
         const TextureBinding& b = bound.binding;
         if (b.closure_index >= count) continue;
@@ -84,8 +90,7 @@ void apply_texture_bindings(const TextureBindings& data, uint32_t material_id, V
                 closures[b.closure_index].weight *= std::clamp(scalar, 0.0f, 1.0f);
                 break;
             case MaterialParam::Normal:
-                *shading_normal =
-                    apply_normal_map(color_of(t, b.channel), b.scale, *shading_normal, dpdu, bitangent_sign);
+                *shading_normal = apply_normal_map(color_of(t, b.channel), b.scale, *shading_normal, frame);
                 break;
             case MaterialParam::Emission:
             case MaterialParam::Transmission:

@@ -21,15 +21,18 @@
 // for s > 1 (4.x keeps c.z), s < 0 (4.x inverts the relief, 3.4 clamps to 0) and slightly for
 // non-unit texels (8-bit quantisation).
 //
-// Tangent frame deviation from Cycles: Cycles uses MikkTSpace per-vertex tangents and a
-// per-vertex bitangent sign. Here T is the triangle's dpdu (constant per triangle)
-// Gram-Schmidt orthogonalised against the interpolated shading normal, and the sign is the
-// triangle's UV orientation (+1 when (dpdu, dpdv, N) is right-handed, -1 for mirrored UVs).
-// On smooth meshes MikkTSpace tangents vary smoothly across triangles where dpdu jumps, so
-// normal-mapped curved surfaces can show faint per-triangle facets; flat and UV-aligned
-// surfaces agree exactly. A point without a tangent (no UVs: dpdu = 0) keeps its normal, as
-// Cycles does without a tangent attribute. A normal binding on any closure of a material sets
-// the point's one shading normal (Cycles perturbs only the closures wired to the node).
+// Tangent frame: a mesh given MikkTSpace corner tangents (Blender's, as Cycles takes them) uses
+// Cycles' frame exactly (TangentFrame in scene/render_scene.h): T and N interpolated and not
+// normalised, B = sign cross(N, T), N' = normalize(c.x T + c.y B + c.z N). Without them, T is
+// the triangle's dpdu (constant per triangle) Gram-Schmidt orthogonalised against the
+// interpolated shading normal and the sign is the triangle's UV orientation (+1 when
+// (dpdu, dpdv, N) is right-handed, -1 for mirrored UVs): on smooth meshes dpdu jumps between
+// triangles where MikkTSpace tangents vary smoothly, so curved normal-mapped surfaces show
+// per-triangle facets (the textured sphere of scenes/features/materials.blend was +10% against
+// Cycles that way); flat and UV-aligned surfaces agree exactly. A point without a tangent (no
+// UVs: dpdu = 0) keeps its normal, as Cycles does without a tangent attribute. A normal binding on any
+// closure of a material sets the point's one shading normal (Cycles perturbs only the closures wired to the
+// node).
 #pragma once
 
 #include <cstdint>
@@ -37,6 +40,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "scene/tangent_frame.h"
 #include "texture/texture.h"
 #include "texture/texture_binding.h"
 
@@ -70,14 +74,14 @@ private:
 // Applies material `material_id`'s bindings at texture coordinate `uv` to its `count`
 // closures (a copy of RenderScene::material(material_id).closures) and to the shading normal.
 // shading_normal: unit, oriented as the triangle's winding (SurfaceHit::shading_normal, before
-// any flip toward the viewer); dpdu: SurfaceHit::dpdu; bitangent_sign: +1 or -1, the UV
-// orientation of the triangle (see above).
-void apply_texture_bindings(const TextureBindings& data, uint32_t material_id, Vec2 uv, Vec3 dpdu,
-                            WeightedClosure* closures, uint32_t count, Vec3* shading_normal,
-                            float bitangent_sign = 1.0f);
+// any flip toward the viewer); frame: SurfaceHit::tangent_frame (see above).
+void apply_texture_bindings(const TextureBindings& data, uint32_t material_id, Vec2 uv,
+                            const TangentFrame& frame, WeightedClosure* closures, uint32_t count,
+                            Vec3* shading_normal);
 
 // The Normal Map node (tangent space) on its own: `color` the texel's RGB, `strength` the
-// node's Strength. Returns `normal` unchanged when there is no usable tangent.
-Vec3 apply_normal_map(Rgb color, float strength, Vec3 normal, Vec3 dpdu, float bitangent_sign);
+// node's Strength, `normal` the unit shading normal. Returns `normal` unchanged when there is
+// no usable tangent.
+Vec3 apply_normal_map(Rgb color, float strength, Vec3 normal, const TangentFrame& frame);
 
 }  // namespace stratum

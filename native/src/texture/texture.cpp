@@ -1,7 +1,11 @@
 #include "texture/texture.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
+
+#include "texture/color_conversion.h"
 
 namespace stratum {
 
@@ -54,6 +58,16 @@ void accumulate(Rgba* sum, Rgba v, float w) {
     sum->a += w * v.a;
 }
 
+// An interpolated texel of an sRGB-encoded texture decoded to linear (alpha is not encoded).
+// A float image may hold encoded values whose decoding exceeds FLT_MAX (1e19): they saturate.
+Rgba decoded(const Texture& t, Rgba v) {
+    if (!t.srgb_encoded) return v;
+    const auto decode = [](float c) {
+        return std::min(srgb_texel_to_linear(c), std::numeric_limits<float>::max());
+    };
+    return {decode(v.r), decode(v.g), decode(v.b), v.a};
+}
+
 }  // namespace
 
 Rgba texture_lookup(const Texture& t, Vec2 uv) {
@@ -63,7 +77,7 @@ Rgba texture_lookup(const Texture& t, Vec2 uv) {
     if (t.interpolation == TextureInterpolation::Closest) {
         split_floor(uv.x * static_cast<float>(w), &ix);
         split_floor(uv.y * static_cast<float>(h), &iy);
-        return texel_or_zero(t, wrap(ix, w, t.extension), wrap(iy, h, t.extension));
+        return decoded(t, texel_or_zero(t, wrap(ix, w, t.extension), wrap(iy, h, t.extension)));
     }
     // Texel i covers [i, i+1) in x = u w and is centred at i + 0.5: shifting by 0.5 puts the
     // two neighbours at floor(x) and floor(x) + 1 with weight fraction(x).
@@ -76,7 +90,7 @@ Rgba texture_lookup(const Texture& t, Vec2 uv) {
     accumulate(&sum, texel_or_zero(t, x1, y0), tx * (1.0f - ty));
     accumulate(&sum, texel_or_zero(t, x0, y1), (1.0f - tx) * ty);
     accumulate(&sum, texel_or_zero(t, x1, y1), tx * ty);
-    return sum;
+    return decoded(t, sum);
 }
 
 }  // namespace stratum

@@ -8,6 +8,8 @@
 // |               | Blender's UV space and Image.pixels, and as Cycles stores images     |
 // | interpolation | Closest: texel floor(u w), floor(v h); Linear: bilinear between the  |
 // |               | texel centres (i + 0.5)/w, i.e. x = u w - 0.5 before the floor       |
+// | srgb_encoded  | the RGB of rgba are sRGB-encoded (an sRGB image): the lookup decodes |
+// |               | after interpolating, negatives to 0, as Cycles' compress_as_srgb     |
 // | extension     | Repeat (periodic), Extend (clamp to the edge texel), Clip (texels    |
 // |               | outside the image are transparent black, each one separately in the |
 // |               | bilinear sum), Mirror (reflected every other tile: -1 -> 0, w -> w-1)|
@@ -34,6 +36,7 @@ struct Texture {
     TextureInterpolation interpolation = TextureInterpolation::Linear;
     TextureExtension extension = TextureExtension::Repeat;
     uint64_t replaced_texels = 0;  // texels that were NaN or infinite, now (0, 0, 0, 0)
+    bool srgb_encoded = false;     // RGB holds sRGB-encoded values, decoded after interpolation
 
     // The texel in column x (left to right) and row y (bottom to top); both in range.
     Rgba texel(uint32_t x, uint32_t y) const {

@@ -106,8 +106,12 @@ uint64_t convert_rows(const StoredImage& image, const SceneLinearConversion& con
 
 }  // namespace
 
-SceneLinearTexels scene_linear_texels(const StoredImage& image, const SceneLinearConversion& conversion) {
+SceneLinearTexels scene_linear_texels(const StoredImage& image,
+                                      const SceneLinearConversion& conversion_asked) {
     SceneLinearTexels texels;
+    texels.srgb_encoded = conversion_asked.is_srgb_curve();
+    const SceneLinearConversion& conversion =
+        texels.srgb_encoded ? conversion_to_scene_linear(nullptr, "Non-Color") : conversion_asked;
     texels.rgba.resize(static_cast<size_t>(image.width) * image.height * 4);
     switch (image.format) {
         case StoredFormat::U8:

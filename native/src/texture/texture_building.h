@@ -6,7 +6,11 @@
 // |--------------|-------------------------------------------------------------------------|
 // | channels     | 1 grey -> (g, g, g, 1); 2 grey + alpha; 3 RGB -> alpha 1; 4+ RGB + alpha |
 // | alpha        | associated (premultiplied) colour divided by alpha where alpha > 0       |
-// | colour       | SceneLinearConversion (color_conversion.h); alpha never converted        |
+// | colour       | SceneLinearConversion (color_conversion.h); alpha never converted. When  |
+// |              | the conversion is the sRGB curve the texels stay sRGB-encoded and the   |
+// |              | lookup decodes after interpolating, as Cycles (svm_image_texture,       |
+// |              | NODE_IMAGE_COMPRESS_AS_SRGB): interpolating encoded values gives darker |
+// |              | edges between texels than interpolating linear ones                     |
 // | non-finite   | a texel with any NaN or infinite channel after conversion (e.g. an sRGB  |
 // |              | float of 1e19 decodes beyond FLT_MAX) becomes (0, 0, 0, 0): Cycles'     |
 // |              | rule, scene/image.cpp "Make sure we don't have buggy values" (Cycles    |
@@ -31,6 +35,7 @@ namespace stratum {
 struct SceneLinearTexels {
     UninitializedVector<float> rgba;  // width*height*4, row 0 at the bottom
     uint64_t replaced_texels = 0;
+    bool srgb_encoded = false;  // RGB still sRGB-encoded (Texture::srgb_encoded)
 };
 
 SceneLinearTexels scene_linear_texels(const StoredImage& image, const SceneLinearConversion& conversion);
