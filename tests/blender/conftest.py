@@ -73,13 +73,15 @@ class RecordingScene:
     def add_mesh(self, positions: np.ndarray, triangles: np.ndarray, material_ids: np.ndarray,
                  corner_normals: np.ndarray | None = None,
                  corner_uvs: np.ndarray | None = None,
-                 vertex_normals: np.ndarray | None = None) -> int:
+                 vertex_normals: np.ndarray | None = None,
+                 corner_tangents: np.ndarray | None = None) -> int:
         self.meshes.append({
             "positions": np.array(positions), "triangles": np.array(triangles),
             "material_ids": np.array(material_ids),
             "corner_normals": None if corner_normals is None else np.array(corner_normals),
             "corner_uvs": None if corner_uvs is None else np.array(corner_uvs),
             "vertex_normals": None if vertex_normals is None else np.array(vertex_normals),
+            "corner_tangents": None if corner_tangents is None else np.array(corner_tangents),
         })
         return len(self.meshes) - 1
 
@@ -108,6 +110,17 @@ class RecordingScene:
     def add_texture(self, texture: Any) -> int:
         self.textures.append(texture)
         return len(self.textures) - 1
+
+    def texture_info(self, texture_id: int) -> Any:
+        """Size and non-finite texel count of pixel textures; files are not decoded here, so a
+        file texture reports size 0 x 0 and no replaced texels."""
+        from stratum.native import TextureInfo
+        pixels = self.textures[texture_id].pixels
+        if pixels is None:
+            return TextureInfo(0, 0, 0)
+        texels = np.asarray(pixels, dtype=np.float32)
+        replaced = int(np.count_nonzero(~np.isfinite(texels).all(axis=-1)))
+        return TextureInfo(int(texels.shape[1]), int(texels.shape[0]), replaced)
 
     def bind_texture(self, binding: Any) -> None:
         self.bindings.append(binding)
