@@ -88,6 +88,13 @@ VISIBLE_ALL = 31
 MICROFACET_GGX = 0
 MICROFACET_MULTISCATTER_GGX = 1
 
+# StratumBumpShadowing: Cycles' term for closures whose normal is perturbed.
+BUMP_SHADOWING_NONE = 0
+BUMP_SHADOWING_CHIANG = 1  # Cycles 2.90-4.4
+BUMP_SHADOWING_CHIANG_UNSMOOTHED = 2  # Cycles 4.2-4.4, Bump Map Correction off
+BUMP_SHADOWING_CONTY = 3  # Cycles 4.5+
+BUMP_SHADOWING_CONTY_UNSMOOTHED = 4  # Cycles 4.5+, Bump Map Correction off
+
 LIGHT_POINT = 0
 LIGHT_SUN = 1
 LIGHT_AREA_RECTANGLE = 2
@@ -158,6 +165,7 @@ class _MaterialDesc(ctypes.Structure):
         ("coat_roughness", ctypes.c_float),
         ("coat_ior", ctypes.c_float),
         ("coat_tint", _c_float3),
+        ("bump_shadowing", ctypes.c_int32),
     ]
 
 
@@ -304,6 +312,7 @@ class Material:
     coat_roughness: float = 0.03
     coat_ior: float = 1.5
     coat_tint: tuple[float, float, float] = (1.0, 1.0, 1.0)
+    bump_shadowing: int = BUMP_SHADOWING_NONE
 
 
 @dataclass

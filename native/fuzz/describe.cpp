@@ -74,7 +74,8 @@ std::string describe(const StratumMaterialDesc& d) {
            field("coat", describe_float(d.coat)) + ", " +
            field("coat_roughness", describe_float(d.coat_roughness)) + ", " +
            field("coat_ior", describe_float(d.coat_ior)) + ", " +
-           field("coat_tint", describe_floats(d.coat_tint, 3)) + "}";
+           field("coat_tint", describe_floats(d.coat_tint, 3)) + ", " +
+           field("bump_shadowing", integer(d.bump_shadowing)) + "}";
 }
 
 std::string describe(const StratumCameraDesc& d) {

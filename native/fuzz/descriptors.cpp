@@ -121,17 +121,29 @@ StratumMaterialDesc draw_material(ByteReader& in) {
     d.coat_roughness = 0.03f;
     d.coat_ior = 1.5f;
     for (float& t : d.coat_tint) t = 1.0f;
+    d.bump_shadowing = draw_enum(in, STRATUM_BUMP_SHADOWING_CONTY_UNSMOOTHED + 1);
     using K = FloatKind;
     mutate(in,
-           {FloatField{&d.base_color[0], K::Unit}, FloatField{&d.base_color[1], K::Unit},
-            FloatField{&d.base_color[2], K::Unit}, FloatField{&d.roughness, K::Unit},
-            FloatField{&d.metallic, K::Unit}, FloatField{&d.specular, K::Unit},
-            FloatField{&d.ior, K::Positive}, FloatField{&d.emission[0], K::Positive},
-            FloatField{&d.emission[1], K::Positive}, FloatField{&d.emission[2], K::Positive},
-            FloatField{&d.transmission, K::Unit}, FloatField{&d.coat, K::Unit},
-            FloatField{&d.coat_roughness, K::Unit}, FloatField{&d.coat_ior, K::Positive},
-            FloatField{&d.coat_tint[0], K::Unit}, FloatField{&d.coat_tint[1], K::Unit},
-            FloatField{&d.coat_tint[2], K::Unit}, IntField{&d.model}, IntField{&d.distribution}},
+           {FloatField{&d.base_color[0], K::Unit},
+            FloatField{&d.base_color[1], K::Unit},
+            FloatField{&d.base_color[2], K::Unit},
+            FloatField{&d.roughness, K::Unit},
+            FloatField{&d.metallic, K::Unit},
+            FloatField{&d.specular, K::Unit},
+            FloatField{&d.ior, K::Positive},
+            FloatField{&d.emission[0], K::Positive},
+            FloatField{&d.emission[1], K::Positive},
+            FloatField{&d.emission[2], K::Positive},
+            FloatField{&d.transmission, K::Unit},
+            FloatField{&d.coat, K::Unit},
+            FloatField{&d.coat_roughness, K::Unit},
+            FloatField{&d.coat_ior, K::Positive},
+            FloatField{&d.coat_tint[0], K::Unit},
+            FloatField{&d.coat_tint[1], K::Unit},
+            FloatField{&d.coat_tint[2], K::Unit},
+            IntField{&d.model},
+            IntField{&d.distribution},
+            IntField{&d.bump_shadowing}},
            4);
     return d;
 }

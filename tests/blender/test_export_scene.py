@@ -433,3 +433,38 @@ def test_geometry_nodes_instances_of_mesh_data(scene_builder: Any,
     xs = sorted((round(float(m[0, 3])), round(float(m[1, 3]))) for _, m in
                 recording_scene.instances)
     assert xs == [(0, 0), (0, 3), (3, 0)]
+
+
+def test_every_closure_carries_this_blenders_bump_shadowing(scene_builder: Any,
+                                                            recording_scene: Any) -> None:
+    """Cycles 3.x-4.4 shade perturbed normals with Chiang et al.'s term, 4.5+ with Conty
+    Estevez et al.'s, whose smoothing the material's Bump Map Correction turns off."""
+    b = scene_builder()
+    b.camera()
+    mat, nt, surface = _material("Mixed")
+    mix = nt.nodes.new("ShaderNodeMixShader")
+    mix.inputs["Fac"].default_value = 0.5
+    nt.links.new(nt.nodes.new("ShaderNodeBsdfDiffuse").outputs[0], mix.inputs[1])
+    nt.links.new(nt.nodes.new("ShaderNodeBsdfPrincipled").outputs[0], mix.inputs[2])
+    nt.links.new(mix.outputs[0], surface)
+    b.mesh_object("Cube", material=mat)
+    b.mesh_object("Default")
+    if bpy.app.version >= (4, 5, 0):
+        uncorrected, _, plain = _material("Uncorrected")
+        uncorrected.cycles.use_bump_map_correction = False
+        nt_u = uncorrected.node_tree
+        nt_u.links.new(nt_u.nodes.new("ShaderNodeBsdfDiffuse").outputs[0], plain)
+        b.mesh_object("Plain", material=uncorrected)
+    export_scene(b.depsgraph(), recording_scene)
+    expected = (native.BUMP_SHADOWING_CHIANG if bpy.app.version < (4, 5, 0)
+                else native.BUMP_SHADOWING_CONTY)
+    models = []
+    for entry in recording_scene.materials:
+        closures = [m for _, m in entry] if isinstance(entry, list) else [entry]
+        models.append([m.bump_shadowing for m in closures])
+    # The mix (both closures) and the default grey of the object without a material; in 4.5+
+    # also the material without correction. Ids follow the depsgraph's order: compare sorted.
+    wanted = [[expected, expected], [expected]]
+    if bpy.app.version >= (4, 5, 0):
+        wanted.append([native.BUMP_SHADOWING_CONTY_UNSMOOTHED])
+    assert sorted(models) == sorted(wanted)

@@ -287,10 +287,6 @@ def _add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
         # Cycles reads a missing UV attribute as (0, 0): textures show their corner texel.
         summary.warn(f"Object '{ob.name}': no UV map for its image textures; using UV (0, 0)")
         uvs = np.zeros((len(arrays.triangles), 3, 2), dtype=np.float32)
-    if arrays.tangents_failed:
-        summary.warn(f"Object '{ob.name}': no MikkTSpace tangents for its normal map "
-                     f"({arrays.tangents_failed}); using per-triangle tangents, which show "
-                     "facets on curved surfaces (Cycles triangulates n-gons first: so can you)")
     try:
         mesh_id = scene.add_mesh(arrays.positions, arrays.triangles, mat_ids,
                                  arrays.corner_normals, uvs, arrays.vertex_normals,

@@ -9,7 +9,7 @@ to the renderer.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from typing import Any
 
 import bpy
@@ -76,6 +76,26 @@ def convert_material(material: Any | None) -> ConvertedMaterial:
     return ConvertedMaterial(closures, uv_map, warnings)
 
 
+def bump_shadowing_model(material: Any | None, version: tuple[int, ...]) -> int:
+    """The shadowing term Cycles of this Blender gives closures whose normal differs from the
+    smooth one (kernel/closure/bsdf.h bump_shadowing_term): Chiang et al. 2019 up to 4.4, Conty
+    Estevez et al. 2019 from 4.5; from 4.2 the material's Bump Map Correction (default on)
+    keeps or drops the smoothing."""
+    cycles = getattr(material, "cycles", None) if material is not None else None
+    smoothed = bool(getattr(cycles, "use_bump_map_correction", True))
+    if version < (4, 2):
+        return native.BUMP_SHADOWING_CHIANG
+    if version < (4, 5):
+        return native.BUMP_SHADOWING_CHIANG if smoothed else native.BUMP_SHADOWING_CHIANG_UNSMOOTHED
+    return native.BUMP_SHADOWING_CONTY if smoothed else native.BUMP_SHADOWING_CONTY_UNSMOOTHED
+
+
+def with_bump_shadowing(converted: ConvertedMaterial, model: int) -> ConvertedMaterial:
+    closures = [replace(c, material=replace(c.material, bump_shadowing=model))
+                for c in converted.closures]
+    return replace(converted, closures=closures)
+
+
 class MaterialTable:
     """Assigns native material ids, once per Blender material (plus one default), and the
     textures they bind, once per image."""
@@ -96,7 +116,9 @@ class MaterialTable:
 
     def default_id(self) -> int:
         if self._default is None:
-            self._default = self._add("(default)", convert_material(None))
+            converted = convert_material(None)
+            model = bump_shadowing_model(None, tuple(bpy.app.version))
+            self._default = self._add("(default)", with_bump_shadowing(converted, model))
         return self._default
 
     def id_for(self, material: Any | None) -> int:
@@ -107,7 +129,8 @@ class MaterialTable:
         found = self._ids.get(key)
         if found is not None:
             return found
-        converted = convert_material(material)
+        converted = with_bump_shadowing(convert_material(material),
+                                        bump_shadowing_model(material, tuple(bpy.app.version)))
         for warning in converted.warnings:
             self._summary.warn(warning)
         mat_id = self._add(material.name, converted)

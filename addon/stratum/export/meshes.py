@@ -7,6 +7,7 @@ from typing import Any
 
 import numpy as np
 
+from ..mikktspace import mikktspace_tangents, tangent_space_normals
 from .common import ExportError
 from .vertex_normals import angle_weighted_vertex_normals
 
@@ -24,7 +25,6 @@ class MeshArrays:
     missing_uv: str = ""  # the UV map asked for, when the mesh has no layer of that name
     vertex_normals: np.ndarray | None = None  # (N, 3) float32, instead of corner_normals
     corner_tangents: np.ndarray | None = None  # (T, 3, 4) float32: MikkTSpace tangent, sign
-    tangents_failed: str = ""  # why tangents were asked for and not computed
 
 
 def _get(collection: Any, attr: str, count: int, width: int, dtype: Any) -> np.ndarray:
@@ -124,23 +124,6 @@ def _corner_uvs(layer: Any, n_loops: int) -> np.ndarray:
     return _get(layer.data, "uv", n_loops, 2, np.float32)
 
 
-def _corner_tangents(mesh: Any, layer: Any, n_loops: int) -> tuple[np.ndarray | None, str]:
-    """Per-loop MikkTSpace tangents and bitangent signs of UV layer `layer`, (L, 4) float32:
-    Blender's own (Mesh.calc_tangents), the tangents Cycles' Normal Map node uses. Blender
-    computes them for triangles and quads only: a mesh with n-gons gives (None, reason)."""
-    try:
-        mesh.calc_tangents(uvmap=layer.name)
-    except RuntimeError as exc:
-        return None, str(exc).strip() or "Blender cannot compute its tangents"
-    try:
-        out = np.empty((n_loops, 4), dtype=np.float32)
-        out[:, :3] = _get(mesh.loops, "tangent", n_loops, 3, np.float32).reshape(n_loops, 3)
-        out[:, 3] = _get(mesh.loops, "bitangent_sign", n_loops, 1, np.float32)
-    finally:
-        mesh.free_tangents()
-    return out, ""
-
-
 def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
                 material_slots: int = 2, read_uvs: bool = True,
                 read_tangents: bool = False) -> MeshArrays:
@@ -150,8 +133,8 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
     and come back as zeros. With `read_uvs` false no UVs are read (corner_uvs None): as Cycles
     exports a UV attribute only for shaders that ask for it, a mesh without textures skips the
     largest per-corner array. With `read_tangents` (a normal-mapped material) and a UV layer,
-    the layer's MikkTSpace tangents are read too; calc_tangents writes into the mesh, so the
-    caller passes a mesh of its own (object_mesh_arrays does)."""
+    the layer's MikkTSpace tangents are computed too (stratum.mikktspace: on the triangles,
+    as Cycles does, and the same bits on every export)."""
     mesh.calc_loop_triangles()
     n_vert = len(mesh.vertices)
     n_loops = len(mesh.loops)
@@ -205,30 +188,26 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
         elif not np.isfinite(vertex_normals).all():
             vertex_normals = None  # the same for a smooth mesh's vertex normals
     uvs = tangents = None
-    tangents_failed = ""
     layer, missing = _uv_layer(mesh, uv_map) if read_uvs else (None, False)
     if n_tri and layer is not None:
         uvs = _corner_uvs(layer, n_loops)[loops()]  # (T, 3, 2)
         if not np.isfinite(uvs).all():
             raise ExportError(f"Object '{object_name}' has non-finite UV coordinates")
         if read_tangents:
-            loop_tangents, tangents_failed = _corner_tangents(mesh, layer, n_loops)
-            if loop_tangents is not None:
-                tangents = loop_tangents[loops()]  # (T, 3, 4)
-                if not np.isfinite(tangents).all():
-                    tangents, tangents_failed = None, "its tangents are not finite"
+            tangents = mikktspace_tangents(
+                positions, triangles,
+                tangent_space_normals(positions, triangles, normals, vertex_normals), uvs)
     return MeshArrays(positions, triangles, material_index, normals, uvs,
-                      uv_map if missing else "", vertex_normals, tangents, tangents_failed)
+                      uv_map if missing else "", vertex_normals, tangents)
 
 
-def _readable_mesh_data(ob_eval: Any, read_tangents: bool) -> Any | None:
+def _readable_mesh_data(ob_eval: Any) -> Any | None:
     """The evaluated mesh of a mesh object when it can be read in place, else None (then
     to_mesh makes a copy, 10% of a 1M-triangle export). As Cycles 3.4 (blender/util.h
     object_to_mesh) does: in place unless in edit mode (its evaluated layers can be empty) or,
     before 4.1, with auto smooth, where calc_normals_split would write into the shared mesh.
-    Reading adds only Blender's own runtime caches (loop triangles, normals). Tangents are a
-    layer calc_tangents adds to the mesh itself: they are computed on a copy."""
-    if ob_eval.type != "MESH" or read_tangents:
+    Reading adds only Blender's own runtime caches (loop triangles, normals)."""
+    if ob_eval.type != "MESH":
         return None
     data = ob_eval.data
     if data is None or data.is_editmode:
@@ -247,9 +226,9 @@ def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "",
     # instancer of a geometry-nodes instance, not the instance's own data).
     evaluated = getattr(ob, "is_evaluated", False) or depsgraph is None
     ob_eval = ob if evaluated else ob.evaluated_get(depsgraph)
-    shared = _readable_mesh_data(ob_eval, read_tangents)
+    shared = _readable_mesh_data(ob_eval)
     if shared is not None:
-        return mesh_arrays(shared, ob.name, uv_map, material_slots, read_uvs)
+        return mesh_arrays(shared, ob.name, uv_map, material_slots, read_uvs, read_tangents)
     try:
         mesh = ob_eval.to_mesh()
     except RuntimeError as exc:

@@ -125,14 +125,32 @@ typedef struct StratumMaterialDesc {
     float emission[3];    /* emitted radiance (colour x strength), each >= 0 */
     int32_t distribution; /* StratumMicrofacetDistribution (the Principled node's) */
     /* Appended fields (Principled only; all zero = the opaque Principled above). */
-    float transmission;   /* [0,1]: weight of the dielectric transmission lobe (at `ior`; v1
-                             derives nothing from `specular` for it, as Cycles 3.x) */
-    float coat;           /* [0,inf): v1 "Clearcoat" (GTR1 lobe, IOR 1.5, weight 0.25 coat);
-                             v2 "Coat Weight" (dielectric GGX layer on top) */
-    float coat_roughness; /* [0,1]: v1 "Clearcoat Roughness", v2 "Coat Roughness" */
-    float coat_ior;       /* v2: > 0 (Blender default 1.5) */
-    float coat_tint[3];   /* v2: linear RGB in [0,1] */
+    float transmission;     /* [0,1]: weight of the dielectric transmission lobe (at `ior`; v1
+                               derives nothing from `specular` for it, as Cycles 3.x) */
+    float coat;             /* [0,inf): v1 "Clearcoat" (GTR1 lobe, IOR 1.5, weight 0.25 coat);
+                               v2 "Coat Weight" (dielectric GGX layer on top) */
+    float coat_roughness;   /* [0,1]: v1 "Clearcoat Roughness", v2 "Coat Roughness" */
+    float coat_ior;         /* v2: > 0 (Blender default 1.5) */
+    float coat_tint[3];     /* v2: linear RGB in [0,1] */
+    int32_t bump_shadowing; /* StratumBumpShadowing (appended; 0 = none) */
 } StratumMaterialDesc;
+
+/* Where a closure's normal differs from the smooth shading normal (a normal map, or the smooth
+ * normal bent so that reflections stay above the surface), the BSDF is multiplied by a
+ * shadowing term that hides the terminator the perturbed normal would otherwise show, as
+ * Cycles does (kernel/closure/bsdf.h bump_shadowing_term). The model depends on the Blender
+ * version, and from 4.2 on the material's "Bump Map Correction" chooses the smoothing. */
+typedef enum StratumBumpShadowing {
+    STRATUM_BUMP_SHADOWING_NONE = 0,              /* the perturbed normal alone */
+    STRATUM_BUMP_SHADOWING_CHIANG = 1,            /* Cycles 2.90-4.4: diffuse lobes times Chiang et
+                                                     al. 2019's G; 0 where it is negative */
+    STRATUM_BUMP_SHADOWING_CHIANG_UNSMOOTHED = 2, /* Cycles 4.2-4.4, correction off: only the 0 */
+    STRATUM_BUMP_SHADOWING_CONTY = 3,             /* Cycles 4.5+: every lobe 0 where wi and the
+                                                     closure normal lie on different sides of the
+                                                     smooth normal; diffuse lobes times Conty Estevez
+                                                     et al. 2019's GGX G1 */
+    STRATUM_BUMP_SHADOWING_CONTY_UNSMOOTHED = 4   /* Cycles 4.5+, correction off: only the side test */
+} StratumBumpShadowing;
 
 /* Adds a material; its id (0, 1, 2, ... in order) is written to out_id. */
 STRATUM_API StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMaterialDesc* material,

@@ -45,7 +45,8 @@ json closure_json(const WeightedClosure& c) {
             {"coat", m.coat},
             {"coat_roughness", m.coat_roughness},
             {"coat_ior", m.coat_ior},
-            {"coat_tint", rgb(m.coat_tint)}};
+            {"coat_tint", rgb(m.coat_tint)},
+            {"bump_shadowing", static_cast<int>(m.bump_shadowing)}};
 }
 
 // The fields of one closure; those added with closures (transmission, coat) default to the
@@ -65,6 +66,7 @@ StratumMaterialDesc material_desc(const json& m) {
     d.coat_roughness = field_or(m, "coat_roughness", 0.0f);
     d.coat_ior = field_or(m, "coat_ior", 0.0f);
     if (m.contains("coat_tint")) read_numbers(m, "coat_tint", d.coat_tint);
+    d.bump_shadowing = field_or(m, "bump_shadowing", 0);
     return d;
 }
 

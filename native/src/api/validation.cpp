@@ -169,6 +169,10 @@ Material validate_material(const StratumMaterialDesc& d) {
         m.coat_ior = finite_positive(d.coat_ior, "material coat_ior");
         m.coat_tint = rgb_in(d.coat_tint, 0.0f, 1.0f, "material coat_tint");
     }
+    check(d.bump_shadowing >= STRATUM_BUMP_SHADOWING_NONE &&
+              d.bump_shadowing <= STRATUM_BUMP_SHADOWING_CONTY_UNSMOOTHED,
+          "material bump_shadowing " + std::to_string(d.bump_shadowing) + " is not a StratumBumpShadowing");
+    m.bump_shadowing = static_cast<BumpShadowing>(d.bump_shadowing);
     return m;
 }
 

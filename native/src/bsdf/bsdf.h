@@ -21,6 +21,7 @@
 
 #include <cstdint>
 
+#include "bsdf/bump_shadowing.h"
 #include "core/math.h"
 #include "sampling/hemisphere.h"
 
@@ -56,16 +57,20 @@ struct Material {
     float coat_roughness = 0.0f;
     float coat_ior = 1.5f;
     Rgb coat_tint{1.0f};
+    // The shadowing term where the shading point's normal was perturbed (bsdf/bump_shadowing.h).
+    BumpShadowing bump_shadowing = BumpShadowing::None;
 };
 
 // What kind of scattering produced a direction: it selects the ray visibility bit of the next
 // ray, the light visibility bit NEE honours, and whether the vertex counts as a bounce.
 enum class ScatterKind : uint8_t { Diffuse, Glossy, Transmission, Transparent };
 
-// value = f(wo, wi) |cos theta_i|; pdf = solid-angle density with which bsdf_sample produces wi.
+// value = f(wo, wi) |cos theta_i|; pdf = solid-angle density with which bsdf_sample produces wi;
+// diffuse = the part of value from diffuse lobes (Lambert, Burley), which bump shadowing scales.
 struct BsdfEval {
     Rgb value;
     float pdf;
+    Rgb diffuse{};
 };
 
 // weight = value / pdf for the sampled wi (the path throughput factor). A delta lobe (smooth

@@ -100,13 +100,27 @@ Rgb ClosureSet::lambertian_value(Vec3 wo, Vec3 wi, HemisphereDistribution hemisp
     return sum;
 }
 
+void ClosureSet::set_smooth_normal(Vec3 smooth_normal_local) {
+    perturbed_ = true;
+    smooth_normal_ = smooth_normal_local;
+}
+
 BsdfEval ClosureSet::eval(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere, uint32_t kinds) const {
+    return eval_with(wo, wi, hemisphere, kinds, count_);
+}
+
+BsdfEval ClosureSet::eval_with(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere, uint32_t kinds,
+                               uint32_t sampled) const {
     BsdfEval sum{Rgb(0.0f), 0.0f};
     if (!(sample_weight_sum_ > 0.0f)) return sum;
     for (uint32_t i = 0; i < count_; ++i) {
         if (sample_weight_[i] <= 0.0f) continue;
         const Material& m = closures_[i].params;
-        const BsdfEval e = bsdf_eval(m, wo, wi, hemisphere);
+        BsdfEval e = bsdf_eval(m, wo, wi, hemisphere);
+        if (perturbed_ && m.bump_shadowing != BumpShadowing::None) {
+            const BumpShadowingFactors f = bump_shadowing(m.bump_shadowing, smooth_normal_, wi, i == sampled);
+            e.value = (e.value + e.diffuse * (f.diffuse - 1.0f)) * f.all;
+        }
         if (closure_kinds(m, wi) & kinds) sum.value += closures_[i].weight * e.value;
         sum.pdf += sample_weight_[i] / sample_weight_sum_ * e.pdf;
     }
@@ -139,7 +153,7 @@ bool ClosureSet::sample(Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
         *out = s;
         return true;
     }
-    const BsdfEval e = eval(wo, s.wi, hemisphere);
+    const BsdfEval e = eval_with(wo, s.wi, hemisphere, kAllKinds, chosen);
     if (!(e.pdf > 0.0f)) return false;
     *out = {s.wi, e.value / e.pdf, e.pdf, false, s.kind};
     return true;

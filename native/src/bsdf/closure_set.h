@@ -21,6 +21,9 @@
 // choice, and samples it. A non-delta pick reports the full mixture value and pdf (so weight =
 // value/pdf is one-sample MIS over closures). A delta pick reports weight w_i f_i/(p_i pdf_i) and
 // delta = true: no other closure can produce that exact direction.
+// Where the shading normal was perturbed, each closure's value is scaled by its bump shadowing
+// term (bsdf/bump_shadowing.h) against the smooth normal given by set_smooth_normal; pdfs are
+// unchanged, as Cycles scales eval only.
 // Capacity is fixed (kMaxClosures) with in-place storage, so a texturing step can rewrite the
 // parameters of each closure before evaluation; call finalize() after any such change.
 #pragma once
@@ -44,6 +47,9 @@ public:
     uint32_t count() const { return count_; }
     // Recomputes the sample weights and the summed quantities from the closures' parameters.
     void finalize();
+    // The smooth shading normal in the local frame of the closures' normal (z); call only where
+    // the two differ: bump shadowing applies then.
+    void set_smooth_normal(Vec3 smooth_normal_local);
 
     Rgb emission() const { return emission_; }
     Rgb holdout() const { return holdout_; }
@@ -67,12 +73,18 @@ public:
     static constexpr uint32_t kAllKinds = 0xf;
 
 private:
+    // `sampled`: the closure that produced wi in sample() (count_ when none did).
+    BsdfEval eval_with(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere, uint32_t kinds,
+                       uint32_t sampled) const;
+
     std::array<WeightedClosure, kMaxClosures> closures_{};
     std::array<float, kMaxClosures> sample_weight_{};
     uint32_t count_ = 0;
     float sample_weight_sum_ = 0.0f;
     Rgb emission_, holdout_, transparency_, lambertian_albedo_, albedo_estimate_;
     bool has_transmission_ = false, has_non_delta_ = false;
+    bool perturbed_ = false;
+    Vec3 smooth_normal_{0.0f, 0.0f, 1.0f};
 };
 
 inline constexpr uint32_t scatter_kind_bit(ScatterKind k) { return 1u << static_cast<uint32_t>(k); }

@@ -6,7 +6,8 @@ namespace stratum {
 
 BsdfEval lambert_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) {
     if (wo.z <= 0.0f || wi.z <= 0.0f) return {Rgb(), 0.0f};
-    return {m.base_color * (wi.z * kInvPi), hemisphere_pdf(hemisphere, wi.z)};
+    const Rgb value = m.base_color * (wi.z * kInvPi);
+    return {value, hemisphere_pdf(hemisphere, wi.z), value};
 }
 
 bool lambert_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out, HemisphereDistribution hemisphere) {

@@ -148,6 +148,7 @@ BsdfEval eval_lobes(const LobesV1& l, const Material& m, Vec3 wo, Vec3 wi,
         return e;
     }
     e.value = l.diffuse_color * (burley_diffuse(wo, wi, std::clamp(m.roughness, 0.0f, 1.0f)) * wi.z);
+    e.diffuse = e.value;
     e.pdf = l.diffuse_probability * hemisphere_pdf(hemisphere, wi.z);
     if (l.has_specular) {
         e.value += specular_value(l, wo, wi) * l.specular_weight;

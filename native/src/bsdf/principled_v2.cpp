@@ -140,7 +140,8 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi,
     const float probability_diffuse = std::max(
         1.0f - l.probability_metal - l.probability_specular - l.probability_glass - l.probability_coat, 0.0f);
     const float opaque = (1.0f - l.metallic) * (1.0f - l.transmission);
-    e.value += m.base_color * l.base_scale * (opaque * (1.0f - l.layer_albedo) * kInvPi * wi.z);
+    e.diffuse = m.base_color * l.base_scale * (opaque * (1.0f - l.layer_albedo) * kInvPi * wi.z);
+    e.value += e.diffuse;
     e.pdf += probability_diffuse * hemisphere_pdf(hemisphere, wi.z);
     const Vec3 h = normalize(wo + wi);
     const float cos_ih = dot(wi, h);

@@ -8,6 +8,7 @@ namespace stratum {
 ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world) {
     ShadingPoint sp{ClosureSet(scene.material(hit.material_id)), hit.geometric_normal, hit.shading_normal,
                     false};
+    Vec3 smooth = hit.shading_normal;
     // Textures first, on the winding-oriented normal: a normal map's tangent frame (T, sign
     // cross(N, T), N) is defined for it, and the flip below then applies to the mapped normal.
     if (!scene.textures().of_material(hit.material_id).empty()) {
@@ -22,8 +23,14 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
     if (sp.backfacing) {
         sp.ng = -sp.ng;
         sp.ns = -sp.ns;
+        smooth = -smooth;
     }
     sp.ns = ensure_valid_reflection(sp.ng, wo_world, sp.ns);
+    // Cycles compares the closure normal with sd->N exactly (isequal): any change, by a normal
+    // map or by the bend above, brings in the bump shadowing term.
+    if (!(sp.ns.x == smooth.x && sp.ns.y == smooth.y && sp.ns.z == smooth.z)) {
+        sp.closures.set_smooth_normal(Frame::from_normal(sp.ns).to_local(smooth));
+    }
     WeightedClosure* closures = sp.closures.closures();
     for (uint32_t i = 0; i < sp.closures.count(); ++i) {
         Material& m = closures[i].params;
