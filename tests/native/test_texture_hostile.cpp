@@ -145,23 +145,29 @@ TEST(TextureHostile, ColourConversionOverflowIsReplaced) {
     stratum_scene_destroy(loaded);
 }
 
-// sRGB images stay encoded and decode after interpolation (Cycles' compress_as_srgb): an
-// encoded 1e19 decodes beyond FLT_MAX ((1e19 / 1.055)^2.4) and saturates there instead.
-TEST(TextureHostile, SrgbTexelDecodingBeyondFloatMaxSaturates) {
+// sRGB images stay encoded and decode after interpolation (Cycles' compress_as_srgb), yet a
+// texel whose decoding is infinite (1e19: (1e19 / 1.055)^2.4 > FLT_MAX) is not finite in scene
+// linear, so it is replaced and counted like one converted at load; 1e15 decodes to ~1e36, kept.
+TEST(TextureHostile, SrgbTexelDecodingBeyondFloatMaxIsReplaced) {
     EXPECT_TRUE(std::isinf(srgb_to_linear(1e19f)));
-    const std::vector<float> pixels = {1e19f, 0.5f, -0.25f, 1.0f};
+    const std::vector<float> pixels = {1e19f, 0.5f, -0.25f, 1.0f, 1e15f, 0.5f, -0.25f, 1.0f};
     StratumTextureDesc d = describe("sRGB");
     d.pixels = pixels.data();
-    d.width = d.height = 1;
+    d.width = 2;
+    d.height = 1;
     d.channels = 4;
     const auto texture = load_texture(d);
     EXPECT_TRUE(texture->srgb_encoded);
-    EXPECT_EQ(texture->replaced_texels, 0u);
-    const Rgba v = texture_lookup(*texture, {0.5f, 0.5f});
-    EXPECT_EQ(v.r, std::numeric_limits<float>::max());
-    EXPECT_FLOAT_EQ(v.g, srgb_to_linear(0.5f));
-    EXPECT_EQ(v.b, 0.0f);  // negative encoded values decode to 0, as in Cycles
-    EXPECT_EQ(v.a, 1.0f);
+    EXPECT_EQ(texture->replaced_texels, 1u);
+    const Rgba replaced = texture_lookup(*texture, {0.25f, 0.5f});
+    EXPECT_EQ(replaced.r, 0.0f);
+    EXPECT_EQ(replaced.a, 0.0f);
+    const Rgba kept = texture_lookup(*texture, {0.75f, 0.5f});
+    EXPECT_FLOAT_EQ(kept.r, srgb_to_linear(1e15f));
+    EXPECT_TRUE(std::isfinite(kept.r));
+    EXPECT_FLOAT_EQ(kept.g, srgb_to_linear(0.5f));
+    EXPECT_EQ(kept.b, 0.0f);  // negative encoded values decode to 0, as in Cycles
+    EXPECT_EQ(kept.a, 1.0f);
 }
 
 TEST(TextureHostile, NonFiniteTexelsOfAFileAreReplaced) {

@@ -59,7 +59,8 @@ void accumulate(Rgba* sum, Rgba v, float w) {
 }
 
 // An interpolated texel of an sRGB-encoded texture decoded to linear (alpha is not encoded).
-// A float image may hold encoded values whose decoding exceeds FLT_MAX (1e19): they saturate.
+// Texels whose decoding is infinite were replaced at load (texture_building.h); the rounding of
+// bilinear weights can still carry a value an ulp past the last one that decodes finite: saturate.
 Rgba decoded(const Texture& t, Rgba v) {
     if (!t.srgb_encoded) return v;
     const auto decode = [](float c) {

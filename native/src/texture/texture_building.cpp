@@ -55,6 +55,21 @@ bool finite_texel(const float* rgba) {
            std::isfinite(rgba[3]);
 }
 
+// An sRGB-encoded channel whose decoding ((c + 0.055) / 1.055)^2.4 overflows: c above ~1.2e16,
+// only in float images. Its scene-linear value is infinite, so it is a texel not finite after
+// conversion although it is decoded only at lookup; the comparison keeps pow off the common path.
+bool decodes_to_infinity(float encoded) {
+    return encoded > 1e15f && !std::isfinite(srgb_texel_to_linear(encoded));
+}
+
+// Whether the texel's scene-linear value is finite: its stored value when it is scene linear, its
+// decoded value when it is still sRGB-encoded.
+bool finite_scene_linear(const float* rgba, bool srgb_encoded) {
+    if (!finite_texel(rgba)) return false;
+    return !srgb_encoded ||
+           !(decodes_to_infinity(rgba[0]) || decodes_to_infinity(rgba[1]) || decodes_to_infinity(rgba[2]));
+}
+
 // Marks the row's texels that are not finite as stored: an OCIO transform may turn a NaN into a
 // number (Blender 3.4's sRGB gives 0), which Cycles then renders, but the file still held it.
 void mark_non_finite(const float* rgba, uint32_t width, std::vector<uint8_t>& stored_non_finite) {
@@ -62,10 +77,11 @@ void mark_non_finite(const float* rgba, uint32_t width, std::vector<uint8_t>& st
 }
 
 // Zeroes the texels not finite after conversion (Cycles' rule); counts those and the ones marked.
-uint64_t replace_non_finite(float* rgba, uint32_t width, const std::vector<uint8_t>& stored_non_finite) {
+uint64_t replace_non_finite(float* rgba, uint32_t width, const std::vector<uint8_t>& stored_non_finite,
+                            bool srgb_encoded) {
     uint64_t replaced = 0;
     for (uint32_t x = 0; x < width; ++x, rgba += 4) {
-        const bool converted_finite = finite_texel(rgba);
+        const bool converted_finite = finite_scene_linear(rgba, srgb_encoded);
         if (!converted_finite) rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.0f;
         replaced += !converted_finite || stored_non_finite[x];
     }
@@ -73,7 +89,8 @@ uint64_t replace_non_finite(float* rgba, uint32_t width, const std::vector<uint8
 }
 
 template <typename T>
-uint64_t convert_rows(const StoredImage& image, const SceneLinearConversion& conversion, float* out) {
+uint64_t convert_rows(const StoredImage& image, const SceneLinearConversion& conversion, bool srgb_encoded,
+                      float* out) {
     const ChannelMap map = channel_map(image);
     const uint32_t width = image.width, height = image.height;
     const size_t stride = static_cast<size_t>(width) * map.count;
@@ -97,7 +114,7 @@ uint64_t convert_rows(const StoredImage& image, const SceneLinearConversion& con
                     expand_row(stored + src_row * stride, map, width, one, row_rgba.data());
                     conversion.apply(row_rgba.data(), dst, width);
                 }
-                replaced += replace_non_finite(dst, width, stored_non_finite);
+                replaced += replace_non_finite(dst, width, stored_non_finite, srgb_encoded);
             }
             return replaced;
         },
@@ -115,13 +132,16 @@ SceneLinearTexels scene_linear_texels(const StoredImage& image,
     texels.rgba.resize(static_cast<size_t>(image.width) * image.height * 4);
     switch (image.format) {
         case StoredFormat::U8:
-            texels.replaced_texels = convert_rows<uint8_t>(image, conversion, texels.rgba.data());
+            texels.replaced_texels =
+                convert_rows<uint8_t>(image, conversion, texels.srgb_encoded, texels.rgba.data());
             break;
         case StoredFormat::U16:
-            texels.replaced_texels = convert_rows<uint16_t>(image, conversion, texels.rgba.data());
+            texels.replaced_texels =
+                convert_rows<uint16_t>(image, conversion, texels.srgb_encoded, texels.rgba.data());
             break;
         case StoredFormat::F32:
-            texels.replaced_texels = convert_rows<float>(image, conversion, texels.rgba.data());
+            texels.replaced_texels =
+                convert_rows<float>(image, conversion, texels.srgb_encoded, texels.rgba.data());
             break;
     }
     return texels;

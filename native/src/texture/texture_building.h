@@ -12,7 +12,8 @@
 // |              | NODE_IMAGE_COMPRESS_AS_SRGB): interpolating encoded values gives darker |
 // |              | edges between texels than interpolating linear ones                     |
 // | non-finite   | a texel with any NaN or infinite channel after conversion (e.g. an sRGB  |
-// |              | float of 1e19 decodes beyond FLT_MAX) becomes (0, 0, 0, 0): Cycles'     |
+// |              | float of 1e19 decodes beyond FLT_MAX, also when the decoding is left to |
+// |              | the lookup) becomes (0, 0, 0, 0): Cycles'                               |
 // |              | rule, scene/image.cpp "Make sure we don't have buggy values" (Cycles    |
 // |              | 3.4-5.0), applied after its colour conversion too. Counted: those and   |
 // |              | the texels not finite as stored, which a conversion may have turned    |
