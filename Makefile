@@ -24,7 +24,8 @@ build: setup
 	# Copy then rename: overwriting the file in place would crash a process that has it loaded.
 	cp -f $(BUILD)/libstratum.so $(LIB).tmp && mv -f $(LIB).tmp $(LIB)
 
-test: build lint test-native test-python test-blender sanitize fuzz-smoke
+# corpus-asan after sanitize, which builds the binary it replays with.
+test: build lint test-native test-python test-blender sanitize corpus-asan fuzz-smoke
 
 test-native: build
 	cd $(BUILD) && ctest --output-on-failure -j2
