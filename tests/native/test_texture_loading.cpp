@@ -24,8 +24,22 @@ using namespace stratum;
 namespace {
 
 const std::string kBlender34Config = "/usr/share/blender/datafiles/colormanagement/config.ocio";
-const std::string kBlender50Config =
-    "/work/main/.venv/lib/python3.11/site-packages/bpy/5.0/datafiles/colormanagement/config.ocio";
+// The bpy wheel's config in the checkout's .venv (make setup installs it): found by walking
+// .venv/lib/python*/site-packages/bpy/<version>/, so that neither the checkout's path nor the
+// Python and Blender versions are written here. Empty when the wheel is not installed.
+std::string bpy_wheel_config() {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    const fs::path lib = fs::path(STRATUM_SOURCE_DIR) / ".venv" / "lib";
+    for (const auto& python : fs::directory_iterator(lib, ec)) {
+        const fs::path bpy = python.path() / "site-packages" / "bpy";
+        for (const auto& version : fs::directory_iterator(bpy, ec)) {
+            const fs::path config = version.path() / "datafiles" / "colormanagement" / "config.ocio";
+            if (fs::is_regular_file(config, ec)) return config.string();
+        }
+    }
+    return {};
+}
 
 // Writes `pixels` (rows top to bottom, as files store them) with OIIO; returns the path.
 std::string write_image(const std::string& name, int width, int height, int channels,
@@ -234,11 +248,12 @@ TEST(TextureColour, Blender34ConfigSrgbMatchesTheClosedFormAndNonColorIsIdentity
 // OpenColorIO 2.1.2 (Debian 12) cannot read Blender 5.0's version-2.4 config: the built-in
 // names still convert, other names are refused with the reason.
 TEST(TextureColour, UnreadableConfigFallsBackToBuiltinNamesOnly) {
-    if (!std::filesystem::exists(kBlender50Config)) GTEST_SKIP() << "the bpy 5.0 wheel is not installed";
+    const std::string wheel_config = bpy_wheel_config();
+    if (wheel_config.empty()) GTEST_SKIP() << "the bpy wheel is not installed in .venv";
     const std::vector<float> px = {0.5f, 0.5f, 0.5f, 1.0f};
-    const auto t = load_texture(from_pixels(px, 1, 1, 4, "sRGB", kBlender50Config.c_str()));
+    const auto t = load_texture(from_pixels(px, 1, 1, 4, "sRGB", wheel_config.c_str()));
     EXPECT_FLOAT_EQ(texture_lookup(*t, {0.5f, 0.5f}).r, srgb_to_linear(0.5f));
-    const auto [status, message] = add_texture(from_pixels(px, 1, 1, 4, "ACEScg", kBlender50Config.c_str()));
+    const auto [status, message] = add_texture(from_pixels(px, 1, 1, 4, "ACEScg", wheel_config.c_str()));
     EXPECT_EQ(status, STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(message.find("'ACEScg'"), std::string::npos) << message;
     EXPECT_NE(message.find("cannot read config"), std::string::npos) << message;
