@@ -200,13 +200,16 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             self._progressive(renderer, width, height)
 
     def _progressive(self, renderer: native.Renderer, width: int, height: int) -> None:
+        started = time.perf_counter()
+        self.update_stats("", "Building BVH / starting")
+        # Started before Blender's result and the pixel buffer are allocated: a render the
+        # renderer refuses (a film beyond memory, 65536 x 20000) must not get them first, each
+        # as large as the image, which the OOM killer would have ended Blender for.
+        renderer.start()
         writer = PixelWriter(width, height)
         result = self.begin_result(0, 0, width, height)
         try:
             render_pass = combined_pass(result)
-            started = time.perf_counter()
-            self.update_stats("", "Building BVH / starting")
-            renderer.start()
             # What this render cannot show (the estimator's limits at start; skipped objects and
             # dropped samples as the render learns them): warnings, the render goes on.
             reported: set[str] = set()

@@ -318,3 +318,36 @@ TEST(HostileScenes, DroppedSamplesAreReported) {
     EXPECT_NE(out.notices.find("samples were not finite"), std::string::npos) << out.notices;
     stratum_scene_destroy(scene);
 }
+
+// The film is allocated for the rendered region: a 65536 x 65536 frame (Blender's largest) needs
+// 208 GiB of film and is refused before allocating, naming the size, where Linux's overcommit
+// would have granted part of it and the OOM killer ended the host; an 8 x 8 border of the same
+// frame renders.
+TEST(HostileScenes, FilmBeyondMemoryIsRefusedNamingTheSize) {
+    uint32_t mesh = 0;
+    StratumScene* scene = quad_scene(&mesh);
+    stratum_scene_add_instance(scene, mesh, kIdentity);
+    const RenderOutput out = render(scene, Settings{{"width", 65536}, {"height", 65536}, {"samples", 1}});
+    EXPECT_TRUE(out.rgba.empty());
+    EXPECT_NE(out.error.find("65536 x 65536 pixel render needs"), std::string::npos) << out.error;
+    EXPECT_NE(out.error.find("for its film"), std::string::npos) << out.error;
+
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    for (const auto& [name, value] : {std::pair{"width", 65536},
+                                      {"height", 65536},
+                                      {"samples", 1},
+                                      {"crop_x", 32768},
+                                      {"crop_y", 32768},
+                                      {"crop_width", 8},
+                                      {"crop_height", 8}})
+        ASSERT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK) << name;
+    ASSERT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
+    int32_t done = 0;
+    while (!done) stratum_renderer_wait(r, 1000, &done);
+    std::vector<float> rgba(8 * 8 * 4);
+    EXPECT_EQ(stratum_renderer_read_pixels(r, rgba.data(), rgba.size()), STRATUM_OK) << stratum_last_error();
+    EXPECT_TRUE(all_finite(rgba));
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(scene);
+}

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "core/memory_budget.h"
 #include "integrators/integrator.h"
 #include "integrators/light_tracer.h"
 #include "render/pixel_filter.h"
@@ -89,9 +90,20 @@ std::string Renderer::start() {
     height_ = region.height;
     // Work per sample index: one camera sample per pixel of the region, plus, when light
     // tracing, one particle per pixel of the full frame.
+    const bool light_tracing = dynamic_cast<const LightTracer*>(integrator.get()) != nullptr;
     work_per_sample_ = static_cast<double>(width_) * height_;
-    if (dynamic_cast<const LightTracer*>(integrator.get()))
-        work_per_sample_ += static_cast<double>(settings_.width) * settings_.height;
+    if (light_tracing) work_per_sample_ += static_cast<double>(settings_.width) * settings_.height;
+    // The film per pixel: the image (RGBA floats) and, while rendering, the sums of run() (radiance
+    // and alpha in double, a sample count, the light tracer's splats). A 65536 x 20000 render asks
+    // for 63.5 GiB: refused here, naming the size, rather than granted by overcommit and OOM-killed.
+    const double film_bytes =
+        static_cast<double>(width_) * height_ *
+        static_cast<double>(4 * sizeof(float) + sizeof(RadianceSum) + sizeof(double) + sizeof(uint32_t) +
+                            (light_tracing ? 3 * sizeof(double) : 0));
+    if (film_bytes > memory_budget_bytes())
+        return "a " + std::to_string(width_) + " x " + std::to_string(height_) + " pixel render needs " +
+               gib(film_bytes) + " for its film, more than half of this machine's " +
+               gib(physical_memory_bytes()) + " of memory";
     image_.assign(static_cast<size_t>(width_) * height_ * 4, 0.0f);
     cancel_.store(false);
     done_.store(false);

@@ -11,6 +11,8 @@
 #include <new>
 #include <system_error>
 
+#include "core/memory_budget.h"
+
 namespace stratum {
 
 namespace {
@@ -20,12 +22,6 @@ int alpha_channel_of(const OIIO::ImageSpec& spec) {
     if (spec.nchannels == 2) return 1;
     if (spec.nchannels >= 4) return 3;
     return -1;
-}
-
-std::string gib(double bytes) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.1f GiB", bytes / (1024.0 * 1024.0 * 1024.0));
-    return text;
 }
 
 // Reads the first subimage of an opened input; `what` names the image in messages.
@@ -108,10 +104,7 @@ void check_decode_memory(const std::string& what, uint64_t width, uint64_t heigh
     // Sides are at most 2^31 (OIIO's int), so the products below stay under 2^64 / 16.
     const double texels = static_cast<double>(width) * static_cast<double>(height);
     const double needed = texels * static_cast<double>(channels * bytes_per_channel + 4 * sizeof(float));
-    const long pages = sysconf(_SC_PHYS_PAGES), page_size = sysconf(_SC_PAGE_SIZE);
-    const double budget = pages > 0 && page_size > 0
-                              ? 0.5 * static_cast<double>(pages) * static_cast<double>(page_size)
-                              : 4.0 * (1u << 30);
+    const double budget = memory_budget_bytes();
     if (needed > budget) {
         throw ImageReadError("image '" + what + "' is " + std::to_string(width) + " x " +
                              std::to_string(height) + " with " + std::to_string(channels) +

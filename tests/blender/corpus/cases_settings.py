@@ -4,7 +4,7 @@ widest pixel filter, the largest seed, the shortest AO distance."""
 
 from __future__ import annotations
 
-from .case import case, clean, lit_centre, survive
+from .case import case, clean, error, lit_centre, survive
 from .stage import Stage
 
 
@@ -53,6 +53,32 @@ def set_resolution_65536_wide(s: Stage) -> None:
     s.base()
     r = s.scene.render
     r.resolution_x, r.resolution_y = 65536, 4
+    s.scene.stratum.samples = 1
+
+
+# Blender's largest frame: the film would need 208 GiB. Refused by the renderer before Blender's
+# result or the add-on's pixel buffer is allocated (65536 x 20000 was OOM-killed before); a
+# border of it renders (set_border_of_largest_frame).
+@case("set_resolution_beyond_memory", "settings",
+      "a 65536x65536 image (Blender's largest; its film needs more than the machine has)",
+      error(words=("65536 x 65536", "film", "memory")))
+def set_resolution_beyond_memory(s: Stage) -> None:
+    s.base()
+    r = s.scene.render
+    r.resolution_x, r.resolution_y, r.resolution_percentage = 65536, 65536, 100
+    s.scene.stratum.samples = 1
+
+
+@case("set_border_of_largest_frame", "settings",
+      "an 8x8 border, cropped to, of a 65536x65536 frame (the film is the border's)",
+      clean(quiet=True), size=(8, 8))
+def set_border_of_largest_frame(s: Stage) -> None:
+    s.base()
+    r = s.scene.render
+    r.resolution_x, r.resolution_y, r.resolution_percentage = 65536, 65536, 100
+    r.use_border, r.use_crop_to_border = True, True
+    r.border_min_x, r.border_max_x = 0.5, 0.5 + 8 / 65536
+    r.border_min_y, r.border_max_y = 0.5, 0.5 + 8 / 65536
     s.scene.stratum.samples = 1
 
 
