@@ -193,6 +193,29 @@ TEST(TextureHostile, NonFiniteTexelsOfAFileAreReplaced) {
     }
 }
 
+// A 66-byte in-memory BMP whose rows claim 218103811 pixels (2 rows, 24 bits): its texels alone
+// fit the budget (8 GiB), but OIIO's read_scanlines converts through a buffer of 256 native rows
+// whatever the height, 167 GB: counted in the budget and refused before reading (the fuzzer
+// found the abort; regressions/texture-bmp-row-of-218-million-pixels).
+TEST(TextureHostile, ReaderBufferOfVeryWideRowsIsCountedInTheBudget) {
+    const unsigned char bmp[66] = {0x42, 0x4d, 0x4e, 0,    0,    0,    0,    0,    0,    0, 0x36,
+                                   0,    0,    0,  // file header, pixels at 54
+                                   0x28, 0,    0,    0,    0x03, 0,    0,    0x0d, 0x02, 0, 0,
+                                   0,    0x01, 0,  // info header: 0x0d000003 x 2, 1 plane
+                                   0x18, 0,    0,    0,    0,    0,    0x06, 0,    0,    0, 0,
+                                   0,    0,    0,    0,    0,  // 24 bits, no compression
+                                   0,    0,    0,    0,    0,    0,    0,    0,    0,    0, 0xaa,
+                                   0x80, 0x55, 0,    0xff, 0xd5, 0x80, 0x55, 0x2b, 0,    0, 0};
+    StratumTextureDesc d = describe("Non-Color");
+    d.file_data = bmp;
+    d.file_size = sizeof bmp;
+    d.file_name = "image.bmp";
+    const Added a = add(d);
+    EXPECT_EQ(a.status, STRATUM_ERROR_IO);
+    EXPECT_NE(a.message.find("218103811 x 2"), std::string::npos) << a.message;
+    EXPECT_NE(a.message.find("memory"), std::string::npos) << a.message;
+}
+
 // 65535 x 65535 RGB decodes to 65535^2 * (3 + 16) bytes = 76 GiB: refused from the header,
 // before any pixel memory, with a message naming the image (this test runs under ASan, whose
 // allocator would abort on a 64 GiB request).

@@ -5,6 +5,8 @@
 #include <stdlib.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -22,6 +24,19 @@ int alpha_channel_of(const OIIO::ImageSpec& spec) {
     if (spec.nchannels == 2) return 1;
     if (spec.nchannels >= 4) return 3;
     return -1;
+}
+
+// What ImageInput::read_scanlines (OIIO 2.4, imageinput.cpp) allocates when it converts: a
+// buffer of max(2^26 / scanline bytes, oiio_read_chunk = 256) native scanlines, rounded up to
+// a multiple of 64, whatever the image's height. A 66-byte BMP claiming rows of 218 million
+// pixels (2 rows) made it ask for 167 GB (found by the fuzzer). An upper bound: the reader may
+// read in place instead.
+double oiio_conversion_buffer_bytes(const OIIO::ImageSpec& spec) {
+    const double scanline = static_cast<double>(spec.scanline_bytes(true));
+    if (scanline <= 0.0) return 0.0;
+    const double rows =
+        std::ceil(std::max(std::floor(static_cast<double>(1 << 26) / scanline), 256.0) / 64.0) * 64.0;
+    return rows * scanline;
 }
 
 // Reads the first subimage of an opened input; `what` names the image in messages.
@@ -49,7 +64,8 @@ StoredImage read_opened(OIIO::ImageInput& in, const std::string& what) {
     const OIIO::TypeDesc type = image.format == StoredFormat::U8    ? OIIO::TypeDesc::UINT8
                                 : image.format == StoredFormat::U16 ? OIIO::TypeDesc::UINT16
                                                                     : OIIO::TypeDesc::FLOAT;
-    check_decode_memory(what, image.width, image.height, static_cast<uint64_t>(spec.nchannels), type.size());
+    check_decode_memory(what, image.width, image.height, static_cast<uint64_t>(spec.nchannels), type.size(),
+                        oiio_conversion_buffer_bytes(spec));
     try {
         image.storage.resize(static_cast<size_t>(image.width) * image.height * spec.nchannels * type.size());
     } catch (const std::bad_alloc&) {
@@ -100,10 +116,11 @@ private:
 }  // namespace
 
 void check_decode_memory(const std::string& what, uint64_t width, uint64_t height, uint64_t channels,
-                         uint64_t bytes_per_channel) {
+                         uint64_t bytes_per_channel, double reader_scratch_bytes) {
     // Sides are at most 2^31 (OIIO's int), so the products below stay under 2^64 / 16.
     const double texels = static_cast<double>(width) * static_cast<double>(height);
-    const double needed = texels * static_cast<double>(channels * bytes_per_channel + 4 * sizeof(float));
+    const double needed =
+        texels * static_cast<double>(channels * bytes_per_channel + 4 * sizeof(float)) + reader_scratch_bytes;
     const double budget = memory_budget_bytes();
     if (needed > budget) {
         throw ImageReadError("image '" + what + "' is " + std::to_string(width) + " x " +

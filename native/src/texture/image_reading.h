@@ -55,9 +55,10 @@ struct StoredImage {
 };
 
 // Throws ImageReadError when decoding a width x height image of `channels` channels of
-// `bytes_per_channel` bytes into a float RGBA texture needs more than the memory budget.
+// `bytes_per_channel` bytes into a float RGBA texture, plus `reader_scratch_bytes` the image
+// reader allocates on the way, needs more than the memory budget.
 void check_decode_memory(const std::string& what, uint64_t width, uint64_t height, uint64_t channels,
-                         uint64_t bytes_per_channel);
+                         uint64_t bytes_per_channel, double reader_scratch_bytes = 0.0);
 
 StoredImage read_image_file(const std::string& path);
 // `file_name` (e.g. Blender's packed file's name) chooses the reader by its extension.
