@@ -29,20 +29,18 @@ export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0}
 # after `end`); a run that ends before it printed INITED crashed on a corpus input, which every
 # new run would find again, so the worker stops there.
 worker() {
-  local index=$1 end=$2 log=$3 run=0 remaining run_log
-  run_log=$(mktemp)
+  local index=$1 end=$2 log=$3 run=0 remaining lines
   : > "$log"
   while remaining=$((end - $(date +%s))); [ "$remaining" -gt 0 ]; do
+    lines=$(wc -l < "$log")
     "$binary" "${common[@]}" -max_total_time="$remaining" -seed=$((1000 * index + run + 1)) \
-      "$out/corpus" native/fuzz/corpus > "$run_log" 2>&1 || true
-    cat "$run_log" >> "$log"
+      "$out/corpus" native/fuzz/corpus >> "$log" 2>&1 || true
     run=$((run + 1))
-    if ! grep -qE '^#[0-9]+[[:space:]]+INITED' "$run_log"; then
+    if ! tail -n "+$((lines + 1))" "$log" | grep -qE '^#[0-9]+[[:space:]]+INITED'; then
       echo "fuzz worker $index: run $run ended before the corpus was loaded (a crash in the corpus)" >> "$log"
       break
     fi
   done
-  rm -f "$run_log"
 }
 
 status=0
