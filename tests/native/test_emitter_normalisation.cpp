@@ -32,7 +32,7 @@
 
 #include "api/scene_handle.h"
 #include "render_helpers.h"
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 
 using namespace stratum_test;
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "render_helpers.h"
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 
 using namespace stratum_test;
 

@@ -9,7 +9,7 @@
 
 #include "accel/embree_scene.h"
 #include "render_helpers.h"
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 
 using namespace stratum;
 

@@ -14,7 +14,7 @@
 #include <memory>
 
 #include "integrators/path_integrator.h"
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 
 namespace stratum {
 namespace {

@@ -7,7 +7,7 @@
 #include <cmath>
 #include <vector>
 
-#include "render/pixel_filter.h"
+#include "film/pixel_filter.h"
 
 using namespace stratum;
 

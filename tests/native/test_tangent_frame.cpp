@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "scene/render_scene.h"
+#include "render_scene/material_texturing.h"
+#include "render_scene/render_scene.h"
 #include "stratum/stratum.h"
-#include "texture/material_texturing.h"
 
 using namespace stratum;
 

@@ -10,8 +10,8 @@
 #include <memory>
 #include <string>
 
+#include "render_scene/material_texturing.h"
 #include "stratum/stratum.h"
-#include "texture/material_texturing.h"
 
 using namespace stratum;
 

@@ -13,7 +13,7 @@
 
 #include "integrators/path_integrator.h"
 #include "integrators/valid_reflection_normal.h"
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 
 namespace stratum {
 namespace {

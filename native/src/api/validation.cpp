@@ -7,8 +7,15 @@
 #include <type_traits>
 
 #include "scene/scene_limits.h"
+#include "scene/visibility.h"
 
 namespace stratum {
+
+// The core's visibility bits are the ABI's.
+static_assert(kVisibleCamera == STRATUM_VISIBLE_CAMERA && kVisibleDiffuse == STRATUM_VISIBLE_DIFFUSE &&
+              kVisibleGlossy == STRATUM_VISIBLE_GLOSSY &&
+              kVisibleTransmission == STRATUM_VISIBLE_TRANSMISSION &&
+              kVisibleShadow == STRATUM_VISIBLE_SHADOW && kVisibleAll == STRATUM_VISIBLE_ALL);
 
 namespace {
 

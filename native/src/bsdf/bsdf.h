@@ -24,42 +24,9 @@
 #include "bsdf/bump_shadowing.h"
 #include "core/math.h"
 #include "sampling/hemisphere.h"
+#include "scene/material.h"
 
 namespace stratum {
-
-enum class MaterialModel : int32_t {
-    Diffuse = 0,
-    PrincipledV1 = 1,
-    PrincipledV2 = 2,
-    Emission = 3,
-    Glossy = 4,
-    Glass = 5,
-    Transparent = 6,
-    Holdout = 7
-};
-
-// The Principled node's microfacet distribution (Blender's `distribution`): single-scatter GGX,
-// or GGX with multiple-scattering energy compensation (Cycles 4.x "Multiscatter GGX").
-enum class MicrofacetDistribution : int32_t { Ggx = 0, MultiscatterGgx = 1 };
-
-struct Material {
-    MaterialModel model;
-    Rgb base_color;
-    float roughness;
-    float metallic;
-    float specular;
-    float ior;
-    Rgb emission;
-    MicrofacetDistribution distribution;
-    // Principled transmission and coat (StratumMaterialDesc's appended fields; 0 = none).
-    float transmission = 0.0f;
-    float coat = 0.0f;
-    float coat_roughness = 0.0f;
-    float coat_ior = 1.5f;
-    Rgb coat_tint{1.0f};
-    // The shadowing term where the shading point's normal was perturbed (bsdf/bump_shadowing.h).
-    BumpShadowing bump_shadowing = BumpShadowing::None;
-};
 
 // What kind of scattering produced a direction: it selects the ray visibility bit of the next
 // ray, the light visibility bit NEE honours, and whether the vertex counts as a bounce.

@@ -19,16 +19,9 @@
 #include <cstdint>
 
 #include "core/math.h"
+#include "scene/material.h"
 
 namespace stratum {
-
-enum class BumpShadowing : int32_t {
-    None = 0,
-    Chiang = 1,
-    ChiangUnsmoothed = 2,
-    Conty = 3,
-    ContyUnsmoothed = 4
-};
 
 // What one closure's value is multiplied by: `all` for every lobe, `diffuse` for its diffuse
 // lobes on top. Conty's side test holds for every lobe when a direction is evaluated, but only

@@ -2,7 +2,7 @@
 
 #include "integrators/ray_offset.h"
 #include "sampling/dimensions.h"
-#include "stratum/stratum.h"
+#include "scene/visibility.h"
 
 namespace stratum {
 
@@ -12,7 +12,7 @@ RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& s
     SurfaceHit hit;
     ++rays;
     if (!scene.intersect(camera_ray.origin, camera_ray.direction, camera_ray.t_min, camera_ray.t_max, &hit,
-                         {camera_ray.time, STRATUM_VISIBLE_CAMERA})) {
+                         {camera_ray.time, kVisibleCamera})) {
         return {Rgb(1.0f)};
     }
     const Vec3 wo = -camera_ray.direction;
@@ -36,7 +36,7 @@ RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& s
     if (!occluded) {
         ++rays;
         occluded = scene.occluded(offset_ray_origin(hit.position, ng), wi, 0.0f, settings_.ao_distance,
-                                  {camera_ray.time, STRATUM_VISIBLE_SHADOW});
+                                  {camera_ray.time, kVisibleShadow});
     }
     if (!occluded) return {Rgb(1.0f)};
     return {Rgb(1.0f - weight)};

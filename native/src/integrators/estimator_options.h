@@ -24,14 +24,13 @@
 #include <span>
 #include <string_view>
 
+#include "lights/light_selection.h"
+
 namespace stratum {
 
 enum class LightSampling : uint8_t { Bsdf, Nee, Mis };
 enum class MisHeuristic : uint8_t { Balance, Power, Maximum };
 enum class RouletteMode : uint8_t { Off, Throughput, Albedo };
-enum class LightSelection : uint8_t { Mixed, Power, Uniform };
-inline constexpr uint32_t kLightSelectionModes = 3;
-enum class TriangleSampling : uint8_t { SolidAngle, Area };
 
 // The accepted names of each setting, default first.
 std::span<const std::string_view> light_sampling_names();

@@ -10,11 +10,11 @@
 #include <vector>
 
 #include "integrators/estimator_options.h"
+#include "render_scene/render_scene.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler.h"
 #include "sampling/sampler_registry.h"
 #include "scene/camera.h"
-#include "scene/render_scene.h"
 #include "scene/scene.h"
 
 namespace stratum {

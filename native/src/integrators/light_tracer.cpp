@@ -9,14 +9,13 @@
 #include "integrators/transparent_shadow.h"
 #include "sampling/dimensions.h"
 #include "sampling/warps.h"
-#include "stratum/stratum.h"
+#include "scene/visibility.h"
 
 namespace stratum {
 
 namespace {
 
-constexpr uint32_t kNonCameraRays =
-    STRATUM_VISIBLE_DIFFUSE | STRATUM_VISIBLE_GLOSSY | STRATUM_VISIBLE_TRANSMISSION | STRATUM_VISIBLE_SHADOW;
+constexpr uint32_t kNonCameraRays = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
 
 // Veach 1997 eq. 5.19: the adjoint BSDF with shading normals is f(ω_l, ω_o) |ω_l·n_s| |ω_o·n_g|
 // / (|ω_l·n_g| |ω_o·n_s|) times the radiance form's |ω_o·n_s|; this returns the ratio (1 where
@@ -95,13 +94,13 @@ RadianceSample LightTracer::radiance(const RenderScene& scene, const Sampler& sa
     Vec3 origin = camera_ray.origin;
     const Vec3 dir = camera_ray.direction;
     float t_min = camera_ray.t_min, t_max = camera_ray.t_max;
-    const RayQuery query{camera_ray.time, STRATUM_VISIBLE_CAMERA};
+    const RayQuery query{camera_ray.time, kVisibleCamera};
     const LightSet& lights = scene.lights();
     for (uint32_t passed = 0;; ++passed) {
         SurfaceHit hit;
         ++rays;
         const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
-        L += beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, STRATUM_VISIBLE_CAMERA);
+        L += beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, kVisibleCamera);
         if (!found) {
             if (settings_.film_transparent) {
                 transparency += beta.average();
@@ -181,7 +180,7 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
         const uint32_t kinds = depth == 0 ? first_kinds : ClosureSet::kAllKinds;
 
         // Camera connection (6.8–6.9): the scattering of this vertex toward the lens.
-        if (closures.has_non_delta() && !hit.holdout && (hit.visibility & STRATUM_VISIBLE_CAMERA) &&
+        if (closures.has_non_delta() && !hit.holdout && (hit.visibility & kVisibleCamera) &&
             depth <= settings_.max_bounces && kinds != 0) {
             const Vec2 lens = film.camera.has_aperture()
                                   ? sampler.get_2d(particle, bounce_dimension(vertex, kDimConnectionLens))
@@ -199,7 +198,7 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
                         const Vec3 o = offset_ray_origin(hit.position, side > 0.0f ? sp.ng : -sp.ng);
                         const float t_max = std::max(0.0f, c.unclipped - offset_distance(hit.position));
                         const Rgb transmittance =
-                            shadow_transmittance(scene, o, c.to_camera, t_max, {time, STRATUM_VISIBLE_CAMERA},
+                            shadow_transmittance(scene, o, c.to_camera, t_max, {time, kVisibleCamera},
                                                  max_passes - std::min(max_passes, transparent), rays);
                         splat(film, c.film, value * transmittance, splats);
                     }

@@ -53,10 +53,10 @@
 
 #include <vector>
 
+#include "film/pixel_filter.h"
+#include "film/pixel_region.h"
 #include "integrators/integrator.h"
 #include "lights/emission_sample.h"
-#include "render/pixel_filter.h"
-#include "render/render_settings.h"
 
 namespace stratum {
 

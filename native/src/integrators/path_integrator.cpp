@@ -5,7 +5,7 @@
 #include "integrators/shading_point.h"
 #include "integrators/transparent_shadow.h"
 #include "sampling/dimensions.h"
-#include "stratum/stratum.h"
+#include "scene/visibility.h"
 
 namespace stratum {
 
@@ -47,7 +47,7 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
     float t_min = camera_ray.t_min, t_max = camera_ray.t_max;
     float scatter_pdf = 0.0f;  // solid-angle pdf of the last scattering; 0 for camera and delta rays
     Vec3 scatter_origin, scatter_normal;  // the last scattering vertex and its shading normal
-    RayQuery query{camera_ray.time, STRATUM_VISIBLE_CAMERA};
+    RayQuery query{camera_ray.time, kVisibleCamera};
     // Cycles' PATH_RAY_TRANSPARENT_BACKGROUND: only camera and transparent vertices so far.
     bool camera_visible_path = true;
     uint32_t bounce = 0, transparent_bounce = 0;
@@ -68,10 +68,10 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         // sample that could have found the same direction (delta scattering: NEE could not).
         {
             float lamp_pdf = 0.0f, lamp_t = 0.0f;
-            const Rgb lamp = lights.lamp_radiance(
-                origin, dir, found ? hit.t : t_max,
-                camera_visible_path ? uint32_t{STRATUM_VISIBLE_CAMERA} : query.visibility, &lamp_pdf, &lamp_t,
-                selection);
+            const Rgb lamp =
+                lights.lamp_radiance(origin, dir, found ? hit.t : t_max,
+                                     camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility,
+                                     &lamp_pdf, &lamp_t, selection);
             if (!lamp.is_black()) {
                 float w = 1.0f;
                 if (!camera_visible_path && scatter_pdf > 0.0f) {
@@ -155,12 +155,11 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
                                                  ? ShadowRay{ls.wi, kInfinity}
                                                  : shadow_ray_to(o, hit.position + ls.wi * ls.distance);
                     Rgb transmittance(1.0f);
-                    if (ls.visibility & STRATUM_VISIBLE_SHADOW) {
+                    if (ls.visibility & kVisibleShadow) {
                         const uint32_t left =
                             max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
-                        transmittance =
-                            shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
-                                                 {query.time, STRATUM_VISIBLE_SHADOW}, left, rays);
+                        transmittance = shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
+                                                             {query.time, kVisibleShadow}, left, rays);
                     }
                     if (!transmittance.is_black()) {
                         const float w =

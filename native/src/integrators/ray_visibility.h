@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "bsdf/closure_set.h"
-#include "stratum/stratum.h"
+#include "scene/visibility.h"
 
 namespace stratum {
 
@@ -14,11 +14,11 @@ namespace stratum {
 inline uint32_t ray_visibility(ScatterKind kind, uint32_t previous) {
     switch (kind) {
         case ScatterKind::Diffuse:
-            return STRATUM_VISIBLE_DIFFUSE;
+            return kVisibleDiffuse;
         case ScatterKind::Glossy:
-            return STRATUM_VISIBLE_GLOSSY;
+            return kVisibleGlossy;
         case ScatterKind::Transmission:
-            return STRATUM_VISIBLE_TRANSMISSION;
+            return kVisibleTransmission;
         case ScatterKind::Transparent:
             break;  // a pass-through keeps the kind of the ray that arrived
     }
@@ -28,9 +28,9 @@ inline uint32_t ray_visibility(ScatterKind kind, uint32_t previous) {
 // The closure kinds (scatter_kind_bit) a light with these visibility bits lights directly.
 inline uint32_t lit_kinds(uint32_t light_visibility) {
     uint32_t kinds = 0;
-    if (light_visibility & STRATUM_VISIBLE_DIFFUSE) kinds |= scatter_kind_bit(ScatterKind::Diffuse);
-    if (light_visibility & STRATUM_VISIBLE_GLOSSY) kinds |= scatter_kind_bit(ScatterKind::Glossy);
-    if (light_visibility & STRATUM_VISIBLE_TRANSMISSION) kinds |= scatter_kind_bit(ScatterKind::Transmission);
+    if (light_visibility & kVisibleDiffuse) kinds |= scatter_kind_bit(ScatterKind::Diffuse);
+    if (light_visibility & kVisibleGlossy) kinds |= scatter_kind_bit(ScatterKind::Glossy);
+    if (light_visibility & kVisibleTransmission) kinds |= scatter_kind_bit(ScatterKind::Transmission);
     return kinds;
 }
 

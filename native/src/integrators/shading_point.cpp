@@ -1,7 +1,7 @@
 #include "integrators/shading_point.h"
 
 #include "integrators/valid_reflection_normal.h"
-#include "texture/material_texturing.h"
+#include "render_scene/material_texturing.h"
 
 namespace stratum {
 

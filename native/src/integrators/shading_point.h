@@ -12,7 +12,7 @@
 #pragma once
 
 #include "bsdf/closure_set.h"
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 
 namespace stratum {
 

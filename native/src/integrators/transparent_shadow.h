@@ -12,7 +12,7 @@
 
 #include <cstdint>
 
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 
 namespace stratum {
 

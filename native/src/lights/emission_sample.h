@@ -14,6 +14,7 @@
 #pragma once
 
 #include "core/math.h"
+#include "scene/visibility.h"
 
 namespace stratum {
 
@@ -24,7 +25,7 @@ struct EmissionSample {
     Rgb weight;
     float soft_radius = 0.0f;
     // StratumVisibility bits of the light (set by LightSet::sample_emission).
-    uint32_t visibility = 31;
+    uint32_t visibility = kVisibleAll;
 };
 
 }  // namespace stratum

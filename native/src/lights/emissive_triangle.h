@@ -35,9 +35,9 @@
 #include <optional>
 
 #include "core/math.h"
-#include "integrators/estimator_options.h"
 #include "lights/emission_sample.h"
 #include "lights/light_sample.h"
+#include "lights/light_selection.h"
 #include "sampling/spherical_triangle.h"
 #include "sampling/warps.h"
 

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "core/math.h"
+#include "scene/visibility.h"
 
 namespace stratum {
 
@@ -18,7 +19,7 @@ struct LightSample {
     bool found_by_bsdf_rays;
     // StratumVisibility bits of the light (DIFFUSE / GLOSSY / TRANSMISSION: which vertices it
     // lights; SHADOW: whether occluders block it).
-    uint32_t visibility = 31;
+    uint32_t visibility = kVisibleAll;
 };
 
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();

@@ -18,10 +18,10 @@
 #include <variant>
 #include <vector>
 
-#include "integrators/estimator_options.h"
 #include "lights/area_light.h"
 #include "lights/emissive_triangle.h"
 #include "lights/environment_light.h"
+#include "lights/light_selection.h"
 #include "lights/point_light.h"
 #include "lights/spot_light.h"
 #include "lights/sun_light.h"
@@ -36,7 +36,7 @@ public:
     // `object` groups lights that belong to one scene object (the triangles of one emissive
     // mesh); every Blender lamp is an object of its own. `visibility` (StratumVisibility bits)
     // is copied into every LightSample of the light. Returns the index of the added light.
-    uint32_t add(Light light, uint32_t object, uint32_t visibility = 31);
+    uint32_t add(Light light, uint32_t object, uint32_t visibility = kVisibleAll);
     // scene_radius: radius of a sphere bounding the scene, to give the sun a power.
     void finalize(float scene_radius);
 

@@ -8,10 +8,10 @@
 #include <stdexcept>
 
 #include "integrators/ray_offset.h"
+#include "render_scene/render_scene.h"
 #include "sampling/hash.h"
 #include "sampling/pcg32.h"
 #include "sampling/warps.h"
-#include "scene/render_scene.h"
 
 namespace stratum {
 

@@ -2,8 +2,8 @@
 
 #include <cmath>
 
+#include "film/pixel_filter.h"
 #include "integrators/integrator.h"
-#include "render/pixel_filter.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
 

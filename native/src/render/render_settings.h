@@ -6,6 +6,8 @@
 #include <string>
 #include <string_view>
 
+#include "film/pixel_region.h"
+
 namespace stratum {
 
 struct RenderSettings {
@@ -35,10 +37,6 @@ struct RenderSettings {
     std::string rr_mode = "throughput";
 };
 
-// The rendered region in pixels of the full frame.
-struct PixelRegion {
-    uint32_t x = 0, y = 0, width = 0, height = 0;
-};
 // The region the crop settings select (the whole frame when crop_width = 0), or an error
 // message naming the setting that puts it outside the frame.
 std::string crop_region(const RenderSettings& s, PixelRegion* out);

@@ -10,9 +10,9 @@
 #include <limits>
 
 #include "core/memory_budget.h"
+#include "film/pixel_filter.h"
 #include "integrators/integrator.h"
 #include "integrators/light_tracer.h"
-#include "render/pixel_filter.h"
 #include "sampling/dimensions.h"
 #include "sampling/sampler_registry.h"
 

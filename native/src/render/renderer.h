@@ -24,7 +24,7 @@
 
 #include "integrators/light_tracer.h"
 #include "render/render_settings.h"
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 #include "scene/scene.h"
 
 namespace stratum {

@@ -14,7 +14,7 @@
 #include <string_view>
 
 #include "core/math.h"
-#include "sampling/sampler_registry.h"
+#include "core/registry.h"
 #include "sampling/warps.h"
 
 namespace stratum {

@@ -6,15 +6,10 @@
 #include <span>
 #include <string_view>
 
+#include "core/registry.h"
 #include "sampling/sampler.h"
 
 namespace stratum {
-
-struct RegistryEntry {
-    const char* name;
-    const char* label;
-    const char* description;
-};
 
 struct SamplerEntry {
     RegistryEntry info;

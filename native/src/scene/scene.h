@@ -9,9 +9,10 @@
 #include <optional>
 #include <vector>
 
-#include "bsdf/bsdf.h"
 #include "core/math.h"
 #include "scene/camera.h"
+#include "scene/material.h"
+#include "scene/visibility.h"
 #include "texture/texture.h"
 #include "texture/texture_binding.h"
 
@@ -48,7 +49,7 @@ struct Instance {
     // Appended for issue 5 (StratumInstanceDesc): motion blur, ray visibility, holdout.
     Transform object_to_world_end;  // at shutter close; read when `motion`
     bool motion = false;
-    uint32_t visibility = 31;  // StratumVisibility bits
+    uint32_t visibility = kVisibleAll;  // StratumVisibility bits
     bool holdout = false;
 };
 
@@ -70,8 +71,8 @@ struct LightParams {
     float size_x = 1.0f, size_y = 1.0f;
     float spot_size = kPi, spot_blend = 0.0f;
     Transform light_to_world;
-    uint32_t visibility = 31;  // StratumVisibility bits (0 at the ABI reads as all)
-    float spread = kPi;        // area lights: Cycles' spread, (0, pi]
+    uint32_t visibility = kVisibleAll;  // StratumVisibility bits (0 at the ABI reads as all)
+    float spread = kPi;                 // area lights: Cycles' spread, (0, pi]
 };
 
 // An equirectangular environment image (see lights/environment_light.h for the mapping).

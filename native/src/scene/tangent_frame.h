@@ -4,7 +4,7 @@
 
 namespace stratum {
 
-// The frame a tangent-space normal map perturbs the normal in (texture/material_texturing.h).
+// The frame a tangent-space normal map perturbs the normal in (render_scene/material_texturing.h).
 // With the mesh's MikkTSpace corner tangents (Cycles' svm_node_normal_map): the interpolated,
 // unnormalised object-space tangent T, B = sign cross(N, T) and normal N, each mapped to world
 // space by the instance's normal transform (the cofactor matrix: linear, so mapping T, B and N

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "core/math.h"
-#include "sampling/sampler_registry.h"
+#include "core/registry.h"
 
 namespace stratum {
 

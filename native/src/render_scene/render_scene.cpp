@@ -1,4 +1,4 @@
-#include "scene/render_scene.h"
+#include "render_scene/render_scene.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "texture/material_texturing.h"
+#include "render_scene/material_texturing.h"
 
 #include <algorithm>
 #include <cmath>

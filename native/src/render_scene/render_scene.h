@@ -13,9 +13,9 @@
 
 #include "accel/embree_scene.h"
 #include "lights/light_set.h"
+#include "render_scene/material_texturing.h"
 #include "scene/scene.h"
 #include "scene/tangent_frame.h"
-#include "texture/material_texturing.h"
 
 namespace stratum {
 
@@ -25,13 +25,13 @@ struct SurfaceHit {
     Vec3 geometric_normal;  // unit, oriented as the triangle's winding
     Vec3 shading_normal;    // unit, interpolated corner normal (or the geometric normal)
     const Material* material;
-    uint32_t emissive_light;     // index in the LightSet, or kNoLight
-    Vec2 uv{0.0f, 0.0f};         // interpolated corner_uvs (0,0 if the mesh has none)
-    TangentFrame tangent_frame;  // for normal maps: MikkTSpace corners, else the triangle's dpdu
-    uint32_t material_id = 0;    // scene material id
-    uint32_t visibility = 31;    // the instance's StratumVisibility bits
-    bool holdout = false;        // the instance is a holdout
-    float t = 0.0f;              // distance along the ray (for LightSet::lamp_radiance's t_max)
+    uint32_t emissive_light;            // index in the LightSet, or kNoLight
+    Vec2 uv{0.0f, 0.0f};                // interpolated corner_uvs (0,0 if the mesh has none)
+    TangentFrame tangent_frame;         // for normal maps: MikkTSpace corners, else the triangle's dpdu
+    uint32_t material_id = 0;           // scene material id
+    uint32_t visibility = kVisibleAll;  // the instance's StratumVisibility bits
+    bool holdout = false;               // the instance is a holdout
+    float t = 0.0f;                     // distance along the ray (for LightSet::lamp_radiance's t_max)
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;
@@ -41,7 +41,7 @@ inline constexpr uint32_t kNoLight = 0xffffffffu;
 // visibility: the ray sees an instance iff (visibility & instance visibility) != 0.
 struct RayQuery {
     float time = 0.5f;
-    uint32_t visibility = 31;
+    uint32_t visibility = kVisibleAll;
 };
 
 // Emitted radiance of a material: sum_i weight_i ⊙ emission_i over its closures.

@@ -22,7 +22,7 @@
 // non-unit texels (8-bit quantisation).
 //
 // Tangent frame: a mesh given MikkTSpace corner tangents (Blender's, as Cycles takes them) uses
-// Cycles' frame exactly (TangentFrame in scene/render_scene.h): T and N interpolated and not
+// Cycles' frame exactly (TangentFrame in scene/tangent_frame.h): T and N interpolated and not
 // normalised, B = sign cross(N, T), N' = normalize(c.x T + c.y B + c.z N). Without them, T is
 // the triangle's dpdu (constant per triangle) Gram-Schmidt orthogonalised against the
 // interpolated shading normal and the sign is the triangle's UV orientation (+1 when
