@@ -431,7 +431,8 @@ STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
  *           light_sampling ("mis", "nee", "bsdf"), mis_heuristic ("power", "balance", "max"),
  *           light_selection ("mixed", "power", "uniform"),
  *           triangle_sampling ("solid_angle", "area": how NEE takes a point on an emissive
- *           triangle), rr_mode ("throughput", "albedo", "off")
+ *           triangle), rr_mode ("throughput", "albedo", "off"),
+ *           passes (comma-separated pass names besides Combined: stratum_pass_info)
  * Setting a name of the wrong kind or an unknown name is STRATUM_ERROR_INVALID_ARGUMENT. */
 STRATUM_API StratumStatus stratum_renderer_set_int(StratumRenderer* r, const char* name, int64_t value);
 STRATUM_API StratumStatus stratum_renderer_set_float(StratumRenderer* r, const char* name, double value);
@@ -471,6 +472,17 @@ STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, St
  * region's size), rows bottom to top as Blender's render result. `count` is the number of floats the buffer
  * holds. */
 STRATUM_API StratumStatus stratum_renderer_read_pixels(const StratumRenderer* r, float* rgba, size_t count);
+/* Passes (AOVs) a render can hold besides the image, named as Cycles names them: pass `index`
+ * (0 <= index < stratum_pass_count(); 0 is "Combined", the image) has a static name,
+ * a channel count and a one-line description. A render holds Combined and the passes its
+ * string setting `passes` names (comma-separated). */
+STRATUM_API int32_t stratum_pass_count(void);
+STRATUM_API StratumStatus stratum_pass_info(int32_t index, const char** name, int32_t* channels,
+                                            const char** description);
+/* Copies the current values of pass `name`: width*height*channels floats (the region's size),
+ * rows bottom to top. A pass the render does not hold is STRATUM_ERROR_INVALID_ARGUMENT. */
+STRATUM_API StratumStatus stratum_renderer_read_pass(const StratumRenderer* r, const char* name, float* out,
+                                                     size_t count);
 /* Writes the current image (EXR linear, or PNG/other by extension via OpenImageIO). */
 STRATUM_API StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path);
 

@@ -332,6 +332,41 @@ StratumStatus stratum_renderer_read_pixels(const StratumRenderer* r, float* rgba
     });
 }
 
+int32_t stratum_pass_count(void) { return static_cast<int32_t>(stratum::kPasses.size()); }
+
+StratumStatus stratum_pass_info(int32_t index, const char** name, int32_t* channels,
+                                const char** description) {
+    return guarded("stratum_pass_info", [&] {
+        require(index >= 0 && index < stratum_pass_count(), "pass index " + std::to_string(index) +
+                                                                " out of range [0, " +
+                                                                std::to_string(stratum_pass_count()) + ")");
+        const stratum::PassInfo& info = stratum::kPasses[static_cast<size_t>(index)];
+        if (name) *name = info.name;
+        if (channels) *channels = static_cast<int32_t>(info.channels);
+        if (description) *description = info.description;
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_renderer_read_pass(const StratumRenderer* r, const char* name, float* out,
+                                         size_t count) {
+    return guarded("stratum_renderer_read_pass", [&] {
+        require(r && name && out, "renderer, name or out is NULL");
+        stratum::Pass pass;
+        require(stratum::find_pass(name, &pass), "unknown pass '" + std::string(name) + "'");
+        const size_t pixels = static_cast<size_t>(r->renderer.width()) * r->renderer.height();
+        require(pixels > 0, "nothing rendered yet: call stratum_renderer_start first");
+        const size_t needed = pixels * stratum::pass_info(pass).channels;
+        require(count == needed, "buffer holds " + std::to_string(count) + " floats, pass '" +
+                                     std::string(name) + "' needs " + std::to_string(needed) +
+                                     " (width*height*" + std::to_string(stratum::pass_info(pass).channels) +
+                                     ")");
+        require(r->renderer.read_pass(pass, out), "this render does not hold pass '" + std::string(name) +
+                                                      "' (add it to the setting 'passes')");
+        return STRATUM_OK;
+    });
+}
+
 StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path) {
     return guarded("stratum_renderer_write_image", [&] {
         require(r && path, "renderer or path is NULL");

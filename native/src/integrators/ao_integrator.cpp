@@ -6,9 +6,9 @@
 
 namespace stratum {
 
-RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& sampler,
+RadianceSample AoIntegrator::estimate(const RenderScene& scene, const Sampler& sampler,
                                       const PixelSample& pixel, const CameraRay& camera_ray,
-                                      uint64_t& rays) const {
+                                      PassValues& passes, uint64_t& rays) const {
     SurfaceHit hit;
     ++rays;
     if (!scene.intersect(camera_ray.origin, camera_ray.direction, camera_ray.t_min, camera_ray.t_max, &hit,
@@ -18,6 +18,7 @@ RadianceSample AoIntegrator::radiance(const RenderScene& scene, const Sampler& s
     const Vec3 wo = -camera_ray.direction;
     const Vec3 ng = dot(hit.geometric_normal, wo) < 0.0f ? -hit.geometric_normal : hit.geometric_normal;
     const Vec3 ns = dot(hit.shading_normal, ng) < 0.0f ? -hit.shading_normal : hit.shading_normal;
+    passes.write(Pass::Normal, ns);
     const Frame frame = Frame::from_normal(ns);
 
     const Vec3 local = sample_hemisphere(settings_.hemisphere,

@@ -30,8 +30,8 @@ namespace stratum {
 class AoIntegrator final : public Integrator {
 public:
     explicit AoIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
-    RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
-                            const CameraRay& ray, uint64_t& rays) const override;
+    RadianceSample estimate(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+                            const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
 
 private:
     IntegratorSettings settings_;

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <vector>
 
+#include "film/film.h"
 #include "integrators/estimator_options.h"
 #include "render_scene/render_scene.h"
 #include "sampling/hemisphere.h"
@@ -55,9 +56,33 @@ struct RadianceSample {
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    // `rays` is incremented by the number of rays traced.
-    virtual RadianceSample radiance(const RenderScene& scene, const Sampler& sampler,
-                                    const PixelSample& pixel, const CameraRay& ray, uint64_t& rays) const = 0;
+    // Called once per render, before any sample, with the scene it renders.
+    virtual void prepare(const RenderScene& scene) { (void)scene; }
+    // One camera ray's estimate; the integrator writes the extra passes the film holds into
+    // `passes`. `rays` is incremented by the number of rays traced.
+    virtual RadianceSample estimate(const RenderScene& scene, const Sampler& sampler,
+                                    const PixelSample& pixel, const CameraRay& ray, PassValues& passes,
+                                    uint64_t& rays) const = 0;
+    // The estimate without extra passes.
+    RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+                            const CameraRay& ray, uint64_t& rays) const {
+        PassValues none;
+        return estimate(scene, sampler, pixel, ray, none, rays);
+    }
+    // Light paths traced per sample index for a frame of this size (0: the integrator traces
+    // none). The renderer traces path k of sample index i as PixelSample{k mod W, k / W, i}
+    // and adds the splats of each chunk of paths to the film in a fixed order.
+    virtual uint64_t light_paths_per_sample(uint32_t frame_width, uint32_t frame_height) const {
+        (void)frame_width;
+        (void)frame_height;
+        return 0;
+    }
+    // Traces one light path and appends its splats (Film::splat) to `splats`.
+    virtual void trace_light_path(const RenderScene& scene, const Sampler& sampler, const Camera& camera,
+                                  const Film& film, const PixelSample& path, std::vector<Splat>& splats,
+                                  uint64_t& rays) const {
+        (void)scene, (void)sampler, (void)camera, (void)film, (void)path, (void)splats, (void)rays;
+    }
     // What this estimator cannot render in `scene` and why (e.g. BSDF sampling alone never
     // finds a point light): one sentence each, shown to the user; the render still runs.
     virtual std::vector<std::string> notices(const Scene& scene) const {

@@ -15,6 +15,8 @@ namespace stratum {
 
 namespace {
 
+bool is_finite(Rgb c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
+
 constexpr uint32_t kNonCameraRays = kVisibleDiffuse | kVisibleGlossy | kVisibleTransmission | kVisibleShadow;
 
 // Veach 1997 eq. 5.19: the adjoint BSDF with shading normals is f(ω_l, ω_o) |ω_l·n_s| |ω_o·n_g|
@@ -59,34 +61,11 @@ void sample_sky_emission(Rgb radiance, Vec2 u_position, Vec2 u_direction, Vec3 c
     out->soft_radius = 0.0f;
 }
 
-bool finite(Rgb c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
-
-// Adds the splats of a contribution reaching film point s: every pixel of the region whose
-// centre lies within the filter's radius, weighted by the filter density at its offset.
-void splat(const ParticleFilm& film, Vec2 s, Rgb value, std::vector<Splat>& out) {
-    if (value.is_black() || !finite(value)) return;
-    const float r = film.filter.radius();
-    const PixelRegion& g = film.region;
-    // Pixel centres c = k + ½ with |s − c| <= r.
-    const float x_lo = std::max(std::ceil(s.x - r - 0.5f), static_cast<float>(g.x));
-    const float x_hi = std::min(std::floor(s.x + r - 0.5f), static_cast<float>(g.x + g.width) - 1.0f);
-    const float y_lo = std::max(std::ceil(s.y - r - 0.5f), static_cast<float>(g.y));
-    const float y_hi = std::min(std::floor(s.y + r - 0.5f), static_cast<float>(g.y + g.height) - 1.0f);
-    for (float y = y_lo; y <= y_hi; y += 1.0f) {
-        for (float x = x_lo; x <= x_hi; x += 1.0f) {
-            const float w = film.filter.pdf({s.x - (x + 0.5f), s.y - (y + 0.5f)});
-            if (!(w > 0.0f)) continue;
-            const uint32_t px = static_cast<uint32_t>(x) - g.x, py = static_cast<uint32_t>(y) - g.y;
-            out.push_back({py * g.width + px, value * w});
-        }
-    }
-}
-
 }  // namespace
 
-RadianceSample LightTracer::radiance(const RenderScene& scene, const Sampler& sampler,
+RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sampler,
                                      const PixelSample& pixel, const CameraRay& camera_ray,
-                                     uint64_t& rays) const {
+                                     PassValues& passes, uint64_t& rays) const {
     (void)sampler;
     (void)pixel;
     Rgb L(0.0f), beta(1.0f);
@@ -111,6 +90,7 @@ RadianceSample LightTracer::radiance(const RenderScene& scene, const Sampler& sa
         }
         const ShadingPoint sp = build_closures(scene, hit, -dir);
         const ClosureSet& closures = sp.closures;
+        if (passed == 0) passes.write(Pass::Normal, sp.ns);
         const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
         if (!holdout.is_black()) transparency += (holdout * beta).average();
         if (hit.holdout) break;
@@ -126,15 +106,15 @@ RadianceSample LightTracer::radiance(const RenderScene& scene, const Sampler& sa
     return {L, std::clamp(1.0f - transparency, 0.0f, 1.0f)};
 }
 
-void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sampler,
-                                 const PixelSample& particle, const ParticleFilm& film,
-                                 std::vector<Splat>& splats, uint64_t& rays) const {
+void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& sampler, const Camera& camera,
+                                   const Film& film, const PixelSample& particle, std::vector<Splat>& splats,
+                                   uint64_t& rays) const {
     const LightSet& lights = scene.lights();
     EmissionSample e;
     const float u_choice = sampler.get_1d(particle, kDimEmissionLight);
     const Vec2 u_position = sampler.get_2d(particle, kDimEmissionPoint);
     const Vec2 u_direction = sampler.get_2d(particle, kDimEmissionDirection);
-    const float p_sky = film.sky_probability;
+    const float p_sky = sky_probability_;
     if (u_choice < p_sky) {
         sample_sky_emission(scene.background(Vec3(0.0f, 0.0f, 1.0f)), u_position, u_direction,
                             scene.bounds_center(), scene.bounds_radius(), &e);
@@ -151,7 +131,8 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
     if (e.weight.is_black()) return;
     // W×H particles per sample index: each carries 1/(W H) of the flux estimate.
     const Rgb beta0 =
-        e.weight * (1.0f / (static_cast<float>(film.frame_width) * static_cast<float>(film.frame_height)));
+        e.weight *
+        (1.0f / (static_cast<float>(film.frame_width()) * static_cast<float>(film.frame_height())));
     Rgb throughput(1.0f);  // β / β₀: what Russian roulette by throughput looks at
     const float time = scene.has_motion() ? sampler.get_1d(particle, kDimTime) : 0.5f;
     RayQuery query{time, kNonCameraRays};
@@ -182,11 +163,11 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
         // Camera connection (6.8–6.9): the scattering of this vertex toward the lens.
         if (closures.has_non_delta() && !hit.holdout && (hit.visibility & kVisibleCamera) &&
             depth <= settings_.max_bounces && kinds != 0) {
-            const Vec2 lens = film.camera.has_aperture()
+            const Vec2 lens = camera.has_aperture()
                                   ? sampler.get_2d(particle, bounce_dimension(vertex, kDimConnectionLens))
                                   : Vec2{0.5f, 0.5f};
             CameraConnection c;
-            if (film.camera.connect(hit.position, lens, &c)) {
+            if (camera.connect(hit.position, lens, &c)) {
                 const float side = dot(c.to_camera, sp.ng);
                 const Vec3 wc = frame.to_local(c.to_camera);
                 if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) &&
@@ -194,13 +175,13 @@ void LightTracer::trace_particle(const RenderScene& scene, const Sampler& sample
                     const Rgb f = adjoint_value(closures, wo, wc, arrival, c.to_camera, sp,
                                                 settings_.hemisphere, kinds);
                     const Rgb value = beta0 * throughput * f * c.importance;
-                    if (!value.is_black() && finite(value)) {
+                    if (!value.is_black() && is_finite(value)) {
                         const Vec3 o = offset_ray_origin(hit.position, side > 0.0f ? sp.ng : -sp.ng);
                         const float t_max = std::max(0.0f, c.unclipped - offset_distance(hit.position));
                         const Rgb transmittance =
                             shadow_transmittance(scene, o, c.to_camera, t_max, {time, kVisibleCamera},
                                                  max_passes - std::min(max_passes, transparent), rays);
-                        splat(film, c.film, value * transmittance, splats);
+                        film.splat(c.film, value * transmittance, splats);
                     }
                 }
             }

@@ -53,46 +53,35 @@
 
 #include <vector>
 
-#include "film/pixel_filter.h"
-#include "film/pixel_region.h"
 #include "integrators/integrator.h"
 #include "lights/emission_sample.h"
 
 namespace stratum {
 
-// One particle's contribution to one pixel of the rendered region.
-struct Splat {
-    uint32_t pixel;  // index into the region's buffers (PixelRegion rows, bottom to top)
-    Rgb value;
-};
-
-// What particles are splatted through: the camera and filter of the full frame, and the region
-// whose pixels are kept (splats elsewhere are dropped).
-struct ParticleFilm {
-    const Camera& camera;
-    const PixelFilter& filter;
-    PixelRegion region;
-    uint32_t frame_width, frame_height;
-    // The share of particles a constant background emits (LightTracer::sky_probability).
-    float sky_probability;
-};
-
 class LightTracer final : public Integrator {
 public:
     explicit LightTracer(const IntegratorSettings& settings) : settings_(settings) {}
     // The camera-ray part.
-    RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
-                            const CameraRay& ray, uint64_t& rays) const override;
+    RadianceSample estimate(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+                            const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;
+    // Chooses how often particles leave the sky (sky_probability) for this scene.
+    void prepare(const RenderScene& scene) override { sky_probability_ = sky_probability(scene); }
+    // W x H particles per sample index: one per pixel of the full frame.
+    uint64_t light_paths_per_sample(uint32_t frame_width, uint32_t frame_height) const override {
+        return static_cast<uint64_t>(frame_width) * frame_height;
+    }
+    // Traces particle (x, y, i) = `particle` and appends its splats through the camera.
+    void trace_light_path(const RenderScene& scene, const Sampler& sampler, const Camera& camera,
+                          const Film& film, const PixelSample& particle, std::vector<Splat>& splats,
+                          uint64_t& rays) const override;
     // A constant background (no environment image) emits particles too, as a uniform sky, chosen
     // by power against the lights (π R² L̄ for the sky, LightSet::power for each light).
     static float sky_probability(const RenderScene& scene);
-    // Traces particle (x, y, i) = `particle` and appends its splats.
-    void trace_particle(const RenderScene& scene, const Sampler& sampler, const PixelSample& particle,
-                        const ParticleFilm& film, std::vector<Splat>& splats, uint64_t& rays) const;
 
 private:
     IntegratorSettings settings_;
+    float sky_probability_ = 0.0f;  // set by prepare()
 };
 
 }  // namespace stratum

@@ -38,9 +38,9 @@ std::vector<std::string> PathIntegrator::notices(const Scene& scene) const {
             "choose light_sampling 'nee' or 'mis' to see them"};
 }
 
-RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler& sampler,
+RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler& sampler,
                                         const PixelSample& pixel, const CameraRay& camera_ray,
-                                        uint64_t& rays) const {
+                                        PassValues& passes, uint64_t& rays) const {
     Rgb L(0.0f), beta(1.0f);
     float transparency = 0.0f;  // Cycles' "transparent" film value: alpha = 1 - transparency
     Vec3 origin = camera_ray.origin, dir = camera_ray.direction;
@@ -100,6 +100,7 @@ RadianceSample PathIntegrator::radiance(const RenderScene& scene, const Sampler&
         const Vec3 wo_world = -dir;
         const ShadingPoint sp = build_closures(scene, hit, wo_world);
         const ClosureSet& closures = sp.closures;
+        if (vertex == 0) passes.write(Pass::Normal, sp.ns);
 
         if (camera_visible_path) {
             const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();

@@ -47,8 +47,8 @@ namespace stratum {
 class PathIntegrator final : public Integrator {
 public:
     explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
-    RadianceSample radiance(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
-                            const CameraRay& ray, uint64_t& rays) const override;
+    RadianceSample estimate(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+                            const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;
 
 private:

@@ -1,5 +1,6 @@
 #include "render/render_settings.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "film/pixel_filter.h"
@@ -156,6 +157,27 @@ std::string set_string_setting(RenderSettings& s, std::string_view name, std::st
             return "unknown " + std::string(name) + " '" + std::string(value) + "' (known: " + names + ")";
         }
         s.*o.member = value;
+        return {};
+    }
+    if (name == "passes") {
+        std::vector<Pass> passes;
+        for (size_t begin = 0; begin <= value.size();) {
+            const size_t comma = std::min(value.find(',', begin), value.size());
+            const std::string_view item = value.substr(begin, comma - begin);
+            Pass pass;
+            if (!item.empty()) {
+                if (!find_pass(item, &pass)) {
+                    std::string names;
+                    for (const PassInfo& info : kPasses)
+                        names += (names.empty() ? "" : ", ") + std::string(info.name);
+                    return "unknown pass '" + std::string(item) + "' in setting 'passes' (known: " + names +
+                           ")";
+                }
+                if (std::find(passes.begin(), passes.end(), pass) == passes.end()) passes.push_back(pass);
+            }
+            begin = comma + 1;
+        }
+        s.passes = std::move(passes);
         return {};
     }
     if (name == "filter_type") {

@@ -5,7 +5,9 @@
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
+#include "film/passes.h"
 #include "film/pixel_region.h"
 
 namespace stratum {
@@ -35,6 +37,8 @@ struct RenderSettings {
     std::string light_selection = "mixed";
     std::string triangle_sampling = "solid_angle";
     std::string rr_mode = "throughput";
+    // The passes besides Combined (setting `passes`: comma-separated names of film/passes.h).
+    std::vector<Pass> passes;
 };
 
 // The region the crop settings select (the whole frame when crop_width = 0), or an error

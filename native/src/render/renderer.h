@@ -5,9 +5,10 @@
 // intermediate image holds a power-of-two-aligned prefix of each pixel's samples, so
 // low-discrepancy properties hold at every update (research/samplers.md §5.6). Each pixel sums
 // its own samples in index order, so the image is bit-identical for any thread count.
-// Light tracing (integrator `light`) adds, per pass, W×H particles per sample index over the
-// full frame, whose splats are summed in a fixed chunk order (trace_particles); its image is
-// published once per pass: the camera-ray mean plus the splat sums over the samples done.
+// The renderer knows no integrator by type: an integrator that traces light paths (light
+// tracing) gets, after each pass of camera samples, its light paths of the same sample indices,
+// whose splats reach the film in a fixed chunk order (trace_light_paths); such a film is
+// published once per pass (film/film.h).
 #pragma once
 
 #include <tbb/task_arena.h>
@@ -17,12 +18,12 @@
 #include <condition_variable>
 #include <memory>
 #include <mutex>
-#include <shared_mutex>
 #include <string>
 #include <thread>
 #include <vector>
 
-#include "integrators/light_tracer.h"
+#include "film/film.h"
+#include "integrators/integrator.h"
 #include "render/render_settings.h"
 #include "render_scene/render_scene.h"
 #include "scene/scene.h"
@@ -61,6 +62,9 @@ public:
     // width()*height()*4 floats, rows bottom to top: the border region (the whole frame when
     // there is none).
     void read_pixels(float* rgba) const;
+    // The published values of a pass of the current (or last) render: width()*height() times
+    // its channels, rows bottom to top. False when the render does not hold the pass.
+    bool read_pass(Pass pass, float* out) const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
 
@@ -70,23 +74,22 @@ private:
     void add_notice(const std::string& notice);
     // Adds the notices of the samples (dropped_samples_) and rays dropped by this render.
     void report_dropped(uint64_t refused_rays);
-    // Light tracing: the particles of sample indices [begin, end), splatted into splat_sums
-    // (RGB per region pixel) deterministically; returns early on cancel.
-    void trace_particles(const LightTracer& tracer, const Sampler& sampler, const ParticleFilm& film,
-                         uint32_t begin, uint32_t end, tbb::task_arena& arena,
-                         std::vector<double>& splat_sums);
+    // Camera samples [begin, end) of every pixel of the region into the film.
+    void trace_camera_samples(const Camera& camera, uint32_t begin, uint32_t end, tbb::task_arena& arena);
+    // The light paths of sample indices [begin, end), splatted into the film deterministically;
+    // returns early on cancel.
+    void trace_light_paths(const Camera& camera, uint32_t begin, uint32_t end, tbb::task_arena& arena);
 
     Scene scene_;
     RenderSettings settings_;
     std::unique_ptr<RenderScene> render_scene_;
-    PixelRegion region_;               // of the current render, set by start()
+    // Of the current render, made by start() from the settings.
+    std::unique_ptr<Integrator> integrator_;
+    std::unique_ptr<Sampler> sampler_;
+    std::unique_ptr<Film> film_;
     uint32_t width_ = 0, height_ = 0;  // the region's size
+    uint64_t light_paths_ = 0;         // light paths per sample index
     double work_per_sample_ = 0;       // progress units per sample index (fraction_done)
-
-    // Published image (RGBA, averaged). Tiles write disjoint regions under a shared lock;
-    // read_pixels takes it exclusively.
-    mutable std::shared_mutex image_mutex_;
-    std::vector<float> image_;
 
     std::thread worker_;
     std::atomic<bool> cancel_{false}, done_{true};

@@ -1,0 +1,134 @@
+#include "film/film.h"
+
+#include <algorithm>
+#include <cmath>
+#include <mutex>
+
+namespace stratum {
+
+namespace {
+
+bool is_finite(const Rgb& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
+
+uint32_t extra_channels(std::span<const Pass> passes) { return FilmLayout(passes).extra_channels(); }
+
+}  // namespace
+
+FilmLayout::FilmLayout(std::span<const Pass> passes) {
+    offsets_.fill(kAbsent);
+    for (const Pass pass : passes) {
+        if (pass == Pass::Combined || offsets_[index(pass)] != kAbsent) continue;
+        offsets_[index(pass)] = extra_channels_;
+        extra_channels_ += pass_info(pass).channels;
+    }
+}
+
+Film::Film(const PixelRegion& region, uint32_t frame_width, uint32_t frame_height, const PixelFilter& filter,
+           std::span<const Pass> passes, bool light_paths)
+    : region_(region),
+      frame_width_(frame_width),
+      frame_height_(frame_height),
+      filter_(filter),
+      layout_(passes),
+      sums_(region.pixel_count() * sums_stride(), 0.0),
+      counts_(region.pixel_count(), 0),
+      splat_sums_(light_paths ? 3 * region.pixel_count() : 0, 0.0),
+      published_(region.pixel_count() * sums_stride(), 0.0f) {}
+
+double Film::bytes_per_pixel(std::span<const Pass> passes, bool light_paths) {
+    const double stride = 4 + extra_channels(passes);
+    return stride * (sizeof(double) + sizeof(float)) + sizeof(uint32_t) +
+           (light_paths ? 3 * sizeof(double) : 0);
+}
+
+void Film::load_sums(size_t pixel, double* out) const {
+    std::copy_n(&sums_[pixel * sums_stride()], sums_stride(), out);
+}
+
+void Film::store_sums(size_t pixel, const double* sums, uint32_t count) {
+    std::copy_n(sums, sums_stride(), &sums_[pixel * sums_stride()]);
+    counts_[pixel] = count;
+}
+
+void Film::splat(Vec2 s, Rgb value, std::vector<Splat>& out) const {
+    if (value.is_black() || !is_finite(value)) return;
+    const float r = filter_.radius();
+    const PixelRegion& g = region_;
+    // Pixel centres c = k + ½ with |s − c| <= r.
+    const float x_lo = std::max(std::ceil(s.x - r - 0.5f), static_cast<float>(g.x));
+    const float x_hi = std::min(std::floor(s.x + r - 0.5f), static_cast<float>(g.x + g.width) - 1.0f);
+    const float y_lo = std::max(std::ceil(s.y - r - 0.5f), static_cast<float>(g.y));
+    const float y_hi = std::min(std::floor(s.y + r - 0.5f), static_cast<float>(g.y + g.height) - 1.0f);
+    for (float y = y_lo; y <= y_hi; y += 1.0f) {
+        for (float x = x_lo; x <= x_hi; x += 1.0f) {
+            const float w = filter_.pdf({s.x - (x + 0.5f), s.y - (y + 0.5f)});
+            if (!(w > 0.0f)) continue;
+            const uint32_t px = static_cast<uint32_t>(x) - g.x, py = static_cast<uint32_t>(y) - g.y;
+            out.push_back({py * g.width + px, value * w});
+        }
+    }
+}
+
+uint64_t Film::add_splats(std::span<const Splat> splats) {
+    uint64_t dropped = 0;
+    for (const Splat& sp : splats) {
+        if (!is_finite(sp.value)) {
+            ++dropped;
+            continue;
+        }
+        splat_sums_[3 * sp.pixel] += sp.value.r;
+        splat_sums_[3 * sp.pixel + 1] += sp.value.g;
+        splat_sums_[3 * sp.pixel + 2] += sp.value.b;
+    }
+    return dropped;
+}
+
+void Film::publish_pixel(size_t p, double n, const double* splats) {
+    const uint32_t stride = sums_stride();
+    const double* sum = &sums_[p * stride];
+    float* px = &published_[p * stride];
+    if (splats) {
+        px[0] = saturate_to_float((sum[0] + splats[0]) / n);
+        px[1] = saturate_to_float((sum[1] + splats[1]) / n);
+        px[2] = saturate_to_float((sum[2] + splats[2]) / n);
+    } else {
+        px[0] = saturate_to_float(sum[0] / n);
+        px[1] = saturate_to_float(sum[1] / n);
+        px[2] = saturate_to_float(sum[2] / n);
+    }
+    px[3] = saturate_to_float(sum[3] / n);
+    // Average passes are means of the camera samples of this pixel.
+    const double camera_samples = counts_[p];
+    if (camera_samples > 0)
+        for (uint32_t c = 4; c < stride; ++c) px[c] = saturate_to_float(sum[c] / camera_samples);
+}
+
+void Film::publish(uint32_t x0, uint32_t x1, uint32_t y0, uint32_t y1) {
+    std::shared_lock lock(published_mutex_);
+    for (uint32_t y = y0; y < y1; ++y) {
+        for (uint32_t x = x0; x < x1; ++x) {
+            const size_t p = region_.index(x, y);
+            if (counts_[p] == 0) continue;
+            publish_pixel(p, counts_[p], nullptr);
+        }
+    }
+}
+
+void Film::publish_all(uint32_t sample_indices) {
+    std::unique_lock lock(published_mutex_);
+    for (size_t p = 0; p < region_.pixel_count(); ++p)
+        publish_pixel(p, sample_indices, splat_sums_.empty() ? nullptr : &splat_sums_[3 * p]);
+}
+
+bool Film::read(Pass pass, float* out) const {
+    if (!layout_.has(pass)) return false;
+    const uint32_t stride = sums_stride();
+    const uint32_t first = pass == Pass::Combined ? 0 : 4 + layout_.offset(pass);
+    const uint32_t channels = pass_info(pass).channels;
+    std::unique_lock lock(published_mutex_);
+    for (size_t p = 0; p < region_.pixel_count(); ++p)
+        std::copy_n(&published_[p * stride + first], channels, out + p * channels);
+    return true;
+}
+
+}  // namespace stratum
