@@ -8,6 +8,7 @@
 
 #include "integrators/estimator_options.h"
 #include "lights/light_set.h"
+#include "render/setting_registry.h"
 #include "render_helpers.h"
 
 using namespace stratum;
@@ -58,22 +59,22 @@ struct RendererFixture : ::testing::Test {
 }  // namespace
 
 TEST_F(RendererFixture, EveryOptionValueIsAcceptedAndUnknownOnesAreNamed) {
-    const std::pair<const char*, std::span<const std::string_view> (*)()> options[] = {
-        {"light_sampling", &light_sampling_names},       {"mis_heuristic", &mis_heuristic_names},
-        {"light_selection", &light_selection_names},     {"rr_mode", &rr_mode_names},
-        {"triangle_sampling", &triangle_sampling_names},
-    };
-    for (const auto& [name, names] : options) {
-        ASSERT_EQ(names().size(), name == std::string_view("triangle_sampling") ? 2u : 3u) << name;
-        for (std::string_view value : names()) {
-            EXPECT_EQ(stratum_renderer_set_string(renderer, name, std::string(value).c_str()), STRATUM_OK)
-                << name << "=" << value << ": " << stratum_last_error();
+    // Every enumerated setting of the registry, each of its values, and a bogus one.
+    for (const SettingSpec& spec : setting_registry()) {
+        if (spec.kind != SettingKind::Choice) continue;
+        const char* name = spec.info.name;
+        ASSERT_FALSE(spec.choices().empty()) << name;
+        for (const RegistryEntry& value : spec.choices()) {
+            EXPECT_EQ(stratum_renderer_set_string(renderer, name, value.name), STRATUM_OK)
+                << name << "=" << value.name << ": " << stratum_last_error();
         }
         EXPECT_EQ(stratum_renderer_set_string(renderer, name, "bogus"), STRATUM_ERROR_INVALID_ARGUMENT);
         const std::string message = stratum_last_error();
         EXPECT_NE(message.find("bogus"), std::string::npos) << message;
-        EXPECT_NE(message.find(std::string(names()[0])), std::string::npos) << message;  // lists the choices
+        EXPECT_NE(message.find(spec.choices()[0].name), std::string::npos) << message;  // lists the choices
     }
+    EXPECT_EQ(light_sampling_choices().size(), 3u);
+    EXPECT_EQ(triangle_sampling_choices().size(), 2u);
     for (const char* integrator : {"path", "direct", "ao"}) {
         EXPECT_EQ(stratum_renderer_set_string(renderer, "integrator", integrator), STRATUM_OK) << integrator;
     }

@@ -10,6 +10,7 @@
 
 #include "integrators/integrator.h"
 #include "render/render_settings.h"
+#include "render/setting_registry.h"
 #include "render_helpers.h"
 
 using namespace stratum_test;
@@ -198,7 +199,7 @@ TEST(Renderer, BorderRegionIsValidatedByName) {
 // Film > Transparent reaches the integrator, which turns escaped rays into alpha 0.
 TEST(Renderer, FilmTransparentReachesTheIntegratorSettings) {
     stratum::RenderSettings s;
-    EXPECT_FALSE(stratum::integrator_settings(s).film_transparent);
+    EXPECT_FALSE(s.estimator.film_transparent);
     EXPECT_EQ(stratum::set_int_setting(s, "film_transparent", 1), "");
-    EXPECT_TRUE(stratum::integrator_settings(s).film_transparent);
+    EXPECT_TRUE(s.estimator.film_transparent);
 }

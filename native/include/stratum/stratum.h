@@ -61,6 +61,39 @@ STRATUM_API int32_t stratum_registry_count(int32_t registry);
 STRATUM_API StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char** name,
                                                  const char** label, const char** description);
 
+/* ---- render settings ---------------------------------------------------------------------- */
+
+/* Every render setting, listed once: hosts build their menus, choices, help and tables from it.
+ * INT settings are set with stratum_renderer_set_int, FLOAT with _set_float, CHOICE (one name of
+ * its choices) and LIST (comma-separated names of its choices, "" = none) with _set_string. */
+typedef enum StratumSettingKind {
+    STRATUM_SETTING_INT = 0,
+    STRATUM_SETTING_FLOAT = 1,
+    STRATUM_SETTING_CHOICE = 2,
+    STRATUM_SETTING_LIST = 3
+} StratumSettingKind;
+
+typedef struct StratumSettingInfo {
+    const char* name;        /* as set: "light_sampling" */
+    const char* label;       /* for a menu: "Light Sampling" */
+    const char* description; /* one sentence */
+    int32_t kind;            /* StratumSettingKind */
+    double minimum;          /* INT, FLOAT: the accepted range (FLOAT: maximum may be +inf) */
+    double maximum;
+    int32_t open_minimum;  /* FLOAT: 1 when the minimum itself is excluded */
+    const char* unit;      /* "pixels", "scene units" or "" */
+    const char* default_value; /* the renderer's default as text: "16", "1.5", "mis", "" */
+    int32_t choice_count;      /* CHOICE, LIST: number of choices (stratum_setting_choice) */
+} StratumSettingInfo;
+
+STRATUM_API int32_t stratum_setting_count(void);
+/* The setting at `index` (0 <= index < stratum_setting_count()); the strings are static. */
+STRATUM_API StratumStatus stratum_setting_info(int32_t index, StratumSettingInfo* out);
+/* Choice `choice` of setting `setting`, in menu order (a host may store the position: the order
+ * only grows at the end): stable name, label and description (static strings). */
+STRATUM_API StratumStatus stratum_setting_choice(int32_t setting, int32_t choice, const char** name,
+                                                 const char** label, const char** description);
+
 /* ---- sampling, without a scene (for `stratum points` and studies) ----------------------- */
 
 /* Name of sample dimension `dimension` in the named layout ("filter.x", "bounce0.light_choice",

@@ -17,6 +17,7 @@
 #include "render/image_output.h"
 #include "render/ray_throughput.h"
 #include "render/renderer.h"
+#include "render/setting_registry.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
 #include "scene/scene.h"
@@ -92,6 +93,56 @@ StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char
             : registry == STRATUM_REGISTRY_FILTER     ? stratum::filter_registry()[i]
             : registry == STRATUM_REGISTRY_HEMISPHERE ? stratum::hemisphere_registry()[i]
                                                       : stratum::integrator_registry()[i].info;
+        if (name) *name = e.name;
+        if (label) *label = e.label;
+        if (description) *description = e.description;
+        return STRATUM_OK;
+    });
+}
+
+int32_t stratum_setting_count(void) { return static_cast<int32_t>(stratum::setting_registry().size()); }
+
+StratumStatus stratum_setting_info(int32_t index, StratumSettingInfo* out) {
+    return guarded("stratum_setting_info", [&] {
+        require(out != nullptr, "out is NULL");
+        require(index >= 0 && index < stratum_setting_count(),
+                "setting index " + std::to_string(index) + " out of range [0, " +
+                    std::to_string(stratum_setting_count()) + ")");
+        // Default values as text, made once: the strings handed out stay valid.
+        static const std::vector<std::string> defaults = [] {
+            std::vector<std::string> texts;
+            for (const stratum::SettingSpec& spec : stratum::setting_registry())
+                texts.push_back(stratum::default_value(spec));
+            return texts;
+        }();
+        const auto i = static_cast<size_t>(index);
+        const stratum::SettingSpec& spec = stratum::setting_registry()[i];
+        *out = StratumSettingInfo{spec.info.name,
+                                  spec.info.label,
+                                  spec.info.description,
+                                  static_cast<int32_t>(spec.kind),
+                                  spec.minimum,
+                                  spec.maximum,
+                                  spec.open_minimum ? 1 : 0,
+                                  spec.unit,
+                                  defaults[i].c_str(),
+                                  spec.choices ? static_cast<int32_t>(spec.choices().size()) : 0};
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_setting_choice(int32_t setting, int32_t choice, const char** name, const char** label,
+                                     const char** description) {
+    return guarded("stratum_setting_choice", [&] {
+        require(setting >= 0 && setting < stratum_setting_count(),
+                "setting index " + std::to_string(setting) + " out of range [0, " +
+                    std::to_string(stratum_setting_count()) + ")");
+        const stratum::SettingSpec& spec = stratum::setting_registry()[static_cast<size_t>(setting)];
+        const int32_t count = spec.choices ? static_cast<int32_t>(spec.choices().size()) : 0;
+        require(choice >= 0 && choice < count, "choice " + std::to_string(choice) + " of setting '" +
+                                                   spec.info.name + "' out of range [0, " +
+                                                   std::to_string(count) + ")");
+        const stratum::RegistryEntry& e = spec.choices()[static_cast<size_t>(choice)];
         if (name) *name = e.name;
         if (label) *label = e.label;
         if (description) *description = e.description;

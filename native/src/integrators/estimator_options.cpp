@@ -1,59 +1,97 @@
 #include "integrators/estimator_options.h"
 
+#include <algorithm>
 #include <array>
 
 namespace stratum {
 
 namespace {
 
-// Index i of `names` is enumerator i of the option's enum.
+// Menu order (default first): a host stores a choice by its position.
+constexpr std::array kLightSampling = {
+    RegistryEntry{"mis", "Multiple Importance",
+                  "Light sampling (next-event estimation) and BSDF sampling combined by multiple importance "
+                  "sampling (textbook §5.5)"},
+    RegistryEntry{
+        "nee", "Light Sampling",
+        "Next-event estimation only: emission is found by shadow rays to sampled lights; a scattered "
+        "ray counts emission only after the camera or a delta vertex (eq. 5.16)"},
+    RegistryEntry{
+        "bsdf", "BSDF Sampling",
+        "BSDF sampling only: emission is found by scattered rays hitting lights (eq. 5.2); point and "
+        "sun lights cannot be hit and stay black"},
+};
+constexpr std::array kLightSamplingValues = {LightSampling::Mis, LightSampling::Nee, LightSampling::Bsdf};
+
+constexpr std::array kMisHeuristic = {
+    RegistryEntry{"power", "Power", "Power heuristic with beta = 2: w = p_a^2 / (p_a^2 + p_b^2) (§4.4)"},
+    RegistryEntry{"balance", "Balance", "Balance heuristic: w = p_a / (p_a + p_b) (§4.4)"},
+    RegistryEntry{"max", "Maximum",
+                  "Maximum heuristic: weight 1 for the strategy with the larger pdf (§4.4)"},
+};
+constexpr std::array kMisHeuristicValues = {MisHeuristic::Power, MisHeuristic::Balance,
+                                            MisHeuristic::Maximum};
+
+constexpr std::array kLightSelection = {
+    RegistryEntry{"mixed", "Mixed",
+                  "Half proportional to power, half uniform over the lights (a defensive mixture)"},
+    RegistryEntry{"power", "Power", "Proportional to each light's power: p_j = Phi_j / sum Phi (eq. 5.14)"},
+    RegistryEntry{"uniform", "Uniform", "Every light with the same probability 1/N"},
+};
+constexpr std::array kLightSelectionValues = {LightSelection::Mixed, LightSelection::Power,
+                                              LightSelection::Uniform};
+
+constexpr std::array kTriangleSampling = {
+    RegistryEntry{
+        "solid_angle", "Solid Angle",
+        "A direction uniform in the solid angle the triangle subtends (Arvo 1995): no fireflies next "
+        "to emissive meshes"},
+    RegistryEntry{"area", "Area",
+                  "A point uniform in the triangle's area (textbook eq. 5.9): its weight grows as 1/r^2 near "
+                  "the emitter"},
+};
+constexpr std::array kTriangleSamplingValues = {TriangleSampling::SolidAngle, TriangleSampling::Area};
+
+constexpr std::array kRouletteMode = {
+    RegistryEntry{"throughput", "Throughput",
+                  "Survival probability min(1, max channel of the path throughput) (eq. 5.5-5.6)"},
+    RegistryEntry{"albedo", "Albedo",
+                  "Survival probability min(1, max channel of the surface reflectance) (eq. 5.5-5.6)"},
+    RegistryEntry{"off", "Off", "No Russian roulette: paths end only at the bounce limit or on escaping"},
+};
+constexpr std::array kRouletteModeValues = {RouletteMode::Throughput, RouletteMode::Albedo,
+                                            RouletteMode::Off};
+
+static_assert(kLightSampling.size() == kLightSamplingValues.size() &&
+              kMisHeuristic.size() == kMisHeuristicValues.size() &&
+              kLightSelection.size() == kLightSelectionValues.size() &&
+              kTriangleSampling.size() == kTriangleSamplingValues.size() &&
+              kRouletteMode.size() == kRouletteModeValues.size());
+
 template <typename Enum, size_t N>
-bool parse_by_index(const std::array<std::string_view, N>& names, std::string_view name, Enum* out) {
-    for (size_t i = 0; i < N; ++i) {
-        if (names[i] == name) {
-            *out = static_cast<Enum>(i);
-            return true;
-        }
-    }
-    return false;
+size_t position(const std::array<Enum, N>& values, Enum value) {
+    return static_cast<size_t>(std::find(values.begin(), values.end(), value) - values.begin());
 }
-
-// Enumerator order, not display order: each enum's value i is names[i]; the default is its
-// first enumerator except where kDefault* say otherwise.
-constexpr std::array<std::string_view, 3> kLightSampling = {"bsdf", "nee", "mis"};
-constexpr std::array<std::string_view, 3> kMisHeuristic = {"balance", "power", "max"};
-constexpr std::array<std::string_view, 3> kRouletteMode = {"off", "throughput", "albedo"};
-constexpr std::array<std::string_view, 3> kLightSelection = {"mixed", "power", "uniform"};
-constexpr std::array<std::string_view, 2> kTriangleSampling = {"solid_angle", "area"};
-
-// Default-first lists for hosts (the UI's order).
-constexpr std::array<std::string_view, 3> kLightSamplingNames = {"mis", "nee", "bsdf"};
-constexpr std::array<std::string_view, 3> kMisHeuristicNames = {"power", "balance", "max"};
-constexpr std::array<std::string_view, 3> kRouletteModeNames = {"throughput", "albedo", "off"};
 
 }  // namespace
 
-std::span<const std::string_view> light_sampling_names() { return kLightSamplingNames; }
-std::span<const std::string_view> mis_heuristic_names() { return kMisHeuristicNames; }
-std::span<const std::string_view> rr_mode_names() { return kRouletteModeNames; }
-std::span<const std::string_view> light_selection_names() { return kLightSelection; }
-std::span<const std::string_view> triangle_sampling_names() { return kTriangleSampling; }
+std::span<const RegistryEntry> light_sampling_choices() { return kLightSampling; }
+std::span<const RegistryEntry> mis_heuristic_choices() { return kMisHeuristic; }
+std::span<const RegistryEntry> light_selection_choices() { return kLightSelection; }
+std::span<const RegistryEntry> triangle_sampling_choices() { return kTriangleSampling; }
+std::span<const RegistryEntry> rr_mode_choices() { return kRouletteMode; }
 
-bool parse_light_sampling(std::string_view name, LightSampling* out) {
-    return parse_by_index(kLightSampling, name, out);
-}
-bool parse_mis_heuristic(std::string_view name, MisHeuristic* out) {
-    return parse_by_index(kMisHeuristic, name, out);
-}
-bool parse_rr_mode(std::string_view name, RouletteMode* out) {
-    return parse_by_index(kRouletteMode, name, out);
-}
-bool parse_light_selection(std::string_view name, LightSelection* out) {
-    return parse_by_index(kLightSelection, name, out);
-}
-bool parse_triangle_sampling(std::string_view name, TriangleSampling* out) {
-    return parse_by_index(kTriangleSampling, name, out);
-}
+LightSampling light_sampling_at(size_t choice) { return kLightSamplingValues.at(choice); }
+MisHeuristic mis_heuristic_at(size_t choice) { return kMisHeuristicValues.at(choice); }
+LightSelection light_selection_at(size_t choice) { return kLightSelectionValues.at(choice); }
+TriangleSampling triangle_sampling_at(size_t choice) { return kTriangleSamplingValues.at(choice); }
+RouletteMode rr_mode_at(size_t choice) { return kRouletteModeValues.at(choice); }
+
+size_t choice_of(LightSampling value) { return position(kLightSamplingValues, value); }
+size_t choice_of(MisHeuristic value) { return position(kMisHeuristicValues, value); }
+size_t choice_of(LightSelection value) { return position(kLightSelectionValues, value); }
+size_t choice_of(TriangleSampling value) { return position(kTriangleSamplingValues, value); }
+size_t choice_of(RouletteMode value) { return position(kRouletteModeValues, value); }
 
 float mis_weight(MisHeuristic heuristic, float pdf_a, float pdf_b) {
     if (!(pdf_a > 0.0f)) return 0.0f;

@@ -1,7 +1,7 @@
 // The estimator choices of the path and light tracers as render settings (textbook §4–§6): how
 // emission is found, how the two strategies are weighted, how paths are terminated. Names are
-// the values of the string settings `light_sampling`, `mis_heuristic`, `rr_mode`,
-// `light_selection` and `triangle_sampling`.
+// the values of the settings `light_sampling`, `mis_heuristic`, `rr_mode`, `light_selection`
+// and `triangle_sampling`, listed here once with their labels and descriptions.
 //
 // | setting           | values                | reference                                        |
 // |-------------------|-----------------------|--------------------------------------------------|
@@ -24,6 +24,7 @@
 #include <span>
 #include <string_view>
 
+#include "core/registry.h"
 #include "lights/light_selection.h"
 
 namespace stratum {
@@ -32,19 +33,24 @@ enum class LightSampling : uint8_t { Bsdf, Nee, Mis };
 enum class MisHeuristic : uint8_t { Balance, Power, Maximum };
 enum class RouletteMode : uint8_t { Off, Throughput, Albedo };
 
-// The accepted names of each setting, default first.
-std::span<const std::string_view> light_sampling_names();
-std::span<const std::string_view> mis_heuristic_names();
-std::span<const std::string_view> rr_mode_names();
-std::span<const std::string_view> light_selection_names();
-std::span<const std::string_view> triangle_sampling_names();
-
-// Each returns false (leaving *out unchanged) for an unknown name.
-bool parse_light_sampling(std::string_view name, LightSampling* out);
-bool parse_mis_heuristic(std::string_view name, MisHeuristic* out);
-bool parse_rr_mode(std::string_view name, RouletteMode* out);
-bool parse_light_selection(std::string_view name, LightSelection* out);
-bool parse_triangle_sampling(std::string_view name, TriangleSampling* out);
+// The choices of each option in menu order (a host stores the position: never reorder), and
+// the enumerator each stands for. A default is IntegratorSettings' (integrators/integrator.h).
+std::span<const RegistryEntry> light_sampling_choices();
+std::span<const RegistryEntry> mis_heuristic_choices();
+std::span<const RegistryEntry> light_selection_choices();
+std::span<const RegistryEntry> triangle_sampling_choices();
+std::span<const RegistryEntry> rr_mode_choices();
+LightSampling light_sampling_at(size_t choice);
+MisHeuristic mis_heuristic_at(size_t choice);
+LightSelection light_selection_at(size_t choice);
+TriangleSampling triangle_sampling_at(size_t choice);
+RouletteMode rr_mode_at(size_t choice);
+// The menu position of an enumerator.
+size_t choice_of(LightSampling value);
+size_t choice_of(MisHeuristic value);
+size_t choice_of(LightSelection value);
+size_t choice_of(TriangleSampling value);
+size_t choice_of(RouletteMode value);
 
 // The weight of strategy a's sample when strategy b could have drawn the same path
 // (both pdfs in the same measure); a pdf of 0 for a means the sample cannot come from a.

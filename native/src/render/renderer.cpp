@@ -52,7 +52,6 @@ std::string Renderer::start() {
     if (running()) return "a render is already running";
     join();
     if (!scene_.camera) return "the scene has no camera";
-    if (!find_sampler(settings_.sampler)) return "unknown sampler '" + settings_.sampler + "'";
     PixelRegion region;
     const std::string crop_error = crop_region(settings_, &region);
     if (!crop_error.empty()) return crop_error;
@@ -61,8 +60,7 @@ std::string Renderer::start() {
         notices_.clear();
     }
     dropped_samples_.store(0);
-    std::unique_ptr<Integrator> integrator =
-        find_integrator(settings_.integrator)->create(integrator_settings(settings_));
+    std::unique_ptr<Integrator> integrator = settings_.integrator->create(settings_.estimator);
     for (const std::string& notice : integrator->notices(scene_)) add_notice(notice);
     // A scene already built keeps its build notices for every render of it.
     if (render_scene_)
@@ -76,15 +74,12 @@ std::string Renderer::start() {
         return "a " + std::to_string(region.width) + " x " + std::to_string(region.height) +
                " pixel render needs " + gib(film_bytes) + " for its film, more than half of this machine's " +
                gib(physical_memory_bytes()) + " of memory";
-    FilterType filter_type = FilterType::BlackmanHarris;
-    parse_filter_type(settings_.filter_type, &filter_type);
     film_ = std::make_unique<Film>(region, settings_.width, settings_.height,
-                                   PixelFilter(filter_type, settings_.filter_width), settings_.passes,
-                                   light_paths > 0);
+                                   PixelFilter(settings_.filter_type, settings_.filter_width),
+                                   settings_.passes, light_paths > 0);
     integrator_ = std::move(integrator);
-    sampler_ =
-        find_sampler(settings_.sampler)
-            ->create(SamplerSettings{settings_.samples, settings_.seed, settings_.width, settings_.height});
+    sampler_ = settings_.sampler->create(
+        SamplerSettings{settings_.samples, settings_.seed, settings_.width, settings_.height});
     width_ = region.width;
     height_ = region.height;
     light_paths_ = light_paths;

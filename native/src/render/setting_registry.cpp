@@ -1,0 +1,439 @@
+#include "render/setting_registry.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include "film/pixel_filter.h"
+#include "integrators/estimator_options.h"
+#include "sampling/hemisphere.h"
+#include "sampling/sampler_registry.h"
+
+namespace stratum {
+
+namespace {
+
+// Limits keep width*height*4 floats and sample indices far from 32-bit overflow.
+constexpr double kMaxResolution = 65536;
+constexpr double kMaxSamples = 1 << 24;
+constexpr double kMaxBounces = 1024;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+constexpr double kFloatMax = std::numeric_limits<float>::max();
+
+std::span<const RegistryEntry> sampler_choices() {
+    // The sampler registry's entries carry a factory; the settings list needs their infos.
+    static const std::vector<RegistryEntry> infos = [] {
+        std::vector<RegistryEntry> out;
+        for (const SamplerEntry& e : sampler_registry()) out.push_back(e.info);
+        return out;
+    }();
+    return infos;
+}
+
+std::span<const RegistryEntry> integrator_choices() {
+    static const std::vector<RegistryEntry> infos = [] {
+        std::vector<RegistryEntry> out;
+        for (const IntegratorEntry& e : integrator_registry()) out.push_back(e.info);
+        return out;
+    }();
+    return infos;
+}
+
+std::span<const RegistryEntry> pass_choices() {
+    // Combined is always there: the list names the others.
+    static const std::vector<RegistryEntry> infos = [] {
+        std::vector<RegistryEntry> out;
+        for (size_t i = 1; i < kPasses.size(); ++i)
+            out.push_back({kPasses[i].name, kPasses[i].name, kPasses[i].description});
+        return out;
+    }();
+    return infos;
+}
+
+// Accessors of one member, for the table below.
+#define STRATUM_UINT(member)                                               \
+    [](const RenderSettings& s) { return static_cast<double>(s.member); }, \
+        [](RenderSettings& s, double v) { s.member = static_cast<uint32_t>(v); }
+#define STRATUM_FLOAT(member)                                              \
+    [](const RenderSettings& s) { return static_cast<double>(s.member); }, \
+        [](RenderSettings& s, double v) { s.member = static_cast<float>(v); }
+#define STRATUM_OPTION(member, at)                                                    \
+    [](const RenderSettings& s) { return static_cast<double>(choice_of(s.member)); }, \
+        [](RenderSettings& s, double v) { s.member = at(static_cast<size_t>(v)); }
+#define STRATUM_ENUM(member, Enum)                                         \
+    [](const RenderSettings& s) { return static_cast<double>(s.member); }, \
+        [](RenderSettings& s, double v) { s.member = static_cast<Enum>(static_cast<int>(v)); }
+
+const std::array kSettings = {
+    SettingSpec{{"width", "Width", "Frame width in pixels"},
+                SettingKind::Int,
+                1,
+                kMaxResolution,
+                false,
+                "pixels",
+                nullptr,
+                STRATUM_UINT(width)},
+    SettingSpec{{"height", "Height", "Frame height in pixels"},
+                SettingKind::Int,
+                1,
+                kMaxResolution,
+                false,
+                "pixels",
+                nullptr,
+                STRATUM_UINT(height)},
+    SettingSpec{{"samples", "Samples", "Number of samples per pixel"},
+                SettingKind::Int,
+                1,
+                kMaxSamples,
+                false,
+                "",
+                nullptr,
+                STRATUM_UINT(samples)},
+    SettingSpec{{"max_bounces", "Max Bounces",
+                 "Total maximum number of bounces (0 = direct lighting only), as Cycles' max_bounces"},
+                SettingKind::Int,
+                0,
+                kMaxBounces,
+                false,
+                "",
+                nullptr,
+                STRATUM_UINT(estimator.max_bounces)},
+    SettingSpec{{"seed", "Seed", "Seed of the sampler's scrambling and randomization"},
+                SettingKind::Int,
+                0,
+                0xffffffff,
+                false,
+                "",
+                nullptr,
+                STRATUM_UINT(seed)},
+    SettingSpec{{"threads", "Threads", "Number of render threads (0 = all cores)"},
+                SettingKind::Int,
+                0,
+                1024,
+                false,
+                "",
+                nullptr,
+                STRATUM_UINT(threads)},
+    SettingSpec{{"crop_x", "Border X", "Left edge of the border region, pixels from the frame's left"},
+                SettingKind::Int,
+                0,
+                kMaxResolution - 1,
+                false,
+                "pixels",
+                nullptr,
+                STRATUM_UINT(crop_x)},
+    SettingSpec{{"crop_y", "Border Y", "Bottom edge of the border region, pixels from the frame's bottom"},
+                SettingKind::Int,
+                0,
+                kMaxResolution - 1,
+                false,
+                "pixels",
+                nullptr,
+                STRATUM_UINT(crop_y)},
+    SettingSpec{{"crop_width", "Border Width", "Width of the border region in pixels (0 = the whole frame)"},
+                SettingKind::Int,
+                0,
+                kMaxResolution,
+                false,
+                "pixels",
+                nullptr,
+                STRATUM_UINT(crop_width)},
+    SettingSpec{{"crop_height", "Border Height", "Height of the border region in pixels"},
+                SettingKind::Int,
+                0,
+                kMaxResolution,
+                false,
+                "pixels",
+                nullptr,
+                STRATUM_UINT(crop_height)},
+    SettingSpec{{"film_transparent", "Transparent Film",
+                 "1: the background seen directly has alpha 0 (Cycles' Film > Transparent)"},
+                SettingKind::Int,
+                0,
+                1,
+                false,
+                "",
+                nullptr,
+                [](const RenderSettings& s) { return s.estimator.film_transparent ? 1.0 : 0.0; },
+                [](RenderSettings& s, double v) { s.estimator.film_transparent = v != 0.0; }},
+    SettingSpec{
+        {"rr_min_depth", "Roulette Min Depth", "First bounce at which Russian roulette may end a path"},
+        SettingKind::Int,
+        0,
+        kMaxBounces,
+        false,
+        "",
+        nullptr,
+        STRATUM_UINT(estimator.rr_min_depth)},
+    SettingSpec{{"filter_width", "Filter Width", "Pixel filter width in pixels, as Cycles' filter_width"},
+                SettingKind::Float,
+                0.01,
+                100.0,
+                false,
+                "pixels",
+                nullptr,
+                STRATUM_FLOAT(filter_width)},
+    SettingSpec{{"ao_distance", "AO Distance",
+                 "Ambient occlusion: a direction is occluded when an obstacle lies within this distance "
+                 "(inf = unlimited)"},
+                SettingKind::Float,
+                0.0,
+                kInf,
+                true,
+                "scene units",
+                nullptr,
+                STRATUM_FLOAT(estimator.ao_distance)},
+    SettingSpec{{"control_variate", "Control Variate",
+                 "Ambient radiance L_a of the control variate (textbook 5.17); 0 = off"},
+                SettingKind::Float,
+                0.0,
+                kFloatMax,
+                false,
+                "",
+                nullptr,
+                STRATUM_FLOAT(estimator.control_variate)},
+    SettingSpec{
+        {"sampler", "Sampler", "Sampling strategy"},
+        SettingKind::Choice,
+        0,
+        0,
+        false,
+        "",
+        &sampler_choices,
+        [](const RenderSettings& s) { return static_cast<double>(s.sampler - sampler_registry().data()); },
+        [](RenderSettings& s, double v) { s.sampler = &sampler_registry()[static_cast<size_t>(v)]; }},
+    SettingSpec{
+        {"integrator", "Integrator", "Light transport algorithm"},
+        SettingKind::Choice,
+        0,
+        0,
+        false,
+        "",
+        &integrator_choices,
+        [](const RenderSettings& s) {
+            return static_cast<double>(s.integrator - integrator_registry().data());
+        },
+        [](RenderSettings& s, double v) { s.integrator = &integrator_registry()[static_cast<size_t>(v)]; }},
+    SettingSpec{{"hemisphere", "Hemisphere", "Distribution of diffuse and ambient-occlusion directions"},
+                SettingKind::Choice,
+                0,
+                0,
+                false,
+                "",
+                &hemisphere_registry,
+                STRATUM_ENUM(estimator.hemisphere, HemisphereDistribution)},
+    SettingSpec{{"filter_type", "Filter Type", "Pixel reconstruction filter"},
+                SettingKind::Choice,
+                0,
+                0,
+                false,
+                "",
+                &filter_registry,
+                STRATUM_ENUM(filter_type, FilterType)},
+    SettingSpec{{"light_sampling", "Light Sampling", "How the path tracer finds emission"},
+                SettingKind::Choice,
+                0,
+                0,
+                false,
+                "",
+                &light_sampling_choices,
+                STRATUM_OPTION(estimator.light_sampling, light_sampling_at)},
+    SettingSpec{{"mis_heuristic", "MIS Heuristic",
+                 "Weights of light and BSDF samples under multiple importance sampling"},
+                SettingKind::Choice,
+                0,
+                0,
+                false,
+                "",
+                &mis_heuristic_choices,
+                STRATUM_OPTION(estimator.mis_heuristic, mis_heuristic_at)},
+    SettingSpec{
+        {"light_selection", "Light Selection", "Probability of choosing each light for a light sample"},
+        SettingKind::Choice,
+        0,
+        0,
+        false,
+        "",
+        &light_selection_choices,
+        STRATUM_OPTION(estimator.light_selection, light_selection_at)},
+    SettingSpec{{"triangle_sampling", "Triangle Sampling",
+                 "How a light sample takes a point on an emissive triangle"},
+                SettingKind::Choice,
+                0,
+                0,
+                false,
+                "",
+                &triangle_sampling_choices,
+                STRATUM_OPTION(estimator.triangle_sampling, triangle_sampling_at)},
+    SettingSpec{{"rr_mode", "Russian Roulette", "How a path's survival probability is chosen"},
+                SettingKind::Choice,
+                0,
+                0,
+                false,
+                "",
+                &rr_mode_choices,
+                STRATUM_OPTION(estimator.rr_mode, rr_mode_at)},
+    SettingSpec{{"passes", "Passes", "Passes the render holds besides Combined (comma-separated)"},
+                SettingKind::List,
+                0,
+                0,
+                false,
+                "",
+                &pass_choices,
+                nullptr,
+                nullptr,
+                [](const RenderSettings& s) {
+                    std::vector<size_t> out;
+                    for (const Pass p : s.passes) out.push_back(static_cast<size_t>(p) - 1);
+                    return out;
+                },
+                [](RenderSettings& s, const std::vector<size_t>& choices) {
+                    s.passes.clear();
+                    for (const size_t c : choices) s.passes.push_back(static_cast<Pass>(c + 1));
+                }},
+};
+
+#undef STRATUM_UINT
+#undef STRATUM_FLOAT
+#undef STRATUM_OPTION
+#undef STRATUM_ENUM
+
+std::string format_number(double v) {
+    std::ostringstream out;
+    out << v;
+    return out.str();
+}
+
+std::string choice_names(const SettingSpec& spec) {
+    std::string names;
+    for (const RegistryEntry& e : spec.choices()) names += (names.empty() ? "" : ", ") + std::string(e.name);
+    return names;
+}
+
+// The position of `name` among the setting's choices, or choices().size().
+size_t find_choice(const SettingSpec& spec, std::string_view name) {
+    const std::span<const RegistryEntry> choices = spec.choices();
+    for (size_t i = 0; i < choices.size(); ++i)
+        if (name == choices[i].name) return i;
+    return choices.size();
+}
+
+const char* kind_name(SettingKind kind) {
+    switch (kind) {
+        case SettingKind::Int:
+            return "integer";
+        case SettingKind::Float:
+            return "float";
+        case SettingKind::Choice:
+        case SettingKind::List:
+            return "string";
+    }
+    return "";
+}
+
+// The setting `name` of `kind`, or an error message naming what is wrong.
+const SettingSpec* lookup(std::string_view name, SettingKind kind, std::string* error) {
+    const SettingSpec* spec = find_setting(name);
+    const bool string_kind = kind == SettingKind::Choice;
+    if (!spec || (string_kind ? (spec->kind != SettingKind::Choice && spec->kind != SettingKind::List)
+                              : spec->kind != kind)) {
+        *error = "unknown " + std::string(kind_name(kind)) + " setting '" + std::string(name) + "'" +
+                 (spec ? " (it is a " + std::string(kind_name(spec->kind)) + " setting)" : "");
+        return nullptr;
+    }
+    return spec;
+}
+
+}  // namespace
+
+std::span<const SettingSpec> setting_registry() { return kSettings; }
+
+const SettingSpec* find_setting(std::string_view name) {
+    for (const SettingSpec& spec : kSettings)
+        if (name == spec.info.name) return &spec;
+    return nullptr;
+}
+
+std::string default_value(const SettingSpec& spec) {
+    const RenderSettings defaults;
+    switch (spec.kind) {
+        case SettingKind::Int:
+        case SettingKind::Float:
+            return format_number(spec.get(defaults));
+        case SettingKind::Choice:
+            return spec.choices()[static_cast<size_t>(spec.get(defaults))].name;
+        case SettingKind::List: {
+            std::string names;
+            for (const size_t c : spec.get_list(defaults))
+                names += (names.empty() ? "" : ",") + std::string(spec.choices()[c].name);
+            return names;
+        }
+    }
+    return {};
+}
+
+std::string set_int_setting(RenderSettings& s, std::string_view name, int64_t value) {
+    std::string error;
+    const SettingSpec* spec = lookup(name, SettingKind::Int, &error);
+    if (!spec) return error;
+    const double v = static_cast<double>(value);
+    if (v < spec->minimum || v > spec->maximum) {
+        return "setting '" + std::string(name) + "' = " + std::to_string(value) + " is out of range [" +
+               format_number(spec->minimum) + ", " + format_number(spec->maximum) + "]";
+    }
+    spec->set(s, v);
+    return {};
+}
+
+std::string set_float_setting(RenderSettings& s, std::string_view name, double value) {
+    std::string error;
+    const SettingSpec* spec = lookup(name, SettingKind::Float, &error);
+    if (!spec) return error;
+    // The renderer stores a float: a double that rounds to 0 where 0 is excluded, or to infinity
+    // where the range is finite, is judged by what it becomes.
+    const float stored = static_cast<float>(value);
+    const bool above_minimum =
+        spec->open_minimum ? value > spec->minimum && stored > spec->minimum : value >= spec->minimum;
+    if (std::isnan(value) || !above_minimum || !(value <= spec->maximum) ||
+        (!std::isinf(spec->maximum) && !std::isfinite(stored))) {
+        const std::string unit = *spec->unit ? std::string(" ") + spec->unit : "";
+        return "setting '" + std::string(name) + "' = " + format_number(value) + " must be in " +
+               (spec->open_minimum ? "(" : "[") + format_number(spec->minimum) + ", " +
+               format_number(spec->maximum) + "]" + unit;
+    }
+    spec->set(s, value);
+    return {};
+}
+
+std::string set_string_setting(RenderSettings& s, std::string_view name, std::string_view value) {
+    std::string error;
+    const SettingSpec* spec = lookup(name, SettingKind::Choice, &error);
+    if (!spec) return error;
+    if (spec->kind == SettingKind::Choice) {
+        const size_t choice = find_choice(*spec, value);
+        if (choice == spec->choices().size())
+            return "unknown " + std::string(name) + " '" + std::string(value) +
+                   "' (known: " + choice_names(*spec) + ")";
+        spec->set(s, static_cast<double>(choice));
+        return {};
+    }
+    std::vector<size_t> choices;
+    for (size_t begin = 0; begin <= value.size();) {
+        const size_t comma = std::min(value.find(',', begin), value.size());
+        const std::string_view item = value.substr(begin, comma - begin);
+        if (!item.empty()) {
+            const size_t choice = find_choice(*spec, item);
+            if (choice == spec->choices().size())
+                return "unknown " + std::string(name) + " item '" + std::string(item) +
+                       "' (known: " + choice_names(*spec) + ")";
+            if (std::find(choices.begin(), choices.end(), choice) == choices.end()) choices.push_back(choice);
+        }
+        begin = comma + 1;
+    }
+    spec->set_list(s, choices);
+    return {};
+}
+
+}  // namespace stratum
