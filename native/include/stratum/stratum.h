@@ -80,8 +80,8 @@ typedef struct StratumSettingInfo {
     int32_t kind;            /* StratumSettingKind */
     double minimum;          /* INT, FLOAT: the accepted range (FLOAT: maximum may be +inf) */
     double maximum;
-    int32_t open_minimum;  /* FLOAT: 1 when the minimum itself is excluded */
-    const char* unit;      /* "pixels", "scene units" or "" */
+    int32_t open_minimum;      /* FLOAT: 1 when the minimum itself is excluded */
+    const char* unit;          /* "pixels", "scene units" or "" */
     const char* default_value; /* the renderer's default as text: "16", "1.5", "mis", "" */
     int32_t choice_count;      /* CHOICE, LIST: number of choices (stratum_setting_choice) */
 } StratumSettingInfo;
