@@ -154,11 +154,13 @@ Measurement measure_irradiance(StratumScene* scene, const char* integrator, cons
 }
 
 double light_set_power(StratumScene* scene) {
-    const stratum::RenderScene render_scene(scene->scene);
-    const stratum::LightSet& lights = render_scene.lights();
-    double total = 0;
-    for (uint32_t i = 0; i < lights.size(); ++i) total += lights.power(static_cast<uint32_t>(i));
-    return total;
+    return scene->live->read([](const stratum::Scene& s) {
+        const stratum::RenderScene render_scene(s);
+        const stratum::LightSet& lights = render_scene.lights();
+        double total = 0;
+        for (uint32_t i = 0; i < lights.size(); ++i) total += lights.power(static_cast<uint32_t>(i));
+        return total;
+    });
 }
 
 }  // namespace

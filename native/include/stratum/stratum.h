@@ -431,6 +431,24 @@ STRATUM_API StratumStatus stratum_scene_set_environment(StratumScene* scene, con
                                                         uint32_t height, float strength,
                                                         const float rotation[9]);
 
+/* ---- live edits ------------------------------------------------------------------------ */
+/* A scene can be edited after renderers were made from it (the viewport's live scene): each call
+ * below replaces one part, validated as when it was added, and so do stratum_scene_set_camera,
+ * _set_background and _set_environment. A renderer sees the edits at its next
+ * stratum_renderer_start, which starts again from sample 0 and rebuilds only what changed: a
+ * moved, hidden or re-shaded instance updates its BVH placement (a top-level recommit for an
+ * instanced mesh), a material, light or world edit the light set, a camera edit nothing. The
+ * image equals that of a scene built anew with the edits. A rejected edit changes nothing. */
+STRATUM_API StratumStatus stratum_scene_set_instance(StratumScene* scene, uint32_t index,
+                                                     const StratumInstanceDesc* instance);
+STRATUM_API StratumStatus stratum_scene_set_material(StratumScene* scene, uint32_t material_id,
+                                                     const StratumMaterialDesc* material);
+STRATUM_API StratumStatus stratum_scene_set_closure_material(StratumScene* scene, uint32_t material_id,
+                                                             const StratumClosureDesc* closures,
+                                                             uint32_t closure_count);
+STRATUM_API StratumStatus stratum_scene_set_light(StratumScene* scene, uint32_t index,
+                                                  const StratumLightDesc* light);
+
 /* Writes / reads a captured scene (JSON) for the native CLI and for bug reports. */
 STRATUM_API StratumStatus stratum_scene_save(const StratumScene* scene, const char* path);
 STRATUM_API StratumStatus stratum_scene_load(const char* path, StratumScene** out_scene);
@@ -447,7 +465,8 @@ STRATUM_API StratumStatus stratum_scene_measure_ray_throughput(const StratumScen
 
 typedef struct StratumRenderer StratumRenderer;
 
-/* Copies what it needs from the scene: the scene may be destroyed afterwards. */
+/* The renderer follows the scene: edits made after this call reach it at its next start (see
+ * "live edits"). The scene may be destroyed before the renderer. */
 STRATUM_API StratumStatus stratum_renderer_create(const StratumScene* scene, StratumRenderer** out);
 STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
 

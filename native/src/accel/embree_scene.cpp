@@ -12,9 +12,10 @@ namespace stratum {
 
 struct EmbreeScene::Impl {
     RTCDevice device = nullptr;
-    RTCScene scene = nullptr;          // top level: one instance per placement
-    std::vector<RTCScene> prototypes;  // object space: one triangle geometry each
-    std::vector<RTCGeometry> moving;   // per placement: its instance if moving, else null
+    RTCScene scene = nullptr;                // top level: one instance per placement
+    std::vector<RTCScene> prototypes;        // object space: one triangle geometry each; null if flattened
+    std::vector<TriangleGeometry> geometry;  // every prototype's arrays (flattened ones are rebuilt)
+    std::vector<RTCGeometry> moving;         // per placement: its instance if moving, else null
     std::mutex error_mutex;
     std::string error;
     float origin_limit = 0.0f;
@@ -129,6 +130,28 @@ RTCQuaternionDecomposition to_embree(const MotionDecomposition& d) {
     return q;
 }
 
+// Sets an instance geometry's mask and transform (both time steps when moving) and commits it.
+void place_instance(RTCGeometry inst, const InstancePlacement& p) {
+    rtcSetGeometryMask(inst, p.mask);
+    if (p.motion) {
+        RTCQuaternionDecomposition q0 = to_embree(decompose_transform(p.start));
+        RTCQuaternionDecomposition q1 = to_embree(decompose_transform(p.end));
+        // q and −q are the same rotation; Cycles (transform_motion_decompose) flips the later
+        // one onto the near hemisphere so the slerp takes the short way round.
+        const float d = q0.quaternion_r * q1.quaternion_r + q0.quaternion_i * q1.quaternion_i +
+                        q0.quaternion_j * q1.quaternion_j + q0.quaternion_k * q1.quaternion_k;
+        if (d < 0.0f) {
+            rtcQuaternionDecompositionSetQuaternion(&q1, -q1.quaternion_r, -q1.quaternion_i, -q1.quaternion_j,
+                                                    -q1.quaternion_k);
+        }
+        rtcSetGeometryTransformQuaternion(inst, 0, &q0);
+        rtcSetGeometryTransformQuaternion(inst, 1, &q1);
+    } else {
+        rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, p.start.m.data());
+    }
+    rtcCommitGeometry(inst);
+}
+
 }  // namespace
 
 MotionDecomposition decompose_transform(const Transform& m) {
@@ -193,6 +216,7 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
     }
     for (size_t k = 0; k < prototypes.size(); ++k) instanced[k] = instanced[k] || placed[k] > 1;
     impl_->prototypes.assign(prototypes.size(), nullptr);
+    impl_->geometry.assign(prototypes.begin(), prototypes.end());
     for (size_t k = 0; k < prototypes.size(); ++k) {
         if (!instanced[k]) continue;
         RTCScene proto = rtcNewScene(impl_->device);
@@ -224,25 +248,8 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
         }
         RTCGeometry inst = rtcNewGeometry(impl_->device, RTC_GEOMETRY_TYPE_INSTANCE);
         rtcSetGeometryInstancedScene(inst, impl_->prototypes.at(p.prototype));
-        rtcSetGeometryMask(inst, p.mask);
-        if (p.motion) {
-            rtcSetGeometryTimeStepCount(inst, 2);
-            RTCQuaternionDecomposition q0 = to_embree(decompose_transform(p.start));
-            RTCQuaternionDecomposition q1 = to_embree(decompose_transform(p.end));
-            // q and −q are the same rotation; Cycles (transform_motion_decompose) flips the later
-            // one onto the near hemisphere so the slerp takes the short way round.
-            const float d = q0.quaternion_r * q1.quaternion_r + q0.quaternion_i * q1.quaternion_i +
-                            q0.quaternion_j * q1.quaternion_j + q0.quaternion_k * q1.quaternion_k;
-            if (d < 0.0f) {
-                rtcQuaternionDecompositionSetQuaternion(&q1, -q1.quaternion_r, -q1.quaternion_i,
-                                                        -q1.quaternion_j, -q1.quaternion_k);
-            }
-            rtcSetGeometryTransformQuaternion(inst, 0, &q0);
-            rtcSetGeometryTransformQuaternion(inst, 1, &q1);
-        } else {
-            rtcSetGeometryTransform(inst, 0, RTC_FORMAT_FLOAT3X4_ROW_MAJOR, p.start.m.data());
-        }
-        rtcCommitGeometry(inst);
+        if (p.motion) rtcSetGeometryTimeStepCount(inst, 2);
+        place_instance(inst, p);
         rtcAttachGeometryByID(impl_->scene, inst, static_cast<unsigned>(i));
         if (p.motion)
             impl_->moving[i] = inst;  // keeps our reference for motion_transform()
@@ -251,6 +258,28 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
     }
     rtcCommitScene(impl_->scene);
     if (!continue_build(impl_, 0.0)) return kBuildCancelled;
+    std::lock_guard lock(impl_->error_mutex);
+    return impl_->error;
+}
+
+std::string EmbreeScene::update(std::span<const InstancePlacement> placements,
+                                std::span<const uint32_t> changed, float ray_origin_limit) {
+    impl_->origin_limit = ray_origin_limit;
+    for (const uint32_t i : changed) {
+        const InstancePlacement& p = placements[i];
+        if (impl_->prototypes.at(p.prototype)) {
+            place_instance(rtcGetGeometry(impl_->scene, i), p);
+            continue;
+        }
+        // A flattened placement holds world-space vertices: they are mapped anew, exactly as
+        // build() maps them, and the geometry replaced under the same ID.
+        RTCGeometry flat = new_triangles(impl_->device, impl_->geometry[p.prototype], &p.start, p.mask);
+        if (!flat) return "Embree: out of memory for mesh buffers";
+        rtcDetachGeometry(impl_->scene, i);
+        rtcAttachGeometryByID(impl_->scene, flat, i);
+        rtcReleaseGeometry(flat);
+    }
+    rtcCommitScene(impl_->scene);
     std::lock_guard lock(impl_->error_mutex);
     return impl_->error;
 }

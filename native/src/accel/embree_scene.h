@@ -65,6 +65,13 @@ public:
                       std::span<const InstancePlacement> placements, float ray_origin_limit,
                       const std::atomic<bool>* cancel = nullptr);
     static constexpr const char* kBuildCancelled = "BVH build cancelled";
+    // Re-places the placements listed in `changed` (indices into `placements`, which are those
+    // given to build() with new transforms and masks; prototypes and motion as built) and
+    // recommits the top level: for an instanced mesh only its instance record changes, a
+    // flattened one has its world-space vertices mapped anew. The result is what build() gives
+    // for these placements. Returns an empty string or Embree's error.
+    std::string update(std::span<const InstancePlacement> placements, std::span<const uint32_t> changed,
+                       float ray_origin_limit);
     // Closest hit with t in (t_min, t_max) at shutter time `time` in [0,1], among instances whose
     // mask shares a bit with `mask`; false if none.
     bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, float time, uint32_t mask,

@@ -1,9 +1,12 @@
 // The opaque StratumScene handle of the C ABI: one definition, shared by every file that
-// implements scene entry points (stratum_api.cpp, texture_api.cpp).
+// implements scene entry points (stratum_api.cpp, texture_api.cpp). The scene lives in a
+// LiveScene shared with the renderers made from it, so that edits reach them.
 #pragma once
 
-#include "scene/scene.h"
+#include <memory>
+
+#include "scene/live_scene.h"
 
 struct StratumScene {
-    stratum::Scene scene;
+    std::shared_ptr<stratum::LiveScene> live = std::make_shared<stratum::LiveScene>();
 };

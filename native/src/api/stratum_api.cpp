@@ -24,7 +24,7 @@
 #include "stratum/stratum.h"
 
 struct StratumRenderer {
-    explicit StratumRenderer(stratum::Scene s) : renderer(std::move(s)) {}
+    explicit StratumRenderer(std::shared_ptr<const stratum::LiveScene> scene) : renderer(std::move(scene)) {}
     stratum::Renderer renderer;
     // The notices as last handed out by stratum_renderer_notices (the renderer's grow while
     // it renders; the host's pointer must stay valid until its next call).
@@ -54,6 +54,16 @@ StratumStatus set_setting(const char* function, StratumRenderer* r, const char* 
         const std::string error = apply(r->renderer.settings());
         require(error.empty(), error);
         return STRATUM_OK;
+    });
+}
+
+// Replaces material `id` with `m` (checked to exist under the lock).
+void replace_material(StratumScene* scene, uint32_t id, stratum::SceneMaterial m) {
+    scene->live->edit(stratum::LiveScene::Part::Materials, [&](stratum::Scene& s) {
+        require(id < s.materials.size(), "material " + std::to_string(id) +
+                                             " does not exist (the scene has " +
+                                             std::to_string(s.materials.size()) + ")");
+        s.materials[id] = std::move(m);
     });
 }
 
@@ -164,9 +174,12 @@ StratumStatus stratum_scene_add_material(StratumScene* scene, const StratumMater
                                          uint32_t* out_id) {
     return guarded("stratum_scene_add_material", [&] {
         require(scene && material, "scene or material is NULL");
-        const uint32_t id = static_cast<uint32_t>(scene->scene.materials.size());
-        scene->scene.materials.push_back(stratum::SceneMaterial{
-            {stratum::WeightedClosure{stratum::Rgb(1.0f), stratum::validate_material(*material)}}});
+        stratum::SceneMaterial m{
+            {stratum::WeightedClosure{stratum::Rgb(1.0f), stratum::validate_material(*material)}}};
+        const uint32_t id = scene->live->edit(stratum::LiveScene::Part::Materials, [&](stratum::Scene& s) {
+            s.materials.push_back(std::move(m));
+            return static_cast<uint32_t>(s.materials.size() - 1);
+        });
         if (out_id) *out_id = id;
         return STRATUM_OK;
     });
@@ -176,8 +189,11 @@ StratumStatus stratum_scene_add_closure_material(StratumScene* scene, const Stra
                                                  uint32_t closure_count, uint32_t* out_id) {
     return guarded("stratum_scene_add_closure_material", [&] {
         require(scene, "scene is NULL");
-        const uint32_t id = static_cast<uint32_t>(scene->scene.materials.size());
-        scene->scene.materials.push_back(stratum::validate_closure_material(closures, closure_count));
+        stratum::SceneMaterial m = stratum::validate_closure_material(closures, closure_count);
+        const uint32_t id = scene->live->edit(stratum::LiveScene::Part::Materials, [&](stratum::Scene& s) {
+            s.materials.push_back(std::move(m));
+            return static_cast<uint32_t>(s.materials.size() - 1);
+        });
         if (out_id) *out_id = id;
         return STRATUM_OK;
     });
@@ -186,9 +202,10 @@ StratumStatus stratum_scene_add_closure_material(StratumScene* scene, const Stra
 StratumStatus stratum_scene_add_mesh(StratumScene* scene, const StratumMeshDesc* mesh, uint32_t* out_id) {
     return guarded("stratum_scene_add_mesh", [&] {
         require(scene && mesh, "scene or mesh is NULL");
-        const uint32_t id = static_cast<uint32_t>(scene->scene.meshes.size());
-        scene->scene.meshes.push_back(
-            stratum::validate_mesh(*mesh, static_cast<uint32_t>(scene->scene.materials.size())));
+        const uint32_t id = scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            s.meshes.push_back(stratum::validate_mesh(*mesh, static_cast<uint32_t>(s.materials.size())));
+            return static_cast<uint32_t>(s.meshes.size() - 1);
+        });
         if (out_id) *out_id = id;
         return STRATUM_OK;
     });
@@ -202,7 +219,9 @@ StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id, 
         d.mesh_id = mesh_id;
         std::copy(transform, transform + 16, d.transform);
         d.visibility = STRATUM_VISIBLE_ALL;
-        scene->scene.instances.push_back(stratum::validate_instance(d, scene->scene.meshes));
+        scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            s.instances.push_back(stratum::validate_instance(d, s.meshes));
+        });
         return STRATUM_OK;
     });
 }
@@ -210,7 +229,9 @@ StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id, 
 StratumStatus stratum_scene_add_instance_ex(StratumScene* scene, const StratumInstanceDesc* instance) {
     return guarded("stratum_scene_add_instance_ex", [&] {
         require(scene && instance, "scene or instance is NULL");
-        scene->scene.instances.push_back(stratum::validate_instance(*instance, scene->scene.meshes));
+        scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            s.instances.push_back(stratum::validate_instance(*instance, s.meshes));
+        });
         return STRATUM_OK;
     });
 }
@@ -218,7 +239,9 @@ StratumStatus stratum_scene_add_instance_ex(StratumScene* scene, const StratumIn
 StratumStatus stratum_scene_add_light(StratumScene* scene, const StratumLightDesc* light) {
     return guarded("stratum_scene_add_light", [&] {
         require(scene && light, "scene or light is NULL");
-        scene->scene.lights.push_back(stratum::validate_light(*light));
+        stratum::LightParams l = stratum::validate_light(*light);
+        scene->live->edit(stratum::LiveScene::Part::Lights,
+                          [&](stratum::Scene& s) { s.lights.push_back(l); });
         return STRATUM_OK;
     });
 }
@@ -226,7 +249,8 @@ StratumStatus stratum_scene_add_light(StratumScene* scene, const StratumLightDes
 StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraDesc* camera) {
     return guarded("stratum_scene_set_camera", [&] {
         require(scene && camera, "scene or camera is NULL");
-        scene->scene.camera = stratum::validate_camera(*camera);
+        stratum::CameraParams c = stratum::validate_camera(*camera);
+        scene->live->edit(stratum::LiveScene::Part::Camera, [&](stratum::Scene& s) { s.camera = c; });
         return STRATUM_OK;
     });
 }
@@ -234,7 +258,9 @@ StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraD
 StratumStatus stratum_scene_set_background(StratumScene* scene, const float rgb[3]) {
     return guarded("stratum_scene_set_background", [&] {
         require(scene && rgb, "scene or rgb is NULL");
-        scene->scene.background = stratum::validate_radiance(rgb, "background");
+        const stratum::Rgb background = stratum::validate_radiance(rgb, "background");
+        scene->live->edit(stratum::LiveScene::Part::World,
+                          [&](stratum::Scene& s) { s.background = background; });
         return STRATUM_OK;
     });
 }
@@ -243,7 +269,58 @@ StratumStatus stratum_scene_set_environment(StratumScene* scene, const float* rg
                                             uint32_t height, float strength, const float rotation[9]) {
     return guarded("stratum_scene_set_environment", [&] {
         require(scene != nullptr, "scene is NULL");
-        scene->scene.environment = stratum::validate_environment(rgb, width, height, strength, rotation);
+        stratum::Environment e = stratum::validate_environment(rgb, width, height, strength, rotation);
+        scene->live->edit(stratum::LiveScene::Part::World,
+                          [&](stratum::Scene& s) { s.environment = std::move(e); });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_instance(StratumScene* scene, uint32_t index,
+                                         const StratumInstanceDesc* instance) {
+    return guarded("stratum_scene_set_instance", [&] {
+        require(scene && instance, "scene or instance is NULL");
+        const stratum::Instance validated = scene->live->read([&](const stratum::Scene& s) {
+            require(index < s.instances.size(), "instance " + std::to_string(index) +
+                                                    " does not exist (the scene has " +
+                                                    std::to_string(s.instances.size()) + ")");
+            return stratum::validate_instance(*instance, s.meshes);
+        });
+        scene->live->edit_instance(index, [&](stratum::Instance& i) { i = validated; });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_material(StratumScene* scene, uint32_t material_id,
+                                         const StratumMaterialDesc* material) {
+    return guarded("stratum_scene_set_material", [&] {
+        require(scene && material, "scene or material is NULL");
+        replace_material(
+            scene, material_id,
+            {{stratum::WeightedClosure{stratum::Rgb(1.0f), stratum::validate_material(*material)}}});
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_closure_material(StratumScene* scene, uint32_t material_id,
+                                                 const StratumClosureDesc* closures, uint32_t closure_count) {
+    return guarded("stratum_scene_set_closure_material", [&] {
+        require(scene, "scene is NULL");
+        replace_material(scene, material_id, stratum::validate_closure_material(closures, closure_count));
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_light(StratumScene* scene, uint32_t index, const StratumLightDesc* light) {
+    return guarded("stratum_scene_set_light", [&] {
+        require(scene && light, "scene or light is NULL");
+        const stratum::LightParams l = stratum::validate_light(*light);
+        scene->live->edit(stratum::LiveScene::Part::Lights, [&](stratum::Scene& s) {
+            require(index < s.lights.size(), "light " + std::to_string(index) +
+                                                 " does not exist (the scene has " +
+                                                 std::to_string(s.lights.size()) + ")");
+            s.lights[index] = l;
+        });
         return STRATUM_OK;
     });
 }
@@ -251,7 +328,8 @@ StratumStatus stratum_scene_set_environment(StratumScene* scene, const float* rg
 StratumStatus stratum_scene_save(const StratumScene* scene, const char* path) {
     return guarded("stratum_scene_save", [&] {
         require(scene && path, "scene or path is NULL");
-        const std::string error = stratum::save_scene_file(scene->scene, path);
+        const std::string error =
+            scene->live->read([&](const stratum::Scene& s) { return stratum::save_scene_file(s, path); });
         return error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_IO, "stratum_scene_save: " + error);
     });
 }
@@ -282,8 +360,9 @@ StratumStatus stratum_scene_measure_ray_throughput(const StratumScene* scene, ui
                 "samples = " + std::to_string(samples) + " out of range [1, 65536]");
         require(max_bounces <= 1024,
                 "max_bounces = " + std::to_string(max_bounces) + " out of range [0, 1024]");
-        const stratum::RayThroughput t =
-            stratum::measure_ray_throughput(scene->scene, width, height, samples, max_bounces, threads);
+        const stratum::RayThroughput t = scene->live->read([&](const stratum::Scene& s) {
+            return stratum::measure_ray_throughput(s, width, height, samples, max_bounces, threads);
+        });
         *out_rays = t.rays;
         *out_seconds = t.seconds;
         return STRATUM_OK;
@@ -293,7 +372,7 @@ StratumStatus stratum_scene_measure_ray_throughput(const StratumScene* scene, ui
 StratumStatus stratum_renderer_create(const StratumScene* scene, StratumRenderer** out) {
     return guarded("stratum_renderer_create", [&] {
         require(scene && out, "scene or out is NULL");
-        *out = new StratumRenderer(scene->scene);
+        *out = new StratumRenderer(scene->live);
         return STRATUM_OK;
     });
 }
@@ -403,7 +482,7 @@ StratumStatus stratum_renderer_read_pass(const StratumRenderer* r, const char* n
                                          size_t count) {
     return guarded("stratum_renderer_read_pass", [&] {
         require(r && name && out, "renderer, name or out is NULL");
-        stratum::Pass pass;
+        stratum::Pass pass = stratum::Pass::Combined;
         require(stratum::find_pass(name, &pass), "unknown pass '" + std::string(name) + "'");
         const size_t pixels = static_cast<size_t>(r->renderer.width()) * r->renderer.height();
         require(pixels > 0, "nothing rendered yet: call stratum_renderer_start first");

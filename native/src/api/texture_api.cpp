@@ -21,8 +21,11 @@ StratumStatus stratum_scene_add_texture(StratumScene* scene, const StratumTextur
         } catch (const stratum::ImageReadError& e) {
             return fail(STRATUM_ERROR_IO, std::string("stratum_scene_add_texture: ") + e.what());
         }
-        scene->scene.textures.push_back(std::move(loaded));
-        if (out_id) *out_id = static_cast<uint32_t>(scene->scene.textures.size() - 1);
+        const uint32_t id = scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            s.textures.push_back(std::move(loaded));
+            return static_cast<uint32_t>(s.textures.size() - 1);
+        });
+        if (out_id) *out_id = id;
         return STRATUM_OK;
     });
 }
@@ -32,12 +35,13 @@ StratumStatus stratum_scene_texture_info(const StratumScene* scene, uint32_t tex
     using namespace stratum::abi;
     return guarded("stratum_scene_texture_info", [&] {
         require(scene && out, "scene or out is NULL");
-        const auto& textures = scene->scene.textures;
-        require(texture_id < textures.size(), "texture_id " + std::to_string(texture_id) +
-                                                  " is not a texture (the scene has " +
-                                                  std::to_string(textures.size()) + ")");
-        const stratum::Texture& t = *textures[texture_id];
-        *out = StratumTextureInfo{t.width, t.height, t.replaced_texels};
+        *out = scene->live->read([&](const stratum::Scene& s) {
+            require(texture_id < s.textures.size(), "texture_id " + std::to_string(texture_id) +
+                                                        " is not a texture (the scene has " +
+                                                        std::to_string(s.textures.size()) + ")");
+            const stratum::Texture& t = *s.textures[texture_id];
+            return StratumTextureInfo{t.width, t.height, t.replaced_texels};
+        });
         return STRATUM_OK;
     });
 }
@@ -46,17 +50,18 @@ StratumStatus stratum_scene_bind_texture(StratumScene* scene, const StratumTextu
     using namespace stratum::abi;
     return guarded("stratum_scene_bind_texture", [&] {
         require(scene && binding, "scene or binding is NULL");
-        const stratum::TextureBinding b = stratum::validate_texture_binding(*binding, scene->scene);
-        auto& bindings = scene->scene.texture_bindings;
-        // A later binding of the same parameter replaces the earlier one.
-        for (stratum::TextureBinding& existing : bindings) {
-            if (existing.material_id == b.material_id && existing.closure_index == b.closure_index &&
-                existing.param == b.param) {
-                existing = b;
-                return STRATUM_OK;
+        scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            const stratum::TextureBinding b = stratum::validate_texture_binding(*binding, s);
+            // A later binding of the same parameter replaces the earlier one.
+            for (stratum::TextureBinding& existing : s.texture_bindings) {
+                if (existing.material_id == b.material_id && existing.closure_index == b.closure_index &&
+                    existing.param == b.param) {
+                    existing = b;
+                    return;
+                }
             }
-        }
-        bindings.push_back(b);
+            s.texture_bindings.push_back(b);
+        });
         return STRATUM_OK;
     });
 }

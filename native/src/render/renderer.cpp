@@ -37,7 +37,7 @@ double seconds_since(Clock::time_point t0) {
 
 }  // namespace
 
-Renderer::Renderer(Scene scene) : scene_(std::move(scene)) {}
+Renderer::Renderer(std::shared_ptr<const LiveScene> scene) : live_(std::move(scene)) {}
 
 Renderer::~Renderer() {
     cancel();
@@ -51,6 +51,9 @@ void Renderer::join() {
 std::string Renderer::start() {
     if (running()) return "a render is already running";
     join();
+    pending_.merge(live_->sync(&scene_, &synced_));
+    // A rebuilt scene description moves the meshes the built scene points into.
+    if (pending_.rebuild) render_scene_.reset();
     if (!scene_.camera) return "the scene has no camera";
     PixelRegion region;
     const std::string crop_error = crop_region(settings_, &region);
@@ -106,6 +109,16 @@ void Renderer::run() {
     std::string error;
     try {
         tbb::task_arena arena(s.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(s.threads));
+        // Edits since the last render: applied in place where the built scene can take them
+        // (RenderScene::update), else the scene is built anew.
+        if (render_scene_ && pending_.any()) {
+            const auto t0 = Clock::now();
+            bool updated = false;
+            arena.execute([&] { updated = render_scene_->update(scene_, pending_, &cancel_); });
+            if (!updated) render_scene_.reset();
+            std::lock_guard lock(state_mutex_);
+            build_seconds_ = seconds_since(t0);
+        }
         if (!render_scene_) {
             const auto t0 = Clock::now();
             arena.execute([&] { render_scene_ = std::make_unique<RenderScene>(scene_, &cancel_); });
@@ -113,6 +126,7 @@ void Renderer::run() {
             build_seconds_ = seconds_since(t0);
             for (const std::string& notice : render_scene_->notices()) add_notice(notice);
         }
+        pending_ = {};
         const uint64_t refused_before = render_scene_->refused_rays();
         const auto t0 = Clock::now();
         {

@@ -26,6 +26,7 @@
 #include "integrators/integrator.h"
 #include "render/render_settings.h"
 #include "render_scene/render_scene.h"
+#include "scene/live_scene.h"
 #include "scene/scene.h"
 
 namespace stratum {
@@ -41,7 +42,9 @@ struct RenderProgress {
 
 class Renderer {
 public:
-    explicit Renderer(Scene scene);
+    // Renders `scene` as it is at each start(): edits made in between are applied then,
+    // rebuilding only what they changed.
+    explicit Renderer(std::shared_ptr<const LiveScene> scene);
     ~Renderer();
     Renderer(const Renderer&) = delete;
     Renderer& operator=(const Renderer&) = delete;
@@ -80,7 +83,10 @@ private:
     // returns early on cancel.
     void trace_light_paths(const Camera& camera, uint32_t begin, uint32_t end, tbb::task_arena& arena);
 
-    Scene scene_;
+    std::shared_ptr<const LiveScene> live_;
+    Scene scene_;           // the renderer's copy, brought up to date by start()
+    SceneVersion synced_;   // what scene_ holds of live_
+    SceneChanges pending_;  // edits synced into scene_ and not yet into render_scene_
     RenderSettings settings_;
     std::unique_ptr<RenderScene> render_scene_;
     // Of the current render, made by start() from the settings.

@@ -11,15 +11,6 @@ namespace stratum {
 
 namespace {
 
-struct Bounds {
-    Vec3 lo{kInfinity, kInfinity, kInfinity}, hi{-kInfinity, -kInfinity, -kInfinity};
-    void add(Vec3 p) {
-        lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
-        hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
-    }
-    bool empty() const { return !(lo.x <= hi.x); }
-};
-
 // World bounds of an object-space box under an affine map: the box of its 8 transformed corners.
 void add_transformed(Bounds& world, const Bounds& object, const Transform& m) {
     if (object.empty()) return;
@@ -77,37 +68,27 @@ Rgb material_emission(const SceneMaterial& material) {
 RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
     : materials_(scene.materials), textures_(scene), background_(scene.background) {
     // The scene's extent first: it decides which placements can be traced at all.
-    std::vector<Bounds> mesh_bounds(scene.meshes.size());
+    mesh_bounds_.assign(scene.meshes.size(), Bounds{});
     std::vector<bool> bounded(scene.meshes.size(), false);
-    Bounds all;
     for (const Instance& inst : scene.instances) {
-        Bounds& b = mesh_bounds.at(inst.mesh_id);
-        if (!bounded[inst.mesh_id]) {
-            for (Vec3 p : scene.meshes[inst.mesh_id].positions) b.add(p);
-            bounded[inst.mesh_id] = true;
-        }
-        add_transformed(all, b, inst.object_to_world);
-        if (inst.motion) add_transformed(all, b, inst.object_to_world_end);
+        if (bounded[inst.mesh_id]) continue;
+        for (Vec3 p : scene.meshes[inst.mesh_id].positions) mesh_bounds_.at(inst.mesh_id).add(p);
+        bounded[inst.mesh_id] = true;
     }
-    // Motion can bulge a box past both ends' boxes by its rotation, up to √3 of its size.
-    const float limit =
-        ray_origin_limit(std::max(1.7321f * largest_coordinate(all), lamp_and_camera_extent(scene)));
+    limit_ = origin_limit(scene);
     // One prototype BVH per mesh that is placed at least once.
     std::vector<uint32_t> prototype_of(scene.meshes.size(), kNoLight);
     std::vector<TriangleGeometry> prototypes;
-    std::vector<Bounds> object_bounds;
-    std::vector<InstancePlacement> placements;
-    placements.reserve(scene.instances.size());
+    placements_.reserve(scene.instances.size());
     instances_.reserve(scene.instances.size());
-    Bounds world;
+    placement_of_.assign(scene.instances.size(), kNoLight);
+    instance_mesh_.clear();
+    for (const Instance& inst : scene.instances) instance_mesh_.push_back(inst.mesh_id);
     for (size_t index = 0; index < scene.instances.size(); ++index) {
         const Instance& inst = scene.instances[index];
         const Mesh& mesh = scene.meshes.at(inst.mesh_id);
-        // An exporter may flag every object as moving when motion blur is on: equal ends are
-        // static (flattened if placed once, emissive triangles kept as lights).
-        const bool moving = inst.motion && inst.object_to_world.m != inst.object_to_world_end.m;
-        const double inverse = inverse_norm_bound(inst.object_to_world, inst.object_to_world_end, moving);
-        if (!traceable(inverse, translation_bound(inst.object_to_world, inst.object_to_world_end), limit)) {
+        const bool moving = is_moving(inst);
+        if (!traceable_placement(inst)) {
             notices_.push_back("instance " + std::to_string(index) + " (mesh " +
                                std::to_string(inst.mesh_id) +
                                ") has a degenerate transform (scale (nearly) 0 along some axis" +
@@ -118,20 +99,44 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
         if (prototype_of[inst.mesh_id] == kNoLight) {
             prototype_of[inst.mesh_id] = static_cast<uint32_t>(prototypes.size());
             prototypes.push_back({mesh.positions, mesh.triangles});
-            object_bounds.push_back(mesh_bounds[inst.mesh_id]);
         }
-        const uint32_t proto = prototype_of[inst.mesh_id];
-        placements.push_back(
-            {proto, inst.object_to_world, inst.object_to_world_end, moving, inst.visibility});
-        add_transformed(world, object_bounds[proto], inst.object_to_world);
-        if (moving) {
-            // Rotation is interpolated, so a moving box can bulge past both end boxes; the bound
-            // only sizes the sun's selection weight, where that slack does not matter.
-            add_transformed(world, object_bounds[proto], inst.object_to_world_end);
-            has_motion_ = true;
-        }
-        instances_.push_back({&mesh, inst.object_to_world, moving, inst.visibility, inst.holdout, {}});
+        placement_of_[index] = static_cast<uint32_t>(placements_.size());
+        placements_.push_back({prototype_of[inst.mesh_id], inst.object_to_world, inst.object_to_world_end,
+                               moving, inst.visibility});
+        if (moving) has_motion_ = true;
+        instances_.push_back(
+            {&mesh, inst.mesh_id, inst.object_to_world, moving, inst.visibility, inst.holdout, {}});
     }
+    build_lights(scene, cancel);
+    const std::string error = embree_.build(prototypes, placements_, limit_, cancel);
+    if (error == EmbreeScene::kBuildCancelled) throw BuildCancelled();
+    if (!error.empty()) throw std::runtime_error(error);
+}
+
+bool RenderScene::is_moving(const Instance& inst) {
+    // An exporter may flag every object as moving when motion blur is on: equal ends are static
+    // (flattened if placed once, emissive triangles kept as lights).
+    return inst.motion && inst.object_to_world.m != inst.object_to_world_end.m;
+}
+
+bool RenderScene::traceable_placement(const Instance& inst) const {
+    const bool moving = is_moving(inst);
+    const double inverse = inverse_norm_bound(inst.object_to_world, inst.object_to_world_end, moving);
+    return traceable(inverse, translation_bound(inst.object_to_world, inst.object_to_world_end), limit_);
+}
+
+float RenderScene::origin_limit(const Scene& scene) const {
+    Bounds all;
+    for (const Instance& inst : scene.instances) {
+        add_transformed(all, mesh_bounds_[inst.mesh_id], inst.object_to_world);
+        if (inst.motion) add_transformed(all, mesh_bounds_[inst.mesh_id], inst.object_to_world_end);
+    }
+    // Motion can bulge a box past both ends' boxes by its rotation, up to √3 of its size.
+    return ray_origin_limit(std::max(1.7321f * largest_coordinate(all), lamp_and_camera_extent(scene)));
+}
+
+void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* cancel) {
+    lights_ = LightSet();
     std::vector<Rgb> emission(materials_.size());
     for (size_t m = 0; m < materials_.size(); ++m) emission[m] = material_emission(materials_[m]);
     // Light objects for the choice among lights: each static instance's emissive triangles form
@@ -140,6 +145,7 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
     // camera and BSDF rays, which then take the full MIS weight, so it is unbiased but noisier.
     uint32_t light_object = 0;
     for (InstanceData& g : instances_) {
+        g.emissive_light.clear();
         if (g.motion) continue;
         const Mesh& mesh = *g.mesh;
         const uint32_t object = light_object++;
@@ -192,15 +198,65 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
         lights_.add(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation), light_object++);
     }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.
+    // Rotation is interpolated, so a moving box can bulge past both end boxes; the bound only
+    // sizes the sun's selection weight, where that slack does not matter.
+    Bounds world;
+    for (const InstanceData& g : instances_) {
+        add_transformed(world, mesh_bounds_[g.mesh_id], g.object_to_world);
+        if (g.motion)
+            add_transformed(world, mesh_bounds_[g.mesh_id], placements_[&g - instances_.data()].end);
+    }
+    bounds_center_ = Vec3(0.0f, 0.0f, 0.0f);
+    bounds_radius_ = 1.0f;
     if (!world.empty()) {
         bounds_center_ = (world.lo + world.hi) * 0.5f;
         bounds_radius_ = std::max(1.0f, 0.5f * length(world.hi - world.lo));
     }
     lights_.finalize(bounds_radius_);
+}
 
-    const std::string error = embree_.build(prototypes, placements, limit, cancel);
-    if (error == EmbreeScene::kBuildCancelled) throw BuildCancelled();
+bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const std::atomic<bool>* cancel) {
+    if (changes.rebuild || scene.instances.size() != placement_of_.size()) return false;
+    // Every instance keeps its mesh, its motion and whether it can be traced under the new
+    // extent (a moved object or lamp changes the ray-origin limit): else build anew, as a fresh
+    // build would place them differently.
+    for (const uint32_t i : changes.instances) {
+        const Instance& inst = scene.instances[i];
+        if (inst.mesh_id != instance_mesh_[i]) return false;
+        const uint32_t placement = placement_of_[i];
+        if (placement != kNoLight && placements_[placement].motion != is_moving(inst)) return false;
+    }
+    const float built_limit = limit_;
+    limit_ = origin_limit(scene);
+    for (size_t i = 0; i < scene.instances.size(); ++i) {
+        if (traceable_placement(scene.instances[i]) != (placement_of_[i] != kNoLight)) {
+            limit_ = built_limit;
+            return false;
+        }
+    }
+    std::vector<uint32_t> moved;
+    for (const uint32_t i : changes.instances) {
+        const uint32_t placement = placement_of_[i];
+        const Instance& inst = scene.instances[i];
+        InstancePlacement& p = placements_[placement];
+        p.start = inst.object_to_world;
+        p.end = inst.object_to_world_end;
+        p.mask = inst.visibility;
+        InstanceData& g = instances_[placement];
+        g.object_to_world = inst.object_to_world;
+        g.visibility = inst.visibility;
+        g.holdout = inst.holdout;
+        moved.push_back(placement);
+    }
+    if (changes.materials) {
+        materials_ = scene.materials;
+        textures_ = TextureBindings(scene);
+    }
+    background_ = scene.background;
+    build_lights(scene, cancel);
+    const std::string error = embree_.update(placements_, moved, limit_);
     if (!error.empty()) throw std::runtime_error(error);
+    return true;
 }
 
 namespace {

@@ -4,6 +4,7 @@
 // (at the ray's time for a moving instance).
 #pragma once
 
+#include <algorithm>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -14,6 +15,7 @@
 #include "accel/embree_scene.h"
 #include "lights/light_set.h"
 #include "render_scene/material_texturing.h"
+#include "scene/live_scene.h"
 #include "scene/scene.h"
 #include "scene/tangent_frame.h"
 
@@ -44,6 +46,16 @@ struct RayQuery {
     uint32_t visibility = kVisibleAll;
 };
 
+// An axis-aligned box; empty until a point is added.
+struct Bounds {
+    Vec3 lo{kInfinity, kInfinity, kInfinity}, hi{-kInfinity, -kInfinity, -kInfinity};
+    void add(Vec3 p) {
+        lo = Vec3(std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z));
+        hi = Vec3(std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z));
+    }
+    bool empty() const { return !(lo.x <= hi.x); }
+};
+
 // Emitted radiance of a material: sum_i weight_i ⊙ emission_i over its closures.
 Rgb material_emission(const SceneMaterial& material);
 
@@ -52,6 +64,13 @@ public:
     // Throws std::runtime_error with a readable message (caught at the C ABI), BuildCancelled
     // when *cancel (may be null) becomes true during the build.
     explicit RenderScene(const Scene& scene, const std::atomic<bool>* cancel = nullptr);
+
+    // Applies edits of the scene it was built from (`scene` is that scene, edited; its meshes
+    // are where they were): re-places edited instances in the BVH, takes the new materials,
+    // lamps and world, and lists the lights anew, giving what a fresh build of `scene` gives.
+    // False when the edits need a fresh build (a changed instance list, mesh or motion, or an
+    // instance becoming traceable or not); then this scene must not be used any more.
+    bool update(const Scene& scene, const SceneChanges& changes, const std::atomic<bool>* cancel = nullptr);
 
     struct BuildCancelled : std::runtime_error {
         BuildCancelled() : std::runtime_error("the scene build was cancelled") {}
@@ -87,15 +106,29 @@ public:
 private:
     struct InstanceData {
         const Mesh* mesh;
+        uint32_t mesh_id;
         Transform object_to_world;  // static instances; moving ones ask Embree at the ray's time
         bool motion;
         uint32_t visibility;
         bool holdout;
         std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive; empty if none
     };
+    static bool is_moving(const Instance& inst);
+    // Whether Embree can trace the placement under the current ray-origin limit.
+    bool traceable_placement(const Instance& inst) const;
+    // The largest |coordinate| a ray origin can have in `scene` (scene/scene_limits.h).
+    float origin_limit(const Scene& scene) const;
+    // Lists the emissive triangles, lamps and environment, and the scene's bounding sphere.
+    void build_lights(const Scene& scene, const std::atomic<bool>* cancel);
+
     std::vector<SceneMaterial> materials_;
     TextureBindings textures_;
-    std::vector<InstanceData> instances_;
+    std::vector<InstanceData> instances_;        // per traced placement
+    std::vector<InstancePlacement> placements_;  // per traced placement, as given to Embree
+    std::vector<uint32_t> placement_of_;         // per scene instance: its placement, or kNoLight
+    std::vector<uint32_t> instance_mesh_;        // per scene instance: its mesh as built
+    std::vector<Bounds> mesh_bounds_;            // object-space bounds of each placed mesh
+    float limit_ = 0.0f;                         // the ray-origin limit the BVH was built for
     EmbreeScene embree_;
     LightSet lights_;
     Rgb background_;

@@ -1,0 +1,260 @@
+// Live edits (scene/live_scene.h, RenderScene::update): after each edit of a scene a renderer
+// already rendered, its next render equals, bit for bit, the render of a scene built anew with
+// the edit, and the edit is applied in place (no fresh build) where it can be.
+#include <gtest/gtest.h>
+
+#include <array>
+#include <cstring>
+#include <vector>
+
+#include "api/scene_handle.h"
+#include "render_helpers.h"
+#include "render_scene/render_scene.h"
+
+using namespace stratum_test;
+
+namespace {
+
+// A box of 12 triangles, [-0.5, 0.5]^3, every triangle of material `material`.
+struct BoxMesh {
+    std::vector<float> positions;
+    std::vector<uint32_t> triangles;
+    std::vector<uint32_t> materials;
+};
+
+BoxMesh make_box(uint32_t material) {
+    BoxMesh b;
+    for (int i = 0; i < 8; ++i)
+        for (int axis = 0; axis < 3; ++axis) b.positions.push_back((i >> axis) & 1 ? 0.5f : -0.5f);
+    const uint32_t faces[6][4] = {{0, 2, 3, 1}, {4, 5, 7, 6}, {0, 1, 5, 4},
+                                  {2, 6, 7, 3}, {0, 4, 6, 2}, {1, 3, 7, 5}};
+    for (const auto& f : faces) {
+        b.triangles.insert(b.triangles.end(), {f[0], f[1], f[2], f[0], f[2], f[3]});
+        b.materials.insert(b.materials.end(), {material, material});
+    }
+    return b;
+}
+
+std::array<float, 16> translation(float x, float y, float z, float scale = 1.0f) {
+    return {scale, 0, 0, x, 0, scale, 0, y, 0, 0, scale, z, 0, 0, 0, 1};
+}
+
+// Everything the tests edit, so that a scene can be built anew with the same values.
+struct Values {
+    std::array<float, 16> instanced_a = translation(-1.2f, 0, -4), instanced_b = translation(1.2f, 0, -4);
+    std::array<float, 16> flattened = translation(0, -1.6f, -4, 2.0f);
+    std::array<float, 16> emitter = translation(0, 1.8f, -4, 0.6f);
+    float red = 0.8f;
+    float light_strength = 200.0f;
+    float camera_x = 0.0f;
+    float background = 0.05f;
+};
+
+StratumInstanceDesc instance(uint32_t mesh, const std::array<float, 16>& m) {
+    StratumInstanceDesc d{};
+    d.mesh_id = mesh;
+    std::copy(m.begin(), m.end(), d.transform);
+    d.visibility = STRATUM_VISIBLE_ALL;
+    return d;
+}
+
+StratumMaterialDesc diffuse(float r, float g, float b) {
+    return {STRATUM_MATERIAL_DIFFUSE, {r, g, b}, 1, 0, 0, 1.5f, {0, 0, 0}, STRATUM_MICROFACET_GGX};
+}
+
+StratumLightDesc point_light(float strength) {
+    StratumLightDesc l{};
+    l.type = STRATUM_LIGHT_POINT;
+    std::fill(l.color, l.color + 3, 1.0f);
+    l.strength = strength;
+    l.radius = 0.1f;
+    std::copy(kIdentity, kIdentity + 16, l.transform);
+    l.transform[3] = 2.0f;
+    l.transform[7] = 2.0f;
+    l.transform[11] = -2.0f;
+    return l;
+}
+
+// Materials 0 (red diffuse), 1 (grey diffuse), 2 (emitter); meshes 0 (red box, placed twice:
+// instanced), 1 (grey box, placed once: flattened into the top level), 2 (emissive box).
+StratumScene* build(const Values& v) {
+    StratumScene* scene = nullptr;
+    EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
+    const StratumMaterialDesc red = diffuse(v.red, 0.2f, 0.2f), grey = diffuse(0.5f, 0.5f, 0.5f);
+    StratumMaterialDesc emitter = diffuse(0, 0, 0);
+    emitter.model = STRATUM_MATERIAL_EMISSION;
+    std::fill(emitter.emission, emitter.emission + 3, 3.0f);
+    for (const StratumMaterialDesc* m :
+         std::initializer_list<const StratumMaterialDesc*>{&red, &grey, &emitter})
+        EXPECT_EQ(stratum_scene_add_material(scene, m, nullptr), STRATUM_OK);
+    for (uint32_t material = 0; material < 3; ++material) {
+        const BoxMesh box = make_box(material);
+        const StratumMeshDesc mesh{box.positions.data(), 8, box.triangles.data(), 12, nullptr, nullptr,
+                                   box.materials.data()};
+        EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, nullptr), STRATUM_OK);
+    }
+    for (const StratumInstanceDesc& d : {instance(0, v.instanced_a), instance(0, v.instanced_b),
+                                         instance(1, v.flattened), instance(2, v.emitter)})
+        EXPECT_EQ(stratum_scene_add_instance_ex(scene, &d), STRATUM_OK);
+    const StratumLightDesc light = point_light(v.light_strength);
+    EXPECT_EQ(stratum_scene_add_light(scene, &light), STRATUM_OK);
+    const StratumCameraDesc camera = camera_at(v.camera_x, 0, 0);
+    EXPECT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK);
+    const float bg[3] = {v.background, v.background, v.background};
+    EXPECT_EQ(stratum_scene_set_background(scene, bg), STRATUM_OK);
+    return scene;
+}
+
+std::vector<float> render_with(StratumRenderer* r) {
+    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
+    int32_t done = 0;
+    while (!done) stratum_renderer_wait(r, 1000, &done);
+    std::vector<float> rgba(24 * 16 * 4);
+    EXPECT_EQ(stratum_renderer_read_pixels(r, rgba.data(), rgba.size()), STRATUM_OK);
+    return rgba;
+}
+
+StratumRenderer* make_renderer(StratumScene* scene) {
+    StratumRenderer* r = nullptr;
+    EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_int(r, "width", 24), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_int(r, "height", 16), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_int(r, "samples", 8), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_int(r, "max_bounces", 3), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "sampler", "sobol"), STRATUM_OK);
+    return r;
+}
+
+std::vector<float> fresh_render(const Values& v) {
+    StratumScene* scene = build(v);
+    StratumRenderer* r = make_renderer(scene);
+    std::vector<float> rgba = render_with(r);
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(scene);
+    return rgba;
+}
+
+bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
+}
+
+}  // namespace
+
+TEST(LiveScene, EveryEditRendersAsAFreshBuildOfTheEditedScene) {
+    Values v;
+    StratumScene* scene = build(v);
+    StratumRenderer* r = make_renderer(scene);
+    const std::vector<float> before = render_with(r);
+    ASSERT_TRUE(same_bits(before, fresh_render(v)));
+
+    struct Edit {
+        const char* what;
+        void (*apply)(StratumScene*, Values&);
+    };
+    const Edit edits[] = {
+        {"move an instanced object",
+         [](StratumScene* s, Values& values) {
+             values.instanced_b = translation(0.9f, 0.3f, -3.5f);
+             const StratumInstanceDesc d = instance(0, values.instanced_b);
+             ASSERT_EQ(stratum_scene_set_instance(s, 1, &d), STRATUM_OK) << stratum_last_error();
+         }},
+        {"move the flattened object",
+         [](StratumScene* s, Values& values) {
+             values.flattened = translation(0.2f, -1.5f, -4.2f, 2.0f);
+             const StratumInstanceDesc d = instance(1, values.flattened);
+             ASSERT_EQ(stratum_scene_set_instance(s, 2, &d), STRATUM_OK);
+         }},
+        {"move the emitter (its triangles are lights)",
+         [](StratumScene* s, Values& values) {
+             values.emitter = translation(-0.4f, 1.6f, -3.8f, 0.6f);
+             const StratumInstanceDesc d = instance(2, values.emitter);
+             ASSERT_EQ(stratum_scene_set_instance(s, 3, &d), STRATUM_OK);
+         }},
+        {"change a material colour",
+         [](StratumScene* s, Values& values) {
+             values.red = 0.3f;
+             const StratumMaterialDesc m = diffuse(values.red, 0.2f, 0.2f);
+             ASSERT_EQ(stratum_scene_set_material(s, 0, &m), STRATUM_OK);
+         }},
+        {"change a light's power",
+         [](StratumScene* s, Values& values) {
+             values.light_strength = 50.0f;
+             const StratumLightDesc l = point_light(values.light_strength);
+             ASSERT_EQ(stratum_scene_set_light(s, 0, &l), STRATUM_OK);
+         }},
+        {"move the camera",
+         [](StratumScene* s, Values& values) {
+             values.camera_x = 0.3f;
+             const StratumCameraDesc c = camera_at(values.camera_x, 0, 0);
+             ASSERT_EQ(stratum_scene_set_camera(s, &c), STRATUM_OK);
+         }},
+        {"change the world",
+         [](StratumScene* s, Values& values) {
+             values.background = 0.4f;
+             const float bg[3] = {values.background, values.background, values.background};
+             ASSERT_EQ(stratum_scene_set_background(s, bg), STRATUM_OK);
+         }},
+    };
+    std::vector<float> previous = before;
+    for (const Edit& e : edits) {
+        e.apply(scene, v);
+        const std::vector<float> edited = render_with(r);
+        EXPECT_FALSE(same_bits(edited, previous)) << e.what << ": the edit did not reach the renderer";
+        EXPECT_TRUE(same_bits(edited, fresh_render(v))) << e.what << ": differs from a fresh build";
+        previous = edited;
+    }
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(scene);
+}
+
+TEST(LiveScene, EditsOfTransformsMaterialsLightsAndWorldAreAppliedInPlace) {
+    Values v;
+    StratumScene* handle = build(v);
+    stratum::Scene copy;
+    stratum::SceneVersion seen;
+    ASSERT_TRUE(handle->live->sync(&copy, &seen).rebuild);
+    stratum::RenderScene built(copy);
+    const StratumInstanceDesc moved = instance(0, translation(0.5f, 0.5f, -5));
+    ASSERT_EQ(stratum_scene_set_instance(handle, 1, &moved), STRATUM_OK);
+    const StratumMaterialDesc m = diffuse(0.1f, 0.9f, 0.1f);
+    ASSERT_EQ(stratum_scene_set_material(handle, 1, &m), STRATUM_OK);
+    const StratumLightDesc l = point_light(10.0f);
+    ASSERT_EQ(stratum_scene_set_light(handle, 0, &l), STRATUM_OK);
+    const stratum::SceneChanges changes = handle->live->sync(&copy, &seen);
+    EXPECT_FALSE(changes.rebuild);
+    EXPECT_EQ(changes.instances, std::vector<uint32_t>{1});
+    EXPECT_TRUE(changes.materials && changes.lights);
+    EXPECT_TRUE(built.update(copy, changes));
+    // Nothing changed since: an empty change set.
+    EXPECT_FALSE(handle->live->sync(&copy, &seen).any());
+    // A new instance changes the list: a fresh build.
+    const StratumInstanceDesc extra = instance(1, translation(3, 0, -6));
+    ASSERT_EQ(stratum_scene_add_instance_ex(handle, &extra), STRATUM_OK);
+    EXPECT_TRUE(handle->live->sync(&copy, &seen).rebuild);
+    stratum_scene_destroy(handle);
+}
+
+TEST(LiveScene, EditsAreValidatedAndARejectedOneChangesNothing) {
+    Values v;
+    StratumScene* scene = build(v);
+    StratumRenderer* r = make_renderer(scene);
+    const std::vector<float> before = render_with(r);
+    StratumInstanceDesc bad = instance(0, translation(0, 0, -4));
+    bad.transform[0] = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_EQ(stratum_scene_set_instance(scene, 0, &bad), STRATUM_ERROR_INVALID_ARGUMENT);
+    const StratumInstanceDesc ok = instance(0, translation(0, 0, -4));
+    EXPECT_EQ(stratum_scene_set_instance(scene, 9, &ok), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(std::string(stratum_last_error()).find("instance 9 does not exist"), std::string::npos);
+    const StratumMaterialDesc m = diffuse(0.5f, 0.5f, 0.5f);
+    EXPECT_EQ(stratum_scene_set_material(scene, 3, &m), STRATUM_ERROR_INVALID_ARGUMENT);
+    StratumMaterialDesc negative = m;
+    negative.base_color[0] = -1.0f;
+    EXPECT_EQ(stratum_scene_set_material(scene, 0, &negative), STRATUM_ERROR_INVALID_ARGUMENT);
+    const StratumLightDesc l = point_light(1.0f);
+    EXPECT_EQ(stratum_scene_set_light(scene, 1, &l), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_TRUE(same_bits(render_with(r), before));
+    // The renderer keeps rendering the scene after the host destroyed its handle.
+    stratum_scene_destroy(scene);
+    EXPECT_TRUE(same_bits(render_with(r), before));
+    stratum_renderer_destroy(r);
+}
