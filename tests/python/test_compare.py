@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from stratum import cli
+from stratum import blender_process, cli
 from stratum.compare import estimators, exr, metrics, plan
 
 REPO = Path(__file__).resolve().parents[2]
@@ -590,7 +590,7 @@ def test_bad_input_is_one_line_and_writes_nothing(native: Any, fake_blender: Pat
 
 
 def _need_blender(native: Any) -> None:
-    if cli.blender_executable() is None or os.environ.get("STRATUM_BLENDER", "").endswith(
+    if blender_process.blender_executable() is None or os.environ.get("STRATUM_BLENDER", "").endswith(
             "fake_blender"):
         pytest.skip("Blender not found (set STRATUM_BLENDER)")
     if not CORNELL.is_file():

@@ -31,6 +31,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
+from ..blender_process import NOT_FOUND_MESSAGE, blender_executable
 from . import plan as planning
 from .plan import Config, SceneSettings
 
@@ -461,8 +462,8 @@ def run_compare(args: argparse.Namespace) -> int:
 
     try:
         opts = Options(args)
-        if runner.blender_executable() is None:
-            raise UsageError("Blender not found (set STRATUM_BLENDER)")
+        if blender_executable() is None:
+            raise UsageError(NOT_FOUND_MESSAGE)
         probe = runner.probe_scene(opts.scene)
         resolution = opts.resolution or (int(probe["resolution"][0]),
                                          int(probe["resolution"][1]))
