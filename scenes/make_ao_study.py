@@ -31,52 +31,25 @@ from pathlib import Path
 
 import bpy
 
+# Blender does not put a --python script's folder on sys.path; scene_building.py is there.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_building import (
+    Face,
+    Vec,
+    aim,
+    clear_scene,
+    mesh_object,
+    output_path,
+    perspective_camera,
+    png_render_settings,
+    principled,
+    quad,
+    save,
+    uniform_world,
+)
+
 AO_DISTANCE = 1.0  # m; objects are 0.2-0.8 m across (0.5 left 41 % of pixels exactly 1)
 GREY = (0.7, 0.7, 0.7)
-
-Vec = tuple[float, float, float]
-Face = tuple[int, ...]
-
-
-def output_path() -> str:
-    argv = sys.argv
-    args = argv[argv.index("--") + 1:] if "--" in argv else []
-    if not args:
-        raise SystemExit("usage: blender -b --factory-startup --python scenes/make_ao_study.py"
-                         " -- scenes/ao_study.blend")
-    return os.path.abspath(args[0])
-
-
-def clear_scene() -> None:
-    for obj in list(bpy.data.objects):
-        bpy.data.objects.remove(obj, do_unlink=True)
-    for coll in (bpy.data.meshes, bpy.data.materials, bpy.data.lights, bpy.data.cameras):
-        for block in list(coll):
-            if block.users == 0:
-                coll.remove(block)
-
-
-def principled(name: str, color: Vec) -> bpy.types.Material:
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    bsdf = next(n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
-    bsdf.inputs["Base Color"].default_value = (*color, 1.0)
-    mat.diffuse_color = (*color, 1.0)
-    return mat
-
-
-def mesh_object(name: str, verts: list[Vec], faces: list[Face], material: bpy.types.Material,
-                smooth: bool = False) -> bpy.types.Object:
-    mesh = bpy.data.meshes.new(name + "Mesh")
-    mesh.from_pydata(verts, [], faces)
-    mesh.materials.append(material)
-    for poly in mesh.polygons:
-        poly.use_smooth = smooth
-    mesh.validate()
-    mesh.update()
-    obj = bpy.data.objects.new(name, mesh)
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
 
 
 def box(name: str, lo: Vec, hi: Vec, material: bpy.types.Material,
@@ -141,10 +114,6 @@ def torus(name: str, center: Vec, major: float, minor: float, material: bpy.type
     return obj
 
 
-def quad(name: str, corners: list[Vec], material: bpy.types.Material) -> bpy.types.Object:
-    return mesh_object(name, corners, [(0, 1, 2, 3)], material)
-
-
 def build_objects(m: bpy.types.Material) -> None:
     # Floor and a corner: back wall at y = 1.2, left wall at x = -1.6.
     quad("Floor", [(-1.6, -3.0, 0.0), (3.0, -3.0, 0.0), (3.0, 1.2, 0.0), (-1.6, 1.2, 0.0)], m)
@@ -170,52 +139,9 @@ def build_objects(m: bpy.types.Material) -> None:
     box("Small", (1.55, -0.6, 0.0), (1.75, -0.4, 0.2), m, rotation_z=math.radians(-10.0))
 
 
-def aim(obj: bpy.types.Object, target: Vec) -> None:
-    from mathutils import Vector
-
-    direction = Vector(target) - obj.location
-    obj.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
-
-
 def build_camera() -> None:
-    cam_data = bpy.data.cameras.new("Camera")
-    cam_data.type = "PERSP"
-    cam_data.lens = 32.0
-    cam_data.sensor_fit = "AUTO"
-    cam_data.sensor_width = 36.0
-    cam_data.clip_start = 0.05
-    cam_data.clip_end = 100.0
-    cam = bpy.data.objects.new("Camera", cam_data)
-    bpy.context.scene.collection.objects.link(cam)
-    cam.location = (0.4, -2.7, 2.0)
+    cam = perspective_camera(lens=32.0, clip_start=0.05, location=(0.4, -2.7, 2.0))
     aim(cam, (0.2, 0.1, 0.2))
-    bpy.context.scene.camera = cam
-
-
-def setup_world(scene: bpy.types.Scene) -> None:
-    world = scene.world or bpy.data.worlds.new("World")
-    scene.world = world
-    world.color = (1.0, 1.0, 1.0)  # a uniform white sky: Cycles' AO look under path tracing
-    world.use_nodes = True
-    bg = next((n for n in world.node_tree.nodes if n.type == "BACKGROUND"), None)
-    if bg is not None:
-        bg.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
-        bg.inputs["Strength"].default_value = 1.0
-
-
-def setup_render(scene: bpy.types.Scene) -> None:
-    r = scene.render
-    r.resolution_x = 256
-    r.resolution_y = 192
-    r.resolution_percentage = 100
-    r.pixel_aspect_x = r.pixel_aspect_y = 1.0
-    r.image_settings.file_format = "PNG"
-    r.image_settings.color_mode = "RGB"
-    r.film_transparent = False
-    r.engine = "CYCLES"
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-    scene.display_settings.display_device = "sRGB"
 
 
 def store_stratum_settings(scene: bpy.types.Scene) -> None:
@@ -234,17 +160,16 @@ def store_stratum_settings(scene: bpy.types.Scene) -> None:
 
 
 def main() -> None:
-    path = output_path()
+    path = output_path("scenes/make_ao_study.py -- scenes/ao_study.blend")
     clear_scene()
     scene = bpy.context.scene
     scene.name = "AOStudy"
     build_objects(principled("Grey", GREY))
     build_camera()
-    setup_world(scene)
-    setup_render(scene)
+    uniform_world(scene, (1.0, 1.0, 1.0))  # white sky: Cycles' AO look under path tracing
+    png_render_settings(scene, 256, 192)
     store_stratum_settings(scene)
-    bpy.ops.wm.save_as_mainfile(filepath=path, compress=True)
-    print("saved", path)
+    save(path)
 
 
 main()

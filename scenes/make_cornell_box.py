@@ -27,74 +27,26 @@ import sys
 
 import bpy
 
+# Blender does not put a --python script's folder on sys.path; scene_building.py is there.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_building import (
+    clear_scene,
+    emission,
+    mesh_object,
+    output_path,
+    perspective_camera,
+    png_render_settings,
+    principled,
+    quad,
+    save,
+    uniform_world,
+)
+
 EMISSION_STRENGTH = 15.0  # radiance of the light quad (W/(sr m^2) in Blender's convention)
 LIGHT_HALF = 0.25  # the light quad is 0.5 x 0.5 m
 WHITE = (0.8, 0.8, 0.8)
 RED = (0.8, 0.05, 0.05)
 GREEN = (0.05, 0.8, 0.05)
-
-
-def output_path():
-    argv = sys.argv
-    args = argv[argv.index("--") + 1:] if "--" in argv else []
-    if not args:
-        raise SystemExit("usage: blender -b --factory-startup --python scenes/make_cornell_box.py"
-                         " -- scenes/cornell_box.blend")
-    return os.path.abspath(args[0])
-
-
-def clear_scene():
-    for obj in list(bpy.data.objects):
-        bpy.data.objects.remove(obj, do_unlink=True)
-    for coll in (bpy.data.meshes, bpy.data.materials, bpy.data.lights, bpy.data.cameras):
-        for block in list(coll):
-            if block.users == 0:
-                coll.remove(block)
-
-
-def principled(name, color):
-    """Blender's default Principled BSDF (use_nodes = True) with only Base Color set."""
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    bsdf = next(n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
-    bsdf.inputs["Base Color"].default_value = (*color, 1.0)
-    mat.diffuse_color = (*color, 1.0)  # viewport colour only
-    return mat
-
-
-def emission(name, strength):
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    nodes, links = mat.node_tree.nodes, mat.node_tree.links
-    for node in list(nodes):
-        if node.type != "OUTPUT_MATERIAL":
-            nodes.remove(node)
-    out = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
-    emit = nodes.new("ShaderNodeEmission")
-    emit.inputs["Color"].default_value = (1.0, 1.0, 1.0, 1.0)
-    emit.inputs["Strength"].default_value = strength
-    emit.location = (out.location.x - 250, out.location.y)
-    links.new(emit.outputs["Emission"], out.inputs["Surface"])
-    return mat
-
-
-def mesh_object(name, verts, faces, material, mesh=None, smooth=False):
-    if mesh is None:
-        mesh = bpy.data.meshes.new(name + "Mesh")
-        mesh.from_pydata(verts, [], faces)
-        mesh.materials.append(material)
-        for poly in mesh.polygons:
-            poly.use_smooth = smooth
-        mesh.validate()
-        mesh.update()
-    obj = bpy.data.objects.new(name, mesh)
-    bpy.context.scene.collection.objects.link(obj)
-    return obj
-
-
-def quad(name, corners, material):
-    """A single quad; the corners are counter-clockwise seen from the side the normal faces."""
-    return mesh_object(name, corners, [(0, 1, 2, 3)], material)
 
 
 def build_walls(white, red, green):
@@ -162,50 +114,14 @@ def build_light(material):
 
 
 def build_camera():
-    cam_data = bpy.data.cameras.new("Camera")
-    cam_data.type = "PERSP"
-    cam_data.lens = 40.0
-    cam_data.sensor_fit = "AUTO"
-    cam_data.sensor_width = 36.0
-    cam_data.clip_start = 0.1
-    cam_data.clip_end = 100.0
-    cam = bpy.data.objects.new("Camera", cam_data)
-    bpy.context.scene.collection.objects.link(cam)
+    cam = perspective_camera(lens=40.0, clip_start=0.1, location=(0.0, -3.4, 1.0))
     # Blender cameras look down local -Z with +Y up: rotating 90 deg about X looks along +Y.
-    cam.location = (0.0, -3.4, 1.0)
     cam.rotation_euler = (math.radians(90.0), 0.0, 0.0)
-    bpy.context.scene.camera = cam
     return cam
 
 
-def setup_world(scene):
-    world = scene.world or bpy.data.worlds.new("World")
-    scene.world = world
-    world.color = (0.0, 0.0, 0.0)
-    world.use_nodes = True
-    bg = next((n for n in world.node_tree.nodes if n.type == "BACKGROUND"), None)
-    if bg is not None:
-        bg.inputs["Color"].default_value = (0.0, 0.0, 0.0, 1.0)
-        bg.inputs["Strength"].default_value = 1.0
-
-
 def setup_render(scene):
-    r = scene.render
-    r.resolution_x = 256
-    r.resolution_y = 256
-    r.resolution_percentage = 100
-    r.pixel_aspect_x = r.pixel_aspect_y = 1.0
-    r.image_settings.file_format = "PNG"
-    r.image_settings.color_mode = "RGB"
-    r.film_transparent = False
-    # Leave CYCLES here: the STRATUM enum value cannot be stored unless the add-on is
-    # registered; `-E STRATUM` selects it at render time.
-    r.engine = "CYCLES"
-    scene.view_settings.view_transform = "Standard"  # PNG = plain sRGB encoding of linear
-    scene.view_settings.look = "None"
-    scene.view_settings.exposure = 0.0
-    scene.view_settings.gamma = 1.0
-    scene.display_settings.display_device = "sRGB"
+    png_render_settings(scene, 256, 256)
     c = scene.cycles
     c.device = "CPU"
     c.samples = 128
@@ -219,23 +135,22 @@ def setup_render(scene):
 
 
 def main():
-    path = output_path()
+    path = output_path("scenes/make_cornell_box.py -- scenes/cornell_box.blend")
     clear_scene()
     scene = bpy.context.scene
     scene.name = "CornellBox"
     white = principled("White", WHITE)
     red = principled("Red", RED)
     green = principled("Green", GREEN)
-    light = emission("Light", EMISSION_STRENGTH)
+    light = emission("Light", (1.0, 1.0, 1.0), EMISSION_STRENGTH)
     build_walls(white, red, green)
     build_boxes(white)
     build_sphere(white, center=(0.36, -0.3, 0.6 + 0.25), radius=0.25)
     build_light(light)
     build_camera()
-    setup_world(scene)
+    uniform_world(scene, (0.0, 0.0, 0.0))
     setup_render(scene)
-    bpy.ops.wm.save_as_mainfile(filepath=path, compress=True)
-    print("saved", path)
+    save(path)
 
 
 main()

@@ -25,19 +25,14 @@ import sys
 import bpy
 
 HERE = os.path.dirname(os.path.abspath(__file__))
+# Blender does not put a --python script's folder on sys.path; scene_building.py is there.
+sys.path.insert(0, HERE)
+from scene_building import output_path
+
 SOURCE = os.path.join(HERE, "cornell_box.blend")
 LARGE_SCALE = 3.6  # 0.5 m * 3.6 = 1.8 m: inside the 2 m ceiling with a 0.1 m margin
 GLOSSY_ROUGHNESS = 0.2  # Blender's roughness; GGX alpha = roughness² = 0.04: a narrow lobe
 GLOSSY_OBJECTS = ("Floor", "TallBox", "ShortBox", "Sphere")
-
-
-def output_folder():
-    argv = sys.argv
-    args = argv[argv.index("--") + 1:] if "--" in argv else []
-    if len(args) != 1:
-        raise SystemExit("usage: blender -b --factory-startup --python "
-                         "scenes/make_cornell_variants.py -- scenes/")
-    return os.path.abspath(args[0])
 
 
 def light_strength_input():
@@ -76,7 +71,7 @@ def make_glossy(path):
 
 
 def main():
-    folder = output_folder()
+    folder = output_path("scenes/make_cornell_variants.py -- scenes/", exactly_one=True)
     make_large_light(os.path.join(folder, "cornell_large_light.blend"))
     make_glossy(os.path.join(folder, "cornell_glossy.blend"))
 

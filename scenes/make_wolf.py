@@ -33,6 +33,20 @@ import sys
 
 import bpy
 
+# Blender does not put a --python script's folder on sys.path; scene_building.py is there.
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from scene_building import (
+    Vec,
+    aim,
+    clear_scene,
+    output_path,
+    perspective_camera,
+    png_render_settings,
+    principled,
+    save,
+    uniform_world,
+)
+
 RENDER_LEVELS = 4  # Subdivision Surface render level: each cage quad -> 4^4 = 256 quads
 VIEWPORT_LEVELS = 1
 FUR = (0.32, 0.27, 0.22)  # base colour of the wolf
@@ -41,36 +55,6 @@ WORLD = (0.05, 0.06, 0.08)  # dim blue-grey sky
 AREA_POWER = 250.0  # W
 AREA_SIZE = 1.5  # m, disk diameter: soft shadow with a wide penumbra
 AREA_LOCATION = (-1.6, 1.0, 2.2)
-
-Vec = tuple[float, float, float]
-
-
-def output_path() -> str:
-    argv = sys.argv
-    args = argv[argv.index("--") + 1:] if "--" in argv else []
-    if not args:
-        raise SystemExit("usage: blender -b --factory-startup --python scenes/make_wolf.py"
-                         " -- scenes/wolf.blend")
-    return os.path.abspath(args[0])
-
-
-def clear_scene() -> None:
-    for obj in list(bpy.data.objects):
-        bpy.data.objects.remove(obj, do_unlink=True)
-    for coll in (bpy.data.meshes, bpy.data.materials, bpy.data.lights, bpy.data.cameras):
-        for block in list(coll):
-            if block.users == 0:
-                coll.remove(block)
-
-
-def principled(name: str, color: Vec, roughness: float) -> bpy.types.Material:
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    bsdf = next(n for n in mat.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
-    bsdf.inputs["Base Color"].default_value = (*color, 1.0)
-    bsdf.inputs["Roughness"].default_value = roughness
-    mat.diffuse_color = (*color, 1.0)  # viewport colour only
-    return mat
 
 
 class Skeleton:
@@ -204,55 +188,13 @@ def build_light() -> None:
     bpy.context.scene.collection.objects.link(light)
 
 
-def aim(obj: bpy.types.Object, target: Vec) -> None:
-    """Point the object's local -Z at target, +Y up (cameras and lights look down -Z)."""
-    from mathutils import Vector
-
-    direction = Vector(target) - obj.location
-    obj.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
-
-
 def build_camera() -> None:
-    cam_data = bpy.data.cameras.new("Camera")
-    cam_data.type = "PERSP"
-    cam_data.lens = 50.0
-    cam_data.sensor_fit = "AUTO"
-    cam_data.sensor_width = 36.0
-    cam_data.clip_start = 0.05
-    cam_data.clip_end = 100.0
-    cam = bpy.data.objects.new("Camera", cam_data)
-    bpy.context.scene.collection.objects.link(cam)
-    cam.location = (-1.9, -2.6, 1.25)
+    cam = perspective_camera(lens=50.0, clip_start=0.05, location=(-1.9, -2.6, 1.25))
     aim(cam, (0.0, 0.0, 0.45))
-    bpy.context.scene.camera = cam
-
-
-def setup_world(scene: bpy.types.Scene) -> None:
-    world = scene.world or bpy.data.worlds.new("World")
-    scene.world = world
-    world.color = WORLD
-    world.use_nodes = True
-    bg = next((n for n in world.node_tree.nodes if n.type == "BACKGROUND"), None)
-    if bg is not None:
-        bg.inputs["Color"].default_value = (*WORLD, 1.0)
-        bg.inputs["Strength"].default_value = 1.0
 
 
 def setup_render(scene: bpy.types.Scene) -> None:
-    r = scene.render
-    r.resolution_x = 320
-    r.resolution_y = 240
-    r.resolution_percentage = 100
-    r.pixel_aspect_x = r.pixel_aspect_y = 1.0
-    r.image_settings.file_format = "PNG"
-    r.image_settings.color_mode = "RGB"
-    r.film_transparent = False
-    r.engine = "CYCLES"  # `-E STRATUM` selects Stratum at render time (see cornell box)
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-    scene.view_settings.exposure = 0.0
-    scene.view_settings.gamma = 1.0
-    scene.display_settings.display_device = "sRGB"
+    png_render_settings(scene, 320, 240)
     c = scene.cycles
     c.device = "CPU"
     c.samples = 128
@@ -261,7 +203,7 @@ def setup_render(scene: bpy.types.Scene) -> None:
 
 
 def main() -> None:
-    path = output_path()
+    path = output_path("scenes/make_wolf.py -- scenes/wolf.blend")
     clear_scene()
     scene = bpy.context.scene
     scene.name = "Wolf"
@@ -269,10 +211,9 @@ def main() -> None:
     build_floor(principled("Floor", FLOOR, 0.8))
     build_light()
     build_camera()
-    setup_world(scene)
+    uniform_world(scene, WORLD)
     setup_render(scene)
-    bpy.ops.wm.save_as_mainfile(filepath=path, compress=True)
-    print("saved", path)
+    save(path)
 
 
 main()

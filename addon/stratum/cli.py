@@ -12,8 +12,6 @@ from __future__ import annotations
 
 import argparse
 import json
-import os
-import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -21,8 +19,12 @@ from pathlib import Path
 import numpy as np
 
 from . import native
-
-ADDON_PARENT = Path(__file__).resolve().parent.parent  # the folder that holds stratum/
+from .blender_process import (
+    ADDON_PARENT,
+    NOT_FOUND_MESSAGE,
+    background_command,
+    blender_executable,
+)
 
 # Runs inside Blender; receives its arguments as JSON after "--".
 _BLENDER_SCRIPT = r"""
@@ -260,11 +262,6 @@ def _cmd_points(ns: argparse.Namespace) -> int:
     return 0
 
 
-def blender_executable() -> str | None:
-    exe = os.environ.get("STRATUM_BLENDER", "blender")
-    return shutil.which(exe) or (exe if os.path.isfile(exe) else None)
-
-
 def _cmd_render(ns: argparse.Namespace) -> int:
     if ns.sampler is not None:
         try:
@@ -291,7 +288,7 @@ def _cmd_render(ns: argparse.Namespace) -> int:
         return 2
     blender = blender_executable()
     if blender is None:
-        print("stratum: Blender not found (set STRATUM_BLENDER)", file=sys.stderr)
+        print(f"stratum: {NOT_FOUND_MESSAGE}", file=sys.stderr)
         return 2
     output = Path(ns.output).resolve()
     output.parent.mkdir(parents=True, exist_ok=True)
@@ -304,8 +301,8 @@ def _cmd_render(ns: argparse.Namespace) -> int:
         "resolution": list(ns.resolution) if ns.resolution else None,
         "output": str(output),
     }
-    cmd = [blender, "-b", "--factory-startup", str(scene), "--python-expr", _BLENDER_SCRIPT,
-           "--", json.dumps(payload)]
+    cmd = background_command(blender, scene, "--python-expr", _BLENDER_SCRIPT, "--",
+                             json.dumps(payload))
     proc = subprocess.run(cmd, check=False)
     if proc.returncode != 0:
         print(f"stratum: Blender render failed (exit code {proc.returncode})", file=sys.stderr)

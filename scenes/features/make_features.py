@@ -33,17 +33,12 @@ import bmesh
 import bpy
 import numpy as np
 
+# Blender does not put a --python script's folder on sys.path; scene_building.py is one up.
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from scene_building import aim, emission, node_material, output_path
+
 RES = 64
 RNG = np.random.default_rng(5)
-
-
-def output_dir():
-    argv = sys.argv
-    args = argv[argv.index("--") + 1:] if "--" in argv else []
-    if not args:
-        raise SystemExit("usage: blender -b --factory-startup --python "
-                         "scenes/features/make_features.py -- scenes/features")
-    return os.path.abspath(args[0])
 
 
 # ---- building blocks --------------------------------------------------------------------------
@@ -71,20 +66,8 @@ def setup_render(scene):
     scene.cycles.use_denoising = False
 
 
-def new_material(name):
-    """A node material holding only its Material Output; returns (material, nodes, links, out)."""
-    mat = bpy.data.materials.new(name)
-    mat.use_nodes = True
-    nodes, links = mat.node_tree.nodes, mat.node_tree.links
-    for node in list(nodes):
-        if node.type != "OUTPUT_MATERIAL":
-            nodes.remove(node)
-    out = next(n for n in nodes if n.type == "OUTPUT_MATERIAL")
-    return mat, nodes, links, out
-
-
 def principled(name, color, roughness=0.5, metallic=0.0, **inputs):
-    mat, nodes, links, out = new_material(name)
+    mat, nodes, links, out = node_material(name)
     bsdf = nodes.new("ShaderNodeBsdfPrincipled")
     bsdf.distribution = "GGX"
     bsdf.inputs["Base Color"].default_value = (*color, 1.0)
@@ -98,19 +81,10 @@ def principled(name, color, roughness=0.5, metallic=0.0, **inputs):
 
 
 def diffuse(name, color):
-    mat, nodes, links, out = new_material(name)
+    mat, nodes, links, out = node_material(name)
     node = nodes.new("ShaderNodeBsdfDiffuse")
     node.inputs["Color"].default_value = (*color, 1.0)
     links.new(node.outputs["BSDF"], out.inputs["Surface"])
-    return mat
-
-
-def emission(name, color, strength):
-    mat, nodes, links, out = new_material(name)
-    node = nodes.new("ShaderNodeEmission")
-    node.inputs["Color"].default_value = (*color, 1.0)
-    node.inputs["Strength"].default_value = strength
-    links.new(node.outputs["Emission"], out.inputs["Surface"])
     return mat
 
 
@@ -161,21 +135,13 @@ def mesh_object(name, mesh, material, location, collection=None):
     return link(obj, collection)
 
 
-def look_at(obj, target):
-    """Points obj's -Z axis (a camera's or light's view direction) at target."""
-    from mathutils import Vector
-
-    direction = Vector(target) - obj.location
-    obj.rotation_euler = direction.to_track_quat("-Z", "Y").to_euler()
-
-
 def camera(name, location, target, lens=50.0, collection=None):
     cam = bpy.data.cameras.new(name)
     cam.lens = lens
     cam.sensor_fit = "AUTO"
     obj = bpy.data.objects.new(name, cam)
     obj.location = location
-    look_at(obj, target)
+    aim(obj, target)
     link(obj, collection)
     return obj
 
@@ -189,7 +155,7 @@ def light(name, kind, location, energy, color, target=None, collection=None, **p
     obj = bpy.data.objects.new(name, data)
     obj.location = location
     if target is not None:
-        look_at(obj, target)
+        aim(obj, target)
     return link(obj, collection)
 
 
@@ -353,7 +319,7 @@ def glossy_node(nodes, color, roughness):
 
 def two_shader_material(name, kind):
     """Mix Shader (factor 0.35) or Add Shader of a Diffuse and a Glossy BSDF."""
-    mat, nodes, links, out = new_material(name)
+    mat, nodes, links, out = node_material(name)
     dif = nodes.new("ShaderNodeBsdfDiffuse")
     if kind == "mix":
         dif.inputs["Color"].default_value = (0.9, 0.35, 0.1, 1.0)
@@ -387,7 +353,7 @@ def cutout_material(textures):
 
 
 def glass_node_material(name, roughness, ior):
-    mat, nodes, links, out = new_material(name)
+    mat, nodes, links, out = node_material(name)
     glass = nodes.new("ShaderNodeBsdfGlass")
     glass.distribution = "GGX"
     glass.inputs["Color"].default_value = (0.95, 0.95, 1.0, 1.0)
@@ -625,7 +591,7 @@ def save(folder, name):
 
 def main():
     bpy.context.preferences.filepaths.save_version = 0  # no .blend1 backups
-    folder = output_dir()
+    folder = output_path("scenes/features/make_features.py -- scenes/features")
     textures = os.path.join(folder, "textures")
     os.makedirs(textures, exist_ok=True)
     build_materials(folder, textures)

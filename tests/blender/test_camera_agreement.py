@@ -6,8 +6,8 @@ tests/blender/run_in_blender.py -- tests/blender/test_camera_agreement.py`) and 
 5.0 wheel (`.venv/bin/python -m pytest tests/blender/test_camera_agreement.py`).
 
 Scene set-up, renderer settings (same filter, bounces, no denoising / adaptive sampling /
-clamping) and the Stratum-availability check are imported from test_cycles_agreement.py; see
-its docstring for the statistics, restated briefly here.
+clamping) and the Stratum-availability check are imported from agreement.py; see
+test_cycles_agreement.py's docstring for the statistics, restated briefly here.
 
 Cameras (scenes/cornell_box.blend, camera at (0, -3.4, 1) looking along +Y)
 * ortho: type ORTHO, ortho_scale 1.8 (AUTO fit), shift (0.05, -0.03): the back wall, the box
@@ -47,16 +47,16 @@ import bpy
 import numpy as np
 import pytest
 
-from test_cycles_agreement import (
+from agreement import (
     CHANNELS,
     DARK_BLOCK,
     K_SIGMA,
     OUT,
-    _configure_cycles,
-    _configure_stratum,
-    _fmt3,
-    _open_scene,
-    _stratum_available,
+    configure_cycles,
+    configure_stratum,
+    open_scene,
+    per_channel,
+    stratum_available,
 )
 
 RES = 32
@@ -85,9 +85,9 @@ def _set_camera(scene: bpy.types.Scene, camera: str) -> None:
 
 
 def _render(renderer: str, camera: str, seed: int) -> np.ndarray:
-    scene = _open_scene()
+    scene = open_scene()
     scene.render.resolution_x = scene.render.resolution_y = RES
-    (_configure_cycles if renderer == "cycles" else _configure_stratum)(scene, seed)
+    (configure_cycles if renderer == "cycles" else configure_stratum)(scene, seed)
     if renderer == "cycles":
         scene.cycles.samples = SPP_PER_SEED
     else:
@@ -134,7 +134,7 @@ class TwoSeeds:
 
 @pytest.fixture(scope="module")
 def renders(library) -> dict[tuple[str, str], TwoSeeds]:
-    reason = _stratum_available()
+    reason = stratum_available()
     if reason:
         pytest.skip(reason)
     return {(r, c): TwoSeeds(*(_render(r, c, s) for s in SEEDS))
@@ -145,7 +145,7 @@ def renders(library) -> dict[tuple[str, str], TwoSeeds]:
 def test_camera_agrees_with_cycles(renders: dict[tuple[str, str], TwoSeeds], camera: str) -> None:
     c, s = renders[("cycles", camera)], renders[("stratum", camera)]
     c_img, s_img = c.mean.mean(axis=(0, 1)), s.mean.mean(axis=(0, 1))
-    assert (c_img > 0.02).all(), f"{camera}: Cycles image too dark to compare: {_fmt3(c_img)}"
+    assert (c_img > 0.02).all(), f"{camera}: Cycles image too dark to compare: {per_channel(c_img)}"
     img_sigma = np.sqrt(c.image_var() + s.image_var()) / c_img
     img_rel = (s_img - c_img) / c_img
     cb, sb = c.block_mean(), s.block_mean()
@@ -155,10 +155,10 @@ def test_camera_agrees_with_cycles(renders: dict[tuple[str, str], TwoSeeds], cam
     report = "\n".join([
         (f"{camera}: Cornell box {RES}x{RES}, {len(SEEDS)} x {SPP_PER_SEED} spp, "
         f"Blender {bpy.app.version_string}"),
-        f"image mean cycles : {_fmt3(c_img)}",
-        f"image mean stratum: {_fmt3(s_img)}",
-        (f"relative diff     : {_fmt3(img_rel, '{:+.3%}')} (tolerance {IMAGE_TOL:.0%}), "
-        f"1 sigma {_fmt3(img_sigma, '{:.3%}')}"),
+        f"image mean cycles : {per_channel(c_img)}",
+        f"image mean stratum: {per_channel(s_img)}",
+        (f"relative diff     : {per_channel(img_rel, '{:+.3%}')} (tolerance {IMAGE_TOL:.0%}), "
+        f"1 sigma {per_channel(img_sigma, '{:.3%}')}"),
         "blocks (row 0 = bottom) rel diff / 4 sigma per channel:",
         *(f"  ({by},{bx}) " + " ".join(
             f"{ch}={blk_rel[by, bx, k]:+.2%}/{K_SIGMA * blk_sigma[by, bx, k]:.2%}"
@@ -177,7 +177,7 @@ def test_camera_agrees_with_cycles(renders: dict[tuple[str, str], TwoSeeds], cam
 
 def test_scene_unit_assumptions() -> None:
     """The docstring's geometry: the Sphere is 3.1 m from the camera along the view axis."""
-    scene = _open_scene()
+    scene = open_scene()
     cam = scene.camera
     axis = np.array(cam.matrix_world.to_3x3().col[2])
     d = abs(float(np.dot(axis / np.linalg.norm(axis),

@@ -65,242 +65,45 @@ brighter, blue: Stratum darker, x DIFF_GAIN), report.txt (means, block table, wo
 
 from __future__ import annotations
 
-import time
-from pathlib import Path
-
 import bpy
 import numpy as np
 import pytest
 
-REPO = Path(__file__).resolve().parents[2]
-SCENE = REPO / "scenes" / "cornell_box.blend"
-# One folder per Blender, so a 3.4 run and a 5.0 run do not overwrite each other's images.
-OUT = REPO / "out" / "agreement" / f"blender-{bpy.app.version_string.split()[0]}"
-
-RES = 64
-SPP_PER_SEED = 1024  # two seeds -> N = 2048 samples per pixel in each compared image
-SEEDS = (1, 2)
-MAX_BOUNCES = 8
-FILTER_WIDTH = 1.5
-BLOCK = 16
-IMAGE_TOL = 0.02  # relative, per channel
-BLOCK_TOL = 0.05  # relative, per channel and block
-DARK_BLOCK = 0.01  # blocks whose Cycles mean is below this are not compared
-K_SIGMA = 4.0
-DIFF_GAIN = 4.0
-CHANNELS = "RGB"
-
-
-# ---- rendering -----------------------------------------------------------------------------
-
-
-def _open_scene() -> bpy.types.Scene:
-    bpy.ops.wm.open_mainfile(filepath=str(SCENE), load_ui=False)
-    scene = bpy.context.scene
-    r = scene.render
-    r.resolution_x = r.resolution_y = RES
-    r.resolution_percentage = 100
-    r.use_border = False
-    r.film_transparent = False
-    r.threads_mode = "AUTO"
-    settings = r.image_settings
-    settings.file_format = "OPEN_EXR"
-    settings.color_depth = "32"
-    settings.color_mode = "RGBA"
-    settings.exr_codec = "ZIP"
-    return scene
-
-
-def _configure_cycles(scene: bpy.types.Scene, seed: int, *, samples: int = SPP_PER_SEED,
-                      max_bounces: int = MAX_BOUNCES) -> None:
-    """Cycles as the peer: CPU, no denoising, adaptive sampling, clamping or glossy blur, every
-    bounce limit equal to max_bounces, Stratum's pixel filter. Shared by the other agreement
-    tests."""
-    scene.render.engine = "CYCLES"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = samples
-    c.seed = seed
-    c.use_animated_seed = False
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.max_bounces = max_bounces
-    c.diffuse_bounces = max_bounces
-    c.glossy_bounces = max_bounces
-    c.transmission_bounces = max_bounces
-    c.volume_bounces = 0
-    c.sample_clamp_direct = 0.0
-    c.sample_clamp_indirect = 0.0
-    c.blur_glossy = 0.0
-    c.light_sampling_threshold = 0.0
-    c.pixel_filter_type = "BLACKMAN_HARRIS"
-    c.filter_width = FILTER_WIDTH
-    if hasattr(c, "use_layer_samples"):
-        c.use_layer_samples = "IGNORE"
-
-
-def _configure_stratum(scene: bpy.types.Scene, seed: int, *, samples: int = SPP_PER_SEED,
-                       max_bounces: int = MAX_BOUNCES) -> None:
-    """Stratum with the same samples, bounces and pixel filter as _configure_cycles."""
-    scene.render.engine = "STRATUM"
-    s = scene.stratum
-    s.samples = samples
-    s.seed = seed
-    s.max_bounces = max_bounces
-    s.filter_type = "blackman_harris"
-    s.filter_width = FILTER_WIDTH
-    s.threads = 0
-
-
-def _render_exr(scene: bpy.types.Scene, path: Path, res: int = RES) -> tuple[np.ndarray, float]:
-    """Renders the scene to a linear EXR and returns (res x res x 3 float64, seconds)."""
-    path.parent.mkdir(parents=True, exist_ok=True)
-    if path.exists():
-        path.unlink()
-    scene.render.filepath = str(path)
-    t0 = time.perf_counter()
-    bpy.ops.render.render(write_still=True)
-    seconds = time.perf_counter() - t0
-    assert path.is_file(), f"render did not write {path}"
-    return _load_exr(path, res), seconds
-
-
-def _load_exr(path: Path, res: int = RES) -> np.ndarray:
-    image = bpy.data.images.load(str(path), check_existing=False)
-    try:
-        w, h = image.size
-        assert (w, h) == (res, res), f"{path}: size {w}x{h}, expected {res}x{res}"
-        buf = np.empty(w * h * image.channels, dtype=np.float32)
-        image.pixels.foreach_get(buf)
-        rgba = buf.reshape(h, w, image.channels)
-    finally:
-        bpy.data.images.remove(image)
-    return rgba[..., :3].astype(np.float64)  # rows bottom to top, as Blender stores them
-
-
-class Renders:
-    """Two seeds of one renderer: their mean (the compared image) and noise estimates."""
-
-    def __init__(self, name: str, images: list[np.ndarray], seconds: list[float],
-                 block: int = BLOCK) -> None:
-        a, b = images
-        self.name = name
-        self.block = block  # side of the compared blocks, in pixels
-        self.res = a.shape[0]
-        self.seconds = seconds
-        self.mean = (a + b) / 2.0
-        half = (a - b) / 2.0
-        self.half_diff = half
-        self.pixel_var = half**2  # unbiased estimate of Var[mean_p] per pixel and channel
-        self.inflation = 1.0  # >1 when pixels are correlated (see module docstring)
-
-    def block_mean(self) -> np.ndarray:
-        return _blocks(self.mean, self.block).mean(axis=(1, 3))
-
-    def block_var(self) -> np.ndarray:
-        n = self.block * self.block
-        return _blocks(self.pixel_var, self.block).sum(axis=(1, 3)) / n**2 * self.inflation**2
-
-    def image_var(self) -> np.ndarray:
-        return self.pixel_var.sum(axis=(0, 1)) / (self.res * self.res) ** 2 * self.inflation**2
-
-    def calibrate(self) -> float:
-        """sqrt(mean z^2) of the block means of the half-difference image (1 if pixels are
-        independent); sigmas are inflated by it when it is above 1."""
-        n = self.block * self.block
-        hb = _blocks(self.half_diff, self.block).mean(axis=(1, 3))
-        vb = _blocks(self.pixel_var, self.block).sum(axis=(1, 3)) / n**2
-        ok = vb > 0
-        ratio = float(np.sqrt(np.mean(hb[ok] ** 2 / vb[ok]))) if ok.any() else 1.0
-        self.inflation = max(1.0, ratio)
-        return ratio
-
-
-def _blocks(img: np.ndarray, block: int = BLOCK) -> np.ndarray:
-    nb = img.shape[0] // block
-    return img.reshape(nb, block, nb, block, img.shape[-1])
-
-
-def _render_two_seeds(name: str, configure, out: Path = OUT, open_scene=_open_scene) -> Renders:
-    """The scene open_scene() opens (the Cornell box by default) rendered with seeds SEEDS,
-    configure(scene, seed) choosing the renderer and its settings; EXRs in
-    out/<name>_seed<seed>.exr. Shared by test_estimator_agreement and test_feature_agreement."""
-    images, seconds = [], []
-    for seed in SEEDS:
-        scene = open_scene()
-        configure(scene, seed)
-        img, sec = _render_exr(scene, out / f"{name}_seed{seed}.exr")
-        images.append(img)
-        seconds.append(sec)
-    renders = Renders(name, images, seconds)
-    renders.calibrate()
-    return renders
-
-
-def _stratum_available() -> str:
-    """'' when the STRATUM engine can render, else the reason it cannot."""
-    try:
-        import stratum  # noqa: F401
-        from stratum import native
-    except ImportError as exc:
-        return f"stratum add-on not importable: {exc}"
-    if not native.library_available():
-        try:
-            native.load_library()
-        except native.StratumError as exc:
-            return str(exc)
-    if not any(getattr(cls, "bl_idname", "") == "STRATUM"
-               for cls in bpy.types.RenderEngine.__subclasses__()):
-        return "STRATUM render engine is not registered"
-    return ""
-
+from agreement import (
+    BLOCK_TOL,
+    DARK_BLOCK,
+    IMAGE_TOL,
+    K_SIGMA,
+    MAX_BOUNCES,
+    OUT,
+    RES,
+    SEEDS,
+    SPP_PER_SEED,
+    Renders,
+    compare,
+    configure_cycles,
+    configure_stratum,
+    noise_failures,
+    per_channel,
+    render_two_seeds,
+    save_png,
+    stratum_available,
+)
 
 # ---- fixtures ------------------------------------------------------------------------------
 
 
 @pytest.fixture(scope="module")
 def cycles() -> Renders:
-    return _render_two_seeds("cycles", _configure_cycles)
+    return render_two_seeds("cycles", configure_cycles)
 
 
 @pytest.fixture(scope="module")
 def stratum_renders(library) -> Renders:
-    reason = _stratum_available()
+    reason = stratum_available()
     if reason:
         pytest.skip(reason)
-    return _render_two_seeds("stratum", _configure_stratum)
-
-
-# ---- output for humans -----------------------------------------------------------------------
-
-
-def _save_png(name: str, rgb: np.ndarray, *, linear_to_srgb: bool, out: Path = OUT) -> None:
-    """Writes rgb (rows bottom to top, linear unless told) as an 8-bit PNG in out."""
-    out.mkdir(parents=True, exist_ok=True)
-    x = np.clip(rgb, 0.0, 1.0)
-    if linear_to_srgb:  # the 'Standard' view transform: plain sRGB encoding
-        x = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
-    rgba = np.concatenate([x, np.ones(x.shape[:2] + (1,))], axis=-1).astype(np.float32)
-    image = bpy.data.images.new(name, RES, RES, alpha=True)  # byte buffer: stored as is
-    try:
-        image.pixels.foreach_set(rgba.ravel())
-        image.filepath_raw = str(out / f"{name}.png")
-        image.file_format = "PNG"
-        image.save()
-    finally:
-        bpy.data.images.remove(image)
-
-
-def _difference_image(s: np.ndarray, c: np.ndarray) -> np.ndarray:
-    d = (s - c).mean(axis=-1) * DIFF_GAIN
-    out = np.zeros(s.shape)
-    out[..., 0] = np.maximum(d, 0.0)
-    out[..., 2] = np.maximum(-d, 0.0)
-    return out
-
-
-def _fmt3(v: np.ndarray, fmt: str = "{:.4f}") -> str:
-    return " ".join(f"{ch}={fmt.format(x)}" for ch, x in zip(CHANNELS, v))
+    return render_two_seeds("stratum", configure_stratum)
 
 
 # ---- tests -----------------------------------------------------------------------------------
@@ -309,112 +112,25 @@ def _fmt3(v: np.ndarray, fmt: str = "{:.4f}") -> str:
 def test_cycles_noise_level_allows_comparison(cycles: Renders) -> None:
     """Cycles alone (runs before Stratum exists): with Stratum's noise taken equal to
     Cycles', 4 sigma of the difference must be below both tolerances."""
-    _save_png("cycles", cycles.mean, linear_to_srgb=True)
+    save_png("cycles", cycles.mean, linear_to_srgb=True)
     c_img = cycles.mean.mean(axis=(0, 1))
-    assert (c_img > 0.05).all(), f"Cycles image too dark to compare: means {_fmt3(c_img)}"
+    assert (c_img > 0.05).all(), f"Cycles image too dark to compare: means {per_channel(c_img)}"
     sd_img = np.sqrt(2.0 * cycles.image_var())
     assert (K_SIGMA * sd_img < 0.5 * IMAGE_TOL * c_img).all(), (
-        f"image-mean noise too high: 4 sigma_D = {_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}"
-        f" of the mean, tolerance {IMAGE_TOL:.0%}; raise SPP_PER_SEED")
+        f"image-mean noise too high: 4 sigma_D = "
+        f"{per_channel(K_SIGMA * sd_img / c_img, '{:.3%}')} of the mean, tolerance "
+        f"{IMAGE_TOL:.0%}; raise SPP_PER_SEED")
     cb = cycles.block_mean()
     lit = cb >= DARK_BLOCK
     rel = K_SIGMA * np.sqrt(2.0 * cycles.block_var()) / np.maximum(cb, 1e-12)
     worst = float(rel[lit].max())
     print(f"\nCycles {cycles.seconds} s; image 4 sigma_D (Stratum noise = Cycles') "
-          f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}; blocks 4 sigma_D median "
+          f"{per_channel(K_SIGMA * sd_img / c_img, '{:.3%}')}; blocks 4 sigma_D median "
           f"{float(np.median(rel[lit])):.2%}, worst {worst:.2%}; correlation factor "
           f"{cycles.inflation:.2f}")
     assert worst < BLOCK_TOL, (
         f"block noise too high: worst 4 sigma_D = {worst:.2%} of the block mean, tolerance "
         f"{BLOCK_TOL:.0%} (pixel correlation factor {cycles.inflation:.2f}); raise SPP_PER_SEED")
-
-
-def noise_failures(reference: Renders, candidate: Renders) -> list[str]:
-    """Why the two renders' noise would make a comparison at IMAGE_TOL / BLOCK_TOL meaningless
-    ([] when it does not): 4 sigma_D of the image-mean difference must be below half the image
-    tolerance, and below the block tolerance for every compared block (those whose reference
-    mean is >= DARK_BLOCK). Relative to the reference's means. Shared by
-    test_estimator_agreement."""
-    failures = []
-    c_img = reference.mean.mean(axis=(0, 1))
-    sd_img = np.sqrt(reference.image_var() + candidate.image_var())
-    if not (K_SIGMA * sd_img < 0.5 * IMAGE_TOL * c_img).all():
-        failures.append(
-            f"image-mean noise too high for a {IMAGE_TOL:.0%} test: 4 sigma_D = "
-            f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')}")
-    cb = reference.block_mean()
-    lit = cb >= DARK_BLOCK
-    rel = K_SIGMA * np.sqrt(reference.block_var() + candidate.block_var()) / np.maximum(cb, 1e-12)
-    bad = np.argwhere(lit & (rel >= BLOCK_TOL))
-    if bad.size:
-        failures.append(
-            f"{len(bad)} blocks too noisy for a {BLOCK_TOL:.0%} test (4 sigma_D >= tolerance); "
-            f"worst {float(rel[lit].max()):.2%}; correlation factors {candidate.name} "
-            f"{candidate.inflation:.2f}, {reference.name} {reference.inflation:.2f}")
-    return failures
-
-
-def block_noise(reference: Renders, candidate: Renders) -> tuple[float, float]:
-    """(median, worst) 4 sigma_D of the compared blocks, relative to the reference's means."""
-    cb = reference.block_mean()
-    lit = cb >= DARK_BLOCK
-    rel = K_SIGMA * np.sqrt(reference.block_var() + candidate.block_var()) / np.maximum(cb, 1e-12)
-    return float(np.median(rel[lit])), float(rel[lit].max())
-
-
-def compare(reference: Renders, candidate: Renders, out: Path, header: str) -> tuple[str, bool]:
-    """Compares candidate with reference (image means within IMAGE_TOL, every compared block
-    within BLOCK_TOL, relative to the reference) and writes out/report.txt, the sRGB images
-    and the difference image. Returns (report, agree). Shared by test_estimator_agreement."""
-    s, c = candidate.mean, reference.mean
-    _save_png(reference.name, c, linear_to_srgb=True, out=out)
-    _save_png(candidate.name, s, linear_to_srgb=True, out=out)
-    _save_png("difference", _difference_image(s, c), linear_to_srgb=False, out=out)
-
-    c_img, s_img = c.mean(axis=(0, 1)), s.mean(axis=(0, 1))
-    img_rel = (s_img - c_img) / c_img
-    img_sigma = np.sqrt(reference.image_var() + candidate.image_var()) / c_img
-    cb, sb = reference.block_mean(), candidate.block_mean()
-    sigma_b = np.sqrt(reference.block_var() + candidate.block_var())
-    lit = cb >= DARK_BLOCK
-    blk_rel = np.where(lit, (sb - cb) / np.maximum(cb, 1e-12), 0.0)
-    bad = np.argwhere(lit & (np.abs(blk_rel) > BLOCK_TOL))
-
-    nb = RES // BLOCK
-    width = max(len(reference.name), len(candidate.name))
-    lines = [
-        header,
-        (f"render seconds: {reference.name} {reference.seconds}, {candidate.name} "
-         f"{candidate.seconds}"),
-        f"image mean {reference.name:<{width}}: {_fmt3(c_img)}",
-        f"image mean {candidate.name:<{width}}: {_fmt3(s_img)}",
-        f"relative diff     : {_fmt3(img_rel, '{:+.3%}')}   (tolerance {IMAGE_TOL:.0%})",
-        f"1 sigma of diff   : {_fmt3(img_sigma, '{:.3%}')}",
-        (f"pixel-correlation factors: {reference.name} {reference.inflation:.2f}, "
-         f"{candidate.name} {candidate.inflation:.2f}"),
-        (f"blocks ({BLOCK}x{BLOCK}, row 0 = top), relative diff per channel"
-         f" (tolerance {BLOCK_TOL:.0%}; '.' = dark, not compared):"),
-    ]
-    for by in reversed(range(nb)):  # print top row first
-        row = []
-        for bx in range(nb):
-            if not lit[by, bx].all():
-                row.append("        .        ")
-            else:
-                row.append("/".join(f"{100 * v:+5.1f}" for v in blk_rel[by, bx]))
-        lines.append("  " + "  ".join(row))
-    order = np.argsort(-np.abs(blk_rel).max(axis=-1).ravel())[:5]
-    lines.append("worst blocks (row from top, col): rel diff, z = diff / sigma")
-    for flat in order:
-        by, bx = divmod(int(flat), nb)
-        z = (sb[by, bx] - cb[by, bx]) / np.maximum(sigma_b[by, bx], 1e-12)
-        lines.append(f"  ({nb - 1 - by},{bx}) {reference.name} {_fmt3(cb[by, bx])}  "
-                     f"rel {_fmt3(blk_rel[by, bx], '{:+.2%}')}  z {_fmt3(z, '{:+.1f}')}")
-    report = "\n".join(lines)
-    out.mkdir(parents=True, exist_ok=True)
-    (out / "report.txt").write_text(report + "\n")
-    agree = bool((np.abs(img_rel) <= IMAGE_TOL).all()) and bad.size == 0
-    return report, agree
 
 
 def test_noise_level_allows_comparison(cycles: Renders, stratum_renders: Renders) -> None:

@@ -3,7 +3,8 @@
 Runs in Blender 3.4 (`blender -b --factory-startup --python tests/blender/run_in_blender.py --
 tests/blender/test_environment_agreement.py`) and under the bpy wheel (`.venv/bin/python -m
 pytest tests/blender/test_environment_agreement.py`). Rendering, EXR reading and the noise
-estimates are those of test_cycles_agreement.py (imported; its docstring has the statistics).
+estimates are those of agreement.py (imported; test_cycles_agreement.py's docstring has the
+statistics).
 
 Scene: a 40 m diffuse plane (Diffuse BSDF, 0.8) lit only by the world: Background (strength
 STRENGTH) <- Environment Texture (equirectangular, interpolation Closest, as Stratum looks it up)
@@ -38,16 +39,16 @@ import bpy
 import numpy as np
 import pytest
 
-from test_cycles_agreement import (
+from agreement import (
     K_SIGMA,
     OUT,
     Renders,
-    _fmt3,
-    _render_exr,
-    _stratum_available,
+    configure_cycles,
+    configure_stratum,
+    per_channel,
+    render_exr,
+    stratum_available,
 )
-from test_cycles_agreement import _configure_cycles as configure_cycles
-from test_cycles_agreement import _configure_stratum as configure_stratum
 
 RES = 32
 BLOCK = 8
@@ -153,7 +154,7 @@ def _render_two_seeds(name: str, configure, variant: str) -> Renders:
     for seed in SEEDS:
         scene = _environment_scene(variant)
         configure(scene, seed)
-        img, sec = _render_exr(scene, ENV_OUT / f"{name}_{variant}_seed{seed}.exr", RES)
+        img, sec = render_exr(scene, ENV_OUT / f"{name}_{variant}_seed{seed}.exr", RES)
         images.append(img)
         seconds.append(sec)
     renders = Renders(name, images, seconds, BLOCK)
@@ -173,7 +174,7 @@ def cycles_env(variant: str) -> Renders:
 
 @pytest.fixture(scope="module")
 def stratum_env(library, variant: str) -> Renders:
-    reason = _stratum_available()
+    reason = stratum_available()
     if reason:
         pytest.skip(reason)
     return _render_two_seeds("stratum", _configure_stratum, variant)
@@ -233,7 +234,8 @@ def test_environment_agrees_with_cycles(cycles_env: Renders, stratum_env: Render
     blk_rel = (sb - cb) / cb
     report = (f"environment texture ({variant}), Blender {bpy.app.version_string}: image mean "
               f"cycles "
-              f"{_fmt3(c_img)}, stratum {_fmt3(s_img)}, rel {_fmt3(img_rel, '{:+.3%}')}; "
+              f"{per_channel(c_img)}, stratum {per_channel(s_img)}, "
+              f"rel {per_channel(img_rel, '{:+.3%}')}; "
               f"blocks: worst rel {float(np.abs(blk_rel).max()):+.2%}, worst 4 sigma "
               f"{float((K_SIGMA * sigma_b / cb).max()):.2%}\n"
               + "\n".join("  " + " ".join(f"{100 * blk_rel[by, bx].mean():+7.2f}%"

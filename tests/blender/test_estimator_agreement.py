@@ -1,11 +1,11 @@
 """Issue 6, acceptance point 4: on the Cornell box every estimator agrees with Cycles.
 
 Runs in Blender 3.4 (run_in_blender.py) and under the bpy 5.0.1 wheel, with the machinery and
-the tolerances of test_cycles_agreement.py (imported; its docstring derives them): the Cornell
-box at 64 x 64, two seeds per renderer, image means within 2% and every 16 x 16 block whose
-Cycles mean is >= 0.01 within 5%, per channel; and before that the noise gate, 4 sigma of the
-difference below half the image tolerance and below the block tolerance in every compared
-block, with both renderers' measured noise.
+the tolerances of agreement.py (imported; test_cycles_agreement.py's docstring derives them):
+the Cornell box at 64 x 64, two seeds per renderer, image means within 2% and every 16 x 16
+block whose Cycles mean is >= 0.01 within 5%, per channel; and before that the noise gate, 4
+sigma of the difference below half the image tolerance and below the block tolerance in every
+compared block, with both renderers' measured noise.
 
 The estimators and their peers
 ------------------------------
@@ -99,21 +99,21 @@ import bpy
 import numpy as np
 import pytest
 
-from test_cycles_agreement import (
+from agreement import (
     MAX_BOUNCES,
     OUT,
     RES,
     SEEDS,
     Renders,
-    _open_scene,
-    _stratum_available,
     block_noise,
     compare,
+    configure_cycles,
+    configure_stratum,
     noise_failures,
+    open_scene,
+    render_two_seeds,
+    stratum_available,
 )
-from test_cycles_agreement import _configure_cycles as configure_cycles
-from test_cycles_agreement import _configure_stratum as configure_stratum
-from test_cycles_agreement import _render_two_seeds as render_two_seeds
 
 ESTIMATOR_OUT = OUT / "estimators"
 CYCLES_SPP_PER_SEED = 1024
@@ -216,7 +216,7 @@ def _integrators() -> list[str]:
 
 @pytest.mark.parametrize("name", list(ESTIMATORS))
 def test_estimator_agrees_with_cycles(library: Any, name: str) -> None:
-    reason = _stratum_available()
+    reason = stratum_available()
     if reason:
         pytest.skip(reason)
     reference_name, settings, spp = ESTIMATORS[name]
@@ -249,7 +249,7 @@ def test_estimator_agrees_with_cycles(library: Any, name: str) -> None:
 def test_diffuse_variant_is_lambertian_with_a_lower_lamp(library: Any) -> None:
     """The Diffuse variant really replaced every Principled BSDF (else diffuse_cv would test
     nothing the Principled renders do not) and moved the lamp away from the ceiling."""
-    scene = _open_scene()
+    scene = open_scene()
     _configure_reference("cycles_diffuse")(scene, SEEDS[0])
     kinds = {node.type for m in bpy.data.materials if m.node_tree for node in m.node_tree.nodes}
     assert "BSDF_PRINCIPLED" not in kinds and "BSDF_DIFFUSE" in kinds, kinds

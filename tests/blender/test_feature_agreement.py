@@ -6,7 +6,7 @@ tests/blender/run_in_blender.py -- tests/blender/test_feature_agreement.py`) and
 
 Cases (scenes/features/make_features.py describes the scenes): materials, lights, world, the
 three scenes of camera.blend (dof, ortho, motion) and instancing. Each is rendered at RES x RES
-by Cycles and by Stratum with the shared peer settings of test_cycles_agreement.py (CPU, same
+by Cycles and by Stratum with the shared peer settings of agreement.py (CPU, same
 samples, MAX_BOUNCES for every bounce kind, Blackman-Harris 1.5 px, no denoising, adaptive
 sampling, clamping or glossy blur), seeds 1 and 2, SPP[case] samples per seed. Asserted:
 
@@ -51,18 +51,18 @@ import bpy
 import numpy as np
 import pytest
 
-from test_cycles_agreement import (
+from agreement import (
     K_SIGMA,
     OUT,
     Renders,
-    _difference_image,
-    _fmt3,
-    _load_exr,
-    _stratum_available,
+    configure_cycles,
+    configure_stratum,
+    difference_image,
+    load_exr,
+    per_channel,
+    render_two_seeds,
+    stratum_available,
 )
-from test_cycles_agreement import _configure_cycles as configure_cycles
-from test_cycles_agreement import _configure_stratum as configure_stratum
-from test_cycles_agreement import _render_two_seeds as render_two_seeds
 
 REPO = Path(__file__).resolve().parents[2]
 FEATURES = REPO / "scenes" / "features"
@@ -188,7 +188,7 @@ def cycles_case(case: str) -> Renders:
 
 @pytest.fixture(scope="module")
 def stratum_case(library, case: str) -> Renders:
-    reason = _stratum_available()
+    reason = stratum_available()
     assert not reason, f"Stratum cannot render: {reason}"
     return _render_two_seeds(case, "stratum")
 
@@ -237,9 +237,9 @@ def test_feature_noise_allows_comparison(cycles_case: Renders, stratum_case: Ren
     sd_img = np.sqrt(c.image_var() + s.image_var())
     assert (K_SIGMA * sd_img < 0.5 * IMAGE_TOL * c_img).all(), (
         f"{case}: image-mean noise too high: 4 sigma_D = "
-        f"{_fmt3(K_SIGMA * sd_img / c_img, '{:.3%}')} (each renderer alone: cycles "
-        f"{_fmt3(K_SIGMA * np.sqrt(c.image_var()) / c_img, '{:.3%}')}, stratum "
-        f"{_fmt3(K_SIGMA * np.sqrt(s.image_var()) / c_img, '{:.3%}')})")
+        f"{per_channel(K_SIGMA * sd_img / c_img, '{:.3%}')} (each renderer alone: cycles "
+        f"{per_channel(K_SIGMA * np.sqrt(c.image_var()) / c_img, '{:.3%}')}, stratum "
+        f"{per_channel(K_SIGMA * np.sqrt(s.image_var()) / c_img, '{:.3%}')})")
     cb = c.block_mean()
     lit = cb >= DARK
     rel = K_SIGMA * np.sqrt(c.block_var() + s.block_var()) / np.maximum(cb, 1e-12)
@@ -256,7 +256,8 @@ def test_feature_noise_allows_comparison(cycles_case: Renders, stratum_case: Ren
     for name in ASSERTED_SPHERES.get(case, ()):
         _, _, sigma = _sphere_stats(case, name, c, s)
         assert (K_SIGMA * sigma < 0.5 * SPHERE_TOL).all(), (
-            f"{case}: sphere '{name}' too noisy: 4 sigma_D = {_fmt3(K_SIGMA * sigma, '{:.2%}')}")
+            f"{case}: sphere '{name}' too noisy: 4 sigma_D = "
+            f"{per_channel(K_SIGMA * sigma, '{:.2%}')}")
 
 
 def _report(case: str, c: Renders, s: Renders, flip: float, flip_noise: float) -> tuple[
@@ -284,9 +285,9 @@ def _report(case: str, c: Renders, s: Renders, flip: float, flip_noise: float) -
         f"{MAX_BOUNCES}, Blender {bpy.app.version_string}"),
         (f"render seconds: cycles {[round(t, 2) for t in c.seconds]}, "
         f"stratum {[round(t, 2) for t in s.seconds]}"),
-        f"image mean cycles : {_fmt3(c_img)}",
-        f"image mean stratum: {_fmt3(s_img)}",
-        f"relative diff     : {_fmt3(img_rel, '{:+.3%}')}   (tolerance {IMAGE_TOL:.0%})",
+        f"image mean cycles : {per_channel(c_img)}",
+        f"image mean stratum: {per_channel(s_img)}",
+        f"relative diff     : {per_channel(img_rel, '{:+.3%}')}   (tolerance {IMAGE_TOL:.0%})",
         (f"mean LDR-FLIP {flip:.4f} (tolerance {FLIP_TOL}); Cycles seed 1 vs seed 2: "
         f"{flip_noise:.4f}"),
         (f"blocks ({BLOCK}x{BLOCK}, top row first), relative diff R/G/B in % (tolerance "
@@ -355,8 +356,9 @@ def _sphere_lines(case: str, c: Renders, s: Renders) -> list[str]:
     lines = []
     for name, mask in _sphere_regions(case).items():
         cm, rel, sigma = _sphere_stats(case, name, c, s)
-        lines.append(f"  {name:13s} {int(mask.sum()):3d} px  cycles {_fmt3(cm)}  rel "
-                     f"{_fmt3(rel, '{:+.1%}')}  4 sigma {_fmt3(K_SIGMA * sigma, '{:.1%}')}")
+        lines.append(f"  {name:13s} {int(mask.sum()):3d} px  cycles {per_channel(cm)}  rel "
+                     f"{per_channel(rel, '{:+.1%}')}  "
+                     f"4 sigma {per_channel(K_SIGMA * sigma, '{:.1%}')}")
     asserted = ", ".join(ASSERTED_SPHERES.get(case, ())) or "none"
     header = (f"per sphere (pixels inside 70% of its radius; asserted within {SPHERE_TOL:.0%}: "
               f"{asserted}):")
@@ -368,7 +370,7 @@ def test_feature_agrees_with_cycles(cycles_case: Renders, stratum_case: Renders,
     c, s = cycles_case, stratum_case
     _save_png(f"{case}_cycles", c.mean, linear_to_srgb=True)
     _save_png(f"{case}_stratum", s.mean, linear_to_srgb=True)
-    _save_png(f"{case}_difference", _difference_image(s.mean, c.mean), linear_to_srgb=False)
+    _save_png(f"{case}_difference", difference_image(s.mean, c.mean), linear_to_srgb=False)
     flip = flip_ldr(s.mean, c.mean, f"{case}_flip")
     # For scale: FLIP between Cycles' two seeds, i.e. images with half the samples each.
     flip_noise = flip_ldr(c.mean + c.half_diff, c.mean - c.half_diff, f"{case}_flipnoise")
@@ -383,7 +385,8 @@ def test_feature_agrees_with_cycles(cycles_case: Renders, stratum_case: Renders,
     for name in ASSERTED_SPHERES.get(case, ()):
         _, rel, _ = _sphere_stats(case, name, c, s)
         assert (np.abs(rel) <= SPHERE_TOL).all(), (
-            f"sphere '{name}' differs by {_fmt3(rel, '{:+.2%}')} (tolerance {SPHERE_TOL:.0%}):"
+            f"sphere '{name}' differs by {per_channel(rel, '{:+.2%}')} "
+            f"(tolerance {SPHERE_TOL:.0%}):"
             f"\n{report}")
 
 
@@ -458,7 +461,7 @@ def test_ten_thousand_instances_export_as_one_mesh_and_render(library) -> None:
         path.unlink()
     r.filepath = str(path)
     bpy.ops.render.render(write_still=True)
-    image = _load_exr(path, 32)
+    image = load_exr(path, 32)
     # The cubes cover 10000 * 0.06^2 = 36 m^2 of the 10 m x 10 m grid seen from 12 m by a
     # 50 mm camera (39.6 degrees: a 8.6 m square): lit cube tops and the black background
     # between them, so the image is neither empty nor uniform.

@@ -3,7 +3,7 @@
 Runs in Blender 3.4 (`blender -b --factory-startup --python tests/blender/run_in_blender.py --
 tests/blender/test_light_agreement.py`) and under the bpy wheel (`.venv/bin/python -m pytest
 tests/blender/test_light_agreement.py`). The rendering, EXR reading and noise estimates are those
-of test_cycles_agreement.py (imported, see its docstring for the statistics).
+of agreement.py (imported; test_cycles_agreement.py's docstring has the statistics).
 
 Scene: a 6 m diffuse plane (Diffuse BSDF, 0.8), a spot light of 1000 W 2 m above it pointing
 down, spot_size 60 degrees, blend 0.5, radius 0 (a radius is a disk facing the shading point,
@@ -36,16 +36,16 @@ import bpy
 import numpy as np
 import pytest
 
-from test_cycles_agreement import (
+from agreement import (
     K_SIGMA,
     OUT,
     Renders,
-    _fmt3,
-    _render_exr,
-    _stratum_available,
+    configure_cycles,
+    configure_stratum,
+    per_channel,
+    render_exr,
+    stratum_available,
 )
-from test_cycles_agreement import _configure_cycles as configure_cycles
-from test_cycles_agreement import _configure_stratum as configure_stratum
 
 RES = 32
 BLOCK = 8
@@ -126,7 +126,7 @@ def _render_two_seeds(name: str, configure) -> Renders:
     for seed in SEEDS:
         scene = _spot_scene()
         configure(scene, seed)
-        img, sec = _render_exr(scene, SPOT_OUT / f"{name}_seed{seed}.exr", RES)
+        img, sec = render_exr(scene, SPOT_OUT / f"{name}_seed{seed}.exr", RES)
         images.append(img)
         seconds.append(sec)
     renders = Renders(name, images, seconds, BLOCK)
@@ -141,7 +141,7 @@ def cycles_spot() -> Renders:
 
 @pytest.fixture(scope="module")
 def stratum_spot(library) -> Renders:
-    reason = _stratum_available()
+    reason = stratum_available()
     if reason:
         pytest.skip(reason)
     return _render_two_seeds("stratum", _configure_stratum)
@@ -167,8 +167,9 @@ def test_spot_light_agrees_with_cycles(cycles_spot: Renders, stratum_spot: Rende
 
     img_rel = (s_img - c_img) / c_img
     blk_rel = np.where(lit, (sb - cb) / np.maximum(cb, 1e-12), 0.0)
-    report = (f"spot light, Blender {bpy.app.version_string}: image mean cycles {_fmt3(c_img)}, "
-              f"stratum {_fmt3(s_img)}, rel {_fmt3(img_rel, '{:+.3%}')}; blocks: worst rel "
+    report = (f"spot light, Blender {bpy.app.version_string}: image mean cycles "
+              f"{per_channel(c_img)}, stratum {per_channel(s_img)}, "
+              f"rel {per_channel(img_rel, '{:+.3%}')}; blocks: worst rel "
               f"{float(np.abs(blk_rel).max()):+.2%}, worst 4 sigma "
               f"{float((K_SIGMA * sigma_b / np.maximum(cb, 1e-12))[lit].max()):.2%}\n"
               + "\n".join("  " + " ".join(

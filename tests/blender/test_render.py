@@ -61,7 +61,7 @@ def test_missing_library_is_reported(stratum_addon: Any, scene_builder: Any,
     from stratum import native
 
     scene_builder().basic()
-    monkeypatch.setattr(native, "_lib", None)
+    monkeypatch.setattr(native.library, "_lib", None)  # the loaded library is held there
     monkeypatch.setenv("STRATUM_LIBRARY", str(tmp_path / "missing" / "libstratum.so"))
     try:
         bpy.ops.render.render()

@@ -9,7 +9,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from stratum import cli
+from stratum import blender_process, cli
 
 
 def test_samplers_lists_the_registry(native: Any, capsys: pytest.CaptureFixture[str]) -> None:
@@ -56,7 +56,7 @@ def test_render_through_blender(native: Any, tmp_path: Path) -> None:
     scene = Path(__file__).resolve().parents[2] / "scenes" / "cornell_box.blend"
     if not scene.is_file():
         pytest.skip(f"{scene} does not exist yet")
-    if cli.blender_executable() is None:
+    if blender_process.blender_executable() is None:
         pytest.skip("Blender not found (set STRATUM_BLENDER)")
     out = tmp_path / "cornell.png"
     sampler = native.registry("sampler")[0].name

@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 import pytest
-from stratum import cli
+from stratum import blender_process, cli
 from stratum.compare import estimators, exr, metrics, plan
 
 REPO = Path(__file__).resolve().parents[2]
@@ -349,10 +349,10 @@ def _calls(log: Path) -> list[dict[str, Any]]:
 @pytest.fixture
 def no_report(monkeypatch: pytest.MonkeyPatch) -> list[dict[str, Any]]:
     """Replaces the report step (tested on its own) by a recorder."""
-    from stratum import compare
+    from stratum.compare import command
 
     seen: list[dict[str, Any]] = []
-    monkeypatch.setattr(compare, "_report", lambda out, results: seen.append(results) or 0)
+    monkeypatch.setattr(command, "_report", lambda out, results: seen.append(results) or 0)
     return seen
 
 
@@ -550,10 +550,10 @@ def test_reference_file(native: Any, fake_blender: Path, tmp_path: Path,
 
 def test_missing_report_module_is_a_clear_error(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
                                                 capsys: pytest.CaptureFixture[str]) -> None:
-    from stratum import compare
+    from stratum.compare import command
 
     monkeypatch.setitem(sys.modules, "stratum.compare.report", None)
-    assert compare._report(tmp_path, {}) == 1
+    assert command._report(tmp_path, {}) == 1
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and "report" in err[0]
 
@@ -590,7 +590,7 @@ def test_bad_input_is_one_line_and_writes_nothing(native: Any, fake_blender: Pat
 
 
 def _need_blender(native: Any) -> None:
-    if cli.blender_executable() is None or os.environ.get("STRATUM_BLENDER", "").endswith(
+    if blender_process.blender_executable() is None or os.environ.get("STRATUM_BLENDER", "").endswith(
             "fake_blender"):
         pytest.skip("Blender not found (set STRATUM_BLENDER)")
     if not CORNELL.is_file():

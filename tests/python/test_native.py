@@ -281,7 +281,7 @@ def test_orthographic_and_thin_lens_cameras_cross_the_abi(native: Any, tiny_scen
     """The appended StratumCameraDesc fields reach the core: an orthographic view of the 2 x 2
     quad from (0, 0, 4) sees only the quad at ortho_scale 1 and the background (0.1) in its
     corners at ortho_scale 8; a thin lens renders; bad values are named."""
-    assert native._CameraDesc.type.offset == 24 * 4  # right after the 16-float transform
+    assert native.abi._CameraDesc.type.offset == 24 * 4  # right after the 16-float transform
     assert ctypes_size(native) == 34 * 4  # ... then latitude and longitude ranges
     at = np.eye(4, dtype=np.float32)
     at[2, 3] = 4.0
@@ -308,7 +308,7 @@ def test_orthographic_and_thin_lens_cameras_cross_the_abi(native: Any, tiny_scen
 def ctypes_size(native: Any) -> int:
     import ctypes
 
-    return ctypes.sizeof(native._CameraDesc)
+    return ctypes.sizeof(native.abi._CameraDesc)
 
 
 def test_set_environment_validates_and_renders(native: Any, tiny_scene: Any) -> None:

@@ -31,10 +31,15 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any, TextIO
 
+from ..blender_process import (
+    ADDON_PARENT,
+    NOT_FOUND_MESSAGE,
+    background_command,
+    blender_executable,
+)
 from . import blender_batch
 from .plan import Config, SceneSettings, batch_entry, sha256_file
 
-ADDON_PARENT = Path(__file__).resolve().parents[2]  # the folder that holds stratum/
 BATCH_SCRIPT = Path(__file__).resolve().with_name("blender_batch.py")
 
 EventFn = Callable[[str, dict[str, Any]], None]
@@ -42,13 +47,6 @@ EventFn = Callable[[str, dict[str, Any]], None]
 
 class BatchError(Exception):
     """A Blender batch failed; the message is one line."""
-
-
-def blender_executable() -> str | None:
-    """$STRATUM_BLENDER or `blender`, as `stratum render` finds it."""
-    from ..cli import blender_executable as find
-
-    return find()
 
 
 def _one_line(text: str) -> str:
@@ -65,13 +63,13 @@ def run_blender(scene: Path, payload: dict[str, Any], on_event: EventFn | None =
     configurations start and finish. Raises BatchError when Blender fails."""
     exe = blender or blender_executable()
     if exe is None:
-        raise BatchError("Blender not found (set STRATUM_BLENDER)")
+        raise BatchError(NOT_FOUND_MESSAGE)
     with tempfile.TemporaryDirectory(prefix="stratum-batch-") as tmp:
         payload_path = Path(tmp) / "batch.json"
         payload_path.write_text(json.dumps(payload))
         stderr_path = Path(tmp) / "stderr.txt"
-        cmd = [exe, "-b", "--factory-startup", "-noaudio", str(scene), "--python",
-               str(BATCH_SCRIPT), "--", str(payload_path)]
+        cmd = background_command(exe, scene, "--python", str(BATCH_SCRIPT), "--",
+                                 str(payload_path), audio=False)
         tail: list[str] = []
         with open(stderr_path, "w+") as err:
             proc = subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=err, text=True,

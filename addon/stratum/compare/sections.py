@@ -1,5 +1,6 @@
 """The sections of the `stratum compare` report: each builder takes the Results and the
-figures folder, draws its figures and returns its HTML body (report.py adds the heading)."""
+figures folder, draws its figures and returns its HTML body (report.py adds the heading and
+lays out the page)."""
 
 from __future__ import annotations
 
@@ -10,21 +11,18 @@ from typing import Any
 import numpy as np
 
 from . import figures
-from .report import (
-    METRICS,
-    SLOPE_KEYS,
-    Results,
-    crop_gain,
-    crop_region,
-    display_transform,
-    esc,
-    fmt,
-    img_tag,
-    magnify,
-    problem,
-    safe_name,
-)
+from .report_data import Results
+from .report_html import esc, fmt, img_tag, problem, safe_name
+from .report_images import crop_gain, crop_region, display_transform, magnify
 from .spectra import error_image, low_frequency_ratio, radial_average
+
+METRICS: dict[str, str] = {
+    "mse": "MSE",
+    "rel_mse": "relative MSE",
+    "flip_ldr": "mean FLIP (LDR)",
+    "flip_hdr": "mean FLIP (HDR)",
+}
+SLOPE_KEYS: tuple[str, ...] = ("mse", "rel_mse", "flip_ldr", "flip_hdr", "mse_vs_seconds")
 
 POINT_DIMS: tuple[tuple[int, int], ...] = ((0, 1), (3, 4), (9, 10))
 POINT_COUNT = 256

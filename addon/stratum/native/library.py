@@ -1,0 +1,204 @@
+"""Loading libstratum.so, the errors every native call can raise, and what needs no scene:
+version and registries.
+
+The library is loaded lazily (first use), from $STRATUM_LIBRARY or stratum/lib/libstratum.so,
+with RTLD_LOCAL | RTLD_DEEPBIND on Linux: Blender (and the bpy wheel) carry their own Embree,
+OIIO and TBB, and deep binding keeps our library bound to the copies it was linked with.
+Every native call goes through `_check`, so a non-OK status becomes a `StratumError` carrying
+stratum_last_error()'s text.
+"""
+
+from __future__ import annotations
+
+import ctypes
+import os
+import sys
+import threading
+from pathlib import Path
+from typing import NamedTuple
+
+from .abi import (
+    ERROR_INTERNAL,
+    ERROR_INVALID_ARGUMENT,
+    ERROR_INVALID_STATE,
+    OK,
+    REGISTRIES,
+    STATUS_NAMES,
+    function_signatures,
+)
+
+
+class StratumError(RuntimeError):
+    """A native call failed (status != OK) or the library could not be loaded.
+
+    stratum_last_error() reads "stratum_function: detail"; the function is kept apart
+    (`function`) so that what a user sees, str(error), is the detail alone: Blender's messages
+    name the object and field, not the ABI entry point. `message` is the whole text. `index`
+    is the failing element of a batched call (add_instances), else None."""
+
+    def __init__(self, status: int, message: str, index: int | None = None) -> None:
+        self.status = status
+        self.message = message
+        self.index = index
+        head, sep, rest = message.partition(": ")
+        is_function = sep and head.startswith("stratum_") and head.isidentifier()
+        self.function = head if is_function else ""
+        self.detail = rest if is_function else message
+        super().__init__(self.detail or STATUS_NAMES.get(status, f"status {status}"))
+
+
+class LibraryLoadError(StratumError):
+    """libstratum.so is missing or cannot be loaded."""
+
+    def __init__(self, message: str) -> None:
+        super().__init__(ERROR_INTERNAL, message)
+
+
+class RegistryEntry(NamedTuple):
+    """(name, label, description) of a registry entry."""
+
+    name: str
+    label: str
+    description: str
+
+
+# ---- library loading ------------------------------------------------------------------------
+
+_lib: ctypes.CDLL | None = None
+_lib_lock = threading.Lock()
+
+
+def default_library_path() -> Path:
+    """$STRATUM_LIBRARY, else lib/libstratum.so in the stratum package (beside native/)."""
+    env = os.environ.get("STRATUM_LIBRARY")
+    if env:
+        return Path(env)
+    return Path(__file__).resolve().parent.parent / "lib" / "libstratum.so"
+
+
+def _declare(lib: ctypes.CDLL) -> None:
+    for name, (restype, argtypes) in function_signatures().items():
+        try:
+            fn = getattr(lib, name)
+        except AttributeError as exc:
+            raise LibraryLoadError(f"{lib._name}: missing symbol {name}") from exc
+        fn.restype = restype
+        fn.argtypes = argtypes
+
+
+def load_library(path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
+    """Loads (once) and returns the library; raises LibraryLoadError with the reason."""
+    global _lib
+    with _lib_lock:
+        if _lib is not None:
+            return _lib
+        lib_path = Path(path) if path is not None else default_library_path()
+        if not lib_path.is_file():
+            raise LibraryLoadError(
+                f"Stratum native library not found at {lib_path} "
+                "(build it with `make build`, or set STRATUM_LIBRARY)"
+            )
+        mode = ctypes.RTLD_LOCAL
+        if sys.platform.startswith("linux"):
+            mode = os.RTLD_LOCAL | os.RTLD_DEEPBIND
+        try:
+            lib = ctypes.CDLL(str(lib_path), mode=mode)
+        except OSError as exc:
+            raise LibraryLoadError(f"cannot load Stratum native library {lib_path}: {exc}") from exc
+        _declare(lib)
+        _lib = lib
+        return lib
+
+
+def library_available() -> bool:
+    try:
+        load_library()
+    except StratumError:
+        return False
+    return True
+
+
+def _last_error(lib: ctypes.CDLL) -> str:
+    raw = lib.stratum_last_error()
+    return raw.decode("utf-8", "replace") if raw else ""
+
+
+def _check(lib: ctypes.CDLL, status: int, what: str) -> None:
+    if status != OK:
+        message = _last_error(lib) or f"{what} failed: {STATUS_NAMES.get(status, status)}"
+        raise StratumError(int(status), message)
+
+
+def version() -> str:
+    lib = load_library()
+    raw = lib.stratum_version()
+    return raw.decode("utf-8", "replace") if raw else ""
+
+
+def registry(kind: str) -> list[RegistryEntry]:
+    """Entries of the 'sampler', 'filter', 'integrator' or 'hemisphere' registry, as
+    (name, label, description)."""
+    if kind not in REGISTRIES:
+        raise ValueError(f"unknown registry {kind!r}; expected one of {sorted(REGISTRIES)}")
+    lib = load_library()
+    reg = REGISTRIES[kind]
+    count = lib.stratum_registry_count(reg)
+    if count < 0:
+        raise StratumError(ERROR_INVALID_ARGUMENT, _last_error(lib) or f"unknown registry {kind}")
+    entries: list[RegistryEntry] = []
+    for i in range(count):
+        name, label, desc = ctypes.c_char_p(), ctypes.c_char_p(), ctypes.c_char_p()
+        status = lib.stratum_registry_entry(
+            reg, i, ctypes.byref(name), ctypes.byref(label), ctypes.byref(desc)
+        )
+        _check(lib, status, "stratum_registry_entry")
+        entries.append(
+            RegistryEntry(
+                (name.value or b"").decode(),
+                (label.value or b"").decode(),
+                (desc.value or b"").decode(),
+            )
+        )
+    return entries
+
+
+# ---- native handles --------------------------------------------------------------------------
+
+
+class _Handle:
+    """Owns one native handle and frees it exactly once (close / context manager / __del__)."""
+
+    _destroy_name = ""
+
+    def __init__(self) -> None:
+        self._lib = load_library()
+        self._ptr = ctypes.c_void_p()
+
+    @property
+    def handle(self) -> ctypes.c_void_p:
+        if not self._ptr:
+            raise StratumError(ERROR_INVALID_STATE, f"{type(self).__name__} is closed")
+        return self._ptr
+
+    def close(self) -> None:
+        ptr = getattr(self, "_ptr", None)
+        if ptr:
+            getattr(self._lib, self._destroy_name)(ptr)
+            self._ptr = ctypes.c_void_p()
+
+    @property
+    def closed(self) -> bool:
+        return not self._ptr
+
+    def __enter__(self):  # noqa: ANN204 - returns the concrete subclass
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def __del__(self) -> None:
+        try:
+            self.close()
+        except Exception:  # noqa: BLE001 - never raise from a finalizer
+            pass
+

@@ -1,0 +1,147 @@
+"""`Renderer`: renders a copy of a Scene on native worker threads; `Progress` is what it reports
+while it runs."""
+
+from __future__ import annotations
+
+import ctypes
+import os
+from dataclasses import dataclass
+
+import numpy as np
+
+from .abi import _Progress
+from .library import _check, _Handle
+from .marshalling import _float_ptr
+from .scene import Scene
+
+
+@dataclass(frozen=True)
+class Progress:
+    done: bool
+    cancelled: bool
+    samples_done: int
+    samples_total: int
+    update_serial: int
+    rays: float
+    build_seconds: float
+    render_seconds: float
+    fraction_done: float
+
+
+class Renderer(_Handle):
+    """Renders a copy of a Scene on native worker threads."""
+
+    _destroy_name = "stratum_renderer_destroy"
+
+    def __init__(self, scene: Scene, **settings: int | float | str) -> None:
+        super().__init__()
+        _check(self._lib,
+               self._lib.stratum_renderer_create(scene.handle, ctypes.byref(self._ptr)),
+               "stratum_renderer_create")
+        self._width = 0
+        self._height = 0
+        self._crop_width = 0  # a border render reads and writes only its region
+        self._crop_height = 0
+        self._started = False
+        for name, value in settings.items():
+            self.set(name, value)
+
+    def close(self) -> None:
+        # A render still running must stop before its handle is freed.
+        ptr = getattr(self, "_ptr", None)
+        if ptr and getattr(self, "_started", False):
+            done = ctypes.c_int32(0)
+            self._lib.stratum_renderer_cancel(ptr)
+            self._lib.stratum_renderer_wait(ptr, 60000, ctypes.byref(done))
+        super().close()
+
+    def set(self, name: str, value: int | float | str) -> None:
+        """Sets a named setting; the C function is chosen by the Python type of value."""
+        key = name.encode()
+        if isinstance(value, bool | int | np.integer):
+            status = self._lib.stratum_renderer_set_int(self.handle, key, int(value))
+            if name in ("width", "height", "crop_width", "crop_height"):
+                setattr(self, f"_{name}", int(value))
+        elif isinstance(value, float | np.floating):
+            status = self._lib.stratum_renderer_set_float(self.handle, key, float(value))
+        elif isinstance(value, str):
+            status = self._lib.stratum_renderer_set_string(self.handle, key, value.encode())
+        else:
+            raise TypeError(f"setting {name!r}: unsupported type {type(value).__name__}")
+        _check(self._lib, status, f"setting {name}")
+
+    @property
+    def width(self) -> int:
+        return self._width
+
+    @property
+    def height(self) -> int:
+        return self._height
+
+    @property
+    def image_size(self) -> tuple[int, int]:
+        """(width, height) of the image read_pixels returns: the border region if one is set."""
+        if self._crop_width > 0 and self._crop_height > 0:
+            return self._crop_width, self._crop_height
+        return self._width, self._height
+
+    def start(self) -> None:
+        _check(self._lib, self._lib.stratum_renderer_start(self.handle), "stratum_renderer_start")
+        self._started = True
+
+    def notices(self) -> list[str]:
+        """What the render cannot show and why, one sentence each; [] when nothing: what the
+        chosen estimator cannot render in this scene (e.g. BSDF sampling alone never finds a
+        point light; set by start()), placements skipped by the scene build (added when the
+        build ends) and samples or rays dropped as not finite (added when the render ends)."""
+        out = ctypes.c_char_p()
+        _check(self._lib, self._lib.stratum_renderer_notices(self.handle, ctypes.byref(out)),
+               "stratum_renderer_notices")
+        text = out.value.decode("utf-8", "replace") if out.value else ""
+        return [line for line in text.split("\n") if line]
+
+    def cancel(self) -> None:
+        _check(self._lib, self._lib.stratum_renderer_cancel(self.handle),
+               "stratum_renderer_cancel")
+
+    def wait(self, timeout_ms: int) -> bool:
+        """Waits up to timeout_ms; True when the render has ended."""
+        done = ctypes.c_int32(0)
+        _check(self._lib,
+               self._lib.stratum_renderer_wait(self.handle, int(timeout_ms), ctypes.byref(done)),
+               "stratum_renderer_wait")
+        return bool(done.value)
+
+    def progress(self) -> Progress:
+        p = _Progress()
+        _check(self._lib, self._lib.stratum_renderer_progress(self.handle, ctypes.byref(p)),
+               "stratum_renderer_progress")
+        return Progress(
+            done=bool(p.done),
+            cancelled=bool(p.cancelled),
+            samples_done=int(p.samples_done),
+            samples_total=int(p.samples_total),
+            update_serial=int(p.update_serial),
+            rays=float(p.rays),
+            build_seconds=float(p.build_seconds),
+            render_seconds=float(p.render_seconds),
+            fraction_done=float(p.fraction_done),
+        )
+
+    def read_pixels(self, out: np.ndarray | None = None) -> np.ndarray:
+        """Copies the current image (linear RGBA, rows bottom to top) into `out` (a contiguous
+        float32 array of width*height*4 values, any shape) with one native copy."""
+        if out is None:
+            width, height = self.image_size
+            out = np.empty(width * height * 4, dtype=np.float32)
+        if out.dtype != np.float32 or not out.flags.c_contiguous or not out.flags.writeable:
+            raise ValueError("read_pixels: out must be a writeable C-contiguous float32 array")
+        _check(self._lib,
+               self._lib.stratum_renderer_read_pixels(self.handle, _float_ptr(out), out.size),
+               "stratum_renderer_read_pixels")
+        return out
+
+    def write_image(self, path: str | os.PathLike[str]) -> None:
+        _check(self._lib,
+               self._lib.stratum_renderer_write_image(self.handle, os.fsencode(path)),
+               "stratum_renderer_write_image")
