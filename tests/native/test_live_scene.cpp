@@ -114,9 +114,10 @@ std::vector<float> render_with(StratumRenderer* r) {
     return rgba;
 }
 
-StratumRenderer* make_renderer(StratumScene* scene) {
+StratumRenderer* make_renderer(StratumScene* scene, const char* bvh = "static") {
     StratumRenderer* r = nullptr;
     EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "bvh", bvh), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_int(r, "width", 24), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_int(r, "height", 16), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_int(r, "samples", 8), STRATUM_OK);
@@ -125,9 +126,9 @@ StratumRenderer* make_renderer(StratumScene* scene) {
     return r;
 }
 
-std::vector<float> fresh_render(const Values& v) {
+std::vector<float> fresh_render(const Values& v, const char* bvh) {
     StratumScene* scene = build(v);
-    StratumRenderer* r = make_renderer(scene);
+    StratumRenderer* r = make_renderer(scene, bvh);
     std::vector<float> rgba = render_with(r);
     stratum_renderer_destroy(r);
     stratum_scene_destroy(scene);
@@ -140,12 +141,17 @@ bool same_bits(const std::vector<float>& a, const std::vector<float>& b) {
 
 }  // namespace
 
-TEST(LiveScene, EveryEditRendersAsAFreshBuildOfTheEditedScene) {
+// Both BVH layouts: static (a single placement flattened: its edit remaps its vertices) and
+// dynamic (every mesh instanced: an edit is a top-level recommit).
+class LiveSceneEdits : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(LiveSceneEdits, EveryEditRendersAsAFreshBuildOfTheEditedScene) {
+    const char* bvh = GetParam();
     Values v;
     StratumScene* scene = build(v);
-    StratumRenderer* r = make_renderer(scene);
+    StratumRenderer* r = make_renderer(scene, bvh);
     const std::vector<float> before = render_with(r);
-    ASSERT_TRUE(same_bits(before, fresh_render(v)));
+    ASSERT_TRUE(same_bits(before, fresh_render(v, bvh)));
 
     struct Edit {
         const char* what;
@@ -199,13 +205,17 @@ TEST(LiveScene, EveryEditRendersAsAFreshBuildOfTheEditedScene) {
     for (const Edit& e : edits) {
         e.apply(scene, v);
         const std::vector<float> edited = render_with(r);
-        EXPECT_FALSE(same_bits(edited, previous)) << e.what << ": the edit did not reach the renderer";
-        EXPECT_TRUE(same_bits(edited, fresh_render(v))) << e.what << ": differs from a fresh build";
+        EXPECT_FALSE(same_bits(edited, previous))
+            << bvh << ", " << e.what << ": the edit did not reach the renderer";
+        EXPECT_TRUE(same_bits(edited, fresh_render(v, bvh)))
+            << bvh << ", " << e.what << ": differs from a fresh build";
         previous = edited;
     }
     stratum_renderer_destroy(r);
     stratum_scene_destroy(scene);
 }
+
+INSTANTIATE_TEST_SUITE_P(BvhLayouts, LiveSceneEdits, ::testing::Values("static", "dynamic"));
 
 TEST(LiveScene, EditsOfTransformsMaterialsLightsAndWorldAreAppliedInPlace) {
     Values v;

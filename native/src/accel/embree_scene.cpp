@@ -195,7 +195,7 @@ EmbreeScene::~EmbreeScene() {
 
 std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
                                std::span<const InstancePlacement> placements, float ray_origin_limit,
-                               const std::atomic<bool>* cancel) {
+                               const std::atomic<bool>* cancel, bool flatten) {
     impl_->origin_limit = ray_origin_limit;
     impl_->cancel = cancel;
     impl_->device = rtcNewDevice(nullptr);
@@ -214,7 +214,7 @@ std::string EmbreeScene::build(std::span<const TriangleGeometry> prototypes,
         ++placed.at(p.prototype);
         if (p.motion) instanced[p.prototype] = true;
     }
-    for (size_t k = 0; k < prototypes.size(); ++k) instanced[k] = instanced[k] || placed[k] > 1;
+    for (size_t k = 0; k < prototypes.size(); ++k) instanced[k] = instanced[k] || placed[k] > 1 || !flatten;
     impl_->prototypes.assign(prototypes.size(), nullptr);
     impl_->geometry.assign(prototypes.begin(), prototypes.end());
     for (size_t k = 0; k < prototypes.size(); ++k) {

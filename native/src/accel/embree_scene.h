@@ -61,9 +61,12 @@ public:
     // ray_origin_limit: the largest |coordinate| a ray origin may have (scene/scene_limits.h);
     // placements must be traceable for it (scene/placement_conditioning.h). The build stops
     // early, returning kBuildCancelled, once *cancel becomes true (cancel may be null).
+    // `flatten`: a mesh placed once and static goes into the top level in world space (fastest
+    // to trace); false instances every mesh, so that moving any object is a top-level
+    // recommit (Cycles' dynamic viewport BVH).
     std::string build(std::span<const TriangleGeometry> prototypes,
                       std::span<const InstancePlacement> placements, float ray_origin_limit,
-                      const std::atomic<bool>* cancel = nullptr);
+                      const std::atomic<bool>* cancel = nullptr, bool flatten = true);
     static constexpr const char* kBuildCancelled = "BVH build cancelled";
     // Re-places the placements listed in `changed` (indices into `placements`, which are those
     // given to build() with new transforms and masks; prototypes and motion as built) and

@@ -11,6 +11,7 @@
 #include "film/pixel_filter.h"
 #include "film/pixel_region.h"
 #include "integrators/integrator.h"
+#include "render_scene/render_scene.h"
 #include "sampling/sampler_registry.h"
 
 namespace stratum {
@@ -33,6 +34,8 @@ struct RenderSettings {
     IntegratorSettings estimator;
     // The passes besides Combined.
     std::vector<Pass> passes;
+    // The BVH layout: static (fastest to trace) or dynamic (fast to update after live edits).
+    BvhLayout bvh = BvhLayout::Static;
 };
 
 // The region the crop settings select (the whole frame when crop_width = 0), or an error

@@ -52,8 +52,10 @@ std::string Renderer::start() {
     if (running()) return "a render is already running";
     join();
     pending_.merge(live_->sync(&scene_, &synced_));
-    // A rebuilt scene description moves the meshes the built scene points into.
-    if (pending_.rebuild) render_scene_.reset();
+    // A rebuilt scene description moves the meshes the built scene points into; another BVH
+    // layout is another build.
+    if (pending_.rebuild || (render_scene_ && render_scene_->bvh_layout() != settings_.bvh))
+        render_scene_.reset();
     if (!scene_.camera) return "the scene has no camera";
     PixelRegion region;
     const std::string crop_error = crop_region(settings_, &region);
@@ -114,14 +116,22 @@ void Renderer::run() {
         if (render_scene_ && pending_.any()) {
             const auto t0 = Clock::now();
             bool updated = false;
-            arena.execute([&] { updated = render_scene_->update(scene_, pending_, &cancel_); });
+            arena.execute([&] {
+                try {
+                    updated = render_scene_->update(scene_, pending_, &cancel_);
+                } catch (...) {
+                    // A half-applied update must not be rendered or updated again.
+                    render_scene_.reset();
+                    throw;
+                }
+            });
             if (!updated) render_scene_.reset();
             std::lock_guard lock(state_mutex_);
             build_seconds_ = seconds_since(t0);
         }
         if (!render_scene_) {
             const auto t0 = Clock::now();
-            arena.execute([&] { render_scene_ = std::make_unique<RenderScene>(scene_, &cancel_); });
+            arena.execute([&] { render_scene_ = std::make_unique<RenderScene>(scene_, &cancel_, s.bvh); });
             std::lock_guard lock(state_mutex_);
             build_seconds_ = seconds_since(t0);
             for (const std::string& notice : render_scene_->notices()) add_notice(notice);

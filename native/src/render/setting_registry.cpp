@@ -41,6 +41,18 @@ std::span<const RegistryEntry> integrator_choices() {
     return infos;
 }
 
+std::span<const RegistryEntry> bvh_choices() {
+    static constexpr std::array kLayouts = {
+        RegistryEntry{"static", "Static",
+                      "A mesh placed once is flattened into the top level: fastest to trace; moving it "
+                      "rebuilds its BVH"},
+        RegistryEntry{"dynamic", "Dynamic",
+                      "Every mesh is an instance: moving an object only recommits the top level (for live "
+                      "editing, as Cycles' viewport BVH)"},
+    };
+    return kLayouts;
+}
+
 std::span<const RegistryEntry> pass_choices() {
     // Combined is always there: the list names the others.
     static const std::vector<RegistryEntry> infos = [] {
@@ -275,6 +287,15 @@ const std::array kSettings = {
                 "",
                 &rr_mode_choices,
                 STRATUM_OPTION(estimator.rr_mode, rr_mode_at)},
+    SettingSpec{
+        {"bvh", "BVH", "How the ray-tracing hierarchy is laid out: for rendering or for live editing"},
+        SettingKind::Choice,
+        0,
+        0,
+        false,
+        "",
+        &bvh_choices,
+        STRATUM_ENUM(bvh, BvhLayout)},
     SettingSpec{{"passes", "Passes", "Passes the render holds besides Combined (comma-separated)"},
                 SettingKind::List,
                 0,

@@ -65,8 +65,8 @@ Rgb material_emission(const SceneMaterial& material) {
     return sum;
 }
 
-RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
-    : materials_(scene.materials), textures_(scene), background_(scene.background) {
+RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel, BvhLayout bvh)
+    : materials_(scene.materials), textures_(scene), background_(scene.background), bvh_(bvh) {
     // The scene's extent first: it decides which placements can be traced at all.
     mesh_bounds_.assign(scene.meshes.size(), Bounds{});
     std::vector<bool> bounded(scene.meshes.size(), false);
@@ -108,7 +108,8 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
             {&mesh, inst.mesh_id, inst.object_to_world, moving, inst.visibility, inst.holdout, {}});
     }
     build_lights(scene, cancel);
-    const std::string error = embree_.build(prototypes, placements_, limit_, cancel);
+    const std::string error =
+        embree_.build(prototypes, placements_, limit_, cancel, bvh == BvhLayout::Static);
     if (error == EmbreeScene::kBuildCancelled) throw BuildCancelled();
     if (!error.empty()) throw std::runtime_error(error);
 }

@@ -46,6 +46,8 @@ struct RayQuery {
     uint32_t visibility = kVisibleAll;
 };
 
+enum class BvhLayout : uint8_t { Static, Dynamic };
+
 // An axis-aligned box; empty until a point is added.
 struct Bounds {
     Vec3 lo{kInfinity, kInfinity, kInfinity}, hi{-kInfinity, -kInfinity, -kInfinity};
@@ -63,7 +65,11 @@ class RenderScene {
 public:
     // Throws std::runtime_error with a readable message (caught at the C ABI), BuildCancelled
     // when *cancel (may be null) becomes true during the build.
-    explicit RenderScene(const Scene& scene, const std::atomic<bool>* cancel = nullptr);
+    // `bvh`: how the BVH is laid out (static: single placements flattened, fastest to trace;
+    // dynamic: every mesh instanced, so that moving any object is cheap to update).
+    explicit RenderScene(const Scene& scene, const std::atomic<bool>* cancel = nullptr,
+                         BvhLayout bvh = BvhLayout::Static);
+    BvhLayout bvh_layout() const { return bvh_; }
 
     // Applies edits of the scene it was built from (`scene` is that scene, edited; its meshes
     // are where they were): re-places edited instances in the BVH, takes the new materials,
@@ -132,6 +138,7 @@ private:
     EmbreeScene embree_;
     LightSet lights_;
     Rgb background_;
+    BvhLayout bvh_ = BvhLayout::Static;
     bool has_motion_ = false;
     Vec3 bounds_center_{0.0f, 0.0f, 0.0f};
     float bounds_radius_ = 1.0f;
