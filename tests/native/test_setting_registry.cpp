@@ -7,6 +7,8 @@
 #include <limits>
 #include <set>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "render/setting_registry.h"
 #include "stratum/stratum.h"
@@ -141,4 +143,31 @@ TEST(SettingRegistry, AValueIsParsedOnceIntoWhatTheRendererReads) {
     EXPECT_EQ(s.filter_type, FilterType::Box);
     EXPECT_EQ(std::string(s.sampler->info.name), "sobol");
     EXPECT_EQ(s.passes, std::vector<Pass>{Pass::Normal});
+}
+
+TEST(SettingRegistry, ChoicesOnlyGrowAtTheEnd) {
+    // Blender stores an enum property as the position of its item, so a .blend saved today must
+    // read the same choice tomorrow: these lists may gain entries at their end, never reorder
+    // or lose one (scenes/ao_study.blend once read as 'light' because 'ao' moved).
+    const std::pair<const char*, std::vector<std::string>> pinned[] = {
+        {"sampler",
+         {"random", "lcg", "stratified", "lhs", "halton", "halton_rd", "halton_owen", "sobol", "zsobol",
+          "bluenoise", "fibonacci", "fibonacci_static"}},
+        {"integrator", {"path", "light", "direct", "ao"}},
+        {"hemisphere", {"uniform_angles", "uniform", "cosine"}},
+        {"filter_type", {"box", "blackman_harris"}},
+        {"light_sampling", {"mis", "nee", "bsdf"}},
+        {"mis_heuristic", {"power", "balance", "max"}},
+        {"light_selection", {"mixed", "power", "uniform"}},
+        {"triangle_sampling", {"solid_angle", "area"}},
+        {"rr_mode", {"throughput", "albedo", "off"}},
+        {"bvh", {"static", "dynamic"}},
+    };
+    for (const auto& [name, names] : pinned) {
+        const SettingSpec* spec = find_setting(name);
+        ASSERT_NE(spec, nullptr) << name;
+        ASSERT_GE(spec->choices().size(), names.size()) << name;
+        for (size_t i = 0; i < names.size(); ++i)
+            EXPECT_EQ(spec->choices()[i].name, names[i]) << name << " #" << i;
+    }
 }
