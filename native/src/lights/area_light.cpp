@@ -51,7 +51,8 @@ Vec3 AreaLight::point(Vec2 u) const {
     return center_ + axis_x_ * a + axis_y_ * b;
 }
 
-bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
+bool AreaLight::sample(Vec3 p, Vec3 /*n*/, Vec2 u, TriangleSampling /*triangle_sampling*/,
+                       LightSample* out) const {
     const Vec3 to = point(u) - p;
     const float d2 = dot(to, to);
     const float d = std::sqrt(d2);
@@ -61,14 +62,9 @@ bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
     if (cos_light <= 0.0f) return false;  // the back side does not emit
     const float f = area_light_spread_attenuation(cos_light, tan_half_spread_, normalize_spread_);
     if (!(f > 0.0f)) return false;
-    // Rays scattered by BSDFs meet the lamp too (LightSet::lamp_radiance), so NEE is MIS-weighted.
     *out = {wi, d, radiance_ * f, d2 / (area_ * cos_light), true};
     return true;
 }
-
-}  // namespace stratum
-
-namespace stratum {
 
 bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const {
     const float cos_light = -dot(dir, normal_);
@@ -86,7 +82,8 @@ bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* rad
     return true;
 }
 
-void AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const {
+bool AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 /*center*/, float /*radius*/,
+                                EmissionSample* out) const {
     const Vec2 unit = sample_uniform_disk_concentric(u_direction);
     const Vec2 d{unit.x * sin_half_spread_, unit.y * sin_half_spread_};
     const float cos_theta = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
@@ -97,6 +94,7 @@ void AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSampl
     out->soft_radius = 0.0f;
     const float f = area_light_spread_attenuation(cos_theta, tan_half_spread_, normalize_spread_);
     out->weight = radiance_ * (f * kPi * sin_half_spread_ * sin_half_spread_ * area_);
+    return true;
 }
 
 }  // namespace stratum

@@ -15,7 +15,8 @@ SunLight::SunLight(Vec3 toward_sun, Rgb irradiance, float angle)
     }
 }
 
-bool SunLight::sample(Vec2 u, LightSample* out) const {
+bool SunLight::sample(Vec3 /*p*/, Vec3 /*n*/, Vec2 u, TriangleSampling /*triangle_sampling*/,
+                      LightSample* out) const {
     if (cos_max_ >= 1.0f) {
         *out = {frame_.n, kInfinity, irradiance_, 1.0f, false};
         return true;

@@ -5,6 +5,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "lights/area_light.h"
+#include "lights/point_light.h"
+#include "lights/spot_light.h"
+#include "lights/sun_light.h"
 #include "scene/placement_conditioning.h"
 
 namespace stratum {
@@ -189,7 +193,8 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
         std::vector<float> rgb(e.rgb.size());
         // Saturating: a strength of 3e38 on a bright texel must not give an infinite sky.
         for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = saturating_product(Rgb(e.rgb[i]), e.strength).r;
-        lights_.add(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation), light_object++);
+        lights_.add_environment(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation),
+                                light_object++);
     }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.
     if (!world.empty()) {
