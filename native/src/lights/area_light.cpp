@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "lights/light_param_checks.h"
 #include "sampling/warps.h"
+#include "scene/scene_limits.h"
 
 namespace stratum {
 
@@ -96,5 +98,27 @@ bool AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 /*center
     out->weight = radiance_ * (f * kPi * sin_half_spread_ * sin_half_spread_ * area_);
     return true;
 }
+
+namespace {
+
+void check_area_light_params(const LightParams& given, LightParams* params) {
+    params->size_x = light_param_in_open(given.size_x, 0.0f, kMaxCoordinate, "area light size_x");
+    params->size_y = light_param_in_open(given.size_y, 0.0f, kMaxCoordinate, "area light size_y");
+    require_light_param(std::isfinite(given.spread) && given.spread >= 0.0f && given.spread <= kPi,
+                        "area light spread = " + light_param_text(given.spread) + " must be in (0, " +
+                            light_param_text(kPi) + "] (0 reads as pi)");
+    params->spread = given.spread == 0.0f ? kPi : given.spread;
+}
+
+template <bool ellipse>
+std::unique_ptr<Light> make_area_light(const LightParams& params) {
+    return std::make_unique<AreaLight>(params.light_to_world, params.size_x, params.size_y, ellipse,
+                                       params.color * params.strength, params.spread);
+}
+
+}  // namespace
+
+const LightModel kRectangleAreaLightModel{&make_area_light<false>, &check_area_light_params};
+const LightModel kEllipseAreaLightModel{&make_area_light<true>, &check_area_light_params};
 
 }  // namespace stratum

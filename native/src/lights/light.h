@@ -19,15 +19,21 @@
 // |                  | distance, radiance toward the origin, and the solid-angle pdf with which  |
 // |                  | sample() at the origin picks dir (for MIS)                                |
 //
+// A light is built from the host's LightParams by its model's entry (LightModel), defined in the
+// light's own file and registered by type in lights/light_registry.cpp.
+//
 // One virtual call per question: per sample or per lamp a ray meets, one indirect call, as the
 // std::visit over a closed list of types was, while a light added in its own file needs no change
 // here or in LightSet.
 #pragma once
 
+#include <memory>
+
 #include "core/math.h"
 #include "lights/emission_sample.h"
 #include "lights/light_sample.h"
 #include "lights/light_selection.h"
+#include "scene/scene.h"
 
 namespace stratum {
 
@@ -47,6 +53,18 @@ public:
                            float* /*pdf*/) const {
         return false;
     }
+};
+
+// How one LightType becomes a light: defined in the light's own file, registered by type in
+// lights/light_registry.cpp.
+struct LightModel {
+    // The light that `params` describe (checked at the C ABI, including by check_own_params).
+    std::unique_ptr<Light> (*make)(const LightParams& params);
+    // Checks the parameters only this type reads, in `given` as the host passed them, and stores
+    // them in *params, whose parameters common to every type are checked already. Throws
+    // std::invalid_argument naming the bad value (the C ABI reports it as an invalid argument).
+    // Null when the type reads only the common parameters.
+    void (*check_own_params)(const LightParams& given, LightParams* params);
 };
 
 }  // namespace stratum

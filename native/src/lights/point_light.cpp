@@ -78,4 +78,15 @@ bool PointLight::sample_emission(Vec2 /*u_position*/, Vec2 u_direction, Vec3 /*c
     return true;
 }
 
+namespace {
+
+std::unique_ptr<Light> make_point_light(const LightParams& params) {
+    return std::make_unique<PointLight>(params.light_to_world.translation(), params.color * params.strength,
+                                        params.radius);
+}
+
+}  // namespace
+
+const LightModel kPointLightModel{&make_point_light, nullptr};
+
 }  // namespace stratum

@@ -64,4 +64,7 @@ private:
     float radius_;
 };
 
+// LightType::Point: position from the transform, power = color × strength, radius.
+extern const LightModel kPointLightModel;
+
 }  // namespace stratum

@@ -1,5 +1,6 @@
 #include "lights/spot_light.h"
 
+#include "lights/light_param_checks.h"
 #include "sampling/warps.h"
 
 namespace stratum {
@@ -68,5 +69,23 @@ bool SpotLight::sample_emission(Vec2 /*u_position*/, Vec2 u_direction, Vec3 /*ce
     out->soft_radius = radius_;
     return true;
 }
+
+namespace {
+
+void check_spot_light_params(const LightParams& given, LightParams* params) {
+    params->spot_size = light_param_in_open(given.spot_size, 0.0f, kPi, "spot light spot_size");
+    params->spot_blend = light_param_in(given.spot_blend, 0.0f, 1.0f, "spot light spot_blend");
+}
+
+template <bool cosine_falloff>
+std::unique_ptr<Light> make_spot_light(const LightParams& params) {
+    return std::make_unique<SpotLight>(params.light_to_world, params.color * params.strength, params.radius,
+                                       params.spot_size, params.spot_blend, cosine_falloff);
+}
+
+}  // namespace
+
+const LightModel kSpotLightModel{&make_spot_light<false>, &check_spot_light_params};
+const LightModel kSpotV1LightModel{&make_spot_light<true>, &check_spot_light_params};
 
 }  // namespace stratum

@@ -64,4 +64,9 @@ private:
     bool cosine_falloff_;
 };
 
+// LightType::Spot (Cycles 4.x/5.x) and LightType::SpotV1 (Cycles 3.x: cosine_falloff): transform,
+// power = color × strength, radius, spot_size, spot_blend; both check spot_size in (0, π] and
+// spot_blend in [0, 1].
+extern const LightModel kSpotLightModel, kSpotV1LightModel;
+
 }  // namespace stratum

@@ -46,4 +46,15 @@ bool SunLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, f
     return true;
 }
 
+namespace {
+
+std::unique_ptr<Light> make_sun_light(const LightParams& params) {
+    return std::make_unique<SunLight>(normalize(params.light_to_world.vector(Vec3(0, 0, 1))),
+                                      params.color * params.strength, params.angle);
+}
+
+}  // namespace
+
+const LightModel kSunLightModel{&make_sun_light, nullptr};
+
 }  // namespace stratum

@@ -44,4 +44,7 @@ private:
     float pdf_;
 };
 
+// LightType::Sun: direction = the transform's +Z, irradiance = color × strength, angle.
+extern const LightModel kSunLightModel;
+
 }  // namespace stratum

@@ -5,10 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "lights/area_light.h"
-#include "lights/point_light.h"
-#include "lights/spot_light.h"
-#include "lights/sun_light.h"
+#include "lights/light_registry.h"
 #include "scene/placement_conditioning.h"
 
 namespace stratum {
@@ -162,32 +159,7 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel)
                             object);
         }
     }
-    for (const LightParams& l : scene.lights) {
-        const Rgb power = l.color * l.strength;
-        const uint32_t object = light_object++;
-        switch (l.type) {
-            case LightType::Point:
-                lights_.add(PointLight(l.light_to_world.translation(), power, l.radius), object,
-                            l.visibility);
-                break;
-            case LightType::Sun:
-                lights_.add(SunLight(normalize(l.light_to_world.vector(Vec3(0, 0, 1))), power, l.angle),
-                            object, l.visibility);
-                break;
-            case LightType::AreaRectangle:
-            case LightType::AreaEllipse:
-                lights_.add(AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse,
-                                      power, l.spread),
-                            object, l.visibility);
-                break;
-            case LightType::Spot:
-            case LightType::SpotV1:
-                lights_.add(SpotLight(l.light_to_world, power, l.radius, l.spot_size, l.spot_blend,
-                                      l.type == LightType::SpotV1),
-                            object, l.visibility);
-                break;
-        }
-    }
+    for (const LightParams& l : scene.lights) lights_.add(make_light(l), light_object++, l.visibility);
     if (scene.environment) {
         const Environment& e = *scene.environment;
         std::vector<float> rgb(e.rgb.size());
