@@ -154,7 +154,7 @@ Transform validate_transform(const float* m, const char* what) {
 }
 
 Material validate_material(const StratumMaterialDesc& d) {
-    check(d.model >= STRATUM_MATERIAL_DIFFUSE && d.model <= STRATUM_MATERIAL_HOLDOUT,
+    check(find_closure_model(static_cast<MaterialModel>(d.model)) != nullptr,
           "material model " + std::to_string(d.model) + " is not a StratumMaterialModel");
     Material m{};
     m.model = static_cast<MaterialModel>(d.model);
