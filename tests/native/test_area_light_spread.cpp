@@ -12,6 +12,7 @@
 
 #include "lights/area_light.h"
 #include "lights/light_set.h"
+#include "lights/point_light.h"
 #include "render_helpers.h"
 
 using namespace stratum;
@@ -73,8 +74,8 @@ TEST(AreaLightSpread, SpreadPiIsTheLambertianLight) {
         const Vec3 p(4 * u(rng) - 2, 4 * u(rng) - 2, 1.5f * u(rng));
         const Vec2 uv{u(rng), u(rng)};
         LightSample a, b;
-        const bool ok = plain.sample(p, uv, &a);
-        ASSERT_EQ(ok, wide.sample(p, uv, &b));
+        const bool ok = plain.sample(p, Vec3(), uv, TriangleSampling::SolidAngle, &a);
+        ASSERT_EQ(ok, wide.sample(p, Vec3(), uv, TriangleSampling::SolidAngle, &b));
         if (!ok) continue;
         EXPECT_EQ(a.radiance.r, b.radiance.r);
         EXPECT_EQ(a.pdf, b.pdf);
@@ -134,7 +135,8 @@ TEST(AreaLightSpread, SamplingMatchesTheIrradianceIntegral) {
         for (int k = 0; k < kN; ++k) {
             LightSample ls;
             double x = 0;
-            if (light.sample(p, {u(rng), u(rng)}, &ls)) x = ls.radiance.r * std::max(0.0f, ls.wi.z) / ls.pdf;
+            if (light.sample(p, Vec3(), {u(rng), u(rng)}, TriangleSampling::SolidAngle, &ls))
+                x = ls.radiance.r * std::max(0.0f, ls.wi.z) / ls.pdf;
             sum += x;
             sum2 += x * x;
         }

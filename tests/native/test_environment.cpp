@@ -193,7 +193,8 @@ TEST(Environment, SamplingDensityIntegratesToOneAndMatchesTheHistogram) {
     const auto r = stratum::chi_square::chi_square_directions(
         [&](stratum::Vec2 u, float, stratum::Vec3* w) {
             stratum::LightSample ls;
-            if (!env.sample(u, &ls)) return false;
+            if (!env.sample(stratum::Vec3(), stratum::Vec3(), u, stratum::TriangleSampling::SolidAngle, &ls))
+                return false;
             // The returned pdf is the one pdf() reports for that direction (but on texel edges,
             // where the lookup may round to the neighbour).
             if (std::abs(ls.pdf - env.pdf(ls.wi)) > 1e-4f * ls.pdf) ++mismatches;
@@ -220,8 +221,10 @@ TEST(Environment, RotationTurnsSamplesAndLookups) {
         const stratum::Vec2 u{(static_cast<float>(k) + 0.5f) / 200.0f,
                               std::fmod(0.618034f * static_cast<float>(k), 1.0f)};
         stratum::LightSample a, b;
-        ASSERT_TRUE(plain.sample(u, &a));
-        ASSERT_TRUE(turned.sample(u, &b));
+        ASSERT_TRUE(
+            plain.sample(stratum::Vec3(), stratum::Vec3(), u, stratum::TriangleSampling::SolidAngle, &a));
+        ASSERT_TRUE(
+            turned.sample(stratum::Vec3(), stratum::Vec3(), u, stratum::TriangleSampling::SolidAngle, &b));
         const stratum::Vec3 rw(R[0] * b.wi.x + R[1] * b.wi.y + R[2] * b.wi.z,
                                R[3] * b.wi.x + R[4] * b.wi.y + R[5] * b.wi.z,
                                R[6] * b.wi.x + R[7] * b.wi.y + R[8] * b.wi.z);

@@ -8,6 +8,7 @@
 
 #include "integrators/estimator_options.h"
 #include "lights/light_set.h"
+#include "lights/point_light.h"
 #include "render/setting_registry.h"
 #include "render_helpers.h"
 

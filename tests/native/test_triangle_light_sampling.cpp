@@ -82,7 +82,7 @@ TEST(TriangleLightSampling, BothModesMeasureLambertsIrradiance) {
             double sum = 0, sum2 = 0;
             for (int k = 0; k < kSamples; ++k) {
                 LightSample ls;
-                const double w = tri.sample(c.p, c.n, {u(rng), u(rng)}, &ls, mode) ? weight(ls, c.n) : 0.0;
+                const double w = tri.sample(c.p, c.n, {u(rng), u(rng)}, mode, &ls) ? weight(ls, c.n) : 0.0;
                 sum += w;
                 sum2 += w * w;
             }
@@ -106,7 +106,7 @@ TEST(TriangleLightSampling, SamplePdfIsThePdfOfReachingItsPoint) {
             std::uniform_real_distribution<float> u(0.0f, kOneMinusEpsilon);
             for (int k = 0; k < 2000; ++k) {
                 LightSample ls;
-                if (!tri.sample(c.p, c.n, {u(rng), u(rng)}, &ls, mode)) continue;
+                if (!tri.sample(c.p, c.n, {u(rng), u(rng)}, mode, &ls)) continue;
                 const float pdf = tri.pdf(c.p, c.n, c.p + ls.wi * ls.distance, mode);
                 ASSERT_NEAR(pdf, ls.pdf, 1e-3f * ls.pdf)
                     << c.label << (mode == TriangleSampling::Area ? " area" : "");
@@ -138,9 +138,9 @@ TEST(TriangleLightSampling, SolidAngleWeightIsBoundedNextToTheEmitter) {
     for (int k = 0; k < 200'000; ++k) {
         const Vec2 s{u(rng), u(rng)};
         LightSample ls;
-        if (tri.sample(c.p, c.n, s, &ls, TriangleSampling::SolidAngle))
+        if (tri.sample(c.p, c.n, s, TriangleSampling::SolidAngle, &ls))
             max_solid = std::max(max_solid, weight(ls, c.n));
-        if (tri.sample(c.p, c.n, s, &ls, TriangleSampling::Area))
+        if (tri.sample(c.p, c.n, s, TriangleSampling::Area, &ls))
             max_area = std::max(max_area, weight(ls, c.n));
     }
     EXPECT_LE(max_solid, bound * (1 + 1e-4)) << "bound " << bound;
@@ -160,8 +160,8 @@ TEST(TriangleLightSampling, CutOffsFallBackToAreaSampling) {
     for (const Vec3& p : points) {
         for (const Vec2 s : {Vec2{0.2f, 0.3f}, Vec2{0.7f, 0.1f}, Vec2{0.5f, 0.9f}}) {
             LightSample a, b;
-            const bool ok_a = tri.sample(p, up, s, &a, TriangleSampling::Area);
-            const bool ok_b = tri.sample(p, up, s, &b, TriangleSampling::SolidAngle);
+            const bool ok_a = tri.sample(p, up, s, TriangleSampling::Area, &a);
+            const bool ok_b = tri.sample(p, up, s, TriangleSampling::SolidAngle, &b);
             ASSERT_EQ(ok_a, ok_b);
             if (!ok_a) continue;
             EXPECT_EQ(a.pdf, b.pdf);

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "lights/light_registry.h"
 #include "scene/scene_limits.h"
 #include "scene/visibility.h"
 
@@ -153,7 +154,7 @@ Transform validate_transform(const float* m, const char* what) {
 }
 
 Material validate_material(const StratumMaterialDesc& d) {
-    check(d.model >= STRATUM_MATERIAL_DIFFUSE && d.model <= STRATUM_MATERIAL_HOLDOUT,
+    check(find_closure_model(static_cast<MaterialModel>(d.model)) != nullptr,
           "material model " + std::to_string(d.model) + " is not a StratumMaterialModel");
     Material m{};
     m.model = static_cast<MaterialModel>(d.model);
@@ -382,32 +383,32 @@ Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>
 }
 
 LightParams validate_light(const StratumLightDesc& d) {
-    check(d.type >= STRATUM_LIGHT_POINT && d.type <= STRATUM_LIGHT_SPOT_V1,
-          "light type " + std::to_string(d.type) + " is not a StratumLightType");
+    const LightModel* model = find_light_model(static_cast<LightType>(d.type));
+    check(model != nullptr, "light type " + std::to_string(d.type) + " is not a StratumLightType");
     LightParams l;
     l.type = static_cast<LightType>(d.type);
     l.color = validate_radiance(d.color, "light color");
     l.strength = finite_in(d.strength, 0.0f, std::numeric_limits<float>::max(), "light strength");
     l.radius = finite_in(d.radius, 0.0f, kMaxCoordinate, "light radius");
     l.angle = finite_in(d.angle, 0.0f, kPi, "light angle");
-    if (l.type == LightType::AreaRectangle || l.type == LightType::AreaEllipse) {
-        l.size_x = finite_in_open(d.size_x, 0.0f, kMaxCoordinate, "area light size_x");
-        l.size_y = finite_in_open(d.size_y, 0.0f, kMaxCoordinate, "area light size_y");
-    }
-    if (l.type == LightType::Spot || l.type == LightType::SpotV1) {
-        check(std::isfinite(d.spot_size) && d.spot_size > 0.0f && d.spot_size <= kPi,
-              "spot light spot_size = " + fmt(d.spot_size) + " must be in (0, " + fmt(kPi) + "]");
-        l.spot_size = d.spot_size;
-        l.spot_blend = finite_in(d.spot_blend, 0.0f, 1.0f, "spot light spot_blend");
+    if (model->check_own_params) {
+        // The parameters only some types read, as given: the type's model checks and keeps those
+        // it reads; the others keep LightParams' defaults.
+        LightParams given = l;
+        given.size_x = d.size_x;
+        given.size_y = d.size_y;
+        given.spot_size = d.spot_size;
+        given.spot_blend = d.spot_blend;
+        given.spread = d.spread;
+        try {
+            model->check_own_params(given, &l);
+        } catch (const std::invalid_argument& e) {
+            throw ValidationError(e.what());
+        }
     }
     l.light_to_world = validate_transform(d.transform, "light transform");
     l.visibility = d.visibility == 0 ? static_cast<uint32_t>(STRATUM_VISIBLE_ALL)
                                      : validate_visibility(d.visibility, "light visibility");
-    if (l.type == LightType::AreaRectangle || l.type == LightType::AreaEllipse) {
-        check(std::isfinite(d.spread) && d.spread >= 0.0f && d.spread <= kPi,
-              "area light spread = " + fmt(d.spread) + " must be in (0, " + fmt(kPi) + "] (0 reads as pi)");
-        l.spread = d.spread == 0.0f ? kPi : d.spread;
-    }
     return l;
 }
 

@@ -1,18 +1,9 @@
 // BSDF interface used by the integrators: one evaluation and one sampling entry point for every
-// surface model, dispatching on Material::model. Directions below the shading horizon (wi.z < 0)
-// are transmission; only Glass and Transparent produce them.
-//
-// | model        | meaning                                                   | file              |
-// |--------------|-----------------------------------------------------------|-------------------|
-// | Diffuse      | Lambert, albedo = base_color                              | lambert.h         |
-// | PrincipledV1 | Cycles 3.x Principled: Burley diffuse + GGX, cspec0       | principled_v1.h   |
-// | PrincipledV2 | Cycles 4.x Principled: Lambert under a dielectric GGX     | principled_v2.h   |
-// |              | layer (energy conserving) + F82 metal                     |                   |
-// | Emission     | no scattering (the emitted radiance lives in `emission`)  | bsdf.cpp          |
-// | Glossy       | GGX reflection, Fresnel 1, tinted by base_color           | glossy.h          |
-// | Glass        | GGX dielectric reflection + refraction at `ior`           | glass.h           |
-// | Transparent  | delta pass-through wi = -wo, tinted by base_color         | bsdf.cpp          |
-// | Holdout      | no scattering; the integrator turns its weight into alpha | bsdf.cpp          |
+// surface model, which looks up the model's entry (ClosureModel) by Material::model in the
+// registry of bsdf.cpp. Directions below the shading horizon (wi.z < 0) are transmission; only
+// Glass, Transparent and the Principled models with transmission produce them.
+// The models, one line each with what they are, form that registry; each model's file opens
+// with its parameters and reference.
 //
 // Material parameters: roughness is the artist roughness (alpha = roughness^2); `specular` is
 // Cycles 3.x "Specular" for V1 and 4.x "Specular IOR Level" for V2 (0.5 keeps `ior` unchanged);
@@ -31,6 +22,7 @@ namespace stratum {
 // What kind of scattering produced a direction: it selects the ray visibility bit of the next
 // ray, the light visibility bit NEE honours, and whether the vertex counts as a bounce.
 enum class ScatterKind : uint8_t { Diffuse, Glossy, Transmission, Transparent };
+inline constexpr uint32_t scatter_kind_bit(ScatterKind k) { return 1u << static_cast<uint32_t>(k); }
 
 // value = f(wo, wi) |cos theta_i|; pdf = solid-angle density with which bsdf_sample produces wi;
 // diffuse = the part of value from diffuse lobes (Lambert, Burley), which bump shadowing scales.
@@ -50,6 +42,65 @@ struct BsdfSample {
     bool delta = false;
     ScatterKind kind = ScatterKind::Diffuse;
 };
+
+// What a closure model answers for itself: each model's file defines its entry, and one line of
+// the registry in bsdf.cpp files it under its MaterialModel. Every question costs one lookup and
+// at most one indirect call, where a switch over the models cost one indirect jump.
+struct ClosureModel {
+    // f(wo, wi) |cos θ_i| and the pdf of sample() (bsdf_eval below).
+    BsdfEval (*eval)(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere);
+    // A direction (bsdf_sample below).
+    bool (*sample)(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
+                   HemisphereDistribution hemisphere);
+    // A Dirac distribution only (bsdf_is_delta below).
+    bool (*is_delta)(const Material& m);
+    // Can send light through the surface (bsdf_has_transmission below).
+    bool (*has_transmission)(const Material& m);
+    // The closure's share of the choice among the closures of a shading point, per unit of its
+    // weight, and the colour albedo Russian roulette survives by (bsdf/closure_set.h's table).
+    float (*sample_weight)(const Material& m);
+    Rgb (*albedo_estimate)(const Material& m);
+    // ScatterKind bits a direction above (wi.z >= 0) and below the shading horizon counts as
+    // (ClosureSet::eval's `kinds`).
+    uint32_t kinds_above = 0, kinds_below = 0;
+    // What ClosureSet sums besides scattering: its weight is the holdout (Cycles
+    // shader_holdout_apply); weight × base_color passes shadow rays (transparent shadows); f is
+    // exactly base_color/π, so its albedo is the control variate's known integral (textbook 5.17).
+    bool holdout = false, transparent = false, lambertian = false;
+};
+
+// MaterialModel values are 0 .. kMaxClosureModels − 1.
+inline constexpr uint32_t kMaxClosureModels = 32;
+// The entry of `model`; a value no model is registered under scatters nothing.
+const ClosureModel& closure_model(MaterialModel model);
+// The entry registered under `model`, or null (how the C ABI tells a model it knows).
+const ClosureModel* find_closure_model(MaterialModel model);
+// Registers `entry` (kept by address: a static) under a value that has none: how a test adds a
+// closure model of its own. Call it before any material of that model is validated or shaded,
+// and not while another thread reads the registry. False when the value is out of range or taken.
+bool register_closure_model(MaterialModel model, const ClosureModel& entry);
+
+// Answers several models share.
+inline BsdfEval no_scattering_eval(const Material&, Vec3, Vec3, HemisphereDistribution) {
+    return {Rgb(), 0.0f};
+}
+inline bool no_scattering_sample(const Material&, Vec3, float, Vec2, BsdfSample*, HemisphereDistribution) {
+    return false;
+}
+inline bool answer_false(const Material&) { return false; }
+inline bool answer_true(const Material&) { return true; }
+inline float no_sample_weight(const Material&) { return 0.0f; }
+inline Rgb no_albedo(const Material&) { return Rgb(0.0f); }
+// A single lobe tinted by base_color: average(base_color) and base_color.
+inline float tint_sample_weight(const Material& m) { return m.base_color.average(); }
+inline Rgb tint_albedo_estimate(const Material& m) { return m.base_color; }
+// The Principled models: the specular layer reflects whatever the base colour (sample weight 1,
+// albedo estimate base_color + 0.04 of a dielectric layer); transmission when there is some.
+inline float principled_sample_weight(const Material&) { return 1.0f; }
+inline Rgb principled_albedo_estimate(const Material& m) { return m.base_color + Rgb(0.04f); }
+inline bool principled_has_transmission(const Material& m) { return m.transmission > 0.0f; }
+inline constexpr uint32_t kPrincipledKindsAbove =
+    scatter_kind_bit(ScatterKind::Diffuse) | scatter_kind_bit(ScatterKind::Glossy);
 
 // Whether a closure of this model is a Dirac distribution only (it never contributes to NEE).
 bool bsdf_is_delta(const Material& m);

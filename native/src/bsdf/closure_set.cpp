@@ -2,67 +2,6 @@
 
 namespace stratum {
 
-namespace {
-
-float sample_weight_estimate(const Material& m) {
-    switch (m.model) {
-        case MaterialModel::Diffuse:
-        case MaterialModel::Glossy:
-        case MaterialModel::Glass:
-        case MaterialModel::Transparent:
-            return m.base_color.average();
-        case MaterialModel::PrincipledV1:
-        case MaterialModel::PrincipledV2:
-            return 1.0f;  // the specular layer reflects whatever the base colour
-        case MaterialModel::Emission:
-        case MaterialModel::Holdout:
-            break;
-    }
-    return 0.0f;
-}
-
-// The colour albedo Russian roulette by albedo survives with (see the header's table).
-Rgb albedo_colour_estimate(const Material& m) {
-    switch (m.model) {
-        case MaterialModel::Diffuse:
-        case MaterialModel::Glossy:
-        case MaterialModel::Glass:
-        case MaterialModel::Transparent:
-            return m.base_color;
-        case MaterialModel::PrincipledV1:
-        case MaterialModel::PrincipledV2:
-            return m.base_color + Rgb(0.04f);
-        case MaterialModel::Emission:
-        case MaterialModel::Holdout:
-            break;
-    }
-    return Rgb(0.0f);
-}
-
-uint32_t closure_kinds(const Material& m, Vec3 wi) {
-    switch (m.model) {
-        case MaterialModel::Diffuse:
-            return scatter_kind_bit(ScatterKind::Diffuse);
-        case MaterialModel::Glossy:
-            return scatter_kind_bit(ScatterKind::Glossy);
-        case MaterialModel::Glass:
-            return scatter_kind_bit(wi.z < 0.0f ? ScatterKind::Transmission : ScatterKind::Glossy);
-        case MaterialModel::PrincipledV1:
-        case MaterialModel::PrincipledV2:
-            return wi.z < 0.0f
-                       ? scatter_kind_bit(ScatterKind::Transmission)
-                       : scatter_kind_bit(ScatterKind::Diffuse) | scatter_kind_bit(ScatterKind::Glossy);
-        case MaterialModel::Transparent:
-            return scatter_kind_bit(ScatterKind::Transparent);
-        case MaterialModel::Emission:
-        case MaterialModel::Holdout:
-            break;
-    }
-    return 0;
-}
-
-}  // namespace
-
 ClosureSet::ClosureSet(const SceneMaterial& material) {
     count_ = static_cast<uint32_t>(std::min<size_t>(material.closures.size(), kMaxClosures));
     for (uint32_t i = 0; i < count_; ++i) closures_[i] = material.closures[i];
@@ -75,17 +14,17 @@ void ClosureSet::finalize() {
     has_transmission_ = has_non_delta_ = false;
     for (uint32_t i = 0; i < count_; ++i) {
         const WeightedClosure& c = closures_[i];
+        const ClosureModel& model = closure_model(c.params.model);
         emission_ += c.weight * c.params.emission;
-        if (c.params.model == MaterialModel::Holdout) holdout_ += c.weight;
-        if (c.params.model == MaterialModel::Transparent) transparency_ += c.weight * c.params.base_color;
-        sample_weight_[i] = std::abs(c.weight.average()) * sample_weight_estimate(c.params);
+        if (model.holdout) holdout_ += c.weight;
+        if (model.transparent) transparency_ += c.weight * c.params.base_color;
+        sample_weight_[i] = std::abs(c.weight.average()) * model.sample_weight(c.params);
         sample_weight_sum_ += sample_weight_[i];
         if (sample_weight_[i] > 0.0f) {
-            if (c.params.model == MaterialModel::Diffuse)
-                lambertian_albedo_ += c.weight * c.params.base_color;
-            albedo_estimate_ += c.weight * albedo_colour_estimate(c.params);
-            has_transmission_ = has_transmission_ || bsdf_has_transmission(c.params);
-            has_non_delta_ = has_non_delta_ || !bsdf_is_delta(c.params);
+            if (model.lambertian) lambertian_albedo_ += c.weight * c.params.base_color;
+            albedo_estimate_ += c.weight * model.albedo_estimate(c.params);
+            has_transmission_ = has_transmission_ || model.has_transmission(c.params);
+            has_non_delta_ = has_non_delta_ || !model.is_delta(c.params);
         }
     }
 }
@@ -94,8 +33,9 @@ Rgb ClosureSet::lambertian_value(Vec3 wo, Vec3 wi, HemisphereDistribution hemisp
     Rgb sum(0.0f);
     for (uint32_t i = 0; i < count_; ++i) {
         const Material& m = closures_[i].params;
-        if (sample_weight_[i] <= 0.0f || m.model != MaterialModel::Diffuse) continue;
-        sum += closures_[i].weight * bsdf_eval(m, wo, wi, hemisphere).value;
+        const ClosureModel& model = closure_model(m.model);
+        if (sample_weight_[i] <= 0.0f || !model.lambertian) continue;
+        sum += closures_[i].weight * model.eval(m, wo, wi, hemisphere).value;
     }
     return sum;
 }
@@ -116,12 +56,14 @@ BsdfEval ClosureSet::eval_with(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphe
     for (uint32_t i = 0; i < count_; ++i) {
         if (sample_weight_[i] <= 0.0f) continue;
         const Material& m = closures_[i].params;
-        BsdfEval e = bsdf_eval(m, wo, wi, hemisphere);
+        const ClosureModel& model = closure_model(m.model);
+        BsdfEval e = model.eval(m, wo, wi, hemisphere);
         if (perturbed_ && m.bump_shadowing != BumpShadowing::None) {
             const BumpShadowingFactors f = bump_shadowing(m.bump_shadowing, smooth_normal_, wi, i == sampled);
             e.value = (e.value + e.diffuse * (f.diffuse - 1.0f)) * f.all;
         }
-        if (closure_kinds(m, wi) & kinds) sum.value += closures_[i].weight * e.value;
+        const uint32_t closure_kinds = wi.z < 0.0f ? model.kinds_below : model.kinds_above;
+        if (closure_kinds & kinds) sum.value += closures_[i].weight * e.value;
         sum.pdf += sample_weight_[i] / sample_weight_sum_ * e.pdf;
     }
     return sum;

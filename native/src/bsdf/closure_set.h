@@ -9,9 +9,9 @@
 // | sample weight s_i| average(w_i) x albedo estimate of closure i (average(base_color) for the  |
 // |                  | single-lobe models, 1 for Principled); 0 for Emission and Holdout         |
 // | emission         | Sum_i w_i emission_i                                                      |
-// | holdout          | Sum of the weights of Holdout closures (Cycles shader_holdout_apply)     |
-// | transparency     | Sum_i w_i base_color_i over Transparent closures (transparent shadows)   |
-// | lambertian albedo| Sum_i w_i base_color_i over Diffuse (Lambertian) closures: their exact    |
+// | holdout          | Sum of the weights of holdout closures (Cycles shader_holdout_apply)     |
+// | transparency     | Sum_i w_i base_color_i over transparent closures (transparent shadows)   |
+// | lambertian albedo| Sum_i w_i base_color_i over Lambertian closures (Diffuse): their exact    |
 // |                  | directional albedo, the control variate's known integral (textbook 5.17) |
 // | albedo estimate  | Sum_i w_i a_i, a_i = base_color (single-lobe models), base_color + 0.04  |
 // |                  | dielectric specular (Principled), clamped to 1: Russian roulette by      |
@@ -24,6 +24,8 @@
 // Where the shading normal was perturbed, each closure's value is scaled by its bump shadowing
 // term (bsdf/bump_shadowing.h) against the smooth normal given by set_smooth_normal; pdfs are
 // unchanged, as Cycles scales eval only.
+// Each closure's a_i, s_i / average(w_i), kinds and role (holdout, transparent, Lambertian) are
+// its model's answers (ClosureModel, bsdf/bsdf.h), looked up once per closure and question.
 // Capacity is fixed (kMaxClosures) with in-place storage, so a texturing step can rewrite the
 // parameters of each closure before evaluation; call finalize() after any such change.
 #pragma once
@@ -86,7 +88,5 @@ private:
     bool perturbed_ = false;
     Vec3 smooth_normal_{0.0f, 0.0f, 1.0f};
 };
-
-inline constexpr uint32_t scatter_kind_bit(ScatterKind k) { return 1u << static_cast<uint32_t>(k); }
 
 }  // namespace stratum

@@ -111,4 +111,17 @@ bool glass_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* 
     return true;
 }
 
+const ClosureModel kGlassClosure{
+    .eval = [](const Material& m, Vec3 wo, Vec3 wi,
+               HemisphereDistribution /*hemisphere*/) { return glass_eval(m, wo, wi); },
+    .sample = [](const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
+                 HemisphereDistribution /*hemisphere*/) { return glass_sample(m, wo, u_lobe, u, out); },
+    .is_delta = [](const Material& m) { return ggx_is_sharp(m.roughness); },
+    .has_transmission = &answer_true,
+    .sample_weight = &tint_sample_weight,
+    .albedo_estimate = &tint_albedo_estimate,
+    .kinds_above = scatter_kind_bit(ScatterKind::Glossy),
+    .kinds_below = scatter_kind_bit(ScatterKind::Transmission),
+};
+
 }  // namespace stratum

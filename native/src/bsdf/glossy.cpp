@@ -38,4 +38,17 @@ bool glossy_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out) {
     return true;
 }
 
+const ClosureModel kGlossyClosure{
+    .eval = [](const Material& m, Vec3 wo, Vec3 wi,
+               HemisphereDistribution /*hemisphere*/) { return glossy_eval(m, wo, wi); },
+    .sample = [](const Material& m, Vec3 wo, float /*u_lobe*/, Vec2 u, BsdfSample* out,
+                 HemisphereDistribution /*hemisphere*/) { return glossy_sample(m, wo, u, out); },
+    .is_delta = [](const Material& m) { return ggx_is_sharp(m.roughness); },
+    .has_transmission = &answer_false,
+    .sample_weight = &tint_sample_weight,
+    .albedo_estimate = &tint_albedo_estimate,
+    .kinds_above = scatter_kind_bit(ScatterKind::Glossy),
+    .kinds_below = scatter_kind_bit(ScatterKind::Glossy),
+};
+
 }  // namespace stratum

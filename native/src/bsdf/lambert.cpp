@@ -20,4 +20,18 @@ bool lambert_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out, Hemisph
     return true;
 }
 
+const ClosureModel kLambertClosure{
+    .eval = &lambert_eval,
+    .sample = [](const Material& m, Vec3 wo, float /*u_lobe*/, Vec2 u, BsdfSample* out,
+                 HemisphereDistribution hemisphere) { return lambert_sample(m, wo, u, out, hemisphere); },
+    .is_delta = &answer_false,
+    .has_transmission = &answer_false,
+    .sample_weight = &tint_sample_weight,
+    .albedo_estimate = &tint_albedo_estimate,
+    // Diffuse whichever side wi is on (it has no value below).
+    .kinds_above = scatter_kind_bit(ScatterKind::Diffuse),
+    .kinds_below = scatter_kind_bit(ScatterKind::Diffuse),
+    .lambertian = true,
+};
+
 }  // namespace stratum

@@ -223,4 +223,15 @@ bool principled_v1_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, Bsdf
     return true;
 }
 
+const ClosureModel kPrincipledV1Closure{
+    .eval = &principled_v1_eval,
+    .sample = &principled_v1_sample,
+    .is_delta = &answer_false,
+    .has_transmission = &principled_has_transmission,
+    .sample_weight = &principled_sample_weight,
+    .albedo_estimate = &principled_albedo_estimate,
+    .kinds_above = kPrincipledKindsAbove,
+    .kinds_below = scatter_kind_bit(ScatterKind::Transmission),
+};
+
 }  // namespace stratum

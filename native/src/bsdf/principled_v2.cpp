@@ -208,4 +208,15 @@ bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, Bsdf
     return true;
 }
 
+const ClosureModel kPrincipledV2Closure{
+    .eval = &principled_v2_eval,
+    .sample = &principled_v2_sample,
+    .is_delta = &answer_false,
+    .has_transmission = &principled_has_transmission,
+    .sample_weight = &principled_sample_weight,
+    .albedo_estimate = &principled_albedo_estimate,
+    .kinds_above = kPrincipledKindsAbove,
+    .kinds_below = scatter_kind_bit(ScatterKind::Transmission),
+};
+
 }  // namespace stratum

@@ -2,7 +2,9 @@
 
 #include <cmath>
 
+#include "lights/light_param_checks.h"
 #include "sampling/warps.h"
+#include "scene/scene_limits.h"
 
 namespace stratum {
 
@@ -51,7 +53,8 @@ Vec3 AreaLight::point(Vec2 u) const {
     return center_ + axis_x_ * a + axis_y_ * b;
 }
 
-bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
+bool AreaLight::sample(Vec3 p, Vec3 /*n*/, Vec2 u, TriangleSampling /*triangle_sampling*/,
+                       LightSample* out) const {
     const Vec3 to = point(u) - p;
     const float d2 = dot(to, to);
     const float d = std::sqrt(d2);
@@ -61,14 +64,9 @@ bool AreaLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
     if (cos_light <= 0.0f) return false;  // the back side does not emit
     const float f = area_light_spread_attenuation(cos_light, tan_half_spread_, normalize_spread_);
     if (!(f > 0.0f)) return false;
-    // Rays scattered by BSDFs meet the lamp too (LightSet::lamp_radiance), so NEE is MIS-weighted.
     *out = {wi, d, radiance_ * f, d2 / (area_ * cos_light), true};
     return true;
 }
-
-}  // namespace stratum
-
-namespace stratum {
 
 bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const {
     const float cos_light = -dot(dir, normal_);
@@ -86,7 +84,8 @@ bool AreaLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* rad
     return true;
 }
 
-void AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const {
+bool AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 /*center*/, float /*radius*/,
+                                EmissionSample* out) const {
     const Vec2 unit = sample_uniform_disk_concentric(u_direction);
     const Vec2 d{unit.x * sin_half_spread_, unit.y * sin_half_spread_};
     const float cos_theta = safe_sqrt(1.0f - d.x * d.x - d.y * d.y);
@@ -97,6 +96,29 @@ void AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSampl
     out->soft_radius = 0.0f;
     const float f = area_light_spread_attenuation(cos_theta, tan_half_spread_, normalize_spread_);
     out->weight = radiance_ * (f * kPi * sin_half_spread_ * sin_half_spread_ * area_);
+    return true;
 }
+
+namespace {
+
+void check_area_light_params(const LightParams& given, LightParams* params) {
+    params->size_x = light_param_in_open(given.size_x, 0.0f, kMaxCoordinate, "area light size_x");
+    params->size_y = light_param_in_open(given.size_y, 0.0f, kMaxCoordinate, "area light size_y");
+    require_light_param(std::isfinite(given.spread) && given.spread >= 0.0f && given.spread <= kPi,
+                        "area light spread = " + light_param_text(given.spread) + " must be in (0, " +
+                            light_param_text(kPi) + "] (0 reads as pi)");
+    params->spread = given.spread == 0.0f ? kPi : given.spread;
+}
+
+template <bool ellipse>
+std::unique_ptr<Light> make_area_light(const LightParams& params) {
+    return std::make_unique<AreaLight>(params.light_to_world, params.size_x, params.size_y, ellipse,
+                                       params.color * params.strength, params.spread);
+}
+
+}  // namespace
+
+const LightModel kRectangleAreaLightModel{&make_area_light<false>, &check_area_light_params};
+const LightModel kEllipseAreaLightModel{&make_area_light<true>, &check_area_light_params};
 
 }  // namespace stratum

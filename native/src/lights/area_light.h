@@ -26,8 +26,7 @@
 #pragma once
 
 #include "core/math.h"
-#include "lights/emission_sample.h"
-#include "lights/light_sample.h"
+#include "lights/light.h"
 
 namespace stratum {
 
@@ -35,22 +34,26 @@ namespace stratum {
 // (tan_half = infinity).
 float area_light_spread_attenuation(float cos_a, float tan_half, float normalize);
 
-class AreaLight {
+class AreaLight final : public Light {
 public:
     // light_to_world maps the unit shape (x, y in [−½, ½]·size) into the world.
     AreaLight(const Transform& light_to_world, float size_x, float size_y, bool ellipse, Rgb power,
               float spread = kPi);
-    bool sample(Vec3 p, Vec2 u, LightSample* out) const;
+    bool is_delta() const override { return false; }
+    // Rays scattered by BSDFs meet the lamp too (LightSet::lamp_radiance), so NEE is MIS-weighted.
+    bool is_hittable_lamp() const override { return true; }
+    double power(float /*scene_radius*/) const override { return mean(power_); }
+    bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling triangle_sampling, LightSample* out) const override;
     // The ray origin + t·dir (dir unit) meets the emitting face at t in (0, t_max): writes t,
     // the radiance toward the ray's origin (spread included) and the solid-angle pdf with which
     // sample() at the origin produces this direction. False for the back side or a miss.
-    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
-    double power() const { return mean(power_); }
+    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const override;
     // A light-tracing particle (textbook 6.3): point uniform in area (p_A = 1/A), direction
     // cosine-distributed about the normal within the spread's cone of half angle h (a uniform
     // point of the disk of radius sin h lifted to the sphere: p_ω = cos/(π sin²h), h = π/2
     // without spread), weight L f(a) cos/(p_A p_ω) = L f(a) π sin²h A (= P without spread).
-    void sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const;
+    bool sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                         EmissionSample* out) const override;
 
 private:
     Vec3 point(Vec2 u) const;
@@ -64,5 +67,10 @@ private:
     float normalize_spread_;  // N
     float sin_half_spread_;   // sin h (1 without spread)
 };
+
+// LightType::AreaRectangle and LightType::AreaEllipse: transform, size_x, size_y, power =
+// color × strength, spread; both check size_x, size_y in (0, kMaxCoordinate] and spread in
+// [0, π], 0 read as π (callers written before spread existed pass 0).
+extern const LightModel kRectangleAreaLightModel, kEllipseAreaLightModel;
 
 }  // namespace stratum

@@ -33,7 +33,7 @@ std::optional<SphericalTriangle> EmissiveTriangle::spherical_view(Vec3 p) const 
     return spherical;
 }
 
-bool EmissiveTriangle::sample(Vec3 p, Vec3 n, Vec2 u, LightSample* out, TriangleSampling mode) const {
+bool EmissiveTriangle::sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling mode, LightSample* out) const {
     if (mode == TriangleSampling::Area) return sample_area(p, u, out);
     const std::optional<SphericalTriangle> spherical = spherical_view(p);
     if (!spherical) return sample_area(p, u, out);
@@ -79,7 +79,8 @@ float EmissiveTriangle::pdf_area(Vec3 p, Vec3 hit) const {
     return d2 / (area_ * cos_light);
 }
 
-bool EmissiveTriangle::sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const {
+bool EmissiveTriangle::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 /*center*/, float /*radius*/,
+                                       EmissionSample* out) const {
     if (!(area_ > 0.0f)) return false;
     const Vec3 b = sample_uniform_triangle(u_position);
     const bool front = u_direction.x < 0.5f;

@@ -35,29 +35,34 @@
 #include <optional>
 
 #include "core/math.h"
-#include "lights/emission_sample.h"
-#include "lights/light_sample.h"
+#include "lights/light.h"
 #include "lights/light_selection.h"
 #include "sampling/spherical_triangle.h"
 #include "sampling/warps.h"
 
 namespace stratum {
 
-class EmissiveTriangle {
+class EmissiveTriangle final : public Light {
 public:
     EmissiveTriangle(Vec3 p0, Vec3 p1, Vec3 p2, Rgb radiance);
-    // A light sample for the shading point p with normal n (unit, or 0 when it has none).
-    bool sample(Vec3 p, Vec3 n, Vec2 u, LightSample* out,
-                TriangleSampling mode = TriangleSampling::SolidAngle) const;
+    bool is_delta() const override { return false; }
+    // Rays find it in the BVH, not among the lamps.
+    bool is_hittable_lamp() const override { return false; }
+    // Emitted flux of both faces, π A L_e each (used to choose among lights).
+    double power(float /*scene_radius*/) const override {
+        return 2.0 * kPi * static_cast<double>(area_) * mean(radiance_);
+    }
+    // A light sample for the shading point p with normal n (unit, or 0 when it has none), the
+    // point taken as `mode` says.
+    bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling mode, LightSample* out) const override;
     // Solid-angle pdf of reaching `hit` on this triangle from (p, n) by sample() in `mode`.
     float pdf(Vec3 p, Vec3 n, Vec3 hit, TriangleSampling mode = TriangleSampling::SolidAngle) const;
-    // Emitted flux of both faces, π A L_e each (used to choose among lights).
-    double power() const { return 2.0 * kPi * static_cast<double>(area_) * mean(radiance_); }
     // A light-tracing particle (textbook 6.3): point uniform in area (p_A = 1/A), a face chosen
     // with probability ½ by u_direction.x (rescaled and reused), direction cosine-distributed
     // about that face's normal (p_ω = cos/π): weight L cos/(½ p_A p_ω) = 2π A L_e.
     // False for a degenerate triangle.
-    bool sample_emission(Vec2 u_position, Vec2 u_direction, EmissionSample* out) const;
+    bool sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                         EmissionSample* out) const override;
 
     // Steradians, and the cosine weight's floor (a vertex below the horizon still gets some
     // samples: the support stays the whole spherical triangle); see the header comment.

@@ -112,7 +112,12 @@ float EnvironmentLight::pdf(Vec3 world_dir) const {
     return density_[static_cast<size_t>(t.j) * width_ + t.i] / (2.0f * kPi * kPi * t.sin_theta);
 }
 
-bool EnvironmentLight::sample(Vec2 u, LightSample* out) const {
+bool EnvironmentLight::sample(Vec3 /*p*/, Vec3 /*n*/, Vec2 u, TriangleSampling /*triangle_sampling*/,
+                              LightSample* out) const {
+    return sample_direction(u, out);
+}
+
+bool EnvironmentLight::sample_direction(Vec2 u, LightSample* out) const {
     const uint32_t j = find_interval(row_cdf_.data(), height_, u.y);
     const float* cdf = &column_cdf_[static_cast<size_t>(j) * (width_ + 1)];
     const uint32_t i = find_interval(cdf, width_, u.x);
@@ -144,7 +149,7 @@ bool EnvironmentLight::sample(Vec2 u, LightSample* out) const {
 bool EnvironmentLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
                                        EmissionSample* out) const {
     LightSample s;
-    if (!sample(u_direction, &s)) return false;
+    if (!sample_direction(u_direction, &s)) return false;
     const Frame frame = Frame::from_normal(s.wi);
     const Vec2 d = sample_uniform_disk_concentric(u_position);
     out->position = center + s.wi * radius + (frame.s * d.x + frame.t * d.y) * radius;

@@ -23,31 +23,38 @@
 #include <vector>
 
 #include "core/math.h"
-#include "lights/emission_sample.h"
-#include "lights/light_sample.h"
+#include "lights/light.h"
 
 namespace stratum {
 
-class EnvironmentLight {
+class EnvironmentLight final : public Light {
 public:
     // rgb: width*height*3 floats, already multiplied by the strength; rotation: row-major 3x3.
     EnvironmentLight(std::vector<float> rgb, uint32_t width, uint32_t height,
                      const std::array<float, 9>& rotation);
 
+    bool is_delta() const override { return false; }
+    // Rays that leave the scene find it (RenderScene::background), not LightSet::lamp_radiance.
+    bool is_hittable_lamp() const override { return false; }
+    // The flux of a uniform sky of the average radiance L̄ (solid-angle weighted) through the
+    // scene's cross-section: π R² L̄.
+    double power(float scene_radius) const override {
+        return mean(average_) * kPi * scene_radius * scene_radius;
+    }
     Rgb radiance(Vec3 world_dir) const;
-    bool sample(Vec2 u, LightSample* out) const;
+    // A direction by the image's distribution; p and n play no part.
+    bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling triangle_sampling, LightSample* out) const override;
     // Solid-angle pdf with which sample() returns world_dir.
     float pdf(Vec3 world_dir) const;
-    // Radiance averaged over the sphere (solid-angle weighted): the power estimate's input.
-    Rgb average() const { return average_; }
     // A light-tracing particle: the direction toward the sky ω by sample() (p_ω), then a
     // parallel beam along −ω over the disk of radius R perpendicular to ω and tangent to the
     // scene's bounding sphere (center, R) on the sky's side, point uniform (p_A = 1/(πR²)):
     // weight L(ω) πR² / p_ω (every ray from the sky that meets the scene crosses the disk).
     bool sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
-                         EmissionSample* out) const;
+                         EmissionSample* out) const override;
 
 private:
+    bool sample_direction(Vec2 u, LightSample* out) const;
     struct Texel {
         uint32_t i, j;
         float u, v, sin_theta;

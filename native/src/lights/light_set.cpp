@@ -5,60 +5,26 @@
 
 namespace stratum {
 
-uint32_t LightSet::add(Light light, uint32_t object, uint32_t visibility) {
-    if (std::holds_alternative<EnvironmentLight>(light)) environment_ = lights_.size();
-    // Lamps with an emitting surface that rays can meet: area lamps, and point/spot lamps with a
-    // radius (their disk facing the ray's origin); a zero radius is a delta light no ray finds.
-    const bool hittable = std::visit(
-        [](const auto& l) {
-            using T = std::decay_t<decltype(l)>;
-            if constexpr (std::is_same_v<T, AreaLight>) {
-                return true;
-            } else if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>) {
-                return l.radius() > 0.0f;
-            } else {
-                return false;
-            }
-        },
-        light);
-    if (hittable) hittable_lamps_.push_back(static_cast<uint32_t>(lights_.size()));
-    const bool delta = std::visit(
-        [](const auto& l) {
-            using T = std::decay_t<decltype(l)>;
-            if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>) {
-                return l.radius() <= 0.0f;
-            } else if constexpr (std::is_same_v<T, SunLight>) {
-                return l.is_delta();
-            } else {
-                return false;
-            }
-        },
-        light);
-    if (delta) ++delta_lights_;
+uint32_t LightSet::add(std::unique_ptr<const Light> light, uint32_t object, uint32_t visibility) {
+    const auto index = static_cast<uint32_t>(lights_.size());
+    if (light->is_hittable_lamp()) hittable_lamps_.push_back(index);
+    if (light->is_delta()) ++delta_lights_;
     lights_.push_back(std::move(light));
     object_.push_back(object);
     visibility_.push_back(visibility);
-    return static_cast<uint32_t>(lights_.size() - 1);
+    return index;
+}
+
+uint32_t LightSet::add_environment(EnvironmentLight environment, uint32_t object) {
+    auto light = std::make_unique<const EnvironmentLight>(std::move(environment));
+    environment_ = light.get();
+    environment_index_ = add(std::move(light), object);
+    return environment_index_;
 }
 
 void LightSet::finalize(float scene_radius) {
     std::vector<double> power(lights_.size());
-    for (size_t i = 0; i < lights_.size(); ++i) {
-        power[i] = std::visit(
-            [&](const auto& l) -> double {
-                using T = std::decay_t<decltype(l)>;
-                // The sun's flux through the scene's cross-section; the environment's likewise,
-                // from its average radiance (π·R²·L̄, the flux of a uniform sky through a disk).
-                if constexpr (std::is_same_v<T, SunLight>) {
-                    return mean(l.irradiance()) * kPi * scene_radius * scene_radius;
-                } else if constexpr (std::is_same_v<T, EnvironmentLight>) {
-                    return mean(l.average()) * kPi * scene_radius * scene_radius;
-                } else {
-                    return l.power();
-                }
-            },
-            lights_[i]);
-    }
+    for (size_t i = 0; i < lights_.size(); ++i) power[i] = lights_[i]->power(scene_radius);
     power_ = power;
     double total = 0.0;
     std::unordered_map<uint32_t, double> object_power;
@@ -113,19 +79,7 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
     const uint32_t index = choose(u_choice, selection);
     const float choice = probability(index, selection);
     if (!(choice > 0.0f)) return false;
-    const bool ok = std::visit(
-        [&](const auto& l) {
-            using T = std::decay_t<decltype(l)>;
-            if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, EnvironmentLight>) {
-                return l.sample(u, out);
-            } else if constexpr (std::is_same_v<T, EmissiveTriangle>) {
-                return l.sample(p, n, u, out, triangle);
-            } else {
-                return l.sample(p, u, out);
-            }
-        },
-        lights_[index]);
-    if (!ok) return false;
+    if (!lights_[index]->sample(p, n, u, triangle, out)) return false;
     out->pdf *= choice;
     out->visibility = visibility_[index];
     return true;
@@ -133,7 +87,7 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
 
 float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit, LightSelection selection,
                                       TriangleSampling triangle) const {
-    const auto& tri = std::get<EmissiveTriangle>(lights_[index]);
+    const auto& tri = static_cast<const EmissiveTriangle&>(*lights_[index]);
     return probability(index, selection) * tri.pdf(p, n, hit, triangle);
 }
 
@@ -145,18 +99,7 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
         if (!(visibility_[i] & visibility)) continue;
         float t, solid_angle_pdf;
         Rgb L;
-        const bool hit = std::visit(
-            [&](const auto& l) {
-                using T = std::decay_t<decltype(l)>;
-                if constexpr (std::is_same_v<T, AreaLight> || std::is_same_v<T, PointLight> ||
-                              std::is_same_v<T, SpotLight>) {
-                    return l.intersect(origin, dir, nearest, &t, &L, &solid_angle_pdf);
-                } else {
-                    return false;
-                }
-            },
-            lights_[i]);
-        if (hit) {
+        if (lights_[i]->intersect(origin, dir, nearest, &t, &L, &solid_angle_pdf)) {
             nearest = t;
             radiance = L;
             nearest_pdf = probability(i, selection) * solid_angle_pdf;
@@ -167,14 +110,9 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
     return radiance;
 }
 
-const EnvironmentLight* LightSet::environment() const {
-    return environment_ == SIZE_MAX ? nullptr : &std::get<EnvironmentLight>(lights_[environment_]);
-}
-
 float LightSet::environment_pdf(Vec3 wi, LightSelection selection) const {
-    if (environment_ == SIZE_MAX) return 0.0f;
-    return probability(static_cast<uint32_t>(environment_), selection) *
-           std::get<EnvironmentLight>(lights_[environment_]).pdf(wi);
+    if (!environment_) return 0.0f;
+    return probability(environment_index_, selection) * environment_->pdf(wi);
 }
 
 bool LightSet::sample_emission(float u_choice, Vec2 u_position, Vec2 u_direction, LightSelection selection,
@@ -183,23 +121,8 @@ bool LightSet::sample_emission(float u_choice, Vec2 u_position, Vec2 u_direction
     const uint32_t index = choose(u_choice, selection);
     const float choice = probability(index, selection);
     if (!(choice > 0.0f)) return false;
-    const bool ok = std::visit(
-        [&](const auto& l) {
-            using T = std::decay_t<decltype(l)>;
-            if constexpr (std::is_same_v<T, SunLight> || std::is_same_v<T, EnvironmentLight>) {
-                return l.sample_emission(u_position, u_direction, center, radius, out);
-            } else if constexpr (std::is_same_v<T, PointLight> || std::is_same_v<T, SpotLight>) {
-                l.sample_emission(u_direction, out);
-                return true;
-            } else if constexpr (std::is_same_v<T, AreaLight>) {
-                l.sample_emission(u_position, u_direction, out);
-                return true;
-            } else {
-                return l.sample_emission(u_position, u_direction, out);
-            }
-        },
-        lights_[index]);
-    if (!ok || out->weight.is_black()) return false;
+    if (!lights_[index]->sample_emission(u_position, u_direction, center, radius, out)) return false;
+    if (out->weight.is_black()) return false;
     out->weight = out->weight * (1.0f / choice);
     out->visibility = visibility_[index];
     return true;

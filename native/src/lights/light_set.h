@@ -14,35 +14,39 @@
 #pragma once
 
 #include <array>
+#include <concepts>
 #include <cstdint>
-#include <variant>
+#include <memory>
+#include <utility>
 #include <vector>
 
-#include "lights/area_light.h"
 #include "lights/emissive_triangle.h"
 #include "lights/environment_light.h"
+#include "lights/light.h"
 #include "lights/light_selection.h"
-#include "lights/point_light.h"
-#include "lights/spot_light.h"
-#include "lights/sun_light.h"
 
 namespace stratum {
 
 class LightSet {
 public:
-    using Light =
-        std::variant<PointLight, SunLight, AreaLight, EmissiveTriangle, SpotLight, EnvironmentLight>;
-
     // `object` groups lights that belong to one scene object (the triangles of one emissive
     // mesh); every Blender lamp is an object of its own. `visibility` (StratumVisibility bits)
     // is copied into every LightSample of the light. Returns the index of the added light.
-    uint32_t add(Light light, uint32_t object, uint32_t visibility = kVisibleAll);
-    // scene_radius: radius of a sphere bounding the scene, to give the sun a power.
+    uint32_t add(std::unique_ptr<const Light> light, uint32_t object, uint32_t visibility = kVisibleAll);
+    template <std::derived_from<Light> L>
+    uint32_t add(L light, uint32_t object, uint32_t visibility = kVisibleAll) {
+        static_assert(!std::same_as<L, EnvironmentLight>, "the environment goes through add_environment");
+        return add(std::make_unique<const L>(std::move(light)), object, visibility);
+    }
+    // The environment (at most one): a light like the others, which background() also looks up.
+    uint32_t add_environment(EnvironmentLight environment, uint32_t object);
+    // scene_radius: radius of a sphere bounding the scene, to give the sun and the environment a
+    // power.
     void finalize(float scene_radius);
 
     bool empty() const { return lights_.empty(); }
     size_t size() const { return lights_.size(); }
-    const Light& light(uint32_t index) const { return lights_[index]; }
+    const Light& light(uint32_t index) const { return *lights_[index]; }
     uint32_t visibility(uint32_t index) const { return visibility_[index]; }
     // Power Φ_j of light `index` (W; the sun's and the environment's through the scene's
     // cross-section), as the selection distributions use it.
@@ -66,7 +70,7 @@ public:
     bool sample_emission(float u_choice, Vec2 u_position, Vec2 u_direction, LightSelection selection,
                          Vec3 center, float radius, EmissionSample* out) const;
     // Pdf (choice × solid angle) with which sample() at (p, n) reaches `hit` on emissive
-    // triangle `index`.
+    // triangle `index` (a SurfaceHit's emissive_light: always an EmissiveTriangle).
     float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit,
                                 LightSelection selection = LightSelection::Mixed,
                                 TriangleSampling triangle = TriangleSampling::SolidAngle) const;
@@ -80,7 +84,7 @@ public:
     Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
                       float* t = nullptr, LightSelection selection = LightSelection::Mixed) const;
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
-    const EnvironmentLight* environment() const;
+    const EnvironmentLight* environment() const { return environment_; }
     float environment_pdf(Vec3 wi, LightSelection selection = LightSelection::Mixed) const;
     // Whether some light can be reached only by light sampling: a point or spot lamp of radius
     // 0 or a sun of angle 0 (delta lights no scattered ray finds).
@@ -88,7 +92,7 @@ public:
     uint32_t delta_light_count() const { return delta_lights_; }
 
 private:
-    std::vector<Light> lights_;
+    std::vector<std::unique_ptr<const Light>> lights_;
     std::vector<uint32_t> object_;          // object of each light
     std::vector<uint32_t> visibility_;      // StratumVisibility bits of each light
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)
@@ -96,7 +100,8 @@ private:
     // Per LightSelection: cdf[i] = P(choice < i+1) (last = 1), and the choice probabilities.
     std::array<std::vector<float>, kLightSelectionModes> cdf_, probability_;
     uint32_t delta_lights_ = 0;
-    size_t environment_ = SIZE_MAX;  // index of the environment light, if any
+    const EnvironmentLight* environment_ = nullptr;  // owned by lights_
+    uint32_t environment_index_ = 0;
 };
 
 }  // namespace stratum

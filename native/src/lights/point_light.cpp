@@ -45,7 +45,8 @@ PointLight::PointLight(Vec3 position, Rgb power, float radius)
       disk_radiance_(saturating_product(intensity_, 1.0 / (kPi * static_cast<double>(radius) * radius))),
       radius_(radius) {}
 
-bool PointLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
+bool PointLight::sample(Vec3 p, Vec3 /*n*/, Vec2 u, TriangleSampling /*triangle_sampling*/,
+                        LightSample* out) const {
     if (radius_ <= 0.0f) {
         const Vec3 to_center = position_ - p;
         const float d2 = dot(to_center, to_center);
@@ -67,12 +68,25 @@ bool PointLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* ra
     return true;
 }
 
-void PointLight::sample_emission(Vec2 u_direction, EmissionSample* out) const {
+bool PointLight::sample_emission(Vec2 /*u_position*/, Vec2 u_direction, Vec3 /*center*/, float /*radius*/,
+                                 EmissionSample* out) const {
     out->position = position_;
     out->direction = sample_uniform_sphere(u_direction);
     out->normal = Vec3(0.0f, 0.0f, 0.0f);
     out->weight = intensity_ * (1.0f / uniform_sphere_pdf());
     out->soft_radius = radius_;
+    return true;
 }
+
+namespace {
+
+std::unique_ptr<Light> make_point_light(const LightParams& params) {
+    return std::make_unique<PointLight>(params.light_to_world.translation(), params.color * params.strength,
+                                        params.radius);
+}
+
+}  // namespace
+
+const LightModel kPointLightModel{&make_point_light, nullptr};
 
 }  // namespace stratum

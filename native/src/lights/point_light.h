@@ -18,8 +18,7 @@
 #pragma once
 
 #include "core/math.h"
-#include "lights/emission_sample.h"
-#include "lights/light_sample.h"
+#include "lights/light.h"
 
 namespace stratum {
 
@@ -36,23 +35,26 @@ bool sample_facing_disk(Vec3 center, float radius, Vec3 p, Vec2 u, FacingDiskSam
 bool intersect_facing_disk(Vec3 center, float radius, Vec3 origin, Vec3 dir, float t_max, float* t,
                            float* pdf);
 
-class PointLight {
+class PointLight final : public Light {
 public:
     PointLight(Vec3 position, Rgb power, float radius);
-    bool sample(Vec3 p, Vec2 u, LightSample* out) const;
+    // A zero radius is a delta light no ray finds; a radius gives the facing disk rays meet.
+    bool is_delta() const override { return radius_ <= 0.0f; }
+    bool is_hittable_lamp() const override { return radius_ > 0.0f; }
+    // Emitted power in W, used to choose among lights.
+    double power(float /*scene_radius*/) const override { return mean(power_); }
+    bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling triangle_sampling, LightSample* out) const override;
     // The disk met by the ray (origin, unit dir) before t_max (radius > 0 only): distance,
     // radiance and sample()'s solid-angle pdf of dir.
-    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
-    // Emitted power in W, used to choose among lights.
-    double power() const { return mean(power_); }
-    float radius() const { return radius_; }
+    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const override;
     // A light-tracing particle (textbook 6.4): from the centre, direction uniform on the sphere
     // (p_ω = 1/(4π)), weight I/p_ω = P. A radius r is Cycles' disk facing each receiver, which
     // no emitter in space reproduces: the particle leaves the centre and its first hit at
     // distance d takes d²/(d² + r²) (soft_radius), the facing disk's irradiance I/(d² + r²)
     // over the point's I/d² — exact for a receiver facing the lamp with nothing in the way;
     // tilted receivers differ by O(r²/d²) and shadows are those of the centre (hard).
-    void sample_emission(Vec2 u_direction, EmissionSample* out) const;
+    bool sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                         EmissionSample* out) const override;
 
 private:
     Vec3 position_;
@@ -61,5 +63,8 @@ private:
     Rgb disk_radiance_;  // of the facing disk of a lamp with a radius: I / (π r²)
     float radius_;
 };
+
+// LightType::Point: position from the transform, power = color × strength, radius.
+extern const LightModel kPointLightModel;
 
 }  // namespace stratum

@@ -1,5 +1,6 @@
 #include "lights/spot_light.h"
 
+#include "lights/light_param_checks.h"
 #include "sampling/warps.h"
 
 namespace stratum {
@@ -26,7 +27,8 @@ float SpotLight::attenuation(float cos_theta) const {
     return cosine_falloff_ ? s * cos_theta : s;
 }
 
-bool SpotLight::sample(Vec3 p, Vec2 u, LightSample* out) const {
+bool SpotLight::sample(Vec3 p, Vec3 /*n*/, Vec2 u, TriangleSampling /*triangle_sampling*/,
+                       LightSample* out) const {
     if (radius_ <= 0.0f) {
         const Vec3 to_center = position_ - p;
         const float d2 = dot(to_center, to_center);
@@ -55,7 +57,8 @@ bool SpotLight::intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* rad
     return true;
 }
 
-void SpotLight::sample_emission(Vec2 u_direction, EmissionSample* out) const {
+bool SpotLight::sample_emission(Vec2 /*u_position*/, Vec2 u_direction, Vec3 /*center*/, float /*radius*/,
+                                EmissionSample* out) const {
     const Frame frame = Frame::from_normal(axis_);
     const Vec3 local = sample_uniform_cone(u_direction, cos_half_);
     out->position = position_;
@@ -64,6 +67,25 @@ void SpotLight::sample_emission(Vec2 u_direction, EmissionSample* out) const {
     // 1/p_ω written out: the pdf helper returns 0 at the rim by rounding, where I(θ) is 0 anyway.
     out->weight = intensity_ * (attenuation(local.z) * 2.0f * kPi * (1.0f - cos_half_));
     out->soft_radius = radius_;
+    return true;
 }
+
+namespace {
+
+void check_spot_light_params(const LightParams& given, LightParams* params) {
+    params->spot_size = light_param_in_open(given.spot_size, 0.0f, kPi, "spot light spot_size");
+    params->spot_blend = light_param_in(given.spot_blend, 0.0f, 1.0f, "spot light spot_blend");
+}
+
+template <bool cosine_falloff>
+std::unique_ptr<Light> make_spot_light(const LightParams& params) {
+    return std::make_unique<SpotLight>(params.light_to_world, params.color * params.strength, params.radius,
+                                       params.spot_size, params.spot_blend, cosine_falloff);
+}
+
+}  // namespace
+
+const LightModel kSpotLightModel{&make_spot_light<false>, &check_spot_light_params};
+const LightModel kSpotV1LightModel{&make_spot_light<true>, &check_spot_light_params};
 
 }  // namespace stratum

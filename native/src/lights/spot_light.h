@@ -23,21 +23,23 @@
 #pragma once
 
 #include "core/math.h"
-#include "lights/emission_sample.h"
-#include "lights/light_sample.h"
+#include "lights/light.h"
 #include "lights/point_light.h"
 
 namespace stratum {
 
-class SpotLight {
+class SpotLight final : public Light {
 public:
     SpotLight(const Transform& light_to_world, Rgb power, float radius, float spot_size, float spot_blend,
               bool cosine_falloff);
-    bool sample(Vec3 p, Vec2 u, LightSample* out) const;
-    // As PointLight::intersect, with the angular factor of the direction −dir.
-    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const;
+    // As the point light: delta at radius 0, a facing disk rays meet otherwise.
+    bool is_delta() const override { return radius_ <= 0.0f; }
+    bool is_hittable_lamp() const override { return radius_ > 0.0f; }
     // Emitted power in W as Blender states it (the point light's), used to choose among lights.
-    double power() const { return mean(power_); }
+    double power(float /*scene_radius*/) const override { return mean(power_); }
+    bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling triangle_sampling, LightSample* out) const override;
+    // As PointLight::intersect, with the angular factor of the direction −dir.
+    bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const override;
     // The angular factor I(θ) / (P/(4π)) for cos θ = cos_theta (θ from the axis).
     float attenuation(float cos_theta) const;
     // Radiance of the facing disk of a lamp with a radius at angular factor a: I a / (π r²),
@@ -45,11 +47,11 @@ public:
     Rgb disk_radiance(float a) const {
         return saturating_product(intensity_, a / (kPi * static_cast<double>(radius_) * radius_));
     }
-    float radius() const { return radius_; }
     // A light-tracing particle (textbook 6.4): from the centre, direction uniform in the cone
     // of half angle θ_h (p_ω = 1/(2π(1 − cos θ_h))), weight I(θ)/p_ω. A radius is treated as
     // the point light's (soft_radius; see PointLight::sample_emission).
-    void sample_emission(Vec2 u_direction, EmissionSample* out) const;
+    bool sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
+                         EmissionSample* out) const override;
 
 private:
     Vec3 position_;
@@ -61,5 +63,10 @@ private:
     float smooth_;    // (1 − cos θ_h) b: width of the blend band in cos θ
     bool cosine_falloff_;
 };
+
+// LightType::Spot (Cycles 4.x/5.x) and LightType::SpotV1 (Cycles 3.x: cosine_falloff): transform,
+// power = color × strength, radius, spot_size, spot_blend; both check spot_size in (0, π] and
+// spot_blend in [0, 1].
+extern const LightModel kSpotLightModel, kSpotV1LightModel;
 
 }  // namespace stratum

@@ -15,7 +15,8 @@ SunLight::SunLight(Vec3 toward_sun, Rgb irradiance, float angle)
     }
 }
 
-bool SunLight::sample(Vec2 u, LightSample* out) const {
+bool SunLight::sample(Vec3 /*p*/, Vec3 /*n*/, Vec2 u, TriangleSampling /*triangle_sampling*/,
+                      LightSample* out) const {
     if (cos_max_ >= 1.0f) {
         *out = {frame_.n, kInfinity, irradiance_, 1.0f, false};
         return true;
@@ -44,5 +45,16 @@ bool SunLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, f
     out->weight = radiance_ * (local.z * disk_area / pdf_);
     return true;
 }
+
+namespace {
+
+std::unique_ptr<Light> make_sun_light(const LightParams& params) {
+    return std::make_unique<SunLight>(normalize(params.light_to_world.vector(Vec3(0, 0, 1))),
+                                      params.color * params.strength, params.angle);
+}
+
+}  // namespace
+
+const LightModel kSunLightModel{&make_sun_light, nullptr};
 
 }  // namespace stratum

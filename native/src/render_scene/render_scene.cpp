@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "lights/light_registry.h"
 #include "scene/placement_conditioning.h"
 
 namespace stratum {
@@ -165,38 +166,14 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
                             object);
         }
     }
-    for (const LightParams& l : scene.lights) {
-        const Rgb power = l.color * l.strength;
-        const uint32_t object = light_object++;
-        switch (l.type) {
-            case LightType::Point:
-                lights_.add(PointLight(l.light_to_world.translation(), power, l.radius), object,
-                            l.visibility);
-                break;
-            case LightType::Sun:
-                lights_.add(SunLight(normalize(l.light_to_world.vector(Vec3(0, 0, 1))), power, l.angle),
-                            object, l.visibility);
-                break;
-            case LightType::AreaRectangle:
-            case LightType::AreaEllipse:
-                lights_.add(AreaLight(l.light_to_world, l.size_x, l.size_y, l.type == LightType::AreaEllipse,
-                                      power, l.spread),
-                            object, l.visibility);
-                break;
-            case LightType::Spot:
-            case LightType::SpotV1:
-                lights_.add(SpotLight(l.light_to_world, power, l.radius, l.spot_size, l.spot_blend,
-                                      l.type == LightType::SpotV1),
-                            object, l.visibility);
-                break;
-        }
-    }
+    for (const LightParams& l : scene.lights) lights_.add(make_light(l), light_object++, l.visibility);
     if (scene.environment) {
         const Environment& e = *scene.environment;
         std::vector<float> rgb(e.rgb.size());
         // Saturating: a strength of 3e38 on a bright texel must not give an infinite sky.
         for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = saturating_product(Rgb(e.rgb[i]), e.strength).r;
-        lights_.add(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation), light_object++);
+        lights_.add_environment(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation),
+                                light_object++);
     }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.
     // Rotation is interpolated, so a moving box can bulge past both end boxes; the bound only

@@ -1,5 +1,6 @@
 // A closure's parameters as the host describes them (StratumMaterialDesc): the model and its
-// inputs. What each model does with them is the BSDF layer's (bsdf/bsdf.h lists the models).
+// inputs. What each model does with them is the BSDF layer's (the registry in bsdf/bsdf.cpp lists
+// the models, one line each).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +9,7 @@
 
 namespace stratum {
 
+// StratumMaterialModel's values.
 enum class MaterialModel : int32_t {
     Diffuse = 0,
     PrincipledV1 = 1,

@@ -53,6 +53,7 @@ struct Instance {
     bool holdout = false;
 };
 
+// StratumLightType's values; lights/light_registry.cpp names the model each one builds.
 enum class LightType : int32_t {
     Point = 0,
     Sun = 1,
@@ -62,6 +63,9 @@ enum class LightType : int32_t {
     SpotV1 = 5
 };
 
+// A light as the host describes it (StratumLightDesc). size_x, size_y, spot_size, spot_blend and
+// spread are read by some types only: a type's model checks those it reads
+// (LightModel::check_own_params), the others keep these defaults.
 struct LightParams {
     LightType type = LightType::Point;
     Rgb color{1.0f};

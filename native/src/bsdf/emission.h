@@ -1,0 +1,24 @@
+// Cycles' Emission closure: light leaves the surface, none is scattered.
+//
+// | parameter | meaning                                                                     |
+// |-----------|-----------------------------------------------------------------------------|
+// | emission  | emitted radiance (every model may carry one; ClosureSet sums w_i emission_i) |
+//
+// Reference: Cycles `closure/emissive.h` (emissive_simple_eval: radiance = strength × colour,
+// both faces). Its sample weight is 0, so a shading point never chooses it to scatter.
+#pragma once
+
+#include "bsdf/bsdf.h"
+
+namespace stratum {
+
+inline constexpr ClosureModel kEmissionClosure{
+    .eval = &no_scattering_eval,
+    .sample = &no_scattering_sample,
+    .is_delta = &answer_false,
+    .has_transmission = &answer_false,
+    .sample_weight = &no_sample_weight,
+    .albedo_estimate = &no_albedo,
+};
+
+}  // namespace stratum

@@ -1,0 +1,26 @@
+// Cycles' Holdout closure: what it covers is black with alpha 0 (a hole in the image).
+//
+// | parameter      | meaning                                                          |
+// |----------------|------------------------------------------------------------------|
+// | (closure weight) | the holdout amount: ClosureSet sums the weights of holdouts    |
+//
+// Reference: Cycles `integrator/surface_shader.h` (surface_shader_apply_holdout,
+// shader_holdout_apply in 3.x): the integrator turns the summed weight into transparency of
+// the path's throughput. Nothing is scattered (sample weight 0).
+#pragma once
+
+#include "bsdf/bsdf.h"
+
+namespace stratum {
+
+inline constexpr ClosureModel kHoldoutClosure{
+    .eval = &no_scattering_eval,
+    .sample = &no_scattering_sample,
+    .is_delta = &answer_false,
+    .has_transmission = &answer_false,
+    .sample_weight = &no_sample_weight,
+    .albedo_estimate = &no_albedo,
+    .holdout = true,
+};
+
+}  // namespace stratum
