@@ -34,6 +34,12 @@ same scene, read from the status lines Cycles prints during a 1-sample 32 x 32 r
 * "Cycles sync total" = both: Cycles' whole synchronisation, the analogue of Stratum's export +
   BVH build (Blender's own depsgraph evaluation precedes both renderers and is in neither).
 
+Then the live edit (issue 13, acceptance 3): monkey_1m rendered once, then moved through the
+live scene (stratum_scene_set_instance) and rendered again by the same renderer, whose start
+applies the edit in place: the update time against the full BVH build, with the `bvh` layout
+dynamic (every mesh instanced: a top-level recommit; target under 5 %) and static (the single
+placement flattened: its vertices remapped and its BVH rebuilt).
+
 Each export measurement is repeated --repeats times (default 3) and the minimum of each
 quantity reported (other processes on shared cores only add time). The ratio
 (Stratum export + BVH) / (Cycles sync total) comes from this one run.
@@ -407,6 +413,42 @@ def bench_export_case(build: Callable[[], bpy.types.Scene], stratum_ok: bool,
     return out
 
 
+def bench_live_edit(layout: str) -> dict[str, float]:
+    """monkey_1m exported once into a live native scene and rendered (1 spp, 32 x 32) with the
+    `bvh` layout given, then the monkey moved through stratum_scene_set_instance and rendered
+    again by the same renderer: its next start applies the edit in place (issue 13). Returns
+    the full BVH build time and the update time, both as progress().build_seconds reports."""
+    from stratum import native
+    from stratum.engine import renderer_settings
+    from stratum.export import export_scene
+
+    scene = build_monkey_1m()
+    scene.render.engine = "STRATUM"
+    scene.stratum.samples = 1
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    depsgraph.update()
+    with native.Scene() as native_scene:
+        export_scene(depsgraph, native_scene)
+        with native.Renderer(native_scene) as renderer:
+            for name, value in renderer_settings(scene).items():
+                renderer.set(name, value)
+            renderer.set("bvh", layout)
+
+            def build_seconds() -> float:
+                renderer.start()
+                while not renderer.wait(50):
+                    pass
+                return renderer.progress().build_seconds
+
+            full = build_seconds()
+            moved = np.eye(4, dtype=np.float32)
+            moved[:3, 3] = (0.3, 0.1, -0.2)
+            # The monkey is the scene's only mesh object: instance 0 of mesh 0.
+            native_scene.set_instance(0, native.Instance(mesh_id=0, transform=moved))
+            update = build_seconds()
+    return {"full": full, "update": update}
+
+
 def fastest(runs: list[dict[str, float | int | None]]) -> dict[str, float | int | None]:
     """Per quantity, the minimum over repeated runs: on shared cores, other processes only ever
     add time, so the minimum is the best estimate of the cost itself."""
@@ -501,6 +543,13 @@ def main() -> int:
     for name, build in cases if args.only != "render" else ():
         runs = [bench_export_case(build, not reason) for _ in range(args.repeats)]
         lines += export_lines(name, fastest(runs))
+    if args.only != "render" and not reason:
+        lines += ["", ("Live edit: monkey_1m moved after its first render, same renderer (1 spp, "
+                       f"{EXPORT_RES}x{EXPORT_RES}, seconds, minimum of {args.repeats} runs):")]
+        for layout in ("dynamic", "static"):
+            r = fastest([bench_live_edit(layout) for _ in range(args.repeats)])
+            lines.append(f"  bvh {layout:8s} full build {fmt(r['full']):>8s}   update {fmt(r['update']):>8s}"
+                         f"   update/full {100 * r['update'] / r['full']:.1f} %")
     table = "\n".join(lines)
     print(table)
     OUT.mkdir(parents=True, exist_ok=True)

@@ -4,6 +4,7 @@
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
 #include "integrators/transparent_shadow.h"
+#include "lights/light_registry.h"
 #include "sampling/dimensions.h"
 #include "scene/visibility.h"
 
@@ -27,11 +28,9 @@ float PathIntegrator::hit_weight(float scatter_pdf, float light_pdf) const {
 std::vector<std::string> PathIntegrator::notices(const Scene& scene) const {
     if (settings_.light_sampling != LightSampling::Bsdf) return {};
     uint32_t unreachable = 0;
-    for (const LightParams& l : scene.lights) {
-        const bool point_like =
-            l.type == LightType::Point || l.type == LightType::Spot || l.type == LightType::SpotV1;
-        if ((point_like && l.radius <= 0.0f) || (l.type == LightType::Sun && l.angle <= 0.0f)) ++unreachable;
-    }
+    // Delta lights (each model says whether it is one) are found by light sampling only.
+    for (const LightParams& l : scene.lights)
+        if (make_light(l)->is_delta()) ++unreachable;
     if (unreachable == 0) return {};
     return {"light_sampling 'bsdf' finds emission only by hitting it: " + std::to_string(unreachable) +
             " light(s) without a surface (point or spot of radius 0, sun of angle 0) add nothing; "
