@@ -21,12 +21,12 @@ PROPERTIES: tuple[str, ...] = (
 
 # Setting -> the Blender value it is taken from.
 FROM_BLENDER: dict[str, str] = {
-    "width": "scene.render.resolution_x × resolution_percentage",
-    "height": "scene.render.resolution_y × resolution_percentage",
-    "crop_x": "scene.render.border_min_x (with use_border)",
-    "crop_y": "scene.render.border_min_y (with use_border)",
-    "crop_width": "scene.render.border_max_x - border_min_x (with use_border)",
-    "crop_height": "scene.render.border_max_y - border_min_y (with use_border)",
+    "width": "scene.render.resolution_x × resolution_percentage / 100",
+    "height": "scene.render.resolution_y × resolution_percentage / 100",
+    "crop_x": "scene.render.border_min_x × width, with use_border",
+    "crop_y": "scene.render.border_min_y × height, with use_border",
+    "crop_width": "(scene.render.border_max_x − border_min_x) × width, with use_border",
+    "crop_height": "(scene.render.border_max_y − border_min_y) × height, with use_border",
     "film_transparent": "scene.render.film_transparent",
 }
 

@@ -1,11 +1,24 @@
 """The library's list of render settings and what is built from it: where each setting comes
-from in Blender (stratum/blender_settings.py)."""
+from in Blender (stratum/blender_settings.py) and the README's settings tables
+(scripts/settings_table.py)."""
 
 from __future__ import annotations
 
+import sys
+from pathlib import Path
 from typing import Any
 
+import pytest
 from stratum import blender_settings
+
+REPO = Path(__file__).resolve().parents[2]
+
+
+def _settings_table() -> Any:
+    sys.path.insert(0, str(REPO / "scripts"))
+    import settings_table
+
+    return settings_table
 
 
 def test_every_setting_has_a_place_in_blender(native: Any) -> None:
@@ -42,3 +55,26 @@ def test_properties_are_settings_blender_can_hold(native: Any) -> None:
         else:
             assert type(default) is type(setting.default), name
             assert setting.minimum <= default <= setting.maximum, name
+
+
+def test_readme_tables_are_what_the_script_writes(native: Any) -> None:
+    readme = (REPO / "README.md").read_text(encoding="utf-8")
+    assert readme == _settings_table().with_tables(readme), (
+        "README.md's settings tables differ from the library's settings: run "
+        "`.venv/bin/python scripts/settings_table.py`")
+
+
+def test_the_tables_name_every_setting_choice_and_pass(native: Any) -> None:
+    """Guards the check above against a script that writes too little."""
+    text = _settings_table().settings_markdown()
+    for setting in native.settings():
+        assert f"| `{setting.name}` | {setting.description}" in text, setting.name
+        for choice in setting.choices:
+            assert f"`{choice.name}`" in text, (setting.name, choice.name)
+    for render_pass in native.passes():
+        assert f"| `{render_pass.name}` | {render_pass.channels} |" in text
+
+
+def test_the_script_refuses_a_readme_without_markers(native: Any) -> None:
+    with pytest.raises(ValueError, match="settings:begin"):
+        _settings_table().with_tables("# A README without the markers\n")
