@@ -63,8 +63,8 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
         extra.update(zip(("crop_x", "crop_y", "crop_width", "crop_height"), region, strict=True))
     if scene.render.film_transparent:
         extra["film_transparent"] = 1
-    properties = {name: getattr(s, name) for name in blender_settings.PROPERTIES}
-    return {"width": width, "height": height} | properties | extra
+    chosen = {name: getattr(s, name) for name in blender_settings.PROPERTIES}
+    return {"width": width, "height": height} | chosen | extra
 
 
 def stop_requested(engine: Any) -> bool:

@@ -61,13 +61,14 @@ def _minimum(setting: native.Setting) -> int | float:
     return OPEN_MINIMUM_FLOORS[setting.name]
 
 
-def _number_limits(setting: native.Setting, largest: int | float) -> dict[str, Any]:
-    limits: dict[str, Any] = {"min": _minimum(setting), "max": min(setting.maximum, largest)}
+def _number_options(setting: native.Setting, largest: int | float) -> dict[str, Any]:
+    """Range, soft maximum and subtype of an INT or FLOAT property."""
+    options: dict[str, Any] = {"min": _minimum(setting), "max": min(setting.maximum, largest)}
     if setting.name in SOFT_MAXIMA:
-        limits["soft_max"] = SOFT_MAXIMA[setting.name]
+        options["soft_max"] = SOFT_MAXIMA[setting.name]
     if setting.unit in UNIT_SUBTYPES:
-        limits["subtype"] = UNIT_SUBTYPES[setting.unit]
-    return limits
+        options["subtype"] = UNIT_SUBTYPES[setting.unit]
+    return options
 
 
 def make_property(setting: native.Setting) -> Any:
@@ -75,9 +76,9 @@ def make_property(setting: native.Setting) -> Any:
     common = {"name": setting.label, "description": setting.description,
               "default": UI_DEFAULTS.get(setting.name, setting.default)}
     if setting.kind == native.SettingKind.INT:
-        return IntProperty(**common, **_number_limits(setting, INT_MAX))
+        return IntProperty(**common, **_number_options(setting, INT_MAX))
     if setting.kind == native.SettingKind.FLOAT:
-        return FloatProperty(**common, **_number_limits(setting, FLOAT_MAX))
+        return FloatProperty(**common, **_number_options(setting, FLOAT_MAX))
     if setting.kind == native.SettingKind.CHOICE:
         items = [(choice.name, choice.label, choice.description, number)
                  for number, choice in enumerate(setting.choices)]

@@ -78,7 +78,7 @@ def _typed(kind: SettingKind, text: str) -> int | float | str:
     return text
 
 
-def _bound(kind: SettingKind, value: float) -> int | float:
+def _range_end(kind: SettingKind, value: float) -> int | float:
     return int(value) if kind == SettingKind.INT else float(value)
 
 
@@ -109,8 +109,8 @@ def settings() -> tuple[Setting, ...]:
             label=_text(info.label),
             description=_text(info.description),
             kind=kind,
-            minimum=_bound(kind, info.minimum),
-            maximum=_bound(kind, info.maximum),
+            minimum=_range_end(kind, info.minimum),
+            maximum=_range_end(kind, info.maximum),
             open_minimum=bool(info.open_minimum),
             unit=_text(info.unit),
             default=_typed(kind, _text(info.default_value)),
