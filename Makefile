@@ -10,7 +10,8 @@ CMAKE_ARGS ?= -DCMAKE_BUILD_TYPE=Release -DSTRATUM_WERROR=ON
 LIB        := addon/stratum/lib/libstratum.so
 
 .PHONY: all setup build test test-native test-python test-blender test-blender-3 test-blender-wheel \
-        lint render bench sanitize format clean study test-corpus test-sessions corpus-asan
+        lint render bench sanitize format clean study test-corpus test-sessions corpus-asan \
+        settings-table
 
 all: build
 
@@ -69,6 +70,10 @@ lint: setup
 format: setup
 	clang-format -i $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
 	$(VENV)/bin/ruff check --fix addon tests scenes scripts
+
+# README.md's render-settings tables, written anew from the library's list of settings.
+settings-table: build
+	$(PY) scripts/settings_table.py
 
 # Renders the bundled Cornell box with Stratum through Blender in background mode.
 render: build

@@ -13,7 +13,7 @@ from typing import Any
 import bpy
 import numpy as np
 
-from . import native, properties
+from . import blender_settings, native, properties
 from .export import ExportCancelled, ExportError, ExportSummary, export_scene
 
 ENGINE_ID = "STRATUM"
@@ -50,9 +50,11 @@ def result_size(scene: Any) -> tuple[int, int]:
 
 
 def renderer_settings(scene: Any) -> dict[str, int | float | str]:
-    """Native settings from scene.stratum and the output resolution (name -> value; the
-    Python type selects set_int / set_float / set_string). The border and film settings are
-    only sent when used, so a library without them still renders every other scene."""
+    """Native settings from the output resolution, border and film, and every scene.stratum
+    property (blender_settings.py says which setting comes from where); name -> value, the
+    Python type selecting set_int / set_float / set_string, as the properties return them.
+    The border and film settings are only sent when used, so a library without them still
+    renders every other scene."""
     s = scene.stratum
     width, height = render_size(scene)
     extra: dict[str, int | float | str] = {}
@@ -61,27 +63,8 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
         extra.update(zip(("crop_x", "crop_y", "crop_width", "crop_height"), region, strict=True))
     if scene.render.film_transparent:
         extra["film_transparent"] = 1
-    return {
-        "width": width,
-        "height": height,
-        "samples": int(s.samples),
-        "max_bounces": int(s.max_bounces),
-        "seed": int(s.seed),
-        "threads": int(s.threads),
-        "filter_width": float(s.filter_width),
-        "sampler": str(s.sampler),
-        "filter_type": str(s.filter_type),
-        "hemisphere": str(s.hemisphere),
-        "integrator": str(s.integrator),
-        "ao_distance": float(s.ao_distance),
-        "light_sampling": str(s.light_sampling),
-        "mis_heuristic": str(s.mis_heuristic),
-        "light_selection": str(s.light_selection),
-        "triangle_sampling": str(s.triangle_sampling),
-        "rr_mode": str(s.rr_mode),
-        "rr_min_depth": int(s.rr_min_depth),
-        "control_variate": float(s.control_variate),
-    } | extra
+    chosen = {name: getattr(s, name) for name in blender_settings.PROPERTIES}
+    return {"width": width, "height": height} | chosen | extra
 
 
 def stop_requested(engine: Any) -> bool:
@@ -178,8 +161,13 @@ class StratumRenderEngine(bpy.types.RenderEngine):
     def _render(self, depsgraph: Any) -> None:
         scene = depsgraph.scene
         if properties.load_error:
-            # The library failed at register time; try again (it may exist now).
+            # scene.stratum was registered without settings: the library could not be loaded
+            # then. Name why it still cannot, else ask for the registration to be redone.
             native.load_library()
+            raise native.StratumError(
+                native.ERROR_INVALID_STATE,
+                f"the native library could not be loaded when the add-on was enabled "
+                f"({properties.load_error}); enable the add-on again")
         settings = renderer_settings(scene)
         width, height = result_size(scene)
 

@@ -1,203 +1,111 @@
-"""Scene render settings (`scene.stratum`), named exactly as the native settings.
+"""Scene render settings (`scene.stratum`), built at register time from the library's list of
+settings (native.settings()): each property has its setting's name, label, description,
+range, choices and default, so the UI and the library cannot disagree. Which settings are
+properties, and the few defaults that differ from the library's, are in blender_settings.py;
+what only the UI decides (soft limits, subtypes) is here.
 
-The sampler, hemisphere, integrator and filter menus are built from the native registries at
-register time (item tooltips are the registry descriptions), so a menu and the library cannot
-disagree. If the library cannot be loaded, registration still succeeds (with one-item fallback
-menus) and the engine reports the load error on render.
+Enum items carry explicit numbers equal to the choice's position in the library's list:
+Blender stores an EnumProperty as that number, and the library only appends choices, so a
+saved .blend keeps its choice when choices are added.
+
+If the library cannot be loaded, registration still succeeds: scene.stratum then has no
+settings (there is nothing to describe them with), the render panels say why, and the engine
+reports the load error on render.
 """
 
 from __future__ import annotations
 
+from typing import Any
+
 import bpy
+import numpy as np
 from bpy.props import EnumProperty, FloatProperty, IntProperty, PointerProperty
 
 from . import native
+from .blender_settings import PROPERTIES, UI_DEFAULTS
 
-EnumItems = list[tuple[str, str, str]]
-
-# The estimator options (textbook §4–§6). The identifiers are the native setting values
-# (integrators/estimator_options.h), default first; tests/blender/test_estimator_settings.py
-# renders with every item, so an identifier the library does not know fails there.
-LIGHT_SAMPLING_ITEMS: EnumItems = [
-    ("mis", "Multiple Importance",
-     "Light sampling (next-event estimation) and BSDF sampling combined by multiple "
-     "importance sampling (textbook §5.5)"),
-    ("nee", "Light Sampling",
-     "Next-event estimation only: emission is found by shadow rays to sampled lights; a "
-     "scattered ray counts emission only after the camera or a delta vertex (eq. 5.16)"),
-    ("bsdf", "BSDF Sampling",
-     "BSDF sampling only: emission is found by scattered rays hitting lights (eq. 5.2); point "
-     "and sun lights cannot be hit and stay black"),
-]
-MIS_HEURISTIC_ITEMS: EnumItems = [
-    ("power", "Power", "Power heuristic with beta = 2: w = p_a^2 / (p_a^2 + p_b^2) (§4.4)"),
-    ("balance", "Balance", "Balance heuristic: w = p_a / (p_a + p_b) (§4.4)"),
-    ("max", "Maximum", "Maximum heuristic: weight 1 for the strategy with the larger pdf (§4.4)"),
-]
-LIGHT_SELECTION_ITEMS: EnumItems = [
-    ("mixed", "Mixed",
-     "Half proportional to power, half uniform over the lights (a defensive mixture)"),
-    ("power", "Power", "Proportional to each light's power: p_j = Phi_j / sum Phi (eq. 5.14)"),
-    ("uniform", "Uniform", "Every light with the same probability 1/N"),
-]
-TRIANGLE_SAMPLING_ITEMS: EnumItems = [
-    ("solid_angle", "Solid Angle",
-     "A direction uniform in the solid angle the triangle subtends (Arvo 1995): no fireflies "
-     "next to emissive meshes"),
-    ("area", "Area",
-     "A point uniform in the triangle's area (textbook eq. 5.9): its weight grows as 1/r^2 "
-     "near the emitter"),
-]
-RR_MODE_ITEMS: EnumItems = [
-    ("throughput", "Throughput",
-     "Survival probability min(1, max channel of the path throughput) (eq. 5.5-5.6)"),
-    ("albedo", "Albedo",
-     "Survival probability min(1, max channel of the surface reflectance) (eq. 5.5-5.6)"),
-    ("off", "Off", "No Russian roulette: paths end only at the bounce limit or on escaping"),
-]
-
-FALLBACK_SAMPLERS: EnumItems = [("random", "Random", "Independent uniform random numbers")]
-FALLBACK_HEMISPHERES: EnumItems = [
-    ("cosine", "Cosine-Weighted", "Cosine-weighted directions (pdf cos(theta)/pi)"),
-]
-FALLBACK_INTEGRATORS: EnumItems = [("path", "Path Tracing", "Path tracing")]
-FALLBACK_FILTERS: EnumItems = [
-    ("box", "Box", "Box filter"),
-    ("blackman_harris", "Blackman-Harris", "Blackman-Harris filter"),
-]
+# Where a slider stops dragging; typing goes on to the library's maximum.
+SOFT_MAXIMA: dict[str, int | float] = {
+    "samples": 4096,
+    "ao_distance": 100.0,
+    "filter_width": 10.0,
+    "control_variate": 10.0,
+}
+# Blender's ranges include their minimum. Where the library excludes its minimum
+# (open_minimum), the UI stops at the smallest value worth offering instead.
+OPEN_MINIMUM_FLOORS: dict[str, float] = {
+    "ao_distance": 1e-4,
+}
+# Units the UI can display.
+UNIT_SUBTYPES: dict[str, str] = {
+    "pixels": "PIXEL",
+    "scene units": "DISTANCE",
+}
+# An IntProperty holds a C int and a FloatProperty a float: the library's wider ends (seed up
+# to 2^32 - 1, ao_distance up to inf) are cut to what Blender can store.
+INT_MAX = 2**31 - 1
+FLOAT_MAX = float(np.finfo(np.float32).max)
 
 # Why the library could not be loaded at register time ("" when it could).
 load_error: str = ""
 _property_group: type | None = None
 
 
-def _registry_items(kind: str, fallback: EnumItems) -> EnumItems:
-    global load_error
-    try:
-        entries = native.registry(kind)
-    except native.StratumError as exc:
-        load_error = str(exc)
-        return list(fallback)
-    items = [(e.name, e.label or e.name, e.description) for e in entries]
-    return items or list(fallback)
+def _minimum(setting: native.Setting) -> int | float:
+    if not setting.open_minimum:
+        return setting.minimum
+    if setting.name not in OPEN_MINIMUM_FLOORS:
+        raise RuntimeError(f"setting {setting.name!r} excludes its minimum {setting.minimum}: "
+                           "properties.OPEN_MINIMUM_FLOORS needs the smallest value the UI "
+                           "offers")
+    return OPEN_MINIMUM_FLOORS[setting.name]
 
 
-def _default(items: EnumItems, preferred: str) -> str:
-    return preferred if any(i[0] == preferred for i in items) else items[0][0]
+def _number_options(setting: native.Setting, largest: int | float) -> dict[str, Any]:
+    """Range, soft maximum and subtype of an INT or FLOAT property."""
+    options: dict[str, Any] = {"min": _minimum(setting), "max": min(setting.maximum, largest)}
+    if setting.name in SOFT_MAXIMA:
+        options["soft_max"] = SOFT_MAXIMA[setting.name]
+    if setting.unit in UNIT_SUBTYPES:
+        options["subtype"] = UNIT_SUBTYPES[setting.unit]
+    return options
 
 
-def _make_property_group(samplers: EnumItems, filters: EnumItems, hemispheres: EnumItems,
-                         integrators: EnumItems) -> type:
-    sampler_default = _default(samplers, "random")
-    filter_default = _default(filters, "blackman_harris")
-    hemisphere_default = _default(hemispheres, "cosine")
-    integrator_default = _default(integrators, "path")
+def make_property(setting: native.Setting) -> Any:
+    """The bpy property of one INT, FLOAT or CHOICE setting."""
+    common = {"name": setting.label, "description": setting.description,
+              "default": UI_DEFAULTS.get(setting.name, setting.default)}
+    if setting.kind == native.SettingKind.INT:
+        return IntProperty(**common, **_number_options(setting, INT_MAX))
+    if setting.kind == native.SettingKind.FLOAT:
+        return FloatProperty(**common, **_number_options(setting, FLOAT_MAX))
+    if setting.kind == native.SettingKind.CHOICE:
+        items = [(choice.name, choice.label, choice.description, number)
+                 for number, choice in enumerate(setting.choices)]
+        return EnumProperty(items=items, **common)
+    raise ValueError(f"setting {setting.name!r}: a {setting.kind.name} setting has no "
+                     "Blender property")
+
+
+def _make_property_group(settings: tuple[native.Setting, ...]) -> type:
+    by_name = {setting.name: setting for setting in settings}
 
     class StratumRenderSettings(bpy.types.PropertyGroup):
-        __annotations__ = {
-            "samples": IntProperty(
-                name="Samples",
-                description="Number of samples per pixel",
-                default=64, min=1, soft_max=4096,
-            ),
-            "max_bounces": IntProperty(
-                name="Max Bounces",
-                description="Total maximum number of bounces (0 = direct lighting only), "
-                "as Cycles' max_bounces",
-                default=12, min=0, soft_max=1024,
-            ),
-            "seed": IntProperty(
-                name="Seed",
-                description="Seed of the sampler's scrambling and randomization",
-                default=0, min=0,
-            ),
-            "sampler": EnumProperty(
-                name="Sampler",
-                description="Sampling strategy (from the native sampler registry)",
-                items=samplers, default=sampler_default,
-            ),
-            "hemisphere": EnumProperty(
-                name="Hemisphere",
-                description="Distribution of diffuse and ambient-occlusion directions "
-                "(from the native hemisphere registry)",
-                items=hemispheres, default=hemisphere_default,
-            ),
-            "integrator": EnumProperty(
-                name="Integrator",
-                description="Light transport algorithm (from the native integrator registry)",
-                items=integrators, default=integrator_default,
-            ),
-            "ao_distance": FloatProperty(
-                name="AO Distance",
-                description="Ambient occlusion: a direction is occluded when an obstacle lies "
-                "within this distance",
-                default=1.0, min=1e-4, soft_max=100.0, subtype="DISTANCE",
-            ),
-            "filter_type": EnumProperty(
-                name="Filter Type",
-                description="Pixel reconstruction filter",
-                items=filters, default=filter_default,
-            ),
-            "filter_width": FloatProperty(
-                name="Filter Width",
-                description="Pixel filter width in pixels, as Cycles' filter_width",
-                default=1.5, min=0.01, max=10.0, subtype="PIXEL",
-            ),
-            "light_sampling": EnumProperty(
-                name="Light Sampling",
-                description="How the path tracer finds emission",
-                items=LIGHT_SAMPLING_ITEMS, default=LIGHT_SAMPLING_ITEMS[0][0],
-            ),
-            "mis_heuristic": EnumProperty(
-                name="MIS Heuristic",
-                description="Weights of light and BSDF samples under multiple importance "
-                "sampling",
-                items=MIS_HEURISTIC_ITEMS, default=MIS_HEURISTIC_ITEMS[0][0],
-            ),
-            "light_selection": EnumProperty(
-                name="Light Selection",
-                description="Probability of choosing each light for a light sample",
-                items=LIGHT_SELECTION_ITEMS, default=LIGHT_SELECTION_ITEMS[0][0],
-            ),
-            "triangle_sampling": EnumProperty(
-                name="Triangle Sampling",
-                description="How a light sample takes a point on an emissive triangle",
-                items=TRIANGLE_SAMPLING_ITEMS, default=TRIANGLE_SAMPLING_ITEMS[0][0],
-            ),
-            "rr_mode": EnumProperty(
-                name="Russian Roulette",
-                description="How a path's survival probability is chosen",
-                items=RR_MODE_ITEMS, default=RR_MODE_ITEMS[0][0],
-            ),
-            "rr_min_depth": IntProperty(
-                name="Roulette Min Depth",
-                description="First bounce at which Russian roulette may end a path",
-                default=3, min=0, max=1024,
-            ),
-            "control_variate": FloatProperty(
-                name="Control Variate",
-                description="Ambient radiance L_a of the control variate (textbook 5.17); "
-                "0 = off",
-                default=0.0, min=0.0, soft_max=10.0,
-            ),
-            "threads": IntProperty(
-                name="Threads",
-                description="Number of render threads (0 = all cores)",
-                default=0, min=0, soft_max=1024,
-            ),
-        }
+        __annotations__ = {name: make_property(by_name[name])
+                           for name in PROPERTIES if name in by_name}
 
     return StratumRenderSettings
 
 
 def register() -> None:
     global _property_group, load_error
-    load_error = ""
-    samplers = _registry_items("sampler", FALLBACK_SAMPLERS)
-    filters = _registry_items("filter", FALLBACK_FILTERS)
-    hemispheres = _registry_items("hemisphere", FALLBACK_HEMISPHERES)
-    integrators = _registry_items("integrator", FALLBACK_INTEGRATORS)
-    _property_group = _make_property_group(samplers, filters, hemispheres, integrators)
+    try:
+        settings = native.settings()
+        load_error = ""
+    except native.StratumError as exc:
+        settings = ()
+        load_error = str(exc)
+    _property_group = _make_property_group(settings)
     bpy.utils.register_class(_property_group)
     bpy.types.Scene.stratum = PointerProperty(type=_property_group, name="Stratum")
 

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import bpy
 
+from . import properties
+
 ENGINE_ID = "STRATUM"
 
 # Contexts whose built-in panels Stratum reuses.
@@ -30,7 +32,21 @@ class StratumButtonsPanel:
 
     @classmethod
     def poll(cls, context: bpy.types.Context) -> bool:
-        return context.engine in cls.COMPAT_ENGINES
+        # Without the library scene.stratum has no settings to draw; the library panel says why.
+        return context.engine in cls.COMPAT_ENGINES and not properties.load_error
+
+
+class STRATUM_RENDER_PT_library(StratumButtonsPanel, bpy.types.Panel):
+    bl_label = "Native Library"
+
+    @classmethod
+    def poll(cls, context: bpy.types.Context) -> bool:
+        return context.engine in cls.COMPAT_ENGINES and bool(properties.load_error)
+
+    def draw(self, context: bpy.types.Context) -> None:
+        col = self.layout.column()
+        col.label(text="The Stratum library could not be loaded:", icon="ERROR")
+        col.label(text=properties.load_error)
 
 
 class STRATUM_RENDER_PT_sampling(StratumButtonsPanel, bpy.types.Panel):
@@ -117,6 +133,7 @@ class STRATUM_RENDER_PT_performance(StratumButtonsPanel, bpy.types.Panel):
 
 
 classes: tuple[type, ...] = (
+    STRATUM_RENDER_PT_library,
     STRATUM_RENDER_PT_sampling,
     STRATUM_RENDER_PT_light_paths,
     STRATUM_RENDER_PT_film,

@@ -2,9 +2,10 @@
 light_selection, triangle_sampling, rr_mode, rr_min_depth, control_variate; the renderer's notices as WARNING
 reports. Runs in Blender 3.4 (run_in_blender.py) and under the bpy 5.0.1 wheel.
 
-The Python enum items and the native value names are two lists that could drift apart: every
-item of every enum property is sent through the engine's settings to a native renderer, which
-rejects unknown values (with a message naming them, checked below), so a drift fails here.
+The enum items are the library's choices (properties.py builds them from native.settings()):
+every item of every enum property is sent through the engine's settings to a native renderer,
+which rejects unknown values (with a message naming them, checked below), so an item the engine
+could not render with fails here.
 """
 
 from __future__ import annotations
@@ -27,7 +28,7 @@ ENUMS = ("light_sampling", "mis_heuristic", "light_selection", "triangle_samplin
 DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection": "mixed",
             "triangle_sampling": "solid_angle", "rr_mode": "throughput", "rr_min_depth": 3,
             "control_variate": 0.0}
-# Values per enum: the native lists (native/src/integrators/estimator_options.cpp).
+# Values per enum, as the library lists them (native/src/integrators/estimator_options.cpp).
 ENUM_SIZES = {"triangle_sampling": 2}
 
 

@@ -7,6 +7,8 @@ from typing import Any
 import bpy
 import pytest
 
+from conftest import engine_reports
+
 EXPECTED_PROPERTIES = {
     "samples": 64,
     "max_bounces": 12,
@@ -52,30 +54,86 @@ def test_properties_defaults_and_limits(stratum_addon: Any) -> None:
     assert props["seed"].hard_min == 0
     assert props["threads"].hard_min == 0
     assert props["filter_width"].hard_min == pytest.approx(0.01)
-    assert props["filter_width"].hard_max == pytest.approx(10.0)
+    assert props["filter_width"].hard_max == pytest.approx(100.0)  # the library's range
+    assert props["filter_width"].soft_max == pytest.approx(10.0)
     assert props["ao_distance"].hard_min == pytest.approx(1e-4)
     assert props["ao_distance"].subtype == "DISTANCE"
     s.samples = 0  # clamped by the property's min
     assert s.samples == 1
 
 
-def test_sampler_menu_equals_native_registry(stratum_addon: Any) -> None:
-    from stratum import native, properties
-
+def test_sampler_menu_equals_native_registry(library: Any) -> None:
     items = bpy.types.Scene.bl_rna.properties["stratum"].fixed_type.properties["sampler"]
-    identifiers = [item.identifier for item in items.enum_items]
-    try:
-        entries = native.registry("sampler")
-    except native.StratumError:
-        # Library missing: registration still succeeded with the fallback menu.
-        assert identifiers == ["random"]
-        assert properties.load_error
-        return
-    assert identifiers == [e.name for e in entries]
+    entries = library.registry("sampler")
+    assert [item.identifier for item in items.enum_items] == [e.name for e in entries]
     descriptions = [item.description for item in items.enum_items]
     assert descriptions == [e.description for e in entries]
     filters = bpy.types.Scene.bl_rna.properties["stratum"].fixed_type.properties["filter_type"]
-    assert {i.identifier for i in filters.enum_items} == {e.name for e in native.registry("filter")}
+    assert {i.identifier for i in filters.enum_items} == {e.name for e in library.registry("filter")}
+
+
+def test_properties_are_the_library_settings(library: Any) -> None:
+    """Label, description, default, range and choices of every scene.stratum property are its
+    setting's; enum numbers are the choices' positions (what a .blend stores). Only the UI's
+    own defaults and Blender's storable range differ."""
+    from stratum import blender_settings, properties
+
+    rna = bpy.types.Scene.bl_rna.properties["stratum"].fixed_type.properties
+    for name in blender_settings.PROPERTIES:
+        setting, prop = library.setting(name), rna[name]
+        assert (prop.name, prop.description) == (setting.label, setting.description), name
+        default = blender_settings.UI_DEFAULTS.get(name, setting.default)
+        if setting.kind == library.SettingKind.CHOICE:
+            assert prop.default == default, name
+            assert [(i.identifier, i.name, i.description, i.value) for i in prop.enum_items] == [
+                (c.name, c.label, c.description, n) for n, c in enumerate(setting.choices)], name
+            continue
+        largest = properties.INT_MAX if prop.type == "INT" else properties.FLOAT_MAX
+        minimum = (properties.OPEN_MINIMUM_FLOORS[name] if setting.open_minimum
+                   else setting.minimum)
+        assert prop.default == pytest.approx(default), name
+        assert prop.hard_min == pytest.approx(minimum), name
+        assert prop.hard_max == pytest.approx(min(setting.maximum, largest)), name
+
+
+def test_registration_without_the_library(stratum_addon: Any, scene_builder: Any,
+                                          monkeypatch: pytest.MonkeyPatch,
+                                          tmp_path: Any) -> None:
+    """A missing library: registration succeeds with a scene.stratum of no settings, the
+    settings panels step aside for one that names the load error, and a render reports it."""
+    from types import SimpleNamespace
+
+    from stratum import blender_settings, native, properties, ui
+
+    stratum_addon.unregister()
+    try:
+        monkeypatch.setattr(native.library, "_lib", None)  # the loaded library is held there
+        monkeypatch.setenv("STRATUM_LIBRARY", str(tmp_path / "missing" / "libstratum.so"))
+        native.settings.cache_clear()
+        stratum_addon.register()
+        assert "libstratum.so" in properties.load_error
+        scene = scene_builder().basic().scene
+        assert not any(hasattr(scene.stratum, name) for name in blender_settings.PROPERTIES)
+        context = SimpleNamespace(engine="STRATUM", scene=scene)
+        assert ui.STRATUM_RENDER_PT_library.poll(context)  # type: ignore[arg-type]
+        assert not ui.STRATUM_RENDER_PT_sampling.poll(context)  # type: ignore[arg-type]
+        drawn: list[str] = []
+        panel = SimpleNamespace(layout=_RecordingLayout(drawn))
+        ui.STRATUM_RENDER_PT_library.draw(panel, context)  # type: ignore[arg-type]
+        assert properties.load_error in drawn
+        try:
+            bpy.ops.render.render()
+        except RuntimeError:
+            pass
+        errors = engine_reports("ERROR")
+        assert errors and "libstratum.so" in errors[0]
+    finally:
+        stratum_addon.unregister()
+        monkeypatch.undo()
+        native.settings.cache_clear()
+        stratum_addon.register()
+    assert properties.load_error == ""
+    assert hasattr(bpy.context.scene.stratum, "samples")
 
 
 def test_render_panels_and_reused_panels(stratum_addon: Any) -> None:
@@ -162,6 +220,9 @@ class _RecordingLayout:
     def prop(self, data: Any, name: str, **_: Any) -> None:
         assert hasattr(data, name), name
         self.drawn.append(name)
+
+    def label(self, text: str = "", **_: Any) -> None:
+        self.drawn.append(text)
 
 
 @pytest.mark.parametrize("integrator", ["path", "ao"])

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import os
 import subprocess
 import sys
 from pathlib import Path
@@ -172,7 +173,8 @@ def test_points_rejects_bad_values_naming_them(native: Any, args: list[str], nam
     assert not proc.stdout
 
 
-def test_compare_help_documents_the_estimator_specs(capsys: pytest.CaptureFixture[str]) -> None:
+def test_compare_help_documents_the_estimator_specs(native: Any,
+                                                    capsys: pytest.CaptureFixture[str]) -> None:
     with pytest.raises(SystemExit) as info:
         cli.main(["compare", "--help"])
     assert info.value.code == 0
@@ -181,3 +183,18 @@ def test_compare_help_documents_the_estimator_specs(capsys: pytest.CaptureFixtur
                      "mis_heuristic=power|balance|max", "rr_mode=throughput|albedo|off",
                      "--set NAME=VALUE", "--reference-integrator SPEC", "mis-<heuristic>"):
         assert expected in text, expected
+    for name in ("sampler", "integrator", "hemisphere"):  # the library's names, all of them
+        assert ", ".join(native.setting(name).choice_names()) in text, name
+    assert "rr_min_depth=<0..1024> (default 3)" in text
+
+
+def test_help_works_without_the_library(tmp_path: Path) -> None:
+    """`stratum compare --help` lists the library's names; without a library it still prints,
+    saying they are not listed."""
+    env = dict(os.environ, STRATUM_LIBRARY=str(tmp_path / "missing" / "libstratum.so"))
+    for args in ([], ["compare"]):
+        proc = subprocess.run([sys.executable, "-m", "stratum.cli", *args, "--help"], env=env,
+                              capture_output=True, text=True, check=False, timeout=60)
+        assert proc.returncode == 0, proc.stderr
+        assert "usage: stratum" in proc.stdout
+    assert "not listed: the native library cannot be loaded" in " ".join(proc.stdout.split())

@@ -140,7 +140,7 @@ def _estimator(spec: str = "path", common: dict[str, Any] | None = None) -> Any:
     return estimators.resolve(estimators.parse_spec(spec, INTEGRATORS), common or {})
 
 
-def test_cache_key_changes_with_every_setting() -> None:
+def test_cache_key_changes_with_every_setting(native: Any) -> None:
     base = plan.SceneSettings("abc", (16, 16), "cosine", 8)
     path = _estimator()
     key = plan.cache_key(base, path, "sobol", 4, 0)
@@ -169,7 +169,7 @@ def test_cache_key_changes_with_every_setting() -> None:
     assert len({key, *others}) == len(others) + 1
 
 
-def test_batches_balance_cost() -> None:
+def test_batches_balance_cost(native: Any) -> None:
     settings = plan.SceneSettings("abc", (16, 16), "cosine", 8)
     path = _estimator()
     tests, refs = plan.plan(settings, [path], ["a", "b", "c"], [1, 4, 16], [0, 1], path,
@@ -203,16 +203,17 @@ def test_batches_balance_cost() -> None:
      [("path", "nee+tri-area", {"light_sampling": "nee", "triangle_sampling": "area"}),
       ("path", "nee", {"light_sampling": "nee"})]),
 ])
-def test_estimator_specs_parse_resolve_and_label(text: str, expected: list[Any]) -> None:
+def test_estimator_specs_parse_resolve_and_label(native: Any, text: str,
+                                                  expected: list[Any]) -> None:
     resolved = estimators.resolve_all(estimators.parse_specs(text, INTEGRATORS), {})
     assert [(e.integrator, e.label) for e, _ in zip(resolved, expected, strict=True)] == [
         (i, label) for i, label, _ in expected]
     for est, (_, _, given) in zip(resolved, expected, strict=True):
-        assert dict(est.settings) == {**estimators.DEFAULTS, **given}
+        assert dict(est.settings) == {**estimators.defaults(), **given}
         assert [n for n, _ in est.settings] == list(estimators.SETTING_NAMES)
 
 
-def test_common_settings_apply_under_the_specs_own() -> None:
+def test_common_settings_apply_under_the_specs_own(native: Any) -> None:
     common = estimators.parse_settings(["rr_mode=albedo", "light_sampling=nee"], "--set")
     specs = estimators.parse_specs("path,path:light_sampling=bsdf", INTEGRATORS)
     scene = {"rr_mode": "off", "rr_min_depth": 7}  # the scene's own values, under --set
@@ -245,31 +246,36 @@ def test_common_settings_apply_under_the_specs_own() -> None:
     ("path,path:light_sampling=mis", "same estimator"),
     ("path:light_sampling=nee,path:light_sampling=nee,mis_heuristic=max", "same label"),
 ])
-def test_bad_estimator_specs_name_the_bad_part(text: str, named: str) -> None:
+def test_bad_estimator_specs_name_the_bad_part(native: Any, text: str, named: str) -> None:
     with pytest.raises(estimators.SpecError) as info:
         estimators.resolve_all(estimators.parse_specs(text, INTEGRATORS), {})
     assert named in str(info.value)
 
 
 def test_setting_values_are_the_native_renderers(native: Any, tiny_scene: Any) -> None:
-    """The Python table of estimator settings against the renderer's own validation: every
-    value the spec parser accepts is accepted natively, and a value it rejects is too."""
-    for name, values in estimators.CHOICES.items():
-        for value in values:
-            with native.Renderer(tiny_scene, **{name: value}):
+    """The spec parser takes what the renderer takes, as the library lists it: every choice
+    and both ends of every range parse and render, and one step past a range or a name that
+    is no choice is a SpecError naming the value."""
+    for name in estimators.SETTING_NAMES:
+        setting = native.setting(name)
+        accepted = setting.choice_names() or [setting.minimum, setting.maximum]
+        for value in accepted:
+            parsed = estimators.parse_value(name, str(value), "test")
+            with native.Renderer(tiny_scene, **{name: parsed}):
                 pass
-        with pytest.raises(native.StratumError):
-            native.Renderer(tiny_scene, **{name: values[0] + "x"})
-    for value in (0, estimators.RR_MIN_DEPTH_MAX):
-        with native.Renderer(tiny_scene, rr_min_depth=value):
-            pass
-    with pytest.raises(native.StratumError):
-        native.Renderer(tiny_scene, rr_min_depth=estimators.RR_MIN_DEPTH_MAX + 1)
-    with native.Renderer(tiny_scene, control_variate=0.5):
-        pass
-    with pytest.raises(native.StratumError):
-        native.Renderer(tiny_scene, control_variate=-0.5)
-    assert {e.name for e in native.registry("integrator")} >= {"path", "direct", "ao"}
+        if setting.choices:
+            rejected = [f"{accepted[0]}x"]
+        elif setting.kind == native.SettingKind.INT:
+            rejected = [setting.minimum - 1, setting.maximum + 1]
+        else:
+            rejected = [setting.minimum - 0.5, setting.maximum * 2, float("nan")]
+        for value in rejected:
+            with pytest.raises(estimators.SpecError, match=name):
+                estimators.parse_value(name, str(value), "test")
+            with pytest.raises(native.StratumError):
+                native.Renderer(tiny_scene, **{name: value})
+    assert estimators.defaults() == {n: native.setting(n).default
+                                     for n in estimators.SETTING_NAMES}
 
 
 def test_batch_sets_every_estimator_setting_or_fails_naming_it() -> None:
@@ -460,6 +466,7 @@ def test_two_estimators_are_an_axis_like_samplers(native: Any, fake_blender: Pat
     (["--set", "rr_mode=never"], "never"),
     (["--set", "no_such_setting=1"], "no_such_setting"),
     (["--reference-integrator", "path:mis_heuristic=cubic"], "cubic"),
+    (["--max-bounces", "2000"], "2000"),
 ])
 def test_bad_estimator_options_exit_non_zero_naming_the_value(
         native: Any, fake_blender: Path, tmp_path: Path, args: list[str], named: str) -> None:

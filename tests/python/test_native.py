@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import ctypes
 import json
 import os
 import subprocess
@@ -48,6 +49,128 @@ def test_filters_are_the_documented_ones(native: Any) -> None:
 
 def test_version(native: Any) -> None:
     assert native.version()
+
+
+# ---- the settings and passes the library lists ---------------------------------------------
+
+
+def test_settings_describe_each_setting_once(native: Any) -> None:
+    """The records carry what StratumSettingInfo holds, at the right offsets: known values of
+    each kind (a misplaced field would shift them), and for every setting a default that
+    lies in its range or among its choices."""
+    records = native.settings()
+    names = [s.name for s in records]
+    assert len(set(names)) == len(names)
+    for s in records:
+        assert s.label and s.description, s.name
+        if s.kind in (native.SettingKind.INT, native.SettingKind.FLOAT):
+            assert not s.choices, s.name
+            assert s.minimum <= s.default <= s.maximum, s.name
+            assert type(s.default) is (int if s.kind == native.SettingKind.INT else float)
+        else:
+            assert s.choices and isinstance(s.default, str), s.name
+            listed = s.default.split(",") if s.default else []
+            assert set(listed) <= set(s.choice_names()), s.name
+            assert s.kind == native.SettingKind.LIST or len(listed) == 1, s.name
+    samples = native.setting("samples")
+    assert (samples.kind, samples.minimum, samples.default, samples.open_minimum) == (
+        native.SettingKind.INT, 1, 16, False)
+    ao = native.setting("ao_distance")
+    assert (ao.kind, ao.minimum, ao.maximum, ao.open_minimum, ao.unit, ao.default) == (
+        native.SettingKind.FLOAT, 0.0, float("inf"), True, "scene units", 1.0)
+    light_sampling = native.setting("light_sampling")
+    assert light_sampling.choice_names() == ["mis", "nee", "bsdf"]
+    assert light_sampling.default == "mis"
+    assert light_sampling.choices[1].label == "Light Sampling"
+    assert native.setting("passes").kind == native.SettingKind.LIST
+    with pytest.raises(KeyError, match="no_such_setting"):
+        native.setting("no_such_setting")
+
+
+def test_settings_are_read_once(native: Any) -> None:
+    assert native.settings() is native.settings()
+    assert native.passes() is native.passes()
+
+
+def test_each_setting_accepts_its_range_and_choices_and_nothing_past_them(
+        native: Any, tiny_scene: Any) -> None:
+    """What the records say is what Renderer.set accepts: the ends of every range (the
+    minimum only when closed), every choice, and the default; one step beyond is refused."""
+    with native.Renderer(tiny_scene) as renderer:
+        for s in native.settings():
+            renderer.set(s.name, s.default)
+            if s.kind == native.SettingKind.INT:
+                renderer.set(s.name, s.minimum)
+                renderer.set(s.name, s.maximum)
+                for outside in (s.minimum - 1, s.maximum + 1):
+                    with pytest.raises(native.StratumError, match=s.name):
+                        renderer.set(s.name, outside)
+            elif s.kind == native.SettingKind.FLOAT:
+                renderer.set(s.name, s.maximum)
+                if s.open_minimum:
+                    with pytest.raises(native.StratumError, match=s.name):
+                        renderer.set(s.name, s.minimum)
+                else:
+                    renderer.set(s.name, s.minimum)
+                with pytest.raises(native.StratumError, match=s.name):
+                    renderer.set(s.name, s.minimum - 1.0)
+            else:
+                for choice in s.choice_names():
+                    renderer.set(s.name, choice)
+                if s.kind == native.SettingKind.LIST:
+                    renderer.set(s.name, ",".join(s.choice_names()))
+                    renderer.set(s.name, "")
+                with pytest.raises(native.StratumError, match=s.name):
+                    renderer.set(s.name, "no_such_choice")
+
+
+@pytest.mark.parametrize("kind", ["sampler", "filter", "integrator", "hemisphere"])
+def test_registries_are_the_choices_of_their_settings(native: Any, kind: str) -> None:
+    """registry() reads the setting's choices; the C registries list the same entries."""
+    lib = native.load_library()
+    code = {"sampler": native.REGISTRY_SAMPLER, "filter": native.REGISTRY_FILTER,
+            "integrator": native.REGISTRY_INTEGRATOR,
+            "hemisphere": native.REGISTRY_HEMISPHERE}[kind]
+    entries = []
+    for index in range(lib.stratum_registry_count(code)):
+        texts = [ctypes.c_char_p() for _ in range(3)]
+        assert lib.stratum_registry_entry(code, index, *map(ctypes.byref, texts)) == native.OK
+        entries.append(tuple(t.value.decode() for t in texts))
+    assert [tuple(e) for e in native.registry(kind)] == entries
+    with pytest.raises(ValueError, match="bogus"):
+        native.registry("bogus")
+
+
+def test_passes_are_combined_and_the_choices_of_the_passes_setting(native: Any) -> None:
+    passes = native.passes()
+    assert passes[0] == ("Combined", 4, passes[0].description) and passes[0].description
+    assert [p.name for p in passes[1:]] == native.setting("passes").choice_names()
+    assert all(p.channels > 0 and p.description for p in passes)
+
+
+def test_read_pass_returns_an_image_per_pass(native: Any, tiny_scene: Any) -> None:
+    """A 10 x 6 render holding the Normal pass: Combined reads as read_pixels does, shaped
+    (height, width, 4); Normal is the quad's normal (+z) where the camera sees the quad."""
+    with native.Renderer(tiny_scene, width=10, height=6, samples=2, passes="Normal") as r:
+        r.start()
+        deadline = time.monotonic() + 60
+        while not r.wait(100):
+            assert time.monotonic() < deadline, "render did not finish"
+        combined = r.read_pass("Combined")
+        normal = r.read_pass("Normal")
+        pixels = r.read_pixels()
+        with pytest.raises(ValueError, match="Albedo"):
+            r.read_pass("Albedo")
+    assert combined.shape == (6, 10, 4) and combined.dtype == np.float32
+    np.testing.assert_array_equal(combined.reshape(-1), pixels)
+    assert normal.shape == (6, 10, 3) and np.isfinite(normal).all()
+    assert normal[3, 5] == pytest.approx([0.0, 0.0, 1.0], abs=1e-5)
+    with native.Renderer(tiny_scene, width=4, height=4, samples=1) as r:
+        r.start()
+        while not r.wait(100):
+            pass
+        with pytest.raises(native.StratumError, match="Normal"):
+            r.read_pass("Normal")  # not held: the setting `passes` does not name it
 
 
 def test_nan_position_is_rejected_naming_the_value(native: Any) -> None:

@@ -1,19 +1,19 @@
 """Estimator specs of `stratum compare --integrator`: which integrator and which estimator
 settings (issue 6) one configuration renders with, and the short label tables and plots use.
 
-| setting         | kind   | values (default first)         | label part       |
-|-----------------|--------|--------------------------------|------------------|
-| light_sampling  | choice | mis, nee, bsdf                 | path: bsdf / nee / mis-<heuristic> |
-| mis_heuristic   | choice | power, balance, max            | (in mis-<heuristic>) |
-| light_selection | choice | mixed, power, uniform          | sel-<value>      |
-| triangle_sampling | choice | solid_angle, area            | tri-<value>      |
-| rr_mode         | choice | throughput, albedo, off        | rr-<value>       |
-| rr_min_depth    | int    | >= 0 (default 3)               | rrmin<value>     |
-| control_variate | float  | >= 0 (default 0 = off)         | cv<value>        |
+| setting           | label part                         |
+|-------------------|------------------------------------|
+| light_sampling    | path: bsdf / nee / mis-<heuristic> |
+| mis_heuristic     | (in mis-<heuristic>)               |
+| light_selection   | sel-<value>                        |
+| triangle_sampling | tri-<value>                        |
+| rr_mode           | rr-<value>                         |
+| rr_min_depth      | rrmin<value>                       |
+| control_variate   | cv<value>                          |
 
-The names and values are the render settings of native/include/stratum/stratum.h (parsed by
-native/src/integrators/estimator_options.cpp and render/render_settings.cpp); the Blender
-properties scene.stratum.<name> carry the same names.
+The names are render settings of the library, and their values, ranges and defaults are the
+library's (native.settings(), read on first use: importing this module loads nothing); the
+Blender properties scene.stratum.<name> carry the same names.
 
 Spec syntax: `INTEGRATOR[:NAME=VALUE[,NAME=VALUE...]]`, INTEGRATOR a name of the native
 integrator registry (path, direct, ao, light). In the comma-separated --integrator list an item
@@ -21,7 +21,7 @@ of the form NAME=VALUE (no colon) continues the settings of the spec before it, 
 `path:light_sampling=mis,mis_heuristic=balance,direct` is two specs.
 
 Resolution of one configuration's settings: the spec's value, else --set's, else the scene's
-(read by the probe when the property exists), else the default above. Every configuration
+(read by the probe when the property exists), else the library's default. Every configuration
 carries all of them, so its cache key and its render do not depend on what the scene stored.
 """
 
@@ -29,21 +29,17 @@ from __future__ import annotations
 
 from collections.abc import Iterable, Mapping, Sequence
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from ..native import Setting
 
 Value = str | int | float
 
-CHOICES: dict[str, tuple[str, ...]] = {
-    "light_sampling": ("mis", "nee", "bsdf"),
-    "mis_heuristic": ("power", "balance", "max"),
-    "light_selection": ("mixed", "power", "uniform"),
-    "triangle_sampling": ("solid_angle", "area"),
-    "rr_mode": ("throughput", "albedo", "off"),
-}
-# rr_min_depth's upper bound is the renderer's kMaxBounces (render_settings.cpp).
-RR_MIN_DEPTH_MAX = 1024
-DEFAULTS: dict[str, Value] = {**{k: v[0] for k, v in CHOICES.items()}, "rr_min_depth": 3,
-                              "control_variate": 0.0}
-SETTING_NAMES: tuple[str, ...] = tuple(DEFAULTS)
+# The settings an estimator spec may name, in the order every Estimator carries them.
+SETTING_NAMES: tuple[str, ...] = ("light_sampling", "mis_heuristic", "light_selection",
+                                  "triangle_sampling", "rr_mode", "rr_min_depth",
+                                  "control_variate")
 PATH = "path"  # the integrator whose label names its light-sampling strategy
 _SUFFIX = {"light_selection": "sel-", "triangle_sampling": "tri-", "rr_mode": "rr-",
            "rr_min_depth": "rrmin", "control_variate": "cv"}
@@ -75,35 +71,67 @@ class Spec:
     text: str
 
 
+def _setting(name: str) -> Setting:
+    """The library's description of estimator setting `name`."""
+    from .. import native
+
+    return native.setting(name)
+
+
+def _is_int(setting: Setting) -> bool:
+    from .. import native
+
+    return setting.kind == native.SettingKind.INT
+
+
+def defaults() -> dict[str, Value]:
+    """The library's default of every estimator setting."""
+    return {name: _setting(name).default for name in SETTING_NAMES}
+
+
+def value_syntax(name: str) -> str:
+    """What setting `name` takes, for help and messages: "mis|nee|bsdf", "0..1024" or
+    "a number in [0, 3.40282e+38]"."""
+    setting = _setting(name)
+    if setting.choices:
+        return "|".join(setting.choice_names())
+    if _is_int(setting):
+        return f"{setting.minimum}..{setting.maximum}"
+    opening = "(" if setting.open_minimum else "["
+    return f"a number in {opening}{setting.minimum:g}, {setting.maximum:g}]"
+
+
 def parse_value(name: str, text: str, where: str) -> Value:
     """The typed value of setting `name`; SpecError naming `where`, the name and the value."""
-    if name not in DEFAULTS:
-        raise SpecError(f"{where}: unknown setting {name!r}; settings: {', '.join(DEFAULTS)}")
+    if name not in SETTING_NAMES:
+        raise SpecError(f"{where}: unknown setting {name!r}; settings: {', '.join(SETTING_NAMES)}")
+    setting = _setting(name)
     text = text.strip()
-    if name in CHOICES:
-        if text not in CHOICES[name]:
+    if setting.choices:
+        if text not in setting.choice_names():
             raise SpecError(f"{where}: bad value {text!r} for {name}; values: "
-                            f"{', '.join(CHOICES[name])}")
+                            f"{', '.join(setting.choice_names())}")
         return text
-    if name == "rr_min_depth":
+    if _is_int(setting):
         try:
-            depth = int(text)
+            number: int | float = int(text)
         except ValueError:
-            raise SpecError(f"{where}: bad value {text!r} for rr_min_depth; expected an "
+            raise SpecError(f"{where}: bad value {text!r} for {name}; expected an "
                             "integer") from None
-        if not 0 <= depth <= RR_MIN_DEPTH_MAX:
-            raise SpecError(f"{where}: bad value {depth} for rr_min_depth; expected 0.."
-                            f"{RR_MIN_DEPTH_MAX}")
-        return depth
+        if not setting.minimum <= number <= setting.maximum:
+            raise SpecError(f"{where}: bad value {number} for {name}; expected "
+                            f"{value_syntax(name)}")
+        return number
     try:
-        radiance = float(text)
+        number = float(text)
     except ValueError:
-        raise SpecError(f"{where}: bad value {text!r} for control_variate; expected a number "
-                        ">= 0") from None
-    if not radiance >= 0.0 or radiance == float("inf"):  # also rejects nan
-        raise SpecError(f"{where}: bad value {text!r} for control_variate; expected a finite "
-                        "number >= 0")
-    return radiance
+        raise SpecError(f"{where}: bad value {text!r} for {name}; expected "
+                        f"{value_syntax(name)}") from None
+    above = number > setting.minimum if setting.open_minimum else number >= setting.minimum
+    if not (above and number <= setting.maximum):  # also rejects nan
+        raise SpecError(f"{where}: bad value {text!r} for {name}; expected "
+                        f"{value_syntax(name)}")
+    return number
 
 
 def parse_assignment(text: str, where: str) -> tuple[str, Value]:
@@ -187,7 +215,7 @@ def make_label(integrator: str, values: Mapping[str, Value], given: Iterable[str
 def resolve(spec: Spec, common: Mapping[str, Value],
             scene: Mapping[str, Value] | None = None) -> Estimator:
     """The spec's settings over --set's over the scene's over the defaults."""
-    values: dict[str, Value] = dict(DEFAULTS)
+    values = defaults()
     for name, value in (scene or {}).items():
         if name in values:
             values[name] = parse_value(name, str(value), "the scene's setting")

@@ -8,6 +8,7 @@ import argparse
 from pathlib import Path
 from typing import Any
 
+from . import estimators as est
 from . import plan as planning
 
 DEFAULT_SPP = "1,4,16"
@@ -19,13 +20,53 @@ class UsageError(Exception):
     """Bad input; the message is one line naming it."""
 
 
+def _listed(setting: str) -> str:
+    """The choices of a setting as help lists them: "random, lcg, ..."."""
+    from .. import native
+
+    return ", ".join(native.setting(setting).choice_names())
+
+
+def _assignment(name: str) -> str:
+    """NAME=VALUE of an estimator setting as help shows it, with the library's default."""
+    from .. import native
+
+    setting = native.setting(name)
+    syntax = est.value_syntax(name)
+    value = syntax if setting.choices else f"<{syntax}>"
+    return f"{name}={value} (default {setting.default})"
+
+
+def _library_help() -> dict[str, str]:
+    """Help texts made from the library's settings: the samplers, integrators and hemisphere
+    distributions, and the estimator settings with their values and defaults. Without the
+    library (`stratum --help` must still work) they say that its names are not listed; the
+    reason shows when the command runs."""
+    from .. import native
+
+    try:
+        return {
+            "samplers": f"sampler names ({_listed('sampler')})",
+            "integrators": f"{_listed('integrator')} (the native registry)",
+            "hemispheres": _listed("hemisphere"),
+            "assignments": ", ".join(_assignment(name) for name in est.SETTING_NAMES),
+        }
+    except native.StratumError:
+        unlisted = "(not listed: the native library cannot be loaded)"
+        return {"samplers": f"sampler names {unlisted}",
+                "integrators": f"a name of the native integrator registry {unlisted}",
+                "hemispheres": f"a name of the native hemisphere registry {unlisted}",
+                "assignments": f"{', '.join(est.SETTING_NAMES)}, values {unlisted}"}
+
+
 def add_arguments(p: argparse.ArgumentParser) -> None:
     """The `compare` subcommand's options (values are parsed and checked by run_compare, so
-    every bad value gives one line on stderr)."""
+    every bad value gives one line on stderr). Names, values and defaults of samplers,
+    integrators and estimator settings come from the library."""
+    listed = _library_help()
     p.add_argument("scene", help="the .blend file")
     p.add_argument("--samplers", default="all",
-                   help="comma-separated sampler names, or 'all' (default; see `stratum "
-                   "samplers`)")
+                   help=f"comma-separated {listed['samplers']}, or 'all' (default)")
     p.add_argument("--spp", default=DEFAULT_SPP,
                    help=f"comma-separated samples per pixel (default {DEFAULT_SPP})")
     p.add_argument("--seeds", default=str(DEFAULT_SEEDS), metavar="K",
@@ -46,11 +87,8 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="comma-separated estimator specs INTEGRATOR[:NAME=VALUE,...], e.g. "
                    "'path:light_sampling=bsdf,path:light_sampling=nee,"
                    "path:light_sampling=mis,mis_heuristic=balance,direct' (an item NAME=VALUE "
-                   "continues the spec before it). INTEGRATOR: path, direct, ao, light (the "
-                   "native registry). NAME=VALUE: light_sampling=mis|nee|bsdf, "
-                   "mis_heuristic=power|balance|max, light_selection=mixed|power|uniform, "
-                   "triangle_sampling=solid_angle|area, "
-                   "rr_mode=throughput|albedo|off, rr_min_depth=N, control_variate=L_a. "
+                   f"continues the spec before it). INTEGRATOR: {listed['integrators']}. "
+                   f"NAME=VALUE: {listed['assignments']}. "
                    "Each spec gets a short label for tables and plots (path: bsdf, nee, "
                    "mis-<heuristic>; others: the integrator's name; +<setting> for other "
                    "settings it names). Default: the scene's integrator and settings")
@@ -62,7 +100,9 @@ def add_arguments(p: argparse.ArgumentParser) -> None:
                    help="estimator of the reference renders (default: the one --integrator "
                    "estimator, or 'path', the path tracer's default, when several are "
                    "compared)")
-    p.add_argument("--hemisphere", help="hemisphere distribution (default: the scene's)")
+    p.add_argument("--hemisphere",
+                   help=f"hemisphere distribution: {listed['hemispheres']} (default: the "
+                   "scene's)")
     p.add_argument("--max-bounces", dest="max_bounces", help="default: the scene's")
     p.add_argument("--resolution", metavar="WxH", help="default: the scene's render size")
     p.add_argument("--crop", metavar="X,Y,W,H",
@@ -125,6 +165,20 @@ def _registry(kind: str) -> list[str]:
         return [e.name for e in native.registry(kind)]
     except native.StratumError as exc:
         raise UsageError(str(exc)) from None
+
+
+def _setting_int(text: str | None, option: str, name: str) -> int | None:
+    """An integer option that becomes render setting `name`, checked against its range."""
+    from .. import native
+
+    try:
+        setting = native.setting(name)
+    except native.StratumError as exc:
+        raise UsageError(str(exc)) from None
+    value = _int(text, option, int(setting.minimum))
+    if value is not None and value > setting.maximum:
+        raise UsageError(f"{option} {value} must be <= {setting.maximum}")
+    return value
 
 
 def _check_name(value: str | None, kind: str, option: str) -> None:
@@ -198,19 +252,17 @@ class Options:
         self._parse_estimators(args)
         _check_name(args.hemisphere, "hemisphere", "--hemisphere")
         self.hemisphere: str | None = args.hemisphere
-        self.max_bounces = _int(args.max_bounces, "--max-bounces", 0)
+        self.max_bounces = _setting_int(args.max_bounces, "--max-bounces", "max_bounces")
         self.resolution = _resolution(args.resolution) if args.resolution else None
         self.crop = _crop(args.crop) if args.crop else None
         self.out = Path(args.out) if args.out else Path(f"compare-{self.scene.stem}")
         if self.out.exists() and not self.out.is_dir():
             raise UsageError(f"--out {self.out} exists and is not a folder")
         self.jobs = _int(args.jobs, "--jobs", 1)
-        self.threads = _int(args.threads, "--threads", 0)
+        self.threads = _setting_int(args.threads, "--threads", "threads")
         self.scheduler: str | None = args.scheduler
 
     def _parse_estimators(self, args: argparse.Namespace) -> None:
-        from . import estimators as est
-
         try:
             self.common = est.parse_settings(getattr(args, "set_values", None) or [], "--set")
             integrators = _registry("integrator")
@@ -231,8 +283,6 @@ class Options:
         """(estimators compared, reference estimator or None): the specs resolved against
         --set and the scene's settings (probe); without --integrator, the scene's own
         integrator and settings."""
-        from . import estimators as est
-
         scene = probe.get("estimator_settings") or {}
         try:
             specs = self.specs

@@ -1,19 +1,20 @@
 """ctypes binding of the Stratum C ABI (native/include/stratum/stratum.h).
 
 This package is the ONLY code that knows the C ABI (and the only one that imports ctypes).
-Everything above it (export, engine, cli) talks to `Scene`, `Renderer` and `registry()`. Every
-native call goes through library._check, so a non-OK status becomes a `StratumError` carrying
-stratum_last_error()'s text; nothing here can abort the host process on bad input, because the
-library validates every value.
+Everything above it (export, engine, cli) talks to `Scene`, `Renderer`, `settings()` and
+`registry()`. Every native call goes through library._check, so a non-OK status becomes a
+`StratumError` carrying stratum_last_error()'s text; nothing here can abort the host process on
+bad input, because the library validates every value.
 
 Its modules, by job: abi (status codes, enums, C structs and function signatures mirroring
-the header), library (loading libstratum.so, errors, version, registries), marshalling (Python
-values as C arguments), descriptions (the dataclasses a Scene is made of), scene (`Scene`),
-renderer (`Renderer`, `Progress`), inspection (sampler points, hemisphere warps, the blue-noise
-texture and the dimension layout, without a scene). The public API is re-exported here, so
-`from stratum import native; native.Scene` is all a caller needs. Names with a leading
-underscore (_check, _Handle, the ctypes structs, ...) are shared between these modules
-only.
+the header), library (loading libstratum.so, errors, version), settings (the render settings
+with their choices, the registries among them, and the passes, as the library lists them),
+marshalling (Python values as C arguments), descriptions (the dataclasses a Scene is made
+of), scene (`Scene`), renderer (`Renderer`, `Progress`), inspection (sampler points, hemisphere
+warps, the blue-noise texture and the dimension layout, without a scene). The public API is
+re-exported here, so `from stratum import native; native.Scene` is all a caller needs. Names
+with a leading underscore (_check, _Handle, the ctypes structs, ...) are shared between these
+modules only.
 """
 
 from __future__ import annotations
@@ -58,7 +59,6 @@ from .abi import (
     PARAM_SPECULAR,
     PARAM_TRANSMISSION,
     PARAM_WEIGHT,
-    REGISTRIES,
     REGISTRY_FILTER,
     REGISTRY_HEMISPHERE,
     REGISTRY_INTEGRATOR,
@@ -80,6 +80,7 @@ from .abi import (
     VISIBLE_GLOSSY,
     VISIBLE_SHADOW,
     VISIBLE_TRANSMISSION,
+    SettingKind,
 )
 from .descriptions import (
     Camera,
@@ -101,16 +102,24 @@ from .inspection import (
 )
 from .library import (
     LibraryLoadError,
-    RegistryEntry,
     StratumError,
     default_library_path,
     library_available,
     load_library,
-    registry,
     version,
 )
 from .renderer import Progress, Renderer
 from .scene import Scene
+from .settings import (
+    REGISTRY_SETTINGS,
+    Pass,
+    RegistryEntry,
+    Setting,
+    passes,
+    registry,
+    setting,
+    settings,
+)
 
 __all__ = [
     "BLUENOISE_TEXTURE_SIZE", "BUMP_SHADOWING_CHIANG", "BUMP_SHADOWING_CHIANG_UNSMOOTHED",
@@ -123,14 +132,15 @@ __all__ = [
     "MATERIAL_HOLDOUT", "MATERIAL_PRINCIPLED_V1", "MATERIAL_PRINCIPLED_V2",
     "MATERIAL_TRANSPARENT", "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "OK",
     "PARAM_BASE_COLOR", "PARAM_EMISSION", "PARAM_METALLIC", "PARAM_NORMAL", "PARAM_ROUGHNESS",
-    "PARAM_SPECULAR", "PARAM_TRANSMISSION", "PARAM_WEIGHT", "Progress", "REGISTRIES",
+    "PARAM_SPECULAR", "PARAM_TRANSMISSION", "PARAM_WEIGHT", "Pass", "Progress",
     "REGISTRY_FILTER", "REGISTRY_HEMISPHERE", "REGISTRY_INTEGRATOR", "REGISTRY_SAMPLER",
-    "RegistryEntry", "Renderer", "SENSOR_FITS", "SENSOR_FIT_AUTO", "SENSOR_FIT_HORIZONTAL",
-    "SENSOR_FIT_VERTICAL", "STATUS_NAMES", "Scene", "StratumError", "TEXTURE_CLIP",
-    "TEXTURE_CLOSEST", "TEXTURE_EXTEND", "TEXTURE_LINEAR", "TEXTURE_MIRROR", "TEXTURE_REPEAT",
+    "REGISTRY_SETTINGS", "RegistryEntry", "Renderer", "SENSOR_FITS", "SENSOR_FIT_AUTO",
+    "SENSOR_FIT_HORIZONTAL", "SENSOR_FIT_VERTICAL", "STATUS_NAMES", "Scene", "Setting",
+    "SettingKind", "StratumError", "TEXTURE_CLIP", "TEXTURE_CLOSEST", "TEXTURE_EXTEND",
+    "TEXTURE_LINEAR", "TEXTURE_MIRROR", "TEXTURE_REPEAT",
     "Texture", "TextureBinding", "TextureInfo", "VISIBLE_ALL", "VISIBLE_CAMERA",
     "VISIBLE_DIFFUSE", "VISIBLE_GLOSSY", "VISIBLE_SHADOW", "VISIBLE_TRANSMISSION",
     "bluenoise_texture", "bounce_dimension_stride", "camera_dimensions",
-    "default_library_path", "dimension_name", "library_available", "load_library", "registry",
-    "sampler_points", "version", "warp_hemisphere",
+    "default_library_path", "dimension_name", "library_available", "load_library", "passes",
+    "registry", "sampler_points", "setting", "settings", "version", "warp_hemisphere",
 ]

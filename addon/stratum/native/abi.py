@@ -6,6 +6,7 @@ header; tests/python/test_native.py checks struct layouts.
 from __future__ import annotations
 
 import ctypes
+import enum
 from typing import Any
 
 # ---- status codes and enums (mirror stratum.h) --------------------------------------------
@@ -30,12 +31,15 @@ REGISTRY_SAMPLER = 0
 REGISTRY_FILTER = 1
 REGISTRY_INTEGRATOR = 2
 REGISTRY_HEMISPHERE = 3
-REGISTRIES: dict[str, int] = {
-    "sampler": REGISTRY_SAMPLER,
-    "filter": REGISTRY_FILTER,
-    "integrator": REGISTRY_INTEGRATOR,
-    "hemisphere": REGISTRY_HEMISPHERE,
-}
+
+
+# StratumSettingKind: how a render setting is set (stratum_renderer_set_int / _float / _string).
+class SettingKind(enum.IntEnum):
+    INT = 0
+    FLOAT = 1
+    CHOICE = 2  # one name of its choices
+    LIST = 3  # comma-separated names of its choices, "" = none
+
 
 MATERIAL_DIFFUSE = 0
 MATERIAL_PRINCIPLED_V1 = 1
@@ -238,6 +242,21 @@ class _CameraDesc(ctypes.Structure):
     ]
 
 
+class _SettingInfo(ctypes.Structure):
+    _fields_ = [
+        ("name", ctypes.c_char_p),
+        ("label", ctypes.c_char_p),
+        ("description", ctypes.c_char_p),
+        ("kind", ctypes.c_int32),
+        ("minimum", ctypes.c_double),
+        ("maximum", ctypes.c_double),
+        ("open_minimum", ctypes.c_int32),
+        ("unit", ctypes.c_char_p),
+        ("default_value", ctypes.c_char_p),
+        ("choice_count", ctypes.c_int32),
+    ]
+
+
 class _Progress(ctypes.Structure):
     _fields_ = [
         ("done", ctypes.c_int32),
@@ -313,4 +332,11 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
                                                  ctypes.POINTER(_TextureInfo)]),
         "stratum_scene_bind_texture": (c_int32, [p_void, ctypes.POINTER(_TextureBinding)]),
         "stratum_scene_add_instance_ex": (c_int32, [p_void, ctypes.POINTER(_InstanceDesc)]),
+        # settings and passes
+        "stratum_setting_count": (c_int32, []),
+        "stratum_setting_info": (c_int32, [c_int32, ctypes.POINTER(_SettingInfo)]),
+        "stratum_setting_choice": (c_int32, [c_int32, c_int32, pp_char, pp_char, pp_char]),
+        "stratum_pass_count": (c_int32, []),
+        "stratum_pass_info": (c_int32, [c_int32, pp_char, p_i32, pp_char]),
+        "stratum_renderer_read_pass": (c_int32, [p_void, p_char, p_float, ctypes.c_size_t]),
     }

@@ -1,5 +1,4 @@
-"""Loading libstratum.so, the errors every native call can raise, and what needs no scene:
-version and registries.
+"""Loading libstratum.so, the errors every native call can raise, and the library's version.
 
 The library is loaded lazily (first use), from $STRATUM_LIBRARY or stratum/lib/libstratum.so,
 with RTLD_LOCAL | RTLD_DEEPBIND on Linux: Blender (and the bpy wheel) carry their own Embree,
@@ -15,14 +14,11 @@ import os
 import sys
 import threading
 from pathlib import Path
-from typing import NamedTuple
 
 from .abi import (
     ERROR_INTERNAL,
-    ERROR_INVALID_ARGUMENT,
     ERROR_INVALID_STATE,
     OK,
-    REGISTRIES,
     STATUS_NAMES,
     function_signatures,
 )
@@ -52,14 +48,6 @@ class LibraryLoadError(StratumError):
 
     def __init__(self, message: str) -> None:
         super().__init__(ERROR_INTERNAL, message)
-
-
-class RegistryEntry(NamedTuple):
-    """(name, label, description) of a registry entry."""
-
-    name: str
-    label: str
-    description: str
 
 
 # ---- library loading ------------------------------------------------------------------------
@@ -133,33 +121,6 @@ def version() -> str:
     lib = load_library()
     raw = lib.stratum_version()
     return raw.decode("utf-8", "replace") if raw else ""
-
-
-def registry(kind: str) -> list[RegistryEntry]:
-    """Entries of the 'sampler', 'filter', 'integrator' or 'hemisphere' registry, as
-    (name, label, description)."""
-    if kind not in REGISTRIES:
-        raise ValueError(f"unknown registry {kind!r}; expected one of {sorted(REGISTRIES)}")
-    lib = load_library()
-    reg = REGISTRIES[kind]
-    count = lib.stratum_registry_count(reg)
-    if count < 0:
-        raise StratumError(ERROR_INVALID_ARGUMENT, _last_error(lib) or f"unknown registry {kind}")
-    entries: list[RegistryEntry] = []
-    for i in range(count):
-        name, label, desc = ctypes.c_char_p(), ctypes.c_char_p(), ctypes.c_char_p()
-        status = lib.stratum_registry_entry(
-            reg, i, ctypes.byref(name), ctypes.byref(label), ctypes.byref(desc)
-        )
-        _check(lib, status, "stratum_registry_entry")
-        entries.append(
-            RegistryEntry(
-                (name.value or b"").decode(),
-                (label.value or b"").decode(),
-                (desc.value or b"").decode(),
-            )
-        )
-    return entries
 
 
 # ---- native handles --------------------------------------------------------------------------

@@ -13,6 +13,7 @@ from .abi import _Progress
 from .library import _check, _Handle
 from .marshalling import _float_ptr
 from .scene import Scene
+from .settings import passes
 
 
 @dataclass(frozen=True)
@@ -139,6 +140,21 @@ class Renderer(_Handle):
         _check(self._lib,
                self._lib.stratum_renderer_read_pixels(self.handle, _float_ptr(out), out.size),
                "stratum_renderer_read_pixels")
+        return out
+
+    def read_pass(self, name: str) -> np.ndarray:
+        """Copies the current values of pass `name` (see passes(); the render holds Combined
+        and the passes its setting `passes` names) as a (height, width, channels) float32
+        array of the image's size, row 0 at the bottom as in read_pixels."""
+        channels = {p.name: p.channels for p in passes()}
+        if name not in channels:
+            raise ValueError(f"read_pass: unknown pass {name!r}; passes: {', '.join(channels)}")
+        width, height = self.image_size
+        out = np.empty((height, width, channels[name]), dtype=np.float32)
+        _check(self._lib,
+               self._lib.stratum_renderer_read_pass(self.handle, name.encode(), _float_ptr(out),
+                                                    out.size),
+               "stratum_renderer_read_pass")
         return out
 
     def write_image(self, path: str | os.PathLike[str]) -> None:

@@ -1,0 +1,45 @@
+"""Where each native render setting (native.settings()) comes from in Blender. Without bpy, so
+that the README's settings table (scripts/settings_table.py) and the tests read it too.
+
+Every setting the library lists is in exactly one of these, and tests/python/test_settings.py
+fails naming a setting that is in none, so a new library setting cannot be forgotten:
+
+* PROPERTIES: a property of scene.stratum with the setting's name, whose label, description,
+  range, choices and default are the library's (properties.py builds them);
+* FROM_BLENDER: taken from Blender's own render settings by the engine (engine.py), so that
+  Stratum does not duplicate what Blender already has;
+* NOT_IN_BLENDER: nothing in Blender sets it yet, for the reason given.
+"""
+
+from __future__ import annotations
+
+PROPERTIES: tuple[str, ...] = (
+    "samples", "sampler", "hemisphere", "seed", "integrator", "ao_distance", "max_bounces",
+    "light_sampling", "mis_heuristic", "triangle_sampling", "light_selection", "rr_mode",
+    "rr_min_depth", "control_variate", "filter_type", "filter_width", "threads",
+)
+
+# Setting -> the Blender value it is taken from.
+FROM_BLENDER: dict[str, str] = {
+    "width": "scene.render.resolution_x × resolution_percentage / 100",
+    "height": "scene.render.resolution_y × resolution_percentage / 100",
+    "crop_x": "scene.render.border_min_x × width, with use_border",
+    "crop_y": "scene.render.border_min_y × height, with use_border",
+    "crop_width": "(scene.render.border_max_x − border_min_x) × width, with use_border",
+    "crop_height": "(scene.render.border_max_y − border_min_y) × height, with use_border",
+    "film_transparent": "scene.render.film_transparent",
+}
+
+# Setting -> why nothing in Blender sets it.
+NOT_IN_BLENDER: dict[str, str] = {
+    "passes": "the engine fills only the Combined pass of Blender's render result so far",
+}
+
+# The Blender defaults that differ from the library's on purpose. Blender stores a property
+# only once it is changed, so a saved .blend that never touched one of these renders with the
+# default here: changing it changes how the bundled scenes render.
+UI_DEFAULTS: dict[str, int | float | str] = {
+    # Cycles' default sample count, so that switching a scene between the engines keeps it;
+    # the library's own default (16) suits quick native renders and tests.
+    "samples": 64,
+}
