@@ -2,7 +2,8 @@
 
     summary = export_scene(depsgraph, native_scene, should_stop, frame_set)
 
-exports a whole scene into a native scene the caller owns: SceneSync.full (sync.py).
+exports a whole scene into a native scene the caller owns: SceneSync.full (sync.py), which
+also keeps a native scene in step with later changes of the depsgraph (SceneSync.update).
 """
 
 from __future__ import annotations
@@ -13,13 +14,17 @@ from typing import Any
 from .common import ExportCancelled, ExportError, ExportSummary
 from .materials import convert_material
 from .meshes import mesh_arrays
-from .sync import SceneSync
+from .sync import SceneSync, UpdateResult
+from .updates import IdUpdate, collect_updates
 
 __all__ = [
     "ExportCancelled",
     "ExportError",
     "ExportSummary",
+    "IdUpdate",
     "SceneSync",
+    "UpdateResult",
+    "collect_updates",
     "convert_material",
     "export_scene",
     "mesh_arrays",

@@ -3,7 +3,7 @@
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import bpy
@@ -56,6 +56,13 @@ def named_edit(what: str, send: Callable[[], None]) -> Callable[[], None]:
             raise ExportError(f"{what}: {exc}") from exc
 
     return edit
+
+
+def comparable(description: Any) -> tuple[Any, ...]:
+    """The field values of a native description (a dataclass), arrays as their bytes: equal
+    exactly when the description sends the same values."""
+    return tuple(value.tobytes() if isinstance(value, np.ndarray) else value
+                 for value in (getattr(description, f.name) for f in fields(description)))
 
 
 def uses_nodes(idblock: Any) -> bool:

@@ -36,6 +36,14 @@ def identity(ob: Any) -> tuple[int, int]:
     return (original.as_pointer(), data.as_pointer() if data is not None else 0)
 
 
+def original_pointer(ob: Any | None) -> int:
+    """The pointer of the original data-block of `ob` (0 for None): what depsgraph updates
+    name."""
+    if ob is None:
+        return 0
+    return (getattr(ob, "original", None) or ob).as_pointer()
+
+
 class InstanceFlags:
     """Visibility and holdout per (object identity, instancer), cached: 10 000 instances of
     one object should not read its properties 10 000 times."""
