@@ -169,6 +169,24 @@ def test_moving_an_instancer_edits_every_instance_it_placed(scene_builder: Any,
     assert np.array_equal(after, _fresh_render(library, depsgraph))
 
 
+def test_ray_visibility_and_holdout_are_edits_of_instances_seen_by_some_rays(
+        scene_builder: Any, library: Any) -> None:
+    b = _build(scene_builder)
+    left = bpy.data.objects["Left"]
+    left.visible_shadow = False  # sent by itself, before the instances every ray sees
+    with SceneSync() as sync:
+        sync.full(b.depsgraph())
+        with library.Renderer(sync.scene, **SETTINGS) as renderer:
+            before = _render(renderer)
+            depsgraph, updates = _edit_in_blender(lambda: setattr(left, "is_holdout", True))
+            result = sync.update(depsgraph, updates)
+            assert not result.needs_full, result.reason
+            assert result.edits == 1
+            after = _render(renderer)
+    assert np.array_equal(after, _fresh_render(library, depsgraph))
+    assert not np.array_equal(after, before)
+
+
 def test_update_inside_the_depsgraph_handler_reads_depsgraph_updates(scene_builder: Any,
                                                                       library: Any) -> None:
     b = _build(scene_builder)
@@ -203,6 +221,8 @@ def _move_a_vertex() -> None:
     (lambda: bpy.context.scene.collection.objects.unlink(bpy.data.objects["Right"]),
      "objects were"),
     (lambda: setattr(bpy.data.lights["Light"], "energy", -1.0), "Light 'Light'"),
+    # A full export sends instances every ray sees, not held out, after all others.
+    (lambda: setattr(bpy.data.objects["Right"], "visible_glossy", False), "Object 'Right'"),
 ])
 def test_what_edits_cannot_express_asks_for_a_full_export(scene_builder: Any, library: Any,
                                                           edit: Callable[[], None],
