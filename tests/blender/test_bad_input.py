@@ -169,7 +169,7 @@ def test_zero_focal_length_is_an_error_naming_the_camera(library: Any, scene_bui
         cam.lens_mm = 0.0
         return cam
 
-    monkeypatch.setattr("stratum.export.convert_camera", zero_lens)
+    monkeypatch.setattr("stratum.export.sync.convert_camera", zero_lens)
     render_still(b.scene, tmp_path / "zero_lens.exr")
     errors = engine_reports("ERROR")
     assert len(errors) == 1 and "Camera 'Camera'" in errors[0] and "lens" in errors[0]

@@ -2,11 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable
+from dataclasses import dataclass, field, fields
 from typing import Any
 
 import bpy
 import numpy as np
+
+from .. import native
 
 
 class ExportError(RuntimeError):
@@ -15,6 +18,10 @@ class ExportError(RuntimeError):
 
 class ExportCancelled(RuntimeError):
     """The user pressed Esc during export."""
+
+
+class FullExportNeeded(Exception):
+    """A change that live edits cannot express (SceneSync.update); the message says which."""
 
 
 @dataclass
@@ -37,6 +44,25 @@ class ExportSummary:
     def warn(self, message: str) -> None:
         if message not in self.warnings:
             self.warnings.append(message)
+
+
+def named_edit(what: str, send: Callable[[], None]) -> Callable[[], None]:
+    """`send` (a live edit of the native scene), its rejection an ExportError naming `what`."""
+
+    def edit() -> None:
+        try:
+            send()
+        except native.StratumError as exc:
+            raise ExportError(f"{what}: {exc}") from exc
+
+    return edit
+
+
+def comparable(description: Any) -> tuple[Any, ...]:
+    """The field values of a native description (a dataclass), arrays as their bytes: equal
+    exactly when the description sends the same values."""
+    return tuple(value.tobytes() if isinstance(value, np.ndarray) else value
+                 for value in (getattr(description, f.name) for f in fields(description)))
 
 
 def uses_nodes(idblock: Any) -> bool:

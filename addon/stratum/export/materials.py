@@ -5,19 +5,36 @@ feeds it the active Material Output's Surface input, then sends the closures, th
 their bindings to the native scene. A material of one closure with weight 1 is added with
 stratum_scene_add_material, any other with stratum_scene_add_closure_material: the same thing
 to the renderer.
+
+Each native material remembers what it was made from (SentMaterial), so that a later change of
+the Blender material can be sent as a live edit (MaterialTable.change): its closures can be
+replaced in place; its texture bindings and the UV layer they read cannot (they are part of the
+native scene's structure, and decide which arrays its meshes hold), so a change of those needs a
+full export.
 """
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass, field, replace
+from functools import partial
 from typing import Any
 
 import bpy
 
 from .. import native
 from ..fallbacks import UNIT, clamp_rgb
-from ..shader_graph import DEFAULT_GREY, Closure, flatten_surface
-from .common import ExportError, ExportSummary, active_output, linked_from, rgb, uses_nodes
+from ..shader_graph import DEFAULT_GREY, Closure, Rgb, flatten_surface
+from .common import (
+    ExportError,
+    ExportSummary,
+    FullExportNeeded,
+    active_output,
+    linked_from,
+    named_edit,
+    rgb,
+    uses_nodes,
+)
 from .images import TextureTable
 
 
@@ -96,6 +113,43 @@ def with_bump_shadowing(converted: ConvertedMaterial, model: int) -> ConvertedMa
     return replace(converted, closures=closures)
 
 
+@dataclass(frozen=True)
+class SentMaterial:
+    """What a native material was made from: its weighted closures, and per texture binding
+    (closure index, parameter, original image pointer, interpolation, extension, channel,
+    scale, offset), and the UV layer its textures read."""
+
+    closures: tuple[tuple[Rgb, native.Material], ...]
+    textures: tuple[tuple[Any, ...], ...]
+    uv_map: str
+
+    @property
+    def images(self) -> frozenset[int]:
+        return frozenset(texture[2] for texture in self.textures)
+
+
+def sent_material(converted: ConvertedMaterial) -> SentMaterial:
+    textures = []
+    for index, closure in enumerate(converted.closures):
+        for b in closure.bindings:
+            node = b.image.node
+            image = node.image
+            original = getattr(image, "original", None) or image
+            textures.append((index, b.param, original.as_pointer() if image is not None else 0,
+                             str(node.interpolation), str(node.extension), b.channel, b.scale,
+                             b.offset))
+    return SentMaterial(tuple((c.weight, c.material) for c in converted.closures),
+                        tuple(textures), converted.uv_map)
+
+
+def _single_closure(closures: list[Closure]) -> native.Material | None:
+    """The material of a one-closure material of weight 1 (sent as a plain material), else
+    None (sent as a closure material)."""
+    if len(closures) == 1 and closures[0].weight == (1.0, 1.0, 1.0):
+        return closures[0].material
+    return None
+
+
 class MaterialTable:
     """Assigns native material ids, once per Blender material (plus one default), and the
     textures they bind, once per image."""
@@ -103,7 +157,8 @@ class MaterialTable:
     def __init__(self, scene: Any, summary: ExportSummary) -> None:
         self._scene = scene
         self._summary = summary
-        self._ids: dict[int, int] = {}
+        self.ids: dict[int, int] = {}  # original material pointer -> native id
+        self.sent: dict[int, SentMaterial] = {}  # native id -> what it was made from
         self._default: int | None = None
         self._material_name = ""
         self.textures = TextureTable(scene, self._texture_warning)
@@ -126,23 +181,40 @@ class MaterialTable:
             return self.default_id()
         original = getattr(material, "original", material) or material
         key = original.as_pointer()
-        found = self._ids.get(key)
+        found = self.ids.get(key)
         if found is not None:
             return found
-        converted = with_bump_shadowing(convert_material(material),
-                                        bump_shadowing_model(material, tuple(bpy.app.version)))
-        for warning in converted.warnings:
-            self._summary.warn(warning)
-        mat_id = self._add(material.name, converted)
-        self._ids[key] = mat_id
+        mat_id = self._add(material.name, _converted(material, self._summary))
+        self.ids[key] = mat_id
         return mat_id
+
+    def change(self, mat_id: int, material: Any,
+               summary: ExportSummary) -> Callable[[], None] | None:
+        """The live edit that makes native material `mat_id` the evaluated Blender `material`
+        as it is now, or None when that is what it is already. FullExportNeeded when its
+        textures or their UV layer changed."""
+        converted = _converted(material, summary)
+        now = sent_material(converted)
+        before = self.sent[mat_id]
+        if now.textures != before.textures or now.uv_map != before.uv_map:
+            raise FullExportNeeded(f"Material '{material.name}': its image textures changed")
+        if now.closures == before.closures:
+            return None
+        self.sent[mat_id] = now
+        single = _single_closure(converted.closures)
+        if single is not None:
+            send = partial(self._scene.set_material, mat_id, single)
+        else:
+            send = partial(self._scene.set_closure_material, mat_id, list(now.closures))
+        return named_edit(f"Material '{material.name}'", send)
 
     def _add(self, name: str, converted: ConvertedMaterial) -> int:
         closures = converted.closures
         self._material_name = name
+        single = _single_closure(closures)
         try:
-            if len(closures) == 1 and closures[0].weight == (1.0, 1.0, 1.0):
-                mat_id = self._scene.add_material(closures[0].material)
+            if single is not None:
+                mat_id = self._scene.add_material(single)
             else:
                 mat_id = self._scene.add_closure_material(
                     [(c.weight, c.material) for c in closures])
@@ -155,9 +227,20 @@ class MaterialTable:
         except native.StratumError as exc:
             raise ExportError(f"Material '{name}': {exc}") from exc
         self._summary.materials += 1
+        self.sent[mat_id] = sent_material(converted)
         self.uv_maps[mat_id] = converted.uv_map
         if any(c.bindings for c in closures):
             self.textured.add(mat_id)
         if any(b.param == native.PARAM_NORMAL for c in closures for b in c.bindings):
             self.normal_mapped.add(mat_id)
         return mat_id
+
+
+def _converted(material: Any, summary: ExportSummary) -> ConvertedMaterial:
+    """The closures of a Blender material with this Blender's bump shadowing; its warnings go
+    to `summary`."""
+    converted = with_bump_shadowing(convert_material(material),
+                                    bump_shadowing_model(material, tuple(bpy.app.version)))
+    for warning in converted.warnings:
+        summary.warn(warning)
+    return converted

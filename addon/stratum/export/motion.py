@@ -32,13 +32,19 @@ def instance_key(instance: Any, ob: Any) -> tuple[Any, ...]:
     return (ob.name,)
 
 
-def shutter_interval(bl_scene: Any) -> tuple[float, float]:
+def shutter_settings(bl_scene: Any) -> tuple[bool, float, str]:
+    """(motion blur on, shutter in frames, position) of a scene."""
     render = bl_scene.render
-    frame = float(bl_scene.frame_current) + float(getattr(bl_scene, "frame_subframe", 0.0))
-    shutter = max(float(render.motion_blur_shutter), 0.0)
     position = getattr(render, "motion_blur_position", None)
     if position is None:
         position = getattr(getattr(bl_scene, "cycles", None), "motion_blur_position", "CENTER")
+    return bool(render.use_motion_blur), float(render.motion_blur_shutter), str(position)
+
+
+def shutter_interval(bl_scene: Any) -> tuple[float, float]:
+    frame = float(bl_scene.frame_current) + float(getattr(bl_scene, "frame_subframe", 0.0))
+    _, shutter, position = shutter_settings(bl_scene)
+    shutter = max(shutter, 0.0)
     if position == "START":
         return frame, frame + shutter
     if position == "END":

@@ -1,4 +1,4 @@
-"""`Renderer`: renders a copy of a Scene on native worker threads; `Progress` is what it reports
+"""`Renderer`: renders a Scene on native worker threads; `Progress` is what it reports
 while it runs."""
 
 from __future__ import annotations
@@ -30,7 +30,9 @@ class Progress:
 
 
 class Renderer(_Handle):
-    """Renders a copy of a Scene on native worker threads."""
+    """Renders a Scene on native worker threads. Edits of the scene made after the renderer
+    (Scene.set_instance, set_material, ...) reach it at its next start(); the scene may be
+    closed before it."""
 
     _destroy_name = "stratum_renderer_destroy"
 

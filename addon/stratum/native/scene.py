@@ -28,6 +28,57 @@ from .descriptions import Camera, Instance, Light, Material, Texture, TextureBin
 from .library import StratumError, _check, _Handle, load_library
 from .marshalling import _fields, _float_ptr, _matrix16, _set_struct, _uint32, _uint_ptr
 
+# Weighted closures of a closure material: [(weight RGB, material), ...].
+Closures = Sequence[tuple[Sequence[float], Mapping[str, Any] | Material]]
+
+
+def _material_desc(material: Mapping[str, Any] | Material,
+                   what: str = "material") -> _MaterialDesc:
+    """The struct of `material` (missing fields: Material's defaults); errors name `what`."""
+    desc = _MaterialDesc()
+    values = asdict(Material())
+    values.update(_fields(material))
+    _set_struct(desc, values, what)
+    return desc
+
+
+def _closure_descs(closures: Closures) -> ctypes.Array[_ClosureDesc]:
+    n = len(closures)
+    if n == 0:
+        raise ValueError("closure material: at least one closure is needed")
+    descs = (_ClosureDesc * n)()
+    for i, (weight, material) in enumerate(closures):
+        descs[i].closure = _material_desc(material, f"closure {i}")
+        _set_struct(descs[i], {"weight": weight}, f"closure {i}")
+    return descs
+
+
+def _instance_desc(instance: Instance) -> _InstanceDesc:
+    desc = _InstanceDesc()
+    desc.mesh_id = _uint32(instance.mesh_id, "instance mesh_id")
+    # memmove, not per-element assignment: scenes place tens of thousands of instances.
+    start = _matrix16(instance.transform, "instance transform")
+    ctypes.memmove(desc.transform, start.ctypes.data, 64)
+    if instance.transform_end is not None:
+        end = _matrix16(instance.transform_end, "instance transform_end")
+        ctypes.memmove(desc.transform_end, end.ctypes.data, 64)
+        desc.motion = 1
+    desc.visibility = _uint32(instance.visibility, "instance visibility")
+    desc.holdout = 1 if instance.holdout else 0
+    return desc
+
+
+def _light_desc(light: Mapping[str, Any] | Light | None, fields: Mapping[str, Any]) -> _LightDesc:
+    """The struct of `light` (None: the defaults) with `fields` overriding its values."""
+    values = asdict(Light())
+    if light is not None:
+        values.update(_fields(light))
+    values.update(fields)
+    values["transform"] = _matrix16(values["transform"], "light transform")
+    desc = _LightDesc()
+    _set_struct(desc, values, "light")
+    return desc
+
 
 class Scene(_Handle):
     """A native scene under construction: materials, meshes, instances, lights, camera."""
@@ -67,32 +118,20 @@ class Scene(_Handle):
         return rays.value, seconds.value
 
     def add_material(self, material: Mapping[str, Any] | Material) -> int:
-        desc = _MaterialDesc()
-        defaults = asdict(Material())
-        defaults.update(_fields(material))
-        _set_struct(desc, defaults, "material")
         out = ctypes.c_uint32()
         _check(self._lib,
-               self._lib.stratum_scene_add_material(self.handle, ctypes.byref(desc),
+               self._lib.stratum_scene_add_material(self.handle,
+                                                    ctypes.byref(_material_desc(material)),
                                                     ctypes.byref(out)),
                "stratum_scene_add_material")
         return int(out.value)
 
-    def add_closure_material(
-            self, closures: Sequence[tuple[Sequence[float], Mapping[str, Any] | Material]]) -> int:
+    def add_closure_material(self, closures: Closures) -> int:
         """A material made of weighted closures [(weight RGB, material), ...]."""
-        n = len(closures)
-        if n == 0:
-            raise ValueError("closure material: at least one closure is needed")
-        descs = (_ClosureDesc * n)()
-        for i, (weight, material) in enumerate(closures):
-            values = asdict(Material())
-            values.update(_fields(material))
-            _set_struct(descs[i].closure, values, f"closure {i}")
-            _set_struct(descs[i], {"weight": weight}, f"closure {i}")
+        descs = _closure_descs(closures)
         out = ctypes.c_uint32()
         fn = self._lib.stratum_scene_add_closure_material
-        _check(self._lib, fn(self.handle, descs, n, ctypes.byref(out)),
+        _check(self._lib, fn(self.handle, descs, len(descs), ctypes.byref(out)),
                "stratum_scene_add_closure_material")
         return int(out.value)
 
@@ -234,30 +273,45 @@ class Scene(_Handle):
 
     def add_instance_ex(self, instance: Instance) -> None:
         """An instance with motion (transform_end not None), ray visibility and holdout."""
-        desc = _InstanceDesc()
-        desc.mesh_id = _uint32(instance.mesh_id, "instance mesh_id")
-        # memmove, not per-element assignment: scenes place tens of thousands of instances.
-        start = _matrix16(instance.transform, "instance transform")
-        ctypes.memmove(desc.transform, start.ctypes.data, 64)
-        if instance.transform_end is not None:
-            end = _matrix16(instance.transform_end, "instance transform_end")
-            ctypes.memmove(desc.transform_end, end.ctypes.data, 64)
-            desc.motion = 1
-        desc.visibility = _uint32(instance.visibility, "instance visibility")
-        desc.holdout = 1 if instance.holdout else 0
         fn = self._lib.stratum_scene_add_instance_ex
-        _check(self._lib, fn(self.handle, ctypes.byref(desc)), "stratum_scene_add_instance_ex")
+        _check(self._lib, fn(self.handle, ctypes.byref(_instance_desc(instance))),
+               "stratum_scene_add_instance_ex")
 
     def add_light(self, light: Mapping[str, Any] | Light | None = None, **fields: Any) -> None:
-        values = asdict(Light())
-        if light is not None:
-            values.update(_fields(light))
-        values.update(fields)
-        values["transform"] = _matrix16(values["transform"], "light transform")
-        desc = _LightDesc()
-        _set_struct(desc, values, "light")
+        desc = _light_desc(light, fields)
         _check(self._lib, self._lib.stratum_scene_add_light(self.handle, ctypes.byref(desc)),
                "stratum_scene_add_light")
+
+    # Live edits (stratum.h "live edits"): each replaces one part of a scene renderers may
+    # have been made from, validated as when it was added; a renderer sees the edits at its
+    # next start. Indices count instances and lights in the order they were added.
+
+    def set_instance(self, index: int, instance: Instance) -> None:
+        fn = self._lib.stratum_scene_set_instance
+        _check(self._lib, fn(self.handle, _uint32(index, "instance index"),
+                             ctypes.byref(_instance_desc(instance))),
+               "stratum_scene_set_instance")
+
+    def set_material(self, material_id: int, material: Mapping[str, Any] | Material) -> None:
+        fn = self._lib.stratum_scene_set_material
+        _check(self._lib, fn(self.handle, _uint32(material_id, "material_id"),
+                             ctypes.byref(_material_desc(material))),
+               "stratum_scene_set_material")
+
+    def set_closure_material(self, material_id: int, closures: Closures) -> None:
+        """Replaces material `material_id` by weighted closures [(weight RGB, material), ...].
+        Its texture bindings stay: they name closures by index."""
+        descs = _closure_descs(closures)
+        fn = self._lib.stratum_scene_set_closure_material
+        _check(self._lib, fn(self.handle, _uint32(material_id, "material_id"), descs,
+                             len(descs)),
+               "stratum_scene_set_closure_material")
+
+    def set_light(self, index: int, light: Mapping[str, Any] | Light) -> None:
+        fn = self._lib.stratum_scene_set_light
+        _check(self._lib, fn(self.handle, _uint32(index, "light index"),
+                             ctypes.byref(_light_desc(light, {}))),
+               "stratum_scene_set_light")
 
     def set_camera(self, camera: Mapping[str, Any] | Camera | None = None,
                    **fields: Any) -> None:

@@ -119,16 +119,16 @@ def _cancelled_render(monkeypatch: pytest.MonkeyPatch,
 
 
 def _arm_in_export(patch: pytest.MonkeyPatch, clock: BreakClock) -> None:
-    import stratum.export
+    import stratum.export.geometry
 
-    read = stratum.export.object_mesh_arrays
+    read = stratum.export.geometry.object_mesh_arrays
 
     def reading(ob: Any, *args: Any, **kwargs: Any) -> Any:
         if ob.name == "Grid":
             clock.arm()
         return read(ob, *args, **kwargs)
 
-    patch.setattr(stratum.export, "object_mesh_arrays", reading)
+    patch.setattr(stratum.export.geometry, "object_mesh_arrays", reading)
 
 
 def _arm_after_start(patch: pytest.MonkeyPatch, clock: BreakClock) -> None:

@@ -1,0 +1,106 @@
+"""How a depsgraph object instance is placed: what it draws (its identity), which rays see it
+and whether it is held out (Object > Visibility in Cycles), and whether its transform can be
+rendered (stratum/placement.py)."""
+
+from __future__ import annotations
+
+from collections.abc import Sequence
+from typing import Any
+
+import numpy as np
+
+from ..placement import degenerate, first_non_finite
+from .common import ExportError, ExportSummary
+from .lights import object_visibility
+
+# (row, mesh id, object name, triangles, visibility, holdout, (open, close) or None)
+Placement = tuple[int, int, str, int, int, bool, Any]
+
+
+def holdout(ob: Any, view_layer: Any) -> bool:
+    """Object > Visibility > Holdout, or a holdout collection in the view layer."""
+    if getattr(ob, "is_holdout", False):
+        return True
+    original = getattr(ob, "original", None) or ob
+    try:
+        return bool(original.holdout_get(view_layer=view_layer))
+    except (TypeError, RuntimeError, AttributeError):
+        return False
+
+
+def identity(ob: Any) -> tuple[int, int]:
+    """What an object draws: its original object and its evaluated data. Stable across the
+    temporary objects depsgraph iteration hands out for instances (their pointers are reused)."""
+    original = getattr(ob, "original", None) or ob
+    data = ob.data
+    return (original.as_pointer(), data.as_pointer() if data is not None else 0)
+
+
+def original_pointer(ob: Any | None) -> int:
+    """The pointer of the original data-block of `ob` (0 for None): what depsgraph updates
+    name."""
+    if ob is None:
+        return 0
+    return (getattr(ob, "original", None) or ob).as_pointer()
+
+
+class InstanceFlags:
+    """Visibility and holdout per (object identity, instancer), cached: 10 000 instances of
+    one object should not read its properties 10 000 times."""
+
+    def __init__(self, view_layer: Any) -> None:
+        self._view_layer = view_layer
+        self._cache: dict[tuple[tuple[int, int], int], tuple[int, bool]] = {}
+
+    def get(self, ob: Any, ident: tuple[int, int], parent: Any | None) -> tuple[int, bool]:
+        key = (ident, parent.as_pointer() if parent is not None else 0)
+        found = self._cache.get(key)
+        if found is None:
+            # Cycles (blender/object.cpp): an instance is visible to the rays both it and its
+            # instancer are visible to, and held out if either is.
+            visibility = object_visibility(ob)
+            held_out = holdout(ob, self._view_layer)
+            if parent is not None:
+                visibility &= object_visibility(parent)
+                held_out = held_out or holdout(parent, self._view_layer)
+            found = (visibility, held_out)
+            self._cache[key] = found
+        return found
+
+
+def check_finite(transforms: np.ndarray, names: Sequence[str]) -> None:
+    """ExportError naming the object of the first transform (N, 4, 4) with a NaN or infinite
+    element; names[i] is the object of transforms[i]."""
+    finite = np.isfinite(transforms).all(axis=(1, 2))
+    if not finite.all():
+        i = int(np.flatnonzero(~finite)[0])
+        element, value = first_non_finite(transforms[i]) or (0, 0.0)
+        raise ExportError(f"Object '{names[i]}': transform element {element} = {value:g} is "
+                          "not finite")
+
+
+def warn_degenerate(name: str, summary: ExportSummary) -> None:
+    summary.warn(f"Object '{name}': its transform has (nearly) zero scale along some axis (a "
+                 "linear part too close to singular to trace); skipped")
+
+
+def renderable(placed: list[Placement], matrices: np.ndarray,
+               summary: ExportSummary) -> list[bool]:
+    """Per placement, whether its transforms can be rendered. A NaN or infinite element is an
+    ExportError naming the object; a degenerate transform (stratum/placement.py) is skipped
+    with a warning naming the object."""
+    if not placed:
+        return []
+    first = matrices[[p[0] for p in placed]]
+    moving = [i for i, p in enumerate(placed) if p[6] is not None]
+    ends = np.empty((0, 4, 4), dtype=np.float32)
+    if moving:
+        first[moving] = np.stack([placed[i][6][0] for i in moving])
+        ends = np.stack([placed[i][6][1] for i in moving])
+    check_finite(first, [p[2] for p in placed])
+    check_finite(ends, [placed[i][2] for i in moving])
+    skip = degenerate(first)
+    skip[moving] |= degenerate(ends)
+    for i in np.flatnonzero(skip):
+        warn_degenerate(placed[i][2], summary)
+    return [not s for s in skip.tolist()]

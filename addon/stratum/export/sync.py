@@ -1,0 +1,362 @@
+"""SceneSync: one exporter for a whole scene and for what changed since (Cycles' BlenderSync).
+
+    sync = SceneSync()                   # owns the native scenes it fills
+    summary = sync.full(depsgraph)       # the whole scene, into a new native scene
+    renderer = native.Renderer(sync.scene)
+    ...                                  # the scene is edited in Blender
+    result = sync.update(depsgraph)      # while depsgraph.updates is reported (updates.py)
+    if result.needs_full:                # result.reason says why
+        sync.full(depsgraph)             # a new native scene: make a new renderer from it
+    elif result.edits:
+        renderer.start()                 # from sample 0; only what changed is rebuilt
+
+full(): every mesh is sent once per distinct evaluated geometry (and material assignment) and
+placed by one instance per depsgraph object instance (objects, collection instances, particle and
+geometry-nodes instances). Instances carry the object's ray visibility and holdout (Object >
+Visibility in Cycles) and, with motion blur, the transforms at shutter open and close.
+Collections excluded from the view layer or disabled for render never reach
+depsgraph.object_instances, so nothing else is needed for them. Objects Stratum does not render
+are reported once per kind (unsupported.py); transforms are checked before they reach the
+native scene (stratum/placement.py).
+
+update() sends what differs from what was sent as live edits (stratum.h "live edits"), which a
+renderer made from the scene applies at its next start with the image a fresh full export of
+the edited scene gives, bit for bit (object_sync.py: instances and lights):
+  * object transforms, ray visibility and holdout: set_instance for every native instance the
+    object placed, itself or as an instancer;
+  * lights: set_light;
+  * materials: set_material / set_closure_material, whatever their closures become, as long
+    as their image textures stay as they were (materials.py);
+  * the camera: set_camera; the world: set_background / set_environment.
+It sends nothing and asks for a full export (needs_full, with the reason) for what the native
+scene can only take by being built anew, or what a fresh export would send differently:
+  * geometry: mesh edits, modifiers, material slots (Blender reports those as geometry updates);
+  * objects added, removed, shown, hidden or instanced differently;
+  * a light or an instance that starts or stops being rendered (a degenerate transform, a
+    light turned off), an instance whose visibility and holdout change between "all rays, not
+    held out" and anything else (a full export places those two kinds apart), and any
+    instance change with motion blur on (its shutter transforms need other frames evaluated);
+  * the motion blur settings; a material's image textures or their UV layer, or an image
+    one textures with (textures are part of the native scene's structure);
+  * the world losing its environment image (a native scene has no call to drop one).
+Until full() runs again after that, every update() asks for it.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+from functools import partial
+from typing import Any
+
+import numpy as np
+
+from .. import native
+from .camera import convert_camera
+from .common import (
+    ExportCancelled,
+    ExportError,
+    ExportSummary,
+    FullExportNeeded,
+    comparable,
+    instance_matrices,
+    named_edit,
+)
+from .geometry import LIGHT_ID, object_geometry
+from .instances import InstanceFlags, Placement, identity, original_pointer, renderable
+from .lights import convert_light
+from .materials import MaterialTable
+from .motion import instance_key, shutter_settings, shutter_transforms
+from .object_sync import ExportedObjects, object_edits, row_signature
+from .unsupported import UnsupportedObjects
+from .updates import Changes, IdUpdate, collect_updates, sort_updates
+from .world import Environment, convert_environment, convert_world
+
+
+@dataclass
+class UpdateResult:
+    needs_full: bool = False
+    reason: str = ""  # why a full export is needed, naming what changed
+    edits: int = 0  # live edits sent; 0: the renderer's image is still the scene's
+    warnings: list[str] = field(default_factory=list)
+
+
+@dataclass
+class _Exported:
+    """What the last sync sent, for update() to compare with."""
+
+    objects: ExportedObjects
+    materials: MaterialTable
+    camera: tuple[Any, ...]  # comparable(native.Camera)
+    world: int  # original pointer of the scene's world
+    background: tuple[float, float, float]
+    environment: Environment | None
+    shutter: tuple[bool, float, str]  # motion.shutter_settings
+
+
+class SceneSync:
+    """The native scene of a depsgraph, kept in step with it. Each full() fills a new scene
+    from new_scene() and closes the previous one (renderers made from that keep rendering
+    what it held)."""
+
+    def __init__(self, new_scene: Callable[[], Any] = native.Scene) -> None:
+        self._new_scene = new_scene
+        self._scene: Any | None = None
+        self._exported: _Exported | None = None
+        self._stale = "nothing was exported yet"
+
+    @property
+    def scene(self) -> Any:
+        if self._scene is None:
+            raise RuntimeError("SceneSync.scene: nothing was exported yet (call full())")
+        return self._scene
+
+    def close(self) -> None:
+        if self._scene is not None and hasattr(self._scene, "close"):
+            self._scene.close()
+        self._scene = None
+        self._exported = None
+        self._stale = "nothing was exported yet"
+
+    def __enter__(self) -> SceneSync:
+        return self
+
+    def __exit__(self, *exc: object) -> None:
+        self.close()
+
+    def full(self, depsgraph: Any, should_stop: Callable[[], bool] | None = None,
+             frame_set: Callable[[int, float], None] | None = None) -> ExportSummary:
+        """Exports the evaluated scene of `depsgraph` into a new native scene (self.scene).
+
+        Raises ExportError (message names the object) for data that cannot be rendered and
+        ExportCancelled if should_stop() becomes true. Unsupported features that have a
+        fallback are collected in summary.warnings (one per material node / light / world /
+        object). frame_set(frame, subframe) re-evaluates the depsgraph at another time
+        (RenderEngine.frame_set during a render); it is needed for motion blur only."""
+        self.close()
+        start = time.perf_counter()
+        self._scene = scene = self._new_scene()
+        summary = ExportSummary()
+        bl_scene = _evaluated_scene(depsgraph)
+        materials = MaterialTable(scene, summary)
+        motion = shutter_transforms(depsgraph, bl_scene, frame_set, summary.warn)
+
+        try:
+            # Blender clamps lens to >= 1 mm, so a zero focal length comes only from files
+            # other tools wrote; the native side rejects it (and any other bad value) by name.
+            camera = convert_camera(bl_scene, depsgraph)
+            scene.set_camera(camera)
+        except native.StratumError as exc:
+            raise ExportError(f"Camera '{bl_scene.camera.name}': {exc}") from exc
+        try:
+            background = convert_world(bl_scene, summary)
+            scene.set_background(background)
+            environment = convert_environment(bl_scene, summary)
+            if environment is not None:
+                scene.set_environment(environment.rgb, environment.strength,
+                                      environment.rotation)
+        except native.StratumError as exc:
+            raise ExportError(f"World '{getattr(bl_scene.world, 'name', '')}': {exc}") from exc
+
+        exported = ExportedObjects(motion_blur=motion is not None)
+        flags = InstanceFlags(getattr(depsgraph, "view_layer", None))
+        unsupported = UnsupportedObjects()
+        # Per geometry identity (original object, evaluated data): (mesh id, triangles);
+        # LIGHT_ID for lights, -1 for nothing to draw.
+        objects: dict[tuple[int, int], tuple[int, int]] = {}
+        mesh_ids: dict[tuple[Any, ...], tuple[int, int]] = {}  # key -> (mesh id, triangles)
+        placed: list[Placement] = []
+        index = -1
+        for index, instance in enumerate(depsgraph.object_instances):
+            if should_stop is not None and index % 256 == 0 and should_stop():
+                raise ExportCancelled("export cancelled")
+            is_instance = instance.is_instance
+            # instance.object is what is drawn: for an instance, a temporary object (valid
+            # during this iteration only) that carries the instance's own data -- a
+            # geometry-nodes instance of mesh data has no object of its own (instance_object
+            # is its instancer).
+            ob = instance.object
+            # show_self is off for an instancer whose own geometry is hidden in renders (Cycles
+            # skips those too: blender/object.cpp).
+            if ob is None or not (is_instance or instance.show_self):
+                exported.rows.append(None)
+                continue
+            ident = identity(ob)
+            parent = instance.parent if is_instance else None
+            exported.rows.append(row_signature(ident, parent))
+            found = objects.get(ident)
+            if found is None:
+                found = (-1, 0) if unsupported.skip(ob) else \
+                    object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
+                objects[ident] = found
+                # A big mesh takes a tenth of a second or more to read out of Blender: Esc is
+                # honoured after each one, not only every 256 instances.
+                if should_stop is not None and found[1] > 0 and should_stop():
+                    raise ExportCancelled("export cancelled")
+            mesh_id = found[0]
+            if mesh_id == LIGHT_ID:
+                light = convert_light(ob, instance.matrix_world, flags.get(ob, ident, parent)[0],
+                                      summary)
+                exported.lights[index] = _add_light(ob.name, light, scene, summary)
+                if light is not None:
+                    exported.sent_lights.append(comparable(light))
+            elif mesh_id >= 0:
+                moved = motion.get(instance_key(instance, ob)) if motion else None
+                visibility, holdout = flags.get(ob, ident, parent)
+                placed.append((index, mesh_id, ob.name, found[1], visibility, holdout, moved))
+        unsupported.report(summary)
+        matrices = instance_matrices(depsgraph, index + 1)
+        _place(placed, renderable(placed, matrices, summary), matrices, scene, summary,
+               exported)
+
+        summary.textures = materials.textures.count
+        self._exported = _Exported(exported, materials, comparable(camera),
+                                   original_pointer(bl_scene.world), background, environment,
+                                   shutter_settings(bl_scene))
+        self._stale = ""
+        summary.export_seconds = time.perf_counter() - start
+        return summary
+
+    def update(self, depsgraph: Any, updates: Iterable[IdUpdate] | None = None) -> UpdateResult:
+        """Sends the changes `updates` (default: depsgraph.updates, see updates.py) report as
+        live edits, or sends nothing and says a full export is needed (module docstring).
+        Raises ExportError as full() would for data that cannot be rendered."""
+        exported = self._exported
+        if exported is None or self._stale:
+            return UpdateResult(needs_full=True, reason=self._stale)
+        changes = sort_updates(collect_updates(depsgraph) if updates is None else updates)
+        summary = ExportSummary()
+        # Stale until every edit is sent: what was sent is recorded as the edits are made.
+        self._stale = "an earlier update failed"
+        try:
+            edits = self._edits(depsgraph, exported, changes, summary)
+        except FullExportNeeded as exc:
+            self._stale = str(exc)
+            return UpdateResult(needs_full=True, reason=str(exc), warnings=summary.warnings)
+        for edit in edits:
+            edit()
+        self._stale = ""
+        return UpdateResult(edits=len(edits), warnings=summary.warnings)
+
+    def _edits(self, depsgraph: Any, exported: _Exported, changes: Changes,
+               summary: ExportSummary) -> list[Callable[[], None]]:
+        if changes.geometry:
+            raise FullExportNeeded(f"{changes.geometry}: its geometry changed")
+        bl_scene = _evaluated_scene(depsgraph)
+        if changes.scene and shutter_settings(bl_scene) != exported.shutter:
+            raise FullExportNeeded(f"Scene '{bl_scene.name}': its motion blur settings changed")
+        scene = self.scene
+        edits = object_edits(depsgraph, changes, exported.objects, scene, summary)
+        edits += _material_edits(depsgraph, changes, exported.materials, summary)
+        edits += _world_edits(bl_scene, changes, exported, scene, summary)
+        camera = convert_camera(bl_scene, depsgraph)
+        if comparable(camera) != exported.camera:
+            exported.camera = comparable(camera)
+            edits.append(named_edit(f"Camera '{bl_scene.camera.name}'",
+                                    partial(scene.set_camera, camera)))
+        return edits
+
+
+def _evaluated_scene(depsgraph: Any) -> Any:
+    return depsgraph.scene_eval if hasattr(depsgraph, "scene_eval") else depsgraph.scene
+
+
+def _material_edits(depsgraph: Any, changes: Changes, materials: MaterialTable,
+                    summary: ExportSummary) -> list[Callable[[], None]]:
+    for pointer, image in changes.images.items():
+        if any(pointer in sent.images for sent in materials.sent.values()):
+            raise FullExportNeeded(f"Image '{image.name}': a material textures with it")
+    edits = []
+    for pointer, material in changes.materials.items():
+        mat_id = materials.ids.get(pointer)
+        if mat_id is None:
+            continue  # not on anything exported; assigning it is a geometry update
+        edit = materials.change(mat_id, material.evaluated_get(depsgraph), summary)
+        if edit is not None:
+            edits.append(edit)
+    return edits
+
+
+def _world_edits(bl_scene: Any, changes: Changes, exported: _Exported, scene: Any,
+                 summary: ExportSummary) -> list[Callable[[], None]]:
+    world = bl_scene.world
+    pointer = original_pointer(world)
+    if not (changes.worlds or pointer != exported.world
+            or (changes.images and exported.environment is not None)):
+        return []
+    exported.world = pointer
+    name = f"World '{getattr(world, 'name', '')}'"
+    background = convert_world(bl_scene, summary)
+    environment = convert_environment(bl_scene, summary)
+    if environment is None and exported.environment is not None:
+        raise FullExportNeeded(f"{name}: its environment image is gone")
+    edits = []
+    if background != exported.background:
+        exported.background = background
+        edits.append(named_edit(name, partial(scene.set_background, background)))
+    if environment is not None and not _same_environment(environment, exported.environment):
+        exported.environment = environment
+        edits.append(named_edit(name, partial(scene.set_environment, environment.rgb,
+                                              environment.strength, environment.rotation)))
+    return edits
+
+
+def _same_environment(a: Environment, b: Environment | None) -> bool:
+    return b is not None and a.strength == b.strength and np.array_equal(a.rgb, b.rgb) \
+        and np.array_equal(a.rotation, b.rotation)
+
+
+def _place(placed: list[Placement], kept: list[bool], matrices: np.ndarray, scene: Any,
+           summary: ExportSummary, exported: ExportedObjects) -> None:
+    """Sends the kept placements: one add_instance_ex each for those that move, are hidden
+    from some rays or held out, in order, then the rest in bulk; records them in `exported`."""
+    plain_ids: list[int] = []
+    plain_rows: list[int] = []
+    plain_positions: list[int] = []
+    indices = [-1] * len(placed)
+    sent = 0
+    for position, (p, keep) in enumerate(zip(placed, kept, strict=True)):
+        if not keep:
+            continue
+        row, mesh_id, name, n_tri, visibility, holdout, moved = p
+        if moved is None and visibility == native.VISIBLE_ALL and not holdout:
+            plain_ids.append(mesh_id)
+            plain_rows.append(row)
+            plain_positions.append(position)
+        else:
+            start_m, end_m = moved if moved is not None else (matrices[row], None)
+            summary.moving_instances += moved is not None
+            try:
+                scene.add_instance_ex(native.Instance(mesh_id, start_m, end_m, visibility,
+                                                      holdout))
+            except native.StratumError as exc:
+                raise ExportError(f"Object '{name}': {exc}") from exc
+            indices[position] = sent
+            sent += 1
+        summary.instanced_triangles += n_tri
+        summary.object_instances[name] = summary.object_instances.get(name, 0) + 1
+        summary.object_triangles[name] = n_tri
+    try:
+        scene.add_instances(np.asarray(plain_ids, dtype=np.uint32), matrices[plain_rows])
+    except native.StratumError as exc:
+        where = f"Object '{placed[plain_positions[exc.index]][2]}'" \
+            if exc.index is not None else "Instances"
+        raise ExportError(f"{where}: {exc}") from exc
+    for offset, position in enumerate(plain_positions):
+        indices[position] = sent + offset
+    summary.instances = sent + len(plain_positions)
+    exported.record(placed, indices, matrices)
+
+
+def _add_light(name: str, light: native.Light | None, scene: Any,
+               summary: ExportSummary) -> int | None:
+    """The native index of `light` once added; None for no light."""
+    if light is None:
+        return None
+    try:
+        scene.add_light(light)
+    except native.StratumError as exc:
+        raise ExportError(f"Light '{name}': {exc}") from exc
+    summary.lights += 1
+    return summary.lights - 1
