@@ -57,8 +57,8 @@ TEST(Film, LightPathSplatsAddToTheCameraSamplesOverTheSampleIndices) {
     film.store_sums(1, sums, 1);
     std::vector<Splat> splats;
     // Film point at the centre of frame pixel (2, 2) = region pixel 1; outside the region: none.
-    film.splat(Vec2(2.5f, 2.5f), Rgb(3.0f), splats);
-    film.splat(Vec2(0.5f, 0.5f), Rgb(5.0f), splats);
+    film.splat(Vec2{2.5f, 2.5f}, Rgb(3.0f), splats);
+    film.splat(Vec2{0.5f, 0.5f}, Rgb(5.0f), splats);
     ASSERT_EQ(splats.size(), 1u);
     EXPECT_EQ(splats[0].pixel, 1u);
     splats.push_back({0, Rgb(std::numeric_limits<float>::quiet_NaN())});
