@@ -7,7 +7,6 @@ from __future__ import annotations
 
 import math
 import os
-import time
 from pathlib import Path
 from typing import Any
 
@@ -257,18 +256,39 @@ def _vertex_instancer(b: Any, count: int) -> Any:
     return parent
 
 
-def test_ten_thousand_instances_export_in_under_a_second(scene_builder: Any,
-                                                         recording_scene: Any) -> None:
+def _count_calls(scene: Any, names: tuple[str, ...]) -> dict[str, int]:
+    """Wraps the scene's methods `names` (instance attributes shadow the class's) and returns
+    the live count of calls of each."""
+    calls = dict.fromkeys(names, 0)
+    for name in names:
+        original = getattr(scene, name)
+
+        def counted(*args: Any, _name: str = name, _original: Any = original, **kwargs: Any) -> Any:
+            calls[_name] += 1
+            return _original(*args, **kwargs)
+
+        setattr(scene, name, counted)
+    return calls
+
+
+# How fast 10 000 instances export is measured by `make bench` (instances_10k, against Cycles'
+# sync), not timed here: these tests check the shape that keeps it fast, every plain placement
+# sent in one bulk call rather than one call each.
+PLACEMENT_CALLS = ("add_instance", "add_instance_ex", "add_instances")
+
+
+def test_ten_thousand_instances_export_in_one_bulk_call(scene_builder: Any,
+                                                        recording_scene: Any) -> None:
     b = scene_builder()
     b.camera()
     _vertex_instancer(b, 10_000)
     dg = b.depsgraph()
-    start = time.perf_counter()
+    calls = _count_calls(recording_scene, PLACEMENT_CALLS)
     summary = export_scene(dg, recording_scene)
-    seconds = time.perf_counter() - start
     # + 1: the child object itself, which Blender renders as well
     assert summary.meshes == 1 and summary.instances == 10_001
-    assert seconds < 1.0, f"10 000 instances exported in {seconds:.2f} s"
+    assert len(recording_scene.instances) == 10_001
+    assert calls == {"add_instance": 0, "add_instance_ex": 0, "add_instances": 1}, calls
 
 
 def test_ten_thousand_instances_into_the_native_scene(scene_builder: Any, library: Any) -> None:
@@ -277,11 +297,10 @@ def test_ten_thousand_instances_into_the_native_scene(scene_builder: Any, librar
     _vertex_instancer(b, 10_000)
     dg = b.depsgraph()
     with library.Scene() as scene:
-        start = time.perf_counter()
+        calls = _count_calls(scene, PLACEMENT_CALLS)
         summary = export_scene(dg, scene)
-        seconds = time.perf_counter() - start
     assert summary.meshes == 1 and summary.instances == 10_001
-    assert seconds < 1.0, f"10 000 instances exported in {seconds:.2f} s"
+    assert calls == {"add_instance": 0, "add_instance_ex": 0, "add_instances": 1}, calls
 
 
 def test_visibility_and_holdout_reach_the_instances(scene_builder: Any,
