@@ -244,6 +244,53 @@ TEST(LiveScene, EditsOfTransformsMaterialsLightsAndWorldAreAppliedInPlace) {
     stratum_scene_destroy(handle);
 }
 
+TEST(LiveScene, AnInstanceSkippedAsDegenerateCanBeEditedAndStaysSkipped) {
+    // A placement of scale 0 cannot be traced (it is skipped with a notice); editing it to
+    // another such transform, or its visibility, keeps it skipped: the update has no placement
+    // to move and must not touch one.
+    Values v;
+    std::array<float, 16> flat = translation(0, 0, -4);
+    flat[5] = 0.0f;
+    const auto add_flat = [&](StratumScene* s, const std::array<float, 16>& m, uint32_t visibility) {
+        StratumInstanceDesc d = instance(0, m);
+        d.visibility = visibility;
+        EXPECT_EQ(stratum_scene_add_instance_ex(s, &d), STRATUM_OK) << stratum_last_error();
+    };
+    StratumScene* scene = build(v);
+    add_flat(scene, flat, STRATUM_VISIBLE_ALL);
+    StratumRenderer* r = make_renderer(scene);
+    render_with(r);
+    std::array<float, 16> flatter = flat;
+    flatter[3] = 0.5f;
+    StratumInstanceDesc edited = instance(0, flatter);
+    edited.visibility = STRATUM_VISIBLE_CAMERA;
+    ASSERT_EQ(stratum_scene_set_instance(scene, 4, &edited), STRATUM_OK);
+    const std::vector<float> after = render_with(r);
+    StratumScene* fresh = build(v);
+    add_flat(fresh, flatter, STRATUM_VISIBLE_CAMERA);
+    StratumRenderer* fresh_renderer = make_renderer(fresh);
+    EXPECT_TRUE(same_bits(after, render_with(fresh_renderer)));
+    stratum_renderer_destroy(fresh_renderer);
+    stratum_scene_destroy(fresh);
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(scene);
+}
+
+TEST(LiveScene, ACameraEditUpdatesInPlace) {
+    Values v;
+    StratumScene* handle = build(v);
+    stratum::Scene copy;
+    stratum::SceneVersion seen;
+    handle->live->sync(&copy, &seen);
+    stratum::RenderScene built(copy);
+    const StratumCameraDesc camera = camera_at(0.5f, 0.2f, 1.0f);
+    ASSERT_EQ(stratum_scene_set_camera(handle, &camera), STRATUM_OK);
+    const stratum::SceneChanges changes = handle->live->sync(&copy, &seen);
+    EXPECT_TRUE(changes.camera && !changes.rebuild && changes.instances.empty());
+    EXPECT_TRUE(built.update(copy, changes));
+    stratum_scene_destroy(handle);
+}
+
 TEST(LiveScene, EditsAreValidatedAndARejectedOneChangesNothing) {
     Values v;
     StratumScene* scene = build(v);

@@ -279,7 +279,8 @@ std::string EmbreeScene::update(std::span<const InstancePlacement> placements,
         rtcAttachGeometryByID(impl_->scene, flat, i);
         rtcReleaseGeometry(flat);
     }
-    rtcCommitScene(impl_->scene);
+    // Nothing re-placed (a camera edit moves only the ray-origin limit): nothing to recommit.
+    if (!changed.empty()) rtcCommitScene(impl_->scene);
     std::lock_guard lock(impl_->error_mutex);
     return impl_->error;
 }

@@ -215,6 +215,8 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
     std::vector<uint32_t> moved;
     for (const uint32_t i : changes.instances) {
         const uint32_t placement = placement_of_[i];
+        // Skipped as untraceable before the edit and after it (checked above): nothing to place.
+        if (placement == kNoLight) continue;
         const Instance& inst = scene.instances[i];
         InstancePlacement& p = placements_[placement];
         p.start = inst.object_to_world;
@@ -230,8 +232,10 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
         materials_ = scene.materials;
         textures_ = TextureBindings(scene);
     }
-    background_ = scene.background;
-    build_lights(scene, cancel);
+    if (changes.world) background_ = scene.background;
+    // The light set depends on placed emitters, materials, lamps and world, not on the camera:
+    // orbiting the view lists no light again.
+    if (!moved.empty() || changes.materials || changes.lights || changes.world) build_lights(scene, cancel);
     const std::string error = embree_.update(placements_, moved, limit_);
     if (!error.empty()) throw std::runtime_error(error);
     return true;
