@@ -80,6 +80,18 @@ def _light_desc(light: Mapping[str, Any] | Light | None, fields: Mapping[str, An
     return desc
 
 
+def _optional_floats(values: Any, what: str, width: int, count: int,
+                     unit: str) -> np.ndarray | None:
+    """`values` as contiguous float32 of width floats per each of `count` units, or None."""
+    if values is None:
+        return None
+    array = np.ascontiguousarray(values, dtype=np.float32)
+    if array.size != count * width:
+        raise ValueError(f"{what}: {array.size} floats for {count} {unit} "
+                         f"(expected {count * width})")
+    return array
+
+
 class Scene(_Handle):
     """A native scene under construction: materials, meshes, instances, lights, camera."""
 
@@ -213,31 +225,15 @@ class Scene(_Handle):
         desc.triangles = _uint_ptr(tri)
         desc.triangle_count = n_tri
         desc.material_ids = _uint_ptr(mat)
-        nrm = uvs = vnrm = tangents = None
-        if corner_tangents is not None:
-            tangents = np.ascontiguousarray(corner_tangents, dtype=np.float32)
-            if tangents.size != n_tri * 12:
-                raise ValueError(f"corner_tangents: {tangents.size} floats for {n_tri} triangles "
-                                 f"(expected {n_tri * 12})")
-            desc.corner_tangents = _float_ptr(tangents)
-        if vertex_normals is not None:
-            vnrm = np.ascontiguousarray(vertex_normals, dtype=np.float32)
-            if vnrm.size != n_vert * 3:
-                raise ValueError(f"vertex_normals: {vnrm.size} floats for {n_vert} vertices "
-                                 f"(expected {n_vert * 3})")
-            desc.vertex_normals = _float_ptr(vnrm)
-        if corner_normals is not None:
-            nrm = np.ascontiguousarray(corner_normals, dtype=np.float32)
-            if nrm.size != n_tri * 9:
-                raise ValueError(f"corner_normals: {nrm.size} floats for {n_tri} triangles "
-                                 f"(expected {n_tri * 9})")
-            desc.corner_normals = _float_ptr(nrm)
-        if corner_uvs is not None:
-            uvs = np.ascontiguousarray(corner_uvs, dtype=np.float32)
-            if uvs.size != n_tri * 6:
-                raise ValueError(f"corner_uvs: {uvs.size} floats for {n_tri} triangles "
-                                 f"(expected {n_tri * 6})")
-            desc.corner_uvs = _float_ptr(uvs)
+        # The optional arrays, each checked against the triangles or vertices it describes.
+        tangents = _optional_floats(corner_tangents, "corner_tangents", 12, n_tri, "triangles")
+        vnrm = _optional_floats(vertex_normals, "vertex_normals", 3, n_vert, "vertices")
+        nrm = _optional_floats(corner_normals, "corner_normals", 9, n_tri, "triangles")
+        uvs = _optional_floats(corner_uvs, "corner_uvs", 6, n_tri, "triangles")
+        for field, values in (("corner_tangents", tangents), ("vertex_normals", vnrm),
+                              ("corner_normals", nrm), ("corner_uvs", uvs)):
+            if values is not None:
+                setattr(desc, field, _float_ptr(values))
         out = ctypes.c_uint32()
         status = self._lib.stratum_scene_add_mesh(self.handle, ctypes.byref(desc),
                                                   ctypes.byref(out))
