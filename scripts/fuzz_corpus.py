@@ -71,7 +71,7 @@ OPS = {
             "rerender",
             "throughput",
             "sampling",
-            "registry",
+            "models",
         ]
     )
 }
@@ -309,8 +309,8 @@ STRING_SETTINGS = ["sampler", "filter_type", "integrator", "hemisphere", "light_
 STRING_SETTINGS += ["mis_heuristic", "light_selection", "triangle_sampling", "rr_mode"]
 SETTING_NAMES = INT_SETTINGS + FLOAT_SETTINGS + STRING_SETTINGS
 
-# render_ops.cpp string_values(): fixed values, then the registries (samplers, filters,
-# integrators, hemispheres) in registry order, read from the library at run time.
+# render_ops.cpp string_values(): fixed values, then the choices of the settings (samplers, filters,
+# integrators, hemispheres) in menu order, read from the library at run time.
 FIXED_VALUES = ["box", "blackman_harris", "gaussian", "mis", "nee", "bsdf", "power", "balance", "max"]
 FIXED_VALUES += ["mixed", "uniform", "solid_angle", "area", "throughput", "albedo", "off", "on", "", "Random"]
 FIXED_VALUES += ["path "]
@@ -476,8 +476,8 @@ def seeds() -> dict[str, bytes]:
         + bytes([1])
         + bytes([OPS["sampling"], 2, 2])
         + bytes([OPS["sampling"], 3, 0, 10, 0])
-        + bytes([OPS["registry"], 0, 16 + 3])
-        + bytes([OPS["registry"], 2, 16 + 1])
+        + bytes([OPS["models"], 0, 16 + 3])
+        + bytes([OPS["models"], 2, 16 + 1])
     )
     return s
 

@@ -344,7 +344,7 @@ class Flattener:
     def _default_principled(self) -> native.Material:
         v2 = self.version >= (4, 0, 0)
         return native.Material(
-            model=native.MATERIAL_PRINCIPLED_V2 if v2 else native.MATERIAL_PRINCIPLED_V1,
+            model=native.closure_model("principled_v2" if v2 else "principled_v1"),
             base_color=DEFAULT_GREY, roughness=0.5, specular=0.5, ior=1.5 if v2 else 1.45,
             distribution=native.MICROFACET_MULTISCATTER_GGX if v2 else native.MICROFACET_GGX)
 
@@ -375,7 +375,7 @@ class Flattener:
             if self.raw(node, "Roughness", 0.0) != 0.0:
                 self.warn(node, f"Diffuse '{node.name}': roughness (Oren-Nayar) is rendered as "
                                 "Lambertian")
-            return native.Material(model=native.MATERIAL_DIFFUSE,
+            return native.Material(model=native.closure_model("diffuse"),
                                    base_color=self._reflectance(node, "Color")), bindings
         if kind in GLOSSY_NODES or kind == "ShaderNodeBsdfGlass":
             self.texture(node, "Color", native.PARAM_BASE_COLOR, bindings)
@@ -389,22 +389,22 @@ class Flattener:
             if glass:
                 self.unsupported_link(node, "IOR")
             return native.Material(
-                model=native.MATERIAL_GLASS if glass else native.MATERIAL_GLOSSY,
+                model=native.closure_model("glass" if glass else "glossy"),
                 base_color=self._reflectance(node, "Color"), roughness=roughness,
                 ior=self.scalar(node, "IOR", 1.5, IOR),
                 distribution=self._distribution(node, roughness)), bindings
         if kind == "ShaderNodeBsdfTransparent":
             self.texture(node, "Color", native.PARAM_BASE_COLOR, bindings)
-            return native.Material(model=native.MATERIAL_TRANSPARENT,
+            return native.Material(model=native.closure_model("transparent"),
                                    base_color=self._reflectance(node, "Color")), bindings
         if kind == "ShaderNodeEmission":
             self.unsupported_link(node, "Strength")
             self.texture(node, "Color", native.PARAM_EMISSION, bindings)
             emission = self.emission(node, "Color", "Strength", (1.0, 1.0, 1.0), 1.0)
-            return native.Material(model=native.MATERIAL_EMISSION, base_color=(0.0, 0.0, 0.0),
-                                   emission=emission), bindings
+            return native.Material(model=native.closure_model("emission"),
+                                   base_color=(0.0, 0.0, 0.0), emission=emission), bindings
         if kind == "ShaderNodeHoldout":
-            return native.Material(model=native.MATERIAL_HOLDOUT,
+            return native.Material(model=native.closure_model("holdout"),
                                    base_color=(0.0, 0.0, 0.0)), bindings
         return None
 
@@ -424,7 +424,7 @@ class Flattener:
             self.unsupported_link(node, name)
         roughness = self._roughness(node)
         material = native.Material(
-            model=native.MATERIAL_PRINCIPLED_V2 if v2 else native.MATERIAL_PRINCIPLED_V1,
+            model=native.closure_model("principled_v2" if v2 else "principled_v1"),
             base_color=self._reflectance(node, "Base Color"),
             roughness=roughness,
             metallic=self.scalar(node, "Metallic", 0.0, UNIT),
@@ -451,7 +451,7 @@ class Flattener:
         """Alpha < 1 is Mix(Transparent, Principled, Alpha), as Cycles compiles it."""
         alpha_bindings: list[Binding] = []
         self.texture(node, "Alpha", native.PARAM_WEIGHT, alpha_bindings)
-        transparent = native.Material(model=native.MATERIAL_TRANSPARENT,
+        transparent = native.Material(model=native.closure_model("transparent"),
                                       base_color=(1.0, 1.0, 1.0))
         if alpha_bindings:
             alpha = alpha_bindings[0]

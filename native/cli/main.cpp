@@ -30,13 +30,17 @@ int failed(const char* what) {
 }
 
 int list_samplers() {
-    const int32_t n = stratum_registry_count(STRATUM_REGISTRY_SAMPLER);
-    for (int32_t i = 0; i < n; ++i) {
-        const char *name, *label, *description;
-        if (stratum_registry_entry(STRATUM_REGISTRY_SAMPLER, i, &name, &label, &description) != STRATUM_OK) {
-            return failed("registry");
+    for (int32_t setting = 0; setting < stratum_setting_count(); ++setting) {
+        StratumSettingInfo info{};
+        if (stratum_setting_info(setting, &info) != STRATUM_OK) return failed("settings");
+        if (std::string(info.name) != "sampler") continue;
+        for (int32_t i = 0; i < info.choice_count; ++i) {
+            const char *name, *description;
+            if (stratum_setting_choice(setting, i, &name, nullptr, &description) != STRATUM_OK) {
+                return failed("sampler choices");
+            }
+            std::printf("%-12s %s\n", name, description);
         }
-        std::printf("%-12s %s\n", name, description);
     }
     return 0;
 }

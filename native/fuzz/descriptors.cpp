@@ -64,6 +64,13 @@ int32_t draw_enum(ByteReader& in, int32_t count) {
     return s < 240 ? s % count : s - 242;
 }
 
+int32_t draw_model(ByteReader& in, int32_t kind) {
+    const int32_t index = draw_enum(in, stratum_model_count(kind));
+    int32_t value = index;
+    if (index >= 0) stratum_model_entry(kind, index, nullptr, &value);
+    return value;
+}
+
 Matrix translation(float x, float y, float z) { return {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z, 0, 0, 0, 1}; }
 
 Matrix draw_matrix(ByteReader& in, const Matrix& preset) {
@@ -111,7 +118,7 @@ Matrix draw_matrix(ByteReader& in, const Matrix& preset) {
 
 StratumMaterialDesc draw_material(ByteReader& in) {
     StratumMaterialDesc d{};
-    d.model = draw_enum(in, STRATUM_MATERIAL_HOLDOUT + 1);
+    d.model = draw_model(in, STRATUM_MODEL_CLOSURE);
     for (float& c : d.base_color) c = 0.8f;
     d.roughness = 0.5f;
     d.specular = 0.5f;
@@ -150,7 +157,7 @@ StratumMaterialDesc draw_material(ByteReader& in) {
 
 StratumLightDesc draw_light(ByteReader& in) {
     StratumLightDesc d{};
-    d.type = draw_enum(in, STRATUM_LIGHT_SPOT_V1 + 1);
+    d.type = draw_model(in, STRATUM_MODEL_LIGHT);
     for (float& c : d.color) c = 1.0f;
     d.strength = d.type == STRATUM_LIGHT_SUN ? 3.0f : 100.0f;
     d.radius = 0.1f;

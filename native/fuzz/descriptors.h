@@ -18,6 +18,9 @@ using Matrix = std::array<float, 16>;
 int32_t draw_small_int(ByteReader& in);
 // An enumeration value: mostly 0..count-1, for selectors from 240 on -2..13 (invalid ones too).
 int32_t draw_enum(ByteReader& in, int32_t count);
+// A model value of `kind` (StratumModelKind): draw_enum's index into the listing
+// (stratum_model_entry) gives a registered value; past the listing, the index itself.
+int32_t draw_model(ByteReader& in, int32_t kind);
 
 // A transform: `preset` (identity, translation, scale, per-axis scale, rotation, raw), then up to
 // three element mutations (any of the 16, so the last row can stop being (0, 0, 0, 1)).

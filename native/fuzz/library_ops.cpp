@@ -1,5 +1,5 @@
 // The entry points that need no scene: sampler points, hemisphere warps, the blue-noise
-// texture, dimension names and the registries. Their outputs have mathematical invariants:
+// texture, dimension names and the model listings. Their outputs have mathematical invariants:
 // sample values in [0, 1), unit directions in the upper hemisphere with finite densities.
 #include <cmath>
 #include <string>
@@ -14,17 +14,8 @@ namespace stratum::fuzz {
 
 namespace {
 
-std::vector<const char*> registry_names(int32_t registry) {
-    std::vector<const char*> names;
-    for (int32_t i = 0; i < stratum_registry_count(registry); ++i) {
-        const char* name = nullptr;
-        if (stratum_registry_entry(registry, i, &name, nullptr, nullptr) == STRATUM_OK) names.push_back(name);
-    }
-    return names;
-}
-
 void sampler_points(ByteReader& in) {
-    static const std::vector<const char*> samplers = registry_names(STRATUM_REGISTRY_SAMPLER);
+    static const std::vector<const char*> samplers = setting_choice_names("sampler");
     const std::string sampler = in.name(samplers);
     const auto samples = static_cast<uint32_t>(in.i64());
     const uint32_t seed = in.u32();
@@ -57,7 +48,7 @@ void sampler_points(ByteReader& in) {
 }
 
 void warp_hemisphere(ByteReader& in) {
-    static const std::vector<const char*> distributions = registry_names(STRATUM_REGISTRY_HEMISPHERE);
+    static const std::vector<const char*> distributions = setting_choice_names("hemisphere");
     const std::string distribution = in.name(distributions);
     const uint32_t count = in.u8() % 9;
     std::vector<float> uv(2 * static_cast<size_t>(count));
@@ -130,25 +121,22 @@ void op_sampling(ByteReader& in, ProgramState&) {
     }
 }
 
-void op_registry(ByteReader& in, ProgramState&) {
-    const int32_t registry = draw_enum(in, STRATUM_REGISTRY_HEMISPHERE + 1);
-    const int32_t count = stratum_registry_count(registry);
+void op_models(ByteReader& in, ProgramState&) {
+    const int32_t kind = draw_enum(in, STRATUM_MODEL_CLOSURE + 2);
+    const int32_t count = stratum_model_count(kind);
     const auto index = static_cast<int32_t>(in.i64());
-    const char *name = nullptr, *label = nullptr, *description = nullptr;
+    const char* name = nullptr;
+    int32_t value = -1;
     const StratumStatus status = checked(
-        "stratum_registry_entry",
-        [&] { return stratum_registry_entry(registry, index, &name, &label, &description); },
-        [&] {
-            return std::to_string(registry) + ", " + std::to_string(index) + ", &name, &label, &description";
-        });
+        "stratum_model_entry", [&] { return stratum_model_entry(kind, index, &name, &value); },
+        [&] { return std::to_string(kind) + ", " + std::to_string(index) + ", &name, &value"; });
     const bool valid = count >= 0 && index >= 0 && index < count;
     if ((status == STRATUM_OK) != valid)
-        finding("stratum_registry_entry(" + std::to_string(registry) + ", " + std::to_string(index) +
-                ") returned " + std::to_string(status) + " for a registry of " + std::to_string(count) +
-                " entries");
-    if (status == STRATUM_OK && !(name && name[0] && label && description))
-        finding("stratum_registry_entry(" + std::to_string(registry) + ", " + std::to_string(index) +
-                ") left a string empty");
+        finding("stratum_model_entry(" + std::to_string(kind) + ", " + std::to_string(index) + ") returned " +
+                std::to_string(status) + " for a kind of " + std::to_string(count) + " models");
+    if (status == STRATUM_OK && !(name && name[0] && value >= 0))
+        finding("stratum_model_entry(" + std::to_string(kind) + ", " + std::to_string(index) +
+                ") gave an empty name or a negative value");
     if (!stratum_version() || !stratum_version()[0]) finding("stratum_version() is empty");
 }
 

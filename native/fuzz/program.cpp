@@ -33,6 +33,19 @@ void ProgramState::new_scene() {
     if (!scene) finding("stratum_scene_create returned STRATUM_OK and a NULL scene");
 }
 
+std::vector<const char*> setting_choice_names(const char* setting) {
+    std::vector<const char*> names;
+    for (int32_t i = 0; i < stratum_setting_count(); ++i) {
+        StratumSettingInfo info{};
+        if (stratum_setting_info(i, &info) != STRATUM_OK || std::string(info.name) != setting) continue;
+        for (int32_t c = 0; c < info.choice_count; ++c) {
+            const char* name = nullptr;
+            if (stratum_setting_choice(i, c, &name, nullptr, nullptr) == STRATUM_OK) names.push_back(name);
+        }
+    }
+    return names;
+}
+
 void run_program(ByteReader& in) {
     using Operation = void (*)(ByteReader&, ProgramState&);
     // The opcode is the operation's index; the order is part of the corpus encoding (README).
@@ -45,7 +58,7 @@ void run_program(ByteReader& in) {
         op_set_environment, op_new_scene,
         op_save_load,       op_render,
         op_rerender,        op_measure_throughput,
-        op_sampling,        op_registry,
+        op_sampling,        op_models,
     };
     constexpr size_t kCount = sizeof kOperations / sizeof kOperations[0];
     ProgramState state;

@@ -45,6 +45,10 @@ inline constexpr uint32_t kMaxMaterials = 16;
 
 void run_program(ByteReader& in);
 
+// The names of a CHOICE or LIST setting's choices, in menu order, read from the library
+// (stratum_setting_choice); empty for an unknown setting.
+std::vector<const char*> setting_choice_names(const char* setting);
+
 // The operations, one per opcode (scene_ops.cpp, render_ops.cpp, library_ops.cpp).
 void op_add_material(ByteReader& in, ProgramState& s);
 void op_add_closure_material(ByteReader& in, ProgramState& s);
@@ -63,6 +67,6 @@ void op_render(ByteReader& in, ProgramState& s);
 void op_rerender(ByteReader& in, ProgramState& s);
 void op_measure_throughput(ByteReader& in, ProgramState& s);
 void op_sampling(ByteReader& in, ProgramState& s);
-void op_registry(ByteReader& in, ProgramState& s);
+void op_models(ByteReader& in, ProgramState& s);
 
 }  // namespace stratum::fuzz

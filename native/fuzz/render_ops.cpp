@@ -49,7 +49,7 @@ const char* const kSettingNames[] = {"width",
                                      "WIDTH",
                                      ""};
 
-// Every value the string settings know (the registries' names read from the library, so new
+// Every value the string settings know (the settings' choices read from the library, so new
 // entries are fuzzed too) and a few near misses.
 const std::vector<const char*>& string_values() {
     static const std::vector<const char*> values = [] {
@@ -63,13 +63,8 @@ const std::vector<const char*>& string_values() {
                                       "albedo",   "off",
                                       "on",       "",
                                       "Random",   "path "};
-        for (int32_t registry = STRATUM_REGISTRY_SAMPLER; registry <= STRATUM_REGISTRY_HEMISPHERE;
-             ++registry) {
-            for (int32_t i = 0; i < stratum_registry_count(registry); ++i) {
-                const char* name = nullptr;
-                if (stratum_registry_entry(registry, i, &name, nullptr, nullptr) == STRATUM_OK)
-                    v.push_back(name);
-            }
+        for (const char* setting : {"sampler", "filter_type", "integrator", "hemisphere"}) {
+            for (const char* name : setting_choice_names(setting)) v.push_back(name);
         }
         return v;
     }();

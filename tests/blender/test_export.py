@@ -27,7 +27,7 @@ def test_basic_scene(scene_builder: Any, recording_scene: Any) -> None:
     assert mesh["corner_normals"] is None
     # no material -> one default grey diffuse
     assert len(recording_scene.materials) == 1
-    assert recording_scene.materials[0].model == native.MATERIAL_DIFFUSE
+    assert recording_scene.materials[0].model == native.closure_model("diffuse")
     assert recording_scene.materials[0].base_color == pytest.approx((0.8, 0.8, 0.8))
     cam = recording_scene.camera
     assert cam.lens_mm == pytest.approx(50.0)
@@ -185,8 +185,7 @@ def test_principled_version(stratum_addon: Any) -> None:
     converted = convert_material(mat)
     (closure,) = converted.closures
     desc = closure.material
-    expected = (native.MATERIAL_PRINCIPLED_V1 if bpy.app.version < (4, 0, 0)
-                else native.MATERIAL_PRINCIPLED_V2)
+    expected = native.closure_model("principled_v1" if bpy.app.version < (4, 0, 0) else "principled_v2")
     assert desc.model == expected
     assert desc.base_color == pytest.approx((0.2, 0.4, 0.6))
     assert desc.roughness == pytest.approx(0.3)
@@ -212,14 +211,14 @@ def test_emission_and_diffuse_and_unknown(stratum_addon: Any) -> None:
     node.inputs["Strength"].default_value = 4.0
     converted = convert_material(mat)
     desc = converted.closures[0].material
-    assert desc.model == native.MATERIAL_EMISSION
+    assert desc.model == native.closure_model("emission")
     assert desc.emission == pytest.approx((4.0, 2.0, 1.0))
     assert not converted.warnings
 
     mat, node = _material_with("ShaderNodeBsdfDiffuse")
     node.inputs["Color"].default_value = (0.1, 0.2, 0.3, 1.0)
     desc = convert_material(mat).closures[0].material
-    assert desc.model == native.MATERIAL_DIFFUSE
+    assert desc.model == native.closure_model("diffuse")
     assert desc.base_color == pytest.approx((0.1, 0.2, 0.3))
 
     mat, node = _material_with("ShaderNodeBsdfToon")
@@ -239,7 +238,7 @@ def test_one_warning_per_material(scene_builder: Any, recording_scene: Any) -> N
     assert len([w for w in summary.warnings if "Material 'ShaderNodeBsdfToon'" in w]) == 1
 
 
-AREA_TYPES = {native.LIGHT_AREA_RECTANGLE, native.LIGHT_AREA_ELLIPSE}
+AREA_TYPES = {native.light_type("area_rectangle"), native.light_type("area_ellipse")}
 
 
 def test_lights(scene_builder: Any, recording_scene: Any) -> None:
@@ -263,15 +262,15 @@ def test_lights(scene_builder: Any, recording_scene: Any) -> None:
         round(light.strength / (area_scale if light.type in AREA_TYPES else 1.0)): light
         for light in recording_scene.lights
     }
-    assert by_strength[100].type == native.LIGHT_POINT
-    assert by_strength[101].type == native.LIGHT_SUN
+    assert by_strength[100].type == native.light_type("point")
+    assert by_strength[101].type == native.light_type("sun")
     assert by_strength[101].angle == pytest.approx(0.1)
-    assert by_strength[102].type == native.LIGHT_AREA_RECTANGLE
+    assert by_strength[102].type == native.light_type("area_rectangle")
     assert (by_strength[102].size_x, by_strength[102].size_y) == pytest.approx((2.0, 0.5))
-    assert by_strength[103].type == native.LIGHT_AREA_ELLIPSE
+    assert by_strength[103].type == native.light_type("area_ellipse")
     assert (by_strength[103].size_x, by_strength[103].size_y) == pytest.approx((1.5, 1.5))
     # Cycles 3.x's spot falloff has an extra cos θ: the native SPOT_V1 model.
-    spot_type = native.LIGHT_SPOT_V1 if bpy.app.version < (4, 0, 0) else native.LIGHT_SPOT
+    spot_type = native.light_type("spot_v1" if bpy.app.version < (4, 0, 0) else "spot")
     assert by_strength[104].type == spot_type
     assert (by_strength[104].spot_size, by_strength[104].spot_blend) == pytest.approx((0.8, 0.3))
     assert by_strength[104].radius == pytest.approx(0.05)

@@ -89,9 +89,9 @@ def test_mix_and_add_shaders_become_weighted_closures(scene_builder: Any,
     assert summary.warnings == []
     (closures,) = [m for m in recording_scene.materials if isinstance(m, list)]
     assert [(w[0], m.model) for w, m in closures] == [
-        (pytest.approx(0.75), native.MATERIAL_DIFFUSE), (pytest.approx(0.25),
-                                                         native.MATERIAL_GLOSSY),
-        (pytest.approx(1.0), native.MATERIAL_EMISSION)]
+        (pytest.approx(0.75), native.closure_model("diffuse")), (pytest.approx(0.25),
+                                                         native.closure_model("glossy")),
+        (pytest.approx(1.0), native.closure_model("emission"))]
     assert closures[2][1].emission == pytest.approx((2.0, 2.0, 2.0))
 
 
@@ -117,15 +117,14 @@ def test_glass_transparent_holdout_and_principled_alpha(scene_builder: Any,
     summary = export_scene(b.depsgraph(), recording_scene)
     assert summary.warnings == []
     singles = [m for m in recording_scene.materials if not isinstance(m, list)]
-    assert {m.model for m in singles} == {native.MATERIAL_GLASS, native.MATERIAL_TRANSPARENT,
-                                          native.MATERIAL_HOLDOUT}
-    glass = next(m for m in singles if m.model == native.MATERIAL_GLASS)
+    assert {m.model for m in singles} == {native.closure_model("glass"), native.closure_model("transparent"),
+                                          native.closure_model("holdout")}
+    glass = next(m for m in singles if m.model == native.closure_model("glass"))
     assert glass.ior == pytest.approx(1.33)
     (alpha,) = [m for m in recording_scene.materials if isinstance(m, list)]
     assert [(w[0], m.model) for w, m in alpha] == [
-        (pytest.approx(0.75), native.MATERIAL_TRANSPARENT),
-        (pytest.approx(0.25), native.MATERIAL_PRINCIPLED_V2 if V4
-         else native.MATERIAL_PRINCIPLED_V1)]
+        (pytest.approx(0.75), native.closure_model("transparent")),
+        (pytest.approx(0.25), native.closure_model("principled_v2" if V4 else "principled_v1"))]
 
 
 def test_generated_image_once_with_binding_and_named_uv_map(scene_builder: Any,

@@ -80,7 +80,7 @@ def test_nan_alpha_is_fully_transparent_as_in_cycles(scene_builder: Any,
     b.scene.objects["Cube"].data.materials.append(_principled("Ghost", Alpha=NAN))
     summary = export_scene(b.depsgraph(), recording_scene)
     assert len(_warnings(summary, "'Alpha' of 'Principled BSDF'")) == 1
-    assert _only_material(recording_scene).model == native.MATERIAL_TRANSPARENT
+    assert _only_material(recording_scene).model == native.closure_model("transparent")
 
 
 def test_one_warning_per_material_and_socket(scene_builder: Any, recording_scene: Any) -> None:
@@ -140,7 +140,7 @@ def test_glass_ior_mix_fac_and_emission_strength(scene_builder: Any,
     for words in (f"of '{mix.name}'", f"'IOR' of '{glass.name}'", f"'Strength' of '{glow.name}'"):
         assert sum(words in w for w in warnings) == 1, (words, warnings)
     material = _only_material(recording_scene)
-    assert material.model == native.MATERIAL_GLASS and material.ior == pytest.approx(1e-5)
+    assert material.model == native.closure_model("glass") and material.ior == pytest.approx(1e-5)
 
 
 def test_volume_only_material_is_a_transparent_boundary(scene_builder: Any,
@@ -155,7 +155,7 @@ def test_volume_only_material_is_a_transparent_boundary(scene_builder: Any,
     (warning,) = _warnings(summary, "Material 'Fog'")
     assert "Volume" in warning and "transparent" in warning and "no shader" not in warning
     material = _only_material(recording_scene)
-    assert material.model == native.MATERIAL_TRANSPARENT and material.base_color == (1, 1, 1)
+    assert material.model == native.closure_model("transparent") and material.base_color == (1, 1, 1)
 
 
 def test_volume_shader_on_the_surface_adds_nothing(scene_builder: Any,
@@ -228,9 +228,9 @@ def test_light_colour_and_power_limits(scene_builder: Any, recording_scene: Any)
     assert "'color'" in warning
     assert not _warnings(summary, "HugeSun")  # a valid float power: the core keeps it finite
     points = sorted(lamp.color for lamp in recording_scene.lights
-                    if lamp.type == native.LIGHT_POINT)
+                    if lamp.type == native.light_type("point"))
     assert points == [(0.0, 1.0, 1.0), (1.0, 1.0, 1.0)]  # the tinted lamp and the scene's
-    (sun,) = [lamp for lamp in recording_scene.lights if lamp.type == native.LIGHT_SUN]
+    (sun,) = [lamp for lamp in recording_scene.lights if lamp.type == native.light_type("sun")]
     assert sun.strength == pytest.approx(3e38, rel=1e-6)
 
 

@@ -31,12 +31,14 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "bsdf/bsdf.h"
 #include "lights/light.h"
 #include "lights/light_registry.h"
 #include "render_helpers.h"
 #include "sampling/warps.h"
+#include "stratum/stratum.h"
 
 using namespace stratum_test;
 
@@ -156,10 +158,8 @@ const stratum::ClosureModel kTestLambertClosure{
 // Once per process (gtest may run these tests in one process or one each).
 bool register_test_models() {
     static const bool registered =
-        stratum::register_light_model(static_cast<stratum::LightType>(kTestLightType),
-                                      kTestSphereLampModel) &&
-        stratum::register_closure_model(static_cast<stratum::MaterialModel>(kTestClosureModel),
-                                        kTestLambertClosure);
+        stratum::register_light_model(kTestLightType, "test_sphere_lamp", kTestSphereLampModel) &&
+        stratum::register_closure_model(kTestClosureModel, "test_lambert", kTestLambertClosure);
     return registered;
 }
 
@@ -231,10 +231,26 @@ TEST(AddedModels, TheAbiKnowsRegisteredModelsAndTheirOwnChecks) {
     material.model = kTestClosureModel;
     EXPECT_EQ(stratum_scene_add_material(scene, &material, nullptr), STRATUM_OK) << stratum_last_error();
     // A taken value is not registered again.
-    EXPECT_FALSE(
-        stratum::register_light_model(static_cast<stratum::LightType>(kTestLightType), kTestSphereLampModel));
-    EXPECT_FALSE(stratum::register_closure_model(stratum::MaterialModel::Diffuse, kTestLambertClosure));
+    EXPECT_FALSE(stratum::register_light_model(kTestLightType, "again", kTestSphereLampModel));
+    EXPECT_FALSE(stratum::register_closure_model(STRATUM_MATERIAL_DIFFUSE, "again", kTestLambertClosure));
     stratum_scene_destroy(scene);
+}
+
+// Hosts find a model's value by its name (stratum_model_entry): the registered models are listed
+// last, in value order, so a host mirrors no number of them.
+TEST(AddedModels, TheAbiListsRegisteredModelsByName) {
+    ASSERT_TRUE(register_test_models());
+    for (const auto& [kind, name] : {std::pair{STRATUM_MODEL_LIGHT, "test_sphere_lamp"},
+                                     std::pair{STRATUM_MODEL_CLOSURE, "test_lambert"}}) {
+        const int32_t count = stratum_model_count(kind);
+        ASSERT_GE(count, 2);
+        const char* last_name = nullptr;
+        int32_t last_value = -1;
+        ASSERT_EQ(stratum_model_entry(kind, count - 1, &last_name, &last_value), STRATUM_OK);
+        EXPECT_STREQ(last_name, name);
+        EXPECT_EQ(last_value, 31);
+        EXPECT_EQ(stratum_model_entry(kind, count, &last_name, &last_value), STRATUM_ERROR_INVALID_ARGUMENT);
+    }
 }
 
 TEST(AddedModels, DiffusePlaneUnderTheTestLampIsTheClosedForm) {

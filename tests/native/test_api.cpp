@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+#include "setting_choices.h"
+
 namespace {
 
 constexpr float kIdentity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
@@ -30,17 +32,23 @@ std::string last_error() { return stratum_last_error(); }
 
 }  // namespace
 
-TEST(Api, RegistriesListSamplersFiltersIntegrators) {
-    ASSERT_GE(stratum_registry_count(STRATUM_REGISTRY_SAMPLER), 1);
-    const char *name = nullptr, *label = nullptr, *description = nullptr;
-    ASSERT_EQ(stratum_registry_entry(STRATUM_REGISTRY_SAMPLER, 0, &name, &label, &description), STRATUM_OK);
-    EXPECT_STREQ(name, "random");
-    EXPECT_GT(std::string(description).size(), 10u);
-    EXPECT_EQ(stratum_registry_count(STRATUM_REGISTRY_FILTER), 2);
-    EXPECT_EQ(stratum_registry_count(99), -1);
-    EXPECT_EQ(stratum_registry_entry(STRATUM_REGISTRY_SAMPLER, 1000, &name, &label, &description),
-              STRATUM_ERROR_INVALID_ARGUMENT);
+TEST(Api, ModelListingsNameEveryValue) {
+    const char* name = nullptr;
+    int32_t value = -1;
+    ASSERT_EQ(stratum_model_count(STRATUM_MODEL_LIGHT), 6);
+    ASSERT_EQ(stratum_model_entry(STRATUM_MODEL_LIGHT, 5, &name, &value), STRATUM_OK);
+    EXPECT_STREQ(name, "spot_v1");
+    EXPECT_EQ(value, STRATUM_LIGHT_SPOT_V1);
+    ASSERT_EQ(stratum_model_count(STRATUM_MODEL_CLOSURE), 8);
+    ASSERT_EQ(stratum_model_entry(STRATUM_MODEL_CLOSURE, 0, &name, &value), STRATUM_OK);
+    EXPECT_STREQ(name, "diffuse");
+    EXPECT_EQ(value, STRATUM_MATERIAL_DIFFUSE);
+    EXPECT_EQ(stratum_model_count(99), -1);
+    EXPECT_EQ(stratum_model_entry(99, 0, &name, &value), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_NE(last_error().find("99"), std::string::npos);
+    EXPECT_EQ(stratum_model_entry(STRATUM_MODEL_LIGHT, 1000, &name, &value), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("1000"), std::string::npos);
+    EXPECT_EQ(stratum_model_entry(STRATUM_MODEL_LIGHT, 0, nullptr, nullptr), STRATUM_OK);
 }
 
 TEST(Api, NanVertexIsRejectedWithItsIndex) {
@@ -146,12 +154,7 @@ TEST(Api, LightIntegratorIsAcceptedAndBadIntegratorNamesAreRejected) {
     EXPECT_EQ(stratum_renderer_set_string(r, "integrator", "light_tracer"), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(stratum_renderer_set_int(r, "integrator", 1), STRATUM_ERROR_INVALID_ARGUMENT);
     bool listed = false;
-    for (int32_t i = 0; i < stratum_registry_count(STRATUM_REGISTRY_INTEGRATOR); ++i) {
-        const char *name = nullptr, *label = nullptr, *description = nullptr;
-        ASSERT_EQ(stratum_registry_entry(STRATUM_REGISTRY_INTEGRATOR, i, &name, &label, &description),
-                  STRATUM_OK);
-        listed |= std::string(name) == "light";
-    }
+    for (const char* name : setting_choices("integrator")) listed |= std::string(name) == "light";
     EXPECT_TRUE(listed);
     stratum_renderer_destroy(r);
 }

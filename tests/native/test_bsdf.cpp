@@ -14,6 +14,7 @@
 
 #include "bsdf/bsdf.h"
 #include "chi_square.h"
+#include "stratum/stratum.h"
 
 namespace stratum {
 namespace {
@@ -31,16 +32,16 @@ ChiSquare chi_square_directions(const chi_square::DirectionSampler& sample,
 }
 
 Material lambert(Rgb c) {
-    return {MaterialModel::Diffuse, c, 0, 0, 0, 1.5f, Rgb(), MicrofacetDistribution::Ggx};
+    return {STRATUM_MATERIAL_DIFFUSE, c, 0, 0, 0, 1.5f, Rgb(), MicrofacetDistribution::Ggx};
 }
 Material v1(Rgb c, float roughness, float metallic, float specular) {
-    return {MaterialModel::PrincipledV1, c, roughness, metallic, specular, 1.45f, Rgb(),
+    return {STRATUM_MATERIAL_PRINCIPLED_V1, c, roughness, metallic, specular, 1.45f, Rgb(),
             MicrofacetDistribution::Ggx};
 }
 // Blender 4.x/5.0's default distribution is Multiscatter GGX.
 Material v2(Rgb c, float roughness, float metallic, float level, float ior,
             MicrofacetDistribution distribution = MicrofacetDistribution::MultiscatterGgx) {
-    return {MaterialModel::PrincipledV2, c, roughness, metallic, level, ior, Rgb(), distribution};
+    return {STRATUM_MATERIAL_PRINCIPLED_V2, c, roughness, metallic, level, ior, Rgb(), distribution};
 }
 
 std::vector<Material> test_materials() {
@@ -310,7 +311,7 @@ TEST(Bsdf, EveryHemisphereDistributionIsUnbiased) {
 }
 
 TEST(Bsdf, EmissionDoesNotScatter) {
-    const Material m{MaterialModel::Emission,    Rgb(1.0f), 0.5f, 0, 0.5f, 1.5f, Rgb(3.0f),
+    const Material m{STRATUM_MATERIAL_EMISSION,  Rgb(1.0f), 0.5f, 0, 0.5f, 1.5f, Rgb(3.0f),
                      MicrofacetDistribution::Ggx};
     BsdfSample s;
     EXPECT_FALSE(bsdf_sample(m, Vec3(0, 0, 1), 0.5f, {0.5f, 0.5f}, &s));

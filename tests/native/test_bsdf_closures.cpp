@@ -15,6 +15,7 @@
 #include "bsdf/glass.h"
 #include "bsdf/glossy.h"
 #include "chi_square.h"
+#include "stratum/stratum.h"
 
 namespace stratum {
 namespace {
@@ -23,18 +24,18 @@ constexpr int kChiSquareTests = 48;  // 16 closure sets x 3 view directions
 constexpr double kSignificance = 0.01 / kChiSquareTests;
 constexpr int kSampleCount = 400'000;
 
-Material make(MaterialModel model, Rgb c, float roughness, float ior = 1.5f,
+Material make(int32_t model, Rgb c, float roughness, float ior = 1.5f,
               MicrofacetDistribution d = MicrofacetDistribution::Ggx) {
     return {model, c, roughness, 0.0f, 0.5f, ior, Rgb(), d};
 }
-Material lambert(Rgb c) { return make(MaterialModel::Diffuse, c, 0.0f); }
+Material lambert(Rgb c) { return make(STRATUM_MATERIAL_DIFFUSE, c, 0.0f); }
 Material glossy(Rgb c, float r, MicrofacetDistribution d = MicrofacetDistribution::Ggx) {
-    return make(MaterialModel::Glossy, c, r, 1.5f, d);
+    return make(STRATUM_MATERIAL_GLOSSY, c, r, 1.5f, d);
 }
-Material glass(Rgb c, float r, float eta) { return make(MaterialModel::Glass, c, r, eta); }
+Material glass(Rgb c, float r, float eta) { return make(STRATUM_MATERIAL_GLASS, c, r, eta); }
 
-Material principled(MaterialModel model, Rgb c, float roughness, float metallic, float transmission,
-                    float coat, float ior = 1.45f, MicrofacetDistribution d = MicrofacetDistribution::Ggx) {
+Material principled(int32_t model, Rgb c, float roughness, float metallic, float transmission, float coat,
+                    float ior = 1.45f, MicrofacetDistribution d = MicrofacetDistribution::Ggx) {
     Material m = make(model, c, roughness, ior, d);
     m.metallic = metallic;
     m.transmission = transmission;
@@ -63,20 +64,20 @@ std::vector<SceneMaterial> chi_square_materials() {
         single(glossy(Rgb(0.8f), 0.6f, MicrofacetDistribution::MultiscatterGgx)),
         single(glass(Rgb(1.0f), 0.3f, 1.5f)), single(glass(Rgb(1.0f), 0.6f, 1.5f)),
         single(glass(Rgb(1.0f), 0.3f, 1.0f / 1.5f)),  // leaving the glass
-        single(make(MaterialModel::Glass, Rgb(1.0f), 0.5f, 1.45f, MicrofacetDistribution::MultiscatterGgx)),
+        single(make(STRATUM_MATERIAL_GLASS, Rgb(1.0f), 0.5f, 1.45f, MicrofacetDistribution::MultiscatterGgx)),
         single(glass(Rgb(0.9f, 0.8f, 0.7f), 0.7f, 1.0f / 1.33f)),
         mix({{Rgb(0.5f), lambert(Rgb(0.8f))}, {Rgb(0.5f), glossy(Rgb(1.0f), 0.4f)}}),
         mix({{Rgb(0.3f, 0.5f, 0.7f), lambert(Rgb(0.8f))}, {Rgb(0.7f), glass(Rgb(1.0f), 0.5f, 1.45f)}}),
         mix({{Rgb(0.6f), glossy(Rgb(0.8f), 0.35f)},
-             {Rgb(0.4f), make(MaterialModel::Transparent, Rgb(1), 0)}}),
+             {Rgb(0.4f), make(STRATUM_MATERIAL_TRANSPARENT, Rgb(1), 0)}}),
         // Principled with transmission and coat, both generations, entering and leaving.
-        single(principled(MaterialModel::PrincipledV1, Rgb(0.8f, 0.6f, 0.4f), 0.4f, 0.0f, 0.7f, 0.0f)),
-        single(principled(MaterialModel::PrincipledV1, Rgb(0.8f), 0.5f, 0.2f, 0.0f, 1.0f)),
-        single(principled(MaterialModel::PrincipledV1, Rgb(0.9f), 0.3f, 0.0f, 1.0f, 0.5f, 1.0f / 1.45f)),
-        single(principled(MaterialModel::PrincipledV2, Rgb(0.8f, 0.6f, 0.4f), 0.4f, 0.0f, 0.7f, 0.0f)),
-        single(principled(MaterialModel::PrincipledV2, Rgb(0.8f), 0.5f, 0.3f, 0.0f, 1.0f, 1.45f,
+        single(principled(STRATUM_MATERIAL_PRINCIPLED_V1, Rgb(0.8f, 0.6f, 0.4f), 0.4f, 0.0f, 0.7f, 0.0f)),
+        single(principled(STRATUM_MATERIAL_PRINCIPLED_V1, Rgb(0.8f), 0.5f, 0.2f, 0.0f, 1.0f)),
+        single(principled(STRATUM_MATERIAL_PRINCIPLED_V1, Rgb(0.9f), 0.3f, 0.0f, 1.0f, 0.5f, 1.0f / 1.45f)),
+        single(principled(STRATUM_MATERIAL_PRINCIPLED_V2, Rgb(0.8f, 0.6f, 0.4f), 0.4f, 0.0f, 0.7f, 0.0f)),
+        single(principled(STRATUM_MATERIAL_PRINCIPLED_V2, Rgb(0.8f), 0.5f, 0.3f, 0.0f, 1.0f, 1.45f,
                           MicrofacetDistribution::MultiscatterGgx)),
-        single(principled(MaterialModel::PrincipledV2, Rgb(0.9f), 0.3f, 0.0f, 1.0f, 0.5f, 1.0f / 1.45f))};
+        single(principled(STRATUM_MATERIAL_PRINCIPLED_V2, Rgb(0.9f), 0.3f, 0.0f, 1.0f, 0.5f, 1.0f / 1.45f))};
 }
 
 TEST(Closures, SamplingMatchesPdfChiSquare) {
@@ -170,7 +171,7 @@ TEST(Closures, WhiteFurnaceBounds) {
         for (const float eta : {1.45f, 1.0f / 1.45f}) {
             // Multiscatter glass: 1/E_glass from a table of 256 stratified samples per entry,
             // trilinearly interpolated; accepted within 4 standard errors + 0.01 of 1.
-            const ClosureSet ms_glass(single(make(MaterialModel::Glass, Rgb(1.0f), roughness, eta,
+            const ClosureSet ms_glass(single(make(STRATUM_MATERIAL_GLASS, Rgb(1.0f), roughness, eta,
                                                   MicrofacetDistribution::MultiscatterGgx)));
             const Albedo a = sampled_albedo(ms_glass, direction(0.7f, 0.0f), 0, 200'000, 14);
             EXPECT_NEAR(a.mean, 1.0, 4.0 * a.std_error + 0.01)
@@ -191,13 +192,13 @@ TEST(Closures, PrincipledTransmissionAndCoatWhiteFurnace) {
     for (const float roughness : {0.1f, 0.4f, 0.8f}) {
         for (const float eta : {1.45f, 1.0f / 1.45f}) {
             Material v1 =
-                principled(MaterialModel::PrincipledV1, Rgb(1.0f), roughness, 0.0f, 1.0f, 0.0f, eta);
+                principled(STRATUM_MATERIAL_PRINCIPLED_V1, Rgb(1.0f), roughness, 0.0f, 1.0f, 0.0f, eta);
             v1.specular = 0.0f;
             Material v2_coated =
-                principled(MaterialModel::PrincipledV2, Rgb(1.0f), roughness, 0.0f, 1.0f, 1.0f, eta);
+                principled(STRATUM_MATERIAL_PRINCIPLED_V2, Rgb(1.0f), roughness, 0.0f, 1.0f, 1.0f, eta);
             v2_coated.coat_tint = Rgb(1.0f);
             for (const Material& m :
-                 {v1, principled(MaterialModel::PrincipledV2, Rgb(1.0f), roughness, 0.0f, 1.0f, 0.0f, eta),
+                 {v1, principled(STRATUM_MATERIAL_PRINCIPLED_V2, Rgb(1.0f), roughness, 0.0f, 1.0f, 0.0f, eta),
                   v2_coated}) {
                 const ClosureSet set(single(m));
                 for (const float theta : {0.2f, 0.8f, 1.3f}) {
@@ -323,11 +324,11 @@ TEST(Closures, EvalKindsMaskSelectsClosuresByScatterKind) {
 }
 
 TEST(Closures, SumsEmissionHoldoutAndTransparency) {
-    Material e = make(MaterialModel::Emission, Rgb(0.0f), 0.0f);
+    Material e = make(STRATUM_MATERIAL_EMISSION, Rgb(0.0f), 0.0f);
     e.emission = Rgb(2.0f, 4.0f, 6.0f);
     const ClosureSet set(mix({{Rgb(0.5f), e},
-                              {Rgb(0.25f), make(MaterialModel::Holdout, Rgb(1.0f), 0.0f)},
-                              {Rgb(0.2f), make(MaterialModel::Transparent, Rgb(0.5f, 1.0f, 0.0f), 0.0f)}}));
+                              {Rgb(0.25f), make(STRATUM_MATERIAL_HOLDOUT, Rgb(1.0f), 0.0f)},
+                              {Rgb(0.2f), make(STRATUM_MATERIAL_TRANSPARENT, Rgb(0.5f, 1.0f, 0.0f), 0.0f)}}));
     EXPECT_EQ(set.emission().g, 2.0f);
     EXPECT_EQ(set.holdout().r, 0.25f);
     EXPECT_FLOAT_EQ(set.transparency().r, 0.1f);

@@ -39,7 +39,7 @@ float conty_reference(Vec3 ns, Vec3 wi) {
     return 2.0f / (1.0f + std::sqrt(1.0f + alpha2 * tan2));
 }
 
-Material model_material(MaterialModel model, BumpShadowing bump) {
+Material model_material(int32_t model, BumpShadowing bump) {
     Material m{};
     m.model = model;
     m.base_color = Rgb(0.6f, 0.5f, 0.4f);
@@ -111,7 +111,7 @@ TEST(BumpShadowing, NoneAndUnperturbedLeaveTheBsdfAlone) {
     EXPECT_EQ(f.all, 1.0f);
     EXPECT_EQ(f.diffuse, 1.0f);
     // A closure set without set_smooth_normal (normal not perturbed) evaluates the plain BSDF.
-    const Material m = model_material(MaterialModel::Diffuse, BumpShadowing::Chiang);
+    const Material m = model_material(STRATUM_MATERIAL_DIFFUSE, BumpShadowing::Chiang);
     const Vec3 wo = direction(0.3f, 0.0f);
     EXPECT_EQ(one_closure(m).eval(wo, wi, HemisphereDistribution::Cosine).value.r,
               bsdf_eval(m, wo, wi).value.r);
@@ -119,8 +119,8 @@ TEST(BumpShadowing, NoneAndUnperturbedLeaveTheBsdfAlone) {
 
 TEST(BumpShadowing, ClosureSetScalesTheDiffusePartAndKeepsThePdf) {
     const Vec3 ns = tilted(0.35f), wo = direction(0.4f, 0.3f);
-    for (MaterialModel model : {MaterialModel::Diffuse, MaterialModel::PrincipledV1,
-                                MaterialModel::PrincipledV2, MaterialModel::Glossy}) {
+    for (int32_t model : {STRATUM_MATERIAL_DIFFUSE, STRATUM_MATERIAL_PRINCIPLED_V1,
+                          STRATUM_MATERIAL_PRINCIPLED_V2, STRATUM_MATERIAL_GLOSSY}) {
         const Material m = model_material(model, BumpShadowing::Chiang);
         ClosureSet set = one_closure(m);
         set.set_smooth_normal(ns);
@@ -132,10 +132,10 @@ TEST(BumpShadowing, ClosureSetScalesTheDiffusePartAndKeepsThePdf) {
             const Rgb expected = plain.value - plain.diffuse + plain.diffuse * term;
             EXPECT_NEAR(shadowed.value.g, expected.g, 1e-6f) << static_cast<int>(model) << " " << theta;
             EXPECT_FLOAT_EQ(shadowed.pdf, plain.pdf);
-            if (model == MaterialModel::Glossy) {
+            if (model == STRATUM_MATERIAL_GLOSSY) {
                 EXPECT_EQ(plain.diffuse.g, 0.0f);
             }
-            if (model == MaterialModel::Diffuse) {
+            if (model == STRATUM_MATERIAL_DIFFUSE) {
                 EXPECT_EQ(plain.diffuse.g, plain.value.g);
             }
         }
@@ -144,7 +144,7 @@ TEST(BumpShadowing, ClosureSetScalesTheDiffusePartAndKeepsThePdf) {
 
 TEST(BumpShadowing, ContySideTestRejectsEvaluatedLeaks) {
     const Vec3 ns = tilted(0.6f), wo = direction(0.2f, 0.0f);
-    const Material m = model_material(MaterialModel::Glossy, BumpShadowing::Conty);
+    const Material m = model_material(STRATUM_MATERIAL_GLOSSY, BumpShadowing::Conty);
     ClosureSet set = one_closure(m);
     set.set_smooth_normal(ns);
     // wi above N but below the smooth surface: evaluated (NEE) it is rejected.

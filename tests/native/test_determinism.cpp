@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "render_helpers.h"
+#include "setting_choices.h"
 
 using namespace stratum_test;
 
@@ -153,23 +154,13 @@ StratumScene* cornell_box() {
     return scene;
 }
 
-std::vector<const char*> registry_names(StratumRegistry registry) {
-    std::vector<const char*> names;
-    for (int32_t i = 0; i < stratum_registry_count(registry); ++i) {
-        const char* name = nullptr;
-        EXPECT_EQ(stratum_registry_entry(registry, i, &name, nullptr, nullptr), STRATUM_OK);
-        names.push_back(name);
-    }
-    return names;
-}
-
 }  // namespace
 
 TEST(Determinism, EverySamplerAndIntegratorRepeatsOneImageForAnyThreadCount) {
     StratumScene* scene = cornell_box();
     ASSERT_FALSE(::testing::Test::HasFailure());
-    const std::vector<const char*> samplers = registry_names(STRATUM_REGISTRY_SAMPLER);
-    const std::vector<const char*> integrators = registry_names(STRATUM_REGISTRY_INTEGRATOR);
+    const std::vector<const char*> samplers = setting_choices("sampler");
+    const std::vector<const char*> integrators = setting_choices("integrator");
     ASSERT_GE(samplers.size(), 12u);
     ASSERT_GE(integrators.size(), 4u);
     const int renders = renders_per_case();

@@ -15,6 +15,7 @@
 
 #include "integrators/path_integrator.h"
 #include "render_scene/render_scene.h"
+#include "stratum/stratum.h"
 
 namespace stratum {
 namespace {
@@ -22,7 +23,7 @@ namespace {
 constexpr float kSunIrradiance = 3.0f;
 constexpr float kFloorAlbedo = 0.8f;
 
-Material make(MaterialModel model, Rgb c, float roughness = 0.0f, float ior = 1.5f) {
+Material make(int32_t model, Rgb c, float roughness = 0.0f, float ior = 1.5f) {
     return {model, c, roughness, 0.0f, 0.5f, ior, Rgb(), MicrofacetDistribution::Ggx};
 }
 
@@ -43,7 +44,7 @@ struct TestScene {
     }
     void add_sun() {
         LightParams sun;
-        sun.type = LightType::Sun;
+        sun.type = STRATUM_LIGHT_SUN;
         sun.strength = kSunIrradiance;
         scene.lights.push_back(sun);  // identity transform: the sun is straight overhead
     }
@@ -51,7 +52,7 @@ struct TestScene {
     static TestScene lit_floor() {
         TestScene t;
         t.add_quad(0.0f, 10.0f,
-                   t.add_material({{Rgb(1.0f), make(MaterialModel::Diffuse, Rgb(kFloorAlbedo))}}));
+                   t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_DIFFUSE, Rgb(kFloorAlbedo))}}));
         t.add_sun();
         return t;
     }
@@ -96,7 +97,7 @@ TEST(PathClosures, UnoccludedFloorIsTheClosedForm) {
 TEST(PathClosures, TransparentShadowIsColourTimesUnoccluded) {
     TestScene t = TestScene::lit_floor();
     const Rgb colour(0.7f, 0.4f, 0.1f);
-    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Transparent, colour)}}));
+    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_TRANSPARENT, colour)}}));
     expect_rgb(floor_radiance(t.scene).radiance, colour * kUnoccluded);
 }
 
@@ -104,22 +105,22 @@ TEST(PathClosures, MixedTransparentShadowIsItsWeightedColour) {
     TestScene t = TestScene::lit_floor();
     const Rgb colour(0.7f, 0.4f, 0.1f);
     t.add_quad(1.0f, 3.0f,
-               t.add_material({{Rgb(0.25f), make(MaterialModel::Transparent, colour)},
-                               {Rgb(0.75f), make(MaterialModel::Diffuse, Rgb(0.5f))}}));
+               t.add_material({{Rgb(0.25f), make(STRATUM_MATERIAL_TRANSPARENT, colour)},
+                               {Rgb(0.75f), make(STRATUM_MATERIAL_DIFFUSE, Rgb(0.5f))}}));
     expect_rgb(floor_radiance(t.scene).radiance, colour * (0.25f * kUnoccluded));
 }
 
 // Cycles traces no caustics through glass on shadow rays: a glass slab casts a full shadow.
 TEST(PathClosures, GlassBlocksShadowRays) {
     TestScene t = TestScene::lit_floor();
-    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Glass, Rgb(1.0f))}}));
+    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_GLASS, Rgb(1.0f))}}));
     expect_rgb(floor_radiance(t.scene).radiance, Rgb(0.0f));
 }
 
 TEST(PathClosures, ShadowRaysCrossAtMostTransparentMaxBounces) {
     TestScene t = TestScene::lit_floor();
     const Rgb colour(0.5f, 0.6f, 0.9f);
-    const uint32_t clear = t.add_material({{Rgb(1.0f), make(MaterialModel::Transparent, colour)}});
+    const uint32_t clear = t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_TRANSPARENT, colour)}});
     t.add_quad(1.0f, 3.0f, clear);
     t.add_quad(1.5f, 3.0f, clear);
     IntegratorSettings s = direct_only();
@@ -134,7 +135,7 @@ TEST(PathClosures, ShadowRaysCrossAtMostTransparentMaxBounces) {
 // so an opaque slab shadows completely.
 TEST(PathClosures, OpaqueSlabShadows) {
     TestScene t = TestScene::lit_floor();
-    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Diffuse, Rgb(0.5f))}}));
+    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_DIFFUSE, Rgb(0.5f))}}));
     expect_rgb(floor_radiance(t.scene).radiance, Rgb(0.0f));
 }
 
@@ -147,7 +148,7 @@ TEST(PathClosures, LightThroughRoughGlassIsTheClosedForm) {
     TestScene t;
     const float roughness = 0.5f, ior = 1.5f;
     t.add_quad(0.0f, 3.0f,
-               t.add_material({{Rgb(1.0f), make(MaterialModel::Glass, Rgb(1.0f), roughness, ior)}}));
+               t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_GLASS, Rgb(1.0f), roughness, ior)}}));
     t.add_sun();
     const double eta = 1.0 / ior, alpha = roughness * roughness;
     const double f0 = ((1 - eta) / (1 + eta)) * ((1 - eta) / (1 + eta));
@@ -169,9 +170,9 @@ TEST(PathClosures, EmissionBehindTransparentIsCollectedAfterTheLastBounce) {
     TestScene t;
     const float rho = 0.8f;
     const Rgb colour(0.6f, 0.3f, 0.9f), radiance(2.0f);
-    t.add_quad(0.0f, 1000.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Diffuse, Rgb(rho))}}));
-    t.add_quad(1.0f, 1000.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Transparent, colour)}}));
-    Material glow = make(MaterialModel::Emission, Rgb(0.0f));
+    t.add_quad(0.0f, 1000.0f, t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_DIFFUSE, Rgb(rho))}}));
+    t.add_quad(1.0f, 1000.0f, t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_TRANSPARENT, colour)}}));
+    Material glow = make(STRATUM_MATERIAL_EMISSION, Rgb(0.0f));
     glow.emission = radiance;
     t.add_quad(2.0f, 1000.0f, t.add_material({{Rgb(1.0f), glow}}));
     const RenderScene render_scene(t.scene);
@@ -203,7 +204,7 @@ RadianceSample look_down(const Scene& scene, bool film_transparent) {
 
 TEST(PathClosures, HoldoutGivesAlphaZeroWithOrWithoutATransparentFilm) {
     TestScene t = TestScene::lit_floor();
-    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Holdout, Rgb(1.0f))}}));
+    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_HOLDOUT, Rgb(1.0f))}}));
     const RadianceSample transparent_film = look_down(t.scene, true);
     expect_rgb(transparent_film.radiance, Rgb(0.0f));
     EXPECT_EQ(transparent_film.alpha, 0.0f);
@@ -216,10 +217,10 @@ TEST(PathClosures, HoldoutGivesAlphaZeroWithOrWithoutATransparentFilm) {
 
 TEST(PathClosures, HalfHoldoutHalfEmissionGivesHalfAlpha) {
     TestScene t = TestScene::lit_floor();
-    Material glow = make(MaterialModel::Emission, Rgb(0.0f));
+    Material glow = make(STRATUM_MATERIAL_EMISSION, Rgb(0.0f));
     glow.emission = Rgb(2.0f, 1.0f, 0.5f);
     t.add_quad(1.0f, 3.0f,
-               t.add_material({{Rgb(0.5f), make(MaterialModel::Holdout, Rgb(1.0f))}, {Rgb(0.5f), glow}}));
+               t.add_material({{Rgb(0.5f), make(STRATUM_MATERIAL_HOLDOUT, Rgb(1.0f))}, {Rgb(0.5f), glow}}));
     const RadianceSample r = look_down(t.scene, true);
     expect_rgb(r.radiance, glow.emission * 0.5f);
     EXPECT_FLOAT_EQ(r.alpha, 0.5f);
@@ -229,7 +230,7 @@ TEST(PathClosures, BackgroundSeenDirectlyIsTransparentOnlyWithATransparentFilm) 
     TestScene t;
     t.scene.background = Rgb(0.3f, 0.6f, 0.9f);
     const Rgb colour(0.5f, 0.25f, 1.0f);
-    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(MaterialModel::Transparent, colour)}}));
+    t.add_quad(1.0f, 3.0f, t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_TRANSPARENT, colour)}}));
     // Looking up through the transparent square into the sky.
     IntegratorSettings s = direct_only();
     s.film_transparent = true;
@@ -267,7 +268,7 @@ TEST(PathClosures, SmoothGlassSphereInAWhiteWorldIsExactlyWhite) {
     }
     sphere.material_ids.assign(
         sphere.triangles.size(),
-        t.add_material({{Rgb(1.0f), make(MaterialModel::Glass, Rgb(1.0f), 0.0f, 1.45f)}}));
+        t.add_material({{Rgb(1.0f), make(STRATUM_MATERIAL_GLASS, Rgb(1.0f), 0.0f, 1.45f)}}));
     t.scene.meshes.push_back(sphere);
     t.scene.instances.push_back({0, Transform{}});
     IntegratorSettings s;

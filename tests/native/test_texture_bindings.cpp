@@ -27,7 +27,7 @@ std::shared_ptr<const Texture> constant_texture(Rgba v) {
 }
 
 Material diffuse(Rgb colour) {
-    return {MaterialModel::PrincipledV1, colour, 0.5f, 0.0f, 0.5f, 1.45f, Rgb(0.0f),
+    return {STRATUM_MATERIAL_PRINCIPLED_V1, colour, 0.5f, 0.0f, 0.5f, 1.45f, Rgb(0.0f),
             MicrofacetDistribution::Ggx};
 }
 

@@ -14,6 +14,7 @@
 #include "integrators/path_integrator.h"
 #include "integrators/valid_reflection_normal.h"
 #include "render_scene/render_scene.h"
+#include "stratum/stratum.h"
 
 namespace stratum {
 namespace {
@@ -109,10 +110,10 @@ TEST(ValidReflectionNormal, SilhouetteOfSmoothMeshIsShadedWithTheBentNormal) {
     scene.meshes.push_back(mesh);
     scene.instances.push_back({0, Transform{}});
     scene.materials.push_back(SceneMaterial{{{Rgb(1.0f),
-                                              {MaterialModel::Diffuse, Rgb(kAlbedo), 0.0f, 0.0f, 0.5f, 1.5f,
+                                              {STRATUM_MATERIAL_DIFFUSE, Rgb(kAlbedo), 0.0f, 0.0f, 0.5f, 1.5f,
                                                Rgb(), MicrofacetDistribution::Ggx}}}});
     LightParams sun;
-    sun.type = LightType::Sun;
+    sun.type = STRATUM_LIGHT_SUN;
     sun.strength = kIrradiance;
     scene.lights.push_back(sun);
 

@@ -31,14 +31,14 @@ def lit_quad_scene(native: Any, light_radius: float, background: float) -> Any:
     """A grey 2x2 quad in front of the camera, lit by a 100 W point light 2 above it of the
     given radius (0: a delta light no ray hits), with a uniform grey background."""
     scene = native.Scene()
-    grey = scene.add_material({"model": native.MATERIAL_DIFFUSE, "base_color": (0.8, 0.8, 0.8)})
+    grey = scene.add_material({"model": native.closure_model("diffuse"), "base_color": (0.8, 0.8, 0.8)})
     positions = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]], dtype=np.float32)
     triangles = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint32)
     mesh = scene.add_mesh(positions, triangles, np.full(2, grey, dtype=np.uint32))
     scene.add_instance(mesh, np.eye(4, dtype=np.float32))
     light = np.eye(4, dtype=np.float32)
     light[2, 3] = 2.0
-    scene.add_light(type=native.LIGHT_POINT, strength=100.0, radius=light_radius, transform=light)
+    scene.add_light(type=native.light_type("point"), strength=100.0, radius=light_radius, transform=light)
     scene.set_camera(native.Camera(transform=look_at_origin_from(4.0)))
     scene.set_background((background, background, background))
     return scene

@@ -28,20 +28,20 @@ def _move_quad(native: Any, scene: Any) -> None:
 
 
 def _recolour_quad(native: Any, scene: Any) -> None:
-    scene.set_material(0, native.Material(model=native.MATERIAL_DIFFUSE,
+    scene.set_material(0, native.Material(model=native.closure_model("diffuse"),
                                           base_color=(0.2, 0.6, 0.9)))
 
 
 def _mix_quad(native: Any, scene: Any) -> None:
     scene.set_closure_material(0, [
-        ((0.5, 0.5, 0.5), native.Material(model=native.MATERIAL_DIFFUSE,
+        ((0.5, 0.5, 0.5), native.Material(model=native.closure_model("diffuse"),
                                           base_color=(0.9, 0.1, 0.1))),
-        ((0.5, 0.5, 0.5), native.Material(model=native.MATERIAL_GLOSSY, roughness=0.3))])
+        ((0.5, 0.5, 0.5), native.Material(model=native.closure_model("glossy"), roughness=0.3))])
 
 
 def _dim_light(native: Any, scene: Any) -> None:
     # lit_quad_scene's light, at 40 W instead of 100 W
-    scene.set_light(0, native.Light(type=native.LIGHT_POINT, strength=40.0, radius=0.1,
+    scene.set_light(0, native.Light(type=native.light_type("point"), strength=40.0, radius=0.1,
                                     transform=_translation(0.0, 0.0, 2.0)))
 
 

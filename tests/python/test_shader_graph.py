@@ -132,7 +132,7 @@ def test_nested_mix_and_add_weights() -> None:
     assert warnings == []
     weights = [cl.weight[0] for cl in closures]
     assert weights == pytest.approx([0.75, 0.25, 0.2, 0.4, 0.4])
-    assert all(cl.material.model == native.MATERIAL_DIFFUSE for cl in closures)
+    assert all(cl.material.model == native.closure_model("diffuse") for cl in closures)
 
 
 def test_add_of_same_input_twice_doubles_and_zero_weights_are_dropped() -> None:
@@ -204,7 +204,7 @@ def test_principled_v1_mapping() -> None:
     assert warnings == []
     (cl,) = closures
     m = cl.material
-    assert m.model == native.MATERIAL_PRINCIPLED_V1
+    assert m.model == native.closure_model("principled_v1")
     assert m.base_color == pytest.approx((0.2, 0.4, 0.6))
     assert (m.metallic, m.roughness, m.specular, m.ior) == pytest.approx((0.3, 0.7, 0.6, 1.33))
     assert (m.transmission, m.coat, m.coat_roughness) == pytest.approx((0.9, 0.5, 0.1))
@@ -220,7 +220,7 @@ def test_principled_v2_mapping() -> None:
     closures, warnings = flatten(output_with(node), V5)
     assert warnings == []
     m = closures[0].material
-    assert m.model == native.MATERIAL_PRINCIPLED_V2
+    assert m.model == native.closure_model("principled_v2")
     assert (m.specular, m.transmission, m.coat, m.coat_roughness, m.coat_ior) == \
         pytest.approx((0.8, 0.4, 1.0, 0.2, 1.6))
     assert m.coat_tint == pytest.approx((0.9, 0.8, 0.7))
@@ -230,8 +230,8 @@ def test_principled_v2_mapping() -> None:
 
 def test_principled_alpha_is_transparent_mix() -> None:
     closures, _ = flatten(output_with(principled_v2(Alpha=0.3)))
-    assert [cl.material.model for cl in closures] == [native.MATERIAL_TRANSPARENT,
-                                                      native.MATERIAL_PRINCIPLED_V2]
+    assert [cl.material.model for cl in closures] == [native.closure_model("transparent"),
+                                                      native.closure_model("principled_v2")]
     assert closures[0].weight[0] == pytest.approx(0.7)
     assert closures[0].material.base_color == (1.0, 1.0, 1.0)
     assert closures[1].weight[0] == pytest.approx(0.3)
@@ -294,7 +294,7 @@ def test_unsupported_node_warns_once_per_node_and_falls_back() -> None:
     toon = Node("ShaderNodeBsdfToon", "Toon", {}, ("BSDF",))
     closures, warnings = flatten(output_with(toon), V3)
     assert len(warnings) == 1 and "'Toon'" in warnings[0]
-    assert closures[0].material.model == native.MATERIAL_PRINCIPLED_V1
+    assert closures[0].material.model == native.closure_model("principled_v1")
 
 
 def test_other_bsdfs() -> None:
@@ -306,9 +306,9 @@ def test_other_bsdfs() -> None:
                 ("Emission",))
     hold = Node("ShaderNodeHoldout", "Hold", {}, ("Holdout",))
     transparent = Node("ShaderNodeBsdfTransparent", "T", {"Color": (0.5, 0.5, 0.5, 1)})
-    expected = [(glossy, native.MATERIAL_GLOSSY), (glass, native.MATERIAL_GLASS),
-                (emit, native.MATERIAL_EMISSION), (hold, native.MATERIAL_HOLDOUT),
-                (transparent, native.MATERIAL_TRANSPARENT)]
+    expected = [(glossy, native.closure_model("glossy")), (glass, native.closure_model("glass")),
+                (emit, native.closure_model("emission")), (hold, native.closure_model("holdout")),
+                (transparent, native.closure_model("transparent"))]
     for node, model in expected:
         closures, warnings = flatten(output_with(node, node.outputs[0].name))
         assert warnings == [], node.name

@@ -99,18 +99,18 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
         summary.warn(f"Light '{ob.name}': 'Soft Falloff' off is not supported "
                      "(rendered as with Soft Falloff on)")
     if kind == "POINT":
-        return native.Light(type=native.LIGHT_POINT, color=color, strength=power,
+        return native.Light(type=native.light_type("point"), color=color, strength=power,
                             radius=max(float(light.shadow_soft_size), 0.0), transform=transform,
                             visibility=visibility)
     if kind == "SPOT":
         # Cycles 3.x multiplies the spot falloff by cos(angle to the axis), 4.x+ does not.
-        spot_type = native.LIGHT_SPOT_V1 if bpy.app.version < (4, 0, 0) else native.LIGHT_SPOT
+        spot_type = native.light_type("spot_v1" if bpy.app.version < (4, 0, 0) else "spot")
         return native.Light(type=spot_type, color=color, strength=power,
                             radius=max(float(light.shadow_soft_size), 0.0), transform=transform,
                             spot_size=float(light.spot_size), spot_blend=float(light.spot_blend),
                             visibility=visibility)
     if kind == "SUN":
-        return native.Light(type=native.LIGHT_SUN, color=color, strength=power,
+        return native.Light(type=native.light_type("sun"), color=color, strength=power,
                             angle=float(light.angle), transform=transform,
                             visibility=visibility)
     if kind == "AREA":
@@ -120,8 +120,8 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
         shape = light.shape
         size_x = float(light.size)
         size_y = float(light.size_y) if shape in {"RECTANGLE", "ELLIPSE"} else size_x
-        light_type = (native.LIGHT_AREA_RECTANGLE if shape in {"SQUARE", "RECTANGLE"}
-                      else native.LIGHT_AREA_ELLIPSE)
+        rectangle = shape in {"SQUARE", "RECTANGLE"}
+        light_type = native.light_type("area_rectangle" if rectangle else "area_ellipse")
         scale = np.linalg.norm(np.asarray(transform).reshape(4, 4)[:3, :2], axis=0)
         if not (size_x * scale[0] > 0.0 and size_y * scale[1] > 0.0):
             summary.warn(f"Light '{ob.name}': area light of size {size_x:g} x {size_y:g} "

@@ -52,12 +52,12 @@ def _single(material: native.Material) -> list[Closure]:
 def convert_material(material: Any | None) -> ConvertedMaterial:
     """Closures of a Blender material (None: the default grey diffuse)."""
     if material is None:
-        return ConvertedMaterial(_single(native.Material(model=native.MATERIAL_DIFFUSE,
+        return ConvertedMaterial(_single(native.Material(model=native.closure_model("diffuse"),
                                                          base_color=DEFAULT_GREY)))
     if not uses_nodes(material):
         color, problem = clamp_rgb(rgb(material.diffuse_color), UNIT)
         return ConvertedMaterial(
-            _single(native.Material(model=native.MATERIAL_DIFFUSE, base_color=color)),
+            _single(native.Material(model=native.closure_model("diffuse"), base_color=color)),
             warnings=[f"Material '{material.name}': 'Color' {problem}"] if problem else [])
     output = active_output(material.node_tree, "ShaderNodeOutputMaterial")
     surface = output.inputs.get("Surface") if output is not None else None
@@ -69,13 +69,14 @@ def convert_material(material: Any | None) -> ConvertedMaterial:
         # Cycles makes the surface of a volume-only material a transparent boundary
         # (scene/shader.cpp: SD_HAS_ONLY_VOLUME, "we can assume transparent surface").
         return ConvertedMaterial(
-            _single(native.Material(model=native.MATERIAL_TRANSPARENT,
+            _single(native.Material(model=native.closure_model("transparent"),
                                     base_color=(1.0, 1.0, 1.0))),
             warnings=[volume_warning + "; its surface is transparent, as in Cycles"])
     if surface is None or linked_from(surface) is None:
         # Cycles renders an unconnected surface black; keep it visible but say so.
         return ConvertedMaterial(
-            _single(native.Material(model=native.MATERIAL_DIFFUSE, base_color=DEFAULT_GREY)),
+            _single(native.Material(model=native.closure_model("diffuse"),
+                                    base_color=DEFAULT_GREY)),
             warnings=[f"Material '{material.name}': no shader connected to the Material Output "
                       "(using grey diffuse)"])
     warnings: list[str] = []
@@ -88,7 +89,7 @@ def convert_material(material: Any | None) -> ConvertedMaterial:
         warnings.append(volume_warning)
     if not closures:
         # Every closure had weight 0: Cycles shades the surface black (and opaque).
-        closures = _single(native.Material(model=native.MATERIAL_DIFFUSE,
+        closures = _single(native.Material(model=native.closure_model("diffuse"),
                                            base_color=(0.0, 0.0, 0.0)))
     return ConvertedMaterial(closures, uv_map, warnings)
 

@@ -1,14 +1,16 @@
 """ctypes binding of the Stratum C ABI (native/include/stratum/stratum.h).
 
 This package is the ONLY code that knows the C ABI (and the only one that imports ctypes).
-Everything above it (export, engine, cli) talks to `Scene`, `Renderer`, `settings()` and
-`registry()`. Every native call goes through library._check, so a non-OK status becomes a
-`StratumError` carrying stratum_last_error()'s text; nothing here can abort the host process on
-bad input, because the library validates every value.
+Everything above it (export, engine, cli) talks to `Scene`, `Renderer`, `settings()`,
+`registry()`, `light_type()` and `closure_model()`. Every native call goes through
+library._check, so a non-OK status becomes a `StratumError` carrying stratum_last_error()'s
+text; nothing here can abort the host process on bad input, because the library validates every
+value.
 
 Its modules, by job: abi (status codes, enums, C structs and function signatures mirroring
 the header), library (loading libstratum.so, errors, version), settings (the render settings
 with their choices, the registries among them, and the passes, as the library lists them),
+models (light types and closure models by name, as the library lists them),
 marshalling (Python values as C arguments), descriptions (the dataclasses a Scene is made
 of), scene (`Scene`), renderer (`Renderer`, `Progress`), inspection (sampler points, hemisphere
 warps, the blue-noise texture and the dimension layout, without a scene). The public API is
@@ -34,20 +36,6 @@ from .abi import (
     ERROR_INVALID_STATE,
     ERROR_IO,
     ERROR_OUT_OF_MEMORY,
-    LIGHT_AREA_ELLIPSE,
-    LIGHT_AREA_RECTANGLE,
-    LIGHT_POINT,
-    LIGHT_SPOT,
-    LIGHT_SPOT_V1,
-    LIGHT_SUN,
-    MATERIAL_DIFFUSE,
-    MATERIAL_EMISSION,
-    MATERIAL_GLASS,
-    MATERIAL_GLOSSY,
-    MATERIAL_HOLDOUT,
-    MATERIAL_PRINCIPLED_V1,
-    MATERIAL_PRINCIPLED_V2,
-    MATERIAL_TRANSPARENT,
     MICROFACET_GGX,
     MICROFACET_MULTISCATTER_GGX,
     OK,
@@ -59,10 +47,6 @@ from .abi import (
     PARAM_SPECULAR,
     PARAM_TRANSMISSION,
     PARAM_WEIGHT,
-    REGISTRY_FILTER,
-    REGISTRY_HEMISPHERE,
-    REGISTRY_INTEGRATOR,
-    REGISTRY_SAMPLER,
     SENSOR_FIT_AUTO,
     SENSOR_FIT_HORIZONTAL,
     SENSOR_FIT_VERTICAL,
@@ -108,6 +92,7 @@ from .library import (
     load_library,
     version,
 )
+from .models import closure_model, closure_models, light_type, light_types
 from .renderer import Progress, Renderer
 from .scene import Scene
 from .settings import (
@@ -126,21 +111,18 @@ __all__ = [
     "BUMP_SHADOWING_CONTY", "BUMP_SHADOWING_CONTY_UNSMOOTHED", "BUMP_SHADOWING_NONE",
     "CAMERA_EQUIRECTANGULAR", "CAMERA_ORTHOGRAPHIC", "CAMERA_PERSPECTIVE", "CAMERA_TYPES",
     "Camera", "ERROR_INTERNAL", "ERROR_INVALID_ARGUMENT", "ERROR_INVALID_STATE", "ERROR_IO",
-    "ERROR_OUT_OF_MEMORY", "Instance", "LIGHT_AREA_ELLIPSE", "LIGHT_AREA_RECTANGLE",
-    "LIGHT_POINT", "LIGHT_SPOT", "LIGHT_SPOT_V1", "LIGHT_SUN", "LibraryLoadError", "Light",
-    "MATERIAL_DIFFUSE", "MATERIAL_EMISSION", "MATERIAL_GLASS", "MATERIAL_GLOSSY",
-    "MATERIAL_HOLDOUT", "MATERIAL_PRINCIPLED_V1", "MATERIAL_PRINCIPLED_V2",
-    "MATERIAL_TRANSPARENT", "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "OK",
+    "ERROR_OUT_OF_MEMORY", "Instance", "LibraryLoadError", "Light",
+    "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "OK",
     "PARAM_BASE_COLOR", "PARAM_EMISSION", "PARAM_METALLIC", "PARAM_NORMAL", "PARAM_ROUGHNESS",
     "PARAM_SPECULAR", "PARAM_TRANSMISSION", "PARAM_WEIGHT", "Pass", "Progress",
-    "REGISTRY_FILTER", "REGISTRY_HEMISPHERE", "REGISTRY_INTEGRATOR", "REGISTRY_SAMPLER",
     "REGISTRY_SETTINGS", "RegistryEntry", "Renderer", "SENSOR_FITS", "SENSOR_FIT_AUTO",
     "SENSOR_FIT_HORIZONTAL", "SENSOR_FIT_VERTICAL", "STATUS_NAMES", "Scene", "Setting",
     "SettingKind", "StratumError", "TEXTURE_CLIP", "TEXTURE_CLOSEST", "TEXTURE_EXTEND",
     "TEXTURE_LINEAR", "TEXTURE_MIRROR", "TEXTURE_REPEAT",
     "Texture", "TextureBinding", "TextureInfo", "VISIBLE_ALL", "VISIBLE_CAMERA",
     "VISIBLE_DIFFUSE", "VISIBLE_GLOSSY", "VISIBLE_SHADOW", "VISIBLE_TRANSMISSION",
-    "bluenoise_texture", "bounce_dimension_stride", "camera_dimensions",
+    "bluenoise_texture", "bounce_dimension_stride", "camera_dimensions", "closure_model",
+    "closure_models", "light_type", "light_types",
     "default_library_path", "dimension_name", "library_available", "load_library", "passes",
     "registry", "sampler_points", "setting", "settings", "version", "warp_hemisphere",
 ]

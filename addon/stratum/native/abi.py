@@ -27,10 +27,10 @@ STATUS_NAMES: dict[int, str] = {
     ERROR_IO: "I/O error",
 }
 
-REGISTRY_SAMPLER = 0
-REGISTRY_FILTER = 1
-REGISTRY_INTEGRATOR = 2
-REGISTRY_HEMISPHERE = 3
+# StratumModelKind: the listings of stratum_model_entry (light types, closure models), which name
+# every StratumLightType and StratumMaterialModel value (models.py).
+MODEL_LIGHT = 0
+MODEL_CLOSURE = 1
 
 
 # StratumSettingKind: how a render setting is set (stratum_renderer_set_int / _float / _string).
@@ -40,15 +40,6 @@ class SettingKind(enum.IntEnum):
     CHOICE = 2  # one name of its choices
     LIST = 3  # comma-separated names of its choices, "" = none
 
-
-MATERIAL_DIFFUSE = 0
-MATERIAL_PRINCIPLED_V1 = 1
-MATERIAL_PRINCIPLED_V2 = 2
-MATERIAL_EMISSION = 3
-MATERIAL_GLOSSY = 4
-MATERIAL_GLASS = 5
-MATERIAL_TRANSPARENT = 6
-MATERIAL_HOLDOUT = 7
 
 TEXTURE_CLOSEST = 0
 TEXTURE_LINEAR = 1
@@ -82,13 +73,6 @@ BUMP_SHADOWING_CHIANG = 1  # Cycles 2.90-4.4
 BUMP_SHADOWING_CHIANG_UNSMOOTHED = 2  # Cycles 4.2-4.4, Bump Map Correction off
 BUMP_SHADOWING_CONTY = 3  # Cycles 4.5+
 BUMP_SHADOWING_CONTY_UNSMOOTHED = 4  # Cycles 4.5+, Bump Map Correction off
-
-LIGHT_POINT = 0
-LIGHT_SUN = 1
-LIGHT_AREA_RECTANGLE = 2
-LIGHT_AREA_ELLIPSE = 3
-LIGHT_SPOT = 4  # Cycles 4.x/5.x spot
-LIGHT_SPOT_V1 = 5  # Cycles 3.x spot: the 4.x falloff times cos(angle to the axis)
 
 CAMERA_PERSPECTIVE = 0
 CAMERA_ORTHOGRAPHIC = 1
@@ -287,8 +271,8 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
     return {
         "stratum_last_error": (p_char, []),
         "stratum_version": (p_char, []),
-        "stratum_registry_count": (c_int32, [c_int32]),
-        "stratum_registry_entry": (c_int32, [c_int32, c_int32, pp_char, pp_char, pp_char]),
+        "stratum_model_count": (c_int32, [c_int32]),
+        "stratum_model_entry": (c_int32, [c_int32, c_int32, pp_char, ctypes.POINTER(c_int32)]),
         "stratum_dimension_name": (c_int32, [c_uint32, pp_char]),
         "stratum_camera_dimensions": (c_uint32, []),
         "stratum_bounce_dimension_stride": (c_uint32, []),

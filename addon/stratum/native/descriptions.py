@@ -5,26 +5,25 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from .abi import (
     BUMP_SHADOWING_NONE,
     CAMERA_PERSPECTIVE,
-    LIGHT_POINT,
-    MATERIAL_DIFFUSE,
     MICROFACET_GGX,
     SENSOR_FIT_AUTO,
     TEXTURE_LINEAR,
     TEXTURE_REPEAT,
     VISIBLE_ALL,
 )
+from .models import closure_model, light_type
 
 
 @dataclass
 class Material:
-    model: int = MATERIAL_DIFFUSE
+    model: int = field(default_factory=lambda: closure_model("diffuse"))
     base_color: tuple[float, float, float] = (0.8, 0.8, 0.8)
     roughness: float = 0.5
     metallic: float = 0.0
@@ -91,7 +90,7 @@ class Instance:
 
 @dataclass
 class Light:
-    type: int = LIGHT_POINT
+    type: int = field(default_factory=lambda: light_type("point"))
     color: tuple[float, float, float] = (1.0, 1.0, 1.0)
     strength: float = 10.0
     radius: float = 0.0

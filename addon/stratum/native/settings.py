@@ -55,7 +55,7 @@ class Pass(NamedTuple):
     description: str
 
 
-# The registries (stratum_registry_*) are the choices of these settings.
+# registry(kind): the choices of these settings, by the names `stratum compare` and the tests use.
 REGISTRY_SETTINGS: dict[str, str] = {
     "sampler": "sampler",
     "filter": "filter_type",

@@ -45,21 +45,19 @@ typedef enum StratumStatus {
 STRATUM_API const char* stratum_last_error(void);
 STRATUM_API const char* stratum_version(void);
 
-/* ---- registries (samplers, filters, integrators) -------------------------------------- */
+/* ---- models (light types, closure models) ------------------------------------------------ */
 
-typedef enum StratumRegistry {
-    STRATUM_REGISTRY_SAMPLER = 0,
-    STRATUM_REGISTRY_FILTER = 1,
-    STRATUM_REGISTRY_INTEGRATOR = 2,
-    STRATUM_REGISTRY_HEMISPHERE = 3 /* distributions of diffuse/AO directions */
-} StratumRegistry;
+typedef enum StratumModelKind {
+    STRATUM_MODEL_LIGHT = 0,  /* StratumLightType */
+    STRATUM_MODEL_CLOSURE = 1 /* StratumMaterialModel */
+} StratumModelKind;
 
-/* Number of entries of a registry, or -1 for an unknown registry. */
-STRATUM_API int32_t stratum_registry_count(int32_t registry);
-/* Stable name ("random"), short label ("Random (PCG32)") and one-line description of entry
- * `index`. The strings are static. */
-STRATUM_API StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char** name,
-                                                 const char** label, const char** description);
+/* Number of models of a kind, or -1 for an unknown kind. */
+STRATUM_API int32_t stratum_model_count(int32_t kind);
+/* Model `index` of a kind, in value order: its name (the enumerator's, in lower case, without
+ * its prefix: "spot_v1" for STRATUM_LIGHT_SPOT_V1; static) and its value. Hosts may look values
+ * up by name here instead of mirroring the enumerations. */
+STRATUM_API StratumStatus stratum_model_entry(int32_t kind, int32_t index, const char** name, int32_t* value);
 
 /* ---- render settings ---------------------------------------------------------------------- */
 
@@ -112,7 +110,7 @@ STRATUM_API StratumStatus stratum_sampler_points(const char* sampler, uint32_t s
                                                  uint32_t pixel_y, uint32_t dim_a, uint32_t dim_b,
                                                  uint32_t count, float* out_xy);
 /* Maps count points of [0,1)^2 (uv, 2 floats each) through a hemisphere distribution
- * (registry STRATUM_REGISTRY_HEMISPHERE): out_xyz receives unit vectors (z = normal) and
+ * (a choice of the "hemisphere" setting): out_xyz receives unit vectors (z = normal) and
  * out_pdf (optional) their solid-angle densities. */
 STRATUM_API StratumStatus stratum_warp_hemisphere(const char* distribution, const float* uv, uint32_t count,
                                                   float* out_xyz, float* out_pdf);
@@ -478,8 +476,8 @@ STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
  *           rr_min_depth (first bounce Russian roulette may end a path, default 3)
  *   float:  filter_width (pixels), ao_distance (scene units, > 0),
  *           control_variate (ambient radiance L_a of the control variate, >= 0; 0 = off)
- *   string: sampler (registry name), filter_type ("box", "blackman_harris"),
- *           integrator (registry name: path, light, direct, ao), hemisphere (registry name),
+ *   string: sampler (a choice: stratum_setting_choice), filter_type ("box", "blackman_harris"),
+ *           integrator (path, light, direct, ao), hemisphere (a choice),
  *           light_sampling ("mis", "nee", "bsdf"), mis_heuristic ("power", "balance", "max"),
  *           light_selection ("mixed", "power", "uniform"),
  *           triangle_sampling ("solid_angle", "area": how NEE takes a point on an emissive

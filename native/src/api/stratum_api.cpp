@@ -7,13 +7,16 @@
 #include <new>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "api/abi_guard.h"
 #include "api/scene_file.h"
 #include "api/scene_handle.h"
 #include "api/validation.h"
+#include "bsdf/bsdf.h"
 #include "film/pixel_filter.h"
 #include "integrators/integrator.h"
+#include "lights/light_registry.h"
 #include "render/image_output.h"
 #include "render/ray_throughput.h"
 #include "render/renderer.h"
@@ -75,37 +78,34 @@ const char* stratum_last_error(void) { return g_last_error.c_str(); }
 
 const char* stratum_version(void) { return "0.1.0"; }
 
-int32_t stratum_registry_count(int32_t registry) {
-    switch (registry) {
-        case STRATUM_REGISTRY_SAMPLER:
-            return static_cast<int32_t>(stratum::sampler_registry().size());
-        case STRATUM_REGISTRY_FILTER:
-            return static_cast<int32_t>(stratum::filter_registry().size());
-        case STRATUM_REGISTRY_INTEGRATOR:
-            return static_cast<int32_t>(stratum::integrator_registry().size());
-        case STRATUM_REGISTRY_HEMISPHERE:
-            return static_cast<int32_t>(stratum::hemisphere_registry().size());
+int32_t stratum_model_count(int32_t kind) {
+    switch (kind) {
+        case STRATUM_MODEL_LIGHT:
+            return stratum::light_models().count();
+        case STRATUM_MODEL_CLOSURE:
+            return stratum::closure_models().count();
         default:
             return -1;
     }
 }
 
-StratumStatus stratum_registry_entry(int32_t registry, int32_t index, const char** name, const char** label,
-                                     const char** description) {
-    return guarded("stratum_registry_entry", [&] {
-        const int32_t count = stratum_registry_count(registry);
-        require(count >= 0, "unknown registry " + std::to_string(registry));
+StratumStatus stratum_model_entry(int32_t kind, int32_t index, const char** name, int32_t* value) {
+    return guarded("stratum_model_entry", [&] {
+        const int32_t count = stratum_model_count(kind);
+        require(count >= 0, "unknown model kind " + std::to_string(kind) +
+                                " (STRATUM_MODEL_LIGHT or STRATUM_MODEL_CLOSURE)");
         require(index >= 0 && index < count,
-                "index " + std::to_string(index) + " out of range [0, " + std::to_string(count) + ")");
-        const auto i = static_cast<size_t>(index);
-        const stratum::RegistryEntry& e =
-            registry == STRATUM_REGISTRY_SAMPLER      ? stratum::sampler_registry()[i].info
-            : registry == STRATUM_REGISTRY_FILTER     ? stratum::filter_registry()[i]
-            : registry == STRATUM_REGISTRY_HEMISPHERE ? stratum::hemisphere_registry()[i]
-                                                      : stratum::integrator_registry()[i].info;
-        if (name) *name = e.name;
-        if (label) *label = e.label;
-        if (description) *description = e.description;
+                "model index " + std::to_string(index) + " out of range [0, " + std::to_string(count) + ")");
+        const auto [entry_value, entry_name] = [&] {
+            if (kind == STRATUM_MODEL_LIGHT) {
+                const auto* e = stratum::light_models().entry(index);
+                return std::pair{e->value, e->name};
+            }
+            const auto* e = stratum::closure_models().entry(index);
+            return std::pair{e->value, e->name};
+        }();
+        if (name) *name = entry_name;
+        if (value) *value = entry_value;
         return STRATUM_OK;
     });
 }

@@ -154,10 +154,10 @@ Transform validate_transform(const float* m, const char* what) {
 }
 
 Material validate_material(const StratumMaterialDesc& d) {
-    check(find_closure_model(static_cast<MaterialModel>(d.model)) != nullptr,
+    check(find_closure_model(d.model) != nullptr,
           "material model " + std::to_string(d.model) + " is not a StratumMaterialModel");
     Material m{};
-    m.model = static_cast<MaterialModel>(d.model);
+    m.model = d.model;
     m.base_color = rgb_in(d.base_color, 0.0f, 1.0f, "material base_color");
     m.roughness = finite_in(d.roughness, 0.0f, 1.0f, "material roughness");
     m.metallic = finite_in(d.metallic, 0.0f, 1.0f, "material metallic");
@@ -383,10 +383,10 @@ Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>
 }
 
 LightParams validate_light(const StratumLightDesc& d) {
-    const LightModel* model = find_light_model(static_cast<LightType>(d.type));
+    const LightModel* model = find_light_model(d.type);
     check(model != nullptr, "light type " + std::to_string(d.type) + " is not a StratumLightType");
     LightParams l;
-    l.type = static_cast<LightType>(d.type);
+    l.type = d.type;
     l.color = validate_radiance(d.color, "light color");
     l.strength = finite_in(d.strength, 0.0f, std::numeric_limits<float>::max(), "light strength");
     l.radius = finite_in(d.radius, 0.0f, kMaxCoordinate, "light radius");

@@ -1,8 +1,5 @@
 #include "bsdf/bsdf.h"
 
-#include <array>
-#include <utility>
-
 #include "bsdf/emission.h"
 #include "bsdf/glass.h"
 #include "bsdf/glossy.h"
@@ -16,34 +13,27 @@ namespace stratum {
 
 namespace {
 
-// The closure models of the C ABI, one line each.
-constexpr std::pair<MaterialModel, const ClosureModel*> kClosureModels[] = {
+// The closure models of the C ABI, one line each: StratumMaterialModel's value, its enumerator's
+// name in lower case without STRATUM_MATERIAL_, the model. tests/python/test_models.py checks the
+// lines against include/stratum/stratum.h.
+constinit ClosureModels g_closure_models{
     // Lambert, albedo = base_color.
-    {MaterialModel::Diffuse, &kLambertClosure},
+    {0, "diffuse", &kLambertClosure},
     // Cycles 3.x Principled: Burley diffuse + GGX, cspec0.
-    {MaterialModel::PrincipledV1, &kPrincipledV1Closure},
+    {1, "principled_v1", &kPrincipledV1Closure},
     // Cycles 4.x Principled: Lambert under a dielectric GGX layer (energy conserving) + F82 metal.
-    {MaterialModel::PrincipledV2, &kPrincipledV2Closure},
+    {2, "principled_v2", &kPrincipledV2Closure},
     // No scattering (the emitted radiance lives in `emission`).
-    {MaterialModel::Emission, &kEmissionClosure},
+    {3, "emission", &kEmissionClosure},
     // GGX reflection, Fresnel 1, tinted by base_color.
-    {MaterialModel::Glossy, &kGlossyClosure},
+    {4, "glossy", &kGlossyClosure},
     // GGX dielectric reflection + refraction at `ior`.
-    {MaterialModel::Glass, &kGlassClosure},
+    {5, "glass", &kGlassClosure},
     // Delta pass-through wi = −wo, tinted by base_color.
-    {MaterialModel::Transparent, &kTransparentClosure},
+    {6, "transparent", &kTransparentClosure},
     // No scattering; the integrator turns its weight into alpha.
-    {MaterialModel::Holdout, &kHoldoutClosure},
+    {7, "holdout", &kHoldoutClosure},
 };
-
-using ClosureModelTable = std::array<const ClosureModel*, kMaxClosureModels>;
-
-// Indexed by model; filled at compile time (constinit: no static-initialisation order to mind).
-constinit ClosureModelTable g_closure_models = [] {
-    ClosureModelTable table{};
-    for (const auto& [model, entry] : kClosureModels) table[static_cast<uint32_t>(model)] = entry;
-    return table;
-}();
 
 // What a value without a model answers: no scattering.
 constexpr ClosureModel kUnregistered{
@@ -57,21 +47,17 @@ constexpr ClosureModel kUnregistered{
 
 }  // namespace
 
-const ClosureModel* find_closure_model(MaterialModel model) {
-    const auto index = static_cast<uint32_t>(model);
-    return index < kMaxClosureModels ? g_closure_models[index] : nullptr;
-}
+const ClosureModels& closure_models() { return g_closure_models; }
 
-const ClosureModel& closure_model(MaterialModel model) {
+const ClosureModel* find_closure_model(int32_t model) { return g_closure_models.find(model); }
+
+const ClosureModel& closure_model(int32_t model) {
     const ClosureModel* entry = find_closure_model(model);
     return entry ? *entry : kUnregistered;
 }
 
-bool register_closure_model(MaterialModel model, const ClosureModel& entry) {
-    const auto index = static_cast<uint32_t>(model);
-    if (index >= kMaxClosureModels || g_closure_models[index]) return false;
-    g_closure_models[index] = &entry;
-    return true;
+bool register_closure_model(int32_t model, const char* name, const ClosureModel& entry) {
+    return g_closure_models.add({model, name, &entry});
 }
 
 bool bsdf_is_delta(const Material& m) { return closure_model(m.model).is_delta(m); }

@@ -14,6 +14,7 @@
 
 #include "bsdf/bump_shadowing.h"
 #include "core/math.h"
+#include "core/model_table.h"
 #include "sampling/hemisphere.h"
 #include "scene/material.h"
 
@@ -44,7 +45,7 @@ struct BsdfSample {
 };
 
 // What a closure model answers for itself: each model's file defines its entry, and one line of
-// the registry in bsdf.cpp files it under its MaterialModel. Every question costs one lookup and
+// the registry in bsdf.cpp files it under its StratumMaterialModel value. Every question costs one lookup and
 // at most one indirect call, where a switch over the models cost one indirect jump.
 struct ClosureModel {
     // f(wo, wi) |cos θ_i| and the pdf of sample() (bsdf_eval below).
@@ -69,16 +70,21 @@ struct ClosureModel {
     bool holdout = false, transparent = false, lambertian = false;
 };
 
-// MaterialModel values are 0 .. kMaxClosureModels − 1.
-inline constexpr uint32_t kMaxClosureModels = 32;
+// Closure models are numbered 0 .. kMaxClosureModels − 1.
+inline constexpr int32_t kMaxClosureModels = 32;
+using ClosureModels = ModelTable<ClosureModel, kMaxClosureModels>;
+
+// Every registered closure model, in value order (what stratum_model_* list).
+const ClosureModels& closure_models();
 // The entry of `model`; a value no model is registered under scatters nothing.
-const ClosureModel& closure_model(MaterialModel model);
+const ClosureModel& closure_model(int32_t model);
 // The entry registered under `model`, or null (how the C ABI tells a model it knows).
-const ClosureModel* find_closure_model(MaterialModel model);
-// Registers `entry` (kept by address: a static) under a value that has none: how a test adds a
-// closure model of its own. Call it before any material of that model is validated or shaded,
-// and not while another thread reads the registry. False when the value is out of range or taken.
-bool register_closure_model(MaterialModel model, const ClosureModel& entry);
+const ClosureModel* find_closure_model(int32_t model);
+// Registers `entry` (kept by address: a static) under a value that has none, with `name` (a
+// static string): how a test adds a closure model of its own. Call it before any material of
+// that model is validated or shaded, and not while another thread reads the registry. False when
+// the value is out of range or taken.
+bool register_closure_model(int32_t model, const char* name, const ClosureModel& entry);
 
 // Answers several models share.
 inline BsdfEval no_scattering_eval(const Material&, Vec3, Vec3, HemisphereDistribution) {

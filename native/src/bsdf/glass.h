@@ -48,7 +48,7 @@ float glass_energy_scale(MicrofacetDistribution distribution, float cos_o, float
 BsdfEval glass_eval(const Material& m, Vec3 wo, Vec3 wi);
 bool glass_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out);
 
-// MaterialModel::Glass.
+// STRATUM_MATERIAL_GLASS.
 extern const ClosureModel kGlassClosure;
 
 }  // namespace stratum

@@ -28,7 +28,7 @@ inline bool ggx_is_sharp(float roughness) {
 BsdfEval glossy_eval(const Material& m, Vec3 wo, Vec3 wi);
 bool glossy_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out);
 
-// MaterialModel::Glossy.
+// STRATUM_MATERIAL_GLOSSY.
 extern const ClosureModel kGlossyClosure;
 
 }  // namespace stratum

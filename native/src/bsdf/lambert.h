@@ -15,7 +15,7 @@ namespace stratum {
 BsdfEval lambert_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere);
 bool lambert_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out, HemisphereDistribution hemisphere);
 
-// MaterialModel::Diffuse.
+// STRATUM_MATERIAL_DIFFUSE.
 extern const ClosureModel kLambertClosure;
 
 }  // namespace stratum

@@ -41,7 +41,7 @@ BsdfEval principled_v1_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistr
 bool principled_v1_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
                           HemisphereDistribution hemisphere);
 
-// MaterialModel::PrincipledV1.
+// STRATUM_MATERIAL_PRINCIPLED_V1.
 extern const ClosureModel kPrincipledV1Closure;
 
 }  // namespace stratum

@@ -47,7 +47,7 @@ BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistr
 bool principled_v2_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
                           HemisphereDistribution hemisphere);
 
-// MaterialModel::PrincipledV2.
+// STRATUM_MATERIAL_PRINCIPLED_V2.
 extern const ClosureModel kPrincipledV2Closure;
 
 }  // namespace stratum

@@ -7,6 +7,7 @@
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
 #include "integrators/transparent_shadow.h"
+#include "lights/light_registry.h"
 #include "sampling/dimensions.h"
 #include "sampling/warps.h"
 #include "scene/visibility.h"
@@ -281,8 +282,7 @@ std::vector<std::string> LightTracer::notices(const Scene& scene) const {
     }
     if (scene.lights.size() > 0) {
         for (const LightParams& l : scene.lights) {
-            if ((l.type == LightType::Point || l.type == LightType::Spot || l.type == LightType::SpotV1) &&
-                l.radius > 0.0f) {
+            if (make_light(l)->emits_from_its_centre()) {
                 out.emplace_back(
                     "light tracing emits point and spot lamps with a radius from their centre: their shadows "
                     "are "

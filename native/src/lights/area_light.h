@@ -68,7 +68,7 @@ private:
     float sin_half_spread_;   // sin h (1 without spread)
 };
 
-// LightType::AreaRectangle and LightType::AreaEllipse: transform, size_x, size_y, power =
+// STRATUM_LIGHT_AREA_RECTANGLE and STRATUM_LIGHT_AREA_ELLIPSE: transform, size_x, size_y, power =
 // color × strength, spread; both check size_x, size_y in (0, kMaxCoordinate] and spread in
 // [0, π], 0 read as π (callers written before spread existed pass 0).
 extern const LightModel kRectangleAreaLightModel, kEllipseAreaLightModel;

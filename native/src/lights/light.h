@@ -15,6 +15,7 @@
 // | sample_emission  | light tracing: a particle leaving the light (lights/emission_sample.h);   |
 // |                  | lights at infinity shine over the sphere (center, radius) bounding the    |
 // |                  | scene. False when it emits nothing                                        |
+// | emits_from_its_centre | sample_emission approximates a lamp with a radius by its centre  |
 // | intersect        | the ray (origin, unit dir) meets the lamp's emitting face before t_max:   |
 // |                  | distance, radiance toward the origin, and the solid-angle pdf with which  |
 // |                  | sample() at the origin picks dir (for MIS)                                |
@@ -48,6 +49,9 @@ public:
                         LightSample* out) const = 0;
     virtual bool sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 center, float radius,
                                  EmissionSample* out) const = 0;
+    // sample_emission() starts particles at the centre of a lamp with a radius (its shadows from
+    // light paths are hard): the light tracer's notice.
+    virtual bool emits_from_its_centre() const { return false; }
     // Lights that are not hittable lamps are met by no ray here (emissive triangles are in the BVH).
     virtual bool intersect(Vec3 /*origin*/, Vec3 /*dir*/, float /*t_max*/, float* /*t*/, Rgb* /*radiance*/,
                            float* /*pdf*/) const {
@@ -55,7 +59,7 @@ public:
     }
 };
 
-// How one LightType becomes a light: defined in the light's own file, registered by type in
+// How one light type becomes a light: defined in the light's own file, registered by type in
 // lights/light_registry.cpp.
 struct LightModel {
     // The light that `params` describe (checked at the C ABI, including by check_own_params).

@@ -1,9 +1,7 @@
 #include "lights/light_registry.h"
 
-#include <array>
 #include <stdexcept>
 #include <string>
-#include <utility>
 
 #include "lights/area_light.h"
 #include "lights/point_light.h"
@@ -14,46 +12,32 @@ namespace stratum {
 
 namespace {
 
-// The light types of the C ABI, one line each.
-constexpr std::pair<LightType, const LightModel*> kLightModels[] = {
-    {LightType::Point, &kPointLightModel},
-    {LightType::Sun, &kSunLightModel},
-    {LightType::AreaRectangle, &kRectangleAreaLightModel},
-    {LightType::AreaEllipse, &kEllipseAreaLightModel},
-    {LightType::Spot, &kSpotLightModel},
-    {LightType::SpotV1, &kSpotV1LightModel},
+// The light types of the C ABI, one line each: StratumLightType's value, its enumerator's name
+// in lower case without STRATUM_LIGHT_, the model. tests/python/test_models.py checks the lines
+// against include/stratum/stratum.h.
+constinit LightModels g_light_models{
+    {0, "point", &kPointLightModel},
+    {1, "sun", &kSunLightModel},
+    {2, "area_rectangle", &kRectangleAreaLightModel},
+    {3, "area_ellipse", &kEllipseAreaLightModel},
+    {4, "spot", &kSpotLightModel},
+    {5, "spot_v1", &kSpotV1LightModel},
 };
-
-using LightModelTable = std::array<const LightModel*, kMaxLightTypes>;
-
-// Indexed by type; filled at compile time (constinit: no static-initialisation order to mind).
-constinit LightModelTable g_light_models = [] {
-    LightModelTable table{};
-    for (const auto& [type, model] : kLightModels) table[static_cast<uint32_t>(type)] = model;
-    return table;
-}();
 
 }  // namespace
 
-const LightModel* find_light_model(LightType type) {
-    const auto index = static_cast<uint32_t>(type);
-    return index < kMaxLightTypes ? g_light_models[index] : nullptr;
-}
+const LightModels& light_models() { return g_light_models; }
+
+const LightModel* find_light_model(int32_t type) { return g_light_models.find(type); }
 
 std::unique_ptr<Light> make_light(const LightParams& params) {
     const LightModel* model = find_light_model(params.type);
-    if (!model) {
-        throw std::runtime_error("light type " + std::to_string(static_cast<int32_t>(params.type)) +
-                                 " has no model");
-    }
+    if (!model) throw std::runtime_error("light type " + std::to_string(params.type) + " has no model");
     return model->make(params);
 }
 
-bool register_light_model(LightType type, const LightModel& model) {
-    const auto index = static_cast<uint32_t>(type);
-    if (index >= kMaxLightTypes || g_light_models[index]) return false;
-    g_light_models[index] = &model;
-    return true;
+bool register_light_model(int32_t type, const char* name, const LightModel& model) {
+    return g_light_models.add({type, name, &model});
 }
 
 }  // namespace stratum

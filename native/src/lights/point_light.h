@@ -41,6 +41,8 @@ public:
     // A zero radius is a delta light no ray finds; a radius gives the facing disk rays meet.
     bool is_delta() const override { return radius_ <= 0.0f; }
     bool is_hittable_lamp() const override { return radius_ > 0.0f; }
+    // sample_emission() below starts from the centre of a lamp with a radius.
+    bool emits_from_its_centre() const override { return radius_ > 0.0f; }
     // Emitted power in W, used to choose among lights.
     double power(float /*scene_radius*/) const override { return mean(power_); }
     bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling triangle_sampling, LightSample* out) const override;
@@ -64,7 +66,7 @@ private:
     float radius_;
 };
 
-// LightType::Point: position from the transform, power = color × strength, radius.
+// STRATUM_LIGHT_POINT: position from the transform, power = color × strength, radius.
 extern const LightModel kPointLightModel;
 
 }  // namespace stratum

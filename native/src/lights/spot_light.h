@@ -35,6 +35,8 @@ public:
     // As the point light: delta at radius 0, a facing disk rays meet otherwise.
     bool is_delta() const override { return radius_ <= 0.0f; }
     bool is_hittable_lamp() const override { return radius_ > 0.0f; }
+    // sample_emission() below starts from the centre of a lamp with a radius.
+    bool emits_from_its_centre() const override { return radius_ > 0.0f; }
     // Emitted power in W as Blender states it (the point light's), used to choose among lights.
     double power(float /*scene_radius*/) const override { return mean(power_); }
     bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling triangle_sampling, LightSample* out) const override;
@@ -64,7 +66,7 @@ private:
     bool cosine_falloff_;
 };
 
-// LightType::Spot (Cycles 4.x/5.x) and LightType::SpotV1 (Cycles 3.x: cosine_falloff): transform,
+// STRATUM_LIGHT_SPOT (Cycles 4.x/5.x) and STRATUM_LIGHT_SPOT_V1 (Cycles 3.x: cosine_falloff): transform,
 // power = color × strength, radius, spot_size, spot_blend; both check spot_size in (0, π] and
 // spot_blend in [0, 1].
 extern const LightModel kSpotLightModel, kSpotV1LightModel;

@@ -44,7 +44,7 @@ private:
     float pdf_;
 };
 
-// LightType::Sun: direction = the transform's +Z, irradiance = color × strength, angle.
+// STRATUM_LIGHT_SUN: direction = the transform's +Z, irradiance = color × strength, angle.
 extern const LightModel kSunLightModel;
 
 }  // namespace stratum

@@ -9,18 +9,6 @@
 
 namespace stratum {
 
-// StratumMaterialModel's values.
-enum class MaterialModel : int32_t {
-    Diffuse = 0,
-    PrincipledV1 = 1,
-    PrincipledV2 = 2,
-    Emission = 3,
-    Glossy = 4,
-    Glass = 5,
-    Transparent = 6,
-    Holdout = 7
-};
-
 // The Principled node's microfacet distribution (Blender's `distribution`): single-scatter GGX,
 // or GGX with multiple-scattering energy compensation (Cycles 4.x "Multiscatter GGX").
 enum class MicrofacetDistribution : int32_t { Ggx = 0, MultiscatterGgx = 1 };
@@ -36,7 +24,9 @@ enum class BumpShadowing : int32_t {
 };
 
 struct Material {
-    MaterialModel model;
+    // The C ABI's StratumMaterialModel value: the registry in bsdf/bsdf.cpp names the closure
+    // model of each, so this layer lists none of them.
+    int32_t model;
     Rgb base_color;
     float roughness;
     float metallic;

@@ -53,21 +53,13 @@ struct Instance {
     bool holdout = false;
 };
 
-// StratumLightType's values; lights/light_registry.cpp names the model each one builds.
-enum class LightType : int32_t {
-    Point = 0,
-    Sun = 1,
-    AreaRectangle = 2,
-    AreaEllipse = 3,
-    Spot = 4,
-    SpotV1 = 5
-};
-
 // A light as the host describes it (StratumLightDesc). size_x, size_y, spot_size, spot_blend and
 // spread are read by some types only: a type's model checks those it reads
 // (LightModel::check_own_params), the others keep these defaults.
 struct LightParams {
-    LightType type = LightType::Point;
+    // The C ABI's StratumLightType value: lights/light_registry.cpp names the model of each, so
+    // this layer lists none of them.
+    int32_t type = -1;
     Rgb color{1.0f};
     float strength = 0.0f;  // W, or W/m^2 for the sun
     float radius = 0.0f;
