@@ -36,14 +36,7 @@ constinit ClosureModels g_closure_models{
 };
 
 // What a value without a model answers: no scattering.
-constexpr ClosureModel kUnregistered{
-    .eval = &no_scattering_eval,
-    .sample = &no_scattering_sample,
-    .is_delta = &answer_false,
-    .has_transmission = &answer_false,
-    .sample_weight = &no_sample_weight,
-    .albedo_estimate = &no_albedo,
-};
+constexpr ClosureModel kUnregistered{};
 
 }  // namespace
 

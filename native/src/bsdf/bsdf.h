@@ -44,23 +44,38 @@ struct BsdfSample {
     ScatterKind kind = ScatterKind::Diffuse;
 };
 
+// What a closure that scatters nothing answers: ClosureModel's defaults, so that emission,
+// holdout and a value without a model state only what they add.
+inline BsdfEval no_scattering_eval(const Material&, Vec3, Vec3, HemisphereDistribution) {
+    return {Rgb(), 0.0f};
+}
+inline bool no_scattering_sample(const Material&, Vec3, float, Vec2, BsdfSample*, HemisphereDistribution) {
+    return false;
+}
+inline bool answer_false(const Material&) { return false; }
+inline bool answer_true(const Material&) { return true; }
+inline float no_sample_weight(const Material&) { return 0.0f; }
+inline Rgb no_albedo(const Material&) { return Rgb(0.0f); }
+
 // What a closure model answers for itself: each model's file defines its entry, and one line of
-// the registry in bsdf.cpp files it under its StratumMaterialModel value. Every question costs one lookup and
-// at most one indirect call, where a switch over the models cost one indirect jump.
+// the registry in bsdf.cpp files it under its StratumMaterialModel value. Every question costs one
+// lookup and at most one indirect call, where a switch over the models cost one indirect jump.
+// What a model leaves out answers as a closure that scatters nothing.
 struct ClosureModel {
     // f(wo, wi) |cos θ_i| and the pdf of sample() (bsdf_eval below).
-    BsdfEval (*eval)(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere);
+    BsdfEval (*eval)(const Material& m, Vec3 wo, Vec3 wi,
+                     HemisphereDistribution hemisphere) = &no_scattering_eval;
     // A direction (bsdf_sample below).
     bool (*sample)(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
-                   HemisphereDistribution hemisphere);
+                   HemisphereDistribution hemisphere) = &no_scattering_sample;
     // A Dirac distribution only (bsdf_is_delta below).
-    bool (*is_delta)(const Material& m);
+    bool (*is_delta)(const Material& m) = &answer_false;
     // Can send light through the surface (bsdf_has_transmission below).
-    bool (*has_transmission)(const Material& m);
+    bool (*has_transmission)(const Material& m) = &answer_false;
     // The closure's share of the choice among the closures of a shading point, per unit of its
     // weight, and the colour albedo Russian roulette survives by (bsdf/closure_set.h's table).
-    float (*sample_weight)(const Material& m);
-    Rgb (*albedo_estimate)(const Material& m);
+    float (*sample_weight)(const Material& m) = &no_sample_weight;
+    Rgb (*albedo_estimate)(const Material& m) = &no_albedo;
     // ScatterKind bits a direction above (wi.z >= 0) and below the shading horizon counts as
     // (ClosureSet::eval's `kinds`).
     uint32_t kinds_above = 0, kinds_below = 0;
@@ -87,16 +102,6 @@ const ClosureModel* find_closure_model(int32_t model);
 bool register_closure_model(int32_t model, const char* name, const ClosureModel& entry);
 
 // Answers several models share.
-inline BsdfEval no_scattering_eval(const Material&, Vec3, Vec3, HemisphereDistribution) {
-    return {Rgb(), 0.0f};
-}
-inline bool no_scattering_sample(const Material&, Vec3, float, Vec2, BsdfSample*, HemisphereDistribution) {
-    return false;
-}
-inline bool answer_false(const Material&) { return false; }
-inline bool answer_true(const Material&) { return true; }
-inline float no_sample_weight(const Material&) { return 0.0f; }
-inline Rgb no_albedo(const Material&) { return Rgb(0.0f); }
 // A single lobe tinted by base_color: average(base_color) and base_color.
 inline float tint_sample_weight(const Material& m) { return m.base_color.average(); }
 inline Rgb tint_albedo_estimate(const Material& m) { return m.base_color; }

@@ -12,13 +12,6 @@
 
 namespace stratum {
 
-inline constexpr ClosureModel kEmissionClosure{
-    .eval = &no_scattering_eval,
-    .sample = &no_scattering_sample,
-    .is_delta = &answer_false,
-    .has_transmission = &answer_false,
-    .sample_weight = &no_sample_weight,
-    .albedo_estimate = &no_albedo,
-};
+inline constexpr ClosureModel kEmissionClosure{};
 
 }  // namespace stratum

@@ -13,14 +13,6 @@
 
 namespace stratum {
 
-inline constexpr ClosureModel kHoldoutClosure{
-    .eval = &no_scattering_eval,
-    .sample = &no_scattering_sample,
-    .is_delta = &answer_false,
-    .has_transmission = &answer_false,
-    .sample_weight = &no_sample_weight,
-    .albedo_estimate = &no_albedo,
-    .holdout = true,
-};
+inline constexpr ClosureModel kHoldoutClosure{.holdout = true};
 
 }  // namespace stratum
