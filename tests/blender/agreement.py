@@ -37,20 +37,26 @@ CHANNELS = "RGB"
 # ---- rendering -----------------------------------------------------------------------------
 
 
-def open_scene() -> bpy.types.Scene:
-    bpy.ops.wm.open_mainfile(filepath=str(SCENE), load_ui=False)
-    scene = bpy.context.scene
+def set_frame_and_exr(scene: bpy.types.Scene, res: int) -> None:
+    """What every compared render shares: res x res at 100 %, the whole frame, all threads, a
+    32-bit float RGBA EXR (half floats would hide differences at the tolerances)."""
     r = scene.render
-    r.resolution_x = r.resolution_y = RES
+    r.resolution_x = r.resolution_y = res
     r.resolution_percentage = 100
     r.use_border = False
-    r.film_transparent = False
     r.threads_mode = "AUTO"
     settings = r.image_settings
     settings.file_format = "OPEN_EXR"
     settings.color_depth = "32"
     settings.color_mode = "RGBA"
     settings.exr_codec = "ZIP"
+
+
+def open_scene() -> bpy.types.Scene:
+    bpy.ops.wm.open_mainfile(filepath=str(SCENE), load_ui=False)
+    scene = bpy.context.scene
+    set_frame_and_exr(scene, RES)
+    scene.render.film_transparent = False
     return scene
 
 

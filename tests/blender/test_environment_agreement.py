@@ -47,6 +47,7 @@ from agreement import (
     configure_stratum,
     per_channel,
     render_exr,
+    set_frame_and_exr,
     stratum_available,
 )
 
@@ -85,14 +86,8 @@ def _environment_pixels() -> np.ndarray:
 def _environment_scene(variant: str = "unmapped") -> bpy.types.Scene:
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
-    r = scene.render
-    r.resolution_x = r.resolution_y = RES
-    r.resolution_percentage = 100
-    r.film_transparent = False
-    settings = r.image_settings
-    settings.file_format = "OPEN_EXR"
-    settings.color_depth = "32"
-    settings.color_mode = "RGBA"
+    set_frame_and_exr(scene, RES)
+    scene.render.film_transparent = False
     scene.view_settings.view_transform = "Standard"
 
     image = bpy.data.images.new("sky", ENV_W, ENV_H, alpha=True, float_buffer=True)

@@ -61,6 +61,7 @@ from agreement import (
     load_exr,
     per_channel,
     render_two_seeds,
+    set_frame_and_exr,
     stratum_available,
 )
 
@@ -102,16 +103,7 @@ def _open_case(case: str) -> bpy.types.Scene:
                 bpy.data.scenes.remove(other)
     scene = bpy.context.scene
     assert scene_name is None or scene.name == scene_name
-    r = scene.render
-    r.resolution_x = r.resolution_y = RES
-    r.resolution_percentage = 100
-    r.use_border = False
-    r.threads_mode = "AUTO"
-    settings = r.image_settings
-    settings.file_format = "OPEN_EXR"
-    settings.color_depth = "32"
-    settings.color_mode = "RGBA"
-    settings.exr_codec = "ZIP"
+    set_frame_and_exr(scene, RES)
     return scene
 
 

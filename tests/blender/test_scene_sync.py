@@ -125,21 +125,29 @@ EDITS: dict[str, Callable[[], None]] = {
 }
 
 
-@pytest.mark.parametrize("edit", list(EDITS))
-def test_an_edit_renders_as_a_fresh_full_export(scene_builder: Any, library: Any,
-                                                edit: str) -> None:
-    b = _build(scene_builder)
+def _render_edit(library: Any, b: Any, edit: Callable[[], None],
+                 edits: int) -> tuple[np.ndarray, np.ndarray]:
+    """Sends the scene `b` built, renders it, makes `edit` in Blender and sends the update: it
+    must go as `edits` live edits, and the render after it must equal a fresh full export of
+    the edited scene bit for bit. Returns the renders before and after."""
     with SceneSync() as sync:
         sync.full(b.depsgraph())
         with library.Renderer(sync.scene, **SETTINGS) as renderer:
             before = _render(renderer)
-            depsgraph, updates = _edit_in_blender(EDITS[edit])
+            depsgraph, updates = _edit_in_blender(edit)
             assert updates, "no depsgraph update was reported"
             result = sync.update(depsgraph, updates)
             assert not result.needs_full, result.reason
-            assert result.edits == 1
+            assert result.edits == edits
             after = _render(renderer)
     assert np.array_equal(after, _fresh_render(library, depsgraph))
+    return before, after
+
+
+@pytest.mark.parametrize("edit", list(EDITS))
+def test_an_edit_renders_as_a_fresh_full_export(scene_builder: Any, library: Any,
+                                                edit: str) -> None:
+    before, after = _render_edit(library, _build(scene_builder), EDITS[edit], edits=1)
     assert not np.array_equal(after, before)
 
 
@@ -156,17 +164,7 @@ def test_moving_an_instancer_edits_every_instance_it_placed(scene_builder: Any,
     instancer.instance_type = "COLLECTION"
     instancer.instance_collection = props
     b.link(instancer)
-    with SceneSync() as sync:
-        sync.full(b.depsgraph())
-        with library.Renderer(sync.scene, **SETTINGS) as renderer:
-            _render(renderer)
-            depsgraph, updates = _edit_in_blender(
-                lambda: setattr(instancer, "location", (0.0, -1.0, -0.6)))
-            result = sync.update(depsgraph, updates)
-            assert not result.needs_full, result.reason
-            assert result.edits == 2
-            after = _render(renderer)
-    assert np.array_equal(after, _fresh_render(library, depsgraph))
+    _render_edit(library, b, lambda: setattr(instancer, "location", (0.0, -1.0, -0.6)), edits=2)
 
 
 def test_ray_visibility_and_holdout_are_edits_of_instances_seen_by_some_rays(
@@ -174,16 +172,7 @@ def test_ray_visibility_and_holdout_are_edits_of_instances_seen_by_some_rays(
     b = _build(scene_builder)
     left = bpy.data.objects["Left"]
     left.visible_shadow = False  # sent by itself, before the instances every ray sees
-    with SceneSync() as sync:
-        sync.full(b.depsgraph())
-        with library.Renderer(sync.scene, **SETTINGS) as renderer:
-            before = _render(renderer)
-            depsgraph, updates = _edit_in_blender(lambda: setattr(left, "is_holdout", True))
-            result = sync.update(depsgraph, updates)
-            assert not result.needs_full, result.reason
-            assert result.edits == 1
-            after = _render(renderer)
-    assert np.array_equal(after, _fresh_render(library, depsgraph))
+    before, after = _render_edit(library, b, lambda: setattr(left, "is_holdout", True), edits=1)
     assert not np.array_equal(after, before)
 
 
