@@ -35,11 +35,12 @@ std::string last_error() { return stratum_last_error(); }
 TEST(Api, ModelListingsNameEveryValue) {
     const char* name = nullptr;
     int32_t value = -1;
-    ASSERT_EQ(stratum_model_count(STRATUM_MODEL_LIGHT), 6);
+    // At least the built-in models (a test in the same process may have registered more).
+    ASSERT_GE(stratum_model_count(STRATUM_MODEL_LIGHT), 6);
     ASSERT_EQ(stratum_model_entry(STRATUM_MODEL_LIGHT, 5, &name, &value), STRATUM_OK);
     EXPECT_STREQ(name, "spot_v1");
     EXPECT_EQ(value, STRATUM_LIGHT_SPOT_V1);
-    ASSERT_EQ(stratum_model_count(STRATUM_MODEL_CLOSURE), 8);
+    ASSERT_GE(stratum_model_count(STRATUM_MODEL_CLOSURE), 8);
     ASSERT_EQ(stratum_model_entry(STRATUM_MODEL_CLOSURE, 0, &name, &value), STRATUM_OK);
     EXPECT_STREQ(name, "diffuse");
     EXPECT_EQ(value, STRATUM_MATERIAL_DIFFUSE);
