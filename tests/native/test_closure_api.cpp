@@ -60,8 +60,8 @@ TEST(ClosureApi, RejectsBadClosuresNamingTheValue) {
     c.weight[1] = -1.0f;
     expect_rejected(stratum_scene_add_closure_material(h.scene, &c, 1, nullptr), "closure 0 weight");
     c.weight[1] = 1.0f;
-    c.closure.model = 8;
-    expect_rejected(stratum_scene_add_closure_material(h.scene, &c, 1, nullptr), "material model 8");
+    c.closure.model = 1000;  // past every value a model can have (bsdf.h: kMaxClosureModels)
+    expect_rejected(stratum_scene_add_closure_material(h.scene, &c, 1, nullptr), "material model 1000");
     c.closure.model = STRATUM_MATERIAL_PRINCIPLED_V2;
     c.closure.transmission = 1.5f;
     expect_rejected(stratum_scene_add_closure_material(h.scene, &c, 1, nullptr), "transmission");
