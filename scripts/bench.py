@@ -203,7 +203,7 @@ def stratum_reason() -> str:
 
 def bench_stratum_direct(args: argparse.Namespace) -> dict[str, float]:
     from stratum import native
-    from stratum.engine import renderer_settings
+    from stratum.engine.frame import renderer_settings
     from stratum.export import export_scene
 
     scene = open_scene(args)
@@ -388,7 +388,7 @@ def bench_export_case(build: Callable[[], bpy.types.Scene], stratum_ok: bool,
     if not stratum_ok:
         return out
     from stratum import native
-    from stratum.engine import renderer_settings
+    from stratum.engine.frame import renderer_settings
     from stratum.export import export_scene
 
     scene = build()
@@ -419,7 +419,7 @@ def bench_live_edit(layout: str) -> dict[str, float]:
     again by the same renderer: its next start applies the edit in place (issue 13). Returns
     the full BVH build time and the update time, both as progress().build_seconds reports."""
     from stratum import native
-    from stratum.engine import renderer_settings
+    from stratum.engine.frame import renderer_settings
     from stratum.export import export_scene
 
     scene = build_monkey_1m()

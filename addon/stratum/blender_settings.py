@@ -6,7 +6,7 @@ fails naming a setting that is in none, so a new library setting cannot be forgo
 
 * PROPERTIES: a property of scene.stratum with the setting's name, whose label, description,
   range, choices and default are the library's (properties.py builds them);
-* FROM_BLENDER: taken from Blender's own render settings by the engine (engine.py), so that
+* FROM_BLENDER: taken from Blender's own render settings by the engine (engine/frame.py), so that
   Stratum does not duplicate what Blender already has;
 * NOT_IN_BLENDER: nothing in Blender sets it yet, for the reason given.
 """

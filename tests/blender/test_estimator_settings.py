@@ -18,8 +18,8 @@ from typing import Any
 import bpy
 import numpy as np
 import pytest
-from stratum import engine, native, properties
-from stratum.engine import StratumRenderEngine
+from stratum import native, properties
+from stratum.engine import StratumRenderEngine, final_render, frame
 
 from conftest import engine_reports, render_still
 from test_registration import _RecordingLayout
@@ -59,7 +59,7 @@ def test_every_enum_item_is_accepted_by_the_native_renderer(library: Any, scene_
     with native.Scene() as scene:
         for item in items:
             setattr(b.scene.stratum, name, item)
-            settings = engine.renderer_settings(b.scene)
+            settings = frame.renderer_settings(b.scene)
             assert settings[name] == item
             with native.Renderer(scene, **settings):
                 pass  # every setting accepted (StratumError otherwise)
@@ -69,7 +69,7 @@ def test_numeric_settings_reach_the_renderer(library: Any, scene_builder: Any) -
     b = scene_builder()
     b.scene.stratum.rr_min_depth = 1024
     b.scene.stratum.control_variate = 0.25
-    settings = engine.renderer_settings(b.scene)
+    settings = frame.renderer_settings(b.scene)
     assert settings["rr_min_depth"] == 1024 and isinstance(settings["rr_min_depth"], int)
     assert settings["control_variate"] == 0.25 and isinstance(settings["control_variate"], float)
     with native.Scene() as scene, native.Renderer(scene, **settings):
@@ -94,8 +94,8 @@ def test_a_rejected_value_is_an_error_report_not_an_exception(
     """RNA keeps the properties valid; should a value still be rejected natively (a library
     older than the add-on), the engine reports it and the render ends cleanly."""
     b = scene_builder().basic()
-    original = engine.renderer_settings
-    monkeypatch.setattr(engine, "renderer_settings",
+    original = frame.renderer_settings
+    monkeypatch.setattr(final_render, "renderer_settings",
                         lambda scene: original(scene) | {"rr_mode": "no_such_mode"})
     render_still(b.scene, tmp_path / "rejected.exr")
     errors = engine_reports("ERROR")

@@ -13,8 +13,8 @@ from typing import Any
 import bpy
 import numpy as np
 import pytest
-from stratum import engine, native
-from stratum.engine import StratumRenderEngine
+from stratum import native
+from stratum.engine import StratumRenderEngine, frame
 from stratum.export import export_scene
 from stratum.export.images import blender_ocio_config
 
@@ -408,18 +408,18 @@ def test_border_and_film_transparent_settings(scene_builder: Any) -> None:
     b = scene_builder().basic()
     r = b.scene.render
     r.resolution_x, r.resolution_y, r.resolution_percentage = 200, 100, 50
-    assert engine.renderer_settings(b.scene).keys().isdisjoint({"crop_x", "film_transparent"})
+    assert frame.renderer_settings(b.scene).keys().isdisjoint({"crop_x", "film_transparent"})
     r.use_border = True
     r.border_min_x, r.border_max_x = 0.25, 0.755
     r.border_min_y, r.border_max_y = 0.1, 0.5
     r.film_transparent = True
-    settings = engine.renderer_settings(b.scene)
+    settings = frame.renderer_settings(b.scene)
     assert (settings["width"], settings["height"]) == (100, 50)
     # Blender truncates border * size: x 25..75, y 5..25
     assert (settings["crop_x"], settings["crop_y"], settings["crop_width"],
             settings["crop_height"]) == (25, 5, 50, 20)
     assert settings["film_transparent"] == 1
-    assert engine.result_size(b.scene) == (50, 20)
+    assert frame.result_size(b.scene) == (50, 20)
 
 
 def test_geometry_nodes_instances_of_mesh_data(scene_builder: Any,

@@ -11,7 +11,7 @@ from typing import Any
 import bpy
 import numpy as np
 import pytest
-from stratum.engine import StratumRenderEngine
+from stratum.engine import StratumRenderEngine, final_render
 
 from conftest import REPO, engine_reports, read_image_pixels
 
@@ -81,7 +81,7 @@ class FakeRenderPass:
 
 
 class FakeEngine:
-    """Duck-typed RenderEngine for driving StratumRenderEngine._progressive directly."""
+    """Duck-typed RenderEngine for driving final_render.render_progressively directly."""
 
     def __init__(self, width: int, height: int, break_after_updates: int | None) -> None:
         self.render_pass = FakeRenderPass(width * height * 4)
@@ -134,7 +134,7 @@ def test_progressive_updates(library: Any, scene_builder: Any) -> None:
     b = scene_builder().basic()
     engine = FakeEngine(16, 16, None)
     with _native_renderer(library, b, 8, 16) as renderer:
-        StratumRenderEngine._progressive(engine, renderer, 16, 16)
+        final_render.render_progressively(engine, renderer, 16, 16)
         assert renderer.progress().samples_done == 8
     assert engine.ended and engine.updates >= 1 and not engine.reports
     assert np.isfinite(engine.render_pass.pixels).all()
@@ -146,7 +146,7 @@ def test_cancel_through_engine_loop(library: Any, scene_builder: Any) -> None:
     b = scene_builder().basic()
     engine = FakeEngine(64, 64, break_after_updates=1)
     with _native_renderer(library, b, 1_000_000, 64) as renderer:
-        StratumRenderEngine._progressive(engine, renderer, 64, 64)
+        final_render.render_progressively(engine, renderer, 64, 64)
         stopped = time.perf_counter()
         progress = renderer.progress()
     assert engine.break_time is not None

@@ -8,7 +8,7 @@ about a second.
 
 The latency is measured as the user sees it: from the moment RenderEngine.test_break() starts
 returning True (Blender's Esc) to the moment the engine's render() returns. test_break, which
-the engine reads through engine.stop_requested (an RNA function cannot be overridden from
+the engine reads through final_render.stop_requested (an RNA function cannot be overridden from
 Python), is replaced by a clock that turns True at a chosen point of the render:
   * export: when the exporter starts reading the 1M-triangle mesh (object_mesh_arrays);
   * BVH build: right after Renderer.start(), which hands the scene to the worker thread whose
@@ -98,7 +98,7 @@ def _cancelled_render(monkeypatch: pytest.MonkeyPatch,
                       arm_at: Callable[[pytest.MonkeyPatch, BreakClock], None]) -> BreakClock:
     """One render of the current scene with test_break driven by a BreakClock that `arm_at`
     hooks into the render; returns the clock with both times set."""
-    import stratum.engine
+    import stratum.engine.final_render
     from stratum.engine import StratumRenderEngine
 
     clock = BreakClock()
@@ -111,7 +111,7 @@ def _cancelled_render(monkeypatch: pytest.MonkeyPatch,
             clock.returned_at = time.perf_counter()
 
     with monkeypatch.context() as patch:
-        patch.setattr(stratum.engine, "stop_requested", lambda engine: clock.armed_at is not None)
+        patch.setattr(stratum.engine.final_render, "stop_requested", lambda engine: clock.armed_at is not None)
         patch.setattr(StratumRenderEngine, "render", timed_render)
         arm_at(patch, clock)
         bpy.ops.render.render()

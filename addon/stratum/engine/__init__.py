@@ -1,0 +1,64 @@
+"""The Stratum RenderEngine: what Blender calls. F12 is final_render.py; the frame and its
+settings are frame.py.
+
+render() never lets an exception escape: export errors, native errors and a missing library
+are reported with self.report({'ERROR'}, ...) and the render ends cleanly.
+"""
+
+from __future__ import annotations
+
+import traceback
+from typing import Any
+
+import bpy
+
+from .. import native
+from ..export import ExportCancelled, ExportError, ExportSummary
+from .final_render import render_frame
+
+ENGINE_ID = "STRATUM"
+
+
+class StratumRenderEngine(bpy.types.RenderEngine):
+    bl_idname = ENGINE_ID
+    bl_label = "Stratum"
+    bl_use_preview = False
+    bl_use_postprocess = True
+    # Show Blender's standard shader nodes (Principled, Diffuse, Emission...) in the node
+    # editor: Stratum reads those node trees.
+    bl_use_shading_nodes_custom = False
+
+    # Reports of the most recent render (level, message): for tests and the CLI, because
+    # background renders do not always surface RenderEngine.report().
+    last_reports: list[tuple[str, str]] = []
+    last_summary: ExportSummary | None = None
+
+    def __init__(self, *args: Any, **kwargs: Any) -> None:
+        super().__init__(*args, **kwargs)  # required in Blender 4.4+
+
+    def _report(self, level: str, message: str) -> None:
+        type(self).last_reports.append((level, message))
+        try:
+            self.report({level}, message)
+        except Exception:  # noqa: BLE001 - reporting must never fail a render
+            print(f"Stratum {level}: {message}")
+
+    def render(self, depsgraph: Any) -> None:
+        type(self).last_reports = []
+        type(self).last_summary = None
+        try:
+            render_frame(self, depsgraph)
+        except ExportCancelled:
+            pass
+        except (ExportError, native.StratumError) as exc:
+            self._report("ERROR", f"Stratum: {exc}")
+        except Exception as exc:  # noqa: BLE001 - nothing may crash Blender
+            traceback.print_exc()
+            self._report("ERROR", f"Stratum internal error: {type(exc).__name__}: {exc}")
+
+def register() -> None:
+    bpy.utils.register_class(StratumRenderEngine)
+
+
+def unregister() -> None:
+    bpy.utils.unregister_class(StratumRenderEngine)

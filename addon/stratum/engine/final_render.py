@@ -1,0 +1,141 @@
+"""F12: a frame exported, rendered by the native library on its own threads, and copied into
+Blender's render result as it refines. Esc cancels; what the render cannot show is reported as
+warnings."""
+
+from __future__ import annotations
+
+import time
+from typing import Any
+
+import bpy
+import numpy as np
+
+from .. import native, properties
+from ..export import export_scene
+from .frame import renderer_settings, result_size
+
+POLL_MS = 100
+
+
+def stop_requested(engine: Any) -> bool:
+    """Blender's Esc: engine.test_break(). A module function so that tests can stand in for it
+    (test_break is an RNA function, which a Python subclass or monkeypatch cannot override)."""
+    return bool(engine.test_break())
+
+
+def format_stats(progress: native.Progress, elapsed: float) -> str:
+    rate = progress.rays / progress.render_seconds if progress.render_seconds > 0 else 0.0
+    if rate >= 1e6:
+        rays = f"{rate / 1e6:.2f}M"
+    elif rate >= 1e3:
+        rays = f"{rate / 1e3:.1f}k"
+    else:
+        rays = f"{rate:.0f}"
+    return (f"Sample {progress.samples_done}/{progress.samples_total} | {elapsed:.1f}s | "
+            f"{rays} rays/s")
+
+
+class PixelWriter:
+    """Copies renderer pixels into a render result pass: one read_pixels into a preallocated
+    float32 buffer, one foreach_set. 3.x/4.0 want an (N, 4) array, 4.1+ a flat one."""
+
+    def __init__(self, width: int, height: int) -> None:
+        self.buffer = np.zeros(width * height * 4, dtype=np.float32)
+        self._flat: bool = bpy.app.version >= (4, 1, 0)
+
+    def write(self, renderer: native.Renderer, render_pass: Any) -> None:
+        renderer.read_pixels(self.buffer)
+        data = self.buffer if self._flat else self.buffer.reshape(-1, 4)
+        try:
+            render_pass.rect.foreach_set(data)
+        except (TypeError, ValueError, RuntimeError):
+            self._flat = not self._flat
+            data = self.buffer if self._flat else self.buffer.reshape(-1, 4)
+            render_pass.rect.foreach_set(data)
+
+
+def report_notices(engine: Any, renderer: native.Renderer, reported: set[str]) -> None:
+    """Reports the renderer's notices not reported yet, once each, through engine._report."""
+    for notice in renderer.notices():
+        if notice not in reported:
+            reported.add(notice)
+            engine._report("WARNING", f"Stratum: {notice}")
+
+
+def combined_pass(result: Any) -> Any:
+    layer = result.layers[0]
+    passes = layer.passes
+    found = passes.get("Combined") if hasattr(passes, "get") else None
+    if found is None:
+        found = passes.find_by_name("Combined", "")
+    return found
+
+
+def render_frame(engine: Any, depsgraph: Any) -> None:
+    scene = depsgraph.scene
+    if properties.load_error:
+        # scene.stratum was registered without settings: the library could not be loaded
+        # then. Name why it still cannot, else ask for the registration to be redone.
+        native.load_library()
+        raise native.StratumError(
+            native.ERROR_INVALID_STATE,
+            f"the native library could not be loaded when the add-on was enabled "
+            f"({properties.load_error}); enable the add-on again")
+    settings = renderer_settings(scene)
+    width, height = result_size(scene)
+
+    engine.update_stats("", "Exporting scene")
+    with native.Scene() as native_scene:
+        summary = export_scene(depsgraph, native_scene,
+                               should_stop=lambda: stop_requested(engine),
+                               frame_set=engine.frame_set)
+        type(engine).last_summary = summary
+        for warning in summary.warnings:
+            engine._report("WARNING", warning)
+        if stop_requested(engine):  # Esc during export: no renderer, no BVH build
+            return
+        renderer = native.Renderer(native_scene)
+    with renderer:
+        for name, value in settings.items():
+            renderer.set(name, value)
+        render_progressively(engine, renderer, width, height)
+
+def render_progressively(engine: Any, renderer: native.Renderer, width: int, height: int) -> None:
+    started = time.perf_counter()
+    engine.update_stats("", "Building BVH / starting")
+    # Started before Blender's result and the pixel buffer are allocated: a render the
+    # renderer refuses (a film beyond memory, 65536 x 20000) must not get them first, each
+    # as large as the image, which the OOM killer would have ended Blender for.
+    renderer.start()
+    writer = PixelWriter(width, height)
+    result = engine.begin_result(0, 0, width, height)
+    try:
+        render_pass = combined_pass(result)
+        # What this render cannot show (the estimator's limits at start; skipped objects and
+        # dropped samples as the render learns them): warnings, the render goes on.
+        reported: set[str] = set()
+        report_notices(engine, renderer, reported)
+        last_serial: int | None = None
+        cancelled_at: float | None = None
+        while True:
+            done = renderer.wait(POLL_MS)
+            if cancelled_at is None and stop_requested(engine):
+                renderer.cancel()
+                cancelled_at = time.perf_counter()
+            progress = renderer.progress()
+            if progress.update_serial != last_serial:
+                last_serial = progress.update_serial
+                writer.write(renderer, render_pass)
+                engine.update_result(result)
+            engine.update_progress(min(progress.fraction_done, 1.0))
+            engine.update_stats("", format_stats(progress, time.perf_counter() - started))
+            if done or progress.done:
+                break
+            if cancelled_at is not None and time.perf_counter() - cancelled_at > 30.0:
+                engine._report("ERROR", "Stratum: the renderer did not stop after cancel")
+                break
+        # Final pixels (also the partial image after Esc).
+        writer.write(renderer, render_pass)
+        report_notices(engine, renderer, reported)
+    finally:
+        engine.end_result(result)
