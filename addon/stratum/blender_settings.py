@@ -44,3 +44,29 @@ UI_DEFAULTS: dict[str, int | float | str] = {
     # the library's own default (16) suits quick native renders and tests.
     "samples": 64,
 }
+
+# Blender-only properties of scene.stratum, not library settings: the Rendered viewport's
+# (engine/viewport.py). name -> (label, description).
+VIEWPORT_PROPERTIES: dict[str, tuple[str, str]] = {
+    "preview_samples": ("Viewport Samples",
+                        "Samples per pixel the Rendered viewport refines to before it stops"),
+    "preview_pixel_size": ("Start Pixel Size",
+                           "Each change is first rendered with one sample at 1/N of the "
+                           "viewport's resolution, so that a first image comes fast (1 = off)"),
+    "use_split_view": ("Split View",
+                       "Render the left part of the viewport with Sampler and the right part "
+                       "with Compare Sampler, at the same samples and seed"),
+    "compare_sampler": ("Compare Sampler", "Sampler of the right part of a split viewport"),
+    "split_position": ("Split Position", "Where the viewport is split, from its left (0) to "
+                       "its right (1) edge"),
+}
+# Defaults of the viewport properties: Cycles' viewport sample count (1024 in 3.x is meant for
+# a GPU; 32 refines a CPU viewport in seconds) and the sampler compared with the library's
+# default sampler, `random`.
+VIEWPORT_DEFAULTS: dict[str, int | float | bool | str] = {
+    "preview_samples": 32,
+    "preview_pixel_size": 4,
+    "use_split_view": False,
+    "compare_sampler": "sobol",
+    "split_position": 0.5,
+}

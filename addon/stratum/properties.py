@@ -19,10 +19,10 @@ from typing import Any
 
 import bpy
 import numpy as np
-from bpy.props import EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
 from . import native
-from .blender_settings import PROPERTIES, UI_DEFAULTS
+from .blender_settings import PROPERTIES, UI_DEFAULTS, VIEWPORT_DEFAULTS, VIEWPORT_PROPERTIES
 
 # Where a slider stops dragging; typing goes on to the library's maximum.
 SOFT_MAXIMA: dict[str, int | float] = {
@@ -92,9 +92,36 @@ def _make_property_group(settings: tuple[native.Setting, ...]) -> type:
 
     class StratumRenderSettings(bpy.types.PropertyGroup):
         __annotations__ = {name: make_property(by_name[name])
-                           for name in PROPERTIES if name in by_name}
+                           for name in PROPERTIES if name in by_name} | \
+            _viewport_properties(by_name)
 
     return StratumRenderSettings
+
+
+def _viewport_properties(by_name: dict[str, native.Setting]) -> dict[str, Any]:
+    """The Rendered viewport's own properties (blender_settings.VIEWPORT_PROPERTIES); none
+    without the library, whose sampler list and sample range they use."""
+    if "sampler" not in by_name or "samples" not in by_name:
+        return {}
+
+    def common(name: str) -> dict[str, Any]:
+        label, description = VIEWPORT_PROPERTIES[name]
+        return {"name": label, "description": description, "default": VIEWPORT_DEFAULTS[name]}
+
+    samples = by_name["samples"]
+    samplers = [(choice.name, choice.label, choice.description, number)
+                for number, choice in enumerate(by_name["sampler"].choices)]
+    return {
+        "preview_samples": IntProperty(**common("preview_samples"), min=samples.minimum,
+                                       max=min(samples.maximum, INT_MAX),
+                                       soft_max=SOFT_MAXIMA["samples"]),
+        "preview_pixel_size": IntProperty(**common("preview_pixel_size"), min=1, max=64,
+                                          soft_max=16, subtype="PIXEL"),
+        "use_split_view": BoolProperty(**common("use_split_view")),
+        "compare_sampler": EnumProperty(items=samplers, **common("compare_sampler")),
+        "split_position": FloatProperty(**common("split_position"), min=0.0, max=1.0,
+                                        subtype="FACTOR"),
+    }
 
 
 def register() -> None:

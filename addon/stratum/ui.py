@@ -69,6 +69,27 @@ class STRATUM_RENDER_PT_sampling(StratumButtonsPanel, bpy.types.Panel):
             col.prop(settings, "ao_distance", text="AO Distance")
 
 
+class STRATUM_RENDER_PT_viewport(StratumButtonsPanel, bpy.types.Panel):
+    """The Rendered viewport: its samples, start resolution and the sampler split view."""
+
+    bl_label = "Viewport"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.stratum
+        col = layout.column()
+        col.prop(settings, "preview_samples", text="Samples")
+        col.prop(settings, "preview_pixel_size", text="Start Pixel Size")
+        col = layout.column(heading="Split View")
+        col.prop(settings, "use_split_view", text="Compare Samplers")
+        sub = col.column()
+        sub.active = settings.use_split_view
+        sub.prop(settings, "compare_sampler", text="Right Sampler")
+        sub.prop(settings, "split_position", text="Position", slider=True)
+
+
 class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
     bl_label = "Light Paths"
     bl_options = {"DEFAULT_CLOSED"}
@@ -135,6 +156,7 @@ class STRATUM_RENDER_PT_performance(StratumButtonsPanel, bpy.types.Panel):
 classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_library,
     STRATUM_RENDER_PT_sampling,
+    STRATUM_RENDER_PT_viewport,
     STRATUM_RENDER_PT_light_paths,
     STRATUM_RENDER_PT_film,
     STRATUM_RENDER_PT_performance,

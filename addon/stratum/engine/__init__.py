@@ -15,6 +15,7 @@ import bpy
 from .. import native
 from ..export import ExportCancelled, ExportError, ExportSummary
 from .final_render import render_frame
+from .viewport import ViewportState, view_draw, view_update, viewport_call
 
 ENGINE_ID = "STRATUM"
 
@@ -35,6 +36,13 @@ class StratumRenderEngine(bpy.types.RenderEngine):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)  # required in Blender 4.4+
+        self._viewport: ViewportState | None = None
+
+    def __del__(self) -> None:
+        # Blender frees the engine when the view leaves Rendered shading, closes or quits.
+        viewport = getattr(self, "_viewport", None)
+        if viewport is not None:
+            viewport.free()
 
     def _report(self, level: str, message: str) -> None:
         type(self).last_reports.append((level, message))
@@ -55,6 +63,15 @@ class StratumRenderEngine(bpy.types.RenderEngine):
         except Exception as exc:  # noqa: BLE001 - nothing may crash Blender
             traceback.print_exc()
             self._report("ERROR", f"Stratum internal error: {type(exc).__name__}: {exc}")
+
+    # ---- the Rendered viewport (engine/viewport.py) ----------------------------------------
+
+    def view_update(self, context: Any, depsgraph: Any) -> None:
+        viewport_call(self, lambda state: view_update(state, depsgraph))
+
+    def view_draw(self, context: Any, depsgraph: Any) -> None:
+        viewport_call(self, lambda state: view_draw(state, self, context, depsgraph))
+
 
 def register() -> None:
     bpy.utils.register_class(StratumRenderEngine)

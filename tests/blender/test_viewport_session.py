@@ -1,0 +1,358 @@
+"""The Rendered viewport's session logic (engine/viewport_session.py, engine/viewport.py) on the
+Cornell box, in background mode (Blender 3.4 and the bpy 5.0 wheel; the GPU draw is tested by
+the Xvfb UI test): it refines to preview_samples and stops; an edit restarts it and the frame it
+converges to is, bit for bit, a fresh full render of the edited scene with the same settings;
+free() leaves no renderer; the split view's parts are the single-sampler frames of its two
+samplers, pixel for pixel.
+
+The view is the scene camera's, built from the matrices a 3D view in camera view hands the
+engine (view_matrix = the camera's inverse, window_matrix = Object.calc_matrix_camera at the
+view's size), so the session's camera mapping is tested too: its render equals the scene
+camera's render up to float rounding.
+"""
+
+from __future__ import annotations
+
+import math
+import time
+from collections.abc import Callable, Iterator
+from contextlib import contextmanager
+from dataclasses import replace
+from pathlib import Path
+from typing import Any
+
+import bpy
+import numpy as np
+import pytest
+from stratum.engine.viewport import camera_from_matrices, settings_from_scene
+from stratum.engine.viewport_session import Frame, View, ViewportSession, ViewportSettings
+from stratum.export import IdUpdate, SceneSync, collect_updates
+from stratum.export.camera import convert_camera
+
+REPO = Path(__file__).resolve().parents[2]
+CORNELL = REPO / "scenes" / "cornell_box.blend"
+WIDTH, HEIGHT = 40, 30
+SAMPLES = 8
+DEADLINE_S = 120.0
+
+
+@pytest.fixture
+def cornell(stratum_addon: Any) -> Any:
+    bpy.ops.wm.open_mainfile(filepath=str(CORNELL), load_ui=False)
+    scene = bpy.context.scene
+    scene.render.engine = "STRATUM"
+    s = scene.stratum
+    s.preview_samples = SAMPLES
+    s.preview_pixel_size = 1
+    s.seed = 5
+    s.threads = 2
+    s.max_bounces = 3
+    s.sampler = "sobol"
+    # A point light, so that a light's power can be edited (the box is lit by an emitter).
+    light = bpy.data.lights.new("Point", "POINT")
+    light.energy = 20.0
+    light_ob = bpy.data.objects.new("Point", light)
+    light_ob.location = (0.3, -0.4, 1.5)
+    scene.collection.objects.link(light_ob)
+    return scene
+
+
+def _depsgraph() -> Any:
+    depsgraph = bpy.context.evaluated_depsgraph_get()
+    depsgraph.update()
+    return depsgraph
+
+
+def camera_view(depsgraph: Any, width: int = WIDTH, height: int = HEIGHT) -> View:
+    """The View of a 3D view in camera view showing exactly the camera's frame."""
+    scene = depsgraph.scene_eval
+    ob = scene.camera.evaluated_get(depsgraph)
+    window = ob.calc_matrix_camera(depsgraph, x=width, y=height)
+    camera = camera_from_matrices(ob.matrix_world.inverted(), window,
+                                  ob.data.type == "PERSP", convert_camera(scene, depsgraph))
+    return View(camera, width, height)
+
+
+@contextmanager
+def recorded_updates() -> Iterator[list[IdUpdate]]:
+    """The depsgraph updates of the evaluations made inside the block (depsgraph.updates is
+    empty again once Depsgraph.update() returns: see test_scene_sync.py)."""
+    updates: list[IdUpdate] = []
+
+    def keep(scene: Any, depsgraph: Any) -> None:
+        updates.extend(collect_updates(depsgraph))
+
+    bpy.app.handlers.depsgraph_update_post.append(keep)
+    try:
+        yield updates
+    finally:
+        bpy.app.handlers.depsgraph_update_post.remove(keep)
+
+
+def converge(session: ViewportSession) -> tuple[Frame, list[Frame]]:
+    """Calls frame() until the session is idle; the converged frame and every distinct frame
+    seen on the way."""
+    seen: list[Frame] = []
+    deadline = time.monotonic() + DEADLINE_S
+    while True:
+        frame = session.frame()
+        if frame is not None and (not seen or seen[-1].serial != frame.serial):
+            seen.append(frame)
+        if not session.poll() and session.converged:
+            break
+        assert time.monotonic() < deadline, "the viewport session did not converge"
+        time.sleep(0.002)
+    frame = session.frame()
+    assert frame is not None
+    return frame, seen
+
+
+def fresh_render(depsgraph: Any, view: View, settings: ViewportSettings,
+                 sampler: str | None = None) -> np.ndarray:
+    """A new full export of the depsgraph with the view's camera, rendered by a new renderer
+    with the session's settings (view size, preview samples, dynamic BVH): (h, w, 4)."""
+    native_settings = {k: v for k, v in settings.native.items()
+                       if not k.startswith("crop_")}
+    native_settings |= {"width": view.width, "height": view.height, "samples": settings.samples,
+                        "sampler": sampler or settings.sampler, "bvh": "dynamic"}
+    with SceneSync() as sync:
+        sync.full(depsgraph)
+        sync.scene.set_camera(view.camera)
+        from stratum import native
+
+        with native.Renderer(sync.scene, **native_settings) as renderer:
+            return _render(renderer).reshape(view.height, view.width, 4)
+
+
+def _render(renderer: Any) -> np.ndarray:
+    renderer.start()
+    deadline = time.monotonic() + DEADLINE_S
+    while not renderer.wait(100):
+        assert time.monotonic() < deadline, "render did not finish"
+    return renderer.read_pixels().copy()
+
+
+def _session(scene: Any, depsgraph: Any, **overrides: Any) -> tuple[ViewportSession, View]:
+    session = ViewportSession()
+    session.update(depsgraph)
+    session.set_settings(replace(settings_from_scene(scene), **overrides))
+    view = camera_view(depsgraph)
+    session.set_view(view)
+    return session, view
+
+
+CAMERAS: dict[str, dict[str, Any]] = {
+    "as saved": {},
+    "shifted (an off-centre frustum)": {"shift_x": 0.12, "shift_y": -0.07},
+    "vertical sensor fit": {"sensor_fit": "VERTICAL", "sensor_height": 30.0, "lens": 40.0},
+    "orthographic": {"type": "ORTHO", "ortho_scale": 2.4, "shift_x": 0.05},
+}
+
+
+@pytest.mark.parametrize("name", list(CAMERAS))
+def test_view_camera_renders_the_scene_camera(library: Any, cornell: Any, name: str) -> None:
+    """The camera built from the view's matrices renders what the scene camera renders: the
+    same rays up to float rounding of the projection (lens and shift recovered from it)."""
+    for key, value in CAMERAS[name].items():
+        setattr(cornell.camera.data, key, value)
+    depsgraph = _depsgraph()
+    settings = settings_from_scene(cornell)
+    view = camera_view(depsgraph)
+    from_view = fresh_render(depsgraph, view, settings)
+    from_scene = fresh_render(depsgraph, View(convert_camera(cornell, depsgraph), WIDTH, HEIGHT),
+                              settings)
+    # Rounding moves a few rays across an edge: most pixels are equal to float precision, and
+    # the mean difference is far below that of a one-pixel shift of the image (about 5% of
+    # the mean in the Cornell box at this size).
+    assert np.mean(np.isclose(from_view, from_scene, rtol=1e-4, atol=1e-6)) > 0.9
+    assert np.abs(from_view - from_scene).mean() < 2e-3 * from_scene.mean()
+
+
+def test_session_converges_to_preview_samples_and_stops(library: Any, cornell: Any) -> None:
+    cornell.stratum.preview_pixel_size = 4
+    depsgraph = _depsgraph()
+    session, view = _session(cornell, depsgraph)
+    try:
+        frame, seen = converge(session)
+        assert frame.final and frame.samples == SAMPLES
+        assert frame.pixels.shape == (HEIGHT, WIDTH, 4)
+        assert frame.rect == (0.0, 0.0, float(WIDTH), float(HEIGHT))
+        # The start pass came first: one sample at a quarter of the resolution, drawn enlarged.
+        first = seen[0]
+        assert not first.final and first.samples == 1
+        assert first.pixels.shape == (math.ceil(HEIGHT / 4), math.ceil(WIDTH / 4), 4)
+        assert first.rect == (0.0, 0.0, float(WIDTH), float(HEIGHT))
+        # Idle: nothing runs, and polling starts nothing.
+        assert session.running_renderers() == 0
+        time.sleep(0.05)
+        assert not session.poll() and session.frame() is frame
+        # The converged frame is the fresh full render of the scene with the same settings.
+        expected = fresh_render(depsgraph, view, replace(settings_from_scene(cornell)))
+        np.testing.assert_array_equal(frame.pixels, expected)
+    finally:
+        session.free()
+
+
+def _move_box() -> None:
+    bpy.data.objects["TallBox"].location.x += 0.12
+
+
+def _recolour_white() -> None:
+    material = bpy.data.materials["White"]
+    bsdf = next(n for n in material.node_tree.nodes if n.type == "BSDF_PRINCIPLED")
+    bsdf.inputs["Base Color"].default_value = (0.2, 0.7, 0.9, 1.0)
+
+
+def _dim_light() -> None:
+    bpy.data.lights["Point"].energy = 60.0
+
+
+def _move_camera() -> None:
+    camera = bpy.data.objects["Camera"]
+    camera.location.x += 0.2
+    camera.rotation_euler.z += 0.05
+
+
+EDITS: dict[str, tuple[Callable[[], None], str]] = {
+    "move an object": (_move_box, "edits"),
+    "change a material colour": (_recolour_white, "edits"),
+    "change a light's power": (_dim_light, "edits"),
+    "move the camera": (_move_camera, "edits"),
+}
+
+
+@pytest.mark.parametrize("name", list(EDITS))
+def test_edit_restarts_and_converges_to_a_fresh_render(library: Any, cornell: Any,
+                                                       name: str) -> None:
+    edit, expected_kind = EDITS[name]
+    depsgraph = _depsgraph()
+    session, view = _session(cornell, depsgraph)
+    try:
+        before, _ = converge(session)
+        generation = session.generation
+        with recorded_updates() as updates:
+            edit()
+            depsgraph = _depsgraph()
+        assert session.update(depsgraph, updates) == expected_kind
+        view = camera_view(depsgraph)  # view_draw hands the (camera) view over again
+        session.set_view(view)
+        assert session.generation > generation
+        after, _ = converge(session)
+        assert after.generation == session.generation and after.samples == SAMPLES
+        assert not np.array_equal(after.pixels, before.pixels), "the edit changed nothing"
+        expected = fresh_render(depsgraph, view, settings_from_scene(cornell))
+        np.testing.assert_array_equal(after.pixels, expected)
+    finally:
+        session.free()
+
+
+def test_view_change_restarts(library: Any, cornell: Any) -> None:
+    """Another view size (a resized viewport) restarts the render at that size, and an equal
+    view does not restart it."""
+    depsgraph = _depsgraph()
+    session, _ = _session(cornell, depsgraph)
+    try:
+        converge(session)
+        generation = session.generation
+        session.set_view(camera_view(depsgraph))  # the same view again
+        assert session.generation == generation and not session.poll()
+        bigger = camera_view(depsgraph, WIDTH + 8, HEIGHT + 6)
+        session.set_view(bigger)
+        frame, _ = converge(session)
+        assert frame.pixels.shape == (HEIGHT + 6, WIDTH + 8, 4)
+        expected = fresh_render(depsgraph, bigger, settings_from_scene(cornell))
+        np.testing.assert_array_equal(frame.pixels, expected)
+    finally:
+        session.free()
+
+
+def test_border_renders_only_its_region(library: Any, cornell: Any) -> None:
+    depsgraph = _depsgraph()
+    session, view = _session(cornell, depsgraph)
+    try:
+        border = (7, 5, 20, 13)
+        session.set_view(replace(view, border=border))
+        frame, _ = converge(session)
+        x, y, w, h = border
+        assert frame.pixels.shape == (h, w, 4) and frame.rect == border
+        full = fresh_render(depsgraph, view, settings_from_scene(cornell))
+        np.testing.assert_array_equal(frame.pixels, full[y:y + h, x:x + w])
+    finally:
+        session.free()
+
+
+def test_free_leaves_no_renderer_running(library: Any, cornell: Any) -> None:
+    from stratum import native
+
+    made: list[Any] = []
+
+    def new_renderer(scene: Any) -> Any:
+        made.append(native.Renderer(scene))
+        return made[-1]
+
+    depsgraph = _depsgraph()
+    session = ViewportSession(new_renderer=new_renderer)
+    session.update(depsgraph)
+    session.set_settings(replace(settings_from_scene(cornell), samples=100000,
+                                 compare_sampler="random"))
+    session.set_view(camera_view(depsgraph))
+    deadline = time.monotonic() + DEADLINE_S
+    while session.running_renderers() < 2:  # both halves of the split view render
+        session.poll()
+        assert time.monotonic() < deadline
+        time.sleep(0.01)
+    session.free()
+    assert len(made) == 2 and all(r.closed for r in made)
+    assert session.running_renderers() == 0 and not session.poll()
+
+
+SAMPLERS = ("random", "sobol", "halton_owen", "bluenoise", "zsobol", "fibonacci")
+
+
+@pytest.mark.parametrize("sampler", SAMPLERS)
+def test_crop_render_equals_the_full_render(library: Any, cornell: Any, sampler: str) -> None:
+    """What the split view relies on: a crop of the frame renders, pixel for pixel, the same
+    pixels of the full frame, for every sampler."""
+    depsgraph = _depsgraph()
+    settings = settings_from_scene(cornell)
+    view = camera_view(depsgraph)
+    full = fresh_render(depsgraph, view, settings, sampler)
+    with SceneSync() as sync:
+        sync.full(depsgraph)
+        sync.scene.set_camera(view.camera)
+        crop = {"crop_x": 13, "crop_y": 4, "crop_width": 21, "crop_height": 19}
+        native_settings = settings.native | crop | {
+            "width": WIDTH, "height": HEIGHT, "samples": SAMPLES, "sampler": sampler,
+            "bvh": "dynamic"}
+        with library.Renderer(sync.scene, **native_settings) as renderer:
+            part = _render(renderer).reshape(19, 21, 4)
+    np.testing.assert_array_equal(part, full[4:23, 13:34])
+
+
+@pytest.mark.parametrize(("left", "right", "position"), [
+    ("sobol", "random", 0.5), ("halton_owen", "bluenoise", 0.3)])
+def test_split_view_parts_equal_single_sampler_frames(library: Any, cornell: Any, left: str,
+                                                      right: str, position: float) -> None:
+    depsgraph = _depsgraph()
+    cornell.stratum.sampler = left
+    cornell.stratum.use_split_view = True
+    cornell.stratum.compare_sampler = right
+    cornell.stratum.split_position = position
+    settings = settings_from_scene(cornell)
+    assert (settings.sampler, settings.compare_sampler) == (left, right)
+    session, _ = _session(cornell, depsgraph)
+    frames: dict[str, np.ndarray] = {}
+    try:
+        split, _ = converge(session)
+        for sampler in (left, right):  # single-sampler viewport frames
+            session.set_settings(replace(settings, sampler=sampler, compare_sampler=None))
+            frames[sampler] = converge(session)[0].pixels
+    finally:
+        session.free()
+    column = round(position * WIDTH)
+    assert split.divider == pytest.approx(position * WIDTH)
+    assert split.samples == SAMPLES and split.pixels.shape == (HEIGHT, WIDTH, 4)
+    np.testing.assert_array_equal(split.pixels[:, :column], frames[left][:, :column])
+    np.testing.assert_array_equal(split.pixels[:, column:], frames[right][:, column:])
+    # The samplers differ, so the comparison shows something.
+    assert not np.array_equal(frames[left], frames[right])
