@@ -50,9 +50,11 @@ UI_DEFAULTS: dict[str, int | float | str] = {
 VIEWPORT_PROPERTIES: dict[str, tuple[str, str]] = {
     "preview_samples": ("Viewport Samples",
                         "Samples per pixel the Rendered viewport refines to before it stops"),
-    "preview_pixel_size": ("Start Pixel Size",
-                           "Each change is first rendered with one sample at 1/N of the "
-                           "viewport's resolution, so that a first image comes fast (1 = off)"),
+    "preview_start_resolution": ("Start Resolution",
+                                 "Each change is first rendered with one sample at a resolution "
+                                 "whose longer side is at most this many pixels, then at twice "
+                                 "it, up to the viewport's own, so that a first image comes "
+                                 "fast (0 = off)"),
     "use_split_view": ("Split View",
                        "Render the left part of the viewport with Sampler and the right part "
                        "with Compare Sampler, at the same samples and seed"),
@@ -60,12 +62,12 @@ VIEWPORT_PROPERTIES: dict[str, tuple[str, str]] = {
     "split_position": ("Split Position", "Where the viewport is split, from its left (0) to "
                        "its right (1) edge"),
 }
-# Defaults of the viewport properties: Cycles' viewport sample count (1024 in 3.x is meant for
-# a GPU; 32 refines a CPU viewport in seconds) and the sampler compared with the library's
-# default sampler, `random`.
+# Defaults of the viewport properties: Cycles' start resolution (64), not its viewport sample
+# count (1024 in 3.x is meant for a GPU; 32 refines a CPU viewport in seconds), and the sampler
+# compared with the library's default sampler, `random`.
 VIEWPORT_DEFAULTS: dict[str, int | float | bool | str] = {
     "preview_samples": 32,
-    "preview_pixel_size": 4,
+    "preview_start_resolution": 64,
     "use_split_view": False,
     "compare_sampler": "sobol",
     "split_position": 0.5,

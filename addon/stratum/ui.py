@@ -81,7 +81,7 @@ class STRATUM_RENDER_PT_viewport(StratumButtonsPanel, bpy.types.Panel):
         settings = context.scene.stratum
         col = layout.column()
         col.prop(settings, "preview_samples", text="Samples")
-        col.prop(settings, "preview_pixel_size", text="Start Pixel Size")
+        col.prop(settings, "preview_start_resolution", text="Start Resolution")
         col = layout.column(heading="Split View")
         col.prop(settings, "use_split_view", text="Compare Samplers")
         sub = col.column()

@@ -43,7 +43,7 @@ def cornell(stratum_addon: Any) -> Any:
     scene.render.engine = "STRATUM"
     s = scene.stratum
     s.preview_samples = SAMPLES
-    s.preview_pixel_size = 1
+    s.preview_start_resolution = 0
     s.seed = 5
     s.threads = 2
     s.max_bounces = 3
@@ -98,7 +98,7 @@ def converge(session: ViewportSession) -> tuple[Frame, list[Frame]]:
         frame = session.frame()
         if frame is not None and (not seen or seen[-1].serial != frame.serial):
             seen.append(frame)
-        if not session.poll() and session.converged:
+        if session.converged:  # frame() polls; a poll here could skip a stage's frame
             break
         assert time.monotonic() < deadline, "the viewport session did not converge"
         time.sleep(0.002)
@@ -169,7 +169,8 @@ def test_view_camera_renders_the_scene_camera(library: Any, cornell: Any, name: 
 
 
 def test_session_converges_to_preview_samples_and_stops(library: Any, cornell: Any) -> None:
-    cornell.stratum.preview_pixel_size = 4
+    # The longer side, 40 pixels, at most 10: start passes at pixel sizes 4, then 2.
+    cornell.stratum.preview_start_resolution = 10
     depsgraph = _depsgraph()
     session, view = _session(cornell, depsgraph)
     try:
@@ -177,11 +178,11 @@ def test_session_converges_to_preview_samples_and_stops(library: Any, cornell: A
         assert frame.final and frame.samples == SAMPLES
         assert frame.pixels.shape == (HEIGHT, WIDTH, 4)
         assert frame.rect == (0.0, 0.0, float(WIDTH), float(HEIGHT))
-        # The start pass came first: one sample at a quarter of the resolution, drawn enlarged.
-        first = seen[0]
-        assert not first.final and first.samples == 1
-        assert first.pixels.shape == (math.ceil(HEIGHT / 4), math.ceil(WIDTH / 4), 4)
-        assert first.rect == (0.0, 0.0, float(WIDTH), float(HEIGHT))
+        # The start passes came first, each one sample, drawn enlarged over the whole view.
+        starts = [f.pixels.shape for f in seen if not f.final]
+        assert starts == [(math.ceil(HEIGHT / n), math.ceil(WIDTH / n), 4) for n in (4, 2)]
+        assert all(f.samples == 1 and f.rect == frame.rect for f in seen if not f.final)
+        assert seen[-1] is frame
         # Idle: nothing runs, and polling starts nothing.
         assert session.running_renderers() == 0
         time.sleep(0.05)

@@ -132,7 +132,7 @@ def view_from_context(context: Any, depsgraph: Any) -> View:
 
 def settings_from_scene(scene: Any) -> ViewportSettings:
     """The viewport's settings: the scene's render settings (engine/frame.py) with the
-    viewport's sample count, start pixel size and split view (scene.stratum)."""
+    viewport's sample count, start resolution and split view (scene.stratum)."""
     s = scene.stratum
     native_settings = renderer_settings(scene)
     return ViewportSettings(
@@ -140,7 +140,7 @@ def settings_from_scene(scene: Any) -> ViewportSettings:
         sampler=str(s.sampler),
         compare_sampler=str(s.compare_sampler) if s.use_split_view else None,
         split_position=float(s.split_position),
-        pixel_size=int(s.preview_pixel_size),
+        start_resolution=int(s.preview_start_resolution),
         native=native_settings,
     )
 
@@ -224,7 +224,7 @@ def view_draw(state: ViewportState, engine: Any, context: Any, depsgraph: Any) -
             state.drawer = FrameDrawer()
         state.drawer.draw(engine, scene, frame, context.preferences.system.ui_scale)
         total = scene.stratum.preview_samples
-        stage = "" if frame.final else " (start pass)"
+        stage = "" if frame.final else " (start resolution)"
         engine.update_stats("", f"Sample {frame.samples}/{total}{stage}")
     if session.poll() and not state.redraw_pending:
         state.redraw_pending = True

@@ -11,11 +11,13 @@ refine the view, and the latest frame, without any GPU (viewport_draw.py draws t
 
 Every change (a scene edit, another view, other settings) cancels the renderers and starts them
 again once they have stopped; nothing here waits on a renderer (wait(0) only), so the UI thread
-that calls it never blocks. A restart first renders one sample at 1/pixel_size of the view's
-resolution (the start pass: a first image in a fraction of the time), then the view's own
-resolution up to `samples`; then the renderers end and the session is idle: no CPU is used until
-the next change. A frame is replaced only once the stage that follows it has a whole sample in
-every pixel, so an edit never shows a black or half-filled image.
+that calls it never blocks. A restart first renders start passes, as Cycles does: one sample at
+a pixel size N chosen so that the view's longer side is at most `start_resolution` pixels, then
+one at N/2, N/4, ... (each about 4 times the work of the previous one: all of them together
+cost about a third of the last), then the view's own resolution (pixel size 1) up to
+`samples`; then the renderers end and the session is idle: no CPU is used until the next
+change. A frame is replaced only once the stage that follows it has a whole sample in every
+pixel, so an edit never shows a black or half-filled image.
 
 Split view: the rendered rectangle (the view, or its border) is cut at `split_position`; the
 left part is rendered by a renderer with `sampler`, the right by one with `compare_sampler`, both
@@ -73,7 +75,7 @@ class ViewportSettings:
     sampler: str = "sobol"
     compare_sampler: str | None = None  # None: no split view
     split_position: float = 0.5  # 0..1 of the rendered width, from its left
-    pixel_size: int = 1  # the start pass's pixel size; 1: no start pass
+    start_resolution: int = 0  # longer side of the first start pass, pixels; 0: none
     native: dict[str, int | float | str] = field(default_factory=dict)
 
 
@@ -87,7 +89,7 @@ class Frame:
     rect: tuple[float, float, float, float]
     divider: float | None
     samples: int  # samples done in every pixel
-    final: bool  # at the view's own resolution (not the start pass)
+    final: bool  # at the view's own resolution (not a start pass)
     generation: int  # counts restarts: a frame of generation g shows the scene and view of g
     serial: int  # changes whenever the pixels do
 
@@ -115,8 +117,7 @@ class ViewportSession:
         self._settings = ViewportSettings()
         self._exported = False
         self._restart = False  # a change waits for the renderers to stop
-        self._stage = "idle"  # "start" (the start pass), "full", or "idle" (converged)
-        self._stage_size = (0, 0)  # the running stage's frame size
+        self._stage = 0  # the running stage's pixel size (1: the view's own); 0: idle
         self._generation = 0
         self._frame: Frame | None = None
         self._serial = 0
@@ -191,7 +192,7 @@ class ViewportSession:
 
     @property
     def converged(self) -> bool:
-        return self._stage == "idle" and not self._restart and self._frame is not None
+        return self._stage == 0 and not self._restart and self._frame is not None
 
     def poll(self) -> bool:
         """Moves the session on without waiting: closes renderers that have stopped, starts the
@@ -203,17 +204,16 @@ class ViewportSession:
             if not all(_stopped(lane) for lane in self._lanes):
                 return True
             self._restart = False
-            first = "start" if self._settings.pixel_size > 1 else "full"
-            self._start_stage(first)
+            self._start_stage(self._start_pixel_size())
             return True
-        if self._stage != "idle" and all(_stopped(lane) for lane in self._lanes):
+        if self._stage and all(_stopped(lane) for lane in self._lanes):
             self._read_stage()
-            if self._stage == "start":
-                self._start_stage("full")
+            if self._stage > 1:
+                self._start_stage(self._stage // 2)
                 return True
-            self._stage = "idle"
+            self._stage = 0
             self._finish_frame()
-        return self._stage != "idle"
+        return self._stage != 0
 
     def frame(self) -> Frame | None:
         """The newest frame (None before the first); reads the renderers' pixels if they
@@ -221,19 +221,27 @@ class ViewportSession:
         a call whose poll() ended a stage returns that stage's last image."""
         serial = self._serial
         self.poll()
-        if self._serial == serial and self._stage != "idle" and not self._restart:
+        if self._serial == serial and self._stage and not self._restart:
             self._read_stage()
         return self._frame
 
     # ---- stages -----------------------------------------------------------------------------
 
-    def _stage_geometry(self, stage: str) -> tuple[int, int, Rect, float]:
-        """(width, height, rendered rectangle, split column) of a stage's frame, in its own
-        pixels: the start pass is the view at 1/pixel_size, rounded up."""
+    def _start_pixel_size(self) -> int:
+        """The first stage's pixel size: the smallest that brings the view's longer side to at
+        most start_resolution pixels (1: no start pass)."""
+        view, resolution = self._view, self._settings.start_resolution
+        assert view is not None
+        if resolution <= 0:
+            return 1
+        return max(1, math.ceil(max(view.width, view.height) / resolution))
+
+    def _stage_geometry(self, n: int) -> tuple[int, int, Rect, float]:
+        """(width, height, rendered rectangle, split column) of the frame of the stage of pixel
+        size n, in its own pixels: the view at 1/n of its resolution, rounded up."""
         view = self._view
         assert view is not None
         border = view.border or (0, 0, view.width, view.height)
-        n = self._settings.pixel_size if stage == "start" else 1
         width, height = math.ceil(view.width / n), math.ceil(view.height / n)
         x0, y0 = border[0] // n, border[1] // n
         x1 = min(math.ceil((border[0] + border[2]) / n), width)
@@ -249,9 +257,9 @@ class ViewportSession:
         self._lanes = [_Lane(self._new_renderer(self._sync.scene), sampler, 0, 0)
                        for sampler in samplers]
 
-    def _start_stage(self, stage: str) -> None:
+    def _start_stage(self, n: int) -> None:
         self._ensure_lanes()
-        width, height, rect, split = self._stage_geometry(stage)
+        width, height, rect, split = self._stage_geometry(n)
         x, y, w, h = rect
         column = min(max(round(split), x), x + w)
         bounds = [(x, x + w)] if len(self._lanes) == 1 else [(x, column), (column, x + w)]
@@ -266,7 +274,7 @@ class ViewportSession:
                     r.set(name, value)
             r.set("bvh", "dynamic")  # a transform edit is a top-level recommit
             r.set("sampler", lane.sampler)
-            r.set("samples", 1 if stage == "start" else s.samples)
+            r.set("samples", 1 if n > 1 else s.samples)
             r.set("width", width)
             r.set("height", height)
             whole = (x0, y, x1 - x0, h) == (0, 0, width, height)
@@ -275,8 +283,7 @@ class ViewportSession:
                 r.set(name, value)
             r.start()
             lane.started = True
-        self._stage = stage
-        self._stage_size = (width, height)
+        self._stage = n
 
     def _active(self) -> list[_Lane]:
         return [lane for lane in self._lanes if lane.x1 > lane.x0]
@@ -309,7 +316,7 @@ class ViewportSession:
         divider = split * sx if len(self._lanes) > 1 else None
         self._serial += 1
         self._frame = Frame(pixels, (x * sx, y * sy, w * sx, h * sy), divider, samples,
-                            self._stage == "full", self._generation, self._serial)
+                            self._stage == 1, self._generation, self._serial)
 
     def _finish_frame(self) -> None:
         if self.denoise is not None and self._frame is not None and self._frame.final:
@@ -328,7 +335,7 @@ class ViewportSession:
         self._retired = []
         self._sync.close()
         self._exported = False
-        self._stage = "idle"
+        self._stage = 0
         self._restart = False
 
     def running_renderers(self) -> int:
