@@ -108,20 +108,23 @@ def converge(session: ViewportSession) -> tuple[Frame, list[Frame]]:
 
 
 def fresh_render(depsgraph: Any, view: View, settings: ViewportSettings,
-                 sampler: str | None = None) -> np.ndarray:
+                 sampler: str | None = None, pass_name: str = "") -> np.ndarray:
     """A new full export of the depsgraph with the view's camera, rendered by a new renderer
-    with the session's settings (view size, preview samples, dynamic BVH): (h, w, 4)."""
+    with the session's settings (view size, preview samples, dynamic BVH): (h, w, 4), or
+    the pass `pass_name` (h, w, channels)."""
     native_settings = {k: v for k, v in settings.native.items()
                        if not k.startswith("crop_")}
     native_settings |= {"width": view.width, "height": view.height, "samples": settings.samples,
-                        "sampler": sampler or settings.sampler, "bvh": "dynamic"}
+                        "sampler": sampler or settings.sampler, "bvh": "dynamic",
+                        "passes": pass_name}
     with SceneSync() as sync:
         sync.full(depsgraph)
         sync.scene.set_camera(view.camera)
         from stratum import native
 
         with native.Renderer(sync.scene, **native_settings) as renderer:
-            return _render(renderer).reshape(view.height, view.width, 4)
+            pixels = _render(renderer).reshape(view.height, view.width, 4)
+            return renderer.read_pass(pass_name) if pass_name else pixels
 
 
 def _render(renderer: Any) -> np.ndarray:
@@ -357,3 +360,36 @@ def test_split_view_parts_equal_single_sampler_frames(library: Any, cornell: Any
     np.testing.assert_array_equal(split.pixels[:, column:], frames[right][:, column:])
     # The samplers differ, so the comparison shows something.
     assert not np.array_equal(frames[left], frames[right])
+
+
+def test_denoiser_hook_sees_the_converged_frame_and_its_passes(library: Any,
+                                                               cornell: Any) -> None:
+    """set_denoiser (use_preview_denoising): called once, on the converged frame at the view's
+    own resolution with the passes it asked for (composed across a split view's parts); the
+    frame then shows what it returned. Start passes are not denoised."""
+    cornell.stratum.preview_start_resolution = 10
+    depsgraph = _depsgraph()
+    calls: list[tuple[np.ndarray, dict[str, np.ndarray]]] = []
+
+    def denoise(colour: np.ndarray, passes: dict[str, np.ndarray]) -> np.ndarray:
+        calls.append((colour.copy(), passes))
+        return np.full_like(colour, 0.25)
+
+    session, view = _session(cornell, depsgraph, compare_sampler="random")
+    session.set_denoiser(denoise, ("Normal",))
+    try:
+        frame, seen = converge(session)
+    finally:
+        session.free()
+    assert len(calls) == 1 and not any(np.all(f.pixels == 0.25) for f in seen[:-1])
+    colour, passes = calls[0]
+    assert colour.shape == (HEIGHT, WIDTH, 4) and passes["Normal"].shape == (HEIGHT, WIDTH, 3)
+    # The colour and the normals are those of the converged split frame.
+    settings = settings_from_scene(cornell)
+    half = WIDTH // 2
+    for name, image in (("", colour), ("Normal", passes["Normal"])):
+        np.testing.assert_array_equal(
+            image[:, :half], fresh_render(depsgraph, view, settings, None, name)[:, :half])
+        np.testing.assert_array_equal(
+            image[:, half:], fresh_render(depsgraph, view, settings, "random", name)[:, half:])
+    assert np.all(frame.pixels == 0.25) and frame.final

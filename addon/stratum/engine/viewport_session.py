@@ -26,9 +26,12 @@ same frame. A crop render's pixels equal the same pixels of a full render (the c
 sampler see full-frame coordinates: native renderer.cpp), so each part equals, pixel for pixel,
 a single-sampler frame of its sampler.
 
-Denoising hook: `denoise`, when set, is called with the converged full-resolution frame's
-colour (h, w, 4) and returns the image to show instead (the denoiser's own module decides which
-passes it needs; see set_denoiser).
+Denoising hook (use_preview_denoising): set_denoiser(denoise, passes) makes the view's own
+resolution render also hold the named passes (the renderer setting `passes`, e.g. the
+denoiser's albedo and normal); when that stage has converged, the frame shown is
+denoise(colour (h, w, 4), {pass name: (h, w, channels)}), each array composed from the lanes
+as the colour is (a split view's parts stay each its own sampler's). Start passes are never
+denoised.
 """
 
 from __future__ import annotations
@@ -45,6 +48,8 @@ from ..export import ExportSummary, SceneSync
 from ..export.updates import IdUpdate
 
 Rect = tuple[int, int, int, int]  # x, y, width, height in pixels, bottom-left origin
+# denoise(colour (h, w, 4), {pass name: (h, w, channels)}) -> the colour to show (h, w, 4)
+Denoiser = Callable[[np.ndarray, dict[str, np.ndarray]], np.ndarray]
 
 # Setting names the session decides itself: the view gives the frame, the session the rest.
 VIEW_SETTINGS = ("width", "height", "crop_x", "crop_y", "crop_width", "crop_height")
@@ -121,7 +126,8 @@ class ViewportSession:
         self._generation = 0
         self._frame: Frame | None = None
         self._serial = 0
-        self.denoise: Callable[[np.ndarray], np.ndarray] | None = None
+        self._denoise: Denoiser | None = None
+        self._denoise_passes: tuple[str, ...] = ()
         self.last_summary: ExportSummary | None = None
 
     # ---- changes -------------------------------------------------------------------------
@@ -166,6 +172,13 @@ class ViewportSession:
         self._settings = settings
         if split_changed:
             self._retire_lanes()  # other samplers per lane: lanes are made anew
+        self._request_restart()
+
+    def set_denoiser(self, denoise: Denoiser | None, passes: tuple[str, ...] = ()) -> None:
+        """The denoiser applied to converged frames (module docstring); None: none."""
+        if (denoise, passes) == (self._denoise, self._denoise_passes):
+            return
+        self._denoise, self._denoise_passes = denoise, passes
         self._request_restart()
 
     def _apply_camera(self) -> None:
@@ -275,6 +288,7 @@ class ViewportSession:
             r.set("bvh", "dynamic")  # a transform edit is a top-level recommit
             r.set("sampler", lane.sampler)
             r.set("samples", 1 if n > 1 else s.samples)
+            r.set("passes", ",".join(self._denoise_passes) if n == 1 and self._denoise else "")
             r.set("width", width)
             r.set("height", height)
             whole = (x0, y, x1 - x0, h) == (0, 0, width, height)
@@ -304,11 +318,8 @@ class ViewportSession:
             return
         width, height, rect, split = self._stage_geometry(self._stage)
         x, y, w, h = rect
-        pixels = np.empty((h, w, 4), dtype=np.float32)
+        pixels = self._compose(lambda renderer, out: renderer.read_pixels(out), 4, h)
         for p, lane in zip(progress, lanes, strict=True):
-            part = np.empty((h, lane.x1 - lane.x0, 4), dtype=np.float32)
-            lane.renderer.read_pixels(part)
-            pixels[:, lane.x0 - x:lane.x1 - x] = part
             lane.serial = p.update_serial
         view = self._view
         assert view is not None
@@ -318,11 +329,29 @@ class ViewportSession:
         self._frame = Frame(pixels, (x * sx, y * sy, w * sx, h * sy), divider, samples,
                             self._stage == 1, self._generation, self._serial)
 
+    def _compose(self, read: Callable[[Any, np.ndarray], Any], channels: int,
+                 height: int) -> np.ndarray:
+        """One image of the running stage's rendered rectangle from its lanes' parts."""
+        lanes = self._active()
+        x = lanes[0].x0
+        out = np.empty((height, lanes[-1].x1 - x, channels), dtype=np.float32)
+        for lane in lanes:
+            part = np.empty((height, lane.x1 - lane.x0, channels), dtype=np.float32)
+            read(lane.renderer, part)
+            out[:, lane.x0 - x:lane.x1 - x] = part
+        return out
+
     def _finish_frame(self) -> None:
-        if self.denoise is not None and self._frame is not None and self._frame.final:
-            self._serial += 1
-            self._frame = replace(self._frame, pixels=self.denoise(self._frame.pixels),
-                                  serial=self._serial)
+        frame = self._frame
+        if self._denoise is None or frame is None or not frame.final:
+            return
+        height = frame.pixels.shape[0]
+        channels = {p.name: p.channels for p in native.passes()}
+        passes = {name: self._compose(_pass_reader(name), channels[name], height)
+                  for name in self._denoise_passes}
+        self._serial += 1
+        self._frame = replace(frame, pixels=self._denoise(frame.pixels, passes),
+                              serial=self._serial)
 
     # ---- end ---------------------------------------------------------------------------------
 
@@ -341,6 +370,13 @@ class ViewportSession:
     def running_renderers(self) -> int:
         """How many of the session's renderers have a render running (for tests)."""
         return sum(not _stopped(lane) for lane in self._lanes + self._retired)
+
+
+def _pass_reader(name: str) -> Callable[[Any, np.ndarray], None]:
+    def read(renderer: Any, out: np.ndarray) -> None:
+        out[...] = renderer.read_pass(name)
+
+    return read
 
 
 def _stopped(lane: _Lane) -> bool:
