@@ -33,7 +33,7 @@ FROM_BLENDER: dict[str, str] = {
 # Setting -> why nothing in Blender sets it.
 NOT_IN_BLENDER: dict[str, str] = {
     "passes": "the engine fills only the Combined pass of Blender's render result so far",
-    "bvh": "F12 renders use the library's default (static); the viewport will choose dynamic",
+    "bvh": "F12 renders use the library's default (static); the Rendered viewport uses dynamic",
 }
 
 # The Blender defaults that differ from the library's on purpose. Blender stores a property

@@ -37,6 +37,7 @@ denoised.
 from __future__ import annotations
 
 import math
+import time
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -51,6 +52,8 @@ Rect = tuple[int, int, int, int]  # x, y, width, height in pixels, bottom-left o
 # denoise(colour (h, w, 4), {pass name: (h, w, channels)}) -> the colour to show (h, w, 4)
 Denoiser = Callable[[np.ndarray, dict[str, np.ndarray]], np.ndarray]
 
+# While a pass fills in tiles, its pixels are copied for display at most this often.
+REREAD_SECONDS = 0.25
 # Setting names the session decides itself: the view gives the frame, the session the rest.
 VIEW_SETTINGS = ("width", "height", "crop_x", "crop_y", "crop_width", "crop_height")
 
@@ -125,6 +128,8 @@ class ViewportSession:
         self._stage = 0  # the running stage's pixel size (1: the view's own); 0: idle
         self._generation = 0
         self._frame: Frame | None = None
+        self._read_at = 0.0  # time.monotonic() of the last read of the pixels
+        self._read_stage_size = 0  # the stage (pixel size) they were read from
         self._serial = 0
         self._denoise: Denoiser | None = None
         self._denoise_passes: tuple[str, ...] = ()
@@ -220,7 +225,7 @@ class ViewportSession:
             self._start_stage(self._start_pixel_size())
             return True
         if self._stage and all(_stopped(lane) for lane in self._lanes):
-            self._read_stage()
+            self._read_stage(ended=True)
             if self._stage > 1:
                 self._start_stage(self._stage // 2)
                 return True
@@ -302,9 +307,11 @@ class ViewportSession:
     def _active(self) -> list[_Lane]:
         return [lane for lane in self._lanes if lane.x1 > lane.x0]
 
-    def _read_stage(self) -> None:
+    def _read_stage(self, ended: bool = False) -> None:
         """Makes the running stage's image the frame once every pixel has a sample, and
-        re-reads it when a renderer published more."""
+        re-reads it when a renderer published more: at once for more samples in every pixel
+        or when the stage has `ended`, else (tiles of the next pass) at most every
+        REREAD_SECONDS, so that the UI thread does not copy the image at every redraw."""
         lanes = self._active()
         if not lanes:
             return
@@ -316,6 +323,13 @@ class ViewportSession:
             return  # the previous frame stays until this one is whole
         if all(p.update_serial == lane.serial for p, lane in zip(progress, lanes, strict=True)):
             return
+        now = time.monotonic()
+        shown = self._frame
+        if not ended and shown is not None and shown.generation == self._generation and \
+                self._read_stage_size == self._stage and shown.samples == samples and \
+                now - self._read_at < REREAD_SECONDS:
+            return
+        self._read_at, self._read_stage_size = now, self._stage
         width, height, rect, split = self._stage_geometry(self._stage)
         x, y, w, h = rect
         pixels = self._compose(lambda renderer, out: renderer.read_pixels(out), 4, h)
