@@ -393,3 +393,54 @@ def test_denoiser_hook_sees_the_converged_frame_and_its_passes(library: Any,
         np.testing.assert_array_equal(
             image[:, half:], fresh_render(depsgraph, view, settings, "random", name)[:, half:])
     assert np.all(frame.pixels == 0.25) and frame.final
+
+
+def _context(depsgraph: Any, window: Any, view_perspective: str = "CAMERA",
+             **space: Any) -> Any:
+    """What view_draw's context holds for view_from_context: a 3D view of WIDTH x HEIGHT
+    looking through the scene camera with the window matrix given."""
+    from types import SimpleNamespace
+
+    ob = depsgraph.scene_eval.camera.evaluated_get(depsgraph)
+    return SimpleNamespace(
+        region=SimpleNamespace(width=WIDTH, height=HEIGHT),
+        region_data=SimpleNamespace(view_matrix=ob.matrix_world.inverted(), window_matrix=window,
+                                    view_perspective=view_perspective, is_perspective=True),
+        space_data=SimpleNamespace(**space))
+
+
+def test_camera_view_border_is_the_render_border_inside_the_camera_frame(
+        library: Any, cornell: Any) -> None:
+    """In camera view zoomed out by 2 (the window matrix's scale halved), the camera frame
+    (square: the scene renders 256 x 256; its width fitted to the view's, 40) is 20 x 20
+    pixels in the middle of the 40 x 30 view, x 10..30, y 5..25, and the scene's render
+    border (the middle half of the frame) x 15..25, y 10..20."""
+    from stratum.engine.viewport import view_from_context
+
+    r = cornell.render
+    r.use_border = True
+    r.border_min_x = r.border_min_y = 0.25
+    r.border_max_x = r.border_max_y = 0.75
+    depsgraph = _depsgraph()
+    ob = cornell.camera.evaluated_get(depsgraph)
+    window = ob.calc_matrix_camera(depsgraph, x=WIDTH, y=HEIGHT)
+    window[0][0] *= 0.5
+    window[1][1] *= 0.5
+    view = view_from_context(_context(depsgraph, window), depsgraph)
+    assert (view.width, view.height, view.border) == (WIDTH, HEIGHT, (15, 10, 10, 10))
+    # Outside camera view the view's own render border applies, as fractions of the view.
+    view = view_from_context(_context(depsgraph, window, "PERSP", use_render_border=True,
+                                      render_border_min_x=0.1, render_border_min_y=0.5,
+                                      render_border_max_x=0.6, render_border_max_y=1.0),
+                             depsgraph)
+    assert view.border == (4, 15, 20, 15)
+
+
+def test_half_float_safe_keeps_every_pixel_finite_in_rgba16f() -> None:
+    from stratum.engine.viewport_draw import HALF_MAX, half_float_safe
+
+    pixels = np.array([1e6, -1e6, np.nan, np.inf, -np.inf, 3.0, 65504.0], dtype=np.float32)
+    safe = half_float_safe(pixels)
+    assert np.all(np.isfinite(safe.astype(np.float16)))
+    np.testing.assert_array_equal(safe, [HALF_MAX, -HALF_MAX, 0.0, HALF_MAX, -HALF_MAX, 3.0,
+                                         65504.0])
