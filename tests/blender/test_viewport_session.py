@@ -171,6 +171,27 @@ def test_view_camera_renders_the_scene_camera(library: Any, cornell: Any, name: 
     assert np.abs(from_view - from_scene).mean() < 2e-3 * from_scene.mean()
 
 
+def test_orthographic_view_clipping_from_behind_the_eye(library: Any, cornell: Any) -> None:
+    """A user orthographic view clips from a negative near distance (Blender: -clip_end/2);
+    the native camera, which needs 0 < clip_start, is moved back along its axis instead: the
+    same parallel rays, so the same image as the scene's orthographic camera up to rounding."""
+    cornell.camera.data.type = "ORTHO"
+    cornell.camera.data.ortho_scale = 2.4
+    depsgraph = _depsgraph()
+    ob = cornell.camera.evaluated_get(depsgraph)
+    window = ob.calc_matrix_camera(depsgraph, x=WIDTH, y=HEIGHT)
+    near, far = -10.0, 10.0
+    window[2][2], window[2][3] = -2.0 / (far - near), -(far + near) / (far - near)
+    camera = camera_from_matrices(ob.matrix_world.inverted(), window, False)
+    assert camera.clip_start > 0.0 and camera.clip_end - camera.clip_start == pytest.approx(20.0)
+    settings = settings_from_scene(cornell)
+    from_view = fresh_render(depsgraph, View(camera, WIDTH, HEIGHT), settings)
+    from_scene = fresh_render(depsgraph, View(convert_camera(cornell, depsgraph), WIDTH, HEIGHT),
+                              settings)
+    assert np.mean(np.isclose(from_view, from_scene, rtol=1e-4, atol=1e-6)) > 0.9
+    assert np.abs(from_view - from_scene).mean() < 2e-3 * from_scene.mean()
+
+
 def test_session_converges_to_preview_samples_and_stops(library: Any, cornell: Any) -> None:
     # The longer side, 40 pixels, at most 10: start passes at pixel sizes 4, then 2.
     cornell.stratum.preview_start_resolution = 10
