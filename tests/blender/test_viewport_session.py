@@ -326,9 +326,13 @@ def test_free_leaves_no_renderer_running(library: Any, cornell: Any) -> None:
         session.poll()
         assert time.monotonic() < deadline
         time.sleep(0.01)
+    from stratum.engine.viewport_session import running_sessions
+
+    assert running_sessions() >= 1
     session.free()
     assert len(made) == 2 and all(r.closed for r in made)
     assert session.running_renderers() == 0 and not session.poll()
+    assert running_sessions() == 0  # the other tests' sessions are freed too
 
 
 SAMPLERS = ("random", "sobol", "halton_owen", "bluenoise", "zsobol", "fibonacci")

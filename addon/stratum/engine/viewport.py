@@ -29,7 +29,6 @@ from __future__ import annotations
 
 import math
 import traceback
-import weakref
 from collections.abc import Callable
 from dataclasses import replace
 from typing import Any
@@ -155,7 +154,6 @@ class ViewportState:
     """What one RenderEngine instance keeps for the viewport it draws."""
 
     def __init__(self) -> None:
-        _states.add(self)
         self.session = ViewportSession()
         self.drawer: Any | None = None  # viewport_draw.FrameDrawer, made at the first draw
         self.error = ""  # the export error the view shows until the next update
@@ -168,16 +166,6 @@ class ViewportState:
         self.session.free()
         if self.drawer is not None:
             self.drawer.free()
-
-
-_states: weakref.WeakSet[ViewportState] = weakref.WeakSet()
-
-
-def viewport_sessions() -> list[ViewportSession]:
-    """The sessions of the viewports not freed yet (for UI tests: after leaving Rendered
-    shading Blender frees the engine and none is left; running_renderers() of each says
-    whether it still renders)."""
-    return [state.session for state in list(_states) if not state.freed]
 
 
 def viewport_call(engine: Any, call: Callable[[ViewportState], None]) -> None:

@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import math
 import time
+import weakref
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field, replace
 from typing import Any
@@ -117,6 +118,8 @@ class _Lane:
 class ViewportSession:
     def __init__(self, new_scene: Callable[[], Any] = native.Scene,
                  new_renderer: Callable[[Any], Any] = native.Renderer) -> None:
+        _sessions.add(self)
+        self._freed = False
         self._sync = SceneSync(new_scene, require_camera=False)
         self._new_renderer = new_renderer
         self._lanes: list[_Lane] = []
@@ -380,10 +383,20 @@ class ViewportSession:
         self._exported = False
         self._stage = 0
         self._restart = False
+        self._freed = True
 
     def running_renderers(self) -> int:
         """How many of the session's renderers have a render running (for tests)."""
         return sum(not _stopped(lane) for lane in self._lanes + self._retired)
+
+
+_sessions: weakref.WeakSet[ViewportSession] = weakref.WeakSet()
+
+
+def running_sessions() -> int:
+    """How many sessions exist and are not freed (for UI tests: leaving Rendered shading frees
+    the engine, whose session must then be gone or freed, with no renderer left)."""
+    return sum(not session._freed for session in list(_sessions))
 
 
 def _pass_reader(name: str) -> Callable[[Any, np.ndarray], None]:
