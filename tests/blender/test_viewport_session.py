@@ -203,9 +203,15 @@ def test_session_converges_to_preview_samples_and_stops(library: Any, cornell: A
         assert frame.pixels.shape == (HEIGHT, WIDTH, 4)
         assert frame.rect == (0.0, 0.0, float(WIDTH), float(HEIGHT))
         # The start passes came first, each one sample, drawn enlarged over the whole view.
-        starts = [f.pixels.shape for f in seen if not f.final]
-        assert starts == [(math.ceil(HEIGHT / n), math.ceil(WIDTH / n), 4) for n in (4, 2)]
-        assert all(f.samples == 1 and f.rect == frame.rect for f in seen if not f.final)
+        starts = [f for f in seen if not f.final and f.samples > 0]
+        assert [f.pixels.shape for f in starts] == [
+            (math.ceil(HEIGHT / n), math.ceil(WIDTH / n), 4) for n in (4, 2)]
+        assert all(f.samples == 1 and f.rect == frame.rect for f in starts)
+        # Then, maybe, the view's own resolution filling in over the last start pass.
+        filling = [i for i, f in enumerate(seen) if f.samples == 0]
+        assert all(seen[i].pixels.shape == frame.pixels.shape for i in filling)
+        last_start = next(i for i, f in enumerate(seen) if f is starts[-1])
+        assert all(i > last_start for i in filling)
         assert seen[-1] is frame
         # Idle: nothing runs, and polling starts nothing.
         assert session.running_renderers() == 0
@@ -469,3 +475,20 @@ def test_half_float_safe_keeps_every_pixel_finite_in_rgba16f() -> None:
     assert np.all(np.isfinite(safe.astype(np.float16)))
     np.testing.assert_array_equal(safe, [HALF_MAX, -HALF_MAX, 0.0, HALF_MAX, -HALF_MAX, 3.0,
                                          65504.0])
+
+
+def test_a_start_pass_resampled_to_the_view_pixels() -> None:
+    """What shows through where the view's own resolution has no sample yet: the start pass
+    frame (pixel size 4 over a 40 x 30 view: 10 x 8 pixels drawn over the whole view, 3.75
+    view pixels high each) picked by nearest neighbour at each view pixel's centre."""
+    from stratum.engine.viewport_session import _resample
+
+    small = np.arange(8 * 10 * 4, dtype=np.float32).reshape(8, 10, 4)
+    frame = Frame(small, (0.0, 0.0, 40.0, 30.0), None, 1, False, 1, 1)
+    out = _resample(frame, (0, 0, 40, 30))
+    assert out.shape == (30, 40, 4)
+    np.testing.assert_array_equal(out[0, 0], small[0, 0])
+    np.testing.assert_array_equal(out[29, 39], small[7, 9])  # y 29.5 / 3.75 -> 7
+    np.testing.assert_array_equal(out[5, 13], small[1, 3])  # y 5.5 / 3.75 -> 1, x 13.5 / 4 -> 3
+    # A border: the part of the frame under view pixels x 8..17, y 4..11.
+    np.testing.assert_array_equal(_resample(frame, (8, 4, 10, 8)), out[4:12, 8:18])

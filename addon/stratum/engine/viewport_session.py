@@ -97,8 +97,8 @@ class Frame:
     pixels: np.ndarray
     rect: tuple[float, float, float, float]
     divider: float | None
-    samples: int  # samples done in every pixel
-    final: bool  # at the view's own resolution (not a start pass)
+    samples: int  # samples done in every pixel (0: the first pass filling in over a start pass)
+    final: bool  # at the view's own resolution with a sample in every pixel
     generation: int  # counts restarts: a frame of generation g shows the scene and view of g
     serial: int  # changes whenever the pixels do
 
@@ -322,12 +322,15 @@ class ViewportSession:
         if any(p.cancelled for p in progress):
             return
         samples = min(p.samples_done for p in progress)
-        if samples < 1:
-            return  # the previous frame stays until this one is whole
+        shown = self._frame
+        # Before every pixel has a sample the previous frame stays; only the view's own
+        # resolution, which takes longest, fills in tile by tile over the start passes.
+        if samples < 1 and (self._stage != 1 or shown is None
+                            or shown.generation != self._generation):
+            return
         if all(p.update_serial == lane.serial for p, lane in zip(progress, lanes, strict=True)):
             return
         now = time.monotonic()
-        shown = self._frame
         if not ended and shown is not None and shown.generation == self._generation and \
                 self._read_stage_size == self._stage and shown.samples == samples and \
                 now - self._read_at < REREAD_SECONDS:
@@ -341,10 +344,15 @@ class ViewportSession:
         view = self._view
         assert view is not None
         sx, sy = view.width / width, view.height / height
+        if samples < 1 and shown is not None:
+            # A pixel all zero (RGBA) has no sample yet, or is transparent black: there the
+            # start pass shows through until the pass ends.
+            pixels = np.where(np.any(pixels != 0.0, axis=2, keepdims=True), pixels,
+                              _resample(shown, (x, y, w, h)))
         divider = split * sx if len(self._lanes) > 1 else None
         self._serial += 1
         self._frame = Frame(pixels, (x * sx, y * sy, w * sx, h * sy), divider, samples,
-                            self._stage == 1, self._generation, self._serial)
+                            self._stage == 1 and samples >= 1, self._generation, self._serial)
 
     def _compose(self, read: Callable[[Any, np.ndarray], Any], channels: int,
                  height: int) -> np.ndarray:
@@ -397,6 +405,16 @@ def running_sessions() -> int:
     """How many sessions exist and are not freed (for UI tests: leaving Rendered shading frees
     the engine, whose session must then be gone or freed, with no renderer left)."""
     return sum(not session._freed for session in list(_sessions))
+
+
+def _resample(frame: Frame, rect: Rect) -> np.ndarray:
+    """The frame's pixels, nearest neighbour, at the view pixels of `rect`."""
+    fx, fy, fw, fh = frame.rect
+    rows, columns = frame.pixels.shape[:2]
+    x, y, w, h = rect
+    i = np.clip(((np.arange(w) + x + 0.5 - fx) * columns / fw).astype(np.intp), 0, columns - 1)
+    j = np.clip(((np.arange(h) + y + 0.5 - fy) * rows / fh).astype(np.intp), 0, rows - 1)
+    return frame.pixels[j[:, None], i[None, :]]
 
 
 def _pass_reader(name: str) -> Callable[[Any, np.ndarray], None]:
