@@ -1,7 +1,7 @@
 """Runs a scenario (tests/ui/scenario_*.py, driven by tests/ui/driver.py) in Blender 3.4 with
 its real UI on a virtual X display (xvfb-run, Mesa's software OpenGL), and hands its findings
-to the test. Blender's own exit code says nothing (the scenario quits Blender itself); the
-scenario writes results.json, which is the verdict: a missing file means Blender died or hung.
+to the test. The scenario writes results.json, which is the verdict (a missing file means Blender died or
+hung), and quits Blender itself: a non-zero exit code after that is a crash on the way out.
 """
 
 from __future__ import annotations
@@ -37,8 +37,8 @@ def run_scenario(script: str, blend: Path, name: str, timeout: float = 600.0,
     log = out / "blender.log"
     with log.open("w") as stream:
         try:
-            subprocess.run(command, stdout=stream, stderr=subprocess.STDOUT, env=environment,
-                           timeout=timeout, check=False)
+            finished = subprocess.run(command, stdout=stream, stderr=subprocess.STDOUT,
+                                      env=environment, timeout=timeout, check=False)
         except subprocess.TimeoutExpired:
             pytest.fail(f"Blender's UI did not quit within {timeout:g} s; log: {log}")
     results = out / "results.json"
@@ -46,6 +46,9 @@ def run_scenario(script: str, blend: Path, name: str, timeout: float = 600.0,
         tail = "\n".join(log.read_text(errors="replace").splitlines()[-40:])
         pytest.fail(f"the scenario wrote no results (Blender crashed or hung):\n{tail}")
     found = json.loads(results.read_text())
+    if finished.returncode != 0:
+        tail = "\n".join(log.read_text(errors="replace").splitlines()[-40:])
+        pytest.fail(f"Blender exited with {finished.returncode} after the scenario:\n{tail}")
     if found.get("error"):
         pytest.fail(f"scenario {script} failed:\n{found['error']}\nsteps:\n" +
                     "\n".join(found["steps"]))

@@ -56,3 +56,10 @@ def test_screenshots_are_kept(viewport: dict[str, Any]) -> None:
     """The images a reviewer looks at: out/ui/viewport/*.png."""
     out = REPO / "out" / "ui" / "viewport"
     assert all((out / f"{name}.png").exists() for name in ("camera", "f12", "green", "moved"))
+
+
+def test_nothing_a_user_does_while_the_viewport_renders_crashes_blender() -> None:
+    """Delete, undo, engine switch, closing the viewport, quitting: the scenario ends, Blender
+    exits with 0 (run_scenario fails otherwise), and undo brought the deleted object back."""
+    found = run_scenario("scenario_viewport_safety.py", CORNELL, "viewport_safety")
+    assert found["undo_restored"], found
