@@ -19,10 +19,10 @@ from typing import Any
 
 import bpy
 import numpy as np
-from bpy.props import EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
 from . import native
-from .blender_settings import PROPERTIES, UI_DEFAULTS
+from .blender_settings import BLENDER_ONLY, PROPERTIES, UI_DEFAULTS
 
 # Where a slider stops dragging; typing goes on to the library's maximum.
 SOFT_MAXIMA: dict[str, int | float] = {
@@ -93,6 +93,10 @@ def _make_property_group(settings: tuple[native.Setting, ...]) -> type:
     class StratumRenderSettings(bpy.types.PropertyGroup):
         __annotations__ = {name: make_property(by_name[name])
                            for name in PROPERTIES if name in by_name}
+        # The add-on's own switches need no library (registered without it too).
+        __annotations__.update({
+            name: BoolProperty(name=label, description=description, default=default)
+            for name, (label, description, default) in BLENDER_ONLY.items()})
 
     return StratumRenderSettings
 
