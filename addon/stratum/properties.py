@@ -87,6 +87,14 @@ def make_property(setting: native.Setting) -> Any:
                      "Blender property")
 
 
+def _update_render_passes(_settings: Any, context: bpy.types.Context) -> None:
+    """Denoising adds a pass (Noisy Image): the compositor asks the engine for its passes
+    again (engine.update_render_passes), as Cycles' denoising switches do."""
+    view_layer = getattr(context, "view_layer", None)
+    if view_layer is not None:
+        view_layer.update_render_passes()
+
+
 def _make_property_group(settings: tuple[native.Setting, ...]) -> type:
     by_name = {setting.name: setting for setting in settings}
 
@@ -95,7 +103,8 @@ def _make_property_group(settings: tuple[native.Setting, ...]) -> type:
                            for name in PROPERTIES if name in by_name}
         # The add-on's own switches need no library (registered without it too).
         __annotations__.update({
-            name: BoolProperty(name=label, description=description, default=default)
+            name: BoolProperty(name=label, description=description, default=default,
+                               update=_update_render_passes)
             for name, (label, description, default) in BLENDER_ONLY.items()})
 
     return StratumRenderSettings

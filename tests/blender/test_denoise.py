@@ -140,3 +140,51 @@ def test_broken_denoiser_is_one_warning_and_an_undenoised_render(
     plain = read_pass(_render(_cornell(SPP, use_denoising=False), tmp_path / "plain.exr"),
                       "Combined")
     np.testing.assert_array_equal(combined, plain)
+
+
+def test_guides_are_albedo_and_normal_and_never_a_normal_alone(stratum_addon: Any) -> None:
+    from stratum.engine import denoise
+
+    everything = ["Combined", "Normal", "Denoising Albedo", "Denoising Normal"]
+    assert denoise.guide_passes(everything) == ("Denoising Albedo", "Denoising Normal")
+    assert denoise.guide_passes(["Combined", "Normal", "Denoising Albedo"]) == (
+        "Denoising Albedo", "Normal")
+    assert denoise.guide_passes(["Combined", "Denoising Albedo"]) == ("Denoising Albedo", None)
+    assert denoise.guide_passes(["Combined", "Normal", "Denoising Normal"]) == (None, None)
+    assert denoise.with_passes({"samples": 4}, []) == {"samples": 4}
+    assert denoise.with_passes({"passes": "Depth,Normal"}, ["Normal", "Denoising Albedo"]) == {
+        "passes": "Depth,Normal,Denoising Albedo"}
+
+
+def test_denoise_rgba_keeps_alpha_and_checks_its_input(denoiser: str) -> None:
+    from stratum.engine import denoise
+
+    rng = np.random.default_rng(3)
+    rgba = rng.exponential(0.5, (16, 24, 4)).astype(np.float32)
+    rgba[..., 3] = rng.uniform(0.0, 1.0, (16, 24))
+    rgba[0, 0, 0] = -0.5  # a control variate's negative estimate: clamped for the filter only
+    before = rgba.copy()
+    out = denoise.denoise_rgba(rgba)
+    assert out.shape == rgba.shape and np.isfinite(out).all()
+    np.testing.assert_array_equal(out[..., 3], rgba[..., 3])
+    np.testing.assert_array_equal(rgba, before)
+    assert not np.array_equal(out[..., :3], rgba[..., :3])
+    with pytest.raises(ValueError, match="H x W x 4"):
+        denoise.denoise_rgba(rgba[..., :3])
+
+
+def test_denoising_adds_the_noisy_image_socket_to_the_compositor(stratum_addon: Any) -> None:
+    scene = _cornell(SPP, use_denoising=False)
+    if not hasattr(scene, "node_tree"):  # Blender 5.0 keeps the compositor in a node group
+        pytest.skip("scene.node_tree is Blender 3.x/4.x's compositor")
+    scene.use_nodes = True
+    node = next(n for n in scene.node_tree.nodes if n.bl_idname == "CompositorNodeRLayers")
+
+    def sockets() -> set[str]:
+        return {socket.name for socket in node.outputs if socket.enabled}
+
+    assert "Image" in sockets() and "Noisy Image" not in sockets()
+    scene.stratum.use_denoising = True
+    assert "Noisy Image" in sockets() and "Image" in sockets()
+    scene.stratum.use_denoising = False
+    assert "Noisy Image" not in sockets()
