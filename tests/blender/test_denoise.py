@@ -188,3 +188,23 @@ def test_denoising_adds_the_noisy_image_socket_to_the_compositor(stratum_addon: 
     assert "Noisy Image" in sockets() and "Image" in sockets()
     scene.stratum.use_denoising = False
     assert "Noisy Image" not in sockets()
+
+
+def test_denoiser_failing_during_the_render_is_one_warning(
+        denoiser: str, monkeypatch: pytest.MonkeyPatch, tmp_path: Path) -> None:
+    """OIDN loads but its filter fails (an error string from oidnGetDeviceError): one warning,
+    Combined undenoised, Noisy Image still written."""
+    from stratum import native
+
+    def failing(*_args: Any, **_kwargs: Any) -> np.ndarray:
+        raise native.DenoiserUnavailable("Open Image Denoise (test) failed at denoising: "
+                                         "out of memory")
+
+    monkeypatch.setattr(native, "denoise", failing)
+    path = _render(_cornell(SPP, use_denoising=True), tmp_path / "failing.exr")
+    warnings = engine_reports("WARNING")
+    assert len(warnings) == 1 and "out of memory" in warnings[0], warnings
+    plain = read_pass(_render(_cornell(SPP, use_denoising=False), tmp_path / "plain.exr"),
+                      "Combined")
+    np.testing.assert_array_equal(read_pass(path, "Combined"), plain)
+    np.testing.assert_array_equal(read_pass(path, "Noisy Image"), plain)

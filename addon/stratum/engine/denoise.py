@@ -1,6 +1,8 @@
 """Denoising with Intel Open Image Denoise (stratum.native.oidn): the F12 render's Combined
-pass when scene.stratum.use_denoising is on, and `denoise_rgba` for any RGBA image (the
-viewport calls it when scene.stratum.use_preview_denoising is on).
+pass when scene.stratum.use_denoising is on, and any renderer's image for the viewport when
+scene.stratum.use_preview_denoising is on: ask for `library_guides()` through `with_passes`
+before the render starts, then `denoise_renderer(renderer, albedo, normal)` (or
+`denoise_rgba` for an image at hand); report a native.DenoiserUnavailable once.
 
 Guides: OIDN's RT filter takes a first-hit albedo and normal beside the noisy colour. The
 render asks the library for the `Denoising Albedo` and `Denoising Normal` passes through its
@@ -45,6 +47,11 @@ def guide_passes(available: Iterable[str]) -> tuple[str | None, str | None]:
     return ALBEDO_PASS, None
 
 
+def library_guides() -> tuple[str | None, str | None]:
+    """guide_passes among the passes the loaded library can render."""
+    return guide_passes(p.name for p in native.passes())
+
+
 def with_passes(settings: dict[str, Any], names: Iterable[str]) -> dict[str, Any]:
     """`settings` with `names` added to its comma-separated `passes` list (kept in order,
     without repeats)."""
@@ -67,6 +74,19 @@ def denoise_rgba(rgba: np.ndarray, albedo: np.ndarray | None = None,
     out = image.copy()
     out[..., :3] = native.denoise(color, guide_albedo, normal, hdr=True)
     return out
+
+
+def denoise_renderer(renderer: native.Renderer, albedo: str | None = None,
+                     normal: str | None = None) -> tuple[np.ndarray, np.ndarray]:
+    """(noisy, denoised) H x W x 4 images of a renderer's current image (rows bottom first, as
+    read_pixels gives them), guided by its passes `albedo` and `normal` (names from
+    library_guides(), which the render's `passes` setting must have asked for). For F12 and
+    the viewport; raises native.DenoiserUnavailable as denoise_rgba does."""
+    width, height = renderer.image_size
+    noisy = renderer.read_pixels().reshape(height, width, 4)
+    guide_albedo = renderer.read_pass(albedo) if albedo else None
+    guide_normal = renderer.read_pass(normal) if normal else None
+    return noisy, denoise_rgba(noisy, guide_albedo, guide_normal)
 
 
 def _find_pass(result: Any, name: str) -> Any:
@@ -95,20 +115,18 @@ class FinalDenoising:
     def apply(self, renderer: native.Renderer, result: Any) -> None:
         """Writes the render's image into the Noisy Image pass and its denoised version into
         Combined; on an OIDN failure, reports it and leaves Combined undenoised."""
-        width, height = renderer.image_size
-        noisy = renderer.read_pixels().reshape(height, width, 4)
+        self.engine.update_stats("", "Denoising")
+        try:
+            noisy, denoised = denoise_renderer(renderer, self.albedo, self.normal)
+        except native.DenoiserUnavailable as exc:
+            self.engine._report("WARNING", f"Stratum: the render is not denoised: {exc}")
+            width, height = renderer.image_size
+            noisy, denoised = renderer.read_pixels().reshape(height, width, 4), None
         noisy_pass = _find_pass(result, NOISY_PASS)
         if noisy_pass is not None:
             _write_pass(noisy_pass, noisy)
-        albedo = renderer.read_pass(self.albedo) if self.albedo else None
-        normal = renderer.read_pass(self.normal) if self.normal else None
-        self.engine.update_stats("", "Denoising")
-        try:
-            denoised = denoise_rgba(noisy, albedo, normal)
-        except native.DenoiserUnavailable as exc:
-            self.engine._report("WARNING", f"Stratum: the render is not denoised: {exc}")
-            return
-        _write_pass(_find_pass(result, "Combined"), denoised)
+        if denoised is not None:
+            _write_pass(_find_pass(result, "Combined"), denoised)
 
 
 def prepare_final(engine: Any, scene: Any, settings: dict[str, Any]) -> FinalDenoising | None:
@@ -123,7 +141,7 @@ def prepare_final(engine: Any, scene: Any, settings: dict[str, Any]) -> FinalDen
     except native.DenoiserUnavailable as exc:
         engine._report("WARNING", f"Stratum: the render is not denoised: {exc}")
         return None
-    albedo, normal = guide_passes(p.name for p in native.passes())
+    albedo, normal = library_guides()
     settings.update(with_passes(settings, [name for name in (albedo, normal) if name]))
     engine.add_pass(NOISY_PASS, 4, "RGBA")
     return FinalDenoising(engine, albedo, normal)
