@@ -208,3 +208,17 @@ def test_denoiser_failing_during_the_render_is_one_warning(
                       "Combined")
     np.testing.assert_array_equal(read_pass(path, "Combined"), plain)
     np.testing.assert_array_equal(read_pass(path, "Noisy Image"), plain)
+
+
+def test_denoising_switches_are_off_by_default_and_shown(stratum_addon: Any) -> None:
+    from types import SimpleNamespace
+
+    from stratum import ui
+
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    assert scene.stratum.use_denoising is False
+    assert scene.stratum.use_preview_denoising is False
+    panel = ui.STRATUM_RENDER_PT_sampling_denoising
+    assert panel.bl_parent_id == "STRATUM_RENDER_PT_sampling"
+    assert panel.poll(SimpleNamespace(engine="STRATUM", scene=scene))  # type: ignore[arg-type]
