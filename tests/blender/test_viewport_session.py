@@ -492,3 +492,38 @@ def test_a_start_pass_resampled_to_the_view_pixels() -> None:
     np.testing.assert_array_equal(out[5, 13], small[1, 3])  # y 5.5 / 3.75 -> 1, x 13.5 / 4 -> 3
     # A border: the part of the frame under view pixels x 8..17, y 4..11.
     np.testing.assert_array_equal(_resample(frame, (8, 4, 10, 8)), out[4:12, 8:18])
+
+
+def test_use_preview_denoising_denoises_the_converged_frame(library: Any, cornell: Any) -> None:
+    """use_preview_denoising: engine/denoise.py's filter on the converged frame, with the
+    guide passes the library renders; with OIDN missing, the frame stays undenoised and the
+    error (DenoiserUnavailable) reaches the caller, which view_draw reports once."""
+    from stratum.engine import denoise
+    from stratum.engine.viewport import denoise_preview, preview_denoiser
+
+    assert preview_denoiser(cornell) == (None, ())
+    cornell.stratum.use_preview_denoising = True
+    denoiser, passes = preview_denoiser(cornell)
+    assert denoiser is denoise_preview
+    assert passes == tuple(name for name in denoise.library_guides() if name)
+    depsgraph = _depsgraph()
+    session, view = _session(cornell, depsgraph)
+    session.set_denoiser(denoiser, passes)
+    noisy = fresh_render(depsgraph, view, settings_from_scene(cornell))
+    try:
+        try:
+            expected = denoise.denoise_rgba(noisy, *(
+                fresh_render(depsgraph, view, settings_from_scene(cornell), None, name)
+                for name in passes))
+        except library.DenoiserUnavailable:
+            with pytest.raises(library.DenoiserUnavailable):
+                converge(session)
+            frame = session.frame()
+            assert frame is not None and frame.samples == SAMPLES
+            np.testing.assert_array_equal(frame.pixels, noisy)
+            return
+        frame, _ = converge(session)
+        np.testing.assert_array_equal(frame.pixels, expected)
+        assert not np.array_equal(frame.pixels, noisy)
+    finally:
+        session.free()

@@ -14,6 +14,7 @@ import bpy
 
 from .. import native
 from ..export import ExportCancelled, ExportError, ExportSummary
+from . import denoise
 from .final_render import render_frame
 from .viewport import ViewportState, view_draw, view_update, viewport_call
 
@@ -63,6 +64,12 @@ class StratumRenderEngine(bpy.types.RenderEngine):
         except Exception as exc:  # noqa: BLE001 - nothing may crash Blender
             traceback.print_exc()
             self._report("ERROR", f"Stratum internal error: {type(exc).__name__}: {exc}")
+
+    def update_render_passes(self, scene: Any = None, renderlayer: Any = None) -> None:
+        """The passes the compositor's Render Layers node shows (Cycles registers Combined
+        here too, as the node then takes its sockets from this list alone)."""
+        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
+        denoise.register_passes(self, scene, renderlayer)
 
     # ---- the Rendered viewport (engine/viewport.py) ----------------------------------------
 

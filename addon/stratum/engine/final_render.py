@@ -12,6 +12,7 @@ import numpy as np
 
 from .. import native, properties
 from ..export import export_scene
+from . import denoise
 from .frame import renderer_settings, result_size
 
 POLL_MS = 100
@@ -82,6 +83,7 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
             f"the native library could not be loaded when the add-on was enabled "
             f"({properties.load_error}); enable the add-on again")
     settings = renderer_settings(scene)
+    denoising = denoise.prepare_final(engine, scene, settings)
     width, height = result_size(scene)
 
     engine.update_stats("", "Exporting scene")
@@ -98,9 +100,10 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
     with renderer:
         for name, value in settings.items():
             renderer.set(name, value)
-        render_progressively(engine, renderer, width, height)
+        render_progressively(engine, renderer, width, height, denoising)
 
-def render_progressively(engine: Any, renderer: native.Renderer, width: int, height: int) -> None:
+def render_progressively(engine: Any, renderer: native.Renderer, width: int, height: int,
+                         denoising: denoise.FinalDenoising | None = None) -> None:
     started = time.perf_counter()
     engine.update_stats("", "Building BVH / starting")
     # Started before Blender's result and the pixel buffer are allocated: a render the
@@ -136,6 +139,8 @@ def render_progressively(engine: Any, renderer: native.Renderer, width: int, hei
                 break
         # Final pixels (also the partial image after Esc).
         writer.write(renderer, render_pass)
+        if denoising is not None:
+            denoising.apply(renderer, result)
         report_notices(engine, renderer, reported)
     finally:
         engine.end_result(result)

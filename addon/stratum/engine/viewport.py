@@ -38,8 +38,9 @@ import numpy as np
 from .. import native, properties
 from ..export import ExportError
 from ..export.camera import convert_camera
+from . import denoise
 from .frame import renderer_settings
-from .viewport_session import Rect, View, ViewportSession, ViewportSettings
+from .viewport_session import Denoiser, Rect, View, ViewportSession, ViewportSettings
 
 SENSOR_MM = 36.0
 
@@ -145,6 +146,23 @@ def settings_from_scene(scene: Any) -> ViewportSettings:
     )
 
 
+def preview_denoiser(scene: Any) -> tuple[Denoiser | None, tuple[str, ...]]:
+    """What ViewportSession.set_denoiser takes for scene.stratum.use_preview_denoising: the
+    OIDN filter of engine/denoise.py and the guide passes the library can render (albedo and
+    normal); (None, ()) when it is off."""
+    if not getattr(scene.stratum, "use_preview_denoising", False):
+        return None, ()
+    return denoise_preview, tuple(name for name in denoise.library_guides() if name)
+
+
+def denoise_preview(colour: np.ndarray, passes: dict[str, np.ndarray]) -> np.ndarray:
+    """A converged viewport frame denoised with the guides preview_denoiser asked for.
+    Raises native.DenoiserUnavailable (reported once by viewport_call; the frame stays)."""
+    albedo, normal = denoise.library_guides()
+    return denoise.denoise_rgba(colour, passes.get(albedo) if albedo else None,
+                                passes.get(normal) if normal else None)
+
+
 # ---- the engine's view_update / view_draw ------------------------------------------------
 
 REDRAW_SECONDS = 1.0 / 30.0  # how often a refining viewport is redrawn
@@ -212,6 +230,7 @@ def view_draw(state: ViewportState, engine: Any, context: Any, depsgraph: Any) -
     scene = depsgraph.scene
     session = state.session
     session.set_settings(settings_from_scene(scene))
+    session.set_denoiser(*preview_denoiser(scene))
     session.set_view(view_from_context(context, depsgraph))
     if state.error:
         engine.update_stats("", f"Stratum: {state.error}")
