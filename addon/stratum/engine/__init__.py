@@ -16,7 +16,7 @@ from .. import native
 from ..export import ExportCancelled, ExportError, ExportSummary
 from . import denoise
 from .final_render import render_frame
-from .viewport import ViewportState, view_draw, view_update, viewport_call
+from .viewport import free_viewport, view_draw, view_update, viewport_call
 
 ENGINE_ID = "STRATUM"
 
@@ -37,13 +37,10 @@ class StratumRenderEngine(bpy.types.RenderEngine):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)  # required in Blender 4.4+
-        self._viewport: ViewportState | None = None
 
     def __del__(self) -> None:
         # Blender frees the engine when the view leaves Rendered shading, closes or quits.
-        viewport = getattr(self, "_viewport", None)
-        if viewport is not None:
-            viewport.free()
+        free_viewport(id(self))
 
     def _report(self, level: str, message: str) -> None:
         type(self).last_reports.append((level, message))

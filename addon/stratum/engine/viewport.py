@@ -186,15 +186,27 @@ class ViewportState:
             self.drawer.free()
 
 
+# ViewportState per engine, by id(engine): the engine's own attributes are gone once Blender has
+# removed its RNA, which can be before the Python object is collected (and its __del__ runs).
+_states: dict[int, ViewportState] = {}
+
+
+def free_viewport(engine_id: int) -> None:
+    """Frees the viewport of the engine of this id (its __del__)."""
+    state = _states.pop(engine_id, None)
+    if state is not None:
+        state.free()
+
+
 def viewport_call(engine: Any, call: Callable[[ViewportState], None]) -> None:
     """Runs view_update or view_draw for `engine` (its ViewportState made on first use);
     whatever goes wrong is reported once through engine._report, never raised into Blender."""
     if properties.load_error:
         message = f"the native library could not be loaded ({properties.load_error})"
     else:
-        state = getattr(engine, "_viewport", None)
+        state = _states.get(id(engine))
         if state is None:
-            state = engine._viewport = ViewportState()
+            state = _states[id(engine)] = ViewportState()
         try:
             call(state)
             return
@@ -235,7 +247,9 @@ def view_draw(state: ViewportState, engine: Any, context: Any, depsgraph: Any) -
     if state.error:
         engine.update_stats("", f"Stratum: {state.error}")
         return
-    frame = session.frame()
+    # A missing denoiser leaves the converged frame undenoised: it is drawn (now, or by the
+    # redraw scheduled below), the error reported after.
+    frame, denoiser_error = _denoiser_safe(session.frame)
     if frame is not None:
         if state.drawer is None:
             from .viewport_draw import FrameDrawer
@@ -243,12 +257,29 @@ def view_draw(state: ViewportState, engine: Any, context: Any, depsgraph: Any) -
             state.drawer = FrameDrawer()
         state.drawer.draw(engine, scene, frame, context.preferences.system.ui_scale)
         total = scene.stratum.preview_samples
-        stage = "" if frame.final else " (start resolution)"
+        stage = " (start resolution)" if frame.samples > 0 and not frame.final else ""
         engine.update_stats("", f"Sample {frame.samples}/{total}{stage}")
-    if session.poll() and not state.redraw_pending:
+    refining, poll_error = _denoiser_safe(session.poll)
+    if (refining or poll_error is not None) and not state.redraw_pending:
         state.redraw_pending = True
         # A timer, not engine.tag_redraw from a later call: the engine may be freed by then.
         bpy.app.timers.register(lambda: _redraw_views(state), first_interval=REDRAW_SECONDS)
+    # Raised anew, with no exception left in this frame's locals: an exception held by a frame
+    # its traceback holds is a reference cycle, which would keep the engine (and its session)
+    # alive after Blender frees it, until the garbage collector runs.
+    message = str(denoiser_error or poll_error or "")
+    del denoiser_error, poll_error
+    if message:
+        raise native.DenoiserUnavailable(message)
+
+
+def _denoiser_safe(call: Callable[[], Any]) -> tuple[Any, native.DenoiserUnavailable | None]:
+    """call()'s result and None; if the denoiser failed in it (the session has then shown the
+    converged frame undenoised), call()'s result again and the error."""
+    try:
+        return call(), None
+    except native.DenoiserUnavailable as exc:
+        return call(), exc
 
 
 def _redraw_views(state: ViewportState) -> None:
