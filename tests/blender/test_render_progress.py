@@ -139,7 +139,7 @@ def test_image_and_counter_move_during_the_last_pass(
     times = [t for t, _ in rec.results]
     assert max(np.diff(times)) <= 1.0, times
     # The counter shows the samples rendered per pixel as tiles end, also within the pass.
-    shown = [int(re.match(r"Sample (\d+)/16", info).group(1))
+    shown = [float(re.match(r"Sample ([\d.]+)/16", info).group(1))
              for s, info in rec.stats
              if info.startswith("Sample") and s["samples_done"] == SAMPLES // 2]
     assert len(set(shown)) >= 3 and shown == sorted(shown), shown
@@ -147,3 +147,20 @@ def test_image_and_counter_move_during_the_last_pass(
     # The final image is the renderer's last one.
     assert pixels is not None
     np.testing.assert_allclose(pixels[..., :3], 1.0)
+
+
+@pytest.mark.parametrize(("average", "shown"), [
+    (0.0, "0"), (0.25, "0.2"), (32.0, "32"), (47.36, "47.3"), (63.99, "63.9"), (64.0, "64")])
+def test_counter_shows_samples_per_pixel_to_a_tenth_rounded_down(
+        stratum_addon: Any, average: float, shown: str) -> None:
+    """A tenth, so that the counter moves while one sample per pixel takes seconds; rounded down,
+    so that 64/64 means every pixel has its 64."""
+    from stratum import native
+    from stratum.engine.final_render import format_stats
+
+    progress = native.Progress(
+        done=False, cancelled=False, samples_done=32, samples_total=64, update_serial=1,
+        rays=0.0, build_seconds=0.0, render_seconds=0.0, fraction_done=average / 64,
+        samples_in_progress=64, samples_average=average)
+    assert format_stats(progress, 1.0).startswith(f"Sample {shown}/64 | "), \
+        format_stats(progress, 1.0)

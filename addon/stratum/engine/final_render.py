@@ -50,9 +50,11 @@ def stop_requested(engine: Any) -> bool:
 
 def format_stats(progress: native.Progress, elapsed: float) -> str:
     """Blender's status line. "Sample N/M" counts, as Cycles' does, the samples rendered per
-    pixel: samples_average, which moves as tiles finish. Within a pass of the renderer half the
-    pixels may hold its end count and half its start, Cycles' pixels all hold N; the work is the
-    same."""
+    pixel: samples_average, which moves as tiles finish (within a pass of the renderer some
+    pixels hold its end count and the others its start, where Cycles' pixels all hold N; the
+    work is the same). N is shown to a tenth, rounded down, so that it moves at least once a
+    second also when one sample per pixel takes seconds (a 512 x 512 Cornell box on 2 busy
+    cores: 3.4 s); "64/64" only when every pixel has its 64."""
     rate = progress.rays / progress.render_seconds if progress.render_seconds > 0 else 0.0
     if rate >= 1e6:
         rays = f"{rate / 1e6:.2f}M"
@@ -60,7 +62,8 @@ def format_stats(progress: native.Progress, elapsed: float) -> str:
         rays = f"{rate / 1e3:.1f}k"
     else:
         rays = f"{rate:.0f}"
-    samples = math.floor(progress.samples_average)
+    tenths = math.floor(progress.samples_average * 10)
+    samples = f"{tenths // 10}" if tenths % 10 == 0 else f"{tenths / 10:.1f}"
     return (f"Sample {samples}/{progress.samples_total} | {elapsed:.1f}s | "
             f"{rays} rays/s")
 
