@@ -104,10 +104,10 @@ def render(args: argparse.Namespace) -> Timeline:
     timelines: list[Timeline] = []
     original = final_render.render_progressively
 
-    def recorded(engine: Any, renderer: Any, width: int, height: int) -> None:
+    def recorded(engine: Any, renderer: Any, width: int, height: int, *rest: Any) -> None:
         timeline = Timeline(engine, renderer)
         timelines.append(timeline)
-        original(RecordingEngine(timeline), RecordingRenderer(timeline), width, height)
+        original(RecordingEngine(timeline), RecordingRenderer(timeline), width, height, *rest)
 
     final_render.render_progressively = recorded
     try:
