@@ -89,6 +89,7 @@ bench: build
 	bash scripts/install_addon.sh
 	mkdir -p out
 	$(BLENDER_BG) --python scripts/bench.py
+	$(BLENDER_BG) --python scripts/bench_progress.py
 	$(PY) scripts/bench_textures.py
 
 # The study: the sampler runs of issue 4 (Cornell box, Wolf, AO; 24.6 min measured on 2 shared

@@ -1,5 +1,5 @@
 """The Stratum RenderEngine: what Blender calls. F12 is final_render.py; the frame and its
-settings are frame.py.
+settings are frame.py; material, light and world thumbnails are preview.py.
 
 render() never lets an exception escape: export errors, native errors and a missing library
 are reported with self.report({'ERROR'}, ...) and the render ends cleanly.
@@ -16,6 +16,7 @@ from .. import native
 from ..export import ExportCancelled, ExportError, ExportSummary
 from . import denoise
 from .final_render import render_frame
+from .preview import render_preview
 
 ENGINE_ID = "STRATUM"
 
@@ -23,7 +24,10 @@ ENGINE_ID = "STRATUM"
 class StratumRenderEngine(bpy.types.RenderEngine):
     bl_idname = ENGINE_ID
     bl_label = "Stratum"
-    bl_use_preview = False
+    # Blender renders material, light and world thumbnails with Stratum (render() with
+    # is_preview); Material Preview shading draws with EEVEE, as it does for Cycles.
+    bl_use_preview = True
+    bl_use_eevee_viewport = True
     bl_use_postprocess = True
     # Show Blender's standard shader nodes (Principled, Diffuse, Emission...) in the node
     # editor: Stratum reads those node trees.
@@ -45,6 +49,9 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             print(f"Stratum {level}: {message}")
 
     def render(self, depsgraph: Any) -> None:
+        if self.is_preview:
+            render_preview(self, depsgraph)  # reports nothing: preview.py says why
+            return
         type(self).last_reports = []
         type(self).last_summary = None
         try:
