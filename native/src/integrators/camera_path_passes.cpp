@@ -1,0 +1,73 @@
+#include "integrators/camera_path_passes.h"
+
+namespace stratum {
+
+namespace {
+
+// Cycles' default view-layer pass_alpha_threshold: a surface at least this opaque takes the
+// data passes; a more transparent one lets them through to what lies behind.
+constexpr float kPassAlphaThreshold = 0.5f;
+
+}  // namespace
+
+CameraPathPasses::CameraPathPasses(PassValues& passes)
+    : passes_(passes),
+      data_pending_(passes.wants(Pass::Depth) || passes.wants(Pass::Position) || passes.wants(Pass::Normal)),
+      features_pending_(passes.wants(Pass::DenoisingAlbedo) || passes.wants(Pass::DenoisingNormal)) {}
+
+void CameraPathPasses::surface(Vec3 position, Vec3 ns, const ClosureSet& closures, Rgb beta,
+                               bool camera_visible) {
+    if (data_pending_ && camera_visible) {
+        write_depth(position);
+        passes_.write(Pass::Position, position);
+        if (1.0f - closures.transparency().average() >= kPassAlphaThreshold) {
+            passes_.write(Pass::Normal, ns);
+            data_pending_ = false;
+        }
+    }
+    if (!features_pending_) return;
+    albedo_ += beta * closures.emission();
+    if (closures.has_non_delta()) {
+        write_features(ns, albedo_ + beta * closures.albedo_estimate());
+    } else if (!closures.scatters()) {
+        write_features(Vec3{}, albedo_);
+    }
+}
+
+void CameraPathPasses::plain_surface(Vec3 position, Vec3 ns) {
+    if (data_pending_) {
+        write_depth(position);
+        passes_.write(Pass::Position, position);
+        passes_.write(Pass::Normal, ns);
+        data_pending_ = false;
+    }
+    if (features_pending_) write_features(ns, Rgb(1.0f));
+}
+
+void CameraPathPasses::miss(Rgb background, bool camera_visible) {
+    if (data_pending_ && camera_visible) {
+        passes_.write(Pass::Depth, kBackgroundDepth);
+        passes_.write(Pass::Position, Vec3{});
+        passes_.write(Pass::Normal, Vec3{});
+    }
+    data_pending_ = false;
+    if (features_pending_) write_features(Vec3{}, albedo_ + background);
+}
+
+void CameraPathPasses::finish() {
+    // A path that ended before a non-delta surface (absorbed, out of bounces): what it gathered.
+    if (features_pending_) write_features(Vec3{}, albedo_);
+}
+
+void CameraPathPasses::write_depth(Vec3 position) {
+    if (passes_.camera()) passes_.write(Pass::Depth, passes_.camera()->z_depth(position));
+}
+
+void CameraPathPasses::write_features(Vec3 ns, Rgb albedo) {
+    passes_.write(Pass::DenoisingAlbedo, Vec3(albedo.r, albedo.g, albedo.b));
+    passes_.write(Pass::DenoisingNormal,
+                  dot(ns, ns) > 0.0f && passes_.camera() ? passes_.camera()->to_view_space(ns) : Vec3{});
+    features_pending_ = false;
+}
+
+}  // namespace stratum

@@ -1,0 +1,62 @@
+// The data passes and denoising features a camera path writes (film/passes.h), as Cycles writes
+// them (kernel/film/data_passes.h, kernel/film/denoising_passes.h, 3.4 to 5.0):
+//
+// | pass             | value of one camera sample                                             |
+// |------------------|------------------------------------------------------------------------|
+// | Depth, Position  | at each surface the path meets while it is still camera-visible (only  |
+// |                  | transparent pass-throughs so far), until one with alpha >= 0.5 (Cycles' |
+// |                  | default pass_alpha_threshold, alpha = 1 − average transparency): its   |
+// |                  | Camera::z_depth and world position; a miss: kBackgroundDepth and 0      |
+// | Normal           | that opaque surface's world shading normal (0 on a miss)               |
+// | Denoising Albedo | β (the path's throughput) × the closures' albedo at the first surface  |
+// |                  | with a non-delta closure, plus β × emission, lamps and background met  |
+// |                  | before it. Delta-only surfaces (mirror, smooth glass, transparency) are |
+// |                  | followed with the sampled weight, whose mean is the specular albedo    |
+// |                  | Cycles multiplies in (denoising_feature_throughput *= specular_albedo). |
+// | Denoising Normal | that surface's shading normal in Camera::to_view_space (Cycles' camera |
+// |                  | space); 0 on a miss or a surface that scatters nothing                 |
+//
+// Differences from Cycles, kept because Stratum's closures are whole models: Cycles defers to
+// the next bounce when ≥ 75% of the sample weight is specular-like (GGX alpha ≤ 0.075) and
+// writes only the diffuse-like closures' albedo; Stratum defers at delta-only surfaces and
+// writes the closures' albedo estimate (ClosureSet::albedo_estimate: base colour for one-lobe
+// models, base colour + 0.04 for Principled, at most 1).
+#pragma once
+
+#include "bsdf/closure_set.h"
+#include "film/film.h"
+
+namespace stratum {
+
+class CameraPathPasses {
+public:
+    explicit CameraPathPasses(PassValues& passes);
+    // A surface the path meets at `position` with shading normal `ns`; `beta` is the path's
+    // throughput up to it and `camera_visible` whether only transparent pass-throughs came before.
+    void surface(Vec3 position, Vec3 ns, const ClosureSet& closures, Rgb beta, bool camera_visible);
+    // A surface without closures (the AO integrator's): white albedo, opaque.
+    void plain_surface(Vec3 position, Vec3 ns);
+    // Radiance the path collects (lamps met, background) before the denoising features are
+    // written: times β already.
+    void emitted(Rgb contribution) {
+        if (features_pending_) albedo_ += contribution;
+    }
+    // The path leaves the scene; `background` (times β) is what it collects there.
+    void miss(Rgb background, bool camera_visible);
+    // Whether the path still has something to write (cheap test before computing arguments).
+    bool pending() const { return data_pending_ || features_pending_; }
+    // Writes the denoising albedo gathered (call once, when the path ends).
+    void finish();
+
+private:
+    // The passes measured in the camera's space need PassValues::camera (the renderer gives
+    // it; without one they stay 0).
+    void write_depth(Vec3 position);
+    void write_features(Vec3 ns, Rgb albedo);
+
+    PassValues& passes_;
+    bool data_pending_, features_pending_;
+    Rgb albedo_{0.0f};
+};
+
+}  // namespace stratum

@@ -1,0 +1,221 @@
+// The data passes (film/passes.h, integrators/camera_path_passes.h) against closed forms: a
+// plane at a known distance and tilt with a known albedo, seen by a pinhole camera at the
+// origin looking down −Z (90° horizontal field of view), the right half of the frame open to a
+// constant background; and the film's derived passes (sample count, standard error).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "film/film.h"
+#include "render_helpers.h"
+
+using namespace stratum;
+using namespace stratum_test;
+
+namespace {
+
+constexpr int kSize = 16;
+constexpr float kDistance = 3.0f;             // the plane passes through (0, 0, −kDistance)
+constexpr float kTilt = 0.5235987755982988f;  // 30°: its normal (sin a, 0, cos a) turns toward +x
+constexpr float kAlbedo[3] = {0.2f, 0.5f, 0.8f};
+constexpr float kBackground[3] = {0.3f, 0.6f, 0.9f};
+const char* const kAllPasses =
+    "Normal,Depth,Position,Denoising Albedo,Denoising Normal,Debug Sample Count,Stratum Error";
+
+// The plane's quad: from p0 = (0, 0, −D) along t1 = (cos a, 0, −sin a) over [−20, 0] and along
+// +y over [−20, 20]. Its edge runs through p0, which the image centre (u = 0) sees, so pixels
+// x < 8 see the plane and x >= 8 the background.
+StratumScene* make_plane_scene(int32_t model) {
+    StratumScene* scene = nullptr;
+    if (stratum_scene_create(&scene) != STRATUM_OK) return nullptr;
+    const float c = std::cos(kTilt), s = std::sin(kTilt);
+    const float x0 = -20.0f, x1 = 0.0f, y0 = -20.0f, y1 = 20.0f;
+    const float positions[] = {x0 * c, y0, -kDistance - x0 * s, x1 * c, y0, -kDistance - x1 * s,
+                               x1 * c, y1, -kDistance - x1 * s, x0 * c, y1, -kDistance - x0 * s};
+    // Counter-clockwise seen from the camera (front face toward it).
+    const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
+    const uint32_t mats[] = {0, 0};
+    const StratumMeshDesc mesh{positions, 4, triangles, 2, nullptr, nullptr, mats};
+    const StratumMaterialDesc material{
+        model, {kAlbedo[0], kAlbedo[1], kAlbedo[2]}, 0.5f, 0, 0.5f, 1.5f, {0, 0, 0}, STRATUM_MICROFACET_GGX};
+    const StratumCameraDesc camera = camera_at(0, 0, 0);
+    uint32_t mat = 0, mesh_id = 0;
+    if (stratum_scene_add_material(scene, &material, &mat) != STRATUM_OK ||
+        stratum_scene_add_mesh(scene, &mesh, &mesh_id) != STRATUM_OK ||
+        stratum_scene_add_instance(scene, mesh_id, kIdentity) != STRATUM_OK ||
+        stratum_scene_set_camera(scene, &camera) != STRATUM_OK ||
+        stratum_scene_set_background(scene, kBackground) != STRATUM_OK) {
+        stratum_scene_destroy(scene);
+        return nullptr;
+    }
+    return scene;
+}
+
+struct Passes {
+    std::vector<float> rgba, normal, depth, position, albedo, denoising_normal, count, error;
+};
+
+// Renders 16 x 16 at 8 samples with a box filter of width 1 (every sample inside its pixel).
+Passes render_passes(StratumScene* scene, const char* passes, const char* integrator = "path",
+                     const char* sampler = "random") {
+    Passes out;
+    StratumRenderer* r = nullptr;
+    EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    for (const char* name : {"width", "height"})
+        EXPECT_EQ(stratum_renderer_set_int(r, name, kSize), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_int(r, "samples", 8), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "filter_type", "box"), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_float(r, "filter_width", 1.0), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "integrator", integrator), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "sampler", sampler), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "passes", passes), STRATUM_OK) << stratum_last_error();
+    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK);
+    int32_t done = 0;
+    while (!done) stratum_renderer_wait(r, 1000, &done);
+    out.rgba.resize(kSize * kSize * 4);
+    EXPECT_EQ(stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size()), STRATUM_OK);
+    const auto read = [&](const char* name, size_t channels, std::vector<float>* v) {
+        if (std::string(passes).find(name) == std::string::npos) return;
+        v->resize(kSize * kSize * channels);
+        EXPECT_EQ(stratum_renderer_read_pass(r, name, v->data(), v->size()), STRATUM_OK)
+            << stratum_last_error();
+    };
+    read("Normal", 3, &out.normal);
+    read("Depth", 1, &out.depth);
+    read("Position", 3, &out.position);
+    read("Denoising Albedo", 3, &out.albedo);
+    read("Denoising Normal", 3, &out.denoising_normal);
+    read("Debug Sample Count", 1, &out.count);
+    read("Stratum Error", 3, &out.error);
+    stratum_renderer_destroy(r);
+    return out;
+}
+
+// Depth of the plane along the view axis at film coordinate u (the view plane at unit depth):
+// the ray s (u, v, −1) meets n · x = −D cos a where s = D cos a / (cos a − u sin a).
+float plane_depth(float u) { return kDistance * std::cos(kTilt) / (std::cos(kTilt) - u * std::sin(kTilt)); }
+
+}  // namespace
+
+TEST(RenderPasses, DepthPositionNormalAndAlbedoOfATiltedPlaneFollowTheirClosedForms) {
+    StratumScene* scene = make_plane_scene(STRATUM_MATERIAL_DIFFUSE);
+    ASSERT_NE(scene, nullptr) << stratum_last_error();
+    const Passes p = render_passes(scene, kAllPasses);
+    const Vec3 n(std::sin(kTilt), 0.0f, std::cos(kTilt));
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize; ++x) {
+            const size_t i = static_cast<size_t>(y * kSize + x);
+            const float* normal = &p.normal[3 * i];
+            const float* position = &p.position[3 * i];
+            const float* albedo = &p.albedo[3 * i];
+            const float* dn = &p.denoising_normal[3 * i];
+            const float depth = p.depth[i];
+            EXPECT_EQ(p.count[i], 8.0f);
+            if (x < kSize / 2) {
+                // Pixel x spans u in [−1 + x/8, −1 + (x+1)/8]; sample 0 lies somewhere in it.
+                const float u0 = -1.0f + static_cast<float>(x) / 8.0f, u1 = u0 + 0.125f;
+                EXPECT_GE(depth, plane_depth(u0) * (1 - 1e-5f)) << x << ", " << y;
+                EXPECT_LE(depth, plane_depth(u1) * (1 + 1e-5f)) << x << ", " << y;
+                // Position is the same sample's hit: its depth is −z, it lies on the plane and
+                // projects into the pixel.
+                EXPECT_NEAR(-position[2], depth, 1e-5f * depth);
+                EXPECT_NEAR(position[0] * n.x + position[2] * n.z, -kDistance * n.z, 1e-5f);
+                EXPECT_GE(position[0] / depth, u0 - 1e-5f);
+                EXPECT_LE(position[0] / depth, u1 + 1e-5f);
+                // Every sample sees the same flat face: the means are the exact values.
+                EXPECT_NEAR(normal[0], n.x, 1e-6f);
+                EXPECT_NEAR(normal[1], 0.0f, 1e-6f);
+                EXPECT_NEAR(normal[2], n.z, 1e-6f);
+                // Cycles' camera space: x right, y up, z forward (−z of Blender's camera).
+                EXPECT_NEAR(dn[0], n.x, 1e-6f);
+                EXPECT_NEAR(dn[1], 0.0f, 1e-6f);
+                EXPECT_NEAR(dn[2], -n.z, 1e-6f);
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(albedo[c], kAlbedo[c], 1e-6f);
+            } else {
+                EXPECT_EQ(depth, kBackgroundDepth) << x << ", " << y;
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_EQ(position[c], 0.0f);
+                    EXPECT_EQ(normal[c], 0.0f);
+                    EXPECT_EQ(dn[c], 0.0f);
+                    // The background seen directly is its albedo (Cycles adds it there too), and
+                    // it is constant: its samples do not spread.
+                    EXPECT_NEAR(albedo[c], kBackground[c], 1e-6f);
+                    EXPECT_EQ(p.error[3 * i + c], 0.0f);
+                }
+            }
+        }
+    }
+    stratum_scene_destroy(scene);
+}
+
+TEST(RenderPasses, PassesLeaveTheImageBitIdenticalAndAgreeAcrossIntegrators) {
+    StratumScene* scene = make_plane_scene(STRATUM_MATERIAL_DIFFUSE);
+    ASSERT_NE(scene, nullptr) << stratum_last_error();
+    const Passes with = render_passes(scene, kAllPasses);
+    EXPECT_EQ(with.rgba, render_passes(scene, "").rgba);
+    // The same camera rays meet the same first surfaces whichever integrator shades them.
+    for (const char* integrator : {"light", "ao", "direct"}) {
+        const Passes other = render_passes(scene, "Normal,Depth,Position,Denoising Normal", integrator);
+        EXPECT_EQ(other.depth, with.depth) << integrator;
+        EXPECT_EQ(other.position, with.position) << integrator;
+        EXPECT_EQ(other.normal, with.normal) << integrator;
+        EXPECT_EQ(other.denoising_normal, with.denoising_normal) << integrator;
+    }
+    stratum_scene_destroy(scene);
+}
+
+TEST(RenderPasses, AMirrorPassesTheDenoisingFeaturesOnToWhatItReflects) {
+    // A perfect mirror (Glossy, roughness 0) of colour kAlbedo: its camera rays reflect off the
+    // plane into the constant background, so Denoising Albedo = kAlbedo × background, and no
+    // surface gives Denoising Normal one.
+    StratumScene* scene = make_plane_scene(STRATUM_MATERIAL_GLOSSY);
+    ASSERT_NE(scene, nullptr) << stratum_last_error();
+    StratumMaterialDesc mirror{
+        STRATUM_MATERIAL_GLOSSY, {kAlbedo[0], kAlbedo[1], kAlbedo[2]}, 0.0f, 0, 0.5f, 1.5f, {0, 0, 0},
+        STRATUM_MICROFACET_GGX};
+    ASSERT_EQ(stratum_scene_set_material(scene, 0, &mirror), STRATUM_OK) << stratum_last_error();
+    const Passes p = render_passes(scene, "Denoising Albedo,Denoising Normal,Normal");
+    for (int y = 0; y < kSize; ++y) {
+        for (int x = 0; x < kSize / 2; ++x) {
+            const size_t i = static_cast<size_t>(y * kSize + x);
+            for (int c = 0; c < 3; ++c) {
+                EXPECT_NEAR(p.albedo[3 * i + c], kAlbedo[c] * kBackground[c], 1e-5f) << x << ", " << y;
+                EXPECT_EQ(p.denoising_normal[3 * i + c], 0.0f);
+            }
+            // The Normal pass is the first surface's, mirror or not.
+            EXPECT_NEAR(p.normal[3 * i + 2], std::cos(kTilt), 1e-6f);
+        }
+    }
+    stratum_scene_destroy(scene);
+}
+
+TEST(RenderPasses, FirstSamplePassesKeepSampleZeroAndTheErrorPassIsTheMeansStandardError) {
+    const Pass passes[] = {Pass::Depth, Pass::SampleCount, Pass::Error};
+    Film film(PixelRegion{0, 0, 1, 1}, 1, 1, PixelFilter(FilterType::Box, 1.0f), passes, false);
+    // Depth is written by the integrator, the count and the error are the film's own.
+    ASSERT_EQ(film.layout().extra_channels(), 1u);
+    ASSERT_EQ(film.sums_stride(), 4u + 1u + 3u);
+    std::vector<double> sums(film.sums_stride(), 0.0);
+    const float red[] = {1, 2, 3, 4};
+    for (uint32_t i = 0; i < 4; ++i) {
+        const float depth = 10.0f + static_cast<float>(i);
+        film.add_sample(sums.data(), i, Rgb(red[i], 1.0f, 0.0f), 1.0f, &depth);
+    }
+    film.store_sums(0, sums.data(), 4);
+    film.publish(0, 1, 0, 1);
+    float depth = 0, count = 0, error[3] = {};
+    ASSERT_TRUE(film.read(Pass::Depth, &depth));
+    ASSERT_TRUE(film.read(Pass::SampleCount, &count));
+    ASSERT_TRUE(film.read(Pass::Error, error));
+    EXPECT_EQ(depth, 10.0f);
+    EXPECT_EQ(count, 4.0f);
+    // Red 1, 2, 3, 4: mean 2.5, sample variance 5/3, standard error of the mean sqrt(5/12).
+    EXPECT_NEAR(error[0], std::sqrt(5.0 / 12.0), 1e-6);
+    EXPECT_EQ(error[1], 0.0f);
+    EXPECT_EQ(error[2], 0.0f);
+    // The memory budget counts the sums (RGBA + depth + 3 squares) and the published floats
+    // (RGBA + depth + count + 3 errors).
+    EXPECT_EQ(Film::bytes_per_pixel(passes, false), 8.0 * 8 + 9.0 * 4 + 4);
+}
