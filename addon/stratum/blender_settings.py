@@ -28,11 +28,11 @@ FROM_BLENDER: dict[str, str] = {
     "crop_width": "(scene.render.border_max_x − border_min_x) × width, with use_border",
     "crop_height": "(scene.render.border_max_y − border_min_y) × height, with use_border",
     "film_transparent": "scene.render.film_transparent",
+    "passes": "the view layer's pass toggles (View Layer > Passes; engine/render_passes.py)",
 }
 
 # Setting -> why nothing in Blender sets it.
 NOT_IN_BLENDER: dict[str, str] = {
-    "passes": "the engine fills only the Combined pass of Blender's render result so far",
     "bvh": "F12 renders use the library's default (static); the viewport will choose dynamic",
 }
 

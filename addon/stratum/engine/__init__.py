@@ -14,6 +14,7 @@ import bpy
 
 from .. import native
 from ..export import ExportCancelled, ExportError, ExportSummary
+from . import render_passes
 from .final_render import render_frame
 
 ENGINE_ID = "STRATUM"
@@ -56,9 +57,19 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             traceback.print_exc()
             self._report("ERROR", f"Stratum internal error: {type(exc).__name__}: {exc}")
 
+    def update_render_passes(self, scene: Any = None, renderlayer: Any = None) -> None:
+        """The passes the view layer's toggles ask for, for the compositor's Render Layers."""
+        try:
+            render_passes.register_passes(self, scene, renderlayer)
+        except Exception:  # noqa: BLE001 - nothing may crash Blender
+            traceback.print_exc()
+
+
 def register() -> None:
+    render_passes.register()
     bpy.utils.register_class(StratumRenderEngine)
 
 
 def unregister() -> None:
     bpy.utils.unregister_class(StratumRenderEngine)
+    render_passes.unregister()

@@ -13,6 +13,7 @@ import numpy as np
 from .. import native, properties
 from ..export import export_scene
 from .frame import renderer_settings, result_size
+from .render_passes import ResultPasses
 
 POLL_MS = 100
 
@@ -98,9 +99,12 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
     with renderer:
         for name, value in settings.items():
             renderer.set(name, value)
-        render_progressively(engine, renderer, width, height)
+        passes = ResultPasses(engine, depsgraph.view_layer)
+        passes.configure(renderer)
+        render_progressively(engine, renderer, width, height, passes)
 
-def render_progressively(engine: Any, renderer: native.Renderer, width: int, height: int) -> None:
+def render_progressively(engine: Any, renderer: native.Renderer, width: int, height: int,
+                         passes: ResultPasses | None = None) -> None:
     started = time.perf_counter()
     engine.update_stats("", "Building BVH / starting")
     # Started before Blender's result and the pixel buffer are allocated: a render the
@@ -136,6 +140,8 @@ def render_progressively(engine: Any, renderer: native.Renderer, width: int, hei
                 break
         # Final pixels (also the partial image after Esc).
         writer.write(renderer, render_pass)
+        if passes is not None:
+            passes.write(renderer, result)
         report_notices(engine, renderer, reported)
     finally:
         engine.end_result(result)
