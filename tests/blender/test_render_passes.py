@@ -87,6 +87,8 @@ def tilted_plane_scene(builder: Any) -> Any:
     layer.use_pass_z = True
     layer.use_pass_normal = True
     layer.use_pass_position = True
+    layer.use_pass_emit = True
+    layer.use_pass_environment = True
     layer.stratum.use_pass_denoising_data = True
     layer.stratum.use_pass_sample_count = True
     layer.stratum.use_pass_error = True
@@ -161,6 +163,8 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     denoising_normal = image("Denoising Normal", "XYZ")
     count = image("Debug Sample Count", "X")[..., 0]
     error = image("Stratum Error", "RGB")
+    emit = image("Emit", "RGB")
+    env = image("Env", "RGB")
     assert depth.shape == (SIZE, SIZE)
 
     plane, sky = np.s_[:, : SIZE // 2], np.s_[:, SIZE // 2:]
@@ -183,6 +187,10 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     np.testing.assert_allclose(albedo[plane], np.broadcast_to(ALBEDO, albedo[plane].shape), atol=1e-6)
     np.testing.assert_allclose(albedo[sky], np.broadcast_to(WORLD, albedo[sky].shape), atol=1e-6)
     np.testing.assert_array_equal(count, float(SAMPLES))
+    # Nothing emits; the world seen directly is all of Env there, and none on the plane.
+    np.testing.assert_array_equal(emit, 0.0)
+    np.testing.assert_allclose(env[sky], np.broadcast_to(WORLD, env[sky].shape), atol=1e-6)
+    np.testing.assert_array_equal(env[plane], 0.0)
     # The world seen directly is constant: its samples do not spread, its error is 0.
     np.testing.assert_array_equal(error[sky], 0.0)
     assert np.all(np.isfinite(error)) and np.all(error >= 0.0)
@@ -203,12 +211,13 @@ def test_update_render_passes_registers_what_the_toggles_ask_for(stratum_addon: 
 
     render_passes.register_passes(Recorder(), scene, layer)
     assert [r[0] for r in registered] == [
-        "Combined", "Depth", "Normal", "Position", "Denoising Normal", "Denoising Albedo",
-        "Debug Sample Count", "Stratum Error"]
+        "Combined", "Depth", "Normal", "Position", "Emit", "Env", "Denoising Normal",
+        "Denoising Albedo", "Debug Sample Count", "Stratum Error"]
     layer.use_pass_z = False
     layer.stratum.use_pass_denoising_data = False
+    layer.use_pass_emit = False
     assert render_passes.native_setting(render_passes.enabled_passes(layer)) == (
-        "Normal,Position,Debug Sample Count,Stratum Error")
+        "Normal,Position,Env,Debug Sample Count,Stratum Error")
     # Every pass the add-on offers is one the library holds, with the same channel count.
     held = {p.name: p.channels for p in library_passes()}
     for _, _, specs in render_passes.TOGGLES:

@@ -21,12 +21,16 @@ constexpr float kDistance = 3.0f;             // the plane passes through (0, 0,
 constexpr float kTilt = 0.5235987755982988f;  // 30°: its normal (sin a, 0, cos a) turns toward +x
 constexpr float kAlbedo[3] = {0.2f, 0.5f, 0.8f};
 constexpr float kBackground[3] = {0.3f, 0.6f, 0.9f};
+constexpr float kEmission[3] = {0.05f, 0.1f, 0.15f};
 const char* const kAllPasses =
-    "Normal,Depth,Position,Denoising Albedo,Denoising Normal,Debug Sample Count,Stratum Error";
+    "Normal,Depth,Position,Denoising Albedo,Denoising Normal,Debug Sample Count,Stratum Error,UV,Emit,Env";
+// The plane's texture coordinates: u = (x + 20) / 20, v = (y + 20) / 40 in its own coordinates.
+float plane_u(float x) { return (x + 20.0f) / 20.0f; }
+float plane_v(float y) { return (y + 20.0f) / 40.0f; }
 
 // The plane's quad: from p0 = (0, 0, −D) along t1 = (cos a, 0, −sin a) over [−20, 0] and along
 // +y over [−20, 20]. Its edge runs through p0, which the image centre (u = 0) sees, so pixels
-// x < 8 see the plane and x >= 8 the background.
+// x < 8 see the plane and x >= 8 the background. It emits kEmission.
 StratumScene* make_plane_scene(int32_t model) {
     StratumScene* scene = nullptr;
     if (stratum_scene_create(&scene) != STRATUM_OK) return nullptr;
@@ -37,9 +41,22 @@ StratumScene* make_plane_scene(int32_t model) {
     // Counter-clockwise seen from the camera (front face toward it).
     const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
     const uint32_t mats[] = {0, 0};
-    const StratumMeshDesc mesh{positions, 4, triangles, 2, nullptr, nullptr, mats};
-    const StratumMaterialDesc material{
-        model, {kAlbedo[0], kAlbedo[1], kAlbedo[2]}, 0.5f, 0, 0.5f, 1.5f, {0, 0, 0}, STRATUM_MICROFACET_GGX};
+    float uvs[12];
+    for (int corner = 0; corner < 6; ++corner) {
+        const uint32_t v = triangles[corner];
+        const bool right = v == 1 || v == 2, top = v == 2 || v == 3;
+        uvs[2 * corner] = plane_u(right ? x1 : x0);
+        uvs[2 * corner + 1] = plane_v(top ? y1 : y0);
+    }
+    const StratumMeshDesc mesh{positions, 4, triangles, 2, nullptr, uvs, mats};
+    const StratumMaterialDesc material{model,
+                                       {kAlbedo[0], kAlbedo[1], kAlbedo[2]},
+                                       0.5f,
+                                       0,
+                                       0.5f,
+                                       1.5f,
+                                       {kEmission[0], kEmission[1], kEmission[2]},
+                                       STRATUM_MICROFACET_GGX};
     const StratumCameraDesc camera = camera_at(0, 0, 0);
     uint32_t mat = 0, mesh_id = 0;
     if (stratum_scene_add_material(scene, &material, &mat) != STRATUM_OK ||
@@ -54,7 +71,7 @@ StratumScene* make_plane_scene(int32_t model) {
 }
 
 struct Passes {
-    std::vector<float> rgba, normal, depth, position, albedo, denoising_normal, count, error;
+    std::vector<float> rgba, normal, depth, position, albedo, denoising_normal, count, error, uv, emit, env;
 };
 
 // Renders 16 x 16 at 8 samples with a box filter of width 1 (every sample inside its pixel).
@@ -89,6 +106,9 @@ Passes render_passes(StratumScene* scene, const char* passes, const char* integr
     read("Denoising Normal", 3, &out.denoising_normal);
     read("Debug Sample Count", 1, &out.count);
     read("Stratum Error", 3, &out.error);
+    read("UV", 3, &out.uv);
+    read("Emit", 3, &out.emit);
+    read("Env", 3, &out.env);
     stratum_renderer_destroy(r);
     return out;
 }
@@ -132,7 +152,34 @@ TEST(RenderPasses, DepthPositionNormalAndAlbedoOfATiltedPlaneFollowTheirClosedFo
                 EXPECT_NEAR(dn[0], n.x, 1e-6f);
                 EXPECT_NEAR(dn[1], 0.0f, 1e-6f);
                 EXPECT_NEAR(dn[2], -n.z, 1e-6f);
-                for (int c = 0; c < 3; ++c) EXPECT_NEAR(albedo[c], kAlbedo[c], 1e-6f);
+                // The albedo, plus the emission seen on the way (as Cycles adds it).
+                for (int c = 0; c < 3; ++c) EXPECT_NEAR(albedo[c], kAlbedo[c] + kEmission[c], 1e-6f);
+                // Emission seen directly; no background.
+                for (int c = 0; c < 3; ++c) {
+                    EXPECT_NEAR(p.emit[3 * i + c], kEmission[c], 1e-6f);
+                    EXPECT_EQ(p.env[3 * i + c], 0.0f);
+                }
+                // UV: the mean of the samples' (u, v) lies within the pixel footprint's range. On
+                // the plane x = s(u)(u cos a + sin a) − D sin a along t1 (s the depth) and y =
+                // s(u) v_film: monotonic in u, and in each of u, v on the pixel's rectangle.
+                const auto plane_x = [](float u) {
+                    return plane_depth(u) * (u * std::cos(kTilt) + std::sin(kTilt)) -
+                           kDistance * std::sin(kTilt);
+                };
+                const float v0 = -1.0f + static_cast<float>(y) / 8.0f, v1 = v0 + 0.125f;
+                float y_lo = 1e30f, y_hi = -1e30f;
+                for (const float u : {u0, u1}) {
+                    for (const float v : {v0, v1}) {
+                        y_lo = std::min(y_lo, plane_depth(u) * v);
+                        y_hi = std::max(y_hi, plane_depth(u) * v);
+                    }
+                }
+                const float* uv = &p.uv[3 * i];
+                EXPECT_GE(uv[0], plane_u(plane_x(u0)) - 1e-5f) << x << ", " << y;
+                EXPECT_LE(uv[0], plane_u(plane_x(u1)) + 1e-5f) << x << ", " << y;
+                EXPECT_GE(uv[1], plane_v(y_lo) - 1e-5f) << x << ", " << y;
+                EXPECT_LE(uv[1], plane_v(y_hi) + 1e-5f) << x << ", " << y;
+                EXPECT_EQ(uv[2], 0.0f);
             } else {
                 EXPECT_EQ(depth, kBackgroundDepth) << x << ", " << y;
                 for (int c = 0; c < 3; ++c) {
@@ -143,6 +190,11 @@ TEST(RenderPasses, DepthPositionNormalAndAlbedoOfATiltedPlaneFollowTheirClosedFo
                     // it is constant: its samples do not spread.
                     EXPECT_NEAR(albedo[c], kBackground[c], 1e-6f);
                     EXPECT_EQ(p.error[3 * i + c], 0.0f);
+                    EXPECT_EQ(p.uv[3 * i + c], 0.0f);
+                    EXPECT_EQ(p.emit[3 * i + c], 0.0f);
+                    EXPECT_NEAR(p.env[3 * i + c], kBackground[c], 1e-6f);
+                    // Combined there is the background, all of it in Env.
+                    EXPECT_NEAR(p.rgba[4 * i + c], p.env[3 * i + c], 1e-6f);
                 }
             }
         }
@@ -157,11 +209,12 @@ TEST(RenderPasses, PassesLeaveTheImageBitIdenticalAndAgreeAcrossIntegrators) {
     EXPECT_EQ(with.rgba, render_passes(scene, "").rgba);
     // The same camera rays meet the same first surfaces whichever integrator shades them.
     for (const char* integrator : {"light", "ao", "direct"}) {
-        const Passes other = render_passes(scene, "Normal,Depth,Position,Denoising Normal", integrator);
+        const Passes other = render_passes(scene, "Normal,Depth,Position,Denoising Normal,UV", integrator);
         EXPECT_EQ(other.depth, with.depth) << integrator;
         EXPECT_EQ(other.position, with.position) << integrator;
         EXPECT_EQ(other.normal, with.normal) << integrator;
         EXPECT_EQ(other.denoising_normal, with.denoising_normal) << integrator;
+        EXPECT_EQ(other.uv, with.uv) << integrator;
     }
     stratum_scene_destroy(scene);
 }

@@ -5,7 +5,7 @@ each from the native film into the result when the render ends.
 Names, channel ids and kinds are Cycles' (intern/cycles/blender/addon/engine.py
 list_render_passes), so the compositor's Render Layers node and multilayer EXR see what they see
 with Cycles. Blender's own view-layer toggles drive the passes it has one for (Depth, Normal,
-Position); `view_layer.stratum` holds the others (Cycles keeps its equivalents in
+Position, UV, Emit, Env); `view_layer.stratum` holds the others (Cycles keeps its equivalents in
 view_layer.cycles). docs/passes.md says what each pass holds.
 """
 
@@ -34,6 +34,9 @@ TOGGLES: tuple[tuple[str, str, tuple[PassSpec, ...]], ...] = (
     ("view_layer", "use_pass_z", (PassSpec("Depth", 1, "Z", "VALUE"),)),
     ("view_layer", "use_pass_normal", (PassSpec("Normal", 3, "XYZ", "VECTOR"),)),
     ("view_layer", "use_pass_position", (PassSpec("Position", 3, "XYZ", "VECTOR"),)),
+    ("view_layer", "use_pass_uv", (PassSpec("UV", 3, "UVA", "VECTOR"),)),
+    ("view_layer", "use_pass_emit", (PassSpec("Emit", 3, "RGB", "COLOR"),)),
+    ("view_layer", "use_pass_environment", (PassSpec("Env", 3, "RGB", "COLOR"),)),
     ("stratum", "use_pass_denoising_data", (PassSpec("Denoising Normal", 3, "XYZ", "VECTOR"),
                                             PassSpec("Denoising Albedo", 3, "RGB", "COLOR"))),
     ("stratum", "use_pass_sample_count", (PassSpec("Debug Sample Count", 1, "X", "VALUE"),)),
@@ -142,6 +145,10 @@ class STRATUM_VIEWLAYER_PT_passes_data(bpy.types.Panel):
         col.prop(view_layer, "use_pass_z")
         col.prop(view_layer, "use_pass_normal")
         col.prop(view_layer, "use_pass_position")
+        col.prop(view_layer, "use_pass_uv")
+        col = layout.column(heading="Light", align=True)
+        col.prop(view_layer, "use_pass_emit", text="Emission")
+        col.prop(view_layer, "use_pass_environment")
         col = layout.column(heading="Stratum", align=True)
         col.prop(view_layer.stratum, "use_pass_denoising_data")
         col.prop(view_layer.stratum, "use_pass_sample_count")

@@ -43,7 +43,10 @@ enum class Pass : uint32_t {
     DenoisingAlbedo,
     DenoisingNormal,
     SampleCount,
-    Error
+    Error,
+    Uv,
+    Emit,
+    Env
 };
 
 // Cycles' Depth of a camera ray that meets nothing (kernel/film/read.h: a stored 0 reads 1e10).
@@ -70,6 +73,12 @@ inline constexpr std::array kPasses = {
         "Stratum Error", 3, PassKind::StandardError,
         "Estimated standard error of each pixel's Combined RGB mean, from its samples' spread: valid for "
         "independent samples (random); see docs/passes.md for the low-discrepancy samplers"},
+    PassInfo{"UV", 3, PassKind::Average,
+             "Texture coordinates (u, v, 0) of the first opaque surface's UV map (0 where none)"},
+    PassInfo{"Emit", 3, PassKind::Average,
+             "Emission seen directly: of surfaces and lamps a camera ray meets before its first bounce"},
+    PassInfo{"Env", 3, PassKind::Average,
+             "Background seen directly: where a camera ray leaves the scene before its first bounce"},
 };
 
 inline constexpr const PassInfo& pass_info(Pass pass) { return kPasses[static_cast<uint32_t>(pass)]; }

@@ -12,16 +12,20 @@ constexpr float kPassAlphaThreshold = 0.5f;
 
 CameraPathPasses::CameraPathPasses(PassValues& passes)
     : passes_(passes),
-      data_pending_(passes.wants(Pass::Depth) || passes.wants(Pass::Position) || passes.wants(Pass::Normal)),
-      features_pending_(passes.wants(Pass::DenoisingAlbedo) || passes.wants(Pass::DenoisingNormal)) {}
+      data_pending_(passes.wants(Pass::Depth) || passes.wants(Pass::Position) || passes.wants(Pass::Normal) ||
+                    passes.wants(Pass::Uv)),
+      features_pending_(passes.wants(Pass::DenoisingAlbedo) || passes.wants(Pass::DenoisingNormal)),
+      direct_(passes.wants(Pass::Emit) || passes.wants(Pass::Env)) {}
 
-void CameraPathPasses::surface(Vec3 position, Vec3 ns, const ClosureSet& closures, Rgb beta,
+void CameraPathPasses::surface(Vec3 position, Vec3 ns, Vec2 uv, const ClosureSet& closures, Rgb beta,
                                bool camera_visible) {
+    if (direct_ && camera_visible) emit_ += beta * closures.emission();
     if (data_pending_ && camera_visible) {
         write_depth(position);
         passes_.write(Pass::Position, position);
         if (1.0f - closures.transparency().average() >= kPassAlphaThreshold) {
             passes_.write(Pass::Normal, ns);
+            passes_.write(Pass::Uv, Vec3(uv.x, uv.y, 0.0f));
             data_pending_ = false;
         }
     }
@@ -34,17 +38,19 @@ void CameraPathPasses::surface(Vec3 position, Vec3 ns, const ClosureSet& closure
     }
 }
 
-void CameraPathPasses::plain_surface(Vec3 position, Vec3 ns) {
+void CameraPathPasses::plain_surface(Vec3 position, Vec3 ns, Vec2 uv) {
     if (data_pending_) {
         write_depth(position);
         passes_.write(Pass::Position, position);
         passes_.write(Pass::Normal, ns);
+        passes_.write(Pass::Uv, Vec3(uv.x, uv.y, 0.0f));
         data_pending_ = false;
     }
     if (features_pending_) write_features(ns, Rgb(1.0f));
 }
 
 void CameraPathPasses::miss(Rgb background, bool camera_visible) {
+    if (direct_ && camera_visible) env_ += background;
     if (data_pending_ && camera_visible) {
         passes_.write(Pass::Depth, kBackgroundDepth);
         passes_.write(Pass::Position, Vec3{});
@@ -57,6 +63,9 @@ void CameraPathPasses::miss(Rgb background, bool camera_visible) {
 void CameraPathPasses::finish() {
     // A path that ended before a non-delta surface (absorbed, out of bounces): what it gathered.
     if (features_pending_) write_features(Vec3{}, albedo_);
+    if (!direct_) return;
+    passes_.write(Pass::Emit, Vec3(emit_.r, emit_.g, emit_.b));
+    passes_.write(Pass::Env, Vec3(env_.r, env_.g, env_.b));
 }
 
 void CameraPathPasses::write_depth(Vec3 position) {

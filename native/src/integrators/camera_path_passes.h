@@ -15,6 +15,10 @@
 // |                  | Cycles multiplies in (denoising_feature_throughput *= specular_albedo). |
 // | Denoising Normal | that surface's shading normal in Camera::to_view_space (Cycles' camera |
 // |                  | space); 0 on a miss or a surface that scatters nothing                 |
+// | UV               | that opaque surface's (u, v, 0), with Normal (0 on a miss)             |
+// | Emit, Env        | β × the emission of surfaces and lamps, and β × the background, met    |
+// |                  | while the path is camera-visible (Cycles' emission and background      |
+// |                  | passes: contributions before PATH_RAY_ANY_PASS is set)                 |
 //
 // Differences from Cycles, kept because Stratum's closures are whole models: Cycles defers to
 // the next bounce when ≥ 75% of the sample weight is specular-like (GGX alpha ≤ 0.075) and
@@ -33,19 +37,19 @@ public:
     explicit CameraPathPasses(PassValues& passes);
     // A surface the path meets at `position` with shading normal `ns`; `beta` is the path's
     // throughput up to it and `camera_visible` whether only transparent pass-throughs came before.
-    void surface(Vec3 position, Vec3 ns, const ClosureSet& closures, Rgb beta, bool camera_visible);
+    void surface(Vec3 position, Vec3 ns, Vec2 uv, const ClosureSet& closures, Rgb beta, bool camera_visible);
     // A surface without closures (the AO integrator's): white albedo, opaque.
-    void plain_surface(Vec3 position, Vec3 ns);
-    // Radiance the path collects (lamps met, background) before the denoising features are
-    // written: times β already.
-    void emitted(Rgb contribution) {
+    void plain_surface(Vec3 position, Vec3 ns, Vec2 uv);
+    // Lamp radiance the path collects (times β and its MIS weight), camera-visible or not.
+    void emitted(Rgb contribution, bool camera_visible) {
         if (features_pending_) albedo_ += contribution;
+        if (direct_ && camera_visible) emit_ += contribution;
     }
     // The path leaves the scene; `background` (times β) is what it collects there.
     void miss(Rgb background, bool camera_visible);
     // Whether the path still has something to write (cheap test before computing arguments).
-    bool pending() const { return data_pending_ || features_pending_; }
-    // Writes the denoising albedo gathered (call once, when the path ends).
+    bool pending() const { return data_pending_ || features_pending_ || direct_; }
+    // Writes what the path gathered (call once, when the path ends).
     void finish();
 
 private:
@@ -55,8 +59,8 @@ private:
     void write_features(Vec3 ns, Rgb albedo);
 
     PassValues& passes_;
-    bool data_pending_, features_pending_;
-    Rgb albedo_{0.0f};
+    bool data_pending_, features_pending_, direct_;
+    Rgb albedo_{0.0f}, emit_{0.0f}, env_{0.0f};
 };
 
 }  // namespace stratum

@@ -84,7 +84,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
         const Rgb lamp = beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, kVisibleCamera);
         L += lamp;
-        data.emitted(lamp);
+        data.emitted(lamp, true);
         if (!found) {
             if (data.pending())
                 data.miss(settings_.film_transparent ? Rgb(0.0f) : beta * scene.background(dir), true);
@@ -97,7 +97,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         }
         const ShadingPoint sp = build_closures(scene, hit, -dir);
         const ClosureSet& closures = sp.closures;
-        data.surface(hit.position, sp.ns, closures, beta, true);
+        data.surface(hit.position, sp.ns, hit.uv, closures, beta, true);
         const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
         if (!holdout.is_black()) transparency += (holdout * beta).average();
         if (hit.holdout) break;

@@ -84,7 +84,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     w = hit_weight(scatter_pdf, lamp_pdf * scale);
                 }
                 L += beta * lamp * w;
-                data.emitted(beta * lamp * w);
+                data.emitted(beta * lamp * w, camera_visible_path);
             }
         }
         if (!found) {
@@ -105,7 +105,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         const Vec3 wo_world = -dir;
         const ShadingPoint sp = build_closures(scene, hit, wo_world);
         const ClosureSet& closures = sp.closures;
-        data.surface(hit.position, sp.ns, closures, beta, camera_visible_path);
+        data.surface(hit.position, sp.ns, hit.uv, closures, beta, camera_visible_path);
 
         if (camera_visible_path) {
             const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
