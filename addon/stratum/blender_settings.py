@@ -29,6 +29,10 @@ FROM_BLENDER: dict[str, str] = {
     "crop_height": "(scene.render.border_max_y − border_min_y) × height, with use_border",
     "film_transparent": "scene.render.film_transparent",
     "passes": "the view layer's pass toggles (View Layer > Passes; engine/render_passes.py)",
+    "mist_start": "scene.world.mist_settings.start, with the Mist pass",
+    "mist_depth": "scene.world.mist_settings.depth, with the Mist pass",
+    "mist_falloff": "scene.world.mist_settings.falloff (quadratic 2, linear 1, inverse quadratic "
+                    "0.5), with the Mist pass",
 }
 
 # Setting -> why nothing in Blender sets it.

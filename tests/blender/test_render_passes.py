@@ -88,6 +88,10 @@ def tilted_plane_scene(builder: Any) -> Any:
     layer.use_pass_normal = True
     layer.use_pass_position = True
     layer.use_pass_emit = True
+    layer.use_pass_mist = True
+    scene.world.mist_settings.start = 0.0
+    scene.world.mist_settings.depth = 10.0
+    scene.world.mist_settings.falloff = "LINEAR"
     layer.use_pass_environment = True
     layer.stratum.use_pass_denoising_data = True
     layer.stratum.use_pass_sample_count = True
@@ -165,6 +169,7 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     error = image("Stratum Error", "RGB")
     emit = image("Emit", "RGB")
     env = image("Env", "RGB")
+    mist = image("Mist", "Z")[..., 0]
     assert depth.shape == (SIZE, SIZE)
 
     plane, sky = np.s_[:, : SIZE // 2], np.s_[:, SIZE // 2:]
@@ -191,6 +196,11 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     np.testing.assert_array_equal(emit, 0.0)
     np.testing.assert_allclose(env[sky], np.broadcast_to(WORLD, env[sky].shape), atol=1e-6)
     np.testing.assert_array_equal(env[plane], 0.0)
+    # Mist: linear from the camera to 10 units, the world's settings; sample 0's distance
+    # |Position| stands for the pixel's samples, whose distances differ by < 0.15 units across
+    # a pixel here (16 px over 90°, the plane 1.9-3 units away): 0.015 of mist.
+    np.testing.assert_allclose(mist[plane], np.linalg.norm(position[plane], axis=-1) / 10.0, atol=0.02)
+    np.testing.assert_array_equal(mist[sky], 1.0)
     # The world seen directly is constant: its samples do not spread, its error is 0.
     np.testing.assert_array_equal(error[sky], 0.0)
     assert np.all(np.isfinite(error)) and np.all(error >= 0.0)
@@ -211,11 +221,12 @@ def test_update_render_passes_registers_what_the_toggles_ask_for(stratum_addon: 
 
     render_passes.register_passes(Recorder(), scene, layer)
     assert [r[0] for r in registered] == [
-        "Combined", "Depth", "Normal", "Position", "Emit", "Env", "Denoising Normal",
+        "Combined", "Depth", "Mist", "Normal", "Position", "Emit", "Env", "Denoising Normal",
         "Denoising Albedo", "Debug Sample Count", "Stratum Error"]
     layer.use_pass_z = False
     layer.stratum.use_pass_denoising_data = False
     layer.use_pass_emit = False
+    layer.use_pass_mist = False
     assert render_passes.native_setting(render_passes.enabled_passes(layer)) == (
         "Normal,Position,Env,Debug Sample Count,Stratum Error")
     # Every pass the add-on offers is one the library holds, with the same channel count.

@@ -23,7 +23,10 @@ constexpr float kAlbedo[3] = {0.2f, 0.5f, 0.8f};
 constexpr float kBackground[3] = {0.3f, 0.6f, 0.9f};
 constexpr float kEmission[3] = {0.05f, 0.1f, 0.15f};
 const char* const kAllPasses =
-    "Normal,Depth,Position,Denoising Albedo,Denoising Normal,Debug Sample Count,Stratum Error,UV,Emit,Env";
+    "Normal,Depth,Position,Denoising Albedo,Denoising Normal,Debug Sample Count,Stratum "
+    "Error,UV,Emit,Env,Mist";
+// The Mist pass rises linearly from the camera to kMistDepth: m(d) = d / kMistDepth.
+constexpr float kMistDepth = 10.0f;
 // The plane's texture coordinates: u = (x + 20) / 20, v = (y + 20) / 40 in its own coordinates.
 float plane_u(float x) { return (x + 20.0f) / 20.0f; }
 float plane_v(float y) { return (y + 20.0f) / 40.0f; }
@@ -71,7 +74,8 @@ StratumScene* make_plane_scene(int32_t model) {
 }
 
 struct Passes {
-    std::vector<float> rgba, normal, depth, position, albedo, denoising_normal, count, error, uv, emit, env;
+    std::vector<float> rgba, normal, depth, position, albedo, denoising_normal, count, error, uv, emit, env,
+        mist;
 };
 
 // Renders 16 x 16 at 8 samples with a box filter of width 1 (every sample inside its pixel).
@@ -87,6 +91,9 @@ Passes render_passes(StratumScene* scene, const char* passes, const char* integr
     EXPECT_EQ(stratum_renderer_set_float(r, "filter_width", 1.0), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_string(r, "integrator", integrator), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_string(r, "sampler", sampler), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_float(r, "mist_start", 0.0), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_float(r, "mist_depth", kMistDepth), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_float(r, "mist_falloff", 1.0), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_string(r, "passes", passes), STRATUM_OK) << stratum_last_error();
     EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK);
     int32_t done = 0;
@@ -109,6 +116,7 @@ Passes render_passes(StratumScene* scene, const char* passes, const char* integr
     read("UV", 3, &out.uv);
     read("Emit", 3, &out.emit);
     read("Env", 3, &out.env);
+    read("Mist", 1, &out.mist);
     stratum_renderer_destroy(r);
     return out;
 }
@@ -180,8 +188,25 @@ TEST(RenderPasses, DepthPositionNormalAndAlbedoOfATiltedPlaneFollowTheirClosedFo
                 EXPECT_GE(uv[1], plane_v(y_lo) - 1e-5f) << x << ", " << y;
                 EXPECT_LE(uv[1], plane_v(y_hi) + 1e-5f) << x << ", " << y;
                 EXPECT_EQ(uv[2], 0.0f);
+                // Mist: the mean of d / kMistDepth over the samples, d = s(u) |(u, v, −1)| the
+                // distance of the point seen: within its range over the pixel (a 9 x 9 grid of
+                // it, widened by the largest step between grid points).
+                float d_lo = 1e30f, d_hi = 0.0f;
+                for (int a = 0; a <= 8; ++a) {
+                    for (int b = 0; b <= 8; ++b) {
+                        const float u = u0 + 0.125f * static_cast<float>(a) / 8.0f;
+                        const float v = v0 + 0.125f * static_cast<float>(b) / 8.0f;
+                        const float d = plane_depth(u) * std::sqrt(u * u + v * v + 1.0f);
+                        d_lo = std::min(d_lo, d);
+                        d_hi = std::max(d_hi, d);
+                    }
+                }
+                const float step = (d_hi - d_lo) / 8.0f;
+                EXPECT_GE(p.mist[i], (d_lo - step) / kMistDepth - 1e-5f) << x << ", " << y;
+                EXPECT_LE(p.mist[i], (d_hi + step) / kMistDepth + 1e-5f) << x << ", " << y;
             } else {
                 EXPECT_EQ(depth, kBackgroundDepth) << x << ", " << y;
+                EXPECT_EQ(p.mist[i], 1.0f);
                 for (int c = 0; c < 3; ++c) {
                     EXPECT_EQ(position[c], 0.0f);
                     EXPECT_EQ(normal[c], 0.0f);

@@ -99,7 +99,7 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
     with renderer:
         for name, value in settings.items():
             renderer.set(name, value)
-        passes = ResultPasses(engine, depsgraph.view_layer)
+        passes = ResultPasses(engine, depsgraph.view_layer, scene.world)
         passes.configure(renderer)
         render_progressively(engine, renderer, width, height, passes)
 

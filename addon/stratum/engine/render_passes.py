@@ -4,9 +4,10 @@ each from the native film into the result when the render ends.
 
 Names, channel ids and kinds are Cycles' (intern/cycles/blender/addon/engine.py
 list_render_passes), so the compositor's Render Layers node and multilayer EXR see what they see
-with Cycles. Blender's own view-layer toggles drive the passes it has one for (Depth, Normal,
-Position, UV, Emit, Env); `view_layer.stratum` holds the others (Cycles keeps its equivalents in
-view_layer.cycles). docs/passes.md says what each pass holds.
+with Cycles. Blender's own view-layer toggles drive the passes it has one for (Depth, Mist,
+Normal, Position, UV, Emit, Env; the mist's start, depth and falloff are the world's);
+`view_layer.stratum` holds the others (Cycles keeps its equivalents in view_layer.cycles).
+docs/passes.md says what each pass holds.
 """
 
 from __future__ import annotations
@@ -32,6 +33,7 @@ class PassSpec:
 # Toggle (owner "view_layer" = Blender's, "stratum" = view_layer.stratum) -> passes it adds.
 TOGGLES: tuple[tuple[str, str, tuple[PassSpec, ...]], ...] = (
     ("view_layer", "use_pass_z", (PassSpec("Depth", 1, "Z", "VALUE"),)),
+    ("view_layer", "use_pass_mist", (PassSpec("Mist", 1, "Z", "VALUE"),)),
     ("view_layer", "use_pass_normal", (PassSpec("Normal", 3, "XYZ", "VECTOR"),)),
     ("view_layer", "use_pass_position", (PassSpec("Position", 3, "XYZ", "VECTOR"),)),
     ("view_layer", "use_pass_uv", (PassSpec("UV", 3, "UVA", "VECTOR"),)),
@@ -79,6 +81,16 @@ def native_setting(specs: list[PassSpec]) -> str:
     return ",".join(spec.name for spec in specs)
 
 
+# Blender's mist falloff -> the exponent Cycles raises the mist to (blender/sync.cpp).
+MIST_FALLOFF = {"QUADRATIC": 2.0, "LINEAR": 1.0, "INVERSE_QUADRATIC": 0.5}
+
+
+def mist_settings(mist: Any) -> dict[str, float]:
+    """The native mist settings of a world's mist_settings (World > Mist Pass)."""
+    return {"mist_start": float(mist.start), "mist_depth": float(mist.depth),
+            "mist_falloff": MIST_FALLOFF.get(mist.falloff, 2.0)}
+
+
 def register_passes(engine: Any, scene: Any, view_layer: Any) -> None:
     """RenderEngine.update_render_passes: tells the compositor which passes the layer has."""
     engine.register_pass(scene, view_layer, "Combined", 4, "RGBA", "COLOR")
@@ -90,14 +102,18 @@ class ResultPasses:
     """The passes of one F12 render: made before begin_result (it adds them to the result),
     it names them to the renderer and copies them into the result when the render ends."""
 
-    def __init__(self, engine: Any, view_layer: Any) -> None:
+    def __init__(self, engine: Any, view_layer: Any, world: Any = None) -> None:
         self.specs = enabled_passes(view_layer)
+        self.world = world
         for spec in self.specs:
             engine.add_pass(spec.name, spec.channels, spec.chan_id, layer=view_layer.name)
 
     def configure(self, renderer: Any) -> None:
         if self.specs:
             renderer.set("passes", native_setting(self.specs))
+        if self.world is not None and any(spec.name == "Mist" for spec in self.specs):
+            for name, value in mist_settings(self.world.mist_settings).items():
+                renderer.set(name, value)
 
     def write(self, renderer: Any, result: Any) -> None:
         """Copies every pass from the renderer into the result's first layer."""
@@ -143,6 +159,7 @@ class STRATUM_VIEWLAYER_PT_passes_data(bpy.types.Panel):
         col = layout.column(heading="Include", align=True)
         col.prop(view_layer, "use_pass_combined")
         col.prop(view_layer, "use_pass_z")
+        col.prop(view_layer, "use_pass_mist")
         col.prop(view_layer, "use_pass_normal")
         col.prop(view_layer, "use_pass_position")
         col.prop(view_layer, "use_pass_uv")

@@ -46,7 +46,8 @@ enum class Pass : uint32_t {
     Error,
     Uv,
     Emit,
-    Env
+    Env,
+    Mist
 };
 
 // Cycles' Depth of a camera ray that meets nothing (kernel/film/read.h: a stored 0 reads 1e10).
@@ -79,6 +80,10 @@ inline constexpr std::array kPasses = {
              "Emission seen directly: of surfaces and lamps a camera ray meets before its first bounce"},
     PassInfo{"Env", 3, PassKind::Average,
              "Background seen directly: where a camera ray leaves the scene before its first bounce"},
+    PassInfo{
+        "Mist", 1, PassKind::Average,
+        "Cycles' mist: 1 − the surfaces' transparency-weighted closeness, from the distance to the camera "
+        "through the mist start, depth and falloff (1 where a ray meets nothing)"},
 };
 
 inline constexpr const PassInfo& pass_info(Pass pass) { return kPasses[static_cast<uint32_t>(pass)]; }

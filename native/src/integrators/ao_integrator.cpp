@@ -12,7 +12,7 @@ RadianceSample AoIntegrator::estimate(const RenderScene& scene, const Sampler& s
                                       PassValues& passes, uint64_t& rays) const {
     SurfaceHit hit;
     ++rays;
-    CameraPathPasses data(passes);
+    CameraPathPasses data(passes, settings_.mist);
     if (!scene.intersect(camera_ray.origin, camera_ray.direction, camera_ray.t_min, camera_ray.t_max, &hit,
                          {camera_ray.time, kVisibleCamera})) {
         // The background is white for AO: its albedo too.

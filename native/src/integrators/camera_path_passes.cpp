@@ -1,5 +1,8 @@
 #include "integrators/camera_path_passes.h"
 
+#include <algorithm>
+#include <cmath>
+
 namespace stratum {
 
 namespace {
@@ -10,16 +13,19 @@ constexpr float kPassAlphaThreshold = 0.5f;
 
 }  // namespace
 
-CameraPathPasses::CameraPathPasses(PassValues& passes)
+CameraPathPasses::CameraPathPasses(PassValues& passes, const MistSettings& mist)
     : passes_(passes),
+      mist_(mist),
       data_pending_(passes.wants(Pass::Depth) || passes.wants(Pass::Position) || passes.wants(Pass::Normal) ||
                     passes.wants(Pass::Uv)),
       features_pending_(passes.wants(Pass::DenoisingAlbedo) || passes.wants(Pass::DenoisingNormal)),
-      direct_(passes.wants(Pass::Emit) || passes.wants(Pass::Env)) {}
+      direct_(passes.wants(Pass::Emit) || passes.wants(Pass::Env)),
+      mist_wanted_(passes.wants(Pass::Mist) && passes.camera()) {}
 
 void CameraPathPasses::surface(Vec3 position, Vec3 ns, Vec2 uv, const ClosureSet& closures, Rgb beta,
                                bool camera_visible) {
     if (direct_ && camera_visible) emit_ += beta * closures.emission();
+    if (mist_wanted_ && camera_visible) add_mist(position, beta * (Rgb(1.0f) - closures.transparency()));
     if (data_pending_ && camera_visible) {
         write_depth(position);
         passes_.write(Pass::Position, position);
@@ -39,6 +45,7 @@ void CameraPathPasses::surface(Vec3 position, Vec3 ns, Vec2 uv, const ClosureSet
 }
 
 void CameraPathPasses::plain_surface(Vec3 position, Vec3 ns, Vec2 uv) {
+    if (mist_wanted_) add_mist(position, Rgb(1.0f));
     if (data_pending_) {
         write_depth(position);
         passes_.write(Pass::Position, position);
@@ -63,9 +70,17 @@ void CameraPathPasses::miss(Rgb background, bool camera_visible) {
 void CameraPathPasses::finish() {
     // A path that ended before a non-delta surface (absorbed, out of bounces): what it gathered.
     if (features_pending_) write_features(Vec3{}, albedo_);
+    if (mist_wanted_) passes_.write(Pass::Mist, 1.0f - mist_sum_);
     if (!direct_) return;
     passes_.write(Pass::Emit, Vec3(emit_.r, emit_.g, emit_.b));
     passes_.write(Pass::Env, Vec3(env_.r, env_.g, env_.b));
+}
+
+void CameraPathPasses::add_mist(Vec3 position, Rgb weight) {
+    const float inv_depth = mist_.depth > 0.0f ? 1.0f / mist_.depth : 0.0f;
+    float mist = std::clamp((passes_.camera()->distance(position) - mist_.start) * inv_depth, 0.0f, 1.0f);
+    if (mist_.falloff != 1.0f) mist = std::pow(mist, mist_.falloff);
+    mist_sum_ += (1.0f - mist) * weight.average();
 }
 
 void CameraPathPasses::write_depth(Vec3 position) {

@@ -19,6 +19,9 @@
 // | Emit, Env        | β × the emission of surfaces and lamps, and β × the background, met    |
 // |                  | while the path is camera-visible (Cycles' emission and background      |
 // |                  | passes: contributions before PATH_RAY_ANY_PASS is set)                 |
+// | Mist             | 1 − Σ (1 − m(d)) average(β α) over the camera-visible surfaces, α their |
+// |                  | opacity, d Camera::distance, m(d) = clamp((d − start)/depth, 0, 1) to   |
+// |                  | the power falloff (Cycles' film_write_data_passes; 1 on a miss)          |
 //
 // Differences from Cycles, kept because Stratum's closures are whole models: Cycles defers to
 // the next bounce when ≥ 75% of the sample weight is specular-like (GGX alpha ≤ 0.075) and
@@ -32,9 +35,17 @@
 
 namespace stratum {
 
+// Blender's world mist settings (World > Mist Pass): start and depth in scene units, falloff the
+// exponent (quadratic 2, linear 1, inverse quadratic 0.5).
+struct MistSettings {
+    float start = 5.0f;
+    float depth = 25.0f;
+    float falloff = 2.0f;
+};
+
 class CameraPathPasses {
 public:
-    explicit CameraPathPasses(PassValues& passes);
+    CameraPathPasses(PassValues& passes, const MistSettings& mist);
     // A surface the path meets at `position` with shading normal `ns`; `beta` is the path's
     // throughput up to it and `camera_visible` whether only transparent pass-throughs came before.
     void surface(Vec3 position, Vec3 ns, Vec2 uv, const ClosureSet& closures, Rgb beta, bool camera_visible);
@@ -48,7 +59,7 @@ public:
     // The path leaves the scene; `background` (times β) is what it collects there.
     void miss(Rgb background, bool camera_visible);
     // Whether the path still has something to write (cheap test before computing arguments).
-    bool pending() const { return data_pending_ || features_pending_ || direct_; }
+    bool pending() const { return data_pending_ || features_pending_ || direct_ || mist_wanted_; }
     // Writes what the path gathered (call once, when the path ends).
     void finish();
 
@@ -57,9 +68,13 @@ private:
     // it; without one they stay 0).
     void write_depth(Vec3 position);
     void write_features(Vec3 ns, Rgb albedo);
+    // Adds a camera-visible surface at `position` of opacity average(weight) to the mist.
+    void add_mist(Vec3 position, Rgb weight);
 
     PassValues& passes_;
-    bool data_pending_, features_pending_, direct_;
+    const MistSettings& mist_;
+    bool data_pending_, features_pending_, direct_, mist_wanted_;
+    float mist_sum_ = 0.0f;
     Rgb albedo_{0.0f}, emit_{0.0f}, env_{0.0f};
 };
 

@@ -77,7 +77,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
     float t_min = camera_ray.t_min, t_max = camera_ray.t_max;
     const RayQuery query{camera_ray.time, kVisibleCamera};
     const LightSet& lights = scene.lights();
-    CameraPathPasses data(passes);
+    CameraPathPasses data(passes, settings_.mist);
     for (uint32_t passed = 0;; ++passed) {
         SurfaceHit hit;
         ++rays;

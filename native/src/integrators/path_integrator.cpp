@@ -55,7 +55,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     const LightSelection selection = settings_.light_selection;
     const uint32_t max_shadow_surfaces = settings_.transparent_max_bounces;
     const float ambient = settings_.control_variate;  // L_a of the control variate (5.17)
-    CameraPathPasses data(passes);
+    CameraPathPasses data(passes, settings_.mist);
 
     // `vertex` numbers every surface the path meets (bounces and pass-throughs), so each owns a
     // block of sample dimensions.

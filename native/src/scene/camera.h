@@ -115,6 +115,8 @@ public:
     // Cycles' camera_z_depth (kernel/camera/camera.h): the depth of x along the view axis for
     // perspective and orthographic cameras, its distance from the camera for panoramic ones.
     float z_depth(Vec3 x) const;
+    // Cycles' camera_distance: |x − camera| (orthographic: the distance along the view axis).
+    float distance(Vec3 x) const;
     // A world direction in Cycles' camera space (x right, y up, z forward: Blender's camera
     // axes with z negated, its scale cleared as Cycles clears it), as Cycles' Denoising Normal.
     Vec3 to_view_space(Vec3 direction) const;
