@@ -89,6 +89,7 @@ def tilted_plane_scene(builder: Any) -> Any:
     layer.use_pass_position = True
     layer.use_pass_emit = True
     layer.use_pass_mist = True
+    layer.use_pass_ambient_occlusion = True
     scene.world.mist_settings.start = 0.0
     scene.world.mist_settings.depth = 10.0
     scene.world.mist_settings.falloff = "LINEAR"
@@ -170,6 +171,7 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     emit = image("Emit", "RGB")
     env = image("Env", "RGB")
     mist = image("Mist", "Z")[..., 0]
+    ao = image("AO", "RGB")
     assert depth.shape == (SIZE, SIZE)
 
     plane, sky = np.s_[:, : SIZE // 2], np.s_[:, SIZE // 2:]
@@ -201,6 +203,10 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     # a pixel here (16 px over 90°, the plane 1.9-3 units away): 0.015 of mist.
     np.testing.assert_allclose(mist[plane], np.linalg.norm(position[plane], axis=-1) / 10.0, atol=0.02)
     np.testing.assert_array_equal(mist[sky], 1.0)
+    # AO: nothing but the flat plane, so every direction above it is open; none where no
+    # surface is seen.
+    np.testing.assert_array_equal(ao[plane], 1.0)
+    np.testing.assert_array_equal(ao[sky], 0.0)
     # The world seen directly is constant: its samples do not spread, its error is 0.
     np.testing.assert_array_equal(error[sky], 0.0)
     assert np.all(np.isfinite(error)) and np.all(error >= 0.0)
@@ -221,12 +227,13 @@ def test_update_render_passes_registers_what_the_toggles_ask_for(stratum_addon: 
 
     render_passes.register_passes(Recorder(), scene, layer)
     assert [r[0] for r in registered] == [
-        "Combined", "Depth", "Mist", "Normal", "Position", "Emit", "Env", "Denoising Normal",
+        "Combined", "Depth", "Mist", "Normal", "Position", "Emit", "Env", "AO", "Denoising Normal",
         "Denoising Albedo", "Debug Sample Count", "Stratum Error"]
     layer.use_pass_z = False
     layer.stratum.use_pass_denoising_data = False
     layer.use_pass_emit = False
     layer.use_pass_mist = False
+    layer.use_pass_ambient_occlusion = False
     assert render_passes.native_setting(render_passes.enabled_passes(layer)) == (
         "Normal,Position,Env,Debug Sample Count,Stratum Error")
     # Every pass the add-on offers is one the library holds, with the same channel count.

@@ -297,3 +297,44 @@ TEST(RenderPasses, FirstSamplePassesKeepSampleZeroAndTheErrorPassIsTheMeansStand
     // (RGBA + depth + count + 3 errors).
     EXPECT_EQ(Film::bytes_per_pixel(passes, false), 8.0 * 8 + 9.0 * 4 + 4);
 }
+
+// Cycles' AO pass inside a closed unit sphere: from a wall point, the direction at angle θ to the
+// inward normal leaves along a chord of length 2 cos θ, so it is blocked within distance d iff
+// 2 cos θ ≤ d; under the cosine distribution P(cos θ > c) = 1 − c², so AO = 1 − d²/4 (0.75 for
+// d = 1). Tolerance: 4 standard errors of the image mean (pixel values' spread over 256 pixels of
+// 64 Bernoulli samples each: ~0.0034) plus 0.005 for the 64-ring tessellation (facets within
+// cos(π/128) of the unit radius, normals within π/64 of the radial direction: chords change by
+// < 1e-3).
+TEST(RenderPasses, TheAoPassInsideAClosedSphereIsOneMinusAQuarterOfTheDistanceSquared) {
+    IntegratingSphereDesc d;
+    d.reflectance = 0.5f;
+    d.emission = 0.0f;
+    d.rings = 64;
+    IntegratingSphere s = make_integrating_sphere(d);
+    ASSERT_NE(s.scene, nullptr) << stratum_last_error();
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(s.scene, &r), STRATUM_OK);
+    for (const char* name : {"width", "height"})
+        EXPECT_EQ(stratum_renderer_set_int(r, name, kSize), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_int(r, "samples", 64), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_float(r, "ao_distance", 1.0), STRATUM_OK);
+    EXPECT_EQ(stratum_renderer_set_string(r, "passes", "AO"), STRATUM_OK) << stratum_last_error();
+    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK);
+    int32_t done = 0;
+    while (!done) stratum_renderer_wait(r, 1000, &done);
+    std::vector<float> ao(kSize * kSize * 3);
+    EXPECT_EQ(stratum_renderer_read_pass(r, "AO", ao.data(), ao.size()), STRATUM_OK);
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(s.scene);
+    double sum = 0, sum_sq = 0;
+    const double n = kSize * kSize;
+    for (int p = 0; p < kSize * kSize; ++p) {
+        EXPECT_EQ(ao[3 * p], ao[3 * p + 1]);  // grey: the opacity weight is 1 in every channel
+        sum += ao[3 * p];
+        sum_sq += static_cast<double>(ao[3 * p]) * ao[3 * p];
+    }
+    const double mean = sum / n;
+    const double se = std::sqrt((sum_sq / n - mean * mean) / (n - 1.0));
+    EXPECT_GT(se, 0.0);
+    EXPECT_NEAR(mean, 0.75, 4.0 * se + 0.005) << "se " << se;
+}

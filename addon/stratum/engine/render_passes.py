@@ -5,7 +5,7 @@ each from the native film into the result when the render ends.
 Names, channel ids and kinds are Cycles' (intern/cycles/blender/addon/engine.py
 list_render_passes), so the compositor's Render Layers node and multilayer EXR see what they see
 with Cycles. Blender's own view-layer toggles drive the passes it has one for (Depth, Mist,
-Normal, Position, UV, Emit, Env; the mist's start, depth and falloff are the world's);
+Normal, Position, UV, Emit, Env, AO; the mist's start, depth and falloff are the world's);
 `view_layer.stratum` holds the others (Cycles keeps its equivalents in view_layer.cycles).
 docs/passes.md says what each pass holds.
 """
@@ -39,6 +39,7 @@ TOGGLES: tuple[tuple[str, str, tuple[PassSpec, ...]], ...] = (
     ("view_layer", "use_pass_uv", (PassSpec("UV", 3, "UVA", "VECTOR"),)),
     ("view_layer", "use_pass_emit", (PassSpec("Emit", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_environment", (PassSpec("Env", 3, "RGB", "COLOR"),)),
+    ("view_layer", "use_pass_ambient_occlusion", (PassSpec("AO", 3, "RGB", "COLOR"),)),
     ("stratum", "use_pass_denoising_data", (PassSpec("Denoising Normal", 3, "XYZ", "VECTOR"),
                                             PassSpec("Denoising Albedo", 3, "RGB", "COLOR"))),
     ("stratum", "use_pass_sample_count", (PassSpec("Debug Sample Count", 1, "X", "VALUE"),)),
@@ -166,6 +167,7 @@ class STRATUM_VIEWLAYER_PT_passes_data(bpy.types.Panel):
         col = layout.column(heading="Light", align=True)
         col.prop(view_layer, "use_pass_emit", text="Emission")
         col.prop(view_layer, "use_pass_environment")
+        col.prop(view_layer, "use_pass_ambient_occlusion", text="Ambient Occlusion")
         col = layout.column(heading="Stratum", align=True)
         col.prop(view_layer.stratum, "use_pass_denoising_data")
         col.prop(view_layer.stratum, "use_pass_sample_count")

@@ -47,7 +47,8 @@ enum class Pass : uint32_t {
     Uv,
     Emit,
     Env,
-    Mist
+    Mist,
+    Ao
 };
 
 // Cycles' Depth of a camera ray that meets nothing (kernel/film/read.h: a stored 0 reads 1e10).
@@ -84,6 +85,9 @@ inline constexpr std::array kPasses = {
         "Mist", 1, PassKind::Average,
         "Cycles' mist: 1 − the surfaces' transparency-weighted closeness, from the distance to the camera "
         "through the mist start, depth and falloff (1 where a ray meets nothing)"},
+    PassInfo{"AO", 3, PassKind::Average,
+             "Cycles' AO pass: the share of cosine-distributed directions above the surfaces a camera ray "
+             "meets before its first bounce that no obstacle blocks within ao_distance, times their opacity"},
 };
 
 inline constexpr const PassInfo& pass_info(Pass pass) { return kPasses[static_cast<uint32_t>(pass)]; }

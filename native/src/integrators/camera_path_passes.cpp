@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/ray_offset.h"
+#include "sampling/hemisphere.h"
+#include "scene/visibility.h"
+
 namespace stratum {
 
 namespace {
@@ -71,9 +75,20 @@ void CameraPathPasses::finish() {
     // A path that ended before a non-delta surface (absorbed, out of bounces): what it gathered.
     if (features_pending_) write_features(Vec3{}, albedo_);
     if (mist_wanted_) passes_.write(Pass::Mist, 1.0f - mist_sum_);
+    if (passes_.wants(Pass::Ao)) passes_.write(Pass::Ao, Vec3(ao_.r, ao_.g, ao_.b));
     if (!direct_) return;
     passes_.write(Pass::Emit, Vec3(emit_.r, emit_.g, emit_.b));
     passes_.write(Pass::Env, Vec3(env_.r, env_.g, env_.b));
+}
+
+void CameraPathPasses::ao(const RenderScene& scene, Vec3 position, Vec3 ns, Vec3 ng, Vec2 u, Rgb weight,
+                          float time, float distance, uint64_t& rays) {
+    const Vec3 d = Frame::from_normal(ns).to_world(sample_hemisphere(HemisphereDistribution::Cosine, u));
+    // A direction below the true surface is blocked by it.
+    if (!(dot(d, ng) > 0.0f)) return;
+    ++rays;
+    if (!scene.occluded(offset_ray_origin(position, ng), d, 0.0f, distance, {time, kVisibleShadow}))
+        ao_ += weight;
 }
 
 void CameraPathPasses::add_mist(Vec3 position, Rgb weight) {

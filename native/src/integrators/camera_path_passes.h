@@ -22,6 +22,9 @@
 // | Mist             | 1 − Σ (1 − m(d)) average(β α) over the camera-visible surfaces, α their |
 // |                  | opacity, d Camera::distance, m(d) = clamp((d − start)/depth, 0, 1) to   |
 // |                  | the power falloff (Cycles' film_write_data_passes; 1 on a miss)          |
+// | AO               | Σ β α [a cosine direction about ns is unblocked within ao_distance]     |
+// |                  | over the camera-visible surfaces (Cycles' integrate_surface_ao: one     |
+// |                  | shadow ray each, drawn from the surface's BSDF direction numbers)       |
 //
 // Differences from Cycles, kept because Stratum's closures are whole models: Cycles defers to
 // the next bounce when ≥ 75% of the sample weight is specular-like (GGX alpha ≤ 0.075) and
@@ -32,6 +35,7 @@
 
 #include "bsdf/closure_set.h"
 #include "film/film.h"
+#include "render_scene/render_scene.h"
 
 namespace stratum {
 
@@ -56,6 +60,11 @@ public:
         if (features_pending_) albedo_ += contribution;
         if (direct_ && camera_visible) emit_ += contribution;
     }
+    // The AO pass's shadow ray from a camera-visible surface at `position` (true normal ng,
+    // shading normal ns), with direction numbers u; `weight` = β × the surface's opacity.
+    bool wants_ao() const { return passes_.wants(Pass::Ao); }
+    void ao(const RenderScene& scene, Vec3 position, Vec3 ns, Vec3 ng, Vec2 u, Rgb weight, float time,
+            float distance, uint64_t& rays);
     // The path leaves the scene; `background` (times β) is what it collects there.
     void miss(Rgb background, bool camera_visible);
     // Whether the path still has something to write (cheap test before computing arguments).
@@ -75,7 +84,7 @@ private:
     const MistSettings& mist_;
     bool data_pending_, features_pending_, direct_, mist_wanted_;
     float mist_sum_ = 0.0f;
-    Rgb albedo_{0.0f}, emit_{0.0f}, env_{0.0f};
+    Rgb albedo_{0.0f}, emit_{0.0f}, env_{0.0f}, ao_{0.0f};
 };
 
 }  // namespace stratum

@@ -106,6 +106,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         const ShadingPoint sp = build_closures(scene, hit, wo_world);
         const ClosureSet& closures = sp.closures;
         data.surface(hit.position, sp.ns, hit.uv, closures, beta, camera_visible_path);
+        if (camera_visible_path && data.wants_ao())
+            data.ao(scene, hit.position, sp.ns, sp.ng,
+                    sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection)),
+                    beta * (Rgb(1.0f) - closures.transparency()), query.time, settings_.ao_distance, rays);
 
         if (camera_visible_path) {
             const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
