@@ -24,6 +24,8 @@ build: setup
 	mkdir -p addon/stratum/lib
 	# Copy then rename: overwriting the file in place would crash a process that has it loaded.
 	cp -f $(BUILD)/libstratum.so $(LIB).tmp && mv -f $(LIB).tmp $(LIB)
+	# Open Image Denoise beside it (Blender 3.4's Python does not see the venv's pyoidn).
+	$(PY) scripts/copy_oidn.py addon/stratum/lib
 
 # corpus-asan after sanitize, which builds the binary it replays with.
 test: build lint test-native test-python test-blender sanitize corpus-asan fuzz-smoke

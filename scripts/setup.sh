@@ -13,6 +13,7 @@ DEB_PACKAGES=(
   python3-numpy python3-pytest python3-venv
   chromium chromium-driver
   valgrind  # make sanitize: memcheck of the native determinism tests
+  xvfb xauth  # make test-ui: Blender 3.4 with its UI (viewport, panels) on a virtual display
 )
 
 missing=()

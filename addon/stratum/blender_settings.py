@@ -9,6 +9,9 @@ fails naming a setting that is in none, so a new library setting cannot be forgo
 * FROM_BLENDER: taken from Blender's own render settings by the engine (engine/frame.py), so that
   Stratum does not duplicate what Blender already has;
 * NOT_IN_BLENDER: nothing in Blender sets it yet, for the reason given.
+
+BLENDER_ONLY lists the scene.stratum properties that are no library setting: what the add-on
+does around a render (denoising).
 """
 
 from __future__ import annotations
@@ -38,6 +41,21 @@ FROM_BLENDER: dict[str, str] = {
 # Setting -> why nothing in Blender sets it.
 NOT_IN_BLENDER: dict[str, str] = {
     "bvh": "F12 renders use the library's default (static); the viewport will choose dynamic",
+}
+
+# scene.stratum properties of the add-on alone: name -> (label, description, default). Off by
+# default: denoising changes the image a scene renders, and OIDN is a library of its own that
+# may be missing (engine/denoise.py).
+BLENDER_ONLY: dict[str, tuple[str, str, bool]] = {
+    "use_denoising": (
+        "Denoise Render",
+        "Denoise the final render with Intel Open Image Denoise, guided by the albedo and "
+        "normal of the first surface hit; the undenoised image is kept in the Noisy Image pass",
+        False),
+    "use_preview_denoising": (
+        "Denoise Viewport",
+        "Denoise the rendered viewport with Intel Open Image Denoise",
+        False),
 }
 
 # The Blender defaults that differ from the library's on purpose. Blender stores a property

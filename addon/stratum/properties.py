@@ -19,10 +19,10 @@ from typing import Any
 
 import bpy
 import numpy as np
-from bpy.props import EnumProperty, FloatProperty, IntProperty, PointerProperty
+from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
 from . import native
-from .blender_settings import PROPERTIES, UI_DEFAULTS
+from .blender_settings import BLENDER_ONLY, PROPERTIES, UI_DEFAULTS
 
 # Where a slider stops dragging; typing goes on to the library's maximum.
 SOFT_MAXIMA: dict[str, int | float] = {
@@ -87,12 +87,25 @@ def make_property(setting: native.Setting) -> Any:
                      "Blender property")
 
 
+def _update_render_passes(_settings: Any, context: bpy.types.Context) -> None:
+    """Denoising adds a pass (Noisy Image): the compositor asks the engine for its passes
+    again (engine.update_render_passes), as Cycles' denoising switches do."""
+    view_layer = getattr(context, "view_layer", None)
+    if view_layer is not None:
+        view_layer.update_render_passes()
+
+
 def _make_property_group(settings: tuple[native.Setting, ...]) -> type:
     by_name = {setting.name: setting for setting in settings}
 
     class StratumRenderSettings(bpy.types.PropertyGroup):
         __annotations__ = {name: make_property(by_name[name])
                            for name in PROPERTIES if name in by_name}
+        # The add-on's own switches need no library (registered without it too).
+        __annotations__.update({
+            name: BoolProperty(name=label, description=description, default=default,
+                               update=_update_render_passes)
+            for name, (label, description, default) in BLENDER_ONLY.items()})
 
     return StratumRenderSettings
 

@@ -69,6 +69,19 @@ class STRATUM_RENDER_PT_sampling(StratumButtonsPanel, bpy.types.Panel):
             col.prop(settings, "ao_distance", text="AO Distance")
 
 
+class STRATUM_RENDER_PT_sampling_denoising(StratumButtonsPanel, bpy.types.Panel):
+    bl_label = "Denoising"
+    bl_parent_id = "STRATUM_RENDER_PT_sampling"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        col = layout.column(heading="Denoise", align=True)
+        col.prop(context.scene.stratum, "use_denoising", text="Render")
+        col.prop(context.scene.stratum, "use_preview_denoising", text="Viewport")
+
+
 class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
     bl_label = "Light Paths"
     bl_options = {"DEFAULT_CLOSED"}
@@ -135,6 +148,7 @@ class STRATUM_RENDER_PT_performance(StratumButtonsPanel, bpy.types.Panel):
 classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_library,
     STRATUM_RENDER_PT_sampling,
+    STRATUM_RENDER_PT_sampling_denoising,
     STRATUM_RENDER_PT_light_paths,
     STRATUM_RENDER_PT_film,
     STRATUM_RENDER_PT_performance,

@@ -227,7 +227,7 @@ def test_update_render_passes_registers_what_the_toggles_ask_for(stratum_addon: 
 
     render_passes.register_passes(Recorder(), scene, layer)
     assert [r[0] for r in registered] == [
-        "Combined", "Depth", "Mist", "Normal", "Position", "Emit", "Env", "AO", "Denoising Normal",
+        "Depth", "Mist", "Normal", "Position", "Emit", "Env", "AO", "Denoising Normal",
         "Denoising Albedo", "Debug Sample Count", "Stratum Error"]
     layer.use_pass_z = False
     layer.stratum.use_pass_denoising_data = False
@@ -255,3 +255,27 @@ def library_passes() -> tuple[Any, ...]:
 def test_the_passes_panel_shows_for_stratum(stratum_addon: Any) -> None:
     assert "STRATUM" in bpy.types.VIEWLAYER_PT_layer_passes.COMPAT_ENGINES
     assert hasattr(bpy.types, "STRATUM_VIEWLAYER_PT_passes_data")
+
+
+def test_the_passes_join_those_the_denoiser_asked_for(stratum_addon: Any,
+                                                      scene_builder: Any) -> None:
+    """With denoising on, the denoiser has already put its guides into the native `passes`
+    setting: the view layer's passes are added after them, without repeats, and the world's
+    mist settings come with the Mist pass."""
+    from stratum.engine import render_passes
+
+    scene = tilted_plane_scene(scene_builder())
+    added: list[str] = []
+
+    class Recorder:
+        def add_pass(self, name: str, channels: int, chan_id: str, layer: str = "") -> None:
+            added.append(name)
+
+    passes = render_passes.ResultPasses(Recorder(), scene.view_layers[0], scene.world)
+    settings: dict[str, Any] = {"samples": 4, "passes": "Denoising Albedo,Denoising Normal"}
+    passes.configure(settings)
+    names = settings["passes"].split(",")
+    assert names[:2] == ["Denoising Albedo", "Denoising Normal"]
+    assert len(names) == len(set(names)) and set(added) <= set(names)
+    assert "Depth" in names and "Mist" in names
+    assert (settings["mist_start"], settings["mist_depth"], settings["mist_falloff"]) == (0.0, 10.0, 1.0)

@@ -12,6 +12,7 @@ import numpy as np
 
 from .. import native, properties
 from ..export import export_scene
+from . import denoise
 from .frame import renderer_settings, result_size
 from .render_passes import ResultPasses
 
@@ -83,6 +84,9 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
             f"the native library could not be loaded when the add-on was enabled "
             f"({properties.load_error}); enable the add-on again")
     settings = renderer_settings(scene)
+    denoising = denoise.prepare_final(engine, scene, settings)
+    passes = ResultPasses(engine, depsgraph.view_layer, scene.world)
+    passes.configure(settings)
     width, height = result_size(scene)
 
     engine.update_stats("", "Exporting scene")
@@ -99,11 +103,10 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
     with renderer:
         for name, value in settings.items():
             renderer.set(name, value)
-        passes = ResultPasses(engine, depsgraph.view_layer, scene.world)
-        passes.configure(renderer)
-        render_progressively(engine, renderer, width, height, passes)
+        render_progressively(engine, renderer, width, height, denoising, passes)
 
 def render_progressively(engine: Any, renderer: native.Renderer, width: int, height: int,
+                         denoising: denoise.FinalDenoising | None = None,
                          passes: ResultPasses | None = None) -> None:
     started = time.perf_counter()
     engine.update_stats("", "Building BVH / starting")
@@ -142,6 +145,8 @@ def render_progressively(engine: Any, renderer: native.Renderer, width: int, hei
         writer.write(renderer, render_pass)
         if passes is not None:
             passes.write(renderer, result)
+        if denoising is not None:
+            denoising.apply(renderer, result)
         report_notices(engine, renderer, reported)
     finally:
         engine.end_result(result)

@@ -93,15 +93,16 @@ def mist_settings(mist: Any) -> dict[str, float]:
 
 
 def register_passes(engine: Any, scene: Any, view_layer: Any) -> None:
-    """RenderEngine.update_render_passes: tells the compositor which passes the layer has."""
-    engine.register_pass(scene, view_layer, "Combined", 4, "RGBA", "COLOR")
+    """For RenderEngine.update_render_passes: tells the compositor which passes besides
+    Combined the view layer's toggles add."""
     for spec in enabled_passes(view_layer):
         engine.register_pass(scene, view_layer, spec.name, spec.channels, spec.chan_id, spec.kind)
 
 
 class ResultPasses:
     """The passes of one F12 render: made before begin_result (it adds them to the result),
-    it names them to the renderer and copies them into the result when the render ends."""
+    it names them in the native settings and copies them into the result when the render
+    ends."""
 
     def __init__(self, engine: Any, view_layer: Any, world: Any = None) -> None:
         self.specs = enabled_passes(view_layer)
@@ -109,12 +110,15 @@ class ResultPasses:
         for spec in self.specs:
             engine.add_pass(spec.name, spec.channels, spec.chan_id, layer=view_layer.name)
 
-    def configure(self, renderer: Any) -> None:
-        if self.specs:
-            renderer.set("passes", native_setting(self.specs))
+    def configure(self, settings: dict[str, Any]) -> None:
+        """Adds these passes to the native settings' `passes` (after any already there, such
+        as the denoiser's guides, without repeats), and the world's mist settings with Mist."""
+        current = [name for name in str(settings.get("passes", "")).split(",") if name]
+        wanted = current + [spec.name for spec in self.specs if spec.name not in current]
+        if wanted:
+            settings["passes"] = ",".join(wanted)
         if self.world is not None and any(spec.name == "Mist" for spec in self.specs):
-            for name, value in mist_settings(self.world.mist_settings).items():
-                renderer.set(name, value)
+            settings.update(mist_settings(self.world.mist_settings))
 
     def write(self, renderer: Any, result: Any) -> None:
         """Copies every pass from the renderer into the result's first layer."""

@@ -13,10 +13,11 @@ with their choices, the registries among them, and the passes, as the library li
 models (light types and closure models by name, as the library lists them),
 marshalling (Python values as C arguments), descriptions (the dataclasses a Scene is made
 of), scene (`Scene`), renderer (`Renderer`, `Progress`), inspection (sampler points, hemisphere
-warps, the blue-noise texture and the dimension layout, without a scene). The public API is
-re-exported here, so `from stratum import native; native.Scene` is all a caller needs. Names
-with a leading underscore (_check, _Handle, the ctypes structs, ...) are shared between these
-modules only.
+warps, the blue-noise texture and the dimension layout, without a scene), oidn (Intel Open
+Image Denoise, a library of its own: `denoise`, `load_denoiser`, `DenoiserUnavailable`). The
+public API is re-exported here, so `from stratum import native; native.Scene` is all a caller
+needs. Names with a leading underscore (_check, _Handle, the ctypes structs, ...) are shared
+between these modules only.
 """
 
 from __future__ import annotations
@@ -93,6 +94,8 @@ from .library import (
     version,
 )
 from .models import closure_model, closure_models, light_type, light_types
+from .oidn import DenoiserUnavailable, denoise
+from .oidn import load_library as load_denoiser
 from .renderer import Progress, Renderer
 from .scene import Scene
 from .settings import (
@@ -111,7 +114,7 @@ __all__ = [
     "BUMP_SHADOWING_CONTY", "BUMP_SHADOWING_CONTY_UNSMOOTHED", "BUMP_SHADOWING_NONE",
     "CAMERA_EQUIRECTANGULAR", "CAMERA_ORTHOGRAPHIC", "CAMERA_PERSPECTIVE", "CAMERA_TYPES",
     "Camera", "ERROR_INTERNAL", "ERROR_INVALID_ARGUMENT", "ERROR_INVALID_STATE", "ERROR_IO",
-    "ERROR_OUT_OF_MEMORY", "Instance", "LibraryLoadError", "Light",
+    "DenoiserUnavailable", "ERROR_OUT_OF_MEMORY", "Instance", "LibraryLoadError", "Light",
     "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "OK",
     "PARAM_BASE_COLOR", "PARAM_EMISSION", "PARAM_METALLIC", "PARAM_NORMAL", "PARAM_ROUGHNESS",
     "PARAM_SPECULAR", "PARAM_TRANSMISSION", "PARAM_WEIGHT", "Pass", "Progress",
@@ -122,7 +125,7 @@ __all__ = [
     "Texture", "TextureBinding", "TextureInfo", "VISIBLE_ALL", "VISIBLE_CAMERA",
     "VISIBLE_DIFFUSE", "VISIBLE_GLOSSY", "VISIBLE_SHADOW", "VISIBLE_TRANSMISSION",
     "bluenoise_texture", "bounce_dimension_stride", "camera_dimensions", "closure_model",
-    "closure_models", "light_type", "light_types",
+    "closure_models", "denoise", "light_type", "light_types", "load_denoiser",
     "default_library_path", "dimension_name", "library_available", "load_library", "passes",
     "registry", "sampler_points", "setting", "settings", "version", "warp_hemisphere",
 ]
