@@ -14,7 +14,7 @@ import bpy
 
 from .. import native
 from ..export import ExportCancelled, ExportError, ExportSummary
-from . import denoise
+from . import denoise, render_passes
 from .final_render import render_frame
 from .preview import render_preview
 
@@ -66,13 +66,21 @@ class StratumRenderEngine(bpy.types.RenderEngine):
 
     def update_render_passes(self, scene: Any = None, renderlayer: Any = None) -> None:
         """The passes the compositor's Render Layers node shows (Cycles registers Combined
-        here too, as the node then takes its sockets from this list alone)."""
-        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
-        denoise.register_passes(self, scene, renderlayer)
+        here too, as the node then takes its sockets from this list alone): Combined, those
+        the view layer's toggles ask for, and the denoiser's Noisy Image."""
+        try:
+            self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
+            render_passes.register_passes(self, scene, renderlayer)
+            denoise.register_passes(self, scene, renderlayer)
+        except Exception:  # noqa: BLE001 - nothing may crash Blender
+            traceback.print_exc()
+
 
 def register() -> None:
+    render_passes.register()
     bpy.utils.register_class(StratumRenderEngine)
 
 
 def unregister() -> None:
     bpy.utils.unregister_class(StratumRenderEngine)
+    render_passes.unregister()

@@ -15,6 +15,7 @@ from .. import native, properties
 from ..export import export_scene
 from . import denoise
 from .frame import renderer_settings, result_size
+from .render_passes import ResultPasses
 
 POLL_MS = 100
 
@@ -116,6 +117,8 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
             f"({properties.load_error}); enable the add-on again")
     settings = renderer_settings(scene)
     denoising = denoise.prepare_final(engine, scene, settings)
+    passes = ResultPasses(engine, depsgraph.view_layer, scene.world)
+    passes.configure(settings)
     width, height = result_size(scene)
 
     engine.update_stats("", "Exporting scene")
@@ -132,10 +135,12 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
     with renderer:
         for name, value in settings.items():
             renderer.set(name, value)
-        render_progressively(engine, renderer, width, height, denoising)
+        render_progressively(engine, renderer, width, height, denoising, passes)
+
 
 def render_progressively(engine: Any, renderer: native.Renderer, width: int, height: int,
-                         denoising: denoise.FinalDenoising | None = None) -> None:
+                         denoising: denoise.FinalDenoising | None = None,
+                         passes: ResultPasses | None = None) -> None:
     started = clock()
     engine.update_stats("", "Building BVH / starting")
     # Started before Blender's result and the pixel buffer are allocated: a render the
@@ -176,6 +181,8 @@ def render_progressively(engine: Any, renderer: native.Renderer, width: int, hei
                 break
         # Final pixels (also the partial image after Esc).
         writer.write(renderer, render_pass)
+        if passes is not None:
+            passes.write(renderer, result)
         if denoising is not None:
             denoising.apply(renderer, result)
         report_notices(engine, renderer, reported)

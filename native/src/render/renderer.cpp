@@ -233,7 +233,7 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
                                           // Drawn only with motion, so static renders stay bit-identical.
                                           if (motion) ray.time = sampler.get_1d(ps, kDimTime);
                                           std::fill(extra.begin(), extra.end(), 0.0f);
-                                          PassValues passes(&layout, extra.data());
+                                          PassValues passes(&layout, extra.data(), &camera);
                                           const RadianceSample r =
                                               integrator.estimate(scene, sampler, ps, ray, passes, rays);
                                           // A NaN or Inf sample would poison the pixel forever: it is
@@ -241,12 +241,8 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
                                           if (is_finite(r.radiance) && std::isfinite(r.alpha) &&
                                               std::all_of(extra.begin(), extra.end(),
                                                           [](float v) { return std::isfinite(v); })) {
-                                              sums[0] += r.radiance.r;
-                                              sums[1] += r.radiance.g;
-                                              sums[2] += r.radiance.b;
-                                              sums[3] += r.alpha;
-                                              for (size_t c = 0; c < extra.size(); ++c)
-                                                  sums[4 + c] += extra[c];
+                                              film_->add_sample(sums.data(), /*sample_index=*/i, r.radiance,
+                                                                r.alpha, extra.data());
                                           } else {
                                               ++dropped;
                                           }
