@@ -89,6 +89,7 @@ bench: build
 	bash scripts/install_addon.sh
 	mkdir -p out
 	$(BLENDER_BG) --python scripts/bench.py
+	$(BLENDER_BG) --python scripts/bench_progress.py
 	$(PY) scripts/bench_textures.py
 	$(BLENDER_BG) --python scripts/bench_viewport.py
 

@@ -31,11 +31,15 @@ FROM_BLENDER: dict[str, str] = {
     "crop_width": "(scene.render.border_max_x − border_min_x) × width, with use_border",
     "crop_height": "(scene.render.border_max_y − border_min_y) × height, with use_border",
     "film_transparent": "scene.render.film_transparent",
+    "passes": "the view layer's pass toggles (View Layer > Passes; engine/render_passes.py)",
+    "mist_start": "scene.world.mist_settings.start, with the Mist pass",
+    "mist_depth": "scene.world.mist_settings.depth, with the Mist pass",
+    "mist_falloff": "scene.world.mist_settings.falloff (quadratic 2, linear 1, inverse quadratic "
+                    "0.5), with the Mist pass",
 }
 
 # Setting -> why nothing in Blender sets it.
 NOT_IN_BLENDER: dict[str, str] = {
-    "passes": "the engine fills only the Combined pass of Blender's render result so far",
     "bvh": "F12 renders use the library's default (static); the Rendered viewport uses dynamic",
 }
 

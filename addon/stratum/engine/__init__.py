@@ -1,5 +1,5 @@
 """The Stratum RenderEngine: what Blender calls. F12 is final_render.py; the frame and its
-settings are frame.py.
+settings are frame.py; material, light and world thumbnails are preview.py.
 
 render() never lets an exception escape: export errors, native errors and a missing library
 are reported with self.report({'ERROR'}, ...) and the render ends cleanly.
@@ -14,8 +14,9 @@ import bpy
 
 from .. import native
 from ..export import ExportCancelled, ExportError, ExportSummary
-from . import denoise
+from . import denoise, render_passes
 from .final_render import render_frame
+from .preview import render_preview
 from .viewport import free_viewport, view_draw, view_update, viewport_call
 
 ENGINE_ID = "STRATUM"
@@ -24,7 +25,10 @@ ENGINE_ID = "STRATUM"
 class StratumRenderEngine(bpy.types.RenderEngine):
     bl_idname = ENGINE_ID
     bl_label = "Stratum"
-    bl_use_preview = False
+    # Blender renders material, light and world thumbnails with Stratum (render() with
+    # is_preview); Material Preview shading draws with EEVEE, as it does for Cycles.
+    bl_use_preview = True
+    bl_use_eevee_viewport = True
     bl_use_postprocess = True
     # Show Blender's standard shader nodes (Principled, Diffuse, Emission...) in the node
     # editor: Stratum reads those node trees.
@@ -50,6 +54,9 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             print(f"Stratum {level}: {message}")
 
     def render(self, depsgraph: Any) -> None:
+        if self.is_preview:
+            render_preview(self, depsgraph)  # reports nothing: preview.py says why
+            return
         type(self).last_reports = []
         type(self).last_summary = None
         try:
@@ -64,9 +71,14 @@ class StratumRenderEngine(bpy.types.RenderEngine):
 
     def update_render_passes(self, scene: Any = None, renderlayer: Any = None) -> None:
         """The passes the compositor's Render Layers node shows (Cycles registers Combined
-        here too, as the node then takes its sockets from this list alone)."""
-        self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
-        denoise.register_passes(self, scene, renderlayer)
+        here too, as the node then takes its sockets from this list alone): Combined, those
+        the view layer's toggles ask for, and the denoiser's Noisy Image."""
+        try:
+            self.register_pass(scene, renderlayer, "Combined", 4, "RGBA", "COLOR")
+            render_passes.register_passes(self, scene, renderlayer)
+            denoise.register_passes(self, scene, renderlayer)
+        except Exception:  # noqa: BLE001 - nothing may crash Blender
+            traceback.print_exc()
 
     # ---- the Rendered viewport (engine/viewport.py) ----------------------------------------
 
@@ -78,8 +90,10 @@ class StratumRenderEngine(bpy.types.RenderEngine):
 
 
 def register() -> None:
+    render_passes.register()
     bpy.utils.register_class(StratumRenderEngine)
 
 
 def unregister() -> None:
     bpy.utils.unregister_class(StratumRenderEngine)
+    render_passes.unregister()

@@ -252,6 +252,8 @@ class _Progress(ctypes.Structure):
         ("build_seconds", ctypes.c_double),
         ("render_seconds", ctypes.c_double),
         ("fraction_done", ctypes.c_double),
+        ("samples_in_progress", ctypes.c_int32),
+        ("samples_average", ctypes.c_double),
     ]
 
 

@@ -27,6 +27,10 @@ class Progress:
     build_seconds: float
     render_seconds: float
     fraction_done: float
+    # Each pixel holds samples_done or samples_in_progress samples; samples_average is their
+    # mean over the image from the work finished, moving as tiles finish (stratum.h).
+    samples_in_progress: int
+    samples_average: float
 
 
 class Renderer(_Handle):
@@ -129,6 +133,8 @@ class Renderer(_Handle):
             build_seconds=float(p.build_seconds),
             render_seconds=float(p.render_seconds),
             fraction_done=float(p.fraction_done),
+            samples_in_progress=int(p.samples_in_progress),
+            samples_average=float(p.samples_average),
         )
 
     def read_pixels(self, out: np.ndarray | None = None) -> np.ndarray:

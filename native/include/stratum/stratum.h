@@ -514,6 +514,12 @@ typedef struct StratumProgress {
     double build_seconds;   /* BVH build time */
     double render_seconds;  /* path-tracing time, without the BVH build */
     double fraction_done;   /* pixel samples finished / (width * height * samples), for progress bars */
+    /* What the pass in progress (or the last one started) brings every pixel to: each pixel
+     * holds samples_done or samples_in_progress samples. */
+    int32_t samples_in_progress;
+    /* Samples per pixel on average, from the work finished: samples_done plus the finished part
+     * of the pass in progress; it moves as tiles finish (Cycles' "Sample N/M" counts the same). */
+    double samples_average;
 } StratumProgress;
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);

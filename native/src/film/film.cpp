@@ -10,16 +10,19 @@ namespace {
 
 bool is_finite(const Rgb& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
 
-uint32_t extra_channels(std::span<const Pass> passes) { return FilmLayout(passes).extra_channels(); }
-
 }  // namespace
 
 FilmLayout::FilmLayout(std::span<const Pass> passes) {
-    offsets_.fill(kAbsent);
+    slots_.fill(kAbsent);
     for (const Pass pass : passes) {
-        if (pass == Pass::Combined || offsets_[index(pass)] != kAbsent) continue;
-        offsets_[index(pass)] = extra_channels_;
-        extra_channels_ += pass_info(pass).channels;
+        if (pass == Pass::Combined || slots_[index(pass)] != kAbsent) continue;
+        const PassInfo& info = pass_info(pass);
+        slots_[index(pass)] = count_;
+        entries_[count_++] = {pass,          info.kind,          info.channels, sample_channels_,
+                              sum_channels_, published_channels_};
+        sample_channels_ += sample_channels(info);
+        sum_channels_ += stored_channels(info);
+        published_channels_ += info.channels;
     }
 }
 
@@ -33,11 +36,12 @@ Film::Film(const PixelRegion& region, uint32_t frame_width, uint32_t frame_heigh
       sums_(region.pixel_count() * sums_stride(), 0.0),
       counts_(region.pixel_count(), 0),
       splat_sums_(light_paths ? 3 * region.pixel_count() : 0, 0.0),
-      published_(region.pixel_count() * sums_stride(), 0.0f) {}
+      published_(region.pixel_count() * published_stride(), 0.0f) {}
 
 double Film::bytes_per_pixel(std::span<const Pass> passes, bool light_paths) {
-    const double stride = 4 + extra_channels(passes);
-    return stride * (sizeof(double) + sizeof(float)) + sizeof(uint32_t) +
+    const FilmLayout layout(passes);
+    return (4.0 + layout.sum_channels()) * sizeof(double) +
+           (4.0 + layout.published_channels()) * sizeof(float) + sizeof(uint32_t) +
            (light_paths ? 3 * sizeof(double) : 0);
 }
 
@@ -48,6 +52,35 @@ void Film::load_sums(size_t pixel, double* out) const {
 void Film::store_sums(size_t pixel, const double* sums, uint32_t count) {
     std::copy_n(sums, sums_stride(), &sums_[pixel * sums_stride()]);
     counts_[pixel] = count;
+}
+
+void Film::add_sample(double* sums, uint32_t sample_index, Rgb radiance, float alpha,
+                      const float* values) const {
+    sums[0] += radiance.r;
+    sums[1] += radiance.g;
+    sums[2] += radiance.b;
+    sums[3] += alpha;
+    for (const FilmLayout::Entry& e : layout_.entries()) {
+        double* sum = sums + 4 + e.sum_offset;
+        const float* value = values + e.sample_offset;
+        switch (e.kind) {
+            case PassKind::Average:
+                for (uint32_t c = 0; c < e.channels; ++c) sum[c] += value[c];
+                break;
+            case PassKind::FirstSample:
+                if (sample_index == 0)
+                    for (uint32_t c = 0; c < e.channels; ++c) sum[c] = value[c];
+                break;
+            case PassKind::StandardError:
+                sum[0] += static_cast<double>(radiance.r) * radiance.r;
+                sum[1] += static_cast<double>(radiance.g) * radiance.g;
+                sum[2] += static_cast<double>(radiance.b) * radiance.b;
+                break;
+            case PassKind::Radiance:
+            case PassKind::SampleCount:
+                break;
+        }
+    }
 }
 
 void Film::splat(Vec2 s, Rgb value, std::vector<Splat>& out) const {
@@ -84,9 +117,8 @@ uint64_t Film::add_splats(std::span<const Splat> splats) {
 }
 
 void Film::publish_pixel(size_t p, double n, const double* splats) {
-    const uint32_t stride = sums_stride();
-    const double* sum = &sums_[p * stride];
-    float* px = &published_[p * stride];
+    const double* sum = &sums_[p * sums_stride()];
+    float* px = &published_[p * published_stride()];
     if (splats) {
         px[0] = saturate_to_float((sum[0] + splats[0]) / n);
         px[1] = saturate_to_float((sum[1] + splats[1]) / n);
@@ -97,10 +129,35 @@ void Film::publish_pixel(size_t p, double n, const double* splats) {
         px[2] = saturate_to_float(sum[2] / n);
     }
     px[3] = saturate_to_float(sum[3] / n);
-    // Average passes are means of the camera samples of this pixel.
-    const double camera_samples = counts_[p];
-    if (camera_samples > 0)
-        for (uint32_t c = 4; c < stride; ++c) px[c] = saturate_to_float(sum[c] / camera_samples);
+    // The other passes are of the camera samples of this pixel.
+    const uint32_t count = counts_[p];
+    if (count == 0) return;
+    const double camera_samples = count;
+    for (const FilmLayout::Entry& e : layout_.entries()) {
+        const double* s = sum + 4 + e.sum_offset;
+        float* out = px + 4 + e.published_offset;
+        switch (e.kind) {
+            case PassKind::Average:
+                for (uint32_t c = 0; c < e.channels; ++c) out[c] = saturate_to_float(s[c] / camera_samples);
+                break;
+            case PassKind::FirstSample:
+                for (uint32_t c = 0; c < e.channels; ++c) out[c] = saturate_to_float(s[c]);
+                break;
+            case PassKind::SampleCount:
+                out[0] = static_cast<float>(count);
+                break;
+            case PassKind::StandardError:
+                // Sample variance s² = n/(n−1) (Σx²/n − x̄²); the mean's standard error is s/√n.
+                for (uint32_t c = 0; c < e.channels; ++c) {
+                    const double mean = sum[c] / camera_samples;
+                    const double spread = std::max(0.0, s[c] / camera_samples - mean * mean);
+                    out[c] = count < 2 ? 0.0f : saturate_to_float(std::sqrt(spread / (camera_samples - 1.0)));
+                }
+                break;
+            case PassKind::Radiance:
+                break;
+        }
+    }
 }
 
 void Film::publish(uint32_t x0, uint32_t x1, uint32_t y0, uint32_t y1) {
@@ -122,8 +179,8 @@ void Film::publish_all(uint32_t sample_indices) {
 
 bool Film::read(Pass pass, float* out) const {
     if (!layout_.has(pass)) return false;
-    const uint32_t stride = sums_stride();
-    const uint32_t first = pass == Pass::Combined ? 0 : 4 + layout_.offset(pass);
+    const uint32_t stride = published_stride();
+    const uint32_t first = pass == Pass::Combined ? 0 : 4 + layout_.entry(pass).published_offset;
     const uint32_t channels = pass_info(pass).channels;
     std::unique_lock lock(published_mutex_);
     for (size_t p = 0; p < region_.pixel_count(); ++p)

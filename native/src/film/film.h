@@ -14,6 +14,10 @@
 // | with light paths       | (camera sample sum + splat sum) / sample indices done (all     |
 // |                        | pixels at once, when a pass of light paths ends)               |
 // | Average passes         | sum / count of the pixel's camera samples                      |
+// | FirstSample passes     | the value of sample index 0                                    |
+// | Debug Sample Count     | the count of the pixel's camera samples                        |
+// | Stratum Error          | sqrt((Σx²/n − x̄²)/(n − 1)) per RGB channel over the pixel's n  |
+// |                        | camera samples x (0 for n < 2; light-path splats not included) |
 #pragma once
 
 #include <array>
@@ -26,45 +30,74 @@
 #include "film/passes.h"
 #include "film/pixel_filter.h"
 #include "film/pixel_region.h"
+#include "scene/camera.h"
 
 namespace stratum {
 
-// Where the channels of each enabled pass (other than Combined) sit in a sample's values.
+// Where the channels of each enabled pass (other than Combined) sit: among the values an
+// integrator writes per camera sample, among the doubles the film sums per pixel (after
+// Combined's 4), and among the floats it publishes per pixel (after Combined's 4).
 class FilmLayout {
 public:
-    FilmLayout() { offsets_.fill(kAbsent); }
+    struct Entry {
+        Pass pass;
+        PassKind kind;
+        uint32_t channels;
+        uint32_t sample_offset, sum_offset, published_offset;
+    };
+
+    FilmLayout() { slots_.fill(kAbsent); }
     explicit FilmLayout(std::span<const Pass> passes);
-    bool has(Pass pass) const { return pass == Pass::Combined || offsets_[index(pass)] != kAbsent; }
-    // Offset of the pass's first channel among the extra channels (only for has(pass)).
-    uint32_t offset(Pass pass) const { return offsets_[index(pass)]; }
-    // Channels of the enabled passes other than Combined.
-    uint32_t extra_channels() const { return extra_channels_; }
+    bool has(Pass pass) const { return pass == Pass::Combined || slots_[index(pass)] != kAbsent; }
+    // The placement of a held pass other than Combined (only for has(pass)).
+    const Entry& entry(Pass pass) const { return entries_[slots_[index(pass)]]; }
+    std::span<const Entry> entries() const { return {entries_.data(), count_}; }
+    // Channels the integrator writes per camera sample (Average and FirstSample passes).
+    uint32_t extra_channels() const { return sample_channels_; }
+    // Doubles summed and floats published per pixel besides Combined's 4.
+    uint32_t sum_channels() const { return sum_channels_; }
+    uint32_t published_channels() const { return published_channels_; }
 
 private:
     static constexpr uint32_t kAbsent = ~0u;
     static size_t index(Pass pass) { return static_cast<size_t>(pass); }
-    std::array<uint32_t, kPasses.size()> offsets_{};
-    uint32_t extra_channels_ = 0;
+    std::array<uint32_t, kPasses.size()> slots_{};
+    std::array<Entry, kPasses.size()> entries_{};
+    uint32_t count_ = 0;
+    uint32_t sample_channels_ = 0, sum_channels_ = 0, published_channels_ = 0;
 };
 
 // The extra pass values of one camera sample, written by the integrator. Passes the render did
-// not ask for are not stored, so writing them costs nothing.
+// not ask for (or that the film derives itself) are not stored, so writing them costs nothing.
+// `camera` is the render's camera, for the passes measured in its space (Depth, Denoising Normal).
 class PassValues {
 public:
     PassValues() = default;
-    PassValues(const FilmLayout* layout, float* values) : layout_(layout), values_(values) {}
-    bool wants(Pass pass) const { return layout_ && pass != Pass::Combined && layout_->has(pass); }
+    PassValues(const FilmLayout* layout, float* values, const Camera* camera = nullptr)
+        : layout_(layout), values_(values), camera_(camera) {}
+    bool wants(Pass pass) const {
+        return layout_ && pass != Pass::Combined && layout_->has(pass) &&
+               sample_channels(pass_info(pass)) > 0;
+    }
+    // Whether any pass the integrator writes is held.
+    bool any() const { return layout_ && layout_->extra_channels() > 0; }
+    const Camera* camera() const { return camera_; }
     void write(Pass pass, Vec3 v) {
-        if (!wants(pass)) return;
-        float* out = values_ + layout_->offset(pass);
+        if (!wants(pass) || pass_info(pass).channels != 3) return;
+        float* out = values_ + layout_->entry(pass).sample_offset;
         out[0] = v.x;
         out[1] = v.y;
         out[2] = v.z;
+    }
+    void write(Pass pass, float v) {
+        if (!wants(pass) || pass_info(pass).channels != 1) return;
+        values_[layout_->entry(pass).sample_offset] = v;
     }
 
 private:
     const FilmLayout* layout_ = nullptr;
     float* values_ = nullptr;
+    const Camera* camera_ = nullptr;
 };
 
 // One light path's contribution to one pixel of the rendered region.
@@ -93,7 +126,11 @@ public:
     void load_sums(size_t pixel, double* out) const;
     void store_sums(size_t pixel, const double* sums, uint32_t count);
     // Doubles per pixel in load_sums / store_sums.
-    uint32_t sums_stride() const { return 4 + layout_.extra_channels(); }
+    uint32_t sums_stride() const { return 4 + layout_.sum_channels(); }
+    // Adds camera sample `sample_index` (radiance, alpha and the integrator's pass values) to a
+    // pixel's sums loaded with load_sums.
+    void add_sample(double* sums, uint32_t sample_index, Rgb radiance, float alpha,
+                    const float* values) const;
 
     // The splats of a contribution reaching film point s (full-frame pixel units): every pixel
     // of the region whose centre lies within the filter's radius, weighted by the filter
@@ -118,10 +155,12 @@ private:
     uint32_t frame_width_, frame_height_;
     PixelFilter filter_;
     FilmLayout layout_;
+    uint32_t published_stride() const { return 4 + layout_.published_channels(); }
+
     std::vector<double> sums_;        // sums_stride() per pixel
     std::vector<uint32_t> counts_;    // camera samples summed per pixel
     std::vector<double> splat_sums_;  // RGB per pixel, when light paths splat
-    // Published values (4 + extra channels per pixel). Tiles publish disjoint pixels under a
+    // Published values (published_stride() per pixel). Tiles publish disjoint pixels under a
     // shared lock; read() takes it exclusively.
     mutable std::shared_mutex published_mutex_;
     std::vector<float> published_;

@@ -1,5 +1,6 @@
 #include "integrators/ao_integrator.h"
 
+#include "integrators/camera_path_passes.h"
 #include "integrators/ray_offset.h"
 #include "sampling/dimensions.h"
 #include "scene/visibility.h"
@@ -11,14 +12,17 @@ RadianceSample AoIntegrator::estimate(const RenderScene& scene, const Sampler& s
                                       PassValues& passes, uint64_t& rays) const {
     SurfaceHit hit;
     ++rays;
+    CameraPathPasses data(passes, settings_.mist);
     if (!scene.intersect(camera_ray.origin, camera_ray.direction, camera_ray.t_min, camera_ray.t_max, &hit,
                          {camera_ray.time, kVisibleCamera})) {
+        // The background is white for AO: its albedo too.
+        data.miss(Rgb(1.0f), true);
         return {Rgb(1.0f)};
     }
     const Vec3 wo = -camera_ray.direction;
     const Vec3 ng = dot(hit.geometric_normal, wo) < 0.0f ? -hit.geometric_normal : hit.geometric_normal;
     const Vec3 ns = dot(hit.shading_normal, ng) < 0.0f ? -hit.shading_normal : hit.shading_normal;
-    passes.write(Pass::Normal, ns);
+    data.plain_surface(hit.position, ns, hit.uv);
     const Frame frame = Frame::from_normal(ns);
 
     const Vec3 local = sample_hemisphere(settings_.hemisphere,

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "film/film.h"
+#include "integrators/camera_path_passes.h"
 #include "integrators/estimator_options.h"
 #include "render_scene/render_scene.h"
 #include "sampling/hemisphere.h"
@@ -44,6 +45,8 @@ struct IntegratorSettings {
     uint32_t rr_min_depth = 3;
     // The control variate's ambient radiance L_a (textbook 5.17–5.18); 0 = off.
     float control_variate = 0.0f;
+    // The Mist pass's start, depth and falloff (Blender's world mist settings).
+    MistSettings mist;
 };
 
 // One camera ray's estimate: the radiance, and the alpha the film stores (1 = covered; a

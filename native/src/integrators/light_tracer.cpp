@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/camera_path_passes.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
@@ -76,12 +77,17 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
     float t_min = camera_ray.t_min, t_max = camera_ray.t_max;
     const RayQuery query{camera_ray.time, kVisibleCamera};
     const LightSet& lights = scene.lights();
+    CameraPathPasses data(passes, settings_.mist);
     for (uint32_t passed = 0;; ++passed) {
         SurfaceHit hit;
         ++rays;
         const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
-        L += beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, kVisibleCamera);
+        const Rgb lamp = beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, kVisibleCamera);
+        L += lamp;
+        data.emitted(lamp, true);
         if (!found) {
+            if (data.pending())
+                data.miss(settings_.film_transparent ? Rgb(0.0f) : beta * scene.background(dir), true);
             if (settings_.film_transparent) {
                 transparency += beta.average();
             } else {
@@ -91,7 +97,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         }
         const ShadingPoint sp = build_closures(scene, hit, -dir);
         const ClosureSet& closures = sp.closures;
-        if (passed == 0) passes.write(Pass::Normal, sp.ns);
+        data.surface(hit.position, sp.ns, hit.uv, closures, beta, true);
         const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
         if (!holdout.is_black()) transparency += (holdout * beta).average();
         if (hit.holdout) break;
@@ -104,6 +110,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         t_min = 0.0f;
         t_max = kInfinity;
     }
+    data.finish();
     return {L, std::clamp(1.0f - transparency, 0.0f, 1.0f)};
 }
 

@@ -1,5 +1,6 @@
 #include "integrators/path_integrator.h"
 
+#include "integrators/camera_path_passes.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
@@ -54,6 +55,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     const LightSelection selection = settings_.light_selection;
     const uint32_t max_shadow_surfaces = settings_.transparent_max_bounces;
     const float ambient = settings_.control_variate;  // L_a of the control variate (5.17)
+    CameraPathPasses data(passes, settings_.mist);
 
     // `vertex` numbers every surface the path meets (bounces and pass-throughs), so each owns a
     // block of sample dimensions.
@@ -82,10 +84,14 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     w = hit_weight(scatter_pdf, lamp_pdf * scale);
                 }
                 L += beta * lamp * w;
+                data.emitted(beta * lamp * w, camera_visible_path);
             }
         }
         if (!found) {
-            if (camera_visible_path && settings_.film_transparent) {
+            const bool transparent_film = camera_visible_path && settings_.film_transparent;
+            if (data.pending())
+                data.miss(transparent_film ? Rgb(0.0f) : beta * scene.background(dir), camera_visible_path);
+            if (transparent_film) {
                 transparency += beta.average();
                 break;
             }
@@ -99,7 +105,11 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         const Vec3 wo_world = -dir;
         const ShadingPoint sp = build_closures(scene, hit, wo_world);
         const ClosureSet& closures = sp.closures;
-        if (vertex == 0) passes.write(Pass::Normal, sp.ns);
+        data.surface(hit.position, sp.ns, hit.uv, closures, beta, camera_visible_path);
+        if (camera_visible_path && data.wants_ao())
+            data.ao(scene, hit.position, sp.ns, sp.ng,
+                    sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection)),
+                    beta * (Rgb(1.0f) - closures.transparency()), query.time, settings_.ao_distance, rays);
 
         if (camera_visible_path) {
             const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
@@ -232,6 +242,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         t_min = 0.0f;
         t_max = kInfinity;
     }
+    data.finish();
     return {L, std::clamp(1.0f - transparency, 0.0f, 1.0f)};
 }
 

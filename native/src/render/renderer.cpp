@@ -35,6 +35,16 @@ double seconds_since(Clock::time_point t0) {
     return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
+// Runs body on every tile of `tiles`, split down to at most kTileSize pixels a side
+// (tbb::simple_partitioner; the default partitioner leaves tiles of 32² and more): each tile
+// publishes its pixels and counts its samples when it ends, so small tiles are what makes the
+// image and the progress move within a pass. The split does not change any pixel: each pixel's
+// samples are summed by one thread in index order whatever tile it falls in.
+template <typename Body>
+void parallel_for_tile(const tbb::blocked_range2d<uint32_t>& tiles, const Body& body) {
+    tbb::parallel_for(tiles, body, tbb::simple_partitioner());
+}
+
 }  // namespace
 
 Renderer::Renderer(std::shared_ptr<const LiveScene> scene) : live_(std::move(scene)) {}
@@ -93,6 +103,7 @@ std::string Renderer::start() {
     cancel_.store(false);
     done_.store(false);
     samples_done_.store(0);
+    samples_in_progress_.store(0);
     samples_total_.store(settings_.samples);
     rays_.store(0);
     pixel_samples_done_.store(0);
@@ -151,6 +162,7 @@ void Renderer::run() {
         uint32_t begin = 0;
         while (begin < s.samples && !cancel_.load()) {
             const uint32_t end = std::min({s.samples, std::max(1u, 2 * begin), begin + kMaxPassSamples});
+            samples_in_progress_.store(end);
             trace_camera_samples(camera, begin, end, arena);
             if (light_paths_ > 0 && !cancel_.load()) {
                 trace_light_paths(camera, begin, end, arena);
@@ -190,7 +202,7 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
     const FilmLayout& layout = film_->layout();
     const uint32_t stride = film_->sums_stride();
     arena.execute([&] {
-        tbb::parallel_for(tbb::blocked_range2d<uint32_t>(region.y, region.y + region.height, kTileSize,
+        parallel_for_tile(tbb::blocked_range2d<uint32_t>(region.y, region.y + region.height, kTileSize,
                                                          region.x, region.x + region.width, kTileSize),
                           [&](const tbb::blocked_range2d<uint32_t>& tile) {
                               uint64_t rays = 0, pixel_samples = 0, dropped = 0;
@@ -221,7 +233,7 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
                                           // Drawn only with motion, so static renders stay bit-identical.
                                           if (motion) ray.time = sampler.get_1d(ps, kDimTime);
                                           std::fill(extra.begin(), extra.end(), 0.0f);
-                                          PassValues passes(&layout, extra.data());
+                                          PassValues passes(&layout, extra.data(), &camera);
                                           const RadianceSample r =
                                               integrator.estimate(scene, sampler, ps, ray, passes, rays);
                                           // A NaN or Inf sample would poison the pixel forever: it is
@@ -229,12 +241,8 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
                                           if (is_finite(r.radiance) && std::isfinite(r.alpha) &&
                                               std::all_of(extra.begin(), extra.end(),
                                                           [](float v) { return std::isfinite(v); })) {
-                                              sums[0] += r.radiance.r;
-                                              sums[1] += r.radiance.g;
-                                              sums[2] += r.radiance.b;
-                                              sums[3] += r.alpha;
-                                              for (size_t c = 0; c < extra.size(); ++c)
-                                                  sums[4 + c] += extra[c];
+                                              film_->add_sample(sums.data(), /*sample_index=*/i, r.radiance,
+                                                                r.alpha, extra.data());
                                           } else {
                                               ++dropped;
                                           }
@@ -246,12 +254,15 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
                                   }
                               }
                               rays_.fetch_add(rays, std::memory_order_relaxed);
-                              pixel_samples_done_.fetch_add(pixel_samples, std::memory_order_relaxed);
                               dropped_samples_.fetch_add(dropped, std::memory_order_relaxed);
-                              if (light_paths_ > 0) return;  // published with the light paths
-                              film_->publish(tile.cols().begin(), tile.cols().end(), tile.rows().begin(),
-                                             tile.rows().end());
-                              update_serial_.fetch_add(1);
+                              // Published (films without light paths) before the samples are
+                              // counted: a progress that shows them has the serial of their pixels.
+                              if (light_paths_ == 0) {
+                                  film_->publish(tile.cols().begin(), tile.cols().end(), tile.rows().begin(),
+                                                 tile.rows().end());
+                                  update_serial_.fetch_add(1);
+                              }
+                              pixel_samples_done_.fetch_add(pixel_samples);
                           });
     });
 }
@@ -322,17 +333,22 @@ bool Renderer::wait(int timeout_ms) {
 RenderProgress Renderer::progress() const {
     std::lock_guard lock(state_mutex_);
     RenderProgress p;
+    // Read before the serial: a tile publishes its pixels, then bumps the serial, then counts
+    // its samples, so the serial read here covers every sample counted.
+    const double pixel_samples_done = static_cast<double>(pixel_samples_done_.load());
     p.done = done_.load();
     p.cancelled = cancelled_;
     p.samples_done = samples_done_.load();
     p.samples_total = samples_total_.load();
+    p.samples_in_progress = samples_in_progress_.load();
     p.update_serial = update_serial_.load();
     p.rays = static_cast<double>(rays_.load());
     p.build_seconds = build_seconds_;
     p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;
     const double pixel_samples_total = work_per_sample_ * p.samples_total;
-    p.fraction_done =
-        pixel_samples_total > 0 ? static_cast<double>(pixel_samples_done_.load()) / pixel_samples_total : 0.0;
+    p.fraction_done = pixel_samples_total > 0 ? pixel_samples_done / pixel_samples_total : 0.0;
+    // Exact at the end: the work done is then samples_total × work_per_sample_, both integers.
+    p.samples_average = work_per_sample_ > 0 ? pixel_samples_done / work_per_sample_ : 0.0;
     p.error = error_;
     return p;
 }

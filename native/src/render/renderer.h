@@ -5,6 +5,9 @@
 // intermediate image holds a power-of-two-aligned prefix of each pixel's samples, so
 // low-discrepancy properties hold at every update (research/samplers.md §5.6). Each pixel sums
 // its own samples in index order, so the image is bit-identical for any thread count.
+// Within a pass, tiles of at most kTileSize² pixels publish as they finish and count their
+// pixel samples, so the image and the progress move many times per pass (a 512² frame has
+// 1024 tiles): the last pass of a 64-sample render is half its time.
 // The renderer knows no integrator by type: an integrator that traces light paths (light
 // tracing) gets, after each pass of camera samples, its light paths of the same sample indices,
 // whose splats reach the film in a fixed chunk order (trace_light_paths); such a film is
@@ -33,7 +36,13 @@ namespace stratum {
 
 struct RenderProgress {
     bool done = false, cancelled = false;
-    uint32_t samples_done = 0, samples_total = 0;
+    // samples_done: samples every pixel has; samples_in_progress: what the pass in progress (or
+    // the last one started) brings every pixel to, so each pixel holds one or the other.
+    uint32_t samples_done = 0, samples_total = 0, samples_in_progress = 0;
+    // Sample indices done per pixel on average, from the work finished (camera samples and light
+    // paths): samples_done plus the finished part of the pass in progress. It moves with every
+    // tile; Cycles' "Sample N/M" counts the same quantity (there, all pixels hold N at once).
+    double samples_average = 0;
     uint32_t update_serial = 0;
     double rays = 0, build_seconds = 0, render_seconds = 0;
     double fraction_done = 0;
@@ -99,7 +108,7 @@ private:
 
     std::thread worker_;
     std::atomic<bool> cancel_{false}, done_{true};
-    std::atomic<uint32_t> samples_done_{0}, samples_total_{0}, update_serial_{0};
+    std::atomic<uint32_t> samples_done_{0}, samples_total_{0}, samples_in_progress_{0}, update_serial_{0};
     std::atomic<uint64_t> rays_{0};
     std::atomic<uint64_t> pixel_samples_done_{0};
     mutable std::mutex state_mutex_;

@@ -160,4 +160,21 @@ bool Camera::connect(Vec3 x, Vec2 lens, CameraConnection* out) const {
     return true;
 }
 
+float Camera::z_depth(Vec3 x) const {
+    const Vec3 offset = x - params_.camera_to_world.translation();
+    if (params_.type == CameraType::Equirectangular) return length(offset);
+    return to_view_space(offset).z;
+}
+
+float Camera::distance(Vec3 x) const {
+    if (params_.type == CameraType::Orthographic) return std::fabs(z_depth(x));
+    return length(x - params_.camera_to_world.translation());
+}
+
+Vec3 Camera::to_view_space(Vec3 direction) const {
+    const Transform& m = params_.camera_to_world;
+    return {dot(direction, normalize(m.column(0))), dot(direction, normalize(m.column(1))),
+            -dot(direction, normalize(m.column(2)))};
+}
+
 }  // namespace stratum

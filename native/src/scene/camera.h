@@ -112,6 +112,14 @@ public:
     // have no connection: a particle never reaches their film by a finite lens).
     bool connect(Vec3 x, Vec2 lens, CameraConnection* out) const;
     CameraType type() const { return params_.type; }
+    // Cycles' camera_z_depth (kernel/camera/camera.h): the depth of x along the view axis for
+    // perspective and orthographic cameras, its distance from the camera for panoramic ones.
+    float z_depth(Vec3 x) const;
+    // Cycles' camera_distance: |x − camera| (orthographic: the distance along the view axis).
+    float distance(Vec3 x) const;
+    // A world direction in Cycles' camera space (x right, y up, z forward: Blender's camera
+    // axes with z negated, its scale cleared as Cycles clears it), as Cycles' Denoising Normal.
+    Vec3 to_view_space(Vec3 direction) const;
     // The view plane: at unit distance in front of the camera (perspective) or at the camera
     // (orthographic, scene units): [left,right] x [bottom,top].
     float left() const { return left_; }

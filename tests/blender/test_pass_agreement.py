@@ -1,0 +1,116 @@
+"""Stratum's data passes against Cycles' on the bundled Cornell box: Depth, Position, Normal,
+Denoising Normal and Denoising Albedo, per pixel, away from edges.
+
+Both render with a pixel filter of width 0.02 (every sample within 0.01 px of the pixel
+centre), so the passes of one pixel are of (nearly) one point in both renderers and need no
+noise allowance: Depth and Position are sample 0's in both, Normal and the denoising features
+are the same for every sample of a flat or smooth face. Pixels whose 3 × 3 neighbourhood in
+Cycles' passes spans a depth step (> 5%) or a crease (neighbour normals more than 3.6° apart)
+are edges, where 0.01 px can change the surface seen, and are left out.
+
+Tolerances: Depth and Position 1e-3 relative (a 0.01 px offset moves the point by < 1e-4 of
+the depth at this 40 mm lens and 64 px); normals 2e-3 (the same offset on the sphere's smooth
+shading). Denoising Albedo differs by definition (docs/passes.md): Cycles writes the base colour
+plus the Principled specular layer's Fresnel-weighted albedo at the view angle (roughness 0.5 is
+"diffuse-like" for it), Stratum the base colour + 0.04 (the layer's albedo at normal
+incidence). The Fresnel reflectance of IOR 1.5 stays within 0.04-0.05 up to 45° from the normal
+(0.042 at 30°, 0.05 at 45°), so where the camera sees a face within 45° they agree within 0.03
+absolute (the rough layer's albedo spreads the Fresnel term a little); the comparison is limited
+to those pixels. On the emitting quad both write its emission (15).
+
+Blender 5.0's bpy module writes only Combined into a multilayer EXR, Cycles too, so the Cycles
+side is read in Blender 3.4 only.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+import bpy
+import numpy as np
+import pytest
+
+from agreement import configure_cycles, configure_stratum, open_scene
+from test_render_passes import read_exr_channels
+
+RES = 48
+SAMPLES = 4
+PASSES = {"Depth": "Z", "Position": "XYZ", "Normal": "XYZ", "Denoising Normal": "XYZ",
+          "Denoising Albedo": "RGB"}
+
+pytestmark = pytest.mark.skipif(
+    bpy.app.version >= (5, 0, 0),
+    reason="Blender 5.0's bpy module writes only Combined into a multilayer EXR (Cycles too)")
+
+
+def render_passes(renderer: str, path: Path) -> dict[str, np.ndarray]:
+    scene = open_scene()
+    scene.render.resolution_x = scene.render.resolution_y = RES
+    layer = scene.view_layers[0]
+    layer.use_pass_z = layer.use_pass_normal = layer.use_pass_position = True
+    if renderer == "cycles":
+        configure_cycles(scene, 1, samples=SAMPLES)
+        scene.cycles.filter_width = 0.02
+        layer.cycles.denoising_store_passes = True
+    else:
+        configure_stratum(scene, 1, samples=SAMPLES)
+        scene.stratum.filter_width = 0.02
+        layer.stratum.use_pass_denoising_data = True
+    settings = scene.render.image_settings
+    settings.file_format = "OPEN_EXR_MULTILAYER"
+    settings.color_depth = "32"
+    scene.render.filepath = str(path)
+    scene.render.use_file_extension = False
+    bpy.ops.render.render(write_still=True)
+    channels = read_exr_channels(path)
+    name = layer.name
+    out = {}
+    for pass_name, letters in PASSES.items():
+        keys = [f"{name}.{pass_name}.{c}" for c in letters]
+        missing = [k for k in keys if k not in channels]
+        assert not missing, f"{renderer}: {missing} not in {sorted(channels)}"
+        out[pass_name] = np.stack([channels[k] for k in keys], axis=-1).astype(np.float64)
+    return out
+
+
+def interior(depth: np.ndarray, normal: np.ndarray) -> np.ndarray:
+    """Pixels away from depth steps (a second difference of the depth along a row or column
+    above 1% of it: a plane's depth is nearly linear across pixels) and creases (a neighbour's
+    normal more than 3.6° off); the outer ring is out."""
+    keep = np.zeros(depth.shape, dtype=bool)
+    keep[1:-1, 1:-1] = True
+    for axis in (0, 1):
+        second = np.roll(depth, 1, axis=axis) - 2 * depth + np.roll(depth, -1, axis=axis)
+        keep &= np.abs(second) <= 0.01 * depth
+    for dy in (-1, 0, 1):
+        for dx in (-1, 0, 1):
+            n = np.roll(normal, (dy, dx), axis=(0, 1))
+            keep &= np.sum(n * normal, axis=-1) >= np.cos(np.radians(3.6))
+    return keep
+
+
+def test_data_passes_agree_with_cycles_on_the_cornell_box(library: Any, tmp_path: Path) -> None:
+    cycles = render_passes("cycles", tmp_path / "cycles.exr")
+    stratum = render_passes("stratum", tmp_path / "stratum.exr")
+    depth = cycles["Depth"][..., 0]
+    keep = interior(depth, cycles["Normal"])
+    # A large part of the image is interior (47% at 48 px: the frame's margin is background,
+    # the boxes and the sphere are edges and creases at this size): the test is not vacuous.
+    assert keep.sum() > 0.4 * RES * RES, keep.sum()
+    scale = depth[keep][:, None]
+    np.testing.assert_allclose(stratum["Depth"][..., 0][keep], depth[keep], rtol=1e-3)
+    assert np.all(np.abs(stratum["Position"][keep] - cycles["Position"][keep]) <= 1e-3 * scale)
+    np.testing.assert_allclose(stratum["Normal"][keep], cycles["Normal"][keep], atol=2e-3)
+    np.testing.assert_allclose(stratum["Denoising Normal"][keep], cycles["Denoising Normal"][keep],
+                               atol=2e-3)
+    # Denoising Albedo where the camera sees a face within 45° of its normal (see the top; at
+    # grazing views Cycles' Fresnel-weighted specular albedo grows: 0.16 above Stratum's on the
+    # red wall's far end).
+    camera = np.array(bpy.context.scene.camera.matrix_world.translation)
+    to_camera = camera - cycles["Position"]
+    to_camera /= np.linalg.norm(to_camera, axis=-1, keepdims=True)
+    facing = keep & (np.sum(to_camera * cycles["Normal"], axis=-1) >= np.cos(np.radians(45.0)))
+    assert facing.sum() > 0.1 * RES * RES, facing.sum()  # the back wall and the boxes' fronts
+    np.testing.assert_allclose(stratum["Denoising Albedo"][facing],
+                               cycles["Denoising Albedo"][facing], atol=0.03)
