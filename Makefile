@@ -91,6 +91,7 @@ bench: build
 	$(BLENDER_BG) --python scripts/bench.py
 	$(BLENDER_BG) --python scripts/bench_progress.py
 	$(PY) scripts/bench_textures.py
+	$(BLENDER_BG) --python scripts/bench_viewport.py
 
 # The study: the sampler runs of issue 4 (Cornell box, Wolf, AO; 24.6 min measured on 2 shared
 # cores) and the estimator ladder of issue 6 (small-light, large-light and glossy Cornell boxes;

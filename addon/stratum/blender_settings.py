@@ -40,7 +40,7 @@ FROM_BLENDER: dict[str, str] = {
 
 # Setting -> why nothing in Blender sets it.
 NOT_IN_BLENDER: dict[str, str] = {
-    "bvh": "F12 renders use the library's default (static); the viewport will choose dynamic",
+    "bvh": "F12 renders use the library's default (static); the Rendered viewport uses dynamic",
 }
 
 # scene.stratum properties of the add-on alone: name -> (label, description, default). Off by
@@ -65,4 +65,32 @@ UI_DEFAULTS: dict[str, int | float | str] = {
     # Cycles' default sample count, so that switching a scene between the engines keeps it;
     # the library's own default (16) suits quick native renders and tests.
     "samples": 64,
+}
+
+# Blender-only properties of scene.stratum, not library settings: the Rendered viewport's
+# (engine/viewport.py). name -> (label, description).
+VIEWPORT_PROPERTIES: dict[str, tuple[str, str]] = {
+    "preview_samples": ("Viewport Samples",
+                        "Samples per pixel the Rendered viewport refines to before it stops"),
+    "preview_start_resolution": ("Start Resolution",
+                                 "Each change is first rendered with one sample at a resolution "
+                                 "whose longer side is at most this many pixels, then at twice "
+                                 "it, up to the viewport's own, so that a first image comes "
+                                 "fast (0 = off)"),
+    "use_split_view": ("Split View",
+                       "Render the left part of the viewport with Sampler and the right part "
+                       "with Compare Sampler, at the same samples and seed"),
+    "compare_sampler": ("Compare Sampler", "Sampler of the right part of a split viewport"),
+    "split_position": ("Split Position", "Where the viewport is split, from its left (0) to "
+                       "its right (1) edge"),
+}
+# Defaults of the viewport properties: Cycles' start resolution (64), not its viewport sample
+# count (1024 in 3.x is meant for a GPU; 32 refines a CPU viewport in seconds), and the sampler
+# compared with the library's default sampler, `random`.
+VIEWPORT_DEFAULTS: dict[str, int | float | bool | str] = {
+    "preview_samples": 32,
+    "preview_start_resolution": 64,
+    "use_split_view": False,
+    "compare_sampler": "sobol",
+    "split_position": 0.5,
 }

@@ -22,7 +22,13 @@ import numpy as np
 from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, PointerProperty
 
 from . import native
-from .blender_settings import BLENDER_ONLY, PROPERTIES, UI_DEFAULTS
+from .blender_settings import (
+    BLENDER_ONLY,
+    PROPERTIES,
+    UI_DEFAULTS,
+    VIEWPORT_DEFAULTS,
+    VIEWPORT_PROPERTIES,
+)
 
 # Where a slider stops dragging; typing goes on to the library's maximum.
 SOFT_MAXIMA: dict[str, int | float] = {
@@ -106,8 +112,35 @@ def _make_property_group(settings: tuple[native.Setting, ...]) -> type:
             name: BoolProperty(name=label, description=description, default=default,
                                update=_update_render_passes)
             for name, (label, description, default) in BLENDER_ONLY.items()})
+        __annotations__.update(_viewport_properties(by_name))
 
     return StratumRenderSettings
+
+
+def _viewport_properties(by_name: dict[str, native.Setting]) -> dict[str, Any]:
+    """The Rendered viewport's own properties (blender_settings.VIEWPORT_PROPERTIES); none
+    without the library, whose sampler list and sample range they use."""
+    if "sampler" not in by_name or "samples" not in by_name:
+        return {}
+
+    def common(name: str) -> dict[str, Any]:
+        label, description = VIEWPORT_PROPERTIES[name]
+        return {"name": label, "description": description, "default": VIEWPORT_DEFAULTS[name]}
+
+    samples = by_name["samples"]
+    samplers = [(choice.name, choice.label, choice.description, number)
+                for number, choice in enumerate(by_name["sampler"].choices)]
+    return {
+        "preview_samples": IntProperty(**common("preview_samples"), min=samples.minimum,
+                                       max=min(samples.maximum, INT_MAX),
+                                       soft_max=SOFT_MAXIMA["samples"]),
+        "preview_start_resolution": IntProperty(**common("preview_start_resolution"), min=0,
+                                                max=16384, subtype="PIXEL"),
+        "use_split_view": BoolProperty(**common("use_split_view")),
+        "compare_sampler": EnumProperty(items=samplers, **common("compare_sampler")),
+        "split_position": FloatProperty(**common("split_position"), min=0.0, max=1.0,
+                                        subtype="FACTOR"),
+    }
 
 
 def register() -> None:

@@ -82,6 +82,27 @@ class STRATUM_RENDER_PT_sampling_denoising(StratumButtonsPanel, bpy.types.Panel)
         col.prop(context.scene.stratum, "use_preview_denoising", text="Viewport")
 
 
+class STRATUM_RENDER_PT_viewport(StratumButtonsPanel, bpy.types.Panel):
+    """The Rendered viewport: its samples, start resolution and the sampler split view."""
+
+    bl_label = "Viewport"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        layout.use_property_decorate = False
+        settings = context.scene.stratum
+        col = layout.column()
+        col.prop(settings, "preview_samples", text="Samples")
+        col.prop(settings, "preview_start_resolution", text="Start Resolution")
+        col = layout.column(heading="Split View")
+        col.prop(settings, "use_split_view", text="Compare Samplers")
+        sub = col.column()
+        sub.active = settings.use_split_view
+        sub.prop(settings, "compare_sampler", text="Right Sampler")
+        sub.prop(settings, "split_position", text="Position", slider=True)
+
+
 class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
     bl_label = "Light Paths"
     bl_options = {"DEFAULT_CLOSED"}
@@ -149,6 +170,7 @@ classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_library,
     STRATUM_RENDER_PT_sampling,
     STRATUM_RENDER_PT_sampling_denoising,
+    STRATUM_RENDER_PT_viewport,
     STRATUM_RENDER_PT_light_paths,
     STRATUM_RENDER_PT_film,
     STRATUM_RENDER_PT_performance,

@@ -17,6 +17,7 @@ from ..export import ExportCancelled, ExportError, ExportSummary
 from . import denoise, render_passes
 from .final_render import render_frame
 from .preview import render_preview
+from .viewport import free_viewport, view_draw, view_update, viewport_call
 
 ENGINE_ID = "STRATUM"
 
@@ -40,6 +41,10 @@ class StratumRenderEngine(bpy.types.RenderEngine):
 
     def __init__(self, *args: Any, **kwargs: Any) -> None:
         super().__init__(*args, **kwargs)  # required in Blender 4.4+
+
+    def __del__(self) -> None:
+        # Blender frees the engine when the view leaves Rendered shading, closes or quits.
+        free_viewport(id(self))
 
     def _report(self, level: str, message: str) -> None:
         type(self).last_reports.append((level, message))
@@ -74,6 +79,14 @@ class StratumRenderEngine(bpy.types.RenderEngine):
             denoise.register_passes(self, scene, renderlayer)
         except Exception:  # noqa: BLE001 - nothing may crash Blender
             traceback.print_exc()
+
+    # ---- the Rendered viewport (engine/viewport.py) ----------------------------------------
+
+    def view_update(self, context: Any, depsgraph: Any) -> None:
+        viewport_call(self, lambda state: view_update(state, depsgraph))
+
+    def view_draw(self, context: Any, depsgraph: Any) -> None:
+        viewport_call(self, lambda state: view_draw(state, self, context, depsgraph))
 
 
 def register() -> None:

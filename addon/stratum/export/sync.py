@@ -98,10 +98,13 @@ class _Exported:
 class SceneSync:
     """The native scene of a depsgraph, kept in step with it. Each full() fills a new scene
     from new_scene() and closes the previous one (renderers made from that keep rendering
-    what it held)."""
+    what it held). require_camera=False (the viewport, which sets its own view's camera): a
+    scene without an active camera is exported without one instead of being an error."""
 
-    def __init__(self, new_scene: Callable[[], Any] = native.Scene) -> None:
+    def __init__(self, new_scene: Callable[[], Any] = native.Scene,
+                 require_camera: bool = True) -> None:
         self._new_scene = new_scene
+        self._require_camera = require_camera
         self._scene: Any | None = None
         self._exported: _Exported | None = None
         self._stale = "nothing was exported yet"
@@ -145,8 +148,9 @@ class SceneSync:
         try:
             # Blender clamps lens to >= 1 mm, so a zero focal length comes only from files
             # other tools wrote; the native side rejects it (and any other bad value) by name.
-            camera = convert_camera(bl_scene, depsgraph)
-            scene.set_camera(camera)
+            camera = self._camera(bl_scene, depsgraph)
+            if camera is not None:
+                scene.set_camera(camera)
         except native.StratumError as exc:
             raise ExportError(f"Camera '{bl_scene.camera.name}': {exc}") from exc
         try:
@@ -211,7 +215,8 @@ class SceneSync:
                exported)
 
         summary.textures = materials.textures.count
-        self._exported = _Exported(exported, materials, comparable(camera),
+        self._exported = _Exported(exported, materials,
+                                   comparable(camera) if camera is not None else (),
                                    original_pointer(bl_scene.world), background, environment,
                                    shutter_settings(bl_scene))
         self._stale = ""
@@ -250,12 +255,18 @@ class SceneSync:
         edits = object_edits(depsgraph, changes, exported.objects, scene, summary)
         edits += _material_edits(depsgraph, changes, exported.materials, summary)
         edits += _world_edits(bl_scene, changes, exported, scene, summary)
-        camera = convert_camera(bl_scene, depsgraph)
-        if comparable(camera) != exported.camera:
+        camera = self._camera(bl_scene, depsgraph)
+        if camera is not None and comparable(camera) != exported.camera:
             exported.camera = comparable(camera)
             edits.append(named_edit(f"Camera '{bl_scene.camera.name}'",
                                     partial(scene.set_camera, camera)))
         return edits
+
+
+    def _camera(self, bl_scene: Any, depsgraph: Any) -> native.Camera | None:
+        if bl_scene.camera is None and not self._require_camera:
+            return None
+        return convert_camera(bl_scene, depsgraph)
 
 
 def _evaluated_scene(depsgraph: Any) -> Any:
