@@ -10,7 +10,7 @@ CMAKE_ARGS ?= -DCMAKE_BUILD_TYPE=Release -DSTRATUM_WERROR=ON
 LIB        := addon/stratum/lib/libstratum.so
 
 .PHONY: all setup build test test-native test-python test-blender test-blender-3 test-blender-wheel \
-        lint render bench sanitize format clean study test-corpus test-sessions corpus-asan \
+        lint render bench sanitize format clean study test-corpus test-sessions test-ui corpus-asan \
         settings-table
 
 all: build
@@ -28,7 +28,7 @@ build: setup
 	$(PY) scripts/copy_oidn.py addon/stratum/lib
 
 # corpus-asan after sanitize, which builds the binary it replays with.
-test: build lint test-native test-python test-blender sanitize corpus-asan fuzz-smoke
+test: build lint test-native test-python test-blender test-ui sanitize corpus-asan fuzz-smoke
 
 test-native: build
 	cd $(BUILD) && ctest --output-on-failure -j2
@@ -44,6 +44,11 @@ test-blender-3: build
 
 test-blender-wheel: build
 	$(PY) -m pytest tests/blender -q
+
+# Blender 3.4 with its UI on a virtual display (xvfb-run): the Rendered viewport as a user
+# drives it, and what must not crash it (tests/ui). ~5 min.
+test-ui: build
+	$(PY) -m pytest tests/ui -q
 
 # The hostile-scene corpus (issue 12): every case in Blender 3.4 and in the bpy wheel, each in
 # worker subprocesses so that a crash fails one case; table in out/corpus/outcomes.md. ~30 s.

@@ -39,7 +39,9 @@ def test_engine_in_render_engine_enum(stratum_addon: Any) -> None:
 
     assert StratumRenderEngine.bl_label == "Stratum"
     assert StratumRenderEngine.bl_use_postprocess is True
-    assert StratumRenderEngine.bl_use_preview is False
+    # Stratum renders material, light and world thumbnails; Material Preview shading is EEVEE's.
+    assert StratumRenderEngine.bl_use_preview is True
+    assert StratumRenderEngine.bl_use_eevee_viewport is True
 
 
 def test_properties_defaults_and_limits(stratum_addon: Any) -> None:
