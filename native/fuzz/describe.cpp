@@ -115,7 +115,7 @@ std::string describe(const StratumInstanceDesc& d) {
            field("transform", describe_floats(d.transform, 16)) + ", " +
            field("transform_end", describe_floats(d.transform_end, 16)) + ", " +
            field("motion", integer(d.motion)) + ", " + field("visibility", integer(d.visibility)) + ", " +
-           field("holdout", integer(d.holdout)) + "}";
+           field("holdout", integer(d.holdout)) + ", " + field("pass_index", integer(d.pass_index)) + "}";
 }
 
 std::string describe(const StratumMeshDesc& d) {

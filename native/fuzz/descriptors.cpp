@@ -228,6 +228,9 @@ StratumInstanceDesc draw_instance(ByteReader& in, uint32_t mesh_count) {
     d.visibility = draw_visibility(in);
     const uint8_t holdout = in.u8();
     d.holdout = holdout % 8 == 7 ? 2 : holdout % 2;
+    // The same byte's high bits give the pass index (no new byte: the corpus keeps its meaning);
+    // 31 is one past the largest accepted.
+    d.pass_index = holdout / 8 == 31 ? STRATUM_MAX_PASS_INDEX + 1 : holdout / 8;
     return d;
 }
 

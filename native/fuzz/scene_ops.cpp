@@ -37,8 +37,10 @@ void op_add_material(ByteReader& in, ProgramState& s) {
 }
 
 void op_add_closure_material(ByteReader& in, ProgramState& s) {
-    // 0 and kMaxClosures + 1 = 9 closures are refused.
-    std::vector<StratumClosureDesc> closures(in.u8() % 10);
+    // 0 and kMaxClosures + 1 = 9 closures are refused. The count byte's tens are the material's
+    // pass index (no new byte: the corpus keeps its meaning); 25 is one past the largest accepted.
+    const uint8_t count_byte = in.u8();
+    std::vector<StratumClosureDesc> closures(count_byte % 10);
     for (StratumClosureDesc& c : closures) {
         for (float& w : c.weight) w = in.f32(FloatKind::Unit);
         c.closure = draw_material(in);
@@ -61,6 +63,11 @@ void op_add_closure_material(ByteReader& in, ProgramState& s) {
     if (status != STRATUM_OK) return;
     expect_id("stratum_scene_add_closure_material", id, s.materials());
     s.closures.push_back(count);
+    const uint32_t pass_index = count_byte / 10 == 25 ? STRATUM_MAX_PASS_INDEX + 1 : count_byte / 10;
+    checked(
+        "stratum_scene_set_material_pass_index",
+        [&] { return stratum_scene_set_material_pass_index(s.scene, id, pass_index); },
+        [&] { return "scene, " + std::to_string(id) + ", " + std::to_string(pass_index); });
 }
 
 void op_add_texture(ByteReader& in, ProgramState& s) {

@@ -1,6 +1,7 @@
 """Render passes through F12 (engine/render_passes.py): with the view layer's pass toggles on,
 the multilayer EXR Blender writes holds Depth, Normal, Position, Denoising Albedo/Normal, the
-sample count and the error pass, with the values of their closed forms on a tilted plane.
+object and material index, the sample count and the error pass, with the values of their closed
+forms on a tilted plane.
 
 The scene: a camera at the origin looking down −Z with a 90° field of view (lens 18 mm on a
 36 mm sensor), 16 × 16 pixels, a box filter of width 1 (every sample inside its pixel), and a
@@ -28,6 +29,8 @@ TILT = math.radians(30.0)
 ALBEDO = (0.2, 0.5, 0.8)
 WORLD = (0.3, 0.6, 0.9)
 SAMPLES = 8
+OBJECT_INDEX = 6  # Object > Relations > Pass Index of the plane
+MATERIAL_INDEX = 9  # Material > Settings > Pass Index of its material
 
 READ_EXR = """
 import sys
@@ -81,12 +84,17 @@ def tilted_plane_scene(builder: Any) -> Any:
     diffuse = nodes.new("ShaderNodeBsdfDiffuse")
     diffuse.inputs["Color"].default_value = (*ALBEDO, 1.0)
     material.node_tree.links.new(diffuse.outputs["BSDF"], nodes["Material Output"].inputs["Surface"])
-    builder.mesh_object("Plane", data=mesh, material=material)
+    material.pass_index = MATERIAL_INDEX
+    plane = builder.mesh_object("Plane", data=mesh, material=material)
+    plane.pass_index = OBJECT_INDEX
     builder.world(WORLD)
     layer = scene.view_layers[0]
     layer.use_pass_z = True
     layer.use_pass_normal = True
     layer.use_pass_position = True
+    layer.use_pass_object_index = True
+    layer.use_pass_material_index = True
+    layer.use_pass_vector = True
     layer.use_pass_emit = True
     layer.use_pass_mist = True
     layer.use_pass_ambient_occlusion = True
@@ -172,6 +180,9 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     env = image("Env", "RGB")
     mist = image("Mist", "Z")[..., 0]
     ao = image("AO", "RGB")
+    object_index = image("IndexOB", "X")[..., 0]
+    material_index = image("IndexMA", "X")[..., 0]
+    vector = image("Vector", "XYZW")
     assert depth.shape == (SIZE, SIZE)
 
     plane, sky = np.s_[:, : SIZE // 2], np.s_[:, SIZE // 2:]
@@ -207,6 +218,13 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     # surface is seen.
     np.testing.assert_array_equal(ao[plane], 1.0)
     np.testing.assert_array_equal(ao[sky], 0.0)
+    # The index passes: the plane's object and material pass index, 0 where the world is seen.
+    np.testing.assert_array_equal(object_index[plane], float(OBJECT_INDEX))
+    np.testing.assert_array_equal(material_index[plane], float(MATERIAL_INDEX))
+    np.testing.assert_array_equal(object_index[sky], 0.0)
+    np.testing.assert_array_equal(material_index[sky], 0.0)
+    # No motion vectors (engine/render_passes.py): 0, not Blender's initial 10000.
+    np.testing.assert_array_equal(vector, 0.0)
     # The world seen directly is constant: its samples do not spread, its error is 0.
     np.testing.assert_array_equal(error[sky], 0.0)
     assert np.all(np.isfinite(error)) and np.all(error >= 0.0)
@@ -227,20 +245,23 @@ def test_update_render_passes_registers_what_the_toggles_ask_for(stratum_addon: 
 
     render_passes.register_passes(Recorder(), scene, layer)
     assert [r[0] for r in registered] == [
-        "Depth", "Mist", "Normal", "Position", "Emit", "Env", "AO", "Denoising Normal",
-        "Denoising Albedo", "Debug Sample Count", "Stratum Error"]
+        "Depth", "Mist", "Normal", "Position", "Vector", "IndexOB", "IndexMA", "Emit", "Env",
+        "AO", "Denoising Normal", "Denoising Albedo", "Debug Sample Count", "Stratum Error"]
     layer.use_pass_z = False
     layer.stratum.use_pass_denoising_data = False
     layer.use_pass_emit = False
     layer.use_pass_mist = False
     layer.use_pass_ambient_occlusion = False
+    layer.use_pass_object_index = False
+    layer.use_pass_material_index = False
+    # Vector is the add-on's zeros, not a native pass.
     assert render_passes.native_setting(render_passes.enabled_passes(layer)) == (
         "Normal,Position,Env,Debug Sample Count,Stratum Error")
-    # Every pass the add-on offers is one the library holds, with the same channel count.
+    # Every other pass the add-on offers is one the library holds, with the same channel count.
     held = {p.name: p.channels for p in library_passes()}
     for _, _, specs in render_passes.TOGGLES:
         for spec in specs:
-            assert held.get(spec.name) == spec.channels, spec.name
+            assert held.get(spec.name) == (spec.channels if spec.native else None), spec.name
 
 
 def library_passes() -> tuple[Any, ...]:
@@ -276,6 +297,7 @@ def test_the_passes_join_those_the_denoiser_asked_for(stratum_addon: Any,
     passes.configure(settings)
     names = settings["passes"].split(",")
     assert names[:2] == ["Denoising Albedo", "Denoising Normal"]
-    assert len(names) == len(set(names)) and set(added) <= set(names)
+    assert len(names) == len(set(names)) and set(added) - {"Vector"} <= set(names)
+    assert "Vector" in added and "Vector" not in names
     assert "Depth" in names and "Mist" in names
     assert (settings["mist_start"], settings["mist_depth"], settings["mist_falloff"]) == (0.0, 10.0, 1.0)

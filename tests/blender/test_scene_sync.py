@@ -176,6 +176,45 @@ def test_ray_visibility_and_holdout_are_edits_of_instances_seen_by_some_rays(
     assert not np.array_equal(after, before)
 
 
+def _index_passes(library: Any, scene: Any, renderer: Any = None) -> np.ndarray:
+    """IndexOB and IndexMA (height, width, 2) of a render of `scene`, by `renderer` or a new
+    one."""
+    if renderer is None:
+        with library.Renderer(scene, **SETTINGS, passes="IndexOB,IndexMA") as fresh:
+            return _index_passes(library, scene, fresh)
+    _render(renderer)
+    return np.concatenate([renderer.read_pass("IndexOB"), renderer.read_pass("IndexMA")], axis=-1)
+
+
+def test_pass_index_edits_reach_the_index_passes(scene_builder: Any, library: Any) -> None:
+    b = _build(scene_builder)
+    left = bpy.data.objects["Left"]
+    left.pass_index = 2  # sent by itself, before the instances every ray sees
+
+    def edit() -> None:
+        left.pass_index = 5
+        bpy.data.materials["Blue"].pass_index = 8
+
+    with SceneSync() as sync:
+        sync.full(b.depsgraph())
+        with library.Renderer(sync.scene, **SETTINGS, passes="IndexOB,IndexMA") as renderer:
+            before = _index_passes(library, sync.scene, renderer)
+            depsgraph, updates = _edit_in_blender(edit)
+            result = sync.update(depsgraph, updates)
+            assert not result.needs_full, result.reason
+            assert result.edits == 2
+            after = _index_passes(library, sync.scene, renderer)
+    # Both cubes are in view: Left (object 2, then 5; material 0) and Right (object 0;
+    # material 0, then 8), around them the world (0).
+    assert set(np.unique(before[..., 0]).tolist()) == {0.0, 2.0}
+    assert set(np.unique(before[..., 1]).tolist()) == {0.0}
+    assert set(np.unique(after[..., 0]).tolist()) == {0.0, 5.0}
+    assert set(np.unique(after[..., 1]).tolist()) == {0.0, 8.0}
+    with SceneSync() as sync:
+        sync.full(depsgraph)
+        assert np.array_equal(after, _index_passes(library, sync.scene))
+
+
 def test_update_inside_the_depsgraph_handler_reads_depsgraph_updates(scene_builder: Any,
                                                                       library: Any) -> None:
     b = _build(scene_builder)

@@ -5,7 +5,8 @@ each from the native film into the result when the render ends.
 Names, channel ids and kinds are Cycles' (intern/cycles/blender/addon/engine.py
 list_render_passes), so the compositor's Render Layers node and multilayer EXR see what they see
 with Cycles. Blender's own view-layer toggles drive the passes it has one for (Depth, Mist,
-Normal, Position, UV, Emit, Env, AO; the mist's start, depth and falloff are the world's);
+Normal, Position, UV, Vector, Object and Material Index, Emit, Env, AO; the mist's start, depth
+and falloff are the world's);
 `view_layer.stratum` holds the others (Cycles keeps its equivalents in view_layer.cycles).
 docs/passes.md says what each pass holds.
 """
@@ -28,6 +29,12 @@ class PassSpec:
     channels: int
     chan_id: str  # Blender's channel letters
     kind: str  # register_pass type: VALUE, VECTOR or COLOR
+    # False: not rendered, the result holds zeros. Only Vector: Stratum exports no motion at
+    # the frames before and after, so it has no motion vectors, and 0 is what Cycles writes
+    # when motion blur is on (scene/film.cpp skips the motion pass unless need_motion() is
+    # MOTION_PASS). Written, not left to Blender, which fills a new Vector pass with its
+    # "unknown speed" 10000 (PASS_VECTOR_MAX) that the Vector Blur node would smear.
+    native: bool = True
 
 
 # Toggle (owner "view_layer" = Blender's, "stratum" = view_layer.stratum) -> passes it adds.
@@ -37,6 +44,9 @@ TOGGLES: tuple[tuple[str, str, tuple[PassSpec, ...]], ...] = (
     ("view_layer", "use_pass_normal", (PassSpec("Normal", 3, "XYZ", "VECTOR"),)),
     ("view_layer", "use_pass_position", (PassSpec("Position", 3, "XYZ", "VECTOR"),)),
     ("view_layer", "use_pass_uv", (PassSpec("UV", 3, "UVA", "VECTOR"),)),
+    ("view_layer", "use_pass_vector", (PassSpec("Vector", 4, "XYZW", "VECTOR", native=False),)),
+    ("view_layer", "use_pass_object_index", (PassSpec("IndexOB", 1, "X", "VALUE"),)),
+    ("view_layer", "use_pass_material_index", (PassSpec("IndexMA", 1, "X", "VALUE"),)),
     ("view_layer", "use_pass_emit", (PassSpec("Emit", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_environment", (PassSpec("Env", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_ambient_occlusion", (PassSpec("AO", 3, "RGB", "COLOR"),)),
@@ -79,7 +89,7 @@ def enabled_passes(view_layer: Any) -> list[PassSpec]:
 
 def native_setting(specs: list[PassSpec]) -> str:
     """The native `passes` setting for these passes."""
-    return ",".join(spec.name for spec in specs)
+    return ",".join(spec.name for spec in specs if spec.native)
 
 
 # Blender's mist falloff -> the exponent Cycles raises the mist to (blender/sync.cpp).
@@ -114,7 +124,8 @@ class ResultPasses:
         """Adds these passes to the native settings' `passes` (after any already there, such
         as the denoiser's guides, without repeats), and the world's mist settings with Mist."""
         current = [name for name in str(settings.get("passes", "")).split(",") if name]
-        wanted = current + [spec.name for spec in self.specs if spec.name not in current]
+        wanted = current + [spec.name for spec in self.specs
+                            if spec.native and spec.name not in current]
         if wanted:
             settings["passes"] = ",".join(wanted)
         if self.world is not None and any(spec.name == "Mist" for spec in self.specs):
@@ -127,7 +138,11 @@ class ResultPasses:
             render_pass = layer.passes.find_by_name(spec.name, "")
             if render_pass is None:
                 continue
-            write_rect(render_pass, renderer.read_pass(spec.name))
+            if spec.native:
+                write_rect(render_pass, renderer.read_pass(spec.name))
+            else:
+                width, height = renderer.image_size
+                write_rect(render_pass, np.zeros((height, width, spec.channels), np.float32))
 
 
 def write_rect(render_pass: Any, pixels: np.ndarray) -> None:
@@ -168,6 +183,9 @@ class STRATUM_VIEWLAYER_PT_passes_data(bpy.types.Panel):
         col.prop(view_layer, "use_pass_normal")
         col.prop(view_layer, "use_pass_position")
         col.prop(view_layer, "use_pass_uv")
+        col.prop(view_layer, "use_pass_vector")
+        col.prop(view_layer, "use_pass_object_index")
+        col.prop(view_layer, "use_pass_material_index")
         col = layout.column(heading="Light", align=True)
         col.prop(view_layer, "use_pass_emit", text="Emission")
         col.prop(view_layer, "use_pass_environment")

@@ -1,20 +1,36 @@
-"""How a depsgraph object instance is placed: what it draws (its identity), which rays see it
-and whether it is held out (Object > Visibility in Cycles), and whether its transform can be
-rendered (stratum/placement.py)."""
+"""How a depsgraph object instance is placed: what it draws (its identity), which rays see it,
+whether it is held out (Object > Visibility in Cycles) and its pass index, and whether its
+transform can be rendered (stratum/placement.py)."""
 
 from __future__ import annotations
 
 from collections.abc import Sequence
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
+from .. import native
 from ..placement import degenerate, first_non_finite
 from .common import ExportError, ExportSummary
 from .lights import object_visibility
 
-# (row, mesh id, object name, triangles, visibility, holdout, (open, close) or None)
-Placement = tuple[int, int, str, int, int, bool, Any]
+
+class ObjectFlags(NamedTuple):
+    """What an instance carries besides its mesh and transform."""
+
+    visibility: int  # native VISIBLE_* bits
+    holdout: bool
+    pass_index: int  # Object > Relations > Pass Index (the IndexOB pass)
+
+    @property
+    def plain(self) -> bool:
+        """Seen by every ray, not held out, pass index 0: full() sends those in bulk, after
+        all others."""
+        return self.visibility == native.VISIBLE_ALL and not self.holdout and self.pass_index == 0
+
+
+# (row, mesh id, object name, triangles, flags, (open, close) or None)
+Placement = tuple[int, int, str, int, ObjectFlags, Any]
 
 
 def holdout(ob: Any, view_layer: Any) -> bool:
@@ -45,25 +61,26 @@ def original_pointer(ob: Any | None) -> int:
 
 
 class InstanceFlags:
-    """Visibility and holdout per (object identity, instancer), cached: 10 000 instances of
-    one object should not read its properties 10 000 times."""
+    """ObjectFlags per (object identity, instancer), cached: 10 000 instances of one object
+    should not read its properties 10 000 times."""
 
     def __init__(self, view_layer: Any) -> None:
         self._view_layer = view_layer
-        self._cache: dict[tuple[tuple[int, int], int], tuple[int, bool]] = {}
+        self._cache: dict[tuple[tuple[int, int], int], ObjectFlags] = {}
 
-    def get(self, ob: Any, ident: tuple[int, int], parent: Any | None) -> tuple[int, bool]:
+    def get(self, ob: Any, ident: tuple[int, int], parent: Any | None) -> ObjectFlags:
         key = (ident, parent.as_pointer() if parent is not None else 0)
         found = self._cache.get(key)
         if found is None:
             # Cycles (blender/object.cpp): an instance is visible to the rays both it and its
-            # instancer are visible to, and held out if either is.
+            # instancer are visible to, and held out if either is; its pass index is its own
+            # object's.
             visibility = object_visibility(ob)
             held_out = holdout(ob, self._view_layer)
             if parent is not None:
                 visibility &= object_visibility(parent)
                 held_out = held_out or holdout(parent, self._view_layer)
-            found = (visibility, held_out)
+            found = ObjectFlags(visibility, held_out, int(getattr(ob, "pass_index", 0)))
             self._cache[key] = found
         return found
 
@@ -92,11 +109,11 @@ def renderable(placed: list[Placement], matrices: np.ndarray,
     if not placed:
         return []
     first = matrices[[p[0] for p in placed]]
-    moving = [i for i, p in enumerate(placed) if p[6] is not None]
+    moving = [i for i, p in enumerate(placed) if p[5] is not None]
     ends = np.empty((0, 4, 4), dtype=np.float32)
     if moving:
-        first[moving] = np.stack([placed[i][6][0] for i in moving])
-        ends = np.stack([placed[i][6][1] for i in moving])
+        first[moving] = np.stack([placed[i][5][0] for i in moving])
+        ends = np.stack([placed[i][5][1] for i in moving])
     check_finite(first, [p[2] for p in placed])
     check_finite(ends, [placed[i][2] for i in moving])
     skip = degenerate(first)

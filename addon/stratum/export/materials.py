@@ -43,6 +43,7 @@ class ConvertedMaterial:
     closures: list[Closure]
     uv_map: str = ""  # UV layer its textures read ("" = the mesh's active render layer)
     warnings: list[str] = field(default_factory=list)  # each names the material and node
+    pass_index: int = 0  # Material > Settings > Pass Index (the IndexMA pass)
 
 
 def _single(material: native.Material) -> list[Closure]:
@@ -118,11 +119,12 @@ def with_bump_shadowing(converted: ConvertedMaterial, model: int) -> ConvertedMa
 class SentMaterial:
     """What a native material was made from: its weighted closures, and per texture binding
     (closure index, parameter, original image pointer, interpolation, extension, channel,
-    scale, offset), and the UV layer its textures read."""
+    scale, offset), the UV layer its textures read, and its pass index."""
 
     closures: tuple[tuple[Rgb, native.Material], ...]
     textures: tuple[tuple[Any, ...], ...]
     uv_map: str
+    pass_index: int = 0
 
     @property
     def images(self) -> frozenset[int]:
@@ -140,7 +142,7 @@ def sent_material(converted: ConvertedMaterial) -> SentMaterial:
                              str(node.interpolation), str(node.extension), b.channel, b.scale,
                              b.offset))
     return SentMaterial(tuple((c.weight, c.material) for c in converted.closures),
-                        tuple(textures), converted.uv_map)
+                        tuple(textures), converted.uv_map, converted.pass_index)
 
 
 def _single_closure(closures: list[Closure]) -> native.Material | None:
@@ -199,14 +201,24 @@ class MaterialTable:
         before = self.sent[mat_id]
         if now.textures != before.textures or now.uv_map != before.uv_map:
             raise FullExportNeeded(f"Material '{material.name}': its image textures changed")
-        if now.closures == before.closures:
+        sends: list[Callable[[], None]] = []
+        if now.closures != before.closures:
+            single = _single_closure(converted.closures)
+            if single is not None:
+                sends.append(partial(self._scene.set_material, mat_id, single))
+            else:
+                sends.append(partial(self._scene.set_closure_material, mat_id,
+                                     list(now.closures)))
+        if now.pass_index != before.pass_index:
+            sends.append(partial(self._scene.set_material_pass_index, mat_id, now.pass_index))
+        if not sends:
             return None
         self.sent[mat_id] = now
-        single = _single_closure(converted.closures)
-        if single is not None:
-            send = partial(self._scene.set_material, mat_id, single)
-        else:
-            send = partial(self._scene.set_closure_material, mat_id, list(now.closures))
+
+        def send() -> None:
+            for one in sends:
+                one()
+
         return named_edit(f"Material '{material.name}'", send)
 
     def _add(self, name: str, converted: ConvertedMaterial) -> int:
@@ -219,6 +231,8 @@ class MaterialTable:
             else:
                 mat_id = self._scene.add_closure_material(
                     [(c.weight, c.material) for c in closures])
+            if converted.pass_index:
+                self._scene.set_material_pass_index(mat_id, converted.pass_index)
             for index, closure in enumerate(closures):
                 for b in closure.bindings:
                     self._scene.bind_texture(native.TextureBinding(
@@ -242,6 +256,7 @@ def _converted(material: Any, summary: ExportSummary) -> ConvertedMaterial:
     to `summary`."""
     converted = with_bump_shadowing(convert_material(material),
                                     bump_shadowing_model(material, tuple(bpy.app.version)))
+    converted.pass_index = int(getattr(material, "pass_index", 0))
     for warning in converted.warnings:
         summary.warn(warning)
     return converted

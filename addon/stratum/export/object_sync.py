@@ -29,6 +29,7 @@ from .common import (
 )
 from .instances import (
     InstanceFlags,
+    ObjectFlags,
     Placement,
     check_finite,
     identity,
@@ -60,7 +61,7 @@ class ExportedObjects:
     indices: list[int] = field(default_factory=list)  # native instance index; -1: degenerate
     mesh_ids: list[int] = field(default_factory=list)
     names: list[str] = field(default_factory=list)
-    flags: list[tuple[int, bool]] = field(default_factory=list)  # visibility, holdout
+    flags: list[ObjectFlags] = field(default_factory=list)
     matrices: np.ndarray = field(default_factory=lambda: np.empty((0, 4, 4), np.float32))
     positions: dict[int, int] = field(default_factory=dict)  # row -> placement
 
@@ -71,14 +72,9 @@ class ExportedObjects:
         self.indices = indices
         self.mesh_ids = [p[1] for p in placed]
         self.names = [p[2] for p in placed]
-        self.flags = [(p[4], p[5]) for p in placed]
+        self.flags = [p[4] for p in placed]
         self.matrices = matrices[self.instance_rows]
         self.positions = {p[0]: position for position, p in enumerate(placed)}
-
-
-def _plain(flags: tuple[int, bool]) -> bool:
-    """Seen by every ray and not held out: full() sends those after all others."""
-    return flags[0] == native.VISIBLE_ALL and not flags[1]
 
 
 def object_edits(depsgraph: Any, changes: Changes, exported: ExportedObjects, scene: Any,
@@ -90,7 +86,7 @@ def object_edits(depsgraph: Any, changes: Changes, exported: ExportedObjects, sc
     # Holdout collections and the view layer are not per object: read every object again.
     every_object = changes.collections or changes.scene
     flags = InstanceFlags(getattr(depsgraph, "view_layer", None))
-    reflagged: dict[int, tuple[int, bool]] = {}  # placement -> visibility, holdout
+    reflagged: dict[int, ObjectFlags] = {}  # placement -> flags now
     lights: list[tuple[int, str, native.Light | None]] = []  # row, name, light now
     rows: list[RowSignature] = []
     for row, instance in enumerate(depsgraph.object_instances):
@@ -106,7 +102,7 @@ def object_edits(depsgraph: Any, changes: Changes, exported: ExportedObjects, sc
         changed = every_object or ident[0] in changes.objects or signature[1] in changes.objects
         if ob.type == "LIGHT":
             if changed or original_pointer(ob.data) in changes.light_data:
-                visibility = flags.get(ob, ident, parent)[0]
+                visibility = flags.get(ob, ident, parent).visibility
                 lights.append((row, ob.name,
                                convert_light(ob, instance.matrix_world, visibility, summary)))
         elif changed and row in exported.positions:
@@ -136,7 +132,7 @@ def _light_edits(lights: list[tuple[int, str, native.Light | None]], exported: E
     return edits
 
 
-def _instance_edits(matrices: np.ndarray, reflagged: dict[int, tuple[int, bool]],
+def _instance_edits(matrices: np.ndarray, reflagged: dict[int, ObjectFlags],
                     exported: ExportedObjects, scene: Any,
                     summary: ExportSummary) -> list[Callable[[], None]]:
     now = matrices[exported.instance_rows]
@@ -159,15 +155,16 @@ def _instance_edits(matrices: np.ndarray, reflagged: dict[int, tuple[int, bool]]
                                    f"axis is {scale} (nearly) zero, which decides whether it "
                                    "is placed")
         flags = reflagged.get(i, exported.flags[i])
-        if _plain(flags) != _plain(exported.flags[i]):
-            raise FullExportNeeded(f"Object '{names[i]}': its ray visibility or holdout changed "
-                                   "between all rays, not held out and anything else")
+        if flags.plain != exported.flags[i].plain:
+            raise FullExportNeeded(f"Object '{names[i]}': its ray visibility, holdout or pass "
+                                   "index changed between all rays, not held out, index 0 and "
+                                   "anything else")
         exported.matrices[i] = now[i]
         exported.flags[i] = flags
         if skipped:
             warn_degenerate(names[i], summary)
             continue
-        instance = native.Instance(exported.mesh_ids[i], now[i], None, flags[0], flags[1])
+        instance = native.Instance(exported.mesh_ids[i], now[i], None, *flags)
         edits.append(named_edit(f"Object '{names[i]}'",
                                 partial(scene.set_instance, exported.indices[i], instance)))
     return edits

@@ -200,15 +200,15 @@ class SceneSync:
                     raise ExportCancelled("export cancelled")
             mesh_id = found[0]
             if mesh_id == LIGHT_ID:
-                light = convert_light(ob, instance.matrix_world, flags.get(ob, ident, parent)[0],
-                                      summary)
+                visibility = flags.get(ob, ident, parent).visibility
+                light = convert_light(ob, instance.matrix_world, visibility, summary)
                 exported.lights[index] = _add_light(ob.name, light, scene, summary)
                 if light is not None:
                     exported.sent_lights.append(comparable(light))
             elif mesh_id >= 0:
                 moved = motion.get(instance_key(instance, ob)) if motion else None
-                visibility, holdout = flags.get(ob, ident, parent)
-                placed.append((index, mesh_id, ob.name, found[1], visibility, holdout, moved))
+                placed.append((index, mesh_id, ob.name, found[1], flags.get(ob, ident, parent),
+                               moved))
         unsupported.report(summary)
         matrices = instance_matrices(depsgraph, index + 1)
         _place(placed, renderable(placed, matrices, summary), matrices, scene, summary,
@@ -321,7 +321,8 @@ def _same_environment(a: Environment, b: Environment | None) -> bool:
 def _place(placed: list[Placement], kept: list[bool], matrices: np.ndarray, scene: Any,
            summary: ExportSummary, exported: ExportedObjects) -> None:
     """Sends the kept placements: one add_instance_ex each for those that move, are hidden
-    from some rays or held out, in order, then the rest in bulk; records them in `exported`."""
+    from some rays, held out or have a pass index, in order, then the rest in bulk; records
+    them in `exported`."""
     plain_ids: list[int] = []
     plain_rows: list[int] = []
     plain_positions: list[int] = []
@@ -330,8 +331,8 @@ def _place(placed: list[Placement], kept: list[bool], matrices: np.ndarray, scen
     for position, (p, keep) in enumerate(zip(placed, kept, strict=True)):
         if not keep:
             continue
-        row, mesh_id, name, n_tri, visibility, holdout, moved = p
-        if moved is None and visibility == native.VISIBLE_ALL and not holdout:
+        row, mesh_id, name, n_tri, flags, moved = p
+        if moved is None and flags.plain:
             plain_ids.append(mesh_id)
             plain_rows.append(row)
             plain_positions.append(position)
@@ -339,8 +340,7 @@ def _place(placed: list[Placement], kept: list[bool], matrices: np.ndarray, scen
             start_m, end_m = moved if moved is not None else (matrices[row], None)
             summary.moving_instances += moved is not None
             try:
-                scene.add_instance_ex(native.Instance(mesh_id, start_m, end_m, visibility,
-                                                      holdout))
+                scene.add_instance_ex(native.Instance(mesh_id, start_m, end_m, *flags))
             except native.StratumError as exc:
                 raise ExportError(f"Object '{name}': {exc}") from exc
             indices[position] = sent

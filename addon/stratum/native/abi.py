@@ -168,6 +168,7 @@ class _InstanceDesc(ctypes.Structure):
         ("motion", ctypes.c_int32),
         ("visibility", ctypes.c_uint32),
         ("holdout", ctypes.c_int32),
+        ("pass_index", ctypes.c_uint32),
     ]
 
 
@@ -300,6 +301,7 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
                                                  ctypes.POINTER(_MaterialDesc)]),
         "stratum_scene_set_closure_material": (c_int32, [p_void, c_uint32,
                                                          ctypes.POINTER(_ClosureDesc), c_uint32]),
+        "stratum_scene_set_material_pass_index": (c_int32, [p_void, c_uint32, c_uint32]),
         "stratum_scene_set_light": (c_int32, [p_void, c_uint32, ctypes.POINTER(_LightDesc)]),
         "stratum_scene_save": (c_int32, [p_void, p_char]),
         "stratum_scene_load": (c_int32, [p_char, pp_void]),

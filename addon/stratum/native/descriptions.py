@@ -86,6 +86,7 @@ class Instance:
     transform_end: Sequence[float] | np.ndarray | None = None  # set when the object moves
     visibility: int = VISIBLE_ALL
     holdout: bool = False
+    pass_index: int = 0  # Object > Relations > Pass Index (the IndexOB pass)
 
 
 @dataclass

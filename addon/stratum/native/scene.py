@@ -65,6 +65,7 @@ def _instance_desc(instance: Instance) -> _InstanceDesc:
         desc.motion = 1
     desc.visibility = _uint32(instance.visibility, "instance visibility")
     desc.holdout = 1 if instance.holdout else 0
+    desc.pass_index = _uint32(instance.pass_index, "instance pass_index")
     return desc
 
 
@@ -268,7 +269,8 @@ class Scene(_Handle):
                 raise StratumError(exc.status, exc.message, index=i) from None
 
     def add_instance_ex(self, instance: Instance) -> None:
-        """An instance with motion (transform_end not None), ray visibility and holdout."""
+        """An instance with motion (transform_end not None), ray visibility, holdout and pass
+        index."""
         fn = self._lib.stratum_scene_add_instance_ex
         _check(self._lib, fn(self.handle, ctypes.byref(_instance_desc(instance))),
                "stratum_scene_add_instance_ex")
@@ -293,6 +295,13 @@ class Scene(_Handle):
         _check(self._lib, fn(self.handle, _uint32(material_id, "material_id"),
                              ctypes.byref(_material_desc(material))),
                "stratum_scene_set_material")
+
+    def set_material_pass_index(self, material_id: int, pass_index: int) -> None:
+        """Material > Settings > Pass Index (the IndexMA pass); 0 until set."""
+        fn = self._lib.stratum_scene_set_material_pass_index
+        _check(self._lib, fn(self.handle, _uint32(material_id, "material_id"),
+                             _uint32(pass_index, "material pass_index")),
+               "stratum_scene_set_material_pass_index")
 
     def set_closure_material(self, material_id: int, closures: Closures) -> None:
         """Replaces material `material_id` by weighted closures [(weight RGB, material), ...].

@@ -293,6 +293,10 @@ typedef struct StratumTextureBinding {
     float emission_strength; /* STRATUM_PARAM_EMISSION only */
 } StratumTextureBinding;
 
+/* Material > Settings > Pass Index of material `material_id` (0 until set), what the IndexMA
+ * pass holds where the material is seen; at most STRATUM_MAX_PASS_INDEX. Also a live edit. */
+STRATUM_API StratumStatus stratum_scene_set_material_pass_index(StratumScene* scene, uint32_t material_id,
+                                                                uint32_t pass_index);
 STRATUM_API StratumStatus stratum_scene_bind_texture(StratumScene* scene,
                                                      const StratumTextureBinding* binding);
 
@@ -344,7 +348,12 @@ typedef struct StratumInstanceDesc {
                                 (rotation interpolated as a quaternion, as Cycles) */
     uint32_t visibility;     /* StratumVisibility bits: which rays see the object */
     int32_t holdout;         /* 1: Cycles' Object > Visibility > Holdout */
+    uint32_t pass_index;     /* appended: Object > Relations > Pass Index, what the IndexOB pass
+                                holds; at most STRATUM_MAX_PASS_INDEX */
 } StratumInstanceDesc;
+
+/* Pass indices are stored in float passes: every integer up to 2^24 is exact there. */
+#define STRATUM_MAX_PASS_INDEX 16777216u
 
 /* Places an instance. A mesh placed many times is stored once (Embree instancing). */
 STRATUM_API StratumStatus stratum_scene_add_instance_ex(StratumScene* scene,

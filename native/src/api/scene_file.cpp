@@ -101,7 +101,7 @@ std::string save_scene_file(const Scene& scene, const char* path) {
     for (const SceneMaterial& sm : scene.materials) {
         json closures = json::array();
         for (const WeightedClosure& c : sm.closures) closures.push_back(closure_json(c));
-        j["materials"].push_back({{"closures", closures}});
+        j["materials"].push_back({{"closures", closures}, {"pass_index", sm.pass_index}});
     }
     j["meshes"] = json::array();
     for (const Mesh& mesh : scene.meshes) {
@@ -131,7 +131,8 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                   {"transform_end", matrix(i.object_to_world_end)},
                                   {"motion", i.motion ? 1 : 0},
                                   {"visibility", i.visibility},
-                                  {"holdout", i.holdout ? 1 : 0}});
+                                  {"holdout", i.holdout ? 1 : 0},
+                                  {"pass_index", i.pass_index}});
     }
     j["lights"] = json::array();
     for (const LightParams& l : scene.lights) {
@@ -246,8 +247,13 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                 cd.closure = material_desc(c);
                 closures.push_back(cd);
             }
+            uint32_t id = 0;
             if ((status = stratum_scene_add_closure_material(
-                     scene, closures.data(), static_cast<uint32_t>(closures.size()), nullptr)) != STRATUM_OK)
+                     scene, closures.data(), static_cast<uint32_t>(closures.size()), &id)) != STRATUM_OK)
+                return entry_point_failed(status);
+            // Files written before the index passes: pass index 0, Blender's default.
+            if ((status = stratum_scene_set_material_pass_index(
+                     scene, id, field_or(m, "pass_index", static_cast<uint32_t>(0)))) != STRATUM_OK)
                 return entry_point_failed(status);
         }
         for (const json& m : j.at("meshes")) {
@@ -286,6 +292,7 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             if (d.motion) read_numbers(i, "transform_end", d.transform_end);
             d.visibility = field_or(i, "visibility", static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
             d.holdout = field_or<int32_t>(i, "holdout", 0);
+            d.pass_index = field_or(i, "pass_index", static_cast<uint32_t>(0));
             if ((status = stratum_scene_add_instance_ex(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
         }

@@ -60,7 +60,8 @@ void replace_material(StratumScene* scene, uint32_t id, stratum::SceneMaterial m
         require(id < s.materials.size(), "material " + std::to_string(id) +
                                              " does not exist (the scene has " +
                                              std::to_string(s.materials.size()) + ")");
-        s.materials[id] = std::move(m);
+        // A closure edit keeps the material's pass index (its own edit below).
+        s.materials[id].closures = std::move(m.closures);
     });
 }
 
@@ -219,6 +220,21 @@ StratumStatus stratum_scene_set_closure_material(StratumScene* scene, uint32_t m
     return guarded("stratum_scene_set_closure_material", [&] {
         require(scene, "scene is NULL");
         replace_material(scene, material_id, stratum::validate_closure_material(closures, closure_count));
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_material_pass_index(StratumScene* scene, uint32_t material_id,
+                                                    uint32_t pass_index) {
+    return guarded("stratum_scene_set_material_pass_index", [&] {
+        require(scene, "scene is NULL");
+        const uint32_t index = stratum::validate_pass_index(pass_index, "material pass_index");
+        scene->live->edit(stratum::LiveScene::Part::Materials, [&](stratum::Scene& s) {
+            require(material_id < s.materials.size(), "material " + std::to_string(material_id) +
+                                                          " does not exist (the scene has " +
+                                                          std::to_string(s.materials.size()) + ")");
+            s.materials[material_id].pass_index = index;
+        });
         return STRATUM_OK;
     });
 }

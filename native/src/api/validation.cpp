@@ -353,6 +353,13 @@ float placed_extent(const Mesh& mesh, const Transform& m) {
 
 }  // namespace
 
+uint32_t validate_pass_index(uint32_t pass_index, const std::string& what) {
+    check(pass_index <= STRATUM_MAX_PASS_INDEX, what + " = " + std::to_string(pass_index) + " is more than " +
+                                                    std::to_string(STRATUM_MAX_PASS_INDEX) +
+                                                    " (the index passes hold floats)");
+    return pass_index;
+}
+
 Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>& meshes) {
     check(d.mesh_id < meshes.size(), "instance mesh_id " + std::to_string(d.mesh_id) + " out of range [0, " +
                                          std::to_string(meshes.size()) + ")");
@@ -379,6 +386,7 @@ Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>
                                         fmt(kMaxCoordinate));
     inst.visibility = validate_visibility(d.visibility, "instance visibility");
     inst.holdout = d.holdout == 1;
+    inst.pass_index = validate_pass_index(d.pass_index, "instance pass_index");
     return inst;
 }
 

@@ -21,6 +21,8 @@ Material validate_material(const StratumMaterialDesc& desc);
 SceneMaterial validate_closure_material(const StratumClosureDesc* closures, uint32_t count);
 Mesh validate_mesh(const StratumMeshDesc& desc, uint32_t material_count);
 // meshes: the scene's meshes (mesh_id must index one; its bounds limit the placement).
+// An object's or material's pass index (the IndexOB / IndexMA passes); `what` names it.
+uint32_t validate_pass_index(uint32_t pass_index, const std::string& what);
 Instance validate_instance(const StratumInstanceDesc& desc, const std::vector<Mesh>& meshes);
 LightParams validate_light(const StratumLightDesc& desc);
 CameraParams validate_camera(const StratumCameraDesc& desc);

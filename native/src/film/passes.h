@@ -48,7 +48,9 @@ enum class Pass : uint32_t {
     Emit,
     Env,
     Mist,
-    Ao
+    Ao,
+    ObjectIndex,
+    MaterialIndex
 };
 
 // Cycles' Depth of a camera ray that meets nothing (kernel/film/read.h: a stored 0 reads 1e10).
@@ -88,6 +90,12 @@ inline constexpr std::array kPasses = {
     PassInfo{"AO", 3, PassKind::Average,
              "Cycles' AO pass: the share of cosine-distributed directions above the surfaces a camera ray "
              "meets before its first bounce that no obstacle blocks within ao_distance, times their opacity"},
+    PassInfo{"IndexOB", 1, PassKind::FirstSample,
+             "Object > Relations > Pass Index of the first opaque surface, of sample 0 as in Cycles (0 "
+             "where none)"},
+    PassInfo{"IndexMA", 1, PassKind::FirstSample,
+             "Material > Settings > Pass Index of the first opaque surface's material, of sample 0 as in "
+             "Cycles (0 where none)"},
 };
 
 inline constexpr const PassInfo& pass_info(Pass pass) { return kPasses[static_cast<uint32_t>(pass)]; }

@@ -22,7 +22,7 @@ RadianceSample AoIntegrator::estimate(const RenderScene& scene, const Sampler& s
     const Vec3 wo = -camera_ray.direction;
     const Vec3 ng = dot(hit.geometric_normal, wo) < 0.0f ? -hit.geometric_normal : hit.geometric_normal;
     const Vec3 ns = dot(hit.shading_normal, ng) < 0.0f ? -hit.shading_normal : hit.shading_normal;
-    data.plain_surface(hit.position, ns, hit.uv);
+    data.plain_surface(hit, ns);
     const Frame frame = Frame::from_normal(ns);
 
     const Vec3 local = sample_hemisphere(settings_.hemisphere,

@@ -21,21 +21,21 @@ CameraPathPasses::CameraPathPasses(PassValues& passes, const MistSettings& mist)
     : passes_(passes),
       mist_(mist),
       data_pending_(passes.wants(Pass::Depth) || passes.wants(Pass::Position) || passes.wants(Pass::Normal) ||
-                    passes.wants(Pass::Uv)),
+                    passes.wants(Pass::Uv) || passes.wants(Pass::ObjectIndex) ||
+                    passes.wants(Pass::MaterialIndex)),
       features_pending_(passes.wants(Pass::DenoisingAlbedo) || passes.wants(Pass::DenoisingNormal)),
       direct_(passes.wants(Pass::Emit) || passes.wants(Pass::Env)),
       mist_wanted_(passes.wants(Pass::Mist) && passes.camera()) {}
 
-void CameraPathPasses::surface(Vec3 position, Vec3 ns, Vec2 uv, const ClosureSet& closures, Rgb beta,
+void CameraPathPasses::surface(const SurfaceHit& hit, Vec3 ns, const ClosureSet& closures, Rgb beta,
                                bool camera_visible) {
     if (direct_ && camera_visible) emit_ += beta * closures.emission();
-    if (mist_wanted_ && camera_visible) add_mist(position, beta * (Rgb(1.0f) - closures.transparency()));
+    if (mist_wanted_ && camera_visible) add_mist(hit.position, beta * (Rgb(1.0f) - closures.transparency()));
     if (data_pending_ && camera_visible) {
-        write_depth(position);
-        passes_.write(Pass::Position, position);
+        write_first_surface(hit);
         if (1.0f - closures.transparency().average() >= kPassAlphaThreshold) {
             passes_.write(Pass::Normal, ns);
-            passes_.write(Pass::Uv, Vec3(uv.x, uv.y, 0.0f));
+            passes_.write(Pass::Uv, Vec3(hit.uv.x, hit.uv.y, 0.0f));
             data_pending_ = false;
         }
     }
@@ -48,13 +48,12 @@ void CameraPathPasses::surface(Vec3 position, Vec3 ns, Vec2 uv, const ClosureSet
     }
 }
 
-void CameraPathPasses::plain_surface(Vec3 position, Vec3 ns, Vec2 uv) {
-    if (mist_wanted_) add_mist(position, Rgb(1.0f));
+void CameraPathPasses::plain_surface(const SurfaceHit& hit, Vec3 ns) {
+    if (mist_wanted_) add_mist(hit.position, Rgb(1.0f));
     if (data_pending_) {
-        write_depth(position);
-        passes_.write(Pass::Position, position);
+        write_first_surface(hit);
         passes_.write(Pass::Normal, ns);
-        passes_.write(Pass::Uv, Vec3(uv.x, uv.y, 0.0f));
+        passes_.write(Pass::Uv, Vec3(hit.uv.x, hit.uv.y, 0.0f));
         data_pending_ = false;
     }
     if (features_pending_) write_features(ns, Rgb(1.0f));
@@ -66,6 +65,8 @@ void CameraPathPasses::miss(Rgb background, bool camera_visible) {
         passes_.write(Pass::Depth, kBackgroundDepth);
         passes_.write(Pass::Position, Vec3{});
         passes_.write(Pass::Normal, Vec3{});
+        passes_.write(Pass::ObjectIndex, 0.0f);
+        passes_.write(Pass::MaterialIndex, 0.0f);
     }
     data_pending_ = false;
     if (features_pending_) write_features(Vec3{}, albedo_ + background);
@@ -96,6 +97,14 @@ void CameraPathPasses::add_mist(Vec3 position, Rgb weight) {
     float mist = std::clamp((passes_.camera()->distance(position) - mist_.start) * inv_depth, 0.0f, 1.0f);
     if (mist_.falloff != 1.0f) mist = std::pow(mist, mist_.falloff);
     mist_sum_ += (1.0f - mist) * weight.average();
+}
+
+void CameraPathPasses::write_first_surface(const SurfaceHit& hit) {
+    write_depth(hit.position);
+    passes_.write(Pass::Position, hit.position);
+    // Floats hold every index up to STRATUM_MAX_PASS_INDEX exactly.
+    passes_.write(Pass::ObjectIndex, static_cast<float>(hit.object_pass_index));
+    passes_.write(Pass::MaterialIndex, static_cast<float>(hit.material_pass_index));
 }
 
 void CameraPathPasses::write_depth(Vec3 position) {

@@ -16,6 +16,7 @@
 // | Denoising Normal | that surface's shading normal in Camera::to_view_space (Cycles' camera |
 // |                  | space); 0 on a miss or a surface that scatters nothing                 |
 // | UV               | that opaque surface's (u, v, 0), with Normal (0 on a miss)             |
+// | IndexOB, IndexMA | with Depth: the surface's object and material pass index (0 on a miss) |
 // | Emit, Env        | β × the emission of surfaces and lamps, and β × the background, met    |
 // |                  | while the path is camera-visible (Cycles' emission and background      |
 // |                  | passes: contributions before PATH_RAY_ANY_PASS is set)                 |
@@ -50,11 +51,11 @@ struct MistSettings {
 class CameraPathPasses {
 public:
     CameraPathPasses(PassValues& passes, const MistSettings& mist);
-    // A surface the path meets at `position` with shading normal `ns`; `beta` is the path's
+    // A surface the path meets (`hit`) with shading normal `ns`; `beta` is the path's
     // throughput up to it and `camera_visible` whether only transparent pass-throughs came before.
-    void surface(Vec3 position, Vec3 ns, Vec2 uv, const ClosureSet& closures, Rgb beta, bool camera_visible);
+    void surface(const SurfaceHit& hit, Vec3 ns, const ClosureSet& closures, Rgb beta, bool camera_visible);
     // A surface without closures (the AO integrator's): white albedo, opaque.
-    void plain_surface(Vec3 position, Vec3 ns, Vec2 uv);
+    void plain_surface(const SurfaceHit& hit, Vec3 ns);
     // Lamp radiance the path collects (times β and its MIS weight), camera-visible or not.
     void emitted(Rgb contribution, bool camera_visible) {
         if (features_pending_) albedo_ += contribution;
@@ -76,6 +77,8 @@ private:
     // The passes measured in the camera's space need PassValues::camera (the renderer gives
     // it; without one they stay 0).
     void write_depth(Vec3 position);
+    // Depth, Position and the pass indices of a camera-visible surface.
+    void write_first_surface(const SurfaceHit& hit);
     void write_features(Vec3 ns, Rgb albedo);
     // Adds a camera-visible surface at `position` of opacity average(weight) to the mist.
     void add_mist(Vec3 position, Rgb weight);

@@ -105,8 +105,14 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel, Bv
         placements_.push_back({prototype_of[inst.mesh_id], inst.object_to_world, inst.object_to_world_end,
                                moving, inst.visibility});
         if (moving) has_motion_ = true;
-        instances_.push_back(
-            {&mesh, inst.mesh_id, inst.object_to_world, moving, inst.visibility, inst.holdout, {}});
+        instances_.push_back({&mesh,
+                              inst.mesh_id,
+                              inst.object_to_world,
+                              moving,
+                              inst.visibility,
+                              inst.holdout,
+                              inst.pass_index,
+                              {}});
     }
     build_lights(scene, cancel);
     const std::string error =
@@ -226,6 +232,7 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
         g.object_to_world = inst.object_to_world;
         g.visibility = inst.visibility;
         g.holdout = inst.holdout;
+        g.pass_index = inst.pass_index;
         moved.push_back(placement);
     }
     if (changes.materials) {
@@ -326,6 +333,8 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->emissive_light = g.emissive_light.empty() ? kNoLight : g.emissive_light[h.triangle];
     hit->visibility = g.visibility;
     hit->holdout = g.holdout;
+    hit->object_pass_index = g.pass_index;
+    hit->material_pass_index = materials_[hit->material_id].pass_index;
     hit->t = h.t;
     return true;
 }

@@ -33,6 +33,8 @@ struct SurfaceHit {
     uint32_t material_id = 0;           // scene material id
     uint32_t visibility = kVisibleAll;  // the instance's StratumVisibility bits
     bool holdout = false;               // the instance is a holdout
+    uint32_t object_pass_index = 0;     // the instance's and the material's pass indices
+    uint32_t material_pass_index = 0;   // (the IndexOB and IndexMA passes)
     float t = 0.0f;                     // distance along the ray (for LightSet::lamp_radiance's t_max)
 };
 
@@ -117,6 +119,7 @@ private:
         bool motion;
         uint32_t visibility;
         bool holdout;
+        uint32_t pass_index;
         std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive; empty if none
     };
     static bool is_moving(const Instance& inst);

@@ -41,6 +41,9 @@ struct WeightedClosure {
 // A scene material: the sum of its weighted closures (one for a plain material).
 struct SceneMaterial {
     std::vector<WeightedClosure> closures;
+    // Blender's Material > Settings > Pass Index: what the IndexMA pass holds where the material
+    // is seen (stratum_scene_set_material_pass_index).
+    uint32_t pass_index = 0;
 };
 
 struct Instance {
@@ -51,6 +54,8 @@ struct Instance {
     bool motion = false;
     uint32_t visibility = kVisibleAll;  // StratumVisibility bits
     bool holdout = false;
+    // Appended for issue 14: Object > Relations > Pass Index, what the IndexOB pass holds.
+    uint32_t pass_index = 0;
 };
 
 // A light as the host describes it (StratumLightDesc). size_x, size_y, spot_size, spot_blend and
