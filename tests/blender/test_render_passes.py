@@ -279,3 +279,28 @@ def test_the_passes_join_those_the_denoiser_asked_for(stratum_addon: Any,
     assert len(names) == len(set(names)) and set(added) <= set(names)
     assert "Depth" in names and "Mist" in names
     assert (settings["mist_start"], settings["mist_depth"], settings["mist_falloff"]) == (0.0, 10.0, 1.0)
+
+
+def test_f12_writes_the_colour_passes(library: Any, scene_builder: Any, tmp_path: Path,
+                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    """Blender's Diffuse/Glossy/Transmission Color toggles give DiffCol, GlossCol and TransCol
+    (Cycles' names): the Diffuse BSDF plane's colour is all diffuse, the world adds nothing."""
+    scene = tilted_plane_scene(scene_builder())
+    layer = scene.view_layers[0]
+    layer.use_pass_diffuse_color = True
+    layer.use_pass_glossy_color = True
+    layer.use_pass_transmission_color = True
+    channels, in_result = render_passes_f12(scene, tmp_path / "colours.exr", monkeypatch)
+    plane, sky = np.s_[:, : SIZE // 2], np.s_[:, SIZE // 2:]
+    for pass_name in ("DiffCol", "GlossCol", "TransCol"):
+        assert pass_name in in_result, f"{pass_name} not in {sorted(in_result)}"
+        if bpy.app.version < (5, 0, 0):  # 5.0's bpy writes only Combined (see above)
+            names = [f"{layer.name}.{pass_name}.{c}" for c in "RGB"]
+            assert all(n in channels for n in names), sorted(channels)
+            exr = np.stack([channels[n] for n in names], axis=-1)[::-1]
+            np.testing.assert_array_equal(exr, in_result[pass_name])
+    diffuse = in_result["DiffCol"]
+    np.testing.assert_allclose(diffuse[plane], np.broadcast_to(ALBEDO, diffuse[plane].shape), atol=1e-6)
+    np.testing.assert_array_equal(diffuse[sky], 0.0)
+    np.testing.assert_array_equal(in_result["GlossCol"], 0.0)
+    np.testing.assert_array_equal(in_result["TransCol"], 0.0)

@@ -5,8 +5,9 @@ each from the native film into the result when the render ends.
 Names, channel ids and kinds are Cycles' (intern/cycles/blender/addon/engine.py
 list_render_passes), so the compositor's Render Layers node and multilayer EXR see what they see
 with Cycles. Blender's own view-layer toggles drive the passes it has one for (Depth, Mist,
-Normal, Position, UV, Emit, Env, AO; the mist's start, depth and falloff are the world's);
-`view_layer.stratum` holds the others (Cycles keeps its equivalents in view_layer.cycles).
+Normal, Position, UV, Diffuse/Glossy/Transmission Color, Emit, Env, AO; the mist's start,
+depth and falloff are the world's); `view_layer.stratum` holds the others (Cycles keeps its
+equivalents in view_layer.cycles).
 docs/passes.md says what each pass holds.
 """
 
@@ -37,6 +38,9 @@ TOGGLES: tuple[tuple[str, str, tuple[PassSpec, ...]], ...] = (
     ("view_layer", "use_pass_normal", (PassSpec("Normal", 3, "XYZ", "VECTOR"),)),
     ("view_layer", "use_pass_position", (PassSpec("Position", 3, "XYZ", "VECTOR"),)),
     ("view_layer", "use_pass_uv", (PassSpec("UV", 3, "UVA", "VECTOR"),)),
+    ("view_layer", "use_pass_diffuse_color", (PassSpec("DiffCol", 3, "RGB", "COLOR"),)),
+    ("view_layer", "use_pass_glossy_color", (PassSpec("GlossCol", 3, "RGB", "COLOR"),)),
+    ("view_layer", "use_pass_transmission_color", (PassSpec("TransCol", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_emit", (PassSpec("Emit", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_environment", (PassSpec("Env", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_ambient_occlusion", (PassSpec("AO", 3, "RGB", "COLOR"),)),
@@ -169,6 +173,9 @@ class STRATUM_VIEWLAYER_PT_passes_data(bpy.types.Panel):
         col.prop(view_layer, "use_pass_position")
         col.prop(view_layer, "use_pass_uv")
         col = layout.column(heading="Light", align=True)
+        col.prop(view_layer, "use_pass_diffuse_color", text="Diffuse Color")
+        col.prop(view_layer, "use_pass_glossy_color", text="Glossy Color")
+        col.prop(view_layer, "use_pass_transmission_color", text="Transmission Color")
         col.prop(view_layer, "use_pass_emit", text="Emission")
         col.prop(view_layer, "use_pass_environment")
         col.prop(view_layer, "use_pass_ambient_occlusion", text="Ambient Occlusion")
