@@ -38,17 +38,21 @@ RES = 48
 SAMPLES = 4
 PASSES = {"Depth": "Z", "Position": "XYZ", "Normal": "XYZ", "Denoising Normal": "XYZ",
           "Denoising Albedo": "RGB"}
+COLOUR_PASSES = {"DiffCol": "RGB", "GlossCol": "RGB", "TransCol": "RGB"}
 
 pytestmark = pytest.mark.skipif(
     bpy.app.version >= (5, 0, 0),
     reason="Blender 5.0's bpy module writes only Combined into a multilayer EXR (Cycles too)")
 
 
-def render_passes(renderer: str, path: Path) -> dict[str, np.ndarray]:
+def render_passes(renderer: str, path: Path, colours: bool = False) -> dict[str, np.ndarray]:
     scene = open_scene()
     scene.render.resolution_x = scene.render.resolution_y = RES
     layer = scene.view_layers[0]
     layer.use_pass_z = layer.use_pass_normal = layer.use_pass_position = True
+    if colours:
+        layer.use_pass_diffuse_color = layer.use_pass_glossy_color = True
+        layer.use_pass_transmission_color = True
     if renderer == "cycles":
         configure_cycles(scene, 1, samples=SAMPLES)
         scene.cycles.filter_width = 0.02
@@ -66,7 +70,7 @@ def render_passes(renderer: str, path: Path) -> dict[str, np.ndarray]:
     channels = read_exr_channels(path)
     name = layer.name
     out = {}
-    for pass_name, letters in PASSES.items():
+    for pass_name, letters in {**PASSES, **(COLOUR_PASSES if colours else {})}.items():
         keys = [f"{name}.{pass_name}.{c}" for c in letters]
         missing = [k for k in keys if k not in channels]
         assert not missing, f"{renderer}: {missing} not in {sorted(channels)}"
@@ -114,3 +118,21 @@ def test_data_passes_agree_with_cycles_on_the_cornell_box(library: Any, tmp_path
     assert facing.sum() > 0.1 * RES * RES, facing.sum()  # the back wall and the boxes' fronts
     np.testing.assert_allclose(stratum["Denoising Albedo"][facing],
                                cycles["Denoising Albedo"][facing], atol=0.03)
+
+
+def test_colour_passes_agree_with_cycles_on_the_cornell_box(library: Any, tmp_path: Path) -> None:
+    """DiffCol, GlossCol and TransCol are Cycles 3.4's closure weights: on the box's default
+    Principled BSDFs (metallic 0, specular 0.5, no transmission, clearcoat or sheen) the diffuse
+    closure's base colour, the specular closure's white 1 and no transmission; the emitter's
+    Emission closure adds none. Both renderers write exactly these (no noise: the colours of a
+    face do not depend on the sample), so away from edges they agree to float precision."""
+    cycles = render_passes("cycles", tmp_path / "cycles.exr", colours=True)
+    stratum = render_passes("stratum", tmp_path / "stratum.exr", colours=True)
+    keep = interior(cycles["Depth"][..., 0], cycles["Normal"])
+    assert keep.sum() > 0.4 * RES * RES, keep.sum()
+    for pass_name in COLOUR_PASSES:
+        np.testing.assert_allclose(stratum[pass_name][keep], cycles[pass_name][keep], atol=1e-4,
+                                   err_msg=pass_name)
+    # Not vacuous: the walls' colours differ, and the specular closure is there.
+    assert np.ptp(cycles["DiffCol"][keep][:, 0]) > 0.5
+    assert np.any(cycles["GlossCol"][keep] > 0.5)

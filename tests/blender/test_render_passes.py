@@ -108,6 +108,15 @@ def tilted_plane_scene(builder: Any) -> Any:
     return scene
 
 
+def result_name(native_name: str) -> str:
+    """The render-result pass of a native pass in this Blender (5.0 renamed some; that the
+    names are Cycles' is tested against Cycles itself below)."""
+    from stratum.engine import render_passes
+
+    return next(spec.result_name for _, _, specs in render_passes.TOGGLES for spec in specs
+                if spec.name == native_name)
+
+
 def plane_depth(u: np.ndarray) -> np.ndarray:
     """Depth along the view axis where the ray through film point (u, ·, −1) meets the plane."""
     return DISTANCE * math.cos(TILT) / (math.cos(TILT) - u * math.sin(TILT))
@@ -156,8 +165,9 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     # checked in the render result the EXR is written from; Blender 3.4 writes them all.
     from_exr = bpy.app.version < (5, 0, 0)
 
-    def image(pass_name: str, letters: str) -> np.ndarray:
+    def image(native_name: str, letters: str) -> np.ndarray:
         """(height, width, channels), row 0 at the bottom as the render result's."""
+        pass_name = result_name(native_name)
         if not from_exr:
             assert pass_name in in_result, f"{pass_name} not in {sorted(in_result)}"
             return in_result[pass_name]
@@ -244,9 +254,9 @@ def test_update_render_passes_registers_what_the_toggles_ask_for(stratum_addon: 
             registered.append((name, channels, chan_id, kind))
 
     render_passes.register_passes(Recorder(), scene, layer)
-    assert [r[0] for r in registered] == [
+    assert [r[0] for r in registered] == [result_name(name) for name in (
         "Depth", "Mist", "Normal", "Position", "Vector", "IndexOB", "IndexMA", "Emit", "Env",
-        "AO", "Denoising Normal", "Denoising Albedo", "Debug Sample Count", "Stratum Error"]
+        "AO")] + ["Denoising Normal", "Denoising Albedo", "Debug Sample Count", "Stratum Error"]
     layer.use_pass_z = False
     layer.stratum.use_pass_denoising_data = False
     layer.use_pass_emit = False
@@ -262,6 +272,39 @@ def test_update_render_passes_registers_what_the_toggles_ask_for(stratum_addon: 
     for _, _, specs in render_passes.TOGGLES:
         for spec in specs:
             assert held.get(spec.name) == (spec.channels if spec.native else None), spec.name
+
+
+def test_each_blender_toggle_registers_what_cycles_registers(stratum_addon: Any,
+                                                             scene_builder: Any) -> None:
+    """Name, channels and kind of the pass each of Blender's own view-layer toggles adds are
+    those Cycles' add-on of the running Blender lists (its engine.list_render_passes), so a
+    compositor or EXR setup made with Cycles finds them (Blender 5.0 renamed several)."""
+    from stratum.engine import render_passes
+
+    cycles_engine = pytest.importorskip("cycles.engine")
+    scene = scene_builder().scene
+    scene.cycles.use_denoising = False  # else Cycles lists its Noisy Image with every toggle
+    layer = scene.view_layers[0]
+    toggles = [(prop, specs) for owner, prop, specs in render_passes.TOGGLES
+               if owner == "view_layer"]
+    registered: list[tuple[str, int, str, str]] = []
+
+    class Recorder:
+        def register_pass(self, scene: Any, layer: Any, name: str, channels: int,
+                          chan_id: str, kind: str) -> None:
+            registered.append((name, channels, chan_id, kind))
+
+    for prop, _ in toggles:
+        setattr(layer, prop, False)
+    for prop, specs in toggles:
+        setattr(layer, prop, True)
+        registered.clear()
+        render_passes.register_passes(Recorder(), scene, layer)
+        cycles = [(name, len(chan_id), chan_id, kind) for name, chan_id, kind
+                  in cycles_engine.list_render_passes(scene, layer) if name != "Combined"]
+        assert registered == cycles, prop
+        assert len(specs) == len(cycles)
+        setattr(layer, prop, False)
 
 
 def library_passes() -> tuple[Any, ...]:
@@ -297,7 +340,33 @@ def test_the_passes_join_those_the_denoiser_asked_for(stratum_addon: Any,
     passes.configure(settings)
     names = settings["passes"].split(",")
     assert names[:2] == ["Denoising Albedo", "Denoising Normal"]
-    assert len(names) == len(set(names)) and set(added) - {"Vector"} <= set(names)
+    assert len(names) == len(set(names))
+    assert set(added) - {"Vector"} <= {result_name(name) for name in names}
     assert "Vector" in added and "Vector" not in names
     assert "Depth" in names and "Mist" in names
     assert (settings["mist_start"], settings["mist_depth"], settings["mist_falloff"]) == (0.0, 10.0, 1.0)
+
+
+def test_f12_writes_the_colour_passes(library: Any, scene_builder: Any, tmp_path: Path,
+                                      monkeypatch: pytest.MonkeyPatch) -> None:
+    """Blender's Diffuse/Glossy/Transmission Color toggles give DiffCol, GlossCol and TransCol
+    (Cycles' names): the Diffuse BSDF plane's colour is all diffuse, the world adds nothing."""
+    scene = tilted_plane_scene(scene_builder())
+    layer = scene.view_layers[0]
+    layer.use_pass_diffuse_color = True
+    layer.use_pass_glossy_color = True
+    layer.use_pass_transmission_color = True
+    channels, in_result = render_passes_f12(scene, tmp_path / "colours.exr", monkeypatch)
+    plane, sky = np.s_[:, : SIZE // 2], np.s_[:, SIZE // 2:]
+    for pass_name in map(result_name, ("DiffCol", "GlossCol", "TransCol")):
+        assert pass_name in in_result, f"{pass_name} not in {sorted(in_result)}"
+        if bpy.app.version < (5, 0, 0):  # 5.0's bpy writes only Combined (see above)
+            names = [f"{layer.name}.{pass_name}.{c}" for c in "RGB"]
+            assert all(n in channels for n in names), sorted(channels)
+            exr = np.stack([channels[n] for n in names], axis=-1)[::-1]
+            np.testing.assert_array_equal(exr, in_result[pass_name])
+    diffuse = in_result[result_name("DiffCol")]
+    np.testing.assert_allclose(diffuse[plane], np.broadcast_to(ALBEDO, diffuse[plane].shape), atol=1e-6)
+    np.testing.assert_array_equal(diffuse[sky], 0.0)
+    np.testing.assert_array_equal(in_result[result_name("GlossCol")], 0.0)
+    np.testing.assert_array_equal(in_result[result_name("TransCol")], 0.0)

@@ -5,9 +5,9 @@ each from the native film into the result when the render ends.
 Names, channel ids and kinds are Cycles' (intern/cycles/blender/addon/engine.py
 list_render_passes), so the compositor's Render Layers node and multilayer EXR see what they see
 with Cycles. Blender's own view-layer toggles drive the passes it has one for (Depth, Mist,
-Normal, Position, UV, Vector, Object and Material Index, Emit, Env, AO; the mist's start, depth
-and falloff are the world's);
-`view_layer.stratum` holds the others (Cycles keeps its equivalents in view_layer.cycles).
+Normal, Position, UV, Vector, Object and Material Index, Diffuse/Glossy/Transmission Color,
+Emit, Env, AO; the mist's start, depth and falloff are the world's); `view_layer.stratum`
+holds the others (Cycles keeps its equivalents in view_layer.cycles).
 docs/passes.md says what each pass holds.
 """
 
@@ -23,9 +23,18 @@ from bpy.props import BoolProperty, PointerProperty
 ENGINE_ID = "STRATUM"
 
 
+# Blender 5.0 renamed the passes it has toggles for: Cycles' list_render_passes yields "Emission"
+# in 5.0 where 3.4's yields "Emit" (intern/cycles/blender/addon/engine.py of each), and the
+# compositor's Render Layers sockets carry the new names. The library keeps the 3.x names.
+RENAMED_IN_5_0 = {"Emit": "Emission", "Env": "Environment", "AO": "Ambient Occlusion",
+                  "IndexOB": "Object Index", "IndexMA": "Material Index",
+                  "DiffCol": "Diffuse Color", "GlossCol": "Glossy Color",
+                  "TransCol": "Transmission Color"}
+
+
 @dataclass(frozen=True)
 class PassSpec:
-    name: str  # the native pass and the render-result pass (Cycles' name)
+    name: str  # the native pass (Cycles 3.x's name)
     channels: int
     chan_id: str  # Blender's channel letters
     kind: str  # register_pass type: VALUE, VECTOR or COLOR
@@ -35,6 +44,13 @@ class PassSpec:
     # MOTION_PASS). Written, not left to Blender, which fills a new Vector pass with its
     # "unknown speed" 10000 (PASS_VECTOR_MAX) that the Vector Blur node would smear.
     native: bool = True
+
+    @property
+    def result_name(self) -> str:
+        """The render-result pass: Cycles' name in the running Blender."""
+        if bpy.app.version >= (5, 0, 0):
+            return RENAMED_IN_5_0.get(self.name, self.name)
+        return self.name
 
 
 # Toggle (owner "view_layer" = Blender's, "stratum" = view_layer.stratum) -> passes it adds.
@@ -47,6 +63,9 @@ TOGGLES: tuple[tuple[str, str, tuple[PassSpec, ...]], ...] = (
     ("view_layer", "use_pass_vector", (PassSpec("Vector", 4, "XYZW", "VECTOR", native=False),)),
     ("view_layer", "use_pass_object_index", (PassSpec("IndexOB", 1, "X", "VALUE"),)),
     ("view_layer", "use_pass_material_index", (PassSpec("IndexMA", 1, "X", "VALUE"),)),
+    ("view_layer", "use_pass_diffuse_color", (PassSpec("DiffCol", 3, "RGB", "COLOR"),)),
+    ("view_layer", "use_pass_glossy_color", (PassSpec("GlossCol", 3, "RGB", "COLOR"),)),
+    ("view_layer", "use_pass_transmission_color", (PassSpec("TransCol", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_emit", (PassSpec("Emit", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_environment", (PassSpec("Env", 3, "RGB", "COLOR"),)),
     ("view_layer", "use_pass_ambient_occlusion", (PassSpec("AO", 3, "RGB", "COLOR"),)),
@@ -106,7 +125,8 @@ def register_passes(engine: Any, scene: Any, view_layer: Any) -> None:
     """For RenderEngine.update_render_passes: tells the compositor which passes besides
     Combined the view layer's toggles add."""
     for spec in enabled_passes(view_layer):
-        engine.register_pass(scene, view_layer, spec.name, spec.channels, spec.chan_id, spec.kind)
+        engine.register_pass(scene, view_layer, spec.result_name, spec.channels, spec.chan_id,
+                             spec.kind)
 
 
 class ResultPasses:
@@ -118,7 +138,7 @@ class ResultPasses:
         self.specs = enabled_passes(view_layer)
         self.world = world
         for spec in self.specs:
-            engine.add_pass(spec.name, spec.channels, spec.chan_id, layer=view_layer.name)
+            engine.add_pass(spec.result_name, spec.channels, spec.chan_id, layer=view_layer.name)
 
     def configure(self, settings: dict[str, Any]) -> None:
         """Adds these passes to the native settings' `passes` (after any already there, such
@@ -135,7 +155,7 @@ class ResultPasses:
         """Copies every pass from the renderer into the result's first layer."""
         layer = result.layers[0]
         for spec in self.specs:
-            render_pass = layer.passes.find_by_name(spec.name, "")
+            render_pass = layer.passes.find_by_name(spec.result_name, "")
             if render_pass is None:
                 continue
             if spec.native:
@@ -187,6 +207,9 @@ class STRATUM_VIEWLAYER_PT_passes_data(bpy.types.Panel):
         col.prop(view_layer, "use_pass_object_index")
         col.prop(view_layer, "use_pass_material_index")
         col = layout.column(heading="Light", align=True)
+        col.prop(view_layer, "use_pass_diffuse_color", text="Diffuse Color")
+        col.prop(view_layer, "use_pass_glossy_color", text="Glossy Color")
+        col.prop(view_layer, "use_pass_transmission_color", text="Transmission Color")
         col.prop(view_layer, "use_pass_emit", text="Emission")
         col.prop(view_layer, "use_pass_environment")
         col.prop(view_layer, "use_pass_ambient_occlusion", text="Ambient Occlusion")

@@ -57,6 +57,15 @@ inline bool answer_true(const Material&) { return true; }
 inline float no_sample_weight(const Material&) { return 0.0f; }
 inline Rgb no_albedo(const Material&) { return Rgb(0.0f); }
 
+// What a closure adds, per unit of its weight, to Cycles' Diffuse, Glossy and Transmission Color
+// passes (kernel/film/data_passes.h: surface_shader_diffuse/glossy/transmission): Cycles 3.x sums
+// the weights of its closures of each type, 4.x their bsdf_albedo estimates; each model reports
+// those of the Cycles generation it imitates, for the view direction wo (local frame).
+struct ClosureColors {
+    Rgb diffuse, glossy, transmission;
+};
+inline ClosureColors no_colors(const Material&, Vec3) { return {}; }
+
 // What a closure model answers for itself: each model's file defines its entry, and one line of
 // the registry in bsdf.cpp files it under its StratumMaterialModel value. Every question costs one
 // lookup and at most one indirect call, where a switch over the models cost one indirect jump.
@@ -76,6 +85,8 @@ struct ClosureModel {
     // weight, and the colour albedo Russian roulette survives by (bsdf/closure_set.h's table).
     float (*sample_weight)(const Material& m) = &no_sample_weight;
     Rgb (*albedo_estimate)(const Material& m) = &no_albedo;
+    // Its Diffuse/Glossy/Transmission Color pass values seen from wo (ClosureColors above).
+    ClosureColors (*colors)(const Material& m, Vec3 wo) = &no_colors;
     // ScatterKind bits a direction above (wi.z >= 0) and below the shading horizon counts as
     // (ClosureSet::eval's `kinds`).
     uint32_t kinds_above = 0, kinds_below = 0;
@@ -105,6 +116,9 @@ bool register_closure_model(int32_t model, const char* name, const ClosureModel&
 // A single lobe tinted by base_color: average(base_color) and base_color.
 inline float tint_sample_weight(const Material& m) { return m.base_color.average(); }
 inline Rgb tint_albedo_estimate(const Material& m) { return m.base_color; }
+// A single lobe of one Cycles closure type whose weight is the colour (Diffuse, Glossy nodes).
+inline ClosureColors tint_diffuse_colors(const Material& m, Vec3) { return {m.base_color, Rgb(), Rgb()}; }
+inline ClosureColors tint_glossy_colors(const Material& m, Vec3) { return {Rgb(), m.base_color, Rgb()}; }
 // The Principled models: the specular layer reflects whatever the base colour (sample weight 1,
 // albedo estimate base_color + 0.04 of a dielectric layer); transmission when there is some.
 inline float principled_sample_weight(const Material&) { return 1.0f; }

@@ -29,6 +29,18 @@ void ClosureSet::finalize() {
     }
 }
 
+ClosureColors ClosureSet::colors(Vec3 wo) const {
+    ClosureColors sum;
+    for (uint32_t i = 0; i < count_; ++i) {
+        const Material& m = closures_[i].params;
+        const ClosureColors c = closure_model(m.model).colors(m, wo);
+        sum.diffuse += closures_[i].weight * c.diffuse;
+        sum.glossy += closures_[i].weight * c.glossy;
+        sum.transmission += closures_[i].weight * c.transmission;
+    }
+    return sum;
+}
+
 Rgb ClosureSet::lambertian_value(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) const {
     Rgb sum(0.0f);
     for (uint32_t i = 0; i < count_; ++i) {

@@ -16,6 +16,8 @@
 // | albedo estimate  | Sum_i w_i a_i, a_i = base_color (single-lobe models), base_color + 0.04  |
 // |                  | dielectric specular (Principled), clamped to 1: Russian roulette by      |
 // |                  | albedo (textbook 5.5); any positive survival keeps it unbiased           |
+// | colors(wo)       | Sum_i w_i c_i(wo), c_i the closure's Diffuse/Glossy/Transmission Color   |
+// |                  | pass values (ClosureModel::colors); computed on request, depends on wo   |
 //
 // Sampling picks closure i with u_lobe, rescales u_lobe to [0,1) for the closure's own lobe
 // choice, and samples it. A non-delta pick reports the full mixture value and pdf (so weight =
@@ -69,6 +71,8 @@ public:
     // Diffuse and Glossy). The pdf is always the full sampling density.
     BsdfEval eval(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere, uint32_t kinds = kAllKinds) const;
     bool sample(Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out, HemisphereDistribution hemisphere) const;
+    // Sum_i w_i c_i(wo) of the closures' colour pass values (wo in the local frame).
+    ClosureColors colors(Vec3 wo) const;
     // Sum_i w_i f_i(wo, wi) cos_i over the Lambertian Diffuse closures only.
     Rgb lambertian_value(Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) const;
 

@@ -6,6 +6,7 @@
 //
 // Reference: Cycles `closure/emissive.h` (emissive_simple_eval: radiance = strength × colour,
 // both faces). Its sample weight is 0, so a shading point never chooses it to scatter.
+// Colour passes: none (it is no BSDF).
 #pragma once
 
 #include "bsdf/bsdf.h"

@@ -18,6 +18,11 @@ float visible_normal_density(Vec3 wo, Vec3 h, float alpha) {
 
 }  // namespace
 
+ClosureColors glass_colors(const Material& m, Vec3 wo) {
+    const float fresnel = fresnel_dielectric(wo.z, m.ior);
+    return {Rgb(), m.base_color * fresnel, m.base_color * (1.0f - fresnel)};
+}
+
 bool refract_direction(Vec3 wo, Vec3 h, float eta, Vec3* wi) {
     const float c = dot(wo, h);
     const float sin2_t = (1.0f - c * c) / (eta * eta);
@@ -120,6 +125,7 @@ const ClosureModel kGlassClosure{
     .has_transmission = &answer_true,
     .sample_weight = &tint_sample_weight,
     .albedo_estimate = &tint_albedo_estimate,
+    .colors = &glass_colors,
     .kinds_above = scatter_kind_bit(ScatterKind::Glossy),
     .kinds_below = scatter_kind_bit(ScatterKind::Transmission),
 };

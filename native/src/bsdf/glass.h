@@ -23,6 +23,10 @@
 // Cycles 3.4's Glass node (default Beckmann, or GGX) is two closures weighted by the Fresnel of
 // the shading normal; its albedo differs little (3.4 GGX 0.988 against 0.980 here at roughness 0.5,
 // IOR 1.45, 45 degrees) and is not modelled separately.
+// Colour passes: Glossy Color = base F(cos_o, eta), Transmission Color = base (1 - F(cos_o, eta)),
+// F the smooth dielectric Fresnel of the shading normal: Cycles 3.4's glass closure pair weights
+// (which keep at least 1e-4 for the refraction) and Cycles 4.x's bsdf_albedo of its glass closure
+// for smooth glass (4.x reads the rough reflectance mix(F0, 1, s) from its GGX tables instead).
 #pragma once
 
 #include "bsdf/bsdf.h"
@@ -44,6 +48,9 @@ bool refract_direction(Vec3 wo, Vec3 h, float eta, Vec3* wi);
 
 // 1 for single-scatter GGX; 1/E_glass for Multiscatter GGX.
 float glass_energy_scale(MicrofacetDistribution distribution, float cos_o, float roughness, float eta);
+
+// The colour passes of a Glass closure (see above).
+ClosureColors glass_colors(const Material& m, Vec3 wo);
 
 BsdfEval glass_eval(const Material& m, Vec3 wo, Vec3 wi);
 bool glass_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out);

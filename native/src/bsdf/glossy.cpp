@@ -47,6 +47,7 @@ const ClosureModel kGlossyClosure{
     .has_transmission = &answer_false,
     .sample_weight = &tint_sample_weight,
     .albedo_estimate = &tint_albedo_estimate,
+    .colors = &tint_glossy_colors,
     .kinds_above = scatter_kind_bit(ScatterKind::Glossy),
     .kinds_below = scatter_kind_bit(ScatterKind::Glossy),
 };

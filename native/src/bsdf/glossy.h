@@ -13,6 +13,8 @@
 //
 // f cos_i = base D(h) G2(wo, wi) / (4 cos_o) * c(cos_o), c = 1 or 1/E(cos_o).
 // pdf = VNDF: G1(wo) D(h) / (4 cos_o); sampled weight = base G2/G1 c.
+// Colour passes: Glossy Color = base_color (3.x: the closure weight; 4.x: its bsdf_albedo, the
+// weight times a constant Fresnel of 1, with no multi-bounce darkening for F = 1).
 #pragma once
 
 #include "bsdf/bsdf.h"

@@ -6,7 +6,7 @@
 //
 // Reference: Cycles `integrator/surface_shader.h` (surface_shader_apply_holdout,
 // shader_holdout_apply in 3.x): the integrator turns the summed weight into transparency of
-// the path's throughput. Nothing is scattered (sample weight 0).
+// the path's throughput. Nothing is scattered (sample weight 0). Colour passes: none.
 #pragma once
 
 #include "bsdf/bsdf.h"

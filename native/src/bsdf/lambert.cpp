@@ -28,6 +28,7 @@ const ClosureModel kLambertClosure{
     .has_transmission = &answer_false,
     .sample_weight = &tint_sample_weight,
     .albedo_estimate = &tint_albedo_estimate,
+    .colors = &tint_diffuse_colors,
     // Diffuse whichever side wi is on (it has no value below).
     .kinds_above = scatter_kind_bit(ScatterKind::Diffuse),
     .kinds_below = scatter_kind_bit(ScatterKind::Diffuse),

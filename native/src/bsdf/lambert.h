@@ -4,6 +4,8 @@
 // |------------|------------------------------------|
 // | base_color | albedo rho; f = rho / pi           |
 //
+// Colour passes: Diffuse Color = base_color (Cycles' diffuse closure weight, 3.x and 4.x).
+//
 // Reference: Cycles `bsdf_diffuse.h` (Diffuse BSDF with roughness 0), textbook 4.60-4.61 for
 // the cosine-weighted sampling, which makes weight = rho exactly.
 #pragma once

@@ -170,6 +170,20 @@ BsdfEval eval_lobes(const LobesV1& l, const Material& m, Vec3 wo, Vec3 wi,
     return e;
 }
 
+// Cycles 3.4's closure weights, per type (see principled_v1.h).
+ClosureColors colors(const Material& m, Vec3 wo) {
+    const LobesV1 l = setup(m, wo);
+    float glossy = l.has_specular && l.specular_weight > kClosureCutoff ? l.specular_weight : 0.0f;
+    Rgb transmission(0.0f);
+    if (l.glass_weight > 0.0f) {
+        glossy += l.glass_weight * l.glass_fresnel;
+        // Cycles keeps the refraction closure alive under total internal reflection (for MNEE).
+        transmission = m.base_color * (l.glass_weight * std::max(1.0f - l.glass_fresnel, 1e-4f));
+    }
+    if (l.clearcoat > 0.0f) glossy += 1.0f;
+    return {l.diffuse_color, Rgb(glossy), transmission};
+}
+
 }  // namespace
 
 BsdfEval principled_v1_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) {
@@ -230,6 +244,7 @@ const ClosureModel kPrincipledV1Closure{
     .has_transmission = &principled_has_transmission,
     .sample_weight = &principled_sample_weight,
     .albedo_estimate = &principled_albedo_estimate,
+    .colors = &colors,
     .kinds_above = kPrincipledKindsAbove,
     .kinds_below = scatter_kind_bit(ScatterKind::Transmission),
 };

@@ -31,6 +31,11 @@
 // source of Cycles 3.x Principled renders being brighter than a Diffuse BSDF.
 // F = cspec0 (1 - FH) + FH, FH = (F_dielectric(wi.h, ior) - F0) / (1 - F0). The specular lobe
 // exists only when specular > 0 or metallic > 0, as in Cycles.
+// Colour passes, Cycles 3.4's closure weights (surface_shader_diffuse/glossy/transmission sum
+// sc->weight by closure type): Diffuse Color = (1 - metallic)(1 - transmission) base_color;
+// Glossy Color = (1 - t') for the specular closure (when it exists) + t' F_N for the glass
+// reflection + 1 for the clearcoat closure (its weight is the node's; 0.25 coat is inside its
+// Fresnel colour); Transmission Color = t' max(1 - F_N, 1e-4) base_color (Cycles keeps 1e-4).
 #pragma once
 
 #include "bsdf/bsdf.h"

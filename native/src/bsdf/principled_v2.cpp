@@ -21,7 +21,8 @@ struct LobesV2 {
     float glass_eta;     // its relative IOR (inverted on back faces by the caller)
     float coat;          // coat weight; 0 = no coat
     float coat_alpha, coat_eta;
-    Rgb base_scale;  // what the coat lets through to every layer below, for this wo
+    float coat_albedo;  // Cycles' albedo estimate of the coat lobe, F_v of the coat
+    Rgb base_scale;     // what the coat lets through to every layer below, for this wo
     float probability_metal, probability_specular, probability_glass, probability_coat;  // diffuse: rest
 };
 
@@ -92,11 +93,11 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     l.coat_alpha = ggx_alpha_from_roughness(m.coat_roughness);
     l.coat_eta = std::max(std::max(m.coat_ior, 1e-5f), 1.0f / std::max(m.coat_ior, 1e-5f));
     l.base_scale = Rgb(1.0f);
-    float coat_albedo = 0.0f;
+    l.coat_albedo = 0.0f;
     if (l.coat > 0.0f && l.coat_eta > 1.0f) {
-        coat_albedo = std::min(
+        l.coat_albedo = std::min(
             ggx_visible_fresnel_dielectric(wo.z, std::clamp(m.coat_roughness, 0.0f, 1.0f), l.coat_eta), 1.0f);
-        l.base_scale = Rgb(1.0f - l.coat * coat_albedo);
+        l.base_scale = Rgb(1.0f - l.coat * l.coat_albedo);
         const float cos_t = safe_sqrt(1.0f - (1.0f - wo.z * wo.z) / (l.coat_eta * l.coat_eta));
         const float depth = 1.0f / std::max(cos_t, 1e-4f);
         const Rgb tint(std::pow(std::clamp(m.coat_tint.r, 0.0f, 1.0f), depth),
@@ -115,7 +116,7 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     const float weight_glass =
         below * (1.0f - l.metallic) * l.transmission *
         (glass_fresnel + (1.0f - glass_fresnel) * std::max(m.base_color.average(), 0.0f));
-    const float weight_coat = l.coat * coat_albedo;
+    const float weight_coat = l.coat * l.coat_albedo;
     const float total = weight_metal + weight_specular + weight_diffuse + weight_glass + weight_coat;
     l.probability_metal = total > 0.0f ? weight_metal / total : 0.0f;
     l.probability_specular = total > 0.0f ? weight_specular / total : 0.0f;
@@ -169,6 +170,20 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi,
     return e;
 }
 
+// Cycles 4.x's bsdf_albedo estimates of its closures, per type (see principled_v2.h).
+ClosureColors colors(const Material& m, Vec3 wo) {
+    const LobesV2 l = setup(m, wo);
+    const float opaque = (1.0f - l.metallic) * (1.0f - l.transmission);
+    const float glass = (1.0f - l.metallic) * l.transmission;
+    const float glass_fresnel = fresnel_dielectric(wo.z, l.glass_eta);
+    const float sw = schlick_weight(wo.z);
+    const Rgb metal = (l.metal_f0 * (1.0f - sw) + Rgb(sw)) * l.metallic;
+    const Rgb glossy = l.base_scale * (metal + Rgb(opaque * l.layer_albedo + glass * glass_fresnel));
+    return {m.base_color * l.base_scale * (opaque * (1.0f - l.layer_albedo)),
+            glossy + Rgb(l.coat * l.coat_albedo),
+            m.base_color * l.base_scale * (glass * (1.0f - glass_fresnel))};
+}
+
 }  // namespace
 
 BsdfEval principled_v2_eval(const Material& m, Vec3 wo, Vec3 wi, HemisphereDistribution hemisphere) {
@@ -215,6 +230,7 @@ const ClosureModel kPrincipledV2Closure{
     .has_transmission = &principled_has_transmission,
     .sample_weight = &principled_sample_weight,
     .albedo_estimate = &principled_albedo_estimate,
+    .colors = &colors,
     .kinds_above = kPrincipledKindsAbove,
     .kinds_below = scatter_kind_bit(ScatterKind::Transmission),
 };

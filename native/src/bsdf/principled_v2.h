@@ -34,6 +34,12 @@
 // F_v = ggx_visible_fresnel_dielectric: the visible-normal mean Fresnel Cycles tabulates
 // (microfacet_ggx.h). E, E_avg, E_F, F_v, F_avg come from tables this code computes once.
 // The layering factors depend on wo only, so, like Cycles, this model is not reciprocal.
+// Colour passes, Cycles 4.x's bsdf_albedo of each closure summed by type, from the same layering:
+// Diffuse Color = b (1 - metallic)(1 - transmission)(1 - A_layer) base; Glossy Color =
+// b [(1 - metallic)(1 - transmission) A_layer + metallic F_schlick(cos_o, base) + (1 - metallic)
+// transmission F(cos_o, ior)] + coat F_v,coat; Transmission Color = b (1 - metallic) transmission
+// (1 - F(cos_o, ior)) base, b the coat's base_scale. Cycles reads the metal's and rough glass
+// reflection's estimates from GGX tables (mix(F0, 1, s)); here the smooth-surface Fresnel of wo.
 // Which distribution a material uses is the node's `distribution` (Blender 4.x/5.0 default
 // Multiscatter GGX; files saved by 3.x keep GGX).
 #pragma once

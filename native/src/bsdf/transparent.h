@@ -7,6 +7,8 @@
 // Reference: Cycles `closure/bsdf_transparent.h` (bsdf_transparent_sample: wi = −wo, a Dirac,
 // pdf 1 by convention). Shadow rays pass it too: ClosureSet sums w_i T_i as the shading point's
 // transparency (integrators/transparent_shadow.h).
+// Colour passes: none (Cycles' transparent closure is none of diffuse, glossy, transmission); the
+// surfaces behind it enter them through the path's throughput, tinted by T.
 #pragma once
 
 #include "bsdf/bsdf.h"

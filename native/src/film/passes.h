@@ -50,7 +50,10 @@ enum class Pass : uint32_t {
     Mist,
     Ao,
     ObjectIndex,
-    MaterialIndex
+    MaterialIndex,
+    DiffuseColor,
+    GlossyColor,
+    TransmissionColor
 };
 
 // Cycles' Depth of a camera ray that meets nothing (kernel/film/read.h: a stored 0 reads 1e10).
@@ -96,6 +99,17 @@ inline constexpr std::array kPasses = {
     PassInfo{"IndexMA", 1, PassKind::FirstSample,
              "Material > Settings > Pass Index of the first opaque surface's material, of sample 0 as in "
              "Cycles (0 where none)"},
+    PassInfo{
+        "DiffCol", 3, PassKind::Average,
+        "Cycles' Diffuse Color: the diffuse closures' colour (weight in 3.x, albedo in 4.x) of the surfaces "
+        "a camera ray meets before its first bounce, times the path's throughput"},
+    PassInfo{
+        "GlossCol", 3, PassKind::Average,
+        "Cycles' Glossy Color: the glossy closures' colour (glass: its reflection share) of the surfaces a "
+        "camera ray meets before its first bounce, times the path's throughput"},
+    PassInfo{"TransCol", 3, PassKind::Average,
+             "Cycles' Transmission Color: the transmission closures' colour (glass: its refraction share) of "
+             "the surfaces a camera ray meets before its first bounce, times the path's throughput"},
 };
 
 inline constexpr const PassInfo& pass_info(Pass pass) { return kPasses[static_cast<uint32_t>(pass)]; }

@@ -25,7 +25,9 @@ CameraPathPasses::CameraPathPasses(PassValues& passes, const MistSettings& mist)
                     passes.wants(Pass::MaterialIndex)),
       features_pending_(passes.wants(Pass::DenoisingAlbedo) || passes.wants(Pass::DenoisingNormal)),
       direct_(passes.wants(Pass::Emit) || passes.wants(Pass::Env)),
-      mist_wanted_(passes.wants(Pass::Mist) && passes.camera()) {}
+      mist_wanted_(passes.wants(Pass::Mist) && passes.camera()),
+      colors_wanted_(passes.wants(Pass::DiffuseColor) || passes.wants(Pass::GlossyColor) ||
+                     passes.wants(Pass::TransmissionColor)) {}
 
 void CameraPathPasses::surface(const SurfaceHit& hit, Vec3 ns, const ClosureSet& closures, Rgb beta,
                                bool camera_visible) {
@@ -57,6 +59,8 @@ void CameraPathPasses::plain_surface(const SurfaceHit& hit, Vec3 ns) {
         data_pending_ = false;
     }
     if (features_pending_) write_features(ns, Rgb(1.0f));
+    // The AO integrator's only surface (it calls no finish): white diffuse.
+    passes_.write(Pass::DiffuseColor, Vec3(1.0f, 1.0f, 1.0f));
 }
 
 void CameraPathPasses::miss(Rgb background, bool camera_visible) {
@@ -77,6 +81,12 @@ void CameraPathPasses::finish() {
     if (features_pending_) write_features(Vec3{}, albedo_);
     if (mist_wanted_) passes_.write(Pass::Mist, 1.0f - mist_sum_);
     if (passes_.wants(Pass::Ao)) passes_.write(Pass::Ao, Vec3(ao_.r, ao_.g, ao_.b));
+    if (colors_wanted_) {
+        passes_.write(Pass::DiffuseColor, Vec3(diffuse_color_.r, diffuse_color_.g, diffuse_color_.b));
+        passes_.write(Pass::GlossyColor, Vec3(glossy_color_.r, glossy_color_.g, glossy_color_.b));
+        passes_.write(Pass::TransmissionColor,
+                      Vec3(transmission_color_.r, transmission_color_.g, transmission_color_.b));
+    }
     if (!direct_) return;
     passes_.write(Pass::Emit, Vec3(emit_.r, emit_.g, emit_.b));
     passes_.write(Pass::Env, Vec3(env_.r, env_.g, env_.b));

@@ -26,6 +26,10 @@
 // | AO               | Σ β α [a cosine direction about ns is unblocked within ao_distance]     |
 // |                  | over the camera-visible surfaces (Cycles' integrate_surface_ao: one     |
 // |                  | shadow ray each, drawn from the surface's BSDF direction numbers)       |
+// | DiffCol, GlossCol| Σ β × the closures' colours (ClosureSet::colors: Cycles' surface_shader_ |
+// | TransCol         | diffuse/glossy/transmission) over the camera-visible surfaces, as       |
+// |                  | Cycles' film_write_data_passes adds them (0 on a miss; the AO           |
+// |                  | integrator's plain surfaces count as white diffuse)                     |
 //
 // Differences from Cycles, kept because Stratum's closures are whole models: Cycles defers to
 // the next bounce when ≥ 75% of the sample weight is specular-like (GGX alpha ≤ 0.075) and
@@ -56,6 +60,15 @@ public:
     void surface(const SurfaceHit& hit, Vec3 ns, const ClosureSet& closures, Rgb beta, bool camera_visible);
     // A surface without closures (the AO integrator's): white albedo, opaque.
     void plain_surface(const SurfaceHit& hit, Vec3 ns);
+    // The colour passes of a surface met with closures `closures`, shading normal `ns`, seen
+    // from wo_world (toward the viewer); a no-op unless they are wanted and camera_visible.
+    void colors(const ClosureSet& closures, Vec3 ns, Vec3 wo_world, Rgb beta, bool camera_visible) {
+        if (!colors_wanted_ || !camera_visible) return;
+        const ClosureColors c = closures.colors(Frame::from_normal(ns).to_local(wo_world));
+        diffuse_color_ += beta * c.diffuse;
+        glossy_color_ += beta * c.glossy;
+        transmission_color_ += beta * c.transmission;
+    }
     // Lamp radiance the path collects (times β and its MIS weight), camera-visible or not.
     void emitted(Rgb contribution, bool camera_visible) {
         if (features_pending_) albedo_ += contribution;
@@ -85,9 +98,10 @@ private:
 
     PassValues& passes_;
     const MistSettings& mist_;
-    bool data_pending_, features_pending_, direct_, mist_wanted_;
+    bool data_pending_, features_pending_, direct_, mist_wanted_, colors_wanted_;
     float mist_sum_ = 0.0f;
     Rgb albedo_{0.0f}, emit_{0.0f}, env_{0.0f}, ao_{0.0f};
+    Rgb diffuse_color_{0.0f}, glossy_color_{0.0f}, transmission_color_{0.0f};
 };
 
 }  // namespace stratum

@@ -106,6 +106,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         const ShadingPoint sp = build_closures(scene, hit, wo_world);
         const ClosureSet& closures = sp.closures;
         data.surface(hit, sp.ns, closures, beta, camera_visible_path);
+        data.colors(closures, sp.ns, wo_world, beta, camera_visible_path);
         if (camera_visible_path && data.wants_ao())
             data.ao(scene, hit.position, sp.ns, sp.ng,
                     sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection)),
