@@ -67,9 +67,24 @@ def _minimum(setting: native.Setting) -> int | float:
     return OPEN_MINIMUM_FLOORS[setting.name]
 
 
+def _float32_range(lo: float, hi: float) -> tuple[float, float]:
+    """The float32 values nearest to [lo, hi] inside it: a FloatProperty stores a float, and
+    the float nearest to 0.01 (0.0099999998) lies below a library minimum of 0.01, which
+    would refuse the property's own minimum."""
+    low, high = np.float32(lo), np.float32(hi)
+    if float(low) < lo:
+        low = np.nextafter(low, np.float32(np.inf))
+    if float(high) > hi:
+        high = np.nextafter(high, np.float32(-np.inf))
+    return float(low), float(high)
+
+
 def _number_options(setting: native.Setting, largest: int | float) -> dict[str, Any]:
     """Range, soft maximum and subtype of an INT or FLOAT property."""
-    options: dict[str, Any] = {"min": _minimum(setting), "max": min(setting.maximum, largest)}
+    lo, hi = _minimum(setting), min(setting.maximum, largest)
+    if setting.kind == native.SettingKind.FLOAT:
+        lo, hi = _float32_range(lo, hi)
+    options: dict[str, Any] = {"min": lo, "max": hi}
     if setting.name in SOFT_MAXIMA:
         options["soft_max"] = SOFT_MAXIMA[setting.name]
     if setting.unit in UNIT_SUBTYPES:

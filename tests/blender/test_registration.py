@@ -98,6 +98,24 @@ def test_properties_are_the_library_settings(library: Any) -> None:
         assert prop.hard_max == pytest.approx(min(setting.maximum, largest)), name
 
 
+def test_the_library_accepts_every_float_property_at_both_ends(library: Any,
+                                                               scene_builder: Any) -> None:
+    """A FloatProperty stores a float32: its ends, as the property holds them, are values the
+    library takes (the float nearest 0.01 lies below it, so filter_width's minimum must be the
+    next float up)."""
+    s = scene_builder().scene.stratum
+    props = s.bl_rna.properties
+    names = {setting.name for setting in library.settings()}
+    floats = [p.identifier for p in props
+              if p.type == "FLOAT" and not p.is_array and p.identifier in names]
+    assert "filter_width" in floats
+    with library.Renderer(library.Scene()) as renderer:
+        for name in floats:
+            for end in (props[name].hard_min, props[name].hard_max):
+                setattr(s, name, end)
+                renderer.set(name, getattr(s, name))
+
+
 def test_registration_without_the_library(stratum_addon: Any, scene_builder: Any,
                                           monkeypatch: pytest.MonkeyPatch,
                                           tmp_path: Any) -> None:
