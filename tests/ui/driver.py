@@ -106,9 +106,10 @@ class Scenario:
         bpy.ops.wm.quit_blender()
 
     @classmethod
-    def main(cls, steps: Callable[[Scenario], Iterator[float]]) -> None:
+    def main(cls, steps: Callable[[Scenario], Iterator[float]], persistent: bool = False) -> None:
         """Runs `steps` from a timer once the UI is up; the output folder is the first argument
-        after `--`."""
+        after `--`. `persistent`: the timer survives loading a file (Blender drops other
+        timers then), for scenarios that load one."""
         out = Path(sys.argv[sys.argv.index("--") + 1])
         scenario = cls(out)
         iterator = steps(scenario)
@@ -122,7 +123,7 @@ class Scenario:
                 scenario.finish(traceback.format_exc())
             return None
 
-        bpy.app.timers.register(tick, first_interval=1.0)
+        bpy.app.timers.register(tick, first_interval=1.0, persistent=persistent)
 
 
 def load_png(path: Path) -> np.ndarray:
