@@ -18,8 +18,8 @@ incidence). The Fresnel reflectance of IOR 1.5 stays within 0.04-0.05 up to 45°
 absolute (the rough layer's albedo spreads the Fresnel term a little); the comparison is limited
 to those pixels. On the emitting quad both write its emission (15).
 
-Blender 5.0's bpy module writes only Combined into a multilayer EXR, Cycles too, so the Cycles
-side is read in Blender 3.4 only.
+In Blender 5.0 (Principled v2, Cycles 4.x's rules) both write the Denoising Albedo as the sum
+of the closures' bsdf_albedo estimates; they agree within 8e-4 there (measured).
 """
 
 from __future__ import annotations
@@ -29,21 +29,15 @@ from typing import Any
 
 import bpy
 import numpy as np
-import pytest
 
 from agreement import configure_cycles, configure_stratum, open_scene
-from test_render_passes import read_exr_channels
+from test_render_passes import read_exr_channels, result_name, set_multilayer_exr
 
 RES = 48
 SAMPLES = 4
 PASSES = {"Depth": "Z", "Position": "XYZ", "Normal": "XYZ", "Denoising Normal": "XYZ",
           "Denoising Albedo": "RGB"}
 COLOUR_PASSES = {"DiffCol": "RGB", "GlossCol": "RGB", "TransCol": "RGB"}
-
-pytestmark = pytest.mark.skipif(
-    bpy.app.version >= (5, 0, 0),
-    reason="Blender 5.0's bpy module writes only Combined into a multilayer EXR (Cycles too)")
-
 
 def render_passes(renderer: str, path: Path, colours: bool = False) -> dict[str, np.ndarray]:
     scene = open_scene()
@@ -61,9 +55,7 @@ def render_passes(renderer: str, path: Path, colours: bool = False) -> dict[str,
         configure_stratum(scene, 1, samples=SAMPLES)
         scene.stratum.filter_width = 0.02
         layer.stratum.use_pass_denoising_data = True
-    settings = scene.render.image_settings
-    settings.file_format = "OPEN_EXR_MULTILAYER"
-    settings.color_depth = "32"
+    set_multilayer_exr(scene.render.image_settings)
     scene.render.filepath = str(path)
     scene.render.use_file_extension = False
     bpy.ops.render.render(write_still=True)
@@ -71,7 +63,7 @@ def render_passes(renderer: str, path: Path, colours: bool = False) -> dict[str,
     name = layer.name
     out = {}
     for pass_name, letters in {**PASSES, **(COLOUR_PASSES if colours else {})}.items():
-        keys = [f"{name}.{pass_name}.{c}" for c in letters]
+        keys = [f"{name}.{result_name(pass_name)}.{c}" for c in letters]
         missing = [k for k in keys if k not in channels]
         assert not missing, f"{renderer}: {missing} not in {sorted(channels)}"
         out[pass_name] = np.stack([channels[k] for k in keys], axis=-1).astype(np.float64)
@@ -125,14 +117,19 @@ def test_colour_passes_agree_with_cycles_on_the_cornell_box(library: Any, tmp_pa
     Principled BSDFs (metallic 0, specular 0.5, no transmission, clearcoat or sheen) the diffuse
     closure's base colour, the specular closure's white 1 and no transmission; the emitter's
     Emission closure adds none. Both renderers write exactly these (no noise: the colours of a
-    face do not depend on the sample), so away from edges they agree to float precision."""
+    face do not depend on the sample), so away from edges they agree to float precision.
+    Cycles 4.x/5.0 writes its bsdf_albedo estimates instead, which it reads from GGX albedo
+    tables at the view angle; Stratum's Principled v2 computes them from its own fits of the same
+    albedos (microfacet_ggx.h) and the smooth Fresnel: in Blender 5.0 they agree within 1e-3
+    (measured: 6.7e-4 diffuse, 8.4e-4 glossy at most, 2e-4 on average)."""
     cycles = render_passes("cycles", tmp_path / "cycles.exr", colours=True)
     stratum = render_passes("stratum", tmp_path / "stratum.exr", colours=True)
     keep = interior(cycles["Depth"][..., 0], cycles["Normal"])
     assert keep.sum() > 0.4 * RES * RES, keep.sum()
+    tolerance = 1e-4 if bpy.app.version < (4, 0, 0) else 1e-3
     for pass_name in COLOUR_PASSES:
-        np.testing.assert_allclose(stratum[pass_name][keep], cycles[pass_name][keep], atol=1e-4,
-                                   err_msg=pass_name)
+        np.testing.assert_allclose(stratum[pass_name][keep], cycles[pass_name][keep],
+                                   atol=tolerance, err_msg=pass_name)
     # Not vacuous: the walls' colours differ, and the specular closure is there.
     assert np.ptp(cycles["DiffCol"][keep][:, 0]) > 0.5
-    assert np.any(cycles["GlossCol"][keep] > 0.5)
+    assert np.any(cycles["GlossCol"][keep] > 0.1)  # 1 in 3.4, the specular albedo 0.14 in 5.0

@@ -122,6 +122,18 @@ def plane_depth(u: np.ndarray) -> np.ndarray:
     return DISTANCE * math.cos(TILT) / (math.cos(TILT) - u * math.sin(TILT))
 
 
+def set_multilayer_exr(settings: Any) -> None:
+    """A 32-bit multilayer EXR of every pass. Blender 5.0 makes multilayer a media type, and
+    writes the passes besides Combined only with "Interleave" on (use_exr_interleave; off in a
+    new 5.0 scene, on in files from earlier versions), for Cycles as for Stratum."""
+    if hasattr(settings, "media_type"):
+        settings.media_type = "MULTI_LAYER_IMAGE"
+    settings.file_format = "OPEN_EXR_MULTILAYER"
+    settings.color_depth = "32"
+    if hasattr(settings, "use_exr_interleave"):
+        settings.use_exr_interleave = True
+
+
 def render_passes_f12(scene: Any, path: Path, monkeypatch: pytest.MonkeyPatch
                       ) -> tuple[dict[str, np.ndarray], dict[str, np.ndarray]]:
     """F12 to a 32-bit multilayer EXR: its channels by name, and the passes as the engine left
@@ -143,10 +155,7 @@ def render_passes_f12(scene: Any, path: Path, monkeypatch: pytest.MonkeyPatch
 
     monkeypatch.setattr(render_passes.ResultPasses, "write", write_and_read_back)
     settings = scene.render.image_settings
-    if hasattr(settings, "media_type"):  # Blender 5.0: multilayer is a media type
-        settings.media_type = "MULTI_LAYER_IMAGE"
-    settings.file_format = "OPEN_EXR_MULTILAYER"
-    settings.color_depth = "32"
+    set_multilayer_exr(settings)
     scene.render.filepath = str(path)
     scene.render.use_file_extension = False
     bpy.ops.render.render(write_still=True)
@@ -160,17 +169,10 @@ def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene
     scene = tilted_plane_scene(scene_builder())
     channels, in_result = render_passes_f12(scene, tmp_path / "passes.exr", monkeypatch)
     layer = scene.view_layers[0].name
-    # Blender 5.0's bpy module writes only Combined into a multilayer EXR from write_still, for
-    # Cycles too (measured with the same scene and Cycles' Depth pass): there the passes are
-    # checked in the render result the EXR is written from; Blender 3.4 writes them all.
-    from_exr = bpy.app.version < (5, 0, 0)
 
     def image(native_name: str, letters: str) -> np.ndarray:
         """(height, width, channels), row 0 at the bottom as the render result's."""
         pass_name = result_name(native_name)
-        if not from_exr:
-            assert pass_name in in_result, f"{pass_name} not in {sorted(in_result)}"
-            return in_result[pass_name]
         names = [f"{layer}.{pass_name}.{c}" for c in letters]
         missing = [n for n in names if n not in channels]
         assert not missing, f"{missing} not in {sorted(channels)}"
@@ -360,11 +362,10 @@ def test_f12_writes_the_colour_passes(library: Any, scene_builder: Any, tmp_path
     plane, sky = np.s_[:, : SIZE // 2], np.s_[:, SIZE // 2:]
     for pass_name in map(result_name, ("DiffCol", "GlossCol", "TransCol")):
         assert pass_name in in_result, f"{pass_name} not in {sorted(in_result)}"
-        if bpy.app.version < (5, 0, 0):  # 5.0's bpy writes only Combined (see above)
-            names = [f"{layer.name}.{pass_name}.{c}" for c in "RGB"]
-            assert all(n in channels for n in names), sorted(channels)
-            exr = np.stack([channels[n] for n in names], axis=-1)[::-1]
-            np.testing.assert_array_equal(exr, in_result[pass_name])
+        names = [f"{layer.name}.{pass_name}.{c}" for c in "RGB"]
+        assert all(n in channels for n in names), sorted(channels)
+        exr = np.stack([channels[n] for n in names], axis=-1)[::-1]
+        np.testing.assert_array_equal(exr, in_result[pass_name])
     diffuse = in_result[result_name("DiffCol")]
     np.testing.assert_allclose(diffuse[plane], np.broadcast_to(ALBEDO, diffuse[plane].shape), atol=1e-6)
     np.testing.assert_array_equal(diffuse[sky], 0.0)

@@ -349,3 +349,40 @@ TEST(ColorPasses, APrincipledV1QuadRendersCycles34Weights) {
     expect_everywhere(p.transmission, rgb(e.transmission), 1e-5f, "TransCol");
     stratum_scene_destroy(scene);
 }
+
+TEST(ColorPasses, PrincipledV2DenoisingAlbedoIsTheSumOfItsColours) {
+    // Cycles 4.x writes Σ bsdf_albedo of the closures to the Denoising Albedo, the same albedos
+    // its colour passes hold (bsdf/bsdf.h: denoising_albedo_from_colors); here on a quad with
+    // every layer present, seen at cos_o = cos 40°, the first surface of every camera ray.
+    const float tilt = 0.6981317007977318f;
+    StratumMaterialDesc d = desc(STRATUM_MATERIAL_PRINCIPLED_V2, kColor, 0.4f);
+    d.metallic = 0.3f;
+    d.transmission = 0.2f;
+    d.coat = 0.5f;
+    d.coat_roughness = 0.1f;
+    d.coat_ior = 1.5f;
+    d.coat_tint[0] = d.coat_tint[1] = d.coat_tint[2] = 1.0f;
+    StratumScene* scene = make_scene({{-3.0f, tilt, d}});
+    ASSERT_NE(scene, nullptr) << stratum_last_error();
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    for (const char* name : {"width", "height"})
+        ASSERT_EQ(stratum_renderer_set_int(r, name, kSize), STRATUM_OK);
+    ASSERT_EQ(stratum_renderer_set_int(r, "samples", 4), STRATUM_OK);
+    ASSERT_EQ(stratum_renderer_set_string(r, "passes", "DiffCol,GlossCol,TransCol,Denoising Albedo"),
+              STRATUM_OK);
+    ASSERT_EQ(stratum_renderer_start(r), STRATUM_OK);
+    int32_t done = 0;
+    while (!done) ASSERT_EQ(stratum_renderer_wait(r, 1000, &done), STRATUM_OK);
+    std::vector<float> passes[4];
+    const char* names[4] = {"DiffCol", "GlossCol", "TransCol", "Denoising Albedo"};
+    for (int i = 0; i < 4; ++i) {
+        passes[i].resize(kSize * kSize * 3);
+        ASSERT_EQ(stratum_renderer_read_pass(r, names[i], passes[i].data(), passes[i].size()), STRATUM_OK);
+    }
+    stratum_renderer_destroy(r);
+    for (size_t i = 0; i < passes[3].size(); ++i) {
+        EXPECT_NEAR(passes[3][i], passes[0][i] + passes[1][i] + passes[2][i], 1e-5f) << "value " << i;
+    }
+    stratum_scene_destroy(scene);
+}

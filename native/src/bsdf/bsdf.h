@@ -94,6 +94,11 @@ struct ClosureModel {
     // shader_holdout_apply); weight × base_color passes shadow rays (transparent shadows); f is
     // exactly base_color/π, so its albedo is the control variate's known integral (textbook 5.17).
     bool holdout = false, transparent = false, lambertian = false;
+    // Its Denoising Albedo is the sum of its colours (Cycles 4.x: film_write_denoising_features_
+    // surface sums bsdf_albedo, what Principled v2's colours are) rather than albedo_estimate
+    // (Cycles 3.x scales closure weights by their Fresnel colour, which albedo_estimate
+    // approximates; one-lobe models answer the same either way).
+    bool denoising_albedo_from_colors = false;
 };
 
 // Closure models are numbered 0 .. kMaxClosureModels − 1.

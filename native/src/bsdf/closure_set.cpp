@@ -29,6 +29,21 @@ void ClosureSet::finalize() {
     }
 }
 
+Rgb ClosureSet::denoising_albedo(Vec3 wo) const {
+    Rgb sum(0.0f);
+    for (uint32_t i = 0; i < count_; ++i) {
+        const Material& m = closures_[i].params;
+        const ClosureModel& model = closure_model(m.model);
+        if (model.denoising_albedo_from_colors) {
+            const ClosureColors c = model.colors(m, wo);
+            sum += closures_[i].weight * (c.diffuse + c.glossy + c.transmission);
+        } else {
+            sum += closures_[i].weight * model.albedo_estimate(m);
+        }
+    }
+    return sum;
+}
+
 ClosureColors ClosureSet::colors(Vec3 wo) const {
     ClosureColors sum;
     for (uint32_t i = 0; i < count_; ++i) {

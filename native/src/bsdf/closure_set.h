@@ -60,6 +60,10 @@ public:
     Rgb transparency() const { return transparency_; }
     Rgb lambertian_albedo() const { return lambertian_albedo_; }
     Rgb albedo_estimate() const { return albedo_estimate_; }
+    // What the Denoising Albedo pass takes of these closures seen from wo (local frame):
+    // Σ weight × (the colours' sum or albedo_estimate, as each model says:
+    // ClosureModel::denoising_albedo_from_colors).
+    Rgb denoising_albedo(Vec3 wo) const;
     bool has_transmission() const { return has_transmission_; }
     // Whether any closure has a non-delta part that next-event estimation can evaluate.
     bool has_non_delta() const { return has_non_delta_; }

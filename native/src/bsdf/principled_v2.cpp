@@ -233,6 +233,7 @@ const ClosureModel kPrincipledV2Closure{
     .colors = &colors,
     .kinds_above = kPrincipledKindsAbove,
     .kinds_below = scatter_kind_bit(ScatterKind::Transmission),
+    .denoising_albedo_from_colors = true,
 };
 
 }  // namespace stratum

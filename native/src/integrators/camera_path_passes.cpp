@@ -29,8 +29,17 @@ CameraPathPasses::CameraPathPasses(PassValues& passes, const MistSettings& mist)
       colors_wanted_(passes.wants(Pass::DiffuseColor) || passes.wants(Pass::GlossyColor) ||
                      passes.wants(Pass::TransmissionColor)) {}
 
-void CameraPathPasses::surface(const SurfaceHit& hit, Vec3 ns, const ClosureSet& closures, Rgb beta,
-                               bool camera_visible) {
+void CameraPathPasses::surface(const SurfaceHit& hit, Vec3 ns, Vec3 wo_world, const ClosureSet& closures,
+                               Rgb beta, bool camera_visible) {
+    const bool local_wanted =
+        (colors_wanted_ && camera_visible) || (features_pending_ && closures.has_non_delta());
+    const Vec3 wo = local_wanted ? Frame::from_normal(ns).to_local(wo_world) : Vec3{};
+    if (colors_wanted_ && camera_visible) {
+        const ClosureColors c = closures.colors(wo);
+        diffuse_color_ += beta * c.diffuse;
+        glossy_color_ += beta * c.glossy;
+        transmission_color_ += beta * c.transmission;
+    }
     if (direct_ && camera_visible) emit_ += beta * closures.emission();
     if (mist_wanted_ && camera_visible) add_mist(hit.position, beta * (Rgb(1.0f) - closures.transparency()));
     if (data_pending_ && camera_visible) {
@@ -44,7 +53,7 @@ void CameraPathPasses::surface(const SurfaceHit& hit, Vec3 ns, const ClosureSet&
     if (!features_pending_) return;
     albedo_ += beta * closures.emission();
     if (closures.has_non_delta()) {
-        write_features(ns, albedo_ + beta * closures.albedo_estimate());
+        write_features(ns, albedo_ + beta * closures.denoising_albedo(wo));
     } else if (!closures.scatters()) {
         write_features(Vec3{}, albedo_);
     }

@@ -34,8 +34,9 @@
 // Differences from Cycles, kept because Stratum's closures are whole models: Cycles defers to
 // the next bounce when ≥ 75% of the sample weight is specular-like (GGX alpha ≤ 0.075) and
 // writes only the diffuse-like closures' albedo; Stratum defers at delta-only surfaces and
-// writes the closures' albedo estimate (ClosureSet::albedo_estimate: base colour for one-lobe
-// models, base colour + 0.04 for Principled, at most 1).
+// writes the closures' albedo (ClosureSet::denoising_albedo: base colour for one-lobe models;
+// for Cycles 3.x's Principled the estimate base colour + 0.04, for 4.x's the sum of its colour
+// passes, which are Cycles 4.x's bsdf_albedo estimates at the view angle).
 #pragma once
 
 #include "bsdf/closure_set.h"
@@ -57,18 +58,11 @@ public:
     CameraPathPasses(PassValues& passes, const MistSettings& mist);
     // A surface the path meets (`hit`) with shading normal `ns`; `beta` is the path's
     // throughput up to it and `camera_visible` whether only transparent pass-throughs came before.
-    void surface(const SurfaceHit& hit, Vec3 ns, const ClosureSet& closures, Rgb beta, bool camera_visible);
+    // `wo_world` points from the surface toward the viewer.
+    void surface(const SurfaceHit& hit, Vec3 ns, Vec3 wo_world, const ClosureSet& closures, Rgb beta,
+                 bool camera_visible);
     // A surface without closures (the AO integrator's): white albedo, opaque.
     void plain_surface(const SurfaceHit& hit, Vec3 ns);
-    // The colour passes of a surface met with closures `closures`, shading normal `ns`, seen
-    // from wo_world (toward the viewer); a no-op unless they are wanted and camera_visible.
-    void colors(const ClosureSet& closures, Vec3 ns, Vec3 wo_world, Rgb beta, bool camera_visible) {
-        if (!colors_wanted_ || !camera_visible) return;
-        const ClosureColors c = closures.colors(Frame::from_normal(ns).to_local(wo_world));
-        diffuse_color_ += beta * c.diffuse;
-        glossy_color_ += beta * c.glossy;
-        transmission_color_ += beta * c.transmission;
-    }
     // Lamp radiance the path collects (times β and its MIS weight), camera-visible or not.
     void emitted(Rgb contribution, bool camera_visible) {
         if (features_pending_) albedo_ += contribution;

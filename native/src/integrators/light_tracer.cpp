@@ -97,8 +97,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         }
         const ShadingPoint sp = build_closures(scene, hit, -dir);
         const ClosureSet& closures = sp.closures;
-        data.surface(hit, sp.ns, closures, beta, true);
-        data.colors(closures, sp.ns, -dir, beta, true);
+        data.surface(hit, sp.ns, -dir, closures, beta, true);
         const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
         if (!holdout.is_black()) transparency += (holdout * beta).average();
         if (hit.holdout) break;

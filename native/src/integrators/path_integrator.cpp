@@ -105,8 +105,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         const Vec3 wo_world = -dir;
         const ShadingPoint sp = build_closures(scene, hit, wo_world);
         const ClosureSet& closures = sp.closures;
-        data.surface(hit, sp.ns, closures, beta, camera_visible_path);
-        data.colors(closures, sp.ns, wo_world, beta, camera_visible_path);
+        data.surface(hit, sp.ns, wo_world, closures, beta, camera_visible_path);
         if (camera_visible_path && data.wants_ao())
             data.ao(scene, hit.position, sp.ns, sp.ng,
                     sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection)),
