@@ -38,8 +38,8 @@ double seconds_since(Clock::time_point t0) {
 // Runs body on every tile of `tiles`, split down to at most kTileSize pixels a side
 // (tbb::simple_partitioner; the default partitioner leaves tiles of 32² and more): each tile
 // publishes its pixels and counts its samples when it ends, so small tiles are what makes the
-// image and the progress move within a pass. The split does not change any pixel: each pixel's
-// samples are summed by one thread in index order whatever tile it falls in.
+// image and the progress move within a pass. The split does not change any pixel: the film's
+// sums are exact (film/film.h), whatever tile a pixel falls in.
 template <typename Body>
 void parallel_for_tile(const tbb::blocked_range2d<uint32_t>& tiles, const Body& body) {
     tbb::parallel_for(tiles, body, tbb::simple_partitioner());
