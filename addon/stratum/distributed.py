@@ -137,7 +137,10 @@ def render_on_cluster(client: Any, frame: Frame) -> tuple[native.Renderer, list[
         raise DistributedError("the Dask cluster has no workers")
     samples = int(frame.settings.get("samples", 16))
     ranges = split_samples(samples, len(workers))
-    scattered = client.scatter(frame, broadcast=True)
+    # A key of its own (hash=False): a key derived from the content is shared with an earlier
+    # render of the same frame, whose release could then drop this one's data ("lost
+    # dependencies").
+    scattered = client.scatter(frame, broadcast=True, hash=False)
     futures = [client.submit(render_range, scattered, offset, count, pure=False,
                              workers=[worker], allow_other_workers=True)
                for (offset, count), worker in zip(ranges, workers, strict=False)]

@@ -65,6 +65,10 @@ def test_a_local_cluster_of_two_workers_renders_the_one_machine_image_bit_for_bi
             renderer, notices = render_on_cluster(client, frame)
             with renderer:
                 merged = renderer.read_pixels()
+            # The same frame again at once: its data must not be lost with the first's.
+            again, _ = render_on_cluster(client, frame)
+            with again:
+                assert again.read_pixels().tobytes() == merged.tobytes()
             expected = _one_machine(native, frame)
             assert notices == []
             assert merged.tobytes() == expected.tobytes(), sampler
