@@ -41,6 +41,10 @@ FROM_BLENDER: dict[str, str] = {
 # Setting -> why nothing in Blender sets it.
 NOT_IN_BLENDER: dict[str, str] = {
     "bvh": "F12 renders use the library's default (static); the Rendered viewport uses dynamic",
+    "sample_offset": "a render in Blender takes all the samples; `stratum render --scheduler` "
+                     "gives each Dask worker its range (distributed.py)",
+    "sample_count": "a render in Blender takes all the samples; `stratum render --scheduler` "
+                    "gives each Dask worker its range (distributed.py)",
 }
 
 # scene.stratum properties of the add-on alone: name -> (label, description, default). Off by

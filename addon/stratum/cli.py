@@ -292,6 +292,10 @@ def _cmd_render(ns: argparse.Namespace) -> int:
         return 2
     output = Path(ns.output).resolve()
     output.parent.mkdir(parents=True, exist_ok=True)
+    if ns.scheduler:
+        from .distributed import command_line_render
+
+        return command_line_render(ns, blender, scene, output)
     payload = {
         "addon_parent": str(ADDON_PARENT),
         "samples": ns.samples,
@@ -352,6 +356,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--seed", type=int)
     p.add_argument("--max-bounces", dest="max_bounces", type=int)
     p.add_argument("--resolution", type=_parse_resolution, help="WxH, e.g. 64x64")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="split the frame's samples over the workers of a Dask cluster: a "
+                   "scheduler address (tcp://host:8786) or local:N for N local worker processes; "
+                   "the image is bit-identical to one machine's (written by the native library: "
+                   "linear EXR, or PNG/other by extension, without Blender's view transform)")
     p.set_defaults(func=_cmd_render)
 
     p = sub.add_parser(

@@ -21,6 +21,14 @@ Film small_film(bool light_paths) {
     return Film(PixelRegion{1, 2, 2, 1}, 4, 4, PixelFilter(FilterType::Box, 1.0f), kNormalOnly, light_paths);
 }
 
+// A value well inside the fixed-point range.
+FilmSum to_fixed_exact(double v) {
+    bool clamped = false;
+    const FilmSum s = to_fixed(v, kFixedSampleLimit, &clamped);
+    EXPECT_FALSE(clamped);
+    return s;
+}
+
 std::vector<float> read(const Film& film, Pass pass) {
     std::vector<float> out(film.region().pixel_count() * pass_info(pass).channels, -1.0f);
     EXPECT_TRUE(film.read(pass, out.data()));
@@ -32,7 +40,9 @@ std::vector<float> read(const Film& film, Pass pass) {
 TEST(Film, PublishesTheMeanOfEachPixelsSamplesForEveryPass) {
     Film film = small_film(false);
     ASSERT_EQ(film.sums_stride(), 7u);  // RGB, alpha, the normal's 3 channels
-    const double sums[] = {2, 4, 6, 2, 1, 0, -1};
+    const FilmSum sums[] = {to_fixed_exact(2), to_fixed_exact(4), to_fixed_exact(6),
+                            to_fixed_exact(2), to_fixed_exact(1), 0,
+                            to_fixed_exact(-1)};
     film.store_sums(0, sums, 2);
     film.publish(1, 3, 2, 3);
     EXPECT_EQ(read(film, Pass::Combined), (std::vector<float>{1, 2, 3, 1, 0, 0, 0, 0}));
@@ -53,7 +63,8 @@ TEST(Film, HoldsOnlyThePassesItWasMadeWith) {
 
 TEST(Film, LightPathSplatsAddToTheCameraSamplesOverTheSampleIndices) {
     Film film = small_film(true);
-    const double sums[] = {1, 1, 1, 1, 0, 0, 0};
+    const FilmSum one = to_fixed_exact(1);
+    const FilmSum sums[] = {one, one, one, one, 0, 0, 0};
     film.store_sums(1, sums, 1);
     std::vector<Splat> splats;
     // Film point at the centre of frame pixel (2, 2) = region pixel 1; outside the region: none.
@@ -62,7 +73,9 @@ TEST(Film, LightPathSplatsAddToTheCameraSamplesOverTheSampleIndices) {
     ASSERT_EQ(splats.size(), 1u);
     EXPECT_EQ(splats[0].pixel, 1u);
     splats.push_back({0, Rgb(std::numeric_limits<float>::quiet_NaN())});
-    EXPECT_EQ(film.add_splats(splats), 1u);  // the NaN is dropped, not summed
+    uint64_t clamped = 0;
+    EXPECT_EQ(film.add_splats(splats, &clamped), 1u);  // the NaN is dropped, not summed
+    EXPECT_EQ(clamped, 0u);
     film.publish_all(2);
     EXPECT_EQ(read(film, Pass::Combined), (std::vector<float>{0, 0, 0, 0, 2, 2, 2, 0.5f}));
 }

@@ -275,11 +275,11 @@ TEST(RenderPasses, FirstSamplePassesKeepSampleZeroAndTheErrorPassIsTheMeansStand
     // Depth is written by the integrator, the count and the error are the film's own.
     ASSERT_EQ(film.layout().extra_channels(), 1u);
     ASSERT_EQ(film.sums_stride(), 4u + 1u + 3u);
-    std::vector<double> sums(film.sums_stride(), 0.0);
+    std::vector<FilmSum> sums(film.sums_stride(), 0);
     const float red[] = {1, 2, 3, 4};
     for (uint32_t i = 0; i < 4; ++i) {
         const float depth = 10.0f + static_cast<float>(i);
-        film.add_sample(sums.data(), i, Rgb(red[i], 1.0f, 0.0f), 1.0f, &depth);
+        EXPECT_FALSE(film.add_sample(sums.data(), i, Rgb(red[i], 1.0f, 0.0f), 1.0f, &depth));
     }
     film.store_sums(0, sums.data(), 4);
     film.publish(0, 1, 0, 1);
@@ -293,9 +293,9 @@ TEST(RenderPasses, FirstSamplePassesKeepSampleZeroAndTheErrorPassIsTheMeansStand
     EXPECT_NEAR(error[0], std::sqrt(5.0 / 12.0), 1e-6);
     EXPECT_EQ(error[1], 0.0f);
     EXPECT_EQ(error[2], 0.0f);
-    // The memory budget counts the sums (RGBA + depth + 3 squares) and the published floats
-    // (RGBA + depth + count + 3 errors).
-    EXPECT_EQ(Film::bytes_per_pixel(passes, false), 8.0 * 8 + 9.0 * 4 + 4);
+    // The memory budget counts the sums (RGBA + depth + 3 squares, 16-byte fixed point) and the
+    // published floats (RGBA + depth + count + 3 errors).
+    EXPECT_EQ(Film::bytes_per_pixel(passes, false), 8.0 * 16 + 9.0 * 4 + 4);
 }
 
 // Cycles' AO pass inside a closed unit sphere: from a wall point, the direction at angle θ to the

@@ -169,3 +169,22 @@ class Renderer(_Handle):
         _check(self._lib,
                self._lib.stratum_renderer_write_image(self.handle, os.fsencode(path)),
                "stratum_renderer_write_image")
+
+    def read_sums(self) -> bytes:
+        """The exact sums of the last render (ended, not cancelled) of its sample indices
+        [sample_offset, sample_offset + sample_count): bytes another renderer of the same frame
+        adds with add_sums (stratum.h "one frame's samples over many renders")."""
+        size = ctypes.c_size_t(0)
+        _check(self._lib, self._lib.stratum_renderer_sums_size(self.handle, ctypes.byref(size)),
+               "stratum_renderer_sums_size")
+        out = ctypes.create_string_buffer(size.value)
+        _check(self._lib, self._lib.stratum_renderer_read_sums(self.handle, out, size.value),
+               "stratum_renderer_read_sums")
+        return out.raw
+
+    def add_sums(self, sums: bytes) -> None:
+        """Adds the sums of a render of an adjacent sample range of this frame (read_sums);
+        a renderer that has rendered nothing takes them as its image. The image and passes
+        then show both ranges, bit-identical to one render of them."""
+        _check(self._lib, self._lib.stratum_renderer_add_sums(self.handle, sums, len(sums)),
+               "stratum_renderer_add_sums")

@@ -479,6 +479,7 @@ STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
 
 /* Named settings (see README "Render settings"):
  *   int:    width, height, samples, max_bounces, seed, threads (0 = all cores),
+ *           sample_offset, sample_count (the sample indices rendered: see "one frame's samples"),
  *           crop_x, crop_y, crop_width, crop_height (the border region of the width x height
  *           frame in pixels, bottom-left origin; crop_width = 0 = the whole frame; the image
  *           read and written is the region), film_transparent (1: background alpha 0),
@@ -550,6 +551,20 @@ STRATUM_API StratumStatus stratum_renderer_read_pass(const StratumRenderer* r, c
                                                      size_t count);
 /* Writes the current image (EXR linear, or PNG/other by extension via OpenImageIO). */
 STRATUM_API StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path);
+
+/* ---- one frame's samples over many renders (machines) ----------------------------------------
+ * A render of sample indices [sample_offset, sample_offset + sample_count) of a frame (int
+ * settings; the sampler's sequence is that of `samples`) leaves exact fixed-point sums. Those of
+ * ranges that meet, added in any order, give the image of the union bit for bit as one render
+ * of it. The bytes are in this machine's byte order, for the same library version.
+ * _sums_size / _read_sums: the sums of the last render, which must have ended, not cancelled.
+ * _add_sums: adds such bytes to the renderer's film (same frame, border region, passes and
+ * integrator; the ranges must meet), whose image and passes then show both; a renderer that has
+ * rendered nothing takes them as its film (then read_pixels, read_pass, write_image and
+ * _read_sums read them). First Sample passes come from the range holding sample 0. */
+STRATUM_API StratumStatus stratum_renderer_sums_size(const StratumRenderer* r, size_t* out_bytes);
+STRATUM_API StratumStatus stratum_renderer_read_sums(const StratumRenderer* r, void* out, size_t bytes);
+STRATUM_API StratumStatus stratum_renderer_add_sums(StratumRenderer* r, const void* sums, size_t bytes);
 
 #ifdef __cplusplus
 }

@@ -411,6 +411,40 @@ StratumStatus stratum_renderer_read_pass(const StratumRenderer* r, const char* n
     });
 }
 
+StratumStatus stratum_renderer_sums_size(const StratumRenderer* r, size_t* out_bytes) {
+    return guarded("stratum_renderer_sums_size", [&] {
+        require(r && out_bytes, "renderer or out_bytes is NULL");
+        std::string error;
+        const std::vector<uint8_t> bytes = r->renderer.sums_bytes(&error);
+        require(error.empty(), error);
+        *out_bytes = bytes.size();
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_renderer_read_sums(const StratumRenderer* r, void* out, size_t bytes) {
+    return guarded("stratum_renderer_read_sums", [&] {
+        require(r && out, "renderer or out is NULL");
+        std::string error;
+        const std::vector<uint8_t> sums = r->renderer.sums_bytes(&error);
+        require(error.empty(), error);
+        require(bytes == sums.size(), "buffer holds " + std::to_string(bytes) + " bytes, the sums are " +
+                                          std::to_string(sums.size()) + " (stratum_renderer_sums_size)");
+        std::memcpy(out, sums.data(), sums.size());
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_renderer_add_sums(StratumRenderer* r, const void* sums, size_t bytes) {
+    return guarded("stratum_renderer_add_sums", [&] {
+        require(r, "renderer is NULL");
+        std::unique_ptr<stratum::Film> film = stratum::validate_film_sums(sums, bytes);
+        const std::string error = r->renderer.add_sums(std::move(film));
+        require(error.empty(), error);
+        return STRATUM_OK;
+    });
+}
+
 StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path) {
     return guarded("stratum_renderer_write_image", [&] {
         require(r && path, "renderer or path is NULL");

@@ -468,4 +468,13 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
     return c;
 }
 
+std::unique_ptr<Film> validate_film_sums(const void* bytes, size_t size) {
+    check(bytes != nullptr && size > 0, "film sums are NULL or empty");
+    std::string error;
+    std::unique_ptr<Film> film =
+        Film::from_sums_bytes(std::span<const uint8_t>(static_cast<const uint8_t*>(bytes), size), &error);
+    check(film != nullptr, error);
+    return film;
+}
+
 }  // namespace stratum

@@ -2,10 +2,12 @@
 // the core's type or throws ValidationError with a message that names the bad value.
 #pragma once
 
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "bsdf/closure_set.h"
+#include "film/film.h"
 #include "scene/scene.h"
 #include "stratum/stratum.h"
 
@@ -28,6 +30,8 @@ LightParams validate_light(const StratumLightDesc& desc);
 CameraParams validate_camera(const StratumCameraDesc& desc);
 Transform validate_transform(const float* m, const char* what);
 Rgb validate_radiance(const float* rgb, const char* what);
+// A film made from the bytes of stratum_renderer_read_sums (header, sizes and passes checked).
+std::unique_ptr<Film> validate_film_sums(const void* bytes, size_t size);
 Environment validate_environment(const float* rgb, uint32_t width, uint32_t height, float strength,
                                  const float* rotation);
 

@@ -33,54 +33,57 @@ Film::Film(const PixelRegion& region, uint32_t frame_width, uint32_t frame_heigh
       frame_height_(frame_height),
       filter_(filter),
       layout_(passes),
-      sums_(region.pixel_count() * sums_stride(), 0.0),
+      sums_(region.pixel_count() * sums_stride(), 0),
       counts_(region.pixel_count(), 0),
-      splat_sums_(light_paths ? 3 * region.pixel_count() : 0, 0.0),
+      splat_sums_(light_paths ? 3 * region.pixel_count() : 0, 0),
       published_(region.pixel_count() * published_stride(), 0.0f) {}
 
 double Film::bytes_per_pixel(std::span<const Pass> passes, bool light_paths) {
     const FilmLayout layout(passes);
-    return (4.0 + layout.sum_channels()) * sizeof(double) +
+    return (4.0 + layout.sum_channels()) * sizeof(FilmSum) +
            (4.0 + layout.published_channels()) * sizeof(float) + sizeof(uint32_t) +
-           (light_paths ? 3 * sizeof(double) : 0);
+           (light_paths ? 3 * sizeof(FilmSum) : 0);
 }
 
-void Film::load_sums(size_t pixel, double* out) const {
+void Film::load_sums(size_t pixel, FilmSum* out) const {
     std::copy_n(&sums_[pixel * sums_stride()], sums_stride(), out);
 }
 
-void Film::store_sums(size_t pixel, const double* sums, uint32_t count) {
+void Film::store_sums(size_t pixel, const FilmSum* sums, uint32_t count) {
     std::copy_n(sums, sums_stride(), &sums_[pixel * sums_stride()]);
     counts_[pixel] = count;
 }
 
-void Film::add_sample(double* sums, uint32_t sample_index, Rgb radiance, float alpha,
+bool Film::add_sample(FilmSum* sums, uint32_t sample_index, Rgb radiance, float alpha,
                       const float* values) const {
-    sums[0] += radiance.r;
-    sums[1] += radiance.g;
-    sums[2] += radiance.b;
-    sums[3] += alpha;
+    bool clamped = false;
+    const auto fixed = [&](double v) { return to_fixed(v, kFixedSampleLimit, &clamped); };
+    sums[0] += fixed(radiance.r);
+    sums[1] += fixed(radiance.g);
+    sums[2] += fixed(radiance.b);
+    sums[3] += fixed(alpha);
     for (const FilmLayout::Entry& e : layout_.entries()) {
-        double* sum = sums + 4 + e.sum_offset;
+        FilmSum* sum = sums + 4 + e.sum_offset;
         const float* value = values + e.sample_offset;
         switch (e.kind) {
             case PassKind::Average:
-                for (uint32_t c = 0; c < e.channels; ++c) sum[c] += value[c];
+                for (uint32_t c = 0; c < e.channels; ++c) sum[c] += fixed(value[c]);
                 break;
             case PassKind::FirstSample:
                 if (sample_index == 0)
-                    for (uint32_t c = 0; c < e.channels; ++c) sum[c] = value[c];
+                    for (uint32_t c = 0; c < e.channels; ++c) sum[c] = fixed(value[c]);
                 break;
             case PassKind::StandardError:
-                sum[0] += static_cast<double>(radiance.r) * radiance.r;
-                sum[1] += static_cast<double>(radiance.g) * radiance.g;
-                sum[2] += static_cast<double>(radiance.b) * radiance.b;
+                sum[0] += fixed(static_cast<double>(radiance.r) * radiance.r);
+                sum[1] += fixed(static_cast<double>(radiance.g) * radiance.g);
+                sum[2] += fixed(static_cast<double>(radiance.b) * radiance.b);
                 break;
             case PassKind::Radiance:
             case PassKind::SampleCount:
                 break;
         }
     }
+    return clamped;
 }
 
 void Film::splat(Vec2 s, Rgb value, std::vector<Splat>& out) const {
@@ -102,46 +105,43 @@ void Film::splat(Vec2 s, Rgb value, std::vector<Splat>& out) const {
     }
 }
 
-uint64_t Film::add_splats(std::span<const Splat> splats) {
+uint64_t Film::add_splats(std::span<const Splat> splats, uint64_t* clamped) {
     uint64_t dropped = 0;
     for (const Splat& sp : splats) {
         if (!is_finite(sp.value)) {
             ++dropped;
             continue;
         }
-        splat_sums_[3 * sp.pixel] += sp.value.r;
-        splat_sums_[3 * sp.pixel + 1] += sp.value.g;
-        splat_sums_[3 * sp.pixel + 2] += sp.value.b;
+        bool over = false;
+        splat_sums_[3 * sp.pixel] += to_fixed(sp.value.r, kFixedSplatLimit, &over);
+        splat_sums_[3 * sp.pixel + 1] += to_fixed(sp.value.g, kFixedSplatLimit, &over);
+        splat_sums_[3 * sp.pixel + 2] += to_fixed(sp.value.b, kFixedSplatLimit, &over);
+        if (over) ++*clamped;
     }
     return dropped;
 }
 
-void Film::publish_pixel(size_t p, double n, const double* splats) {
-    const double* sum = &sums_[p * sums_stride()];
+void Film::publish_pixel(size_t p, double n, const FilmSum* splats) {
+    const FilmSum* sum = &sums_[p * sums_stride()];
     float* px = &published_[p * published_stride()];
-    if (splats) {
-        px[0] = saturate_to_float((sum[0] + splats[0]) / n);
-        px[1] = saturate_to_float((sum[1] + splats[1]) / n);
-        px[2] = saturate_to_float((sum[2] + splats[2]) / n);
-    } else {
-        px[0] = saturate_to_float(sum[0] / n);
-        px[1] = saturate_to_float(sum[1] / n);
-        px[2] = saturate_to_float(sum[2] / n);
-    }
-    px[3] = saturate_to_float(sum[3] / n);
+    // Camera and splat sums are added exactly, then converted once.
+    for (uint32_t c = 0; c < 3; ++c)
+        px[c] = saturate_to_float(from_fixed(splats ? sum[c] + splats[c] : sum[c]) / n);
+    px[3] = saturate_to_float(from_fixed(sum[3]) / n);
     // The other passes are of the camera samples of this pixel.
     const uint32_t count = counts_[p];
     if (count == 0) return;
     const double camera_samples = count;
     for (const FilmLayout::Entry& e : layout_.entries()) {
-        const double* s = sum + 4 + e.sum_offset;
+        const FilmSum* s = sum + 4 + e.sum_offset;
         float* out = px + 4 + e.published_offset;
         switch (e.kind) {
             case PassKind::Average:
-                for (uint32_t c = 0; c < e.channels; ++c) out[c] = saturate_to_float(s[c] / camera_samples);
+                for (uint32_t c = 0; c < e.channels; ++c)
+                    out[c] = saturate_to_float(from_fixed(s[c]) / camera_samples);
                 break;
             case PassKind::FirstSample:
-                for (uint32_t c = 0; c < e.channels; ++c) out[c] = saturate_to_float(s[c]);
+                for (uint32_t c = 0; c < e.channels; ++c) out[c] = saturate_to_float(from_fixed(s[c]));
                 break;
             case PassKind::SampleCount:
                 out[0] = static_cast<float>(count);
@@ -149,8 +149,16 @@ void Film::publish_pixel(size_t p, double n, const double* splats) {
             case PassKind::StandardError:
                 // Sample variance s² = n/(n−1) (Σx²/n − x̄²); the mean's standard error is s/√n.
                 for (uint32_t c = 0; c < e.channels; ++c) {
-                    const double mean = sum[c] / camera_samples;
-                    const double spread = std::max(0.0, s[c] / camera_samples - mean * mean);
+                    // The fixed-point means of x and x² are each within ε = 2^-41 of the exact
+                    // ones, so Σx²/n − x̄² is within ε(1 + 2|x̄| + 3ε) of its exact value, plus
+                    // the double arithmetic's few roundings of x̄² (4·x̄²·2^-53): a spread within
+                    // that is no spread (a constant pixel has an error of 0).
+                    const double mean = from_fixed(sum[c]) / camera_samples;
+                    const double rounding =
+                        kFixedRounding * (1.0 + 2.0 * std::abs(mean) + 3.0 * kFixedRounding) +
+                        4.0 * mean * mean * 0x1p-53;
+                    const double spread =
+                        std::max(0.0, from_fixed(s[c]) / camera_samples - mean * mean - rounding);
                     out[c] = count < 2 ? 0.0f : saturate_to_float(std::sqrt(spread / (camera_samples - 1.0)));
                 }
                 break;

@@ -1,12 +1,21 @@
 // The film: what camera samples and light paths leave in the pixels of the rendered region.
-// It owns the pixel filter, the per-pixel sums (radiance and alpha in double, so that samples
-// near FLT_MAX do not overflow a mean that is finite), the sample counts, the light paths'
-// splats and the passes (AOVs, film/passes.h) a render asked for, and publishes the averaged
-// image the host reads while the render runs.
+// It owns the pixel filter, the per-pixel sums, the sample counts, the light paths' splats and
+// the passes (AOVs, film/passes.h) a render asked for, and publishes the averaged image the
+// host reads while the render runs.
 //
-// Determinism: each pixel's camera samples are summed by one thread in sample-index order
-// (CameraSampleSums), and splats are added in the order the renderer hands them over, so the
-// image is bit-identical for any thread count.
+// Exact sums: every sum is a fixed-point integer (FilmSum, kFixedScale units per 1.0), so
+// addition is exact, associative and commutative. The image is therefore bit-identical for any
+// thread count, any order of splats, and any split of a frame's sample indices into ranges
+// rendered apart (by other processes or machines) whose sums are added afterwards
+// (film/film_exchange.cpp). Sums become double only when published.
+//
+// | quantity               | value / bound                                                  |
+// |------------------------|----------------------------------------------------------------|
+// | kFixedScale            | 2^40 units per 1.0: a sample is rounded to within 2^-41 ≈ 4.5e-13 |
+// | kFixedSampleLimit      | 2^55 ≈ 3.6e16: a sample's magnitude (and a squared radiance of |
+// |                        | the error pass) is clamped there and counted (a notice)        |
+// | camera sums            | < 2^32 samples × 2^55 × 2^40 = 2^127: fits __int128            |
+// | kFixedSplatLimit       | 2^45 ≈ 3.5e13 per splat: 2^42 splats per pixel fit             |
 //
 // | published value        | formula                                                        |
 // |------------------------|----------------------------------------------------------------|
@@ -21,9 +30,12 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
+#include <memory>
 #include <shared_mutex>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "core/math.h"
@@ -33,6 +45,27 @@
 #include "scene/camera.h"
 
 namespace stratum {
+
+// A fixed-point sum: value × kFixedScale, rounded to an integer.
+__extension__ typedef __int128 FilmSum;
+inline constexpr double kFixedScale = 0x1p40;
+// The largest error of one sample rounded to fixed point: half a unit.
+inline constexpr double kFixedRounding = 0.5 / kFixedScale;
+inline constexpr double kFixedSampleLimit = 0x1p55;
+inline constexpr double kFixedSplatLimit = 0x1p45;
+
+// v in fixed point, its magnitude clamped to `limit`; *clamped is set when it was.
+inline FilmSum to_fixed(double v, double limit, bool* clamped) {
+    if (v > limit || v < -limit) {
+        *clamped = true;
+        v = v > 0 ? limit : -limit;
+    }
+    // v·2^40 is exact (a power-of-two scale); rounding it to an integer is the only error.
+    return static_cast<FilmSum>(std::nearbyint(v * kFixedScale));
+}
+// The double nearest to a fixed-point sum (the int128 → double conversion rounds to nearest;
+// the scale by 2^-40 is exact).
+inline double from_fixed(FilmSum s) { return static_cast<double>(s) / kFixedScale; }
 
 // Where the channels of each enabled pass (other than Combined) sit: among the values an
 // integrator writes per camera sample, among the doubles the film sums per pixel (after
@@ -123,21 +156,23 @@ public:
 
     // A copy of the pixel's sums: the thread adds a pass's samples to it and stores it back with
     // store_sums only if the pass completed (a pixel cancelled mid-pass keeps its previous sum).
-    void load_sums(size_t pixel, double* out) const;
-    void store_sums(size_t pixel, const double* sums, uint32_t count);
-    // Doubles per pixel in load_sums / store_sums.
+    // `count` is the number of camera samples the sums hold.
+    void load_sums(size_t pixel, FilmSum* out) const;
+    void store_sums(size_t pixel, const FilmSum* sums, uint32_t count);
+    // Sums per pixel in load_sums / store_sums.
     uint32_t sums_stride() const { return 4 + layout_.sum_channels(); }
     // Adds camera sample `sample_index` (radiance, alpha and the integrator's pass values) to a
-    // pixel's sums loaded with load_sums.
-    void add_sample(double* sums, uint32_t sample_index, Rgb radiance, float alpha,
+    // pixel's sums loaded with load_sums; returns whether a value was clamped (kFixedSampleLimit).
+    bool add_sample(FilmSum* sums, uint32_t sample_index, Rgb radiance, float alpha,
                     const float* values) const;
 
     // The splats of a contribution reaching film point s (full-frame pixel units): every pixel
     // of the region whose centre lies within the filter's radius, weighted by the filter
     // density at its offset (PixelFilter::pdf). Non-finite or black values give none.
     void splat(Vec2 s, Rgb value, std::vector<Splat>& out) const;
-    // Adds splats in order; returns how many were dropped as not finite.
-    uint64_t add_splats(std::span<const Splat> splats);
+    // Adds splats; returns how many were dropped as not finite. *clamped counts those clamped
+    // to kFixedSplatLimit.
+    uint64_t add_splats(std::span<const Splat> splats, uint64_t* clamped);
 
     // Publishes the pixels [x0, x1) x [y0, y1) (full-frame coordinates) that have samples:
     // concurrent calls must cover disjoint pixels. Films without light paths only.
@@ -148,8 +183,27 @@ public:
     // the film does not hold the pass. out holds region().pixel_count() * channels floats.
     bool read(Pass pass, float* out) const;
 
+    // The sample indices [begin, end) every pixel's sums hold (set by the renderer as passes end).
+    void set_sample_range(uint32_t begin, uint32_t end) {
+        sample_begin_ = begin;
+        sample_end_ = end;
+    }
+    uint32_t sample_begin() const { return sample_begin_; }
+    uint32_t sample_end() const { return sample_end_; }
+
+    // Exchange of exact sums between renders of one frame (film/film_exchange.cpp): the bytes
+    // of a film's frame, passes, sample range, counts and sums; a film made from them (nullptr
+    // and *error set when they are not such bytes); and the addition of another film's sums of
+    // an adjacent sample range (an error message when the films are not of the same frame and
+    // passes, or the ranges do not meet), after which every pixel is published again.
+    std::vector<uint8_t> sums_bytes() const;
+    static std::unique_ptr<Film> from_sums_bytes(std::span<const uint8_t> bytes, std::string* error);
+    std::string add_sums(const Film& other);
+    // Publishes every pixel from its sums (after they were read or added).
+    void publish_everything();
+
 private:
-    void publish_pixel(size_t p, double n, const double* splats);
+    void publish_pixel(size_t p, double n, const FilmSum* splats);
 
     PixelRegion region_;
     uint32_t frame_width_, frame_height_;
@@ -157,9 +211,10 @@ private:
     FilmLayout layout_;
     uint32_t published_stride() const { return 4 + layout_.published_channels(); }
 
-    std::vector<double> sums_;        // sums_stride() per pixel
-    std::vector<uint32_t> counts_;    // camera samples summed per pixel
-    std::vector<double> splat_sums_;  // RGB per pixel, when light paths splat
+    std::vector<FilmSum> sums_;        // sums_stride() per pixel
+    std::vector<uint32_t> counts_;     // camera samples summed per pixel
+    std::vector<FilmSum> splat_sums_;  // RGB per pixel, when light paths splat
+    uint32_t sample_begin_ = 0, sample_end_ = 0;
     // Published values (published_stride() per pixel). Tiles publish disjoint pixels under a
     // shared lock; read() takes it exclusively.
     mutable std::shared_mutex published_mutex_;

@@ -27,4 +27,18 @@ std::string crop_region(const RenderSettings& s, PixelRegion* out) {
     return {};
 }
 
+std::string sample_range(const RenderSettings& s, uint32_t* begin, uint32_t* end) {
+    if (s.sample_offset >= s.samples)
+        return "sample subset: sample_offset = " + std::to_string(s.sample_offset) +
+               " is not below samples = " + std::to_string(s.samples);
+    const uint64_t last = s.sample_count == 0 ? s.samples : uint64_t{s.sample_offset} + s.sample_count;
+    if (last > s.samples)
+        return "sample subset: sample_offset = " + std::to_string(s.sample_offset) +
+               " + sample_count = " + std::to_string(s.sample_count) +
+               " exceeds samples = " + std::to_string(s.samples);
+    *begin = s.sample_offset;
+    *end = static_cast<uint32_t>(last);
+    return {};
+}
+
 }  // namespace stratum

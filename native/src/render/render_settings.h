@@ -20,6 +20,11 @@ struct RenderSettings {
     uint32_t width = 64, height = 64;
     uint32_t samples = 16;
     uint32_t seed = 0;
+    // A subset of the frame's sample indices, as Cycles' sample subset: the render takes indices
+    // [sample_offset, sample_offset + sample_count) of the `samples` the sampler's sequence is
+    // built for (sample_count = 0: up to `samples`). Renders of disjoint subsets, their exact
+    // sums added (film/film.h), give the image of all `samples` bit for bit.
+    uint32_t sample_offset = 0, sample_count = 0;
     uint32_t threads = 0;  // 0 = all cores
     // Border render: the region [crop_x, crop_x + crop_width) x [crop_y, crop_y + crop_height) of
     // the width x height frame, bottom-left origin; crop_width = 0 = the whole frame. Only the
@@ -41,5 +46,8 @@ struct RenderSettings {
 // The region the crop settings select (the whole frame when crop_width = 0), or an error
 // message naming the setting that puts it outside the frame.
 std::string crop_region(const RenderSettings& s, PixelRegion* out);
+// The sample indices [*begin, *end) the subset settings select, or an error message naming the
+// setting that puts them outside [0, samples).
+std::string sample_range(const RenderSettings& s, uint32_t* begin, uint32_t* end);
 
 }  // namespace stratum

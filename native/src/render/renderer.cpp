@@ -38,8 +38,8 @@ double seconds_since(Clock::time_point t0) {
 // Runs body on every tile of `tiles`, split down to at most kTileSize pixels a side
 // (tbb::simple_partitioner; the default partitioner leaves tiles of 32² and more): each tile
 // publishes its pixels and counts its samples when it ends, so small tiles are what makes the
-// image and the progress move within a pass. The split does not change any pixel: each pixel's
-// samples are summed by one thread in index order whatever tile it falls in.
+// image and the progress move within a pass. The split does not change any pixel: the film's
+// sums are exact (film/film.h), whatever tile a pixel falls in.
 template <typename Body>
 void parallel_for_tile(const tbb::blocked_range2d<uint32_t>& tiles, const Body& body) {
     tbb::parallel_for(tiles, body, tbb::simple_partitioner());
@@ -70,11 +70,15 @@ std::string Renderer::start() {
     PixelRegion region;
     const std::string crop_error = crop_region(settings_, &region);
     if (!crop_error.empty()) return crop_error;
+    uint32_t first_sample = 0, last_sample = 0;
+    const std::string range_error = sample_range(settings_, &first_sample, &last_sample);
+    if (!range_error.empty()) return range_error;
     {
         std::lock_guard lock(notices_mutex_);
         notices_.clear();
     }
     dropped_samples_.store(0);
+    clamped_samples_.store(0);
     std::unique_ptr<Integrator> integrator = settings_.integrator->create(settings_.estimator);
     for (const std::string& notice : integrator->notices(scene_)) add_notice(notice);
     // A scene already built keeps its build notices for every render of it.
@@ -98,13 +102,15 @@ std::string Renderer::start() {
     width_ = region.width;
     height_ = region.height;
     light_paths_ = light_paths;
+    first_sample_ = first_sample;
+    last_sample_ = last_sample;
     // Work per sample index: one camera sample per pixel of the region, plus the light paths.
     work_per_sample_ = static_cast<double>(region.pixel_count()) + static_cast<double>(light_paths);
     cancel_.store(false);
     done_.store(false);
     samples_done_.store(0);
     samples_in_progress_.store(0);
-    samples_total_.store(settings_.samples);
+    samples_total_.store(last_sample - first_sample);
     rays_.store(0);
     pixel_samples_done_.store(0);
     {
@@ -159,19 +165,26 @@ void Renderer::run() {
         // Camera and sampler see the full frame and full-frame pixel coordinates, so a pixel of a
         // border render is bit-identical to the same pixel of the full render.
         const Camera camera(*scene_.camera, s.width, s.height);
-        uint32_t begin = 0;
-        while (begin < s.samples && !cancel_.load()) {
-            const uint32_t end = std::min({s.samples, std::max(1u, 2 * begin), begin + kMaxPassSamples});
-            samples_in_progress_.store(end);
+        // Sample indices [first_sample_, last_sample_); progress counts them from first_sample_.
+        // Pass ends stay at powers of two of the index (a subset starting at 0 is the full
+        // render's prefix).
+        uint32_t begin = first_sample_;
+        while (begin < last_sample_ && !cancel_.load()) {
+            const uint32_t end =
+                std::min({last_sample_, std::max(begin + 1, 2 * begin), begin + kMaxPassSamples});
+            samples_in_progress_.store(end - first_sample_);
             trace_camera_samples(camera, begin, end, arena);
             if (light_paths_ > 0 && !cancel_.load()) {
                 trace_light_paths(camera, begin, end, arena);
                 if (!cancel_.load()) {
-                    film_->publish_all(end);
+                    film_->publish_all(end - first_sample_);
                     update_serial_.fetch_add(1);
                 }
             }
-            if (!cancel_.load()) samples_done_.store(end);
+            if (!cancel_.load()) {
+                film_->set_sample_range(first_sample_, end);
+                samples_done_.store(end - first_sample_);
+            }
             begin = end;
         }
         report_dropped(render_scene_->refused_rays() - refused_before);
@@ -205,10 +218,10 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
         parallel_for_tile(tbb::blocked_range2d<uint32_t>(region.y, region.y + region.height, kTileSize,
                                                          region.x, region.x + region.width, kTileSize),
                           [&](const tbb::blocked_range2d<uint32_t>& tile) {
-                              uint64_t rays = 0, pixel_samples = 0, dropped = 0;
+                              uint64_t rays = 0, pixel_samples = 0, dropped = 0, clamped = 0;
                               // One pixel's sums (radiance, alpha, extra passes) and one sample's extra
                               // values.
-                              std::vector<double> sums(stride);
+                              std::vector<FilmSum> sums(stride);
                               std::vector<float> extra(layout.extra_channels());
                               for (uint32_t y = tile.rows().begin(); y < tile.rows().end(); ++y) {
                                   for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
@@ -241,20 +254,22 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
                                           if (is_finite(r.radiance) && std::isfinite(r.alpha) &&
                                               std::all_of(extra.begin(), extra.end(),
                                                           [](float v) { return std::isfinite(v); })) {
-                                              film_->add_sample(sums.data(), /*sample_index=*/i, r.radiance,
-                                                                r.alpha, extra.data());
+                                              if (film_->add_sample(sums.data(), /*sample_index=*/i,
+                                                                    r.radiance, r.alpha, extra.data()))
+                                                  ++clamped;
                                           } else {
                                               ++dropped;
                                           }
                                       }
                                       // A pixel cancelled mid-pass keeps its previous, complete sum.
                                       if (i < end) break;
-                                      film_->store_sums(p, sums.data(), end);
+                                      film_->store_sums(p, sums.data(), end - first_sample_);
                                       pixel_samples += end - begin;
                                   }
                               }
                               rays_.fetch_add(rays, std::memory_order_relaxed);
                               dropped_samples_.fetch_add(dropped, std::memory_order_relaxed);
+                              clamped_samples_.fetch_add(clamped, std::memory_order_relaxed);
                               // Published (films without light paths) before the samples are
                               // counted: a progress that shows them has the serial of their pixels.
                               if (light_paths_ == 0) {
@@ -292,9 +307,11 @@ void Renderer::trace_light_paths(const Camera& camera, uint32_t begin, uint32_t 
                     pixel_samples_done_.fetch_add(k_end - chunk * kLightPathChunk, std::memory_order_relaxed);
                 });
             });
+            uint64_t clamped = 0;
             for (uint64_t chunk = first; chunk < last; ++chunk)
-                dropped_samples_.fetch_add(film_->add_splats(batch[chunk - first]),
+                dropped_samples_.fetch_add(film_->add_splats(batch[chunk - first], &clamped),
                                            std::memory_order_relaxed);
+            clamped_samples_.fetch_add(clamped, std::memory_order_relaxed);
         }
     }
 }
@@ -316,6 +333,12 @@ void Renderer::report_dropped(uint64_t refused_rays) {
                    " samples were not finite (NaN or infinite radiance) and were dropped: the "
                    "pixels they belong to are darker there. A value in the scene is beyond what "
                    "floating point carries (e.g. an emitter or light near 3.4e38).");
+    }
+    const uint64_t clamped = clamped_samples_.load();
+    if (clamped > 0) {
+        add_notice(std::to_string(clamped) +
+                   " samples were brighter than the film sums exactly (3.6e16, or 3.5e13 for a light "
+                   "path's splat) and were clamped there: those pixels are darker than the scene's values.");
     }
     if (refused_rays > 0) {
         add_notice(std::to_string(refused_rays) +
@@ -358,5 +381,40 @@ void Renderer::read_pixels(float* rgba) const {
 }
 
 bool Renderer::read_pass(Pass pass, float* out) const { return film_ && film_->read(pass, out); }
+
+std::vector<uint8_t> Renderer::sums_bytes(std::string* error) const {
+    if (running()) {
+        *error = "the render is still running: wait for it to end";
+        return {};
+    }
+    if (!film_) {
+        *error = "nothing rendered yet: call stratum_renderer_start first";
+        return {};
+    }
+    {
+        std::lock_guard lock(state_mutex_);
+        // A cancelled pass leaves pixels with different sample counts: no range describes them.
+        if (cancelled_ || !error_.empty()) {
+            *error = "the render was cancelled or failed: its sums hold no complete sample range";
+            return {};
+        }
+    }
+    return film_->sums_bytes();
+}
+
+std::string Renderer::add_sums(std::unique_ptr<Film> sums) {
+    if (running()) return "the render is still running: wait for it to end";
+    {
+        std::lock_guard lock(state_mutex_);
+        if (film_ && cancelled_)
+            return "this renderer's last render was cancelled: its sums hold no complete range";
+    }
+    if (film_) return film_->add_sums(*sums);
+    film_ = std::move(sums);
+    width_ = film_->region().width;
+    height_ = film_->region().height;
+    update_serial_.fetch_add(1);
+    return {};
+}
 
 }  // namespace stratum

@@ -3,8 +3,8 @@
 //
 // Passes cover sample ranges [0,1), [1,2), [2,4), [4,8), ... capped at kMaxPassSamples: every
 // intermediate image holds a power-of-two-aligned prefix of each pixel's samples, so
-// low-discrepancy properties hold at every update (research/samplers.md §5.6). Each pixel sums
-// its own samples in index order, so the image is bit-identical for any thread count.
+// low-discrepancy properties hold at every update (research/samplers.md §5.6). The film's sums
+// are exact (film/film.h), so the image is bit-identical for any thread count.
 // Within a pass, tiles of at most kTileSize² pixels publish as they finish and count their
 // pixel samples, so the image and the progress move many times per pass (a 512² frame has
 // 1024 tiles): the last pass of a 64-sample render is half its time.
@@ -79,12 +79,20 @@ public:
     bool read_pass(Pass pass, float* out) const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
+    // The exact sums of the last render (film/film_exchange.cpp), or an error message in *error
+    // when there is none, it is still running or it was cancelled.
+    std::vector<uint8_t> sums_bytes(std::string* error) const;
+    // Adds the sums of another render of this frame's sample indices (read by sums_bytes) to the
+    // film, which then shows all of them; a renderer that has rendered nothing takes them as its
+    // film. Returns an error message when it is rendering or the sums do not fit.
+    std::string add_sums(std::unique_ptr<Film> sums);
 
 private:
     void run();
     void join();
     void add_notice(const std::string& notice);
-    // Adds the notices of the samples (dropped_samples_) and rays dropped by this render.
+    // Adds the notices of the samples dropped (dropped_samples_) or clamped (clamped_samples_) and
+    // the rays dropped by this render.
     void report_dropped(uint64_t refused_rays);
     // Camera samples [begin, end) of every pixel of the region into the film.
     void trace_camera_samples(const Camera& camera, uint32_t begin, uint32_t end, tbb::task_arena& arena);
@@ -102,9 +110,10 @@ private:
     std::unique_ptr<Integrator> integrator_;
     std::unique_ptr<Sampler> sampler_;
     std::unique_ptr<Film> film_;
-    uint32_t width_ = 0, height_ = 0;  // the region's size
-    uint64_t light_paths_ = 0;         // light paths per sample index
-    double work_per_sample_ = 0;       // progress units per sample index (fraction_done)
+    uint32_t width_ = 0, height_ = 0;              // the region's size
+    uint64_t light_paths_ = 0;                     // light paths per sample index
+    uint32_t first_sample_ = 0, last_sample_ = 0;  // the sample indices rendered (sample_range)
+    double work_per_sample_ = 0;                   // progress units per sample index (fraction_done)
 
     std::thread worker_;
     std::atomic<bool> cancel_{false}, done_{true};
@@ -121,6 +130,7 @@ private:
     mutable std::mutex notices_mutex_;
     std::string notices_;
     std::atomic<uint64_t> dropped_samples_{0};
+    std::atomic<uint64_t> clamped_samples_{0};  // samples clamped to the film's exact range
 };
 
 }  // namespace stratum
