@@ -55,6 +55,8 @@ public:
             ok_ = false;
             return false;
         }
+        // An empty destination may be null (an empty vector's data()): memcpy must not see it.
+        if (n == 0) return true;
         std::memcpy(out, bytes_.data() + at_, n);
         at_ += n;
         return true;
