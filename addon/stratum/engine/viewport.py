@@ -297,7 +297,8 @@ def _denoiser_safe(call: Callable[[], Any]) -> tuple[Any, native.DenoiserUnavail
 
 
 def _stale(state: ViewportState) -> bool:
-    """Whether the frame drawn last shows an older scene or view than the session renders."""
+    """Whether the frame drawn last shows an older scene or view than the session renders;
+    notes when a newer generation is first seen (stale_since, which _redraw_interval reads)."""
     generation = state.session.generation
     if generation == state.drawn_generation:
         return False
