@@ -9,6 +9,8 @@ namespace stratum {
 namespace {
 
 constexpr size_t kTableSize = 1025;
+// Buckets of the guide table: a power of two, so u × kGuideSize and b / kGuideSize are exact.
+constexpr size_t kGuideSize = 1024;
 
 const std::array kFilters = {
     RegistryEntry{"box", "Box", "Box filter: uniform offsets over a square of the filter width"},
@@ -53,10 +55,20 @@ PixelFilter::PixelFilter(FilterType type, float width)
     }
     for (size_t i = 0; i < kTableSize; ++i) cdf_[i] = static_cast<float>(cdf[i] / sum);
     cdf_.back() = 1.0f;
+    // guide_[b] = the upper bound of u = b / G, monotone in b: the bound of any u in bucket b
+    // lies between those of its two ends. The last entry covers u = 1 and beyond.
+    guide_.resize(kGuideSize + 1);
+    for (size_t b = 0; b < kGuideSize; ++b) {
+        const float u = static_cast<float>(b) / static_cast<float>(kGuideSize);
+        guide_[b] = static_cast<uint32_t>(std::upper_bound(cdf_.begin(), cdf_.end(), u) - cdf_.begin());
+    }
+    guide_[kGuideSize] = static_cast<uint32_t>(kTableSize);
 }
 
 float PixelFilter::sample_1d(float u) const {
-    const auto it = std::upper_bound(cdf_.begin(), cdf_.end(), u);
+    const float scaled = u > 0.0f ? std::min(u * static_cast<float>(kGuideSize), static_cast<float>(kGuideSize - 1)) : 0.0f;
+    const auto bucket = static_cast<size_t>(scaled);
+    const auto it = std::upper_bound(cdf_.begin() + guide_[bucket], cdf_.begin() + guide_[bucket + 1], u);
     const size_t i = std::clamp<size_t>(static_cast<size_t>(it - cdf_.begin()), 1, kTableSize - 1) - 1;
     const float span = cdf_[i + 1] - cdf_[i];
     const float t = span > 0.0f ? (u - cdf_[i]) / span : 0.5f;

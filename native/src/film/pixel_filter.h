@@ -43,6 +43,9 @@ private:
     float pdf_1d(float x) const;
     float radius_;
     std::vector<float> cdf_;  // cdf_[i] = CDF at x_i = −R + 2R i / (n − 1)
+    // Guide table: u in [b/G, (b+1)/G) has its upper bound in cdf_ between guide_[b] and
+    // guide_[b + 1] (inclusive), so sample_1d searches a few entries instead of all n.
+    std::vector<uint32_t> guide_;
 };
 
 }  // namespace stratum
