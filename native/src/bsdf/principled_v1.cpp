@@ -45,7 +45,8 @@ LobesV1 setup(const Material& m, Vec3 wo) {
     l.f0 = f0_from_ior(l.ior);  // equals 0.08 specular
     l.cspec0 = Rgb(0.08f * specular) * (1.0f - metallic) + m.base_color * metallic;
     l.glass_eta = std::max(m.ior, 1e-5f);
-    l.glass_fresnel = fresnel_dielectric(wo.z, l.glass_eta);
+    // Fresnel terms of absent lobes are not computed: their weights are 0 whatever they are.
+    l.glass_fresnel = l.glass_weight > 0.0f ? fresnel_dielectric(wo.z, l.glass_eta) : 0.0f;
     l.glass_sharp = ggx_is_sharp(m.roughness);
     l.clearcoat = m.coat > kClosureCutoff ? 0.25f * m.coat : 0.0f;
     // GTR1 needs alpha < 1 (ln alpha^2 in its normalisation).
@@ -61,7 +62,7 @@ LobesV1 setup(const Material& m, Vec3 wo) {
     const float weight_reflect = l.glass_weight * l.glass_fresnel;
     const float weight_refract =
         l.glass_weight * (1.0f - l.glass_fresnel) * std::max(m.base_color.average(), 0.0f);
-    const float weight_clearcoat = l.clearcoat * fresnel_dielectric(wo.z, 1.5f);
+    const float weight_clearcoat = l.clearcoat > 0.0f ? l.clearcoat * fresnel_dielectric(wo.z, 1.5f) : 0.0f;
     const float total = weight_diffuse + weight_specular + weight_reflect + weight_refract + weight_clearcoat;
     const float inv = total > 0.0f ? 1.0f / total : 0.0f;
     l.diffuse_probability = weight_diffuse * inv;

@@ -112,7 +112,8 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     const float opaque = (1.0f - l.metallic) * (1.0f - l.transmission) * below;
     const float weight_specular = opaque * l.specular_albedo;
     const float weight_diffuse = opaque * (1.0f - l.layer_albedo) * std::max(m.base_color.average(), 0.0f);
-    const float glass_fresnel = fresnel_dielectric(wo.z, l.glass_eta);
+    // The glass lobe's Fresnel only where there is glass: its weight is 0 whatever it is.
+    const float glass_fresnel = l.transmission > 0.0f ? fresnel_dielectric(wo.z, l.glass_eta) : 0.0f;
     const float weight_glass =
         below * (1.0f - l.metallic) * l.transmission *
         (glass_fresnel + (1.0f - glass_fresnel) * std::max(m.base_color.average(), 0.0f));
@@ -175,7 +176,8 @@ ClosureColors colors(const Material& m, Vec3 wo) {
     const LobesV2 l = setup(m, wo);
     const float opaque = (1.0f - l.metallic) * (1.0f - l.transmission);
     const float glass = (1.0f - l.metallic) * l.transmission;
-    const float glass_fresnel = fresnel_dielectric(wo.z, l.glass_eta);
+    // The glass lobe's Fresnel only where there is glass: its weight is 0 whatever it is.
+    const float glass_fresnel = l.transmission > 0.0f ? fresnel_dielectric(wo.z, l.glass_eta) : 0.0f;
     const float sw = schlick_weight(wo.z);
     const Rgb metal = (l.metal_f0 * (1.0f - sw) + Rgb(sw)) * l.metallic;
     const Rgb glossy = l.base_scale * (metal + Rgb(opaque * l.layer_albedo + glass * glass_fresnel));
