@@ -19,10 +19,15 @@ constexpr uint64_t mix_bits(uint64_t v) {
 
 // Hash of several 32-bit words: each word is mixed into the running state, so permuting the
 // arguments changes the result (hash(1,2) != hash(2,1)).
+// hash_words(a, b, c) == hash_more(hash_words(a, b), c): a caller hashing several tuples with a
+// common prefix hashes the prefix once.
+constexpr uint64_t hash_more(uint64_t h, uint32_t word) {
+    return mix_bits(h ^ (static_cast<uint64_t>(word) + 0x632be59bd9b4e019ull));
+}
 template <typename... Words>
 constexpr uint64_t hash_words(Words... words) {
     uint64_t h = 0x9e3779b97f4a7c15ull;
-    ((h = mix_bits(h ^ (static_cast<uint64_t>(static_cast<uint32_t>(words)) + 0x632be59bd9b4e019ull))), ...);
+    ((h = hash_more(h, static_cast<uint32_t>(words))), ...);
     return h;
 }
 

@@ -20,18 +20,21 @@ public:
     explicit IndependentSampler(const SamplerSettings& settings) : seed_(settings.seed) {}
 
     float get_1d(const PixelSample& s, uint32_t dimension) const override {
-        return bits_to_unit_float(stream(s, dimension).next_u32());
+        return value(sample_key(s), dimension);
     }
     // The pair is the two 1D values, so a dimension reads the same whether asked alone or in
-    // its pair.
+    // its pair; the sample's part of the key is hashed once for both.
     Vec2 get_2d(const PixelSample& s, uint32_t dimension) const override {
-        return {get_1d(s, dimension), get_1d(s, dimension + 1)};
+        const uint64_t key = sample_key(s);
+        return {value(key, dimension), value(key, dimension + 1)};
     }
 
 private:
-    Pcg32 stream(const PixelSample& s, uint32_t dimension) const {
-        const uint64_t key = hash_words(s.x, s.y, s.index, dimension, seed_);
-        return Pcg32(key, mix_bits(key ^ 0xda942042e4dd58b5ull));
+    // hash_words(x, y, index, dimension, seed) = hash_more(hash_more(sample_key, dimension), seed).
+    static uint64_t sample_key(const PixelSample& s) { return hash_words(s.x, s.y, s.index); }
+    float value(uint64_t sample_key, uint32_t dimension) const {
+        const uint64_t key = hash_more(hash_more(sample_key, dimension), seed_);
+        return bits_to_unit_float(Pcg32(key, mix_bits(key ^ 0xda942042e4dd58b5ull)).next_u32());
     }
     uint32_t seed_;
 };
