@@ -9,11 +9,14 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
     ShadingPoint sp{ClosureSet(scene.material(hit.material_id)), hit.geometric_normal, hit.shading_normal,
                     false};
     Vec3 smooth = hit.shading_normal;
+    // The set was finalized from the material as stored; only a changed parameter needs it again.
+    bool changed = false;
     // Textures first, on the winding-oriented normal: a normal map's tangent frame (T, sign
     // cross(N, T), N) is defined for it, and the flip below then applies to the mapped normal.
     if (!scene.textures().of_material(hit.material_id).empty()) {
         apply_texture_bindings(scene.textures(), hit.material_id, hit.uv, hit.tangent_frame,
                                sp.closures.closures(), sp.closures.count(), &sp.ns);
+        changed = true;
     }
     sp.backfacing = dot(hit.geometric_normal, wo_world) < 0.0f;
     // Both normals turn to the viewer's side together (Cycles: SD_BACKFACING negates Ng and N).
@@ -34,9 +37,12 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
     WeightedClosure* closures = sp.closures.closures();
     for (uint32_t i = 0; i < sp.closures.count(); ++i) {
         Material& m = closures[i].params;
-        if (sp.backfacing && bsdf_has_transmission(m)) m.ior = 1.0f / std::max(m.ior, 1e-5f);
+        if (sp.backfacing && bsdf_has_transmission(m)) {
+            m.ior = 1.0f / std::max(m.ior, 1e-5f);
+            changed = true;
+        }
     }
-    sp.closures.finalize();
+    if (changed) sp.closures.finalize();
     return sp;
 }
 
