@@ -12,6 +12,7 @@ void ClosureSet::finalize() {
     sample_weight_sum_ = 0.0f;
     emission_ = holdout_ = transparency_ = lambertian_albedo_ = albedo_estimate_ = Rgb(0.0f);
     has_transmission_ = has_non_delta_ = false;
+    scatterers_ = 0;
     for (uint32_t i = 0; i < count_; ++i) {
         const WeightedClosure& c = closures_[i];
         const ClosureModel& model = closure_model(c.params.model);
@@ -21,6 +22,7 @@ void ClosureSet::finalize() {
         sample_weight_[i] = std::abs(c.weight.average()) * model.sample_weight(c.params);
         sample_weight_sum_ += sample_weight_[i];
         if (sample_weight_[i] > 0.0f) {
+            ++scatterers_;
             if (model.lambertian) lambertian_albedo_ += c.weight * c.params.base_color;
             albedo_estimate_ += c.weight * model.albedo_estimate(c.params);
             has_transmission_ = has_transmission_ || model.has_transmission(c.params);
@@ -119,6 +121,15 @@ bool ClosureSet::sample(Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
     if (s.delta) {
         s.weight = closures_[chosen].weight * s.weight / probability;
         s.pdf = probability;
+        *out = s;
+        return true;
+    }
+    // The only closure eval_with would sum, without bump shadowing to apply: the mixture is that
+    // closure alone, and its sample already carries value/pdf of its whole lobe mixture
+    // (bsdf_sample's contract), which evaluating it again would only recompute.
+    if (scatterers_ == 1 && !(perturbed_ && closures_[chosen].params.bump_shadowing != BumpShadowing::None)) {
+        if (!(s.pdf > 0.0f)) return false;
+        s.weight = closures_[chosen].weight * s.weight;
         *out = s;
         return true;
     }

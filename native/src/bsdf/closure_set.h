@@ -90,6 +90,7 @@ private:
     std::array<WeightedClosure, kMaxClosures> closures_{};
     std::array<float, kMaxClosures> sample_weight_{};
     uint32_t count_ = 0;
+    uint32_t scatterers_ = 0;  // closures with a positive sample weight
     float sample_weight_sum_ = 0.0f;
     Rgb emission_, holdout_, transparency_, lambertian_albedo_, albedo_estimate_;
     bool has_transmission_ = false, has_non_delta_ = false;
