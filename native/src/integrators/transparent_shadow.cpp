@@ -7,6 +7,12 @@ namespace stratum {
 
 Rgb shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float t_max, const RayQuery& query,
                          uint32_t max_surfaces, uint64_t& rays) {
+    // Every surface blocks when no material has a Transparent closure: any hit decides, which
+    // Embree answers without searching for the closest one or shading it.
+    if (!scene.has_transparent_closures()) {
+        ++rays;
+        return scene.occluded(origin, dir, 0.0f, t_max, query) ? Rgb(0.0f) : Rgb(1.0f);
+    }
     // The point the ray must reach. Each re-spawn past a transparent surface starts off that
     // surface (offset along its normal) and is re-aimed at this point: keeping the direction
     // would shift the ray sideways and, at grazing angles, into the light's own surface.

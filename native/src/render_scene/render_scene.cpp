@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "bsdf/bsdf.h"
 #include "lights/light_registry.h"
 #include "scene/placement_conditioning.h"
 
@@ -66,8 +67,17 @@ Rgb material_emission(const SceneMaterial& material) {
     return sum;
 }
 
+void RenderScene::set_materials(const Scene& scene) {
+    materials_ = scene.materials;
+    has_transparent_closures_ = std::any_of(materials_.begin(), materials_.end(), [](const SceneMaterial& m) {
+        return std::any_of(m.closures.begin(), m.closures.end(),
+                           [](const WeightedClosure& c) { return closure_model(c.params.model).transparent; });
+    });
+}
+
 RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel, BvhLayout bvh)
-    : materials_(scene.materials), textures_(scene), background_(scene.background), bvh_(bvh) {
+    : textures_(scene), background_(scene.background), bvh_(bvh) {
+    set_materials(scene);
     // The scene's extent first: it decides which placements can be traced at all.
     mesh_bounds_.assign(scene.meshes.size(), Bounds{});
     std::vector<bool> bounded(scene.meshes.size(), false);
@@ -236,7 +246,7 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
         moved.push_back(placement);
     }
     if (changes.materials) {
-        materials_ = scene.materials;
+        set_materials(scene);
         textures_ = TextureBindings(scene);
     }
     if (changes.world) background_ = scene.background;

@@ -94,6 +94,9 @@ public:
         return embree_.occluded(origin, direction, t_min, t_max, query.time, query.visibility);
     }
     const LightSet& lights() const { return lights_; }
+    // Whether any material has a Transparent closure: only then can a shadow ray pass a surface,
+    // so without one a shadow ray needs Embree's any-hit query alone, not the closest surface.
+    bool has_transparent_closures() const { return has_transparent_closures_; }
     // The closures of scene material `id` (SurfaceHit::material_id), before texturing.
     const SceneMaterial& material(uint32_t id) const { return materials_[id]; }
     // Image textures bound to material parameters (applied per shading point).
@@ -130,7 +133,11 @@ private:
     // Lists the emissive triangles, lamps and environment, and the scene's bounding sphere.
     void build_lights(const Scene& scene, const std::atomic<bool>* cancel);
 
+    // Takes the scene's materials and notes whether any has a Transparent closure.
+    void set_materials(const Scene& scene);
+
     std::vector<SceneMaterial> materials_;
+    bool has_transparent_closures_ = false;
     TextureBindings textures_;
     std::vector<InstanceData> instances_;        // per traced placement
     std::vector<InstancePlacement> placements_;  // per traced placement, as given to Embree
