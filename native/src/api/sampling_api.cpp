@@ -166,11 +166,8 @@ StratumStatus stratum_sampler_points(const char* sampler, uint32_t samples, uint
         require(s != nullptr, "sampler '" + std::string(sampler) + "' could not be created");
         // The integrators read a 2D quantity as the sampler's pair (even dimension, next one).
         const bool pair = dim_a % 2 == 0 && dim_b == dim_a + 1;
-        stratum::PixelSample ps;
-        ps.x = pixel_x;
-        ps.y = pixel_y;
         for (uint32_t i = 0; i < count; ++i) {
-            ps.index = i;
+            const stratum::PixelSample ps(pixel_x, pixel_y, i);
             if (pair) {
                 const stratum::Vec2 p = s->get_2d(ps, dim_a);
                 out_xy[2 * size_t{i}] = p.x;

@@ -66,7 +66,8 @@ PixelFilter::PixelFilter(FilterType type, float width)
 }
 
 float PixelFilter::sample_1d(float u) const {
-    const float scaled = u > 0.0f ? std::min(u * static_cast<float>(kGuideSize), static_cast<float>(kGuideSize - 1)) : 0.0f;
+    const float scaled =
+        u > 0.0f ? std::min(u * static_cast<float>(kGuideSize), static_cast<float>(kGuideSize - 1)) : 0.0f;
     const auto bucket = static_cast<size_t>(scaled);
     const auto it = std::upper_bound(cdf_.begin() + guide_[bucket], cdf_.begin() + guide_[bucket + 1], u);
     const size_t i = std::clamp<size_t>(static_cast<size_t>(it - cdf_.begin()), 1, kTableSize - 1) - 1;

@@ -70,8 +70,9 @@ Rgb material_emission(const SceneMaterial& material) {
 void RenderScene::set_materials(const Scene& scene) {
     materials_ = scene.materials;
     has_transparent_closures_ = std::any_of(materials_.begin(), materials_.end(), [](const SceneMaterial& m) {
-        return std::any_of(m.closures.begin(), m.closures.end(),
-                           [](const WeightedClosure& c) { return closure_model(c.params.model).transparent; });
+        return std::any_of(m.closures.begin(), m.closures.end(), [](const WeightedClosure& c) {
+            return closure_model(c.params.model).transparent;
+        });
     });
 }
 

@@ -71,7 +71,7 @@ uint64_t HaltonSampler::halton_index(const PixelSample& s) const {
     const uint64_t r2 = inverse_radical_inverse(px, 2, exponent2_);
     const uint64_t r3 = inverse_radical_inverse(py, 3, exponent3_);
     const uint64_t a0 = (r2 * crt_weight2_ + r3 * crt_weight3_) % stride_;
-    const uint64_t pixel_shift = hash_words(s.x, s.y, seed_) >> (64 - kPixelShiftBits);
+    const uint64_t pixel_shift = hash_more(s.pixel_key, seed_) >> (64 - kPixelShiftBits);
     return a0 + (pixel_shift + s.index) * stride_;
 }
 

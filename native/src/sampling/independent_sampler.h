@@ -20,18 +20,16 @@ public:
     explicit IndependentSampler(const SamplerSettings& settings) : seed_(settings.seed) {}
 
     float get_1d(const PixelSample& s, uint32_t dimension) const override {
-        return value(sample_key(s), dimension);
+        return value(s.sample_key, dimension);
     }
     // The pair is the two 1D values, so a dimension reads the same whether asked alone or in
-    // its pair; the sample's part of the key is hashed once for both.
+    // its pair.
     Vec2 get_2d(const PixelSample& s, uint32_t dimension) const override {
-        const uint64_t key = sample_key(s);
-        return {value(key, dimension), value(key, dimension + 1)};
+        return {value(s.sample_key, dimension), value(s.sample_key, dimension + 1)};
     }
 
 private:
     // hash_words(x, y, index, dimension, seed) = hash_more(hash_more(sample_key, dimension), seed).
-    static uint64_t sample_key(const PixelSample& s) { return hash_words(s.x, s.y, s.index); }
     float value(uint64_t sample_key, uint32_t dimension) const {
         const uint64_t key = hash_more(hash_more(sample_key, dimension), seed_);
         return bits_to_unit_float(Pcg32(key, mix_bits(key ^ 0xda942042e4dd58b5ull)).next_u32());

@@ -7,12 +7,24 @@
 #include <memory>
 
 #include "core/math.h"
+#include "sampling/hash.h"
 
 namespace stratum {
 
+// One sample of one pixel, with its hash keys computed once: samplers that key every value by
+// the pixel or the sample continue from these (hash_more) rather than hash them again per value.
+// The members are const, so a key cannot fall out of step with its pixel or index.
 struct PixelSample {
-    uint32_t x = 0, y = 0;  // pixel
-    uint32_t index = 0;     // sample index within the pixel, 0 .. samples-1
+    PixelSample(uint32_t pixel_x, uint32_t pixel_y, uint32_t sample_index)
+        : x(pixel_x),
+          y(pixel_y),
+          index(sample_index),
+          pixel_key(hash_words(pixel_x, pixel_y)),
+          sample_key(hash_more(pixel_key, sample_index)) {}
+    const uint32_t x, y;        // pixel
+    const uint32_t index;       // sample index within the pixel, 0 .. samples-1
+    const uint64_t pixel_key;   // hash_words(x, y)
+    const uint64_t sample_key;  // hash_words(x, y, index)
 };
 
 struct SamplerSettings {

@@ -13,7 +13,7 @@ struct PairKeys {
 };
 
 PairKeys pair_keys(const PixelSample& s, uint32_t pair, uint32_t seed) {
-    const uint64_t k = hash_words(s.x, s.y, pair, seed);
+    const uint64_t k = hash_more(hash_more(s.pixel_key, pair), seed);  // hash_words(x, y, pair, seed)
     return {static_cast<uint32_t>(k), static_cast<uint32_t>(k >> 32), static_cast<uint32_t>(mix_bits(k))};
 }
 
