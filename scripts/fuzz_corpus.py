@@ -75,6 +75,8 @@ OPS = {
         ]
     )
 }
+OPS["instances"] = 254  # operations added later take the top byte values (native/fuzz/program.cpp)
+
 
 def special(name: str) -> bytes:
     return bytes([SPECIAL[name]])
@@ -250,6 +252,12 @@ def instance_ex(
     )
 
 
+def instances(rows: list[tuple[int, bytes]], nulls: int = 0) -> bytes:
+    """One stratum_scene_add_instances call: (mesh id, transform) rows; nulls bit 1 passes NULL
+    mesh ids, bit 2 NULL transforms."""
+    return bytes([OPS["instances"], len(rows)]) + b"".join(bytes([m]) + t for m, t in rows) + bytes([nulls])
+
+
 def background(r: float, g: float, b: float) -> bytes:
     return bytes([OPS["background"]]) + unit(r) + unit(g) + unit(b)
 
@@ -391,6 +399,14 @@ def seeds() -> dict[str, bytes]:
     s["camera-dof"] = box_scene() + camera(3) + render()
     for kind, name in enumerate(["point", "sun", "rectangle", "ellipse", "spot", "spot-v1"]):
         s[f"light-{name}"] = material(1) + mesh(2) + instance(0) + light(kind) + camera(0) + render()
+    s["instances-batch"] = box_scene() + instances([(0, translate(0.5, 0, 0)), (0, rotate(1, 0.5))]) + render()
+    s["instances-refused"] = (
+        box_scene()
+        + instances([(0, b"\x00\x00"), (0, translate("nan", 0, 0))])
+        + instances([(0, b"\x00\x00")], nulls=2)
+        + instances([], nulls=3)
+        + render()
+    )
     s["materials"] = (
         material(1, roughness=0.2)
         + material(2, metallic=1.0)

@@ -61,9 +61,18 @@ void run_program(ByteReader& in) {
         op_sampling,        op_models,
     };
     constexpr size_t kCount = sizeof kOperations / sizeof kOperations[0];
+    // Operations added later take the top byte values, which the modulo gave to the first
+    // operations: every committed input that does not use them replays as it was written.
+    constexpr uint8_t kAddInstances = 254;
     ProgramState state;
     state.new_scene();
-    for (unsigned i = 0; i < kMaxOperations && !in.exhausted(); ++i) kOperations[in.u8() % kCount](in, state);
+    for (unsigned i = 0; i < kMaxOperations && !in.exhausted(); ++i) {
+        const uint8_t opcode = in.u8();
+        if (opcode == kAddInstances)
+            op_add_instances(in, state);
+        else
+            kOperations[opcode % kCount](in, state);
+    }
 }
 
 }  // namespace stratum::fuzz

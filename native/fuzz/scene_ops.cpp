@@ -2,6 +2,7 @@
 // counts a host would keep. Descriptions are drawn even when a size limit skips the call, so
 // the rest of the input reads the same.
 #include <string>
+#include <vector>
 
 #include "checked_call.h"
 #include "describe.h"
@@ -21,6 +22,12 @@ void expect_id(const char* call, uint32_t id, uint32_t expected) {
 }
 
 std::string matrix_text(const float* m) { return describe_floats(m, 16); }
+
+std::string describe_uints(const std::vector<uint32_t>& v) {
+    std::string text;
+    for (size_t i = 0; i < v.size(); ++i) text += (i ? ", " : "") + std::to_string(v[i]);
+    return text;
+}
 
 }  // namespace
 
@@ -133,6 +140,42 @@ void op_add_instance(ByteReader& in, ProgramState& s) {
             [&] { return "scene, " + std::to_string(mesh) + ", (float[16])" + matrix_text(m.data()); }) ==
         STRATUM_OK)
         ++s.instances;
+}
+
+// A batch of count % 5 rows (0: an empty batch), each a mesh id and matrix drawn as by
+// op_add_instance, then a byte whose bits pass NULL for mesh_ids (1) or transforms (2). A
+// refused batch names a row below count (or none, for a refused call); an accepted one none.
+void op_add_instances(ByteReader& in, ProgramState& s) {
+    const uint32_t count = in.u8() % 5u;
+    std::vector<uint32_t> ids;
+    std::vector<float> transforms;
+    for (uint32_t i = 0; i < count; ++i) {
+        ids.push_back(in.id(s.meshes));
+        const Matrix m = draw_matrix(in, translation(0.0f, 0.0f, 0.0f));
+        transforms.insert(transforms.end(), m.begin(), m.end());
+    }
+    const uint8_t nulls = in.u8();
+    const uint32_t* id_array = (nulls & 1) ? nullptr : ids.data();
+    const float* transform_array = (nulls & 2) ? nullptr : transforms.data();
+    if (s.instances + count > kMaxInstances) return;
+    uint32_t failed = 0;
+    const StratumStatus status = checked(
+        "stratum_scene_add_instances",
+        [&] { return stratum_scene_add_instances(s.scene, count, id_array, transform_array, &failed); },
+        [&] {
+            return "scene, " + std::to_string(count) + ", (uint32_t[])" +
+                   (id_array ? "{" + describe_uints(ids) + "}" : std::string("NULL")) + ", (float[])" +
+                   (transform_array ? describe_floats(transforms.data(), transforms.size()) : "NULL") +
+                   ", &failed";
+        });
+    if (status == STRATUM_OK) {
+        if (failed != UINT32_MAX)
+            finding("stratum_scene_add_instances succeeded and named row " + std::to_string(failed));
+        s.instances += count;
+    } else if (failed != UINT32_MAX && failed >= count) {
+        finding("stratum_scene_add_instances named row " + std::to_string(failed) + " of " +
+                std::to_string(count));
+    }
 }
 
 void op_add_instance_ex(ByteReader& in, ProgramState& s) {

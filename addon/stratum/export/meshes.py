@@ -50,11 +50,13 @@ def _vertex_normals(mesh: Any, positions: np.ndarray) -> np.ndarray:
     if hasattr(mesh, "corner_normals"):  # 4.1+
         return _get(mesh.vertex_normals, "vector", len(positions), 3, np.float32)
     n_poly = len(mesh.polygons)
-    # uint32 / int32: the dtypes of MLoop.v and MPoly's fields, so foreach_get copies in bulk.
+    # uint32 for all three: RNA declares them unsigned, and foreach_get copies in bulk only
+    # into a buffer of that signedness (3.4.1, 1M-triangle monkey: loop_start and loop_total
+    # 53 ms as int32, 5 ms as uint32).
     return angle_weighted_vertex_normals(
         positions, _get(mesh.loops, "vertex_index", len(mesh.loops), 1, np.uint32),
-        _get(mesh.polygons, "loop_start", n_poly, 1, np.int32),
-        _get(mesh.polygons, "loop_total", n_poly, 1, np.int32),
+        _get(mesh.polygons, "loop_start", n_poly, 1, np.uint32),
+        _get(mesh.polygons, "loop_total", n_poly, 1, np.uint32),
         _get(mesh.polygon_normals, "vector", n_poly, 3, np.float32))
 
 

@@ -63,12 +63,12 @@ from .common import (
     instance_matrices,
     named_edit,
 )
-from .geometry import LIGHT_ID, object_geometry
-from .instances import InstanceFlags, Placement, identity, original_pointer, renderable
+from .instances import InstanceFlags, Placement, original_pointer, renderable
 from .lights import convert_light
 from .materials import MaterialTable
 from .motion import instance_key, shutter_settings, shutter_transforms
-from .object_sync import ExportedObjects, object_edits, row_signature
+from .object_sync import ExportedObjects, RowSignature, object_edits
+from .placements import LIGHT_ROW, UNSEEN, Geometry, place, row_template
 from .unsupported import UnsupportedObjects
 from .updates import Changes, IdUpdate, collect_updates, sort_updates
 from .world import Environment, convert_environment, convert_world
@@ -170,7 +170,13 @@ class SceneSync:
         # LIGHT_ID for lights, -1 for nothing to draw.
         objects: dict[tuple[int, int], tuple[int, int]] = {}
         mesh_ids: dict[tuple[Any, ...], tuple[int, int]] = {}  # key -> (mesh id, triangles)
+        # Per row signature (what is drawn, under which instancer): what its rows place, (mesh
+        # id, object name, triangles, flags); LIGHT_ROW, or None for nothing to draw. 10 000
+        # instances of one object read its name, geometry and flags once, not per row.
+        templates: dict[RowSignature, Any] = {}
         placed: list[Placement] = []
+        rows = exported.rows
+        instancers: dict[int, int] = {}  # evaluated instancer pointer -> original pointer
         index = -1
         for index, instance in enumerate(depsgraph.object_instances):
             if should_stop is not None and index % 256 == 0 and should_stop():
@@ -184,35 +190,40 @@ class SceneSync:
             # show_self is off for an instancer whose own geometry is hidden in renders (Cycles
             # skips those too: blender/object.cpp).
             if ob is None or not (is_instance or instance.show_self):
-                exported.rows.append(None)
+                rows.append(None)
                 continue
-            ident = identity(ob)
+            # instances.identity and object_sync.row_signature, inlined (this loop runs once
+            # per instance); an instancer's original is looked up once.
+            data = ob.data
+            ident = (ob.original.as_pointer(), data.as_pointer() if data is not None else 0)
             parent = instance.parent if is_instance else None
-            exported.rows.append(row_signature(ident, parent))
-            found = objects.get(ident)
-            if found is None:
-                found = (-1, 0) if unsupported.skip(ob) else \
-                    object_geometry(ob, depsgraph, scene, materials, mesh_ids, summary)
-                objects[ident] = found
-                # A big mesh takes a tenth of a second or more to read out of Blender: Esc is
-                # honoured after each one, not only every 256 instances.
-                if should_stop is not None and found[1] > 0 and should_stop():
-                    raise ExportCancelled("export cancelled")
-            mesh_id = found[0]
-            if mesh_id == LIGHT_ID:
+            if parent is None:
+                signature = (ident, 0)
+            else:
+                evaluated = parent.as_pointer()
+                instancer = instancers.get(evaluated)
+                if instancer is None:
+                    instancer = instancers[evaluated] = original_pointer(parent)
+                signature = (ident, instancer)
+            rows.append(signature)
+            template = templates.get(signature, UNSEEN)
+            if template is UNSEEN:
+                template = row_template(ob, ident, parent, Geometry(
+                    objects, mesh_ids, depsgraph, scene, materials, unsupported, summary,
+                    should_stop), flags)
+                templates[signature] = template
+            if template is LIGHT_ROW:
                 visibility = flags.get(ob, ident, parent).visibility
                 light = convert_light(ob, instance.matrix_world, visibility, summary)
                 exported.lights[index] = _add_light(ob.name, light, scene, summary)
                 if light is not None:
                     exported.sent_lights.append(comparable(light))
-            elif mesh_id >= 0:
+            elif template is not None:
                 moved = motion.get(instance_key(instance, ob)) if motion else None
-                placed.append((index, mesh_id, ob.name, found[1], flags.get(ob, ident, parent),
-                               moved))
+                placed.append((index, *template, moved))
         unsupported.report(summary)
         matrices = instance_matrices(depsgraph, index + 1)
-        _place(placed, renderable(placed, matrices, summary), matrices, scene, summary,
-               exported)
+        place(placed, renderable(placed, matrices, summary), matrices, scene, summary, exported)
 
         summary.textures = materials.textures.count
         self._exported = _Exported(exported, materials,
@@ -316,48 +327,6 @@ def _world_edits(bl_scene: Any, changes: Changes, exported: _Exported, scene: An
 def _same_environment(a: Environment, b: Environment | None) -> bool:
     return b is not None and a.strength == b.strength and np.array_equal(a.rgb, b.rgb) \
         and np.array_equal(a.rotation, b.rotation)
-
-
-def _place(placed: list[Placement], kept: list[bool], matrices: np.ndarray, scene: Any,
-           summary: ExportSummary, exported: ExportedObjects) -> None:
-    """Sends the kept placements: one add_instance_ex each for those that move, are hidden
-    from some rays, held out or have a pass index, in order, then the rest in bulk; records
-    them in `exported`."""
-    plain_ids: list[int] = []
-    plain_rows: list[int] = []
-    plain_positions: list[int] = []
-    indices = [-1] * len(placed)
-    sent = 0
-    for position, (p, keep) in enumerate(zip(placed, kept, strict=True)):
-        if not keep:
-            continue
-        row, mesh_id, name, n_tri, flags, moved = p
-        if moved is None and flags.plain:
-            plain_ids.append(mesh_id)
-            plain_rows.append(row)
-            plain_positions.append(position)
-        else:
-            start_m, end_m = moved if moved is not None else (matrices[row], None)
-            summary.moving_instances += moved is not None
-            try:
-                scene.add_instance_ex(native.Instance(mesh_id, start_m, end_m, *flags))
-            except native.StratumError as exc:
-                raise ExportError(f"Object '{name}': {exc}") from exc
-            indices[position] = sent
-            sent += 1
-        summary.instanced_triangles += n_tri
-        summary.object_instances[name] = summary.object_instances.get(name, 0) + 1
-        summary.object_triangles[name] = n_tri
-    try:
-        scene.add_instances(np.asarray(plain_ids, dtype=np.uint32), matrices[plain_rows])
-    except native.StratumError as exc:
-        where = f"Object '{placed[plain_positions[exc.index]][2]}'" \
-            if exc.index is not None else "Instances"
-        raise ExportError(f"{where}: {exc}") from exc
-    for offset, position in enumerate(plain_positions):
-        indices[position] = sent + offset
-    summary.instances = sent + len(plain_positions)
-    exported.record(placed, indices, matrices)
 
 
 def _add_light(name: str, light: native.Light | None, scene: Any,

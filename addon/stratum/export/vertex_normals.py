@@ -25,12 +25,31 @@ from __future__ import annotations
 
 import numpy as np
 
+# Vectors are handled as separate x, y, z arrays: gathers and arithmetic on contiguous
+# components run several times faster than on (N, 3) rows (1M-triangle smooth mesh: 0.5 s ->
+# 0.2 s). The operations and their order are those of the row-wise formulation this replaced
+# (numpy's einsum "ij,ij->i"), so the floats are the same: a float32 row's squared length sums
+# x^2 + y^2, then + z^2; a float64 row's sums x^2 + z^2, then + y^2 (einsum's two-lane SIMD
+# accumulator, measured in numpy 1.24 and 1.26: 0 of 1M rows differ).
+Components = tuple[np.ndarray, np.ndarray, np.ndarray]
 
-def _unit_rows(v: np.ndarray) -> np.ndarray:
-    """Rows of v scaled to unit length; zero rows stay zero (Blender's normalize_v3)."""
-    length = np.sqrt(np.einsum("ij,ij->i", v, v))
+
+def _dot(a: Components, b: Components) -> np.ndarray:
+    if a[0].dtype == np.float64:
+        return (a[0] * b[0] + a[2] * b[2]) + a[1] * b[1]
+    return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+
+
+def _unit(v: Components) -> Components:
+    """v scaled to unit length; zero vectors stay zero (Blender's normalize_v3)."""
+    length = np.sqrt(_dot(v, v))
     scale = np.divide(1.0, length, out=np.zeros_like(length), where=length > 0.0)
-    return v * scale[:, None]
+    return v[0] * scale, v[1] * scale, v[2] * scale
+
+
+def _components(rows: np.ndarray) -> Components:
+    return (np.ascontiguousarray(rows[:, 0]), np.ascontiguousarray(rows[:, 1]),
+            np.ascontiguousarray(rows[:, 2]))
 
 
 def angle_weighted_vertex_normals(positions: np.ndarray, corner_vert: np.ndarray,
@@ -50,23 +69,23 @@ def angle_weighted_vertex_normals(positions: np.ndarray, corner_vert: np.ndarray
     next_corner[last] = start
     prev_corner = np.arange(-1, n_loops - 1, dtype=np.int64)
     prev_corner[start] = last
-    corner_position = positions[corner_vert]
-    edge = _unit_rows(corner_position[next_corner] - corner_position)
+    vert = corner_vert.astype(np.intp)
+    corner_position = tuple(np.take(p, vert) for p in _components(positions))
+    edge = _unit(tuple(np.take(p, next_corner) - p for p in corner_position))
     # Interior angle at a corner: between the edges to its previous and next corners, i.e.
     # acos(-(incoming edge . outgoing edge)), clamped as Blender's saacos.
-    cos_angle = -np.einsum("ij,ij->i", edge[prev_corner], edge)
+    cos_angle = -_dot(tuple(np.take(e, prev_corner) for e in edge), edge)
     angle = np.arccos(np.clip(cos_angle, -1.0, 1.0)).astype(np.float32)
-    summed = np.stack([
-        np.bincount(corner_vert, weights=np.repeat(face_normals[:, k], total) * angle,
-                    minlength=n_vert)
-        for k in range(3)
-    ], axis=1)
-    normals = _unit_rows(summed)
+    # Per corner the float32 term (face normal) x angle, summed per vertex in float64 in corner
+    # order (np.bincount is a sequential loop).
+    summed = tuple(np.bincount(vert, weights=np.repeat(f, total) * angle, minlength=n_vert)
+                   for f in _components(face_normals))
+    normals = np.stack(_unit(summed), axis=1)
     # Blender's fallback for a vertex whose contributions cancel (or that has no face): its
     # position as a direction.
     zero = ~normals.any(axis=1)
     if zero.any():
-        normals[zero] = _unit_rows(positions[zero].astype(np.float64))
+        normals[zero] = np.stack(_unit(_components(positions[zero].astype(np.float64))), axis=1)
     return normals.astype(np.float32)
 
 

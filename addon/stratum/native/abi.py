@@ -289,6 +289,7 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
         "stratum_scene_add_material": (c_int32, [p_void, ctypes.POINTER(_MaterialDesc), p_u32]),
         "stratum_scene_add_mesh": (c_int32, [p_void, ctypes.POINTER(_MeshDesc), p_u32]),
         "stratum_scene_add_instance": (c_int32, [p_void, c_uint32, p_float]),
+        "stratum_scene_add_instances": (c_int32, [p_void, c_uint32, p_u32, p_float, p_u32]),
         "stratum_scene_add_light": (c_int32, [p_void, ctypes.POINTER(_LightDesc)]),
         "stratum_scene_set_camera": (c_int32, [p_void, ctypes.POINTER(_CameraDesc)]),
         "stratum_scene_set_background": (c_int32, [p_void, p_float]),

@@ -250,23 +250,22 @@ class Scene(_Handle):
                "stratum_scene_add_instance")
 
     def add_instances(self, mesh_ids: np.ndarray, transforms: np.ndarray) -> None:
-        """Static instances in bulk: mesh_ids (N,) and transforms (N, 4, 4) row-major. One C
-        call per instance without per-instance array conversion (scenes place 10 000s). A
-        rejected instance raises StratumError whose `index` is its row."""
+        """Static instances in bulk: mesh_ids (N,) and transforms (N, 4, 4) row-major, in one C
+        call (scenes place 10 000s). All or nothing: a rejected instance raises StratumError
+        whose `index` is its row, and none of the batch is added."""
         ids = np.ascontiguousarray(mesh_ids, dtype=np.uint32).reshape(-1)
         mats = np.ascontiguousarray(transforms, dtype=np.float32).reshape(-1, 16)
         if len(ids) != len(mats):
             raise ValueError(f"add_instances: {len(ids)} mesh ids for {len(mats)} transforms")
-        fn = self._lib.stratum_scene_add_instance
-        handle = self.handle
-        base = mats.ctypes.data
-        pointer = ctypes.POINTER(ctypes.c_float)
-        for i, mesh_id in enumerate(ids.tolist()):
-            try:
-                _check(self._lib, fn(handle, mesh_id, ctypes.cast(base + 64 * i, pointer)),
-                       "stratum_scene_add_instance")
-            except StratumError as exc:
-                raise StratumError(exc.status, exc.message, index=i) from None
+        failed = ctypes.c_uint32(0xFFFFFFFF)
+        status = self._lib.stratum_scene_add_instances(
+            self.handle, _uint32(len(ids), "instance count"), _uint_ptr(ids), _float_ptr(mats),
+            ctypes.byref(failed))
+        try:
+            _check(self._lib, status, "stratum_scene_add_instances")
+        except StratumError as exc:
+            index = failed.value if failed.value != 0xFFFFFFFF else None
+            raise StratumError(exc.status, exc.message, index=index) from None
 
     def add_instance_ex(self, instance: Instance) -> None:
         """An instance with motion (transform_end not None), ray visibility, holdout and pass

@@ -329,6 +329,15 @@ STRATUM_API StratumStatus stratum_scene_add_mesh(StratumScene* scene, const Stra
  * is skipped when the render scene is built, with a notice (stratum_renderer_notices). */
 STRATUM_API StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id,
                                                      const float transform[16]);
+/* Places `count` instances as `count` calls of stratum_scene_add_instance(scene, mesh_ids[i],
+ * transforms + 16 i) would, in one call (a scene of 10 000s of instances pays one call and one
+ * lock). All or nothing: when instance i is rejected none is added, the status and
+ * stratum_last_error() say why as stratum_scene_add_instance would, and i is written to
+ * *out_failed_index (if not NULL; UINT32_MAX when no instance was rejected). count 0 adds nothing
+ * (the arrays may then be NULL). */
+STRATUM_API StratumStatus stratum_scene_add_instances(StratumScene* scene, uint32_t count,
+                                                      const uint32_t* mesh_ids, const float* transforms,
+                                                      uint32_t* out_failed_index);
 
 /* Ray visibility (Cycles' Object > Visibility > Ray Visibility and the light's equivalents). */
 typedef enum StratumVisibility {

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "api/abi_guard.h"
 #include "api/scene_file.h"
@@ -134,6 +135,37 @@ StratumStatus stratum_scene_add_instance(StratumScene* scene, uint32_t mesh_id, 
         d.visibility = STRATUM_VISIBLE_ALL;
         scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
             s.instances.push_back(stratum::validate_instance(d, s.meshes));
+        });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_add_instances(StratumScene* scene, uint32_t count, const uint32_t* mesh_ids,
+                                          const float* transforms, uint32_t* out_failed_index) {
+    if (out_failed_index) *out_failed_index = UINT32_MAX;
+    return guarded("stratum_scene_add_instances", [&] {
+        require(scene, "scene is NULL");
+        if (count == 0) return STRATUM_OK;
+        require(mesh_ids && transforms, "mesh_ids or transforms is NULL");
+        // Every instance is validated before any is added (all or nothing), under one lock and
+        // with one structure mark: one add_instance per row marks every instance placed so far
+        // as changed, O(n^2) over a batch.
+        scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            std::vector<stratum::Instance> added;
+            added.reserve(count);
+            StratumInstanceDesc d{};
+            d.visibility = STRATUM_VISIBLE_ALL;
+            for (uint32_t i = 0; i < count; ++i) {
+                d.mesh_id = mesh_ids[i];
+                std::copy(transforms + 16 * size_t{i}, transforms + 16 * (size_t{i} + 1), d.transform);
+                try {
+                    added.push_back(stratum::validate_instance(d, s.meshes));
+                } catch (const stratum::ValidationError&) {
+                    if (out_failed_index) *out_failed_index = i;
+                    throw;
+                }
+            }
+            s.instances.insert(s.instances.end(), added.begin(), added.end());
         });
         return STRATUM_OK;
     });

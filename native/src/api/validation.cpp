@@ -128,28 +128,32 @@ Environment validate_environment(const float* rgb, uint32_t width, uint32_t heig
 }
 
 Transform validate_transform(const float* m, const char* what) {
+    // Runs once per instance (10 000s per export): each test comes first and its message is
+    // composed only when it fails.
     for (int i = 0; i < 16; ++i) {
         if (!std::isfinite(m[i])) {
             throw ValidationError(std::string(what) + " element " + std::to_string(i) + " = " + fmt(m[i]) +
                                   " is not finite");
         }
     }
-    check(m[12] == 0.0f && m[13] == 0.0f && m[14] == 0.0f && m[15] == 1.0f,
-          std::string(what) + " is not affine: its last row must be (0, 0, 0, 1)");
+    if (!(m[12] == 0.0f && m[13] == 0.0f && m[14] == 0.0f && m[15] == 1.0f))
+        throw ValidationError(std::string(what) + " is not affine: its last row must be (0, 0, 0, 1)");
     // Bounds of scene/scene_limits.h: no ray of the scene can leave Embree's valid range.
     for (int row = 0; row < 3; ++row) {
         for (int col = 0; col < 3; ++col) {
             const float v = m[4 * row + col];
-            check(std::abs(v) <= kMaxLinear, std::string(what) + " element " + std::to_string(4 * row + col) +
-                                                 " = " + fmt(v) + " is beyond the largest scale " +
-                                                 fmt(kMaxLinear));
+            if (!(std::abs(v) <= kMaxLinear)) {
+                throw ValidationError(std::string(what) + " element " + std::to_string(4 * row + col) +
+                                      " = " + fmt(v) + " is beyond the largest scale " + fmt(kMaxLinear));
+            }
         }
     }
     const float t[3] = {m[3], m[7], m[11]};
-    check(std::abs(t[0]) <= kMaxCoordinate && std::abs(t[1]) <= kMaxCoordinate &&
-              std::abs(t[2]) <= kMaxCoordinate,
-          std::string(what) + " places its origin at " + triple(t) + ", more than " + fmt(kMaxCoordinate) +
-              " from the world origin");
+    if (!(std::abs(t[0]) <= kMaxCoordinate && std::abs(t[1]) <= kMaxCoordinate &&
+          std::abs(t[2]) <= kMaxCoordinate)) {
+        throw ValidationError(std::string(what) + " places its origin at " + triple(t) + ", more than " +
+                              fmt(kMaxCoordinate) + " from the world origin");
+    }
     return Transform::from_row_major(m);
 }
 
@@ -329,8 +333,9 @@ Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
 namespace {
 
 uint32_t validate_visibility(uint32_t bits, const char* what) {
-    check((bits & ~static_cast<uint32_t>(STRATUM_VISIBLE_ALL)) == 0,
-          std::string(what) + " = " + std::to_string(bits) + " has bits outside STRATUM_VISIBLE_ALL (31)");
+    if ((bits & ~static_cast<uint32_t>(STRATUM_VISIBLE_ALL)) != 0)
+        throw ValidationError(std::string(what) + " = " + std::to_string(bits) +
+                              " has bits outside STRATUM_VISIBLE_ALL (31)");
     return bits;
 }
 
@@ -354,19 +359,23 @@ float placed_extent(const Mesh& mesh, const Transform& m) {
 }  // namespace
 
 uint32_t validate_pass_index(uint32_t pass_index, const std::string& what) {
-    check(pass_index <= STRATUM_MAX_PASS_INDEX, what + " = " + std::to_string(pass_index) + " is more than " +
-                                                    std::to_string(STRATUM_MAX_PASS_INDEX) +
-                                                    " (the index passes hold floats)");
+    if (pass_index > STRATUM_MAX_PASS_INDEX) {
+        throw ValidationError(what + " = " + std::to_string(pass_index) + " is more than " +
+                              std::to_string(STRATUM_MAX_PASS_INDEX) + " (the index passes hold floats)");
+    }
     return pass_index;
 }
 
 Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>& meshes) {
-    check(d.mesh_id < meshes.size(), "instance mesh_id " + std::to_string(d.mesh_id) + " out of range [0, " +
-                                         std::to_string(meshes.size()) + ")");
-    check(d.motion == 0 || d.motion == 1,
-          "instance motion = " + std::to_string(d.motion) + " must be 0 or 1");
-    check(d.holdout == 0 || d.holdout == 1,
-          "instance holdout = " + std::to_string(d.holdout) + " must be 0 or 1");
+    // Once per instance, as validate_transform: messages only on failure.
+    if (d.mesh_id >= meshes.size()) {
+        throw ValidationError("instance mesh_id " + std::to_string(d.mesh_id) + " out of range [0, " +
+                              std::to_string(meshes.size()) + ")");
+    }
+    if (d.motion != 0 && d.motion != 1)
+        throw ValidationError("instance motion = " + std::to_string(d.motion) + " must be 0 or 1");
+    if (d.holdout != 0 && d.holdout != 1)
+        throw ValidationError("instance holdout = " + std::to_string(d.holdout) + " must be 0 or 1");
     Instance inst;
     inst.mesh_id = d.mesh_id;
     inst.object_to_world = validate_transform(d.transform, "instance transform");
@@ -381,9 +390,10 @@ Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>
     const Mesh& mesh = meshes[d.mesh_id];
     const float extent =
         std::max(placed_extent(mesh, inst.object_to_world), placed_extent(mesh, inst.object_to_world_end));
-    check(extent <= kMaxCoordinate, "instance transform places mesh " + std::to_string(d.mesh_id) +
-                                        " up to " + fmt(extent) + " from the origin, more than " +
-                                        fmt(kMaxCoordinate));
+    if (!(extent <= kMaxCoordinate)) {
+        throw ValidationError("instance transform places mesh " + std::to_string(d.mesh_id) + " up to " +
+                              fmt(extent) + " from the origin, more than " + fmt(kMaxCoordinate));
+    }
     inst.visibility = validate_visibility(d.visibility, "instance visibility");
     inst.holdout = d.holdout == 1;
     inst.pass_index = validate_pass_index(d.pass_index, "instance pass_index");
