@@ -3,7 +3,8 @@ smooth) and the 10 000-instance scene of the export section.
 
     blender -b --factory-startup --python scripts/bench_memory.py [-- --rebuild]
 
-Each scene is built once (bench_common's builders) and saved to out/bench_cache/<name>.blend
+Each scene is built once (bench_common's builders) and saved to
+out/bench_cache/<name>-<key>.blend, the key a hash of bench_common.py and Blender's version
 (reused while it exists; --rebuild makes it again). Then, for each renderer, a fresh Blender
 process (the same executable, --factory-startup) opens that file and renders 1 spp at 32 x 32
 through F12 (bpy.ops.render.render); it reads VmHWM (peak resident set) from /proc/self/status
@@ -15,6 +16,8 @@ to out/bench/memory.json and printed. Linux only (/proc).
 from __future__ import annotations
 
 import argparse
+import hashlib
+import inspect
 import json
 import subprocess
 import sys
@@ -73,7 +76,10 @@ def child(engine: str) -> int:
 
 
 def cached_scene(name: str, build: Any, rebuild: bool) -> Path:
-    path = CACHE / f"{name}.blend"
+    """The scene `build` makes, saved once; keyed by the source of the builder's module and
+    Blender's version, so that a changed builder or another Blender makes it again."""
+    key = f"{inspect.getsource(sys.modules[build.__module__])}{bpy.app.version_string}"
+    path = CACHE / f"{name}-{hashlib.sha256(key.encode()).hexdigest()[:12]}.blend"
     if rebuild or not path.is_file():
         build()
         path.parent.mkdir(parents=True, exist_ok=True)
