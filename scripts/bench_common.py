@@ -224,13 +224,15 @@ def use_render_levels(scene: bpy.types.Scene) -> None:
 
 class StratumScene:
     """The scene's render geometry exported once into a native scene; render() then runs the
-    native Renderer with the scene's settings plus `overrides`, as many times as asked."""
+    native Renderer with the scene's settings plus `overrides`, as many times as asked. The
+    settings are read here, so renders may follow after another file was opened."""
 
     def __init__(self, scene: bpy.types.Scene) -> None:
         from stratum import native
+        from stratum.engine.frame import renderer_settings
         from stratum.export import export_scene
 
-        self.scene = scene
+        self.settings = renderer_settings(scene)
         use_render_levels(scene)
         depsgraph = bpy.context.evaluated_depsgraph_get()
         depsgraph.update()
@@ -251,9 +253,8 @@ class StratumScene:
         per second (pixels x samples / path-tracing seconds) and, with `pixels`, the linear RGB
         as float64 (height, width, 3)."""
         from stratum import native
-        from stratum.engine.frame import renderer_settings
 
-        settings = renderer_settings(self.scene) | (overrides or {})
+        settings = self.settings | (overrides or {})
         with native.Renderer(self.native) as renderer:
             for name, value in settings.items():
                 renderer.set(name, value)

@@ -17,9 +17,10 @@ sampler converges to the same image), so that its own noise can be measured and 
 
 MSE is the mean over pixels and RGB channels of the linear image (Cycles' through a 32-bit EXR,
 Stratum's from Renderer.read_pixels). Seconds are the fastest path-tracing time over the seeds
-(Cycles' from its status lines, Stratum's progress().render_seconds). The product's ratio to
-Cycles' is the figure; targets: the best Stratum sampler <= 0.6x, every Owen-scrambled sampler
-within 1.2x of the best. References are cached in out/bench_cache/quality/, keyed by scene file,
+(Cycles' from its status lines, Stratum's progress().render_seconds); the seeds run in turn,
+each by Cycles then by every Stratum sampler, so that the machine's load reaches all alike. The
+product's ratio to Cycles' is the figure; targets: the best Stratum sampler <= 0.6x, every
+Owen-scrambled sampler within 1.2x of the best. References are cached in out/bench_cache/quality/, keyed by scene file,
 settings and renderer version (Blender's version and build hash; libstratum.so's SHA-256), so a
 rerun renders only the 64-spp images. Written to out/bench/quality.json and printed.
 """
@@ -107,49 +108,56 @@ def measure(images: list[np.ndarray], seconds: list[float], a: np.ndarray, b: np
             "seconds": min(seconds), "seconds_all": seconds}
 
 
-def bench_cycles(name: str, args: argparse.Namespace, tmp: Path) -> dict[str, Any]:
-    def render(seed: int, samples: int) -> tuple[np.ndarray, float]:
-        scene = open_scene(SCENES[name], args.res, samples)
-        c = scene.cycles
-        c.sampling_pattern = type(c).bl_rna.properties["sampling_pattern"].default
-        c.seed = seed
-        c.use_animated_seed = False
-        exr = tmp / f"cycles-{seed}.exr"
-        r = render_cycles(scene, write_exr=exr)
-        if r["trace"] is None:
-            raise RuntimeError("Cycles printed no status lines (run in Blender's executable)")
-        return read_exr_rgb(exr), r["trace"]
-
-    key = scene_key(name, args) | {"renderer": "cycles", "blender": bpy.app.version_string,
-                                   "build": bpy.app.build_hash.decode(errors="replace")}
-    a, b, cached = cached_halves(cache_path(name, "cycles", key),
-                                 lambda seed: render(seed, args.reference_samples // 2)[0])
-    runs = [render(seed, args.samples) for seed in range(1, args.seeds + 1)]
-    out = measure([im for im, _ in runs], [t for _, t in runs], a, b)
-    return out | {"reference_noise": reference_noise(a, b), "reference_cached": cached,
-                  "pattern": type(bpy.context.scene.cycles).bl_rna.properties[
-                      "sampling_pattern"].default}
+def cycles_render(name: str, args: argparse.Namespace, tmp: Path, seed: int, samples: int,
+                  ) -> tuple[np.ndarray, float]:
+    """Cycles' image (linear RGB) and path-tracing seconds, its default pattern, `seed`."""
+    scene = open_scene(SCENES[name], args.res, samples)
+    c = scene.cycles
+    c.sampling_pattern = type(c).bl_rna.properties["sampling_pattern"].default
+    c.seed = seed
+    c.use_animated_seed = False
+    exr = tmp / f"cycles-{seed}.exr"
+    r = render_cycles(scene, write_exr=exr)
+    if r["trace"] is None:
+        raise RuntimeError("Cycles printed no status lines (run in Blender's executable)")
+    return read_exr_rgb(exr), r["trace"]
 
 
-def bench_stratum(name: str, args: argparse.Namespace) -> dict[str, Any]:
+def bench_scene(name: str, args: argparse.Namespace, tmp: Path,
+                ) -> tuple[dict[str, Any], dict[str, Any]]:
+    """(Cycles' figures, Stratum's) on one scene. After the references, the seeds run in turn,
+    each rendered by Cycles and then by every Stratum sampler, so that a change of the
+    machine's load reaches both renderers alike."""
     scene = open_scene(SCENES[name], args.res, args.samples)
     configure_stratum(scene, args.samples)
     with StratumScene(scene) as st:
-        def half(seed: int) -> np.ndarray:
+        def stratum_half(seed: int) -> np.ndarray:
             return st.render({"sampler": REFERENCE_SAMPLER, "seed": seed,
                               "samples": args.reference_samples // 2}, pixels=True)["rgb"]
 
         key = scene_key(name, args) | {"renderer": "stratum", "library": stratum_library_id(),
                                        "sampler": REFERENCE_SAMPLER}
-        a, b, cached = cached_halves(cache_path(name, "stratum", key), half)
-        out: dict[str, Any] = {"reference_noise": reference_noise(a, b),
-                               "reference_cached": cached, "samplers": {}}
-        for sampler in args.sampler:
-            runs = [st.render({"sampler": sampler, "seed": seed}, pixels=True)
-                    for seed in range(1, args.seeds + 1)]
-            out["samplers"][sampler] = measure([r["rgb"] for r in runs],
-                                               [r["trace"] for r in runs], a, b)
-    return out
+        st_a, st_b, st_cached = cached_halves(cache_path(name, "stratum", key), stratum_half)
+        key = scene_key(name, args) | {"renderer": "cycles", "blender": bpy.app.version_string,
+                                       "build": bpy.app.build_hash.decode(errors="replace")}
+        cy_a, cy_b, cy_cached = cached_halves(
+            cache_path(name, "cycles", key),
+            lambda seed: cycles_render(name, args, tmp, seed, args.reference_samples // 2)[0])
+        cycles_runs: list[tuple[np.ndarray, float]] = []
+        stratum_runs: dict[str, list[dict[str, Any]]] = {s: [] for s in args.sampler}
+        for seed in range(1, args.seeds + 1):
+            cycles_runs.append(cycles_render(name, args, tmp, seed, args.samples))
+            for sampler in args.sampler:
+                stratum_runs[sampler].append(
+                    st.render({"sampler": sampler, "seed": seed}, pixels=True))
+    pattern = type(bpy.context.scene.cycles).bl_rna.properties["sampling_pattern"].default
+    cyc = measure([im for im, _ in cycles_runs], [t for _, t in cycles_runs], cy_a, cy_b)
+    cyc |= {"reference_noise": reference_noise(cy_a, cy_b), "reference_cached": cy_cached,
+            "pattern": pattern}
+    samplers = {s: measure([r["rgb"] for r in runs], [r["trace"] for r in runs], st_a, st_b)
+                for s, runs in stratum_runs.items()}
+    return cyc, {"reference_noise": reference_noise(st_a, st_b), "reference_cached": st_cached,
+                 "samplers": samplers}
 
 
 def scene_lines(name: str, cyc: dict[str, Any], st: dict[str, Any]) -> list[str]:
@@ -178,8 +186,7 @@ def main() -> int:
               f"seeds, references of {args.reference_samples} spp (two independent halves):")]
     with tempfile.TemporaryDirectory(prefix="bench_quality") as tmp:
         for name in args.scene:
-            cyc = bench_cycles(name, args, Path(tmp))
-            st = bench_stratum(name, args)
+            cyc, st = bench_scene(name, args, Path(tmp))
             results[name] = {"cycles": cyc, "stratum": st}
             lines += scene_lines(name, cyc, st)
     print("\n".join(lines))
