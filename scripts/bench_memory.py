@@ -4,7 +4,7 @@ smooth) and the 10 000-instance scene of the export section.
     blender -b --factory-startup --python scripts/bench_memory.py [-- --rebuild]
 
 Each scene is built once (bench_common's builders) and saved to
-out/bench_cache/<name>-<key>.blend, the key a hash of bench_common.py and Blender's version
+out/bench_cache/<name>-<key>.blend, the key a hash of the builders' source and Blender's version
 (reused while it exists; --rebuild makes it again). Then, for each renderer, a fresh Blender
 process (the same executable, --factory-startup) opens that file and renders 1 spp at 32 x 32
 through F12 (bpy.ops.render.render); it reads VmHWM (peak resident set) from /proc/self/status
@@ -26,6 +26,7 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
+import bench_common
 import bpy
 from bench_common import (
     CACHE,
@@ -76,14 +77,20 @@ def child(engine: str) -> int:
 
 
 def cached_scene(name: str, build: Any, rebuild: bool) -> Path:
-    """The scene `build` makes, saved once; keyed by the source of the builder's module and
-    Blender's version, so that a changed builder or another Blender makes it again."""
-    key = f"{inspect.getsource(sys.modules[build.__module__])}{bpy.app.version_string}"
+    """The scene `build` makes, saved once; keyed by the builders' source, their sizes and
+    Blender's version, so that a changed builder or another Blender makes it again (and the
+    file it replaces is removed)."""
+    builders = (bench_common._empty_scene, bench_common.build_monkey_1m, build)
+    key = "".join(inspect.getsource(f) for f in builders)
+    key += f"{bench_common.MONKEY_LEVELS} {bench_common.INSTANCES} {bpy.app.version_string}"
     path = CACHE / f"{name}-{hashlib.sha256(key.encode()).hexdigest()[:12]}.blend"
     if rebuild or not path.is_file():
         build()
         path.parent.mkdir(parents=True, exist_ok=True)
         bpy.ops.wm.save_as_mainfile(filepath=str(path), compress=False)
+        for stale in CACHE.glob(f"{name}-*.blend"):
+            if stale != path:
+                stale.unlink()
     return path
 
 
