@@ -90,15 +90,22 @@ render: build
 		--python scripts/render_to_files.py -- out/cornell_box
 	@echo "Stratum rendered the Cornell box: $(CURDIR)/out/cornell_box.png (display) and $(CURDIR)/out/cornell_box.exr (linear)"
 
+# Issue 15's sections write out/bench/*.json; bench_summary.py prints them as one table (also
+# out/bench_summary.txt) at the end.
 bench: build
 	bash scripts/install_addon.sh
 	mkdir -p out
+	rm -rf out/bench
 	$(BLENDER_BG) --python scripts/bench.py
+	$(BLENDER_BG) --python scripts/bench_samplers.py
+	$(BLENDER_BG) --python scripts/bench_quality.py
+	$(BLENDER_BG) --python scripts/bench_memory.py
 	$(BLENDER_BG) --python scripts/bench_progress.py
 	$(PY) scripts/bench_textures.py
 	$(PY) scripts/bench_distributed.py
 	$(BLENDER_BG) --python scripts/bench_viewport.py
 	xvfb-run -a -s "-screen 0 1280x800x24" $(BLENDER) scenes/cornell_box.blend --factory-startup -noaudio --window-geometry 0 0 800 600 --python scripts/bench_viewport_ui.py -- out/bench_viewport_ui && test -s out/bench_viewport_ui.txt
+	$(PY) scripts/bench_summary.py
 
 # The study: the sampler runs of issue 4 (Cornell box, Wolf, AO; 24.6 min measured on 2 shared
 # cores) and the estimator ladder of issue 6 (small-light, large-light and glossy Cornell boxes;

@@ -1,19 +1,27 @@
-"""Stratum vs Cycles on the Cornell box: same resolution, samples, bounces, filter, threads.
+"""Stratum vs Cycles: path tracing on the Cornell box, Wolf and the materials scene, and the
+export of 1M triangles and 10 000 instances. Same resolution, samples, bounces, filter, threads.
 
     blender -b --factory-startup --python scripts/bench.py [-- --samples 64 --res 256]
-    blender -b --factory-startup --python scripts/bench.py -- --only export   # acceptance 3 only
+    blender -b --factory-startup --python scripts/bench.py -- --only render   # the scenes only
+    blender -b --factory-startup --python scripts/bench.py -- --only export   # export only
+    blender -b --factory-startup --python scripts/bench.py -- --scene scenes/wolf.blend
 
 (also runs under the bpy wheel: .venv/bin/python scripts/bench.py). Prints a table and writes
-it to out/bench.txt. Reported:
+it to out/bench.txt, and the figures to out/bench/render.json and out/bench/export.json for the
+summary (scripts/bench_summary.py). For each scene (--scene, repeatable; default the Cornell
+box, Wolf (215k triangles) and scenes/features/materials.blend (textures, glass, coat)):
 
 * Cycles: total F12 time (bpy.ops.render.render) and its split into scene synchronisation
   (everything before the first "Sample" status line) and path tracing, parsed from the status
   lines Blender prints in background mode (captured from file descriptor 1 during the render);
-* Stratum, through the add-on's exporter and stratum.native.Renderer directly: export time
-  (depsgraph -> native scene), BVH build time and path-tracing time as reported by the native
-  library (progress().build_seconds / render_seconds), and the wall time start -> done;
+* Stratum at its default settings (integrator path, estimator mis, solid-angle triangles,
+  sampler random), through the add-on's exporter and stratum.native.Renderer directly: export
+  time (depsgraph -> native scene), BVH build time and path-tracing time as reported by the
+  native library (progress().build_seconds / render_seconds), and the wall time start -> done;
 * Stratum total F12 time through the engine, comparable with Cycles' F12 time;
-* the ratios Stratum / Cycles (total, and path tracing alone), measured in this one run.
+* the ratios Stratum / Cycles (total, and path tracing alone), measured in this one run;
+* on the Cornell box, the ceiling: Embree alone on the same ray mix (camera, then one bounce
+  and one shadow ray per vertex), measured right after in the same process.
 
 Then the export section (acceptance 3 of issue 5), each scene built in this script:
 
@@ -51,190 +59,77 @@ still printed), 1 on an error.
 from __future__ import annotations
 
 import argparse
-import math
 import os
-import re
 import sys
-import tempfile
 import time
 import traceback
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any, Self
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 import bpy
 import numpy as np
-
-REPO = Path(__file__).resolve().parents[1]
-SCENE = REPO / "scenes" / "cornell_box.blend"
-OUT = REPO / "out"
-ADDON_DIR = REPO / "addon"
-
-MAX_BOUNCES = 8
-FILTER_WIDTH = 1.5
-
-
-# Inside the Blender executable sys.argv is Blender's; under the bpy wheel it is the script's.
-IN_BLENDER = Path(sys.argv[0]).name.startswith("blender")
+from bench_common import (
+    CORNELL,
+    EXPORT_CASES,
+    EXPORT_RES,
+    MATERIALS,
+    MAX_BOUNCES,
+    OUT,
+    REPO,
+    WOLF,
+    CaptureStdout,
+    StratumScene,
+    build_monkey_1m,
+    configure_stratum,
+    cycles_sync_stages,
+    open_scene,
+    render_cycles,
+    run_main,
+    script_argv,
+    stratum_reason,
+)
+from bench_results import write_section
 
 
 def parse_args() -> argparse.Namespace:
-    if IN_BLENDER:
-        argv = sys.argv[sys.argv.index("--") + 1:] if "--" in sys.argv else []
-    else:
-        argv = sys.argv[1:]
     p = argparse.ArgumentParser(prog="bench.py")
     p.add_argument("--samples", type=int, default=64)
     p.add_argument("--res", type=int, default=256)
     p.add_argument("--threads", type=int, default=0, help="0 = all cores")
-    p.add_argument("--scene", type=Path, default=SCENE)
+    p.add_argument("--scene", type=Path, action="append", default=None,
+                   help="a scene to render (repeatable; default: Cornell box, Wolf, materials)")
     p.add_argument("--repeats", type=int, default=3,
                    help="runs of each export measurement (the minimum is reported)")
     p.add_argument("--only", choices=("render", "export"), default=None,
-                   help="run only the Cornell box render comparison or only the export section")
-    return p.parse_args(argv)
+                   help="run only the scene render comparison or only the export section")
+    args = p.parse_args(script_argv())
+    args.scene = [p.resolve() for p in args.scene or [CORNELL, WOLF, MATERIALS]]
+    return args
 
 
-def open_scene(args: argparse.Namespace) -> bpy.types.Scene:
-    bpy.ops.wm.open_mainfile(filepath=str(args.scene), load_ui=False)
-    scene = bpy.context.scene
-    r = scene.render
-    r.resolution_x = r.resolution_y = args.res
-    r.resolution_percentage = 100
-    if args.threads > 0:
-        r.threads_mode = "FIXED"
-        r.threads = args.threads
-    else:
-        r.threads_mode = "AUTO"
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = args.samples
-    c.use_adaptive_sampling = False
-    c.use_denoising = False
-    c.max_bounces = c.diffuse_bounces = c.glossy_bounces = c.transmission_bounces = MAX_BOUNCES
-    c.sample_clamp_direct = c.sample_clamp_indirect = 0.0
-    c.blur_glossy = 0.0
-    c.pixel_filter_type = "BLACKMAN_HARRIS"
-    c.filter_width = FILTER_WIDTH
-    return scene
+def bench_stratum_direct(path: Path, args: argparse.Namespace) -> dict[str, float]:
+    scene = open_scene(path, args.res, args.samples, args.threads)
+    configure_stratum(scene, args.samples, args.threads)
+    with StratumScene(scene) as st:
+        r = st.render()
+        r["export"] = st.export_seconds
+        r["triangles"] = st.summary.triangles
+        if path == CORNELL:
+            # The ceiling, measured right after in the same process: Embree alone on the same
+            # ray mix (camera, then one bounce and one shadow ray per vertex).
+            raw_rays, raw_seconds = st.native.measure_ray_throughput(
+                args.res, args.res, args.samples, MAX_BOUNCES, args.threads)
+            r["raw_rays_per_s"] = raw_rays / raw_seconds if raw_seconds > 0 else 0.0
+    r["rays_per_s"] = r["rays"] / r["trace"] if r["trace"] > 0 else 0.0
+    return r
 
 
-def configure_stratum(scene: bpy.types.Scene, args: argparse.Namespace) -> None:
-    scene.render.engine = "STRATUM"
-    s = scene.stratum
-    s.samples = args.samples
-    s.max_bounces = MAX_BOUNCES
-    s.filter_type = "blackman_harris"
-    s.filter_width = FILTER_WIDTH
-    s.threads = args.threads
-
-
-class CaptureStdout:
-    """Captures what native code writes to file descriptor 1 (Blender's status lines)."""
-
-    def __enter__(self) -> Self:
-        sys.stdout.flush()
-        self._tmp = tempfile.TemporaryFile(mode="w+b")
-        self._saved = os.dup(1)
-        os.dup2(self._tmp.fileno(), 1)
-        return self
-
-    def __exit__(self, *exc: object) -> None:
-        sys.stdout.flush()
-        try:
-            import ctypes
-
-            ctypes.CDLL(None).fflush(None)  # flush C stdio buffers into the capture
-        except (OSError, AttributeError) as err:  # best effort: lines may be lost, not numbers
-            print(f"bench: could not flush C stdio: {err}", file=sys.stderr)
-        os.dup2(self._saved, 1)
-        os.close(self._saved)
-        self._tmp.seek(0)
-        self.text = self._tmp.read().decode("utf-8", "replace")
-        self._tmp.close()
-
-
-_TIME = re.compile(r"Time:\s*(\d+):(\d+(?:\.\d+)?)")
-
-
-def cycles_split(log: str) -> tuple[float | None, float | None]:
-    """(seconds before the first 'Sample' status line, seconds at the last status line)."""
-    first_sample = last = None
-    for line in log.splitlines():
-        m = _TIME.search(line)
-        if not m:
-            continue
-        t = int(m.group(1)) * 60 + float(m.group(2))
-        if "| Sample " in line and first_sample is None:
-            first_sample = t
-        if line.startswith("Fra:"):
-            last = t
-    return first_sample, last
-
-
-def bench_cycles(args: argparse.Namespace) -> dict[str, float | None]:
-    scene = open_scene(args)
-    scene.render.engine = "CYCLES"
-    with CaptureStdout() as cap:
-        t0 = time.perf_counter()
-        bpy.ops.render.render()
-        total = time.perf_counter() - t0
-    sync, last = cycles_split(cap.text)
-    trace = (last - sync) if (sync is not None and last is not None) else None
-    return {"total": total, "sync": sync, "trace": trace}
-
-
-def stratum_reason() -> str:
-    """'' when Stratum can render here, else why not."""
-    if str(ADDON_DIR) not in sys.path:
-        sys.path.insert(0, str(ADDON_DIR))
-    try:
-        import stratum
-        from stratum import native
-    except ImportError as exc:
-        return f"add-on not importable: {exc}"
-    try:
-        native.load_library()
-    except native.StratumError as exc:
-        return str(exc)
-    stratum.register()
-    return ""
-
-
-def bench_stratum_direct(args: argparse.Namespace) -> dict[str, float]:
-    from stratum import native
-    from stratum.engine.frame import renderer_settings
-    from stratum.export import export_scene
-
-    scene = open_scene(args)
-    configure_stratum(scene, args)
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    depsgraph.update()
-    t0 = time.perf_counter()
-    with native.Scene() as native_scene:
-        export_scene(depsgraph, native_scene)
-        t_export = time.perf_counter() - t0
-        with native.Renderer(native_scene) as renderer:
-            for name, value in renderer_settings(scene).items():
-                renderer.set(name, value)
-            t1 = time.perf_counter()
-            renderer.start()
-            while not renderer.wait(50):
-                pass
-            wall = time.perf_counter() - t1
-            p = renderer.progress()
-        # The ceiling, measured right after in the same process: Embree alone on the same
-        # ray mix (camera, then one bounce and one shadow ray per vertex).
-        raw_rays, raw_seconds = native_scene.measure_ray_throughput(
-            args.res, args.res, args.samples, MAX_BOUNCES, args.threads)
-    return {"export": t_export, "build": p.build_seconds, "trace": p.render_seconds,
-            "wall": wall, "rays": p.rays, "samples_done": p.samples_done,
-            "raw_rays_per_s": raw_rays / raw_seconds if raw_seconds > 0 else 0.0}
-
-
-def bench_stratum_engine(args: argparse.Namespace) -> float:
-    scene = open_scene(args)
-    configure_stratum(scene, args)
+def bench_stratum_engine(path: Path, args: argparse.Namespace) -> float:
+    scene = open_scene(path, args.res, args.samples, args.threads)
+    configure_stratum(scene, args.samples, args.threads)
     t0 = time.perf_counter()
     bpy.ops.render.render()
     total = time.perf_counter() - t0
@@ -254,126 +149,49 @@ def ratio(a: float | None, b: float | None) -> str:
     return "n/a" if not a or not b else f"{a / b:6.2f}x"
 
 
-# ---- export and BVH build: 1M triangles, 10 000 instances ------------------------------------
-
-EXPORT_RES = 32
-MONKEY_LEVELS = 5  # 1968 quads after the first level, x4 per further level: 503 808 quads
-INSTANCES = 10_000
-
-
-def _bmesh() -> Any:
-    """bmesh, importable only once bpy is (the bpy wheel registers it on import)."""
-    import bmesh
-
-    return bmesh
-
-
-def _empty_scene() -> bpy.types.Scene:
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    cam = bpy.data.objects.new("camera", bpy.data.cameras.new("camera"))
-    cam.location = (0.0, -4.0, 0.0)
-    cam.rotation_euler = (math.pi / 2, 0.0, 0.0)
-    scene.collection.objects.link(cam)
-    scene.camera = cam
-    sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))
-    sun.rotation_euler = (0.6, 0.0, 0.4)
-    scene.collection.objects.link(sun)
-    r = scene.render
-    r.resolution_x = r.resolution_y = EXPORT_RES
-    r.resolution_percentage = 100
-    c = scene.cycles
-    c.device = "CPU"
-    c.samples = 1
-    c.use_denoising = False
-    c.use_adaptive_sampling = False
-    return scene
-
-
-def build_monkey_1m() -> bpy.types.Scene:
-    """Suzanne with MONKEY_LEVELS Catmull-Clark levels applied to its mesh (no modifier left:
-    neither renderer's timing includes the subdivision)."""
-    scene = _empty_scene()
-    bmesh = _bmesh()
-    bm = bmesh.new()
-    bmesh.ops.create_monkey(bm)
-    base = bpy.data.meshes.new("monkey")
-    bm.to_mesh(base)
-    bm.free()
-    ob = bpy.data.objects.new("monkey", base)
-    scene.collection.objects.link(ob)
-    mod = ob.modifiers.new("subdivision", "SUBSURF")
-    mod.levels = mod.render_levels = MONKEY_LEVELS
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    depsgraph.update()
-    dense = bpy.data.meshes.new_from_object(ob.evaluated_get(depsgraph))
-    ob.modifiers.clear()
-    ob.data = dense
-    return scene
-
-
-def build_monkey_1m_smooth() -> bpy.types.Scene:
-    """The same monkey shade-smooth: Stratum then sends 3 normals per triangle (its only normal
-    format), Cycles vertex normals."""
-    scene = build_monkey_1m()
-    mesh = scene.objects["monkey"].data
-    mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
-    mesh.update()
-    return scene
-
-
-def build_instances_10k() -> bpy.types.Scene:
-    """INSTANCES instances of one cube: a parent whose vertices (a square grid) instance its
-    child (instance_type VERTS); Blender also renders the child itself."""
-    scene = _empty_scene()
-    side = math.ceil(math.sqrt(INSTANCES))
-    idx = np.arange(INSTANCES)
-    verts = np.zeros((INSTANCES, 3), dtype=np.float32)
-    verts[:, 0] = (idx % side - (side - 1) / 2) * 0.03
-    verts[:, 2] = (idx // side - (side - 1) / 2) * 0.03
-    grid = bpy.data.meshes.new("grid")
-    grid.vertices.add(INSTANCES)
-    grid.vertices.foreach_set("co", verts.ravel())
-    grid.update()
-    parent = bpy.data.objects.new("grid", grid)
-    parent.instance_type = "VERTS"
-    scene.collection.objects.link(parent)
-    bmesh = _bmesh()
-    bm = bmesh.new()
-    bmesh.ops.create_cube(bm, size=0.01)
-    cube = bpy.data.meshes.new("cube")
-    bm.to_mesh(cube)
-    bm.free()
-    child = bpy.data.objects.new("cube", cube)
-    child.parent = parent
-    scene.collection.objects.link(child)
-    return scene
-
-
-def cycles_sync_stages(log: str) -> dict[str, float | None]:
-    """Seconds of Cycles' object sync and scene update, from its status lines, which read
-    "Fra:1 Mem:.. | Time:00:00.22 | Mem:.., Peak:.. | Scene, ViewLayer | <stage> | <detail>"."""
-    first_sync = initializing = sample0 = None
-    for line in log.splitlines():
-        parts = [p.strip() for p in line.split("|")]
-        at = next((i for i, p in enumerate(parts) if p.startswith("Time:")), None)
-        if not line.startswith("Fra:") or at is None or len(parts) <= at + 3:
-            continue
-        m = _TIME.search(parts[at])
-        if not m:
-            continue
-        t = int(m.group(1)) * 60 + float(m.group(2))
-        stage = parts[at + 3]
-        if stage.startswith("Synchronizing") and first_sync is None:
-            first_sync = t
-        elif stage.startswith("Initializing") and initializing is None:
-            initializing = t
-        elif stage.startswith("Sample 0") and sample0 is None:
-            sample0 = t
-    if first_sync is None or initializing is None or sample0 is None:
-        return {"object_sync": None, "scene_update": None, "sync_total": None}
-    return {"object_sync": initializing - first_sync, "scene_update": sample0 - initializing,
-            "sync_total": sample0 - first_sync}
+def bench_scene(path: Path, args: argparse.Namespace, reason: str,
+                ) -> tuple[list[str], dict[str, Any], str]:
+    """One scene's comparison: its lines, its figures and the reason Stratum was not measured
+    ('' when it was)."""
+    cyc = render_cycles(open_scene(path, args.res, args.samples, args.threads))
+    st: dict[str, Any] | None = None
+    st_total = None
+    if not reason:
+        try:
+            st = bench_stratum_direct(path, args)
+            st_total = bench_stratum_engine(path, args)
+        except Exception as exc:  # noqa: BLE001 - report, keep the Cycles numbers
+            traceback.print_exc()
+            reason = f"Stratum failed: {type(exc).__name__}: {exc}"
+    lines = [
+        f"{path.relative_to(REPO)}:",
+        f"{'':28s}{'seconds':>10s}",
+        f"{'Cycles  sync (pre-sampling)':28s}{fmt(cyc['sync']):>10s}",
+        f"{'Cycles  path tracing':28s}{fmt(cyc['trace']):>10s}",
+        f"{'Cycles  total (F12)':28s}{fmt(cyc['total']):>10s}",
+    ]
+    if cyc["trace"] is None:
+        lines.append("  (Cycles split n/a: no status lines printed; the bpy module prints none)")
+    if st is None:
+        return lines + ["", f"Stratum: not measured ({reason})", ""], {"cycles": cyc}, reason
+    lines += [
+        f"{'Stratum export':28s}{fmt(st['export']):>10s}   ({st['triangles']} triangles)",
+        f"{'Stratum BVH build':28s}{fmt(st['build']):>10s}",
+        (f"{'Stratum path tracing':28s}{fmt(st['trace']):>10s}"
+         f"   ({st['rays_per_s'] / 1e6:.2f} M rays/s)"),
+        f"{'Stratum start->done':28s}{fmt(st['wall']):>10s}",
+        f"{'Stratum total (F12)':28s}{fmt(st_total):>10s}",
+        "",
+        f"ratio Stratum/Cycles, total (F12):    {ratio(st_total, cyc['total'])}",
+        f"ratio Stratum/Cycles, path tracing:   {ratio(st['trace'], cyc['trace'])}",
+    ]
+    if "raw_rays_per_s" in st:
+        lines += [
+            "",
+            f"{'raw Embree, same ray mix':28s}{st['raw_rays_per_s'] / 1e6:10.2f} M rays/s",
+            f"ratio Stratum/raw Embree, rays/s:     {ratio(st['rays_per_s'], st['raw_rays_per_s'])}",
+        ]
+    return lines + [""], {"cycles": cyc, "stratum": st, "stratum_f12": st_total}, reason
 
 
 def bench_export_case(build: Callable[[], bpy.types.Scene], stratum_ok: bool,
@@ -488,68 +306,41 @@ def main() -> int:
     args = parse_args()
     cores = os.cpu_count()
     lines = [
-        (f"Stratum vs Cycles: {args.scene.name}, {args.res}x{args.res}, {args.samples} spp, "
-        f"max_bounces {MAX_BOUNCES}, threads {args.threads or f'all ({cores})'}, "
-        f"Blender {bpy.app.version_string}"),
+        (f"Stratum vs Cycles: {args.res}x{args.res}, {args.samples} spp, max_bounces "
+         f"{MAX_BOUNCES}, threads {args.threads or f'all ({cores})'}, Blender "
+         f"{bpy.app.version_string}"),
         "",
     ]
     reason = stratum_reason()
-    st = None
-    st_total = None
-    cyc: dict[str, float | None] = {"total": None, "sync": None, "trace": None}
     if args.only != "export":
-        cyc = bench_cycles(args)
-    if not reason and args.only != "export":
-        try:
-            st = bench_stratum_direct(args)
-            st_total = bench_stratum_engine(args)
-        except Exception as exc:  # noqa: BLE001 - report, keep the Cycles numbers
-            traceback.print_exc()
-            reason = f"Stratum failed: {type(exc).__name__}: {exc}"
+        scenes: dict[str, Any] = {}
+        for path in args.scene:
+            scene_lines, scenes[path.stem], reason = bench_scene(path, args, reason)
+            lines += scene_lines
+        write_section("render", {"res": args.res, "samples": args.samples,
+                                 "threads": args.threads, "blender": bpy.app.version_string,
+                                 "scenes": scenes})
 
-    if args.only != "export":
-        lines += [
-            f"{'':28s}{'seconds':>10s}",
-            f"{'Cycles  sync (pre-sampling)':28s}{fmt(cyc['sync']):>10s}",
-            f"{'Cycles  path tracing':28s}{fmt(cyc['trace']):>10s}",
-            f"{'Cycles  total (F12)':28s}{fmt(cyc['total']):>10s}",
-        ]
-        if cyc["trace"] is None:
-            lines.append("  (Cycles split n/a: no status lines printed; the bpy module prints none)")
-        if st is not None:
-            rays_per_s = st["rays"] / st["trace"] if st["trace"] > 0 else 0.0
-            lines += [
-                f"{'Stratum export':28s}{fmt(st['export']):>10s}",
-                f"{'Stratum BVH build':28s}{fmt(st['build']):>10s}",
-                (f"{'Stratum path tracing':28s}{fmt(st['trace']):>10s}"
-                f"   ({rays_per_s / 1e6:.2f} M rays/s)"),
-                f"{'Stratum start->done':28s}{fmt(st['wall']):>10s}",
-                f"{'Stratum total (F12)':28s}{fmt(st_total):>10s}",
-                "",
-                f"ratio Stratum/Cycles, total (F12):    {ratio(st_total, cyc['total'])}",
-                f"ratio Stratum/Cycles, path tracing:   {ratio(st['trace'], cyc['trace'])}",
-                "",
-                f"{'raw Embree, same ray mix':28s}{st['raw_rays_per_s'] / 1e6:10.2f} M rays/s",
-                f"ratio Stratum/raw Embree, rays/s:     {ratio(rays_per_s, st['raw_rays_per_s'])}",
-            ]
-        else:
-            lines += ["", f"Stratum: not measured ({reason})"]
-
-    heading = (f"Export and BVH build (1 spp, {EXPORT_RES}x{EXPORT_RES}, seconds, minimum of "
-               f"{args.repeats} runs):")
-    lines += ["", heading]
-    cases = (("monkey_1m", build_monkey_1m), ("monkey_1m_smooth", build_monkey_1m_smooth),
-             ("instances_10k", build_instances_10k))
-    for name, build in cases if args.only != "render" else ():
-        runs = [bench_export_case(build, not reason) for _ in range(args.repeats)]
-        lines += export_lines(name, fastest(runs))
-    if args.only != "render" and not reason:
-        lines += ["", ("Live edit: monkey_1m moved after its first render, same renderer (1 spp, "
-                       f"{EXPORT_RES}x{EXPORT_RES}, seconds, minimum of {args.repeats} runs):")]
-        for layout in ("dynamic", "static"):
-            r = fastest([bench_live_edit(layout) for _ in range(args.repeats)])
-            lines.append(f"  bvh {layout:8s} full build {fmt(r['full']):>8s}   update {fmt(r['update']):>8s}"
-                         f"   update/full {100 * r['update'] / r['full']:.1f} %")
+    if args.only != "render":
+        lines += [(f"Export and BVH build (1 spp, {EXPORT_RES}x{EXPORT_RES}, seconds, minimum "
+                   f"of {args.repeats} runs):")]
+        cases: dict[str, Any] = {}
+        for name, build in EXPORT_CASES:
+            runs = [bench_export_case(build, not reason) for _ in range(args.repeats)]
+            cases[name] = fastest(runs)
+            lines += export_lines(name, cases[name])
+        live: dict[str, Any] = {}
+        if not reason:
+            lines += ["", ("Live edit: monkey_1m moved after its first render, same renderer "
+                           f"(1 spp, {EXPORT_RES}x{EXPORT_RES}, seconds, minimum of "
+                           f"{args.repeats} runs):")]
+            for layout in ("dynamic", "static"):
+                r = live[layout] = fastest([bench_live_edit(layout) for _ in range(args.repeats)])
+                lines.append(f"  bvh {layout:8s} full build {fmt(r['full']):>8s}   update "
+                             f"{fmt(r['update']):>8s}   update/full "
+                             f"{100 * r['update'] / r['full']:.1f} %")
+        write_section("export", {"repeats": args.repeats, "blender": bpy.app.version_string,
+                                 "cases": cases, "live_edit": live})
     table = "\n".join(lines)
     print(table)
     OUT.mkdir(parents=True, exist_ok=True)
@@ -559,14 +350,4 @@ def main() -> int:
 
 
 if __name__ == "__main__":
-    code = 1
-    try:
-        code = main()
-    except Exception:  # noqa: BLE001
-        traceback.print_exc()
-    finally:
-        sys.stdout.flush()
-        sys.stderr.flush()
-    if IN_BLENDER:  # Blender's --python does not propagate sys.exit codes reliably
-        os._exit(code)
-    sys.exit(code)
+    run_main(main)

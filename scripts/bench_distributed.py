@@ -2,7 +2,8 @@
 through Blender, then rendered by a LocalCluster of 1 and of 2 worker processes, each worker
 rendering with one thread, so that the speed-up is that of adding a machine. Prints the wall
 times of the cluster render (send, render, sums back, merge; not the export or the cluster's
-start), the speed-up, and whether the two merged images are the same bits.
+start), the speed-up, and whether the two merged images are the same bits; also written to
+out/bench/distributed.json for the summary (scripts/bench_summary.py).
 
     .venv/bin/python scripts/bench_distributed.py [--res 256] [--samples 64] [--repeats 2]
 """
@@ -21,6 +22,9 @@ sys.path.insert(0, str(REPO / "addon"))
 os.environ["PYTHONPATH"] = os.pathsep.join(
     [str(REPO / "addon")] + [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p])
 
+sys.path.insert(0, str(REPO / "scripts"))
+
+from bench_results import write_section
 from stratum.blender_process import blender_executable
 from stratum.distributed import Frame, export_blend, render_on_cluster
 
@@ -60,6 +64,9 @@ def main() -> int:
     print(f"distributed Cornell box {args.res}x{args.res} {args.samples} spp, 1 thread per "
           f"worker: 1 worker {one:.2f} s, 2 workers {two:.2f} s, speed-up {one / two:.2f}x "
           f"(images {same})")
+    write_section("distributed", {"res": args.res, "samples": args.samples,
+                                  "one_worker": one, "two_workers": two,
+                                  "bit_identical": one_pixels == two_pixels})
     return 0 if same == "bit-identical" else 1
 
 

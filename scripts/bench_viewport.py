@@ -16,7 +16,7 @@ default: the first frame is one sample at 62 x 47, pixel size 13) and without (s
 
 * orbit: the view rotated by 2 degrees about the vertical axis through the box (Cornell box);
 * material: the White material's base colour changed (Cornell box), a live edit;
-* transform: the monkey of the 1M-triangle scene (bench.py's monkey_1m) moved, a live edit
+* transform: the monkey of the 1M-triangle scene (bench_common.py's monkey_1m) moved, a live edit
   and a top-level BVH recommit (bvh = dynamic).
 
 Targets (issue 14): orbit <= 100 ms, transform <= 200 ms, material <= 100 ms. Cycles' viewport
@@ -165,7 +165,7 @@ def bench_material(start_resolution: int, steps: int) -> list[float]:
 
 
 def bench_transform(start_resolution: int, steps: int) -> list[float]:
-    from bench import build_monkey_1m
+    from bench_common import build_monkey_1m
 
     scene = build_monkey_1m()
     session, _ = session_for(scene, start_resolution)

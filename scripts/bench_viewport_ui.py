@@ -18,7 +18,7 @@ in the same view:
   about the view's pivot, the box's centre);
 * material: Cornell box, the base colour of the White material switched between green and
   magenta;
-* transform: the monkey of the 1M-triangle scene (scripts/bench.py's build_monkey_1m, which
+* transform: the monkey of the 1M-triangle scene (scripts/bench_common.py's build_monkey_1m, which
   loads the factory startup file: the driver's timer is made persistent), moved along x, seen
   from that scene's camera.
 
@@ -285,7 +285,7 @@ def cornell_cases(s: Scenario, watch: FrameWatch, results: dict[str, Any]) -> It
 
 
 def monkey_case(s: Scenario, watch: FrameWatch, results: dict[str, Any]) -> Iterator[float]:
-    from bench import build_monkey_1m
+    from bench_common import build_monkey_1m
 
     watch.stop()
     scene = build_monkey_1m()  # loads the factory startup: a new screen

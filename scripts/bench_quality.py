@@ -1,0 +1,201 @@
+"""Equal-time quality (issue 15, target 4): noise MSE x path-tracing seconds of Stratum's
+samplers relative to Cycles 3.4, each renderer against its own reference.
+
+    blender -b --factory-startup --python scripts/bench_quality.py [-- --res 128 --samples 64
+        --seeds 3 --reference-samples 2048 --scene cornell_box --scene wolf]
+
+Per scene (default the Cornell box and Wolf, at --res squared, bounces 8, Blackman-Harris 1.5,
+all threads): Cycles with its default pattern (progressive multi-jitter in 3.4; adaptive
+sampling and denoising off) and Stratum at its defaults with each --sampler (default random,
+sobol, zsobol, halton_owen) render --samples spp with the seeds 1..--seeds (Cycles'
+scene.cycles.seed, Stratum's `seed`). Each renderer's reference is the mean of two halves of
+--reference-samples / 2 spp rendered with seeds 1001 and 1002 (Stratum's with `sobol`: every
+sampler converges to the same image), so that its own noise can be measured and removed:
+
+  noise MSE = mean over seeds of [MSE(image, reference) - Var(reference)],
+  Var(reference) = MSE(half a, half b) / 4     (bench_results.noise_mse)
+
+MSE is the mean over pixels and RGB channels of the linear image (Cycles' through a 32-bit EXR,
+Stratum's from Renderer.read_pixels). Seconds are the fastest path-tracing time over the seeds
+(Cycles' from its status lines, Stratum's progress().render_seconds); the seeds run in turn,
+each by Cycles then by every Stratum sampler, so that the machine's load reaches all alike. The
+product's ratio to Cycles' is the figure; targets: the best Stratum sampler <= 0.6x, every
+Owen-scrambled sampler within 1.2x of the best. References are cached in out/bench_cache/quality/, keyed by scene file,
+settings and renderer version (Blender's version and build hash; libstratum.so's SHA-256), so a
+rerun renders only the 64-spp images. Written to out/bench/quality.json and printed.
+"""
+
+from __future__ import annotations
+
+import argparse
+import hashlib
+import json
+import sys
+import tempfile
+from pathlib import Path
+from typing import Any
+
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+import bpy
+import numpy as np
+from bench_common import (
+    CACHE,
+    CORNELL,
+    WOLF,
+    StratumScene,
+    configure_stratum,
+    open_scene,
+    read_exr_rgb,
+    render_cycles,
+    run_main,
+    script_argv,
+    stratum_library_id,
+    stratum_reason,
+)
+from bench_results import mse, noise_mse, reference_noise, write_section
+
+SCENES = {"cornell_box": CORNELL, "wolf": WOLF}
+REFERENCE_SEEDS = (1001, 1002)
+OWEN_SCRAMBLED = ("sobol", "zsobol", "halton_owen")
+# Stratum's reference sampler: Owen-scrambled Sobol is unbiased, its two seeds are independent
+# randomisations, and its halves carry far less noise than `random`'s, so the subtracted
+# reference variance is small and itself well measured.
+REFERENCE_SAMPLER = "sobol"
+PATTERN_NAMES = {"PROGRESSIVE_MULTI_JITTER": "pmj", "SOBOL": "sobol-burley"}
+
+
+def parse_args() -> argparse.Namespace:
+    p = argparse.ArgumentParser(prog="bench_quality.py")
+    p.add_argument("--res", type=int, default=128)
+    p.add_argument("--samples", type=int, default=64)
+    p.add_argument("--seeds", type=int, default=3)
+    p.add_argument("--reference-samples", type=int, default=2048)
+    p.add_argument("--scene", choices=sorted(SCENES), action="append", default=None)
+    p.add_argument("--sampler", action="append", default=None)
+    args = p.parse_args(script_argv())
+    args.scene = args.scene or ["cornell_box", "wolf"]
+    args.sampler = args.sampler or ["random", *OWEN_SCRAMBLED]
+    return args
+
+
+def cache_path(scene: str, renderer: str, key: dict[str, Any]) -> Path:
+    digest = hashlib.sha256(json.dumps(key, sort_keys=True).encode()).hexdigest()[:16]
+    return CACHE / "quality" / f"{scene}-{renderer}-{digest}.npz"
+
+
+def scene_key(name: str, args: argparse.Namespace) -> dict[str, Any]:
+    return {"scene": name, "file": hashlib.sha256(SCENES[name].read_bytes()).hexdigest(),
+            "res": args.res, "samples": args.reference_samples, "seeds": REFERENCE_SEEDS}
+
+
+def cached_halves(path: Path, render_half: Any) -> tuple[np.ndarray, np.ndarray, bool]:
+    """The two reference halves from `path`, or rendered by render_half(seed) and stored."""
+    if path.is_file():
+        with np.load(path) as f:
+            return f["a"], f["b"], True
+    a, b = (render_half(seed) for seed in REFERENCE_SEEDS)
+    path.parent.mkdir(parents=True, exist_ok=True)
+    np.savez_compressed(path, a=a, b=b)
+    return a, b, False
+
+
+def measure(images: list[np.ndarray], seconds: list[float], a: np.ndarray, b: np.ndarray,
+            ) -> dict[str, Any]:
+    reference = (a + b) / 2
+    return {"mse_vs_reference": float(np.mean([mse(im, reference) for im in images])),
+            "noise_mse": float(np.mean([noise_mse(im, a, b) for im in images])),
+            "seconds": min(seconds), "seconds_all": seconds}
+
+
+def cycles_render(name: str, args: argparse.Namespace, tmp: Path, seed: int, samples: int,
+                  ) -> tuple[np.ndarray, float]:
+    """Cycles' image (linear RGB) and path-tracing seconds, its default pattern, `seed`."""
+    scene = open_scene(SCENES[name], args.res, samples)
+    c = scene.cycles
+    c.sampling_pattern = type(c).bl_rna.properties["sampling_pattern"].default
+    c.seed = seed
+    c.use_animated_seed = False
+    exr = tmp / f"cycles-{seed}.exr"
+    r = render_cycles(scene, write_exr=exr)
+    if r["trace"] is None:
+        raise RuntimeError("Cycles printed no status lines (run in Blender's executable)")
+    return read_exr_rgb(exr), r["trace"]
+
+
+def bench_scene(name: str, args: argparse.Namespace, tmp: Path,
+                ) -> tuple[dict[str, Any], dict[str, Any]]:
+    """(Cycles' figures, Stratum's) on one scene. After the references, the seeds run in turn,
+    each rendered by Cycles and then by every Stratum sampler, so that a change of the
+    machine's load reaches both renderers alike."""
+    scene = open_scene(SCENES[name], args.res, args.samples)
+    configure_stratum(scene, args.samples)
+    with StratumScene(scene) as st:
+        def stratum_half(seed: int) -> np.ndarray:
+            return st.render({"sampler": REFERENCE_SAMPLER, "seed": seed,
+                              "samples": args.reference_samples // 2}, pixels=True)["rgb"]
+
+        key = scene_key(name, args) | {"renderer": "stratum", "library": stratum_library_id(),
+                                       "sampler": REFERENCE_SAMPLER}
+        st_a, st_b, st_cached = cached_halves(cache_path(name, "stratum", key), stratum_half)
+        key = scene_key(name, args) | {"renderer": "cycles", "blender": bpy.app.version_string,
+                                       "build": bpy.app.build_hash.decode(errors="replace")}
+        cy_a, cy_b, cy_cached = cached_halves(
+            cache_path(name, "cycles", key),
+            lambda seed: cycles_render(name, args, tmp, seed, args.reference_samples // 2)[0])
+        cycles_runs: list[tuple[np.ndarray, float]] = []
+        stratum_runs: dict[str, list[dict[str, Any]]] = {s: [] for s in args.sampler}
+        for seed in range(1, args.seeds + 1):
+            cycles_runs.append(cycles_render(name, args, tmp, seed, args.samples))
+            for sampler in args.sampler:
+                stratum_runs[sampler].append(
+                    st.render({"sampler": sampler, "seed": seed}, pixels=True))
+    pattern = type(bpy.context.scene.cycles).bl_rna.properties["sampling_pattern"].default
+    cyc = measure([im for im, _ in cycles_runs], [t for _, t in cycles_runs], cy_a, cy_b)
+    cyc |= {"reference_noise": reference_noise(cy_a, cy_b), "reference_cached": cy_cached,
+            "pattern": pattern}
+    samplers = {s: measure([r["rgb"] for r in runs], [r["trace"] for r in runs], st_a, st_b)
+                for s, runs in stratum_runs.items()}
+    return cyc, {"reference_noise": reference_noise(st_a, st_b), "reference_cached": st_cached,
+                 "samplers": samplers}
+
+
+def scene_lines(name: str, cyc: dict[str, Any], st: dict[str, Any]) -> list[str]:
+    base = cyc["noise_mse"] * cyc["seconds"]
+    lines = [(f"{name}: reference noise (subtracted) Cycles {cyc['reference_noise']:.3e}, "
+              f"Stratum {st['reference_noise']:.3e}"),
+             (f"  {'':22s}{'MSE vs ref':>12s}{'noise MSE':>12s}{'seconds':>9s}"
+              f"{'MSE x s':>11s}{'/ Cycles':>10s}")]
+    rows = [(f"Cycles {PATTERN_NAMES.get(cyc['pattern'], cyc['pattern'])}", cyc)]
+    rows += [(f"Stratum {s}", r) for s, r in st["samplers"].items()]
+    for label, r in rows:
+        product = r["noise_mse"] * r["seconds"]
+        lines.append(f"  {label:22s}{r['mse_vs_reference']:12.4e}{r['noise_mse']:12.4e}"
+                     f"{r['seconds']:9.3f}{product:11.3e}{product / base:9.3f}x")
+    return lines
+
+
+def main() -> int:
+    args = parse_args()
+    reason = stratum_reason()
+    if reason:
+        print(f"bench_quality: Stratum not available ({reason})", file=sys.stderr)
+        return 2
+    results: dict[str, Any] = {}
+    lines = [(f"Equal-time quality: {args.res}x{args.res}, {args.samples} spp, {args.seeds} "
+              f"seeds, references of {args.reference_samples} spp (two independent halves):")]
+    with tempfile.TemporaryDirectory(prefix="bench_quality") as tmp:
+        for name in args.scene:
+            cyc, st = bench_scene(name, args, Path(tmp))
+            results[name] = {"cycles": cyc, "stratum": st}
+            lines += scene_lines(name, cyc, st)
+    print("\n".join(lines))
+    data = {"res": args.res, "samples": args.samples, "seeds": args.seeds,
+            "reference_samples": args.reference_samples, "owen_scrambled": list(OWEN_SCRAMBLED),
+            "scenes": results}
+    print(f"written {write_section('quality', data)}")
+    return 0
+
+
+if __name__ == "__main__":
+    run_main(main)
