@@ -185,6 +185,21 @@ TEST(SequenceSobol, Dimension0IsVanDerCorputAndDimension1FollowsItsRecurrence) {
     EXPECT_EQ(sobol_sample32(3, 1), 0x40000000u);
 }
 
+TEST(SequenceSobol, FastFormsEqualTheGeneratorMatrices) {
+    // sobol_sample32 reverses bits (dimension 0) and looks bytes up (dimension 1): both must be
+    // the matrix-times-digits definition, for low indices and for scrambled (random) ones.
+    uint64_t state = 0x853c49e6748fea9bull;
+    for (uint32_t n = 0; n < 100000; ++n) {
+        state = state * 6364136223846793005ull + 1442695040888963407ull;
+        const uint32_t index = n < 50000 ? n : static_cast<uint32_t>(state >> 32);
+        for (uint32_t dim = 0; dim < 2; ++dim) {
+            ASSERT_EQ(sobol_sample32(index, dim),
+                      detail::sobol_sample32_by_columns(index, kSobolMatrices[dim]))
+                << index << " " << dim;
+        }
+    }
+}
+
 TEST(SequenceSobol, FirstPointsFormNets) {
     // Unscrambled dims (0,1): each aligned block of 2^m points has one point in every
     // 2^i x 2^(m-i) elementary interval.
