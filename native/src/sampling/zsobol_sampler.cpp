@@ -13,6 +13,19 @@ ZSobolSampler::ZSobolSampler(const SamplerSettings& settings) : seed_(settings.s
     while ((uint64_t{1} << log2_samples_) < settings.samples) ++log2_samples_;
     const uint32_t resolution = std::max({settings.width, settings.height, 1u});
     while ((uint64_t{1} << morton_digits_) < resolution) ++morton_digits_;
+    for (uint32_t pair = 0; pair < kCachedPairs; ++pair) {
+        first_round_keys_[pair] = hash_words(pair, seed_, 0u, 0u);
+        value_keys_[pair] = hash_words(pair, seed_, 0x250bu);
+    }
+}
+
+uint64_t ZSobolSampler::round_key(uint32_t pair, uint64_t round) const {
+    if (round == 0 && pair < kCachedPairs) return first_round_keys_[pair];
+    return hash_words(pair, seed_, static_cast<uint32_t>(round), static_cast<uint32_t>(round >> 32));
+}
+
+uint64_t ZSobolSampler::value_key(uint32_t pair) const {
+    return pair < kCachedPairs ? value_keys_[pair] : hash_words(pair, seed_, 0x250bu);
 }
 
 uint32_t ZSobolSampler::sobol_index(const PixelSample& s, uint32_t dimension) const {
@@ -20,8 +33,7 @@ uint32_t ZSobolSampler::sobol_index(const PixelSample& s, uint32_t dimension) co
     const uint32_t pair = dimension >> 1;
     const uint64_t sample_mask = (uint64_t{1} << L) - 1;
     const uint64_t round = L >= 32 ? 0 : uint64_t{s.index} >> L;
-    const uint64_t key =
-        hash_words(pair, seed_, static_cast<uint32_t>(round), static_cast<uint32_t>(round >> 32));
+    const uint64_t key = round_key(pair, round);
 
     // Base-4 Owen scramble of the pixel order: digit t is permuted by a hash of the original
     // digits above it (t+1 .. ), its position and the key; the digits above morton_digits_
@@ -44,7 +56,7 @@ uint32_t ZSobolSampler::sobol_index(const PixelSample& s, uint32_t dimension) co
 
 void ZSobolSampler::get_2d_bits(const PixelSample& s, uint32_t dimension, uint32_t& x, uint32_t& y) const {
     const uint32_t index = sobol_index(s, dimension);
-    const uint64_t k = hash_words(dimension >> 1, seed_, 0x250bu);
+    const uint64_t k = value_key(dimension >> 1);
     x = nested_uniform_scramble(sobol_sample32(index, 0), static_cast<uint32_t>(k));
     y = nested_uniform_scramble(sobol_sample32(index, 1), static_cast<uint32_t>(k >> 32));
 }
@@ -57,7 +69,7 @@ Vec2 ZSobolSampler::get_2d(const PixelSample& s, uint32_t dimension) const {
 
 float ZSobolSampler::get_1d(const PixelSample& s, uint32_t dimension) const {
     const uint32_t index = sobol_index(s, dimension);
-    const uint64_t k = hash_words(dimension >> 1, seed_, 0x250bu);
+    const uint64_t k = value_key(dimension >> 1);
     const uint32_t component = dimension & 1u;
     const auto key = static_cast<uint32_t>(component ? k >> 32 : k);
     return bits_to_unit_float(nested_uniform_scramble(sobol_sample32(index, component), key));

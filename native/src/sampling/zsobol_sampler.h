@@ -21,6 +21,7 @@
 // 2 log2(max(width, height)) + L <= 32 keeps the whole image in one sequence.
 #pragma once
 
+#include <array>
 #include <cstdint>
 
 #include "sampling/sampler.h"
@@ -40,9 +41,16 @@ public:
     uint32_t log2_samples() const { return log2_samples_; }
 
 private:
+    // The per-pair keys, which depend on the pair and the seed only, hashed once at construction
+    // for the first kCachedPairs pairs (a path's dimensions rarely go beyond) and on demand after.
+    static constexpr uint32_t kCachedPairs = 64;
+    uint64_t round_key(uint32_t pair, uint64_t round) const;  // hash_words(pair, seed, round lo, hi)
+    uint64_t value_key(uint32_t pair) const;                  // hash_words(pair, seed, 0x250b)
+
     uint32_t seed_;
     uint32_t log2_samples_ = 0;   // L
     uint32_t morton_digits_ = 0;  // base-4 digits of the Morton code that are permuted
+    std::array<uint64_t, kCachedPairs> first_round_keys_{}, value_keys_{};
 };
 
 }  // namespace stratum
