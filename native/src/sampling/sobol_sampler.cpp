@@ -22,8 +22,8 @@ PairKeys pair_keys(const PixelSample& s, uint32_t pair, uint32_t seed) {
 void SobolSampler::get_2d_bits(const PixelSample& s, uint32_t dimension, uint32_t& x, uint32_t& y) const {
     const PairKeys keys = pair_keys(s, dimension >> 1, seed_);
     const uint32_t index = nested_uniform_scramble(s.index, keys.shuffle);
-    x = nested_uniform_scramble(sobol_sample32(index, 0), keys.x);
-    y = nested_uniform_scramble(sobol_sample32(index, 1), keys.y);
+    x = owen_scrambled_sobol32(index, 0, keys.x);
+    y = owen_scrambled_sobol32(index, 1, keys.y);
 }
 
 Vec2 SobolSampler::get_2d(const PixelSample& s, uint32_t dimension) const {
@@ -36,8 +36,7 @@ float SobolSampler::get_1d(const PixelSample& s, uint32_t dimension) const {
     const PairKeys keys = pair_keys(s, dimension >> 1, seed_);
     const uint32_t index = nested_uniform_scramble(s.index, keys.shuffle);
     const uint32_t component = dimension & 1u;
-    return bits_to_unit_float(
-        nested_uniform_scramble(sobol_sample32(index, component), component ? keys.y : keys.x));
+    return bits_to_unit_float(owen_scrambled_sobol32(index, component, component ? keys.y : keys.x));
 }
 
 }  // namespace stratum

@@ -57,8 +57,8 @@ uint32_t ZSobolSampler::sobol_index(const PixelSample& s, uint32_t dimension) co
 void ZSobolSampler::get_2d_bits(const PixelSample& s, uint32_t dimension, uint32_t& x, uint32_t& y) const {
     const uint32_t index = sobol_index(s, dimension);
     const uint64_t k = value_key(dimension >> 1);
-    x = nested_uniform_scramble(sobol_sample32(index, 0), static_cast<uint32_t>(k));
-    y = nested_uniform_scramble(sobol_sample32(index, 1), static_cast<uint32_t>(k >> 32));
+    x = owen_scrambled_sobol32(index, 0, static_cast<uint32_t>(k));
+    y = owen_scrambled_sobol32(index, 1, static_cast<uint32_t>(k >> 32));
 }
 
 Vec2 ZSobolSampler::get_2d(const PixelSample& s, uint32_t dimension) const {
@@ -72,7 +72,7 @@ float ZSobolSampler::get_1d(const PixelSample& s, uint32_t dimension) const {
     const uint64_t k = value_key(dimension >> 1);
     const uint32_t component = dimension & 1u;
     const auto key = static_cast<uint32_t>(component ? k >> 32 : k);
-    return bits_to_unit_float(nested_uniform_scramble(sobol_sample32(index, component), key));
+    return bits_to_unit_float(owen_scrambled_sobol32(index, component, key));
 }
 
 }  // namespace stratum

@@ -80,6 +80,14 @@ constexpr uint32_t sobol_sample32(uint32_t index, uint32_t dim) {
     return t[0][index & 0xffu] ^ t[1][(index >> 8) & 0xffu] ^ t[2][(index >> 16) & 0xffu] ^ t[3][index >> 24];
 }
 
+// Owen-scrambled Sobol value of a (shuffled) index: nested_uniform_scramble(sobol_sample32(index,
+// dim), key). For dimension 0 the scramble's own first bit reversal undoes the sequence's, so
+// neither is computed.
+constexpr uint32_t owen_scrambled_sobol32(uint32_t index, uint32_t dim, uint32_t key) {
+    if (dim == 0) return reverse_bits32(vegdahl_permutation(index, key));
+    return nested_uniform_scramble(sobol_sample32(index, 1), key);
+}
+
 // The fast forms equal the definition (tests/native check many more indices).
 static_assert(sobol_sample32(0x9e3779b9u, 0) ==
               detail::sobol_sample32_by_columns(0x9e3779b9u, kSobolMatrices[0]));
