@@ -211,17 +211,6 @@ def stratum_library_id() -> str:
     return hashlib.sha256(Path(native.load_library()._name).read_bytes()).hexdigest()[:16]
 
 
-def use_render_levels(scene: bpy.types.Scene) -> None:
-    """Makes the viewport depsgraph (the only one Python can evaluate) hold the render's
-    geometry: every modifier shown as it renders, subdivision at its render level (Wolf's
-    215k triangles come from a render level of 4)."""
-    for ob in scene.objects:
-        for modifier in ob.modifiers:
-            modifier.show_viewport = modifier.show_render
-            if hasattr(modifier, "render_levels") and hasattr(modifier, "levels"):
-                modifier.levels = modifier.render_levels
-
-
 class StratumScene:
     """The scene's render geometry exported once into a native scene; render() then runs the
     native Renderer with the scene's settings plus `overrides`, as many times as asked. The
@@ -233,7 +222,9 @@ class StratumScene:
         from stratum.export import export_scene
 
         self.settings = renderer_settings(scene)
-        use_render_levels(scene)
+        from stratum.export.render_geometry import use_render_geometry
+
+        use_render_geometry(scene)
         depsgraph = bpy.context.evaluated_depsgraph_get()
         depsgraph.update()
         self.native = native.Scene()

@@ -179,6 +179,8 @@ try:
     if args.get("resolution"):
         scene.render.resolution_x, scene.render.resolution_y = args["resolution"]
         scene.render.resolution_percentage = 100
+    from stratum.export.render_geometry import use_render_geometry
+    use_render_geometry(scene)
     depsgraph = bpy.context.evaluated_depsgraph_get()
     with native.Scene() as captured:
         summary = export_scene(depsgraph, captured)
