@@ -6,10 +6,10 @@
 namespace stratum {
 
 ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world) {
-    ShadingPoint sp{ClosureSet(scene.material(hit.material_id)), hit.geometric_normal, hit.shading_normal,
-                    false};
+    ShadingPoint sp{scene.closure_set(hit.material_id), hit.geometric_normal, hit.shading_normal, false};
     Vec3 smooth = hit.shading_normal;
-    // The set was finalized from the material as stored; only a changed parameter needs it again.
+    // The set was finalized from the material as stored (RenderScene::closure_set); only a changed parameter
+    // needs it again.
     bool changed = false;
     // Textures first, on the winding-oriented normal: a normal map's tangent frame (T, sign
     // cross(N, T), N) is defined for it, and the flip below then applies to the mapped normal.

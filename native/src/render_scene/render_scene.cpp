@@ -69,6 +69,9 @@ Rgb material_emission(const SceneMaterial& material) {
 
 void RenderScene::set_materials(const Scene& scene) {
     materials_ = scene.materials;
+    closure_sets_.clear();
+    closure_sets_.reserve(materials_.size());
+    for (const SceneMaterial& m : materials_) closure_sets_.emplace_back(m);
     has_transparent_closures_ = std::any_of(materials_.begin(), materials_.end(), [](const SceneMaterial& m) {
         return std::any_of(m.closures.begin(), m.closures.end(), [](const WeightedClosure& c) {
             return closure_model(c.params.model).transparent;

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "accel/embree_scene.h"
+#include "bsdf/closure_set.h"
 #include "lights/light_set.h"
 #include "render_scene/material_texturing.h"
 #include "scene/live_scene.h"
@@ -99,6 +100,9 @@ public:
     bool has_transparent_closures() const { return has_transparent_closures_; }
     // The closures of scene material `id` (SurfaceHit::material_id), before texturing.
     const SceneMaterial& material(uint32_t id) const { return materials_[id]; }
+    // The same as a finalized closure set, built once per material: a shading point copies it
+    // rather than building and finalizing its own.
+    const ClosureSet& closure_set(uint32_t id) const { return closure_sets_[id]; }
     // Image textures bound to material parameters (applied per shading point).
     const TextureBindings& textures() const { return textures_; }
     // True if some instance moves over the shutter (the renderer then samples ray times).
@@ -137,6 +141,7 @@ private:
     void set_materials(const Scene& scene);
 
     std::vector<SceneMaterial> materials_;
+    std::vector<ClosureSet> closure_sets_;  // per material
     bool has_transparent_closures_ = false;
     TextureBindings textures_;
     std::vector<InstanceData> instances_;        // per traced placement
