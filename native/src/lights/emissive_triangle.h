@@ -77,12 +77,15 @@ private:
     float pdf_area(Vec3 p, Vec3 hit) const;
     // The triangle as seen from p when solid-angle sampling applies to p, else nullopt.
     std::optional<SphericalTriangle> spherical_view(Vec3 p) const;
-    // The bilinear weights of the cosine warp: |cos θ| toward the vertices at the corners the
-    // spherical map sends to them (SphericalTriangle::sample); all 1 without a normal.
-    BilinearWeights cosine_weights(Vec3 p, Vec3 n) const;
+    // The bilinear weights of the cosine warp: |cos θ| toward the vertices (the spherical
+    // triangle's own unit directions) at the corners the spherical map sends to them
+    // (SphericalTriangle::sample); all 1 without a normal.
+    BilinearWeights cosine_weights(const SphericalTriangle& spherical, Vec3 n) const;
 
     Vec3 p0_, e1_, e2_, normal_;
     float area_;
+    // kCoplanarTolerance × the largest vertex coordinate's magnitude (fixed per triangle).
+    float coplanar_distance_;
     Rgb radiance_;
 };
 
