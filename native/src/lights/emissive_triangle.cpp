@@ -15,6 +15,8 @@ EmissiveTriangle::EmissiveTriangle(Vec3 p0, Vec3 p1, Vec3 p2, Rgb radiance)
     for (Vec3 v : {p0, p1, p2})
         magnitude = std::max({magnitude, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
     coplanar_distance_ = kCoplanarTolerance * magnitude;
+    const float longest_edge2 = std::max({dot(e1_, e1_), dot(e2_, e2_), dot(p2 - p1, p2 - p1)});
+    spherical_distance2_ = kSphericalDistanceRatio * kSphericalDistanceRatio * longest_edge2;
 }
 
 BilinearWeights EmissiveTriangle::cosine_weights(const SphericalTriangle& spherical, Vec3 n) const {
@@ -27,7 +29,9 @@ BilinearWeights EmissiveTriangle::cosine_weights(const SphericalTriangle& spheri
 }
 
 std::optional<SphericalTriangle> EmissiveTriangle::spherical_view(Vec3 p) const {
-    if (!(std::abs(dot(p - p0_, normal_)) > coplanar_distance_)) return std::nullopt;
+    const float plane_distance = std::abs(dot(p - p0_, normal_));
+    if (!(plane_distance > coplanar_distance_)) return std::nullopt;
+    if (!(plane_distance * plane_distance < spherical_distance2_)) return std::nullopt;
     SphericalTriangle spherical(p, p0_, p0_ + e1_, p0_ + e2_);
     if (spherical.solid_angle() < kMinSphericalSolidAngle) return std::nullopt;
     return spherical;
