@@ -90,9 +90,19 @@ render: build
 		--python scripts/render_to_files.py -- out/cornell_box
 	@echo "Stratum rendered the Cornell box: $(CURDIR)/out/cornell_box.png (display) and $(CURDIR)/out/cornell_box.exr (linear)"
 
+# The micro-benchmarks of native/bench (docs/performance.md, "Micro-benchmarks"): items/s of
+# samplers, closures, light samples, the spherical triangle and the film, in
+# out/microbench.txt and out/microbench.json.
+.PHONY: microbench
+microbench: build
+	mkdir -p out
+	$(BUILD)/stratum_microbench --benchmark_out=out/microbench.json --benchmark_out_format=json > out/microbench.txt \
+		|| (cat out/microbench.txt; false)
+	cat out/microbench.txt
+
 # Issue 15's sections write out/bench/*.json; bench_summary.py prints them as one table (also
 # out/bench_summary.txt) at the end.
-bench: build
+bench: build microbench
 	bash scripts/install_addon.sh
 	mkdir -p out
 	rm -rf out/bench

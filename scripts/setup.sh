@@ -10,6 +10,7 @@ DEB_PACKAGES=(
   blender
   libembree-dev libopenimageio-dev libopencolorio-dev libtbb-dev
   nlohmann-json3-dev googletest libgtest-dev
+  libbenchmark-dev  # make microbench: Google Benchmark (native/bench)
   python3-numpy python3-pytest python3-venv
   chromium chromium-driver
   valgrind  # make sanitize: memcheck of the native determinism tests

@@ -10,8 +10,9 @@
 // * The pdf a sample reports is the pdf() a BSDF ray reaching the same point gets (MIS).
 // * Next to the emitter, solid-angle sampling's weight L cos θ / pdf is bounded (derived below)
 //   while area sampling's reaches L A / d².
-// * Where the cut-offs apply (a far triangle, a point in the triangle's plane) the solid-angle
-//   mode is area sampling, sample for sample.
+// * Where the cut-offs apply (a far triangle, by its solid angle or by its distance over its
+//   longest edge, a point in the triangle's plane) the solid-angle mode is area sampling,
+//   sample for sample.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -167,6 +168,30 @@ TEST(TriangleLightSampling, CutOffsFallBackToAreaSampling) {
             EXPECT_EQ(a.pdf, b.pdf);
             EXPECT_EQ(a.distance, b.distance);
         }
+    }
+}
+
+TEST(TriangleLightSampling, FarFromItsPlaneByMoreThanTheLongestEdgeIsAreaSampling) {
+    // Cycles' test (lights/emissive_triangle.h): solid angle while the distance to the plane is
+    // under kSphericalDistanceRatio × the longest edge (here |AB| = 0.6), area sampling from
+    // there on, on either side and off to the side alike; the pdf of a BSDF ray follows.
+    const EmissiveTriangle tri(kA, kB, kC, Rgb(kRadiance));
+    const float edge = length(kB - kA) * EmissiveTriangle::kSphericalDistanceRatio;
+    const Vec3 up(0, 0, 1);
+    const auto same_as_area = [&](Vec3 p) {
+        const Vec2 s{0.3f, 0.6f};
+        LightSample a, b;
+        EXPECT_TRUE(tri.sample(p, up, s, TriangleSampling::Area, &a));
+        EXPECT_TRUE(tri.sample(p, up, s, TriangleSampling::SolidAngle, &b));
+        const Vec3 hit = p + b.wi * b.distance;
+        const bool pdfs_agree =
+            tri.pdf(p, up, hit, TriangleSampling::SolidAngle) == tri.pdf(p, up, hit, TriangleSampling::Area);
+        return a.pdf == b.pdf && a.distance == b.distance && pdfs_agree;
+    };
+    for (const float side : {-1.0f, 1.0f}) {
+        EXPECT_FALSE(same_as_area({0.05f, 0.0f, 0.02f + side * 0.98f * edge})) << side;
+        EXPECT_TRUE(same_as_area({0.05f, 0.0f, 0.02f + side * 1.02f * edge})) << side;
+        EXPECT_TRUE(same_as_area({2.0f, 1.0f, 0.02f + side * 1.02f * edge})) << side;
     }
 }
 

@@ -11,24 +11,28 @@ EmissiveTriangle::EmissiveTriangle(Vec3 p0, Vec3 p1, Vec3 p2, Rgb radiance)
     const float twice_area = length(c);
     area_ = 0.5f * twice_area;
     normal_ = twice_area > 0.0f ? c / twice_area : Vec3(0, 0, 1);
+    float magnitude = 0.0f;
+    for (Vec3 v : {p0, p1, p2})
+        magnitude = std::max({magnitude, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
+    coplanar_distance_ = kCoplanarTolerance * magnitude;
+    const float longest_edge2 = std::max({dot(e1_, e1_), dot(e2_, e2_), dot(p2 - p1, p2 - p1)});
+    spherical_distance2_ = kSphericalDistanceRatio * kSphericalDistanceRatio * longest_edge2;
 }
 
-BilinearWeights EmissiveTriangle::cosine_weights(Vec3 p, Vec3 n) const {
+BilinearWeights EmissiveTriangle::cosine_weights(const SphericalTriangle& spherical, Vec3 n) const {
     if (dot(n, n) == 0.0f) return {{1.0f, 1.0f, 1.0f, 1.0f}};
-    const auto weight = [&](Vec3 v) {
-        return std::max(kMinCosineWeight, std::abs(dot(normalize(v - p), n)));
+    const auto weight = [&](int vertex) {
+        return std::max(kMinCosineWeight, std::abs(dot(spherical.direction(vertex), n)));
     };
-    const float w0 = weight(p0_), w1 = weight(p0_ + e1_), w2 = weight(p0_ + e2_);
+    const float w0 = weight(0), w1 = weight(1), w2 = weight(2);
     return {{w1, w1, w0, w2}};
 }
 
 std::optional<SphericalTriangle> EmissiveTriangle::spherical_view(Vec3 p) const {
-    const Vec3 p1 = p0_ + e1_, p2 = p0_ + e2_;
-    float magnitude = 0.0f;
-    for (Vec3 v : {p0_, p1, p2})
-        magnitude = std::max({magnitude, std::abs(v.x), std::abs(v.y), std::abs(v.z)});
-    if (!(std::abs(dot(p - p0_, normal_)) > kCoplanarTolerance * magnitude)) return std::nullopt;
-    SphericalTriangle spherical(p, p0_, p1, p2);
+    const float plane_distance = std::abs(dot(p - p0_, normal_));
+    if (!(plane_distance > coplanar_distance_)) return std::nullopt;
+    if (!(plane_distance * plane_distance < spherical_distance2_)) return std::nullopt;
+    SphericalTriangle spherical(p, p0_, p0_ + e1_, p0_ + e2_);
     if (spherical.solid_angle() < kMinSphericalSolidAngle) return std::nullopt;
     return spherical;
 }
@@ -37,13 +41,13 @@ bool EmissiveTriangle::sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling mode, Lig
     if (mode == TriangleSampling::Area) return sample_area(p, u, out);
     const std::optional<SphericalTriangle> spherical = spherical_view(p);
     if (!spherical) return sample_area(p, u, out);
-    const BilinearWeights weights = cosine_weights(p, n);
+    const BilinearWeights weights = cosine_weights(*spherical, n);
     const Vec2 warped = sample_bilinear(u, weights);
     const Vec3 wi = spherical->sample(warped);
     // The light point is where wi meets the triangle's plane.
     const float distance = dot(p0_ - p, normal_) / dot(wi, normal_);
     if (!(distance > 0.0f) || !std::isfinite(distance)) return false;
-    const float pdf = static_cast<float>(bilinear_pdf(warped, weights) / spherical->solid_angle());
+    const float pdf = bilinear_pdf(warped, weights) / static_cast<float>(spherical->solid_angle());
     *out = {wi, distance, radiance_, pdf, true};
     return true;
 }
@@ -53,7 +57,7 @@ float EmissiveTriangle::pdf(Vec3 p, Vec3 n, Vec3 hit, TriangleSampling mode) con
     const std::optional<SphericalTriangle> spherical = spherical_view(p);
     if (!spherical) return pdf_area(p, hit);
     const Vec2 u = spherical->invert(normalize(hit - p));
-    return static_cast<float>(bilinear_pdf(u, cosine_weights(p, n)) / spherical->solid_angle());
+    return bilinear_pdf(u, cosine_weights(*spherical, n)) / static_cast<float>(spherical->solid_angle());
 }
 
 bool EmissiveTriangle::sample_area(Vec3 p, Vec2 u, LightSample* out) const {
