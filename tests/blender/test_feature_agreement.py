@@ -238,12 +238,12 @@ def test_feature_noise_allows_comparison(cycles_case: Renders, stratum_case: Ren
     bad = lit & (rel >= 0.5 * BLOCK_TOL)
     # Each renderer's own share, so a failure says whose noise it is (more samples, or a
     # sampling problem in one renderer).
-    own = {r.name: float((K_SIGMA * np.sqrt(r.block_var()) / np.maximum(cb, 1e-12))[lit].max())
-           for r in (c, s)}
+    own_c, own_s = (float((K_SIGMA * np.sqrt(r.block_var()) / np.maximum(cb, 1e-12))[lit].max())
+                    for r in (c, s))
     assert not bad.any(), (
         f"{case}: {int(bad.sum())} (block, channel) values too noisy: worst 4 sigma_D "
         f"{float(rel[lit].max()):.2%} >= {0.5 * BLOCK_TOL:.1%} (worst 4 sigma of each renderer "
-        f"alone: cycles {own['cycles']:.2%}, stratum {own['stratum']:.2%}); correlation factors "
+        f"alone: cycles {own_c:.2%}, stratum {own_s:.2%}); correlation factors "
         f"cycles {c.inflation:.2f}, stratum {s.inflation:.2f}")
     for name in ASSERTED_SPHERES.get(case, ()):
         _, _, sigma = _sphere_stats(case, name, c, s)
