@@ -94,6 +94,11 @@ render: build
 # samplers, closures, light samples, the spherical triangle and the film, in
 # out/microbench.txt and out/microbench.json.
 .PHONY: microbench
+# Where the path tracer spends its time: perf over a captured Cornell box (docs/performance.md).
+.PHONY: profile
+profile: build
+	bash scripts/profile_render.sh max_bounces=8
+
 microbench: build
 	mkdir -p out
 	$(BUILD)/stratum_microbench --benchmark_out=out/microbench.json --benchmark_out_format=json > out/microbench.txt \
