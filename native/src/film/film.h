@@ -61,7 +61,11 @@ inline FilmSum to_fixed(double v, double limit, bool* clamped) {
         v = v > 0 ? limit : -limit;
     }
     // v·2^40 is exact (a power-of-two scale); rounding it to an integer is the only error.
-    return static_cast<FilmSum>(std::nearbyint(v * kFixedScale));
+    const double scaled = std::nearbyint(v * kFixedScale);
+    // Nearly every sample fits 64 bits, whose conversion is one instruction where the 128-bit
+    // one is a library call; both are exact for an integer-valued double in range.
+    if (std::abs(scaled) < 0x1p62) return static_cast<int64_t>(scaled);
+    return static_cast<FilmSum>(scaled);
 }
 // The double nearest to a fixed-point sum (the int128 → double conversion rounds to nearest;
 // the scale by 2^-40 is exact).
