@@ -7,43 +7,11 @@
 
 namespace stratum {
 
-float ggx_d(Vec3 h, float alpha) {
-    if (h.z <= 0.0f) return 0.0f;
-    const float a2 = alpha * alpha;
-    const float t = h.z * h.z * (a2 - 1.0f) + 1.0f;
-    return a2 / (kPi * t * t);
-}
-
-float ggx_lambda(Vec3 w, float alpha) {
-    const float cos2 = w.z * w.z;
-    if (cos2 <= 0.0f) return 1e30f;  // grazing: fully shadowed, G1 = 0
-    const float tan2 = std::max(1.0f - cos2, 0.0f) / cos2;
-    return 0.5f * (-1.0f + std::sqrt(1.0f + alpha * alpha * tan2));
-}
-
-float ggx_reflection_pdf(Vec3 wo, Vec3 wi, float alpha) {
-    if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
-    const Vec3 h = normalize(wo + wi);
-    // Visible-normal density G1 max(0, wo.h) D / wo.z times the reflection Jacobian 1/(4 wo.h).
-    return ggx_g1(wo, alpha) * ggx_d(h, alpha) / (4.0f * wo.z);
-}
-
 bool ggx_sample_reflection(Vec3 wo, float alpha, Vec2 u, Vec3* wi) {
     if (wo.z <= 0.0f) return false;
     const Vec3 h = sample_ggx_visible_normal(wo, alpha, u);
     *wi = h * (2.0f * dot(wo, h)) - wo;
     return wi->z > 0.0f;
-}
-
-float fresnel_dielectric(float cos_i, float eta) {
-    // Walter et al. 2007, eq. 22 (g^2 < 0 means total internal reflection).
-    const float c = std::abs(cos_i);
-    const float g2 = eta * eta - 1.0f + c * c;
-    if (g2 <= 0.0f) return 1.0f;
-    const float g = std::sqrt(g2);
-    const float a = (g - c) / (g + c);
-    const float b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
-    return 0.5f * a * a * (1.0f + b * b);
 }
 
 namespace {

@@ -28,8 +28,18 @@ inline float ggx_alpha_from_roughness(float roughness) {
     return std::max(sqr(std::clamp(roughness, 0.0f, 1.0f)), kGgxMinAlpha);
 }
 
-float ggx_d(Vec3 h, float alpha);
-float ggx_lambda(Vec3 w, float alpha);
+inline float ggx_d(Vec3 h, float alpha) {
+    if (h.z <= 0.0f) return 0.0f;
+    const float a2 = alpha * alpha;
+    const float t = h.z * h.z * (a2 - 1.0f) + 1.0f;
+    return a2 / (kPi * t * t);
+}
+inline float ggx_lambda(Vec3 w, float alpha) {
+    const float cos2 = w.z * w.z;
+    if (cos2 <= 0.0f) return 1e30f;  // grazing: fully shadowed, G1 = 0
+    const float tan2 = std::max(1.0f - cos2, 0.0f) / cos2;
+    return 0.5f * (-1.0f + std::sqrt(1.0f + alpha * alpha * tan2));
+}
 inline float ggx_g1(Vec3 w, float alpha) { return 1.0f / (1.0f + ggx_lambda(w, alpha)); }
 inline float ggx_g2_separable(Vec3 wo, Vec3 wi, float alpha) { return ggx_g1(wo, alpha) * ggx_g1(wi, alpha); }
 inline float ggx_g2_height_correlated(Vec3 wo, Vec3 wi, float alpha) {
@@ -37,12 +47,26 @@ inline float ggx_g2_height_correlated(Vec3 wo, Vec3 wi, float alpha) {
 }
 
 // Solid-angle density of wi = reflect(wo, h) when h is drawn from the visible normals of wo.
-float ggx_reflection_pdf(Vec3 wo, Vec3 wi, float alpha);
+inline float ggx_reflection_pdf(Vec3 wo, Vec3 wi, float alpha) {
+    if (wo.z <= 0.0f || wi.z <= 0.0f) return 0.0f;
+    const Vec3 h = normalize(wo + wi);
+    // Visible-normal density G1 max(0, wo.h) D / wo.z times the reflection Jacobian 1/(4 wo.h).
+    return ggx_g1(wo, alpha) * ggx_d(h, alpha) / (4.0f * wo.z);
+}
 // Draws wi by VNDF sampling; returns false when the reflected direction falls below the horizon.
 bool ggx_sample_reflection(Vec3 wo, float alpha, Vec2 u, Vec3* wi);
 
 // Exact unpolarised Fresnel reflectance at a dielectric interface, relative IOR eta (> 0).
-float fresnel_dielectric(float cos_i, float eta);
+inline float fresnel_dielectric(float cos_i, float eta) {
+    // Walter et al. 2007, eq. 22 (g^2 < 0 means total internal reflection).
+    const float c = std::abs(cos_i);
+    const float g2 = eta * eta - 1.0f + c * c;
+    if (g2 <= 0.0f) return 1.0f;
+    const float g = std::sqrt(g2);
+    const float a = (g - c) / (g + c);
+    const float b = (c * (g + c) - 1.0f) / (c * (g - c) + 1.0f);
+    return 0.5f * a * a * (1.0f + b * b);
+}
 // Normal-incidence reflectance ((eta-1)/(eta+1))^2 and its inverse (clamped as Cycles does, F0 <= 0.99).
 inline float f0_from_ior(float eta) { return sqr((eta - 1.0f) / (eta + 1.0f)); }
 inline float ior_from_f0(float f0) {
