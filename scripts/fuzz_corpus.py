@@ -76,6 +76,7 @@ OPS = {
     )
 }
 OPS["instances"] = 254  # operations added later take the top byte values (native/fuzz/program.cpp)
+OPS["vertex_normals"] = 253
 
 
 def special(name: str) -> bytes:
@@ -258,6 +259,18 @@ def instances(rows: list[tuple[int, bytes]], nulls: int = 0) -> bytes:
     return bytes([OPS["instances"], len(rows)]) + b"".join(bytes([m]) + t for m, t in rows) + bytes([nulls])
 
 
+def vertex_normals(positions: list[float | str], faces: list[tuple[int, int, list[float | str]]],
+                   corners: list[int], threads: int = 0, nulls: int = 0) -> bytes:
+    """One stratum_vertex_normals call: positions (3 per vertex), faces as (start, size, normal),
+    corner vertices, a thread count below 4; nulls bit 1 passes NULL positions, 2 the face
+    arrays, 4 corner_vertices, 8 out_normals."""
+    out = bytes([OPS["vertex_normals"], len(positions) // 3]) + b"".join(signed(p) for p in positions)
+    out += bytes([len(faces)])
+    for start, size, normal in faces:
+        out += bytes([start, size]) + b"".join(signed(n) for n in normal)
+    return out + bytes([len(corners)]) + bytes(corners) + bytes([threads, nulls])
+
+
 def background(r: float, g: float, b: float) -> bytes:
     return bytes([OPS["background"]]) + unit(r) + unit(g) + unit(b)
 
@@ -406,6 +419,18 @@ def seeds() -> dict[str, bytes]:
         + instances([(0, b"\x00\x00")], nulls=2)
         + instances([], nulls=3)
         + render()
+    )
+    # A unit square (two triangles over corners 0-5) and a vertex without a face; then a face
+    # past the corners, a corner vertex out of range, a NaN position, NULL arrays.
+    square = [0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0, 2, 2, 2]
+    s["vertex-normals"] = vertex_normals(square, [(0, 3, [0, 0, 1]), (3, 3, [0, 0, 1])],
+                                         [0, 1, 2, 0, 2, 3], threads=2)
+    s["vertex-normals-refused"] = (
+        vertex_normals(square, [(4, 3, [0, 0, 1])], [0, 1, 2, 3, 4])
+        + vertex_normals(square, [(0, 3, [0, 0, 1])], [0, 1, 7])
+        + vertex_normals([0, 0, "nan"], [(0, 1, [0, 0, 1])], [0])
+        + vertex_normals(square, [(0, 3, [0, 0, 1])], [0, 1, 2], nulls=8)
+        + vertex_normals([], [], [], nulls=15)
     )
     s["materials"] = (
         material(1, roughness=0.2)

@@ -37,6 +37,8 @@ std::string describe_float(float v) {
     return s;
 }
 
+std::string describe_uints(const uint32_t* v, size_t n) { return indices(v, n); }
+
 std::string describe_floats(const float* v, size_t n) {
     std::string s = "{";
     for (size_t i = 0; i < n; ++i) s += (i ? ", " : "") + describe_float(v[i]);

@@ -12,6 +12,8 @@ namespace stratum::fuzz {
 
 std::string describe_float(float v);
 std::string describe_floats(const float* v, size_t n);
+// {1, 2, 3}, or NULL.
+std::string describe_uints(const uint32_t* v, size_t n);
 std::string describe_string(const char* s);
 std::string describe(const StratumMaterialDesc& d);
 std::string describe(const StratumCameraDesc& d);

@@ -1,7 +1,9 @@
 // The entry points that need no scene: sampler points, hemisphere warps, the blue-noise
-// texture, dimension names and the model listings. Their outputs have mathematical invariants:
-// sample values in [0, 1), unit directions in the upper hemisphere with finite densities.
+// texture, dimension names, the model listings and vertex normals. Their outputs have
+// mathematical invariants: sample values in [0, 1), unit directions in the upper hemisphere with
+// finite densities, unit (or, at the origin, zero) normals that no thread count changes.
 #include <cmath>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -138,6 +140,69 @@ void op_models(ByteReader& in, ProgramState&) {
         finding("stratum_model_entry(" + std::to_string(kind) + ", " + std::to_string(index) +
                 ") gave an empty name or a negative value");
     if (!stratum_version() || !stratum_version()[0]) finding("stratum_version() is empty");
+}
+
+// A polygon mesh of up to 8 vertices, 4 faces and 16 corners: each face's start and size a
+// small number or (byte 255) a raw 32-bit one, corner vertices up to 2 past the vertex count,
+// then a thread count (0-3, or raw) and a byte whose bits pass NULL for positions (1), the face
+// arrays (2), corner_vertices (4) or out_normals (8). An accepted call must give finite normals
+// of length 1, or 0 for a vertex at the origin, and the same bits on one thread.
+void op_vertex_normals(ByteReader& in, ProgramState&) {
+    const uint32_t n_vert = in.u8() % 9u;
+    std::vector<float> positions(3 * size_t{n_vert});
+    for (float& x : positions) x = in.f32(FloatKind::Signed);
+    const uint32_t n_face = in.u8() % 5u;
+    std::vector<uint32_t> starts(n_face), sizes(n_face);
+    std::vector<float> face_normals(3 * size_t{n_face});
+    for (uint32_t f = 0; f < n_face; ++f) {
+        const uint8_t start = in.u8(), size = in.u8();
+        starts[f] = start == 255 ? in.u32() : start % 16u;
+        sizes[f] = size == 255 ? in.u32() : size % 8u;
+        for (int k = 0; k < 3; ++k) face_normals[3 * f + k] = in.f32(FloatKind::Signed);
+    }
+    const uint32_t n_corner = in.u8() % 17u;
+    std::vector<uint32_t> corners(n_corner);
+    for (uint32_t& v : corners) v = in.u8() % (n_vert + 3u);
+    const uint8_t threads_byte = in.u8();
+    const uint32_t threads = threads_byte == 255 ? in.u32() : threads_byte % 4u;
+    const uint8_t nulls = in.u8();
+    const float* p = (nulls & 1) ? nullptr : positions.data();
+    const uint32_t* face_starts = (nulls & 2) ? nullptr : starts.data();
+    const uint32_t* face_sizes = (nulls & 2) ? nullptr : sizes.data();
+    const float* normals_in = (nulls & 2) ? nullptr : face_normals.data();
+    const uint32_t* corner_vertices = (nulls & 4) ? nullptr : corners.data();
+    std::vector<float> out(3 * size_t{n_vert}), one_thread(out.size());
+    float* out_normals = (nulls & 8) ? nullptr : out.data();
+    const auto call = [&](uint32_t thread_count, float* into) {
+        return stratum_vertex_normals(n_vert, p, n_face, face_starts, face_sizes, normals_in, n_corner,
+                                      corner_vertices, thread_count, into);
+    };
+    const StratumStatus status = checked(
+        "stratum_vertex_normals", [&] { return call(threads, out_normals); },
+        [&] {
+            return std::to_string(n_vert) + ", (float[])" +
+                   (p ? describe_floats(p, positions.size()) : "NULL") + ", " + std::to_string(n_face) +
+                   ", (uint32_t[])" + describe_uints(face_starts, n_face) + ", (uint32_t[])" +
+                   describe_uints(face_sizes, n_face) + ", (float[])" +
+                   (normals_in ? describe_floats(normals_in, face_normals.size()) : "NULL") + ", " +
+                   std::to_string(n_corner) + ", (uint32_t[])" + describe_uints(corner_vertices, n_corner) +
+                   ", " + std::to_string(threads) + ", " + (out_normals ? "out" : "NULL");
+        });
+    if (status != STRATUM_OK) return;
+    for (uint32_t v = 0; v < n_vert; ++v) {
+        const float* n = &out[3 * v];
+        const float length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+        if (!(std::abs(length - 1.0f) < 1e-5f ||
+              (length == 0.0f && positions[3 * v] == 0.0f && positions[3 * v + 1] == 0.0f &&
+               positions[3 * v + 2] == 0.0f)))
+            finding("stratum_vertex_normals: vertex " + std::to_string(v) + " normal " +
+                    describe_floats(n, 3));
+    }
+    if (checked(
+            "stratum_vertex_normals", [&] { return call(1, one_thread.data()); },
+            [] { return std::string("the same arrays, 1, one_thread"); }) != STRATUM_OK ||
+        std::memcmp(out.data(), one_thread.data(), out.size() * sizeof(float)) != 0)
+        finding("stratum_vertex_normals: " + std::to_string(threads) + " threads and 1 thread differ");
 }
 
 }  // namespace stratum::fuzz

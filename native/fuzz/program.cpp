@@ -63,13 +63,15 @@ void run_program(ByteReader& in) {
     constexpr size_t kCount = sizeof kOperations / sizeof kOperations[0];
     // Operations added later take the top byte values, which the modulo gave to the first
     // operations: every committed input that does not use them replays as it was written.
-    constexpr uint8_t kAddInstances = 254;
+    constexpr uint8_t kAddInstances = 254, kVertexNormals = 253;
     ProgramState state;
     state.new_scene();
     for (unsigned i = 0; i < kMaxOperations && !in.exhausted(); ++i) {
         const uint8_t opcode = in.u8();
         if (opcode == kAddInstances)
             op_add_instances(in, state);
+        else if (opcode == kVertexNormals)
+            op_vertex_normals(in, state);
         else
             kOperations[opcode % kCount](in, state);
     }

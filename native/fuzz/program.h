@@ -69,5 +69,6 @@ void op_measure_throughput(ByteReader& in, ProgramState& s);
 void op_sampling(ByteReader& in, ProgramState& s);
 void op_models(ByteReader& in, ProgramState& s);
 void op_add_instances(ByteReader& in, ProgramState& s);
+void op_vertex_normals(ByteReader& in, ProgramState& s);
 
 }  // namespace stratum::fuzz

@@ -43,10 +43,10 @@ def _corner_normals(mesh: Any, n_loops: int) -> np.ndarray:
     return _get(mesh.loops, "normal", n_loops, 3, np.float32)
 
 
-def _vertex_normals(mesh: Any, positions: np.ndarray) -> np.ndarray:
+def _vertex_normals(mesh: Any, positions: np.ndarray) -> np.ndarray | None:
     """Vertex normals (N, 3), the same floats on every export: Blender 4.1+'s own; before 4.1
     recomputed in a fixed order, because Blender's own vary in their last bits from one
-    evaluation to the next (export/vertex_normals.py)."""
+    evaluation to the next (export/vertex_normals.py; None for non-finite face normals)."""
     if hasattr(mesh, "corner_normals"):  # 4.1+
         return _get(mesh.vertex_normals, "vector", len(positions), 3, np.float32)
     n_poly = len(mesh.polygons)
@@ -103,7 +103,10 @@ def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any,
     tri_poly = polygons()
     face_normals = _get(mesh.polygon_normals, "vector", len(smooth), 3, np.float32)
     flat = ~smooth[tri_poly]
-    normals = _vertex_normals(mesh, positions)[triangles]
+    vertex_normals = _vertex_normals(mesh, positions)
+    if vertex_normals is None:  # non-finite face normals: Blender's split normals are read
+        return None
+    normals = vertex_normals[triangles]
     normals[flat] = face_normals[tri_poly[flat]][:, None, :]
     return normals
 

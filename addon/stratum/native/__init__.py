@@ -13,7 +13,8 @@ with their choices, the registries among them, and the passes, as the library li
 models (light types and closure models by name, as the library lists them),
 marshalling (Python values as C arguments), descriptions (the dataclasses a Scene is made
 of), scene (`Scene`), renderer (`Renderer`, `Progress`), inspection (sampler points, hemisphere
-warps, the blue-noise texture and the dimension layout, without a scene), oidn (Intel Open
+warps, the blue-noise texture and the dimension layout, without a scene), geometry (vertex
+normals, without a scene), oidn (Intel Open
 Image Denoise, a library of its own: `denoise`, `load_denoiser`, `DenoiserUnavailable`). The
 public API is re-exported here, so `from stratum import native; native.Scene` is all a caller
 needs. Names with a leading underscore (_check, _Handle, the ctypes structs, ...) are shared
@@ -76,6 +77,7 @@ from .descriptions import (
     TextureBinding,
     TextureInfo,
 )
+from .geometry import vertex_normals
 from .inspection import (
     BLUENOISE_TEXTURE_SIZE,
     bluenoise_texture,
@@ -127,5 +129,6 @@ __all__ = [
     "bluenoise_texture", "bounce_dimension_stride", "camera_dimensions", "closure_model",
     "closure_models", "denoise", "light_type", "light_types", "load_denoiser",
     "default_library_path", "dimension_name", "library_available", "load_library", "passes",
-    "registry", "sampler_points", "setting", "settings", "version", "warp_hemisphere",
+    "registry", "sampler_points", "setting", "settings", "version", "vertex_normals",
+    "warp_hemisphere",
 ]

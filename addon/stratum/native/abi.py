@@ -284,6 +284,8 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
                                              p_float]),
         "stratum_warp_hemisphere": (c_int32, [p_char, p_float, c_uint32, p_float, p_float]),
         "stratum_bluenoise_texture": (c_int32, [p_float, c_uint32]),
+        "stratum_vertex_normals": (c_int32, [c_uint32, p_float, c_uint32, p_u32, p_u32, p_float,
+                                             c_uint32, p_u32, c_uint32, p_float]),
         "stratum_scene_create": (c_int32, [pp_void]),
         "stratum_scene_destroy": (None, [p_void]),
         "stratum_scene_add_material": (c_int32, [p_void, ctypes.POINTER(_MaterialDesc), p_u32]),

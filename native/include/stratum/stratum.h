@@ -477,6 +477,23 @@ STRATUM_API StratumStatus stratum_scene_measure_ray_throughput(const StratumScen
                                                                uint32_t max_bounces, uint32_t threads,
                                                                double* out_rays, double* out_seconds);
 
+/* ---- mesh helpers (no scene) --------------------------------------------------------------- */
+
+/* Angle-weighted vertex normals of a polygon mesh, the same bits on every call and for any
+ * `threads` (0 = all cores): each vertex's normal is the normalised sum over its corners, in face
+ * order then corner order, of (its face's normal) x (the corner's interior angle); a vertex whose
+ * sum is zero takes its position's direction (Blender 3.x's definition and fallback; Blender < 4.1
+ * sums with atomic adds, so its own normals differ in their last bits between evaluations).
+ * positions: 3 floats per vertex; face f has face_sizes[f] >= 1 corners starting at corner
+ * face_starts[f], within corner_count, and the faces have at most corner_count corners in all;
+ * face_normals: 3 floats per face; corner_vertices: a vertex index per corner. Writes 3 floats
+ * per vertex into out_normals. Arrays of a zero count may be NULL. */
+STRATUM_API StratumStatus stratum_vertex_normals(uint32_t vertex_count, const float* positions,
+                                                 uint32_t face_count, const uint32_t* face_starts,
+                                                 const uint32_t* face_sizes, const float* face_normals,
+                                                 uint32_t corner_count, const uint32_t* corner_vertices,
+                                                 uint32_t threads, float* out_normals);
+
 /* ---- rendering --------------------------------------------------------------------------- */
 
 typedef struct StratumRenderer StratumRenderer;

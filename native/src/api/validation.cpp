@@ -487,4 +487,49 @@ std::unique_ptr<Film> validate_film_sums(const void* bytes, size_t size) {
     return film;
 }
 
+PolygonMeshView validate_polygon_mesh(uint32_t vertex_count, const float* positions, uint32_t face_count,
+                                      const uint32_t* face_starts, const uint32_t* face_sizes,
+                                      const float* face_normals, uint32_t corner_count,
+                                      const uint32_t* corner_vertices) {
+    check((positions || vertex_count == 0) && (corner_vertices || corner_count == 0) &&
+              ((face_starts && face_sizes && face_normals) || face_count == 0),
+          "polygon mesh positions, face_starts, face_sizes, face_normals or corner_vertices is NULL");
+    const size_t n_vert = vertex_count, n_face = face_count, n_corner = corner_count;
+    if (n_vert && !all_finite(positions, 3 * n_vert)) {
+        const size_t v = first_non_finite(positions, 3 * n_vert, 3);
+        throw ValidationError("polygon mesh vertex " + std::to_string(v) + " has a non-finite position " +
+                              triple(positions + 3 * v));
+    }
+    if (n_face && !all_finite(face_normals, 3 * n_face)) {
+        const size_t f = first_non_finite(face_normals, 3 * n_face, 3);
+        throw ValidationError("polygon mesh face " + std::to_string(f) + " has a non-finite normal " +
+                              triple(face_normals + 3 * f));
+    }
+    if (n_corner && max_of(corner_vertices, n_corner) >= vertex_count) {
+        size_t c = 0;
+        while (corner_vertices[c] < vertex_count) ++c;
+        throw ValidationError("polygon mesh corner " + std::to_string(c) + " vertex index " +
+                              std::to_string(corner_vertices[c]) + " out of range [0, " +
+                              std::to_string(vertex_count) + ")");
+    }
+    // Every face within the corners, and no more face corners in all than corners (true of any
+    // layout whose faces do not overlap; it bounds the work and memory by the arrays' sizes).
+    uint64_t total = 0;
+    for (size_t f = 0; f < n_face; ++f) {
+        const uint64_t start = face_starts[f], size = face_sizes[f];
+        total += size;
+        if (size == 0 || start + size > n_corner || total > n_corner) {
+            throw ValidationError(
+                "polygon mesh face " + std::to_string(f) + " (corners " + std::to_string(start) + " .. +" +
+                std::to_string(size) + ") " +
+                (size == 0 ? std::string("has no corners")
+                 : start + size > n_corner
+                     ? "runs past corner_count " + std::to_string(n_corner)
+                     : "brings the faces' corners past corner_count " + std::to_string(n_corner)));
+        }
+    }
+    return {std::span(positions, 3 * n_vert), std::span(face_starts, n_face), std::span(face_sizes, n_face),
+            std::span(face_normals, 3 * n_face), std::span(corner_vertices, n_corner)};
+}
+
 }  // namespace stratum

@@ -9,6 +9,7 @@
 #include "bsdf/closure_set.h"
 #include "film/film.h"
 #include "scene/scene.h"
+#include "scene/vertex_normals.h"
 #include "stratum/stratum.h"
 
 namespace stratum {
@@ -32,6 +33,12 @@ Transform validate_transform(const float* m, const char* what);
 Rgb validate_radiance(const float* rgb, const char* what);
 // A film made from the bytes of stratum_renderer_read_sums (header, sizes and passes checked).
 std::unique_ptr<Film> validate_film_sums(const void* bytes, size_t size);
+// The arrays of stratum_vertex_normals as spans, each checked (stratum.h: finite floats, corner
+// vertices in range, faces of >= 1 corner within corner_count and at most corner_count corners in all).
+PolygonMeshView validate_polygon_mesh(uint32_t vertex_count, const float* positions, uint32_t face_count,
+                                      const uint32_t* face_starts, const uint32_t* face_sizes,
+                                      const float* face_normals, uint32_t corner_count,
+                                      const uint32_t* corner_vertices);
 Environment validate_environment(const float* rgb, uint32_t width, uint32_t height, float strength,
                                  const float* rotation);
 
