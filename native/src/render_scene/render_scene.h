@@ -137,7 +137,8 @@ private:
     // Lists the emissive triangles, lamps and environment, and the scene's bounding sphere.
     void build_lights(const Scene& scene, const std::atomic<bool>* cancel);
 
-    // Takes the scene's materials and notes whether any has a Transparent closure.
+    // Takes the scene's materials, builds each one's finalized closure set and notes whether any
+    // has a Transparent closure.
     void set_materials(const Scene& scene);
 
     std::vector<SceneMaterial> materials_;
