@@ -12,8 +12,9 @@ summary (scripts/bench_summary.py). For each scene (--scene, repeatable; default
 box, Wolf (215k triangles) and scenes/features/materials.blend (textures, glass, coat)):
 
 * Cycles: total F12 time (bpy.ops.render.render) and its split into scene synchronisation
-  (everything before the first "Sample" status line) and path tracing, parsed from the status
-  lines Blender prints in background mode (captured from file descriptor 1 during the render);
+  (everything before the first "Sample" status line) and path tracing, timed by when the
+  status lines Blender prints in background mode arrive (captured from file descriptor 1 during
+  the render; their own "Time:" field counts in steps of 10 ms);
 * Stratum at its default settings (integrator path, estimator mis, solid-angle triangles,
   sampler random), through the add-on's exporter and stratum.native.Renderer directly: export
   time (depsgraph -> native scene), BVH build time and path-tracing time as reported by the
@@ -32,8 +33,9 @@ Then the export section (acceptance 3 of issue 5), each scene built in this scri
 
 For each, Stratum's export (depsgraph -> native scene, timed around export_scene) and BVH build
 (progress().build_seconds of a 1-sample 32 x 32 render) against Cycles' synchronisation of the
-same scene, read from the status lines Cycles prints during a 1-sample 32 x 32 render (Blender
-3.4's `blender -b`; the bpy module prints none, so there only the F12 total is given):
+same scene, timed by the arrival of the status lines Cycles prints during a 1-sample 32 x 32
+render (Blender 3.4's `blender -b`; the bpy module prints none, so there only the F12 total is
+given):
 
 * "Cycles object sync": first "Synchronizing object" line -> "Initializing" (Blender data ->
   Cycles scene: meshes, instances, shaders);
@@ -202,7 +204,7 @@ def bench_export_case(build: Callable[[], bpy.types.Scene], stratum_ok: bool,
         t0 = time.perf_counter()
         bpy.ops.render.render()
         total = time.perf_counter() - t0
-    out: dict[str, float | int | None] = {"cycles_f12": total, **cycles_sync_stages(cap.text)}
+    out: dict[str, float | int | None] = {"cycles_f12": total, **cycles_sync_stages(cap.lines)}
     if not stratum_ok:
         return out
     from stratum import native
