@@ -1,6 +1,6 @@
 """The light types and closure models the library lists by name (stratum_model_entry) are the
 enumerators of the C header, value for value: a registry line (lights/light_registry.cpp,
-bsdf/bsdf.cpp) that disagrees with include/stratum/stratum.h, or a value only one of them has,
+bsdf/bsdf.cpp) that disagrees with include/stratum/*.h, or a value only one of them has,
 fails here. The add-on looks every value up by name, so this is the only place that reads both."""
 
 from __future__ import annotations
@@ -11,15 +11,16 @@ from typing import Any
 
 import pytest
 
-HEADER = Path(__file__).resolve().parents[2] / "native" / "include" / "stratum" / "stratum.h"
+# The C ABI: stratum/stratum.h includes the parts the enumerations live in (scene.h today).
+HEADERS = sorted((Path(__file__).resolve().parents[2] / "native" / "include" / "stratum").glob("*.h"))
 
 
 def header_enum(type_name: str, prefix: str) -> dict[str, int]:
     """The enumerators of `typedef enum type_name {...}` as {name without prefix, lower case:
     value}."""
-    text = HEADER.read_text()
+    text = "\n".join(h.read_text() for h in HEADERS)
     body = re.search(r"typedef enum " + type_name + r" \{(.*?)\} " + type_name + ";", text, re.DOTALL)
-    assert body, f"{type_name} not found in {HEADER}"
+    assert body, f"{type_name} not found in native/include/stratum/*.h"
     body_text = re.sub(r"/\*.*?\*/", "", body.group(1), flags=re.DOTALL)
     return {name.lower(): int(value)
             for name, value in re.findall(prefix + r"(\w+)\s*=\s*(\d+)", body_text)}
