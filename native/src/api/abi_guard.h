@@ -1,6 +1,6 @@
 // The error pattern every C entry point follows (stratum.h: "nothing aborts the host process"):
 // the body runs inside `guarded`, which turns every exception into a status and a message;
-// `require` rejects a bad value with a message that names it; `fail` records a message for
+// `require` (api/validation.h) rejects a bad value with a message that names it; `fail` records a message for
 // stratum_last_error() and returns the status. Shared by every file under native/src/api, so
 // there is one last-error slot per thread for the whole library.
 #pragma once
@@ -14,6 +14,9 @@
 #include "stratum/stratum.h"
 
 namespace stratum::abi {
+
+// Entry points bring this namespace in with `using namespace stratum::abi`.
+using stratum::require;
 
 // Message of the last failed call on this thread (stratum_last_error()).
 inline thread_local std::string g_last_error;
@@ -38,11 +41,6 @@ StratumStatus guarded(const char* function, F&& body) {
     } catch (...) {
         return fail(STRATUM_ERROR_INTERNAL, std::string(function) + ": unknown internal error");
     }
-}
-
-// Throws ValidationError(message) (STRATUM_ERROR_INVALID_ARGUMENT) unless `condition` holds.
-inline void require(bool condition, const std::string& message) {
-    if (!condition) throw ValidationError(message);
 }
 
 }  // namespace stratum::abi

@@ -54,9 +54,10 @@ void copy_into(std::vector<T>& out, const float* src, size_t count) {
 }  // namespace
 
 Mesh validate_mesh(const StratumMeshDesc& d, uint32_t material_count) {
-    check(d.vertex_count > 0, "mesh vertex_count is 0");
-    check(d.triangle_count > 0, "mesh triangle_count is 0");
-    check(d.positions && d.triangles && d.material_ids, "mesh positions, triangles or material_ids is NULL");
+    require(d.vertex_count > 0, "mesh vertex_count is 0");
+    require(d.triangle_count > 0, "mesh triangle_count is 0");
+    require(d.positions && d.triangles && d.material_ids,
+            "mesh positions, triangles or material_ids is NULL");
     const size_t n_vert = d.vertex_count, n_tri = d.triangle_count;
     if (!all_finite(d.positions, 3 * n_vert)) {
         const size_t v = first_non_finite(d.positions, 3 * n_vert, 3);
@@ -201,9 +202,9 @@ PolygonMeshView validate_polygon_mesh(uint32_t vertex_count, const float* positi
                                       const uint32_t* face_starts, const uint32_t* face_sizes,
                                       const float* face_normals, uint32_t corner_count,
                                       const uint32_t* corner_vertices) {
-    check((positions || vertex_count == 0) && (corner_vertices || corner_count == 0) &&
-              ((face_starts && face_sizes && face_normals) || face_count == 0),
-          "polygon mesh positions, face_starts, face_sizes, face_normals or corner_vertices is NULL");
+    require((positions || vertex_count == 0) && (corner_vertices || corner_count == 0) &&
+                ((face_starts && face_sizes && face_normals) || face_count == 0),
+            "polygon mesh positions, face_starts, face_sizes, face_normals or corner_vertices is NULL");
     const size_t n_vert = vertex_count, n_face = face_count, n_corner = corner_count;
     if (n_vert && !all_finite(positions, 3 * n_vert)) {
         const size_t v = first_non_finite(positions, 3 * n_vert, 3);

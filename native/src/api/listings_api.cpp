@@ -14,8 +14,8 @@
 
 namespace {
 
+using stratum::require;
 using stratum::abi::guarded;
-using stratum::abi::require;
 
 }  // namespace
 

@@ -19,8 +19,8 @@
 
 namespace {
 
+using stratum::require;
 using stratum::abi::guarded;
-using stratum::abi::require;
 
 // Limits of the render settings (render_settings.cpp): the same image sizes and sample counts.
 constexpr uint32_t kMaxResolution = 65536;

@@ -32,10 +32,10 @@ struct StratumRenderer {
 namespace {
 
 // The shared error pattern of every entry point (api/abi_guard.h).
+using stratum::require;
 using stratum::abi::fail;
 using stratum::abi::g_last_error;
 using stratum::abi::guarded;
-using stratum::abi::require;
 
 }  // namespace
 

@@ -16,10 +16,6 @@ namespace stratum {
 
 namespace {
 
-void require(bool condition, const std::string& message) {
-    if (!condition) throw ValidationError(message);
-}
-
 // Largest side accepted: beyond it width*height*4 floats would not fit the address space
 // of any machine Blender runs on.
 constexpr uint32_t kMaxTextureSide = 65536;

@@ -22,28 +22,28 @@ using namespace abi_checks;
 namespace {
 
 float finite_in(float v, float lo, float hi, const char* what) {
-    check(std::isfinite(v) && v >= lo && v <= hi,
-          std::string(what) + " = " + fmt(v) + " must be in [" + fmt(lo) + ", " + fmt(hi) + "]");
+    require(std::isfinite(v) && v >= lo && v <= hi,
+            std::string(what) + " = " + fmt(v) + " must be in [" + fmt(lo) + ", " + fmt(hi) + "]");
     return v;
 }
 
 // v in (lo, hi].
 float finite_in_open(float v, float lo, float hi, const char* what) {
-    check(std::isfinite(v) && v > lo && v <= hi,
-          std::string(what) + " = " + fmt(v) + " must be in (" + fmt(lo) + ", " + fmt(hi) + "]");
+    require(std::isfinite(v) && v > lo && v <= hi,
+            std::string(what) + " = " + fmt(v) + " must be in (" + fmt(lo) + ", " + fmt(hi) + "]");
     return v;
 }
 
 float finite_positive(float v, const char* what) {
-    check(std::isfinite(v) && v > 0.0f, std::string(what) + " = " + fmt(v) + " must be finite and > 0");
+    require(std::isfinite(v) && v > 0.0f, std::string(what) + " = " + fmt(v) + " must be finite and > 0");
     return v;
 }
 
 Rgb rgb_in(const float* c, float lo, float hi, const char* what) {
     for (int i = 0; i < 3; ++i) {
-        check(std::isfinite(c[i]) && c[i] >= lo && c[i] <= hi, std::string(what) + "[" + std::to_string(i) +
-                                                                   "] = " + fmt(c[i]) + " must be in [" +
-                                                                   fmt(lo) + ", " + fmt(hi) + "]");
+        require(std::isfinite(c[i]) && c[i] >= lo && c[i] <= hi, std::string(what) + "[" + std::to_string(i) +
+                                                                     "] = " + fmt(c[i]) + " must be in [" +
+                                                                     fmt(lo) + ", " + fmt(hi) + "]");
     }
     return {c[0], c[1], c[2]};
 }
@@ -57,12 +57,12 @@ void check_camera_frame(const Transform& t) {
     const Vec3 a0 = t.column(0), a1 = t.column(1), a2 = t.column(2);
     const float l0 = length(a0), l1 = length(a1), l2 = length(a2);
     for (float l : {l0, l1, l2}) {
-        check(l >= 1e-6f && l <= 1e6f, "camera transform has an axis of length " + fmt(l) +
-                                           " (its linear part must be a rotation, scale in [1e-6, 1e6])");
+        require(l >= 1e-6f && l <= 1e6f, "camera transform has an axis of length " + fmt(l) +
+                                             " (its linear part must be a rotation, scale in [1e-6, 1e6])");
     }
     const float volume = std::abs(dot(a0, cross(a1, a2))) / (l0 * l1 * l2);
-    check(volume >= 1e-6f, "camera transform is (nearly) singular: its axes span a volume of " + fmt(volume) +
-                               " of a rotation's");
+    require(volume >= 1e-6f, "camera transform is (nearly) singular: its axes span a volume of " +
+                                 fmt(volume) + " of a rotation's");
 }
 
 }  // namespace
@@ -73,13 +73,13 @@ Rgb validate_radiance(const float* rgb, const char* what) {
 
 Environment validate_environment(const float* rgb, uint32_t width, uint32_t height, float strength,
                                  const float* rotation) {
-    check(rgb != nullptr, "environment rgb is NULL");
-    check(width > 0 && height > 0, "environment size " + std::to_string(width) + " x " +
-                                       std::to_string(height) + " must be at least 1 x 1");
-    check(static_cast<uint64_t>(width) * height <= (uint64_t(1) << 28),
-          "environment size " + std::to_string(width) + " x " + std::to_string(height) + " is too large");
-    check(std::isfinite(strength) && strength >= 0.0f,
-          "environment strength = " + fmt(strength) + " must be finite and >= 0");
+    require(rgb != nullptr, "environment rgb is NULL");
+    require(width > 0 && height > 0, "environment size " + std::to_string(width) + " x " +
+                                         std::to_string(height) + " must be at least 1 x 1");
+    require(static_cast<uint64_t>(width) * height <= (uint64_t(1) << 28),
+            "environment size " + std::to_string(width) + " x " + std::to_string(height) + " is too large");
+    require(std::isfinite(strength) && strength >= 0.0f,
+            "environment strength = " + fmt(strength) + " must be finite and >= 0");
     Environment e;
     e.width = width;
     e.height = height;
@@ -96,8 +96,8 @@ Environment validate_environment(const float* rgb, uint32_t width, uint32_t heig
     e.rgb.assign(rgb, rgb + n);
     if (rotation) {
         for (int i = 0; i < 9; ++i) {
-            check(std::isfinite(rotation[i]), "environment rotation element " + std::to_string(i) + " = " +
-                                                  fmt(rotation[i]) + " is not finite");
+            require(std::isfinite(rotation[i]), "environment rotation element " + std::to_string(i) + " = " +
+                                                    fmt(rotation[i]) + " is not finite");
             e.rotation[static_cast<size_t>(i)] = rotation[i];
         }
         // R Rᵀ = I within float rounding: a rotation, not a scale or shear.
@@ -105,9 +105,9 @@ Environment validate_environment(const float* rgb, uint32_t width, uint32_t heig
             for (int b = 0; b < 3; ++b) {
                 float d = 0.0f;
                 for (int k = 0; k < 3; ++k) d += rotation[3 * a + k] * rotation[3 * b + k];
-                check(std::abs(d - (a == b ? 1.0f : 0.0f)) < 1e-4f,
-                      "environment rotation is not a rotation: row " + std::to_string(a) + " · row " +
-                          std::to_string(b) + " = " + fmt(d));
+                require(std::abs(d - (a == b ? 1.0f : 0.0f)) < 1e-4f,
+                        "environment rotation is not a rotation: row " + std::to_string(a) + " · row " +
+                            std::to_string(b) + " = " + fmt(d));
             }
         }
     }
@@ -145,8 +145,8 @@ Transform validate_transform(const float* m, const char* what) {
 }
 
 Material validate_material(const StratumMaterialDesc& d) {
-    check(find_closure_model(d.model) != nullptr,
-          "material model " + std::to_string(d.model) + " is not a StratumMaterialModel");
+    require(find_closure_model(d.model) != nullptr,
+            "material model " + std::to_string(d.model) + " is not a StratumMaterialModel");
     Material m{};
     m.model = d.model;
     m.base_color = rgb_in(d.base_color, 0.0f, 1.0f, "material base_color");
@@ -155,9 +155,9 @@ Material validate_material(const StratumMaterialDesc& d) {
     m.specular = finite_in(d.specular, 0.0f, 1e6f, "material specular");
     m.ior = finite_positive(d.ior, "material ior");
     m.emission = validate_radiance(d.emission, "material emission");
-    check(d.distribution == STRATUM_MICROFACET_GGX || d.distribution == STRATUM_MICROFACET_MULTISCATTER_GGX,
-          "material distribution " + std::to_string(d.distribution) +
-              " is not a StratumMicrofacetDistribution");
+    require(d.distribution == STRATUM_MICROFACET_GGX || d.distribution == STRATUM_MICROFACET_MULTISCATTER_GGX,
+            "material distribution " + std::to_string(d.distribution) +
+                " is not a StratumMicrofacetDistribution");
     m.distribution = static_cast<MicrofacetDistribution>(d.distribution);
     m.transmission = finite_in(d.transmission, 0.0f, 1.0f, "material transmission");
     m.coat = finite_in(d.coat, 0.0f, 1e6f, "material coat");
@@ -168,17 +168,17 @@ Material validate_material(const StratumMaterialDesc& d) {
         m.coat_ior = finite_positive(d.coat_ior, "material coat_ior");
         m.coat_tint = rgb_in(d.coat_tint, 0.0f, 1.0f, "material coat_tint");
     }
-    check(d.bump_shadowing >= STRATUM_BUMP_SHADOWING_NONE &&
-              d.bump_shadowing <= STRATUM_BUMP_SHADOWING_CONTY_UNSMOOTHED,
-          "material bump_shadowing " + std::to_string(d.bump_shadowing) + " is not a StratumBumpShadowing");
+    require(d.bump_shadowing >= STRATUM_BUMP_SHADOWING_NONE &&
+                d.bump_shadowing <= STRATUM_BUMP_SHADOWING_CONTY_UNSMOOTHED,
+            "material bump_shadowing " + std::to_string(d.bump_shadowing) + " is not a StratumBumpShadowing");
     m.bump_shadowing = static_cast<BumpShadowing>(d.bump_shadowing);
     return m;
 }
 
 SceneMaterial validate_closure_material(const StratumClosureDesc* closures, uint32_t count) {
-    check(closures != nullptr, "closures is NULL");
-    check(count >= 1 && count <= kMaxClosures,
-          "closure_count " + std::to_string(count) + " is not in [1, " + std::to_string(kMaxClosures) + "]");
+    require(closures != nullptr, "closures is NULL");
+    require(count >= 1 && count <= kMaxClosures, "closure_count " + std::to_string(count) +
+                                                     " is not in [1, " + std::to_string(kMaxClosures) + "]");
     SceneMaterial material;
     for (uint32_t i = 0; i < count; ++i) {
         const std::string what = "closure " + std::to_string(i);
@@ -201,7 +201,7 @@ uint32_t validate_visibility(uint32_t bits, const char* what) {
 
 LightParams validate_light(const StratumLightDesc& d) {
     const LightModel* model = find_light_model(d.type);
-    check(model != nullptr, "light type " + std::to_string(d.type) + " is not a StratumLightType");
+    require(model != nullptr, "light type " + std::to_string(d.type) + " is not a StratumLightType");
     LightParams l;
     l.type = d.type;
     l.color = validate_radiance(d.color, "light color");
@@ -234,20 +234,20 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
     c.lens_mm = finite_in(d.lens_mm, kMinLensMm, kMaxLensMm, "camera lens_mm");
     c.sensor_width_mm = finite_in(d.sensor_width_mm, kMinSensorMm, kMaxSensorMm, "camera sensor_width_mm");
     c.sensor_height_mm = finite_in(d.sensor_height_mm, kMinSensorMm, kMaxSensorMm, "camera sensor_height_mm");
-    check(d.sensor_fit >= STRATUM_SENSOR_FIT_AUTO && d.sensor_fit <= STRATUM_SENSOR_FIT_VERTICAL,
-          "camera sensor_fit " + std::to_string(d.sensor_fit) + " is not a StratumSensorFit");
+    require(d.sensor_fit >= STRATUM_SENSOR_FIT_AUTO && d.sensor_fit <= STRATUM_SENSOR_FIT_VERTICAL,
+            "camera sensor_fit " + std::to_string(d.sensor_fit) + " is not a StratumSensorFit");
     c.fit = static_cast<SensorFit>(d.sensor_fit);
     c.shift_x = finite_in(d.shift_x, -1e3f, 1e3f, "camera shift_x");
     c.shift_y = finite_in(d.shift_y, -1e3f, 1e3f, "camera shift_y");
     c.clip_start = finite_positive(d.clip_start, "camera clip_start");
     c.clip_end = finite_positive(d.clip_end, "camera clip_end");
-    check(c.clip_start < c.clip_end,
-          "camera clip_start = " + fmt(c.clip_start) + " must be below clip_end = " + fmt(c.clip_end));
+    require(c.clip_start < c.clip_end,
+            "camera clip_start = " + fmt(c.clip_start) + " must be below clip_end = " + fmt(c.clip_end));
     c.camera_to_world = validate_transform(d.transform, "camera transform");
     check_camera_frame(c.camera_to_world);
-    check(d.type == STRATUM_CAMERA_PERSPECTIVE || d.type == STRATUM_CAMERA_ORTHOGRAPHIC ||
-              d.type == STRATUM_CAMERA_EQUIRECTANGULAR,
-          "camera type " + std::to_string(d.type) + " is not a StratumCameraType");
+    require(d.type == STRATUM_CAMERA_PERSPECTIVE || d.type == STRATUM_CAMERA_ORTHOGRAPHIC ||
+                d.type == STRATUM_CAMERA_EQUIRECTANGULAR,
+            "camera type " + std::to_string(d.type) + " is not a StratumCameraType");
     c.type = static_cast<CameraType>(d.type);
     if (c.type == CameraType::Equirectangular) {
         // Blender's ranges: latitude within [-pi/2, pi/2], longitude within [-2 pi, 2 pi]
@@ -256,11 +256,11 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
         c.latitude_max = finite_in(d.latitude_max, -0.5f * kPi, 0.5f * kPi, "camera latitude_max");
         c.longitude_min = finite_in(d.longitude_min, -2.0f * kPi, 2.0f * kPi, "camera longitude_min");
         c.longitude_max = finite_in(d.longitude_max, -2.0f * kPi, 2.0f * kPi, "camera longitude_max");
-        check(c.latitude_min < c.latitude_max, "camera latitude_min = " + fmt(c.latitude_min) +
-                                                   " must be below latitude_max = " + fmt(c.latitude_max));
-        check(c.longitude_min < c.longitude_max,
-              "camera longitude_min = " + fmt(c.longitude_min) +
-                  " must be below longitude_max = " + fmt(c.longitude_max));
+        require(c.latitude_min < c.latitude_max, "camera latitude_min = " + fmt(c.latitude_min) +
+                                                     " must be below latitude_max = " + fmt(c.latitude_max));
+        require(c.longitude_min < c.longitude_max,
+                "camera longitude_min = " + fmt(c.longitude_min) +
+                    " must be below longitude_max = " + fmt(c.longitude_max));
     }
     if (c.type == CameraType::Orthographic)
         c.ortho_scale = finite_in_open(d.ortho_scale, 0.0f, kMaxCoordinate, "camera ortho_scale");
@@ -268,9 +268,9 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
     if (c.aperture_radius > 0.0f) {
         c.focus_distance = finite_in_open(d.focus_distance, 0.0f, kMaxCoordinate,
                                           "camera focus_distance (with an aperture)");
-        check(d.aperture_blades == 0 || (d.aperture_blades >= 3 && d.aperture_blades <= 1000000),
-              "camera aperture_blades = " + std::to_string(d.aperture_blades) +
-                  " must be 0 (round) or in [3, 1000000]");
+        require(d.aperture_blades == 0 || (d.aperture_blades >= 3 && d.aperture_blades <= 1000000),
+                "camera aperture_blades = " + std::to_string(d.aperture_blades) +
+                    " must be 0 (round) or in [3, 1000000]");
         c.aperture_blades = d.aperture_blades;
         c.aperture_rotation = finite_in(d.aperture_rotation, -1e6f, 1e6f, "camera aperture_rotation");
     }
@@ -278,11 +278,11 @@ CameraParams validate_camera(const StratumCameraDesc& d) {
 }
 
 std::unique_ptr<Film> validate_film_sums(const void* bytes, size_t size) {
-    check(bytes != nullptr && size > 0, "film sums are NULL or empty");
+    require(bytes != nullptr && size > 0, "film sums are NULL or empty");
     std::string error;
     std::unique_ptr<Film> film =
         Film::from_sums_bytes(std::span<const uint8_t>(static_cast<const uint8_t*>(bytes), size), &error);
-    check(film != nullptr, error);
+    require(film != nullptr, error);
     return film;
 }
 

@@ -19,6 +19,14 @@ public:
     using std::invalid_argument::invalid_argument;
 };
 
+// Throws ValidationError(message) unless `condition` holds: every validator's check, and the C
+// entry points' (api/abi_guard.h turns the exception into STRATUM_ERROR_INVALID_ARGUMENT). Build
+// the message only on failure in per-element loops: composing it eagerly cost seconds on a
+// 200k-triangle mesh.
+inline void require(bool condition, const std::string& message) {
+    if (!condition) throw ValidationError(message);
+}
+
 Material validate_material(const StratumMaterialDesc& desc);
 // A closure material: 1..kMaxClosures closures, weights finite and >= 0.
 SceneMaterial validate_closure_material(const StratumClosureDesc* closures, uint32_t count);

@@ -1,5 +1,5 @@
-// The primitive checks the C ABI's validators share (api/validation.cpp,
-// api/geometry_validation.cpp): each throws ValidationError with a message naming the value.
+// What the C ABI's validators (api/validation.cpp, api/geometry_validation.cpp) share besides
+// `require` (api/validation.h): the text of the values their messages name.
 #pragma once
 
 #include <sstream>
@@ -13,12 +13,6 @@ inline std::string fmt(float v) {
     std::ostringstream s;
     s << v;
     return s.str();
-}
-
-// For checks made once per call. Per-element loops test first and build the message only on
-// failure: composing it eagerly cost seconds on a 200k-triangle mesh.
-inline void check(bool ok, const std::string& message) {
-    if (!ok) throw ValidationError(message);
 }
 
 inline std::string triple(const float* v) {

@@ -20,7 +20,7 @@ StratumStatus stratum_vertex_normals(uint32_t vertex_count, const float* positio
                                      const uint32_t* face_starts, const uint32_t* face_sizes,
                                      const float* face_normals, uint32_t corner_count,
                                      const uint32_t* corner_vertices, uint32_t threads, float* out_normals) {
-    using stratum::abi::require;
+    using stratum::require;
     return stratum::abi::guarded("stratum_vertex_normals", [&] {
         require(out_normals || vertex_count == 0, "out_normals is NULL");
         require(threads <= kMaxThreads, "threads = " + std::to_string(threads) + " out of range [0, " +
