@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <random>
 #include <vector>
 
@@ -111,10 +112,13 @@ TEST(Principled, V2GgxSamplingMatchesPdfChiSquare) {
     }
 }
 
-TEST(Principled, V2GgxWeightIsValueOverPdf) {
-    std::mt19937_64 rng(8);
+// 2000 samples per view angle of each of `materials` (random numbers seeded with `seed`): each
+// sample's pdf is the one eval gives, and its weight is value / pdf in each of `channels`.
+void expect_weight_is_value_over_pdf(const std::vector<Material>& materials, uint64_t seed,
+                                     std::initializer_list<float Rgb::*> channels) {
+    std::mt19937_64 rng(seed);
     std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
-    for (const Material& m : v2_ggx_materials()) {
+    for (const Material& m : materials) {
         for (const float theta : kViewThetas) {
             const Vec3 wo = direction(theta, 1.1f);
             for (int i = 0; i < 2000; ++i) {
@@ -127,33 +131,19 @@ TEST(Principled, V2GgxWeightIsValueOverPdf) {
                 const BsdfEval e = bsdf_eval(m, wo, s.wi);
                 ASSERT_GT(s.pdf, 0.0f);
                 EXPECT_NEAR(s.pdf, e.pdf, 1e-4f * e.pdf);
-                EXPECT_NEAR(s.weight.r, e.value.r / e.pdf, 1e-4f * (1.0f + s.weight.r));
+                for (float Rgb::*c : channels)
+                    EXPECT_NEAR(s.weight.*c, e.value.*c / e.pdf, 1e-4f * (1.0f + s.weight.*c));
             }
         }
     }
 }
 
+TEST(Principled, V2GgxWeightIsValueOverPdf) {
+    expect_weight_is_value_over_pdf(v2_ggx_materials(), 8, {&Rgb::r});
+}
+
 TEST(Bsdf, WeightIsValueOverPdfAndPdfMatchesEval) {
-    std::mt19937_64 rng(7);
-    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
-    for (const Material& m : test_materials()) {
-        for (const float theta : kViewThetas) {
-            const Vec3 wo = direction(theta, 1.1f);
-            for (int i = 0; i < 2000; ++i) {
-                BsdfSample s;
-                // Drawn in sequence: the order of evaluation of function arguments is unspecified
-                // (GCC and clang differ), and the test must see the same numbers with either.
-                const Vec2 u{uniform(rng), uniform(rng)};
-                const float lobe = uniform(rng);
-                if (!bsdf_sample(m, wo, lobe, u, &s)) continue;
-                const BsdfEval e = bsdf_eval(m, wo, s.wi);
-                ASSERT_GT(s.pdf, 0.0f);
-                EXPECT_NEAR(s.pdf, e.pdf, 1e-4f * e.pdf);
-                EXPECT_NEAR(s.weight.r, e.value.r / e.pdf, 1e-4f * (1.0f + s.weight.r));
-                EXPECT_NEAR(s.weight.b, e.value.b / e.pdf, 1e-4f * (1.0f + s.weight.b));
-            }
-        }
-    }
+    expect_weight_is_value_over_pdf(test_materials(), 7, {&Rgb::r, &Rgb::b});
 }
 
 struct Albedo {
