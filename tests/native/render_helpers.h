@@ -44,6 +44,39 @@ inline SphereMesh make_sphere(float r, uint32_t rings, uint32_t segments) {
     return m;
 }
 
+// Adds `m` with material id `material` on every triangle, and one instance of it at the
+// origin; false when the scene rejects either.
+inline bool add_mesh_instance(StratumScene* scene, const SphereMesh& m, uint32_t material) {
+    const std::vector<uint32_t> mats(m.triangles.size() / 3, material);
+    const StratumMeshDesc mesh{m.positions.data(),
+                               static_cast<uint32_t>(m.positions.size() / 3),
+                               m.triangles.data(),
+                               static_cast<uint32_t>(m.triangles.size() / 3),
+                               nullptr,
+                               nullptr,
+                               mats.data()};
+    uint32_t mesh_id = 0;
+    return stratum_scene_add_mesh(scene, &mesh, &mesh_id) == STRATUM_OK &&
+           stratum_scene_add_instance(scene, mesh_id, kIdentity) == STRATUM_OK;
+}
+
+// Adds the quad `corners` (four vertices x, y, z in order around it; two triangles 0-1-2 and
+// 0-2-3) with material id `material`, and one instance of it at the origin.
+inline bool add_quad_instance(StratumScene* scene, const float (&corners)[12], uint32_t material) {
+    const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
+    const uint32_t mats[] = {material, material};
+    const StratumMeshDesc mesh{corners, 4, triangles, 2, nullptr, nullptr, mats};
+    uint32_t mesh_id = 0;
+    return stratum_scene_add_mesh(scene, &mesh, &mesh_id) == STRATUM_OK &&
+           stratum_scene_add_instance(scene, mesh_id, kIdentity) == STRATUM_OK;
+}
+
+// A horizontal square of half side `half` at height z, facing +Z, centred on the Z axis.
+inline bool add_square_instance(StratumScene* scene, float z, float half, uint32_t material) {
+    const float corners[12] = {-half, -half, z, half, -half, z, half, half, z, -half, half, z};
+    return add_quad_instance(scene, corners, material);
+}
+
 struct RenderOutput {
     std::vector<float> rgba;
     StratumProgress progress{};
@@ -95,20 +128,10 @@ inline StratumScene* make_sphere_interior(const StratumMaterialDesc& material, u
                                           float y, float z) {
     StratumScene* scene = nullptr;
     if (stratum_scene_create(&scene) != STRATUM_OK) return nullptr;
-    uint32_t mat = 0, mesh_id = 0;
-    const SphereMesh sphere = make_sphere(1.0f, rings, 2 * rings);
-    const std::vector<uint32_t> mats(sphere.triangles.size() / 3, 0u);
-    const StratumMeshDesc mesh{sphere.positions.data(),
-                               static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(),
-                               static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
+    uint32_t mat = 0;
     const StratumCameraDesc camera = camera_at(x, y, z);
     if (stratum_scene_add_material(scene, &material, &mat) != STRATUM_OK ||
-        stratum_scene_add_mesh(scene, &mesh, &mesh_id) != STRATUM_OK ||
-        stratum_scene_add_instance(scene, mesh_id, kIdentity) != STRATUM_OK ||
+        !add_mesh_instance(scene, make_sphere(1.0f, rings, 2 * rings), mat) ||
         stratum_scene_set_camera(scene, &camera) != STRATUM_OK) {
         stratum_scene_destroy(scene);
         return nullptr;
@@ -325,21 +348,11 @@ inline IntegratingSphere make_integrating_sphere(const IntegratingSphereDesc& d)
     const float k = d.reflectance, e = d.emission;
     const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {k, k, k}, 1.0f, 0.0f, 0.0f, 1.5f, {e, e, e},
                                    STRATUM_MICROFACET_GGX};
-    const SphereMesh& m = out.sphere.mesh;
-    const std::vector<uint32_t> mats(m.triangles.size() / 3, 0u);
-    const StratumMeshDesc mesh{m.positions.data(),
-                               static_cast<uint32_t>(m.positions.size() / 3),
-                               m.triangles.data(),
-                               static_cast<uint32_t>(m.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
     const StratumCameraDesc camera = camera_at(d.camera[0], d.camera[1], d.camera[2]);
     const float black[3] = {0.0f, 0.0f, 0.0f};  // the port opens onto nothing
-    uint32_t mat = 0, mesh_id = 0;
+    uint32_t mat = 0;
     bool ok = stratum_scene_add_material(scene, &wall, &mat) == STRATUM_OK &&
-              stratum_scene_add_mesh(scene, &mesh, &mesh_id) == STRATUM_OK &&
-              stratum_scene_add_instance(scene, mesh_id, kIdentity) == STRATUM_OK &&
+              add_mesh_instance(scene, out.sphere.mesh, mat) &&
               stratum_scene_set_camera(scene, &camera) == STRATUM_OK &&
               stratum_scene_set_background(scene, black) == STRATUM_OK;
     if (ok && d.point_power > 0.0f) {
@@ -356,6 +369,16 @@ inline IntegratingSphere make_integrating_sphere(const IntegratingSphereDesc& d)
     }
     out.scene = scene;
     return out;
+}
+
+// A closed sphere (no port, no lamp) of wall reflectance k and emission L_e, seen from the
+// default camera.
+inline IntegratingSphere make_closed_sphere(float k, float emission, uint32_t rings = 12) {
+    IntegratingSphereDesc d;
+    d.reflectance = k;
+    d.emission = emission;
+    d.rings = rings;
+    return make_integrating_sphere(d);
 }
 
 // Sphere B (research/textbook.md §2.1 test B): wall emission L_e, reflectance k, port fraction

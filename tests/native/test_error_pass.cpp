@@ -76,11 +76,7 @@ ErrorAgreement measure_error_pass(StratumScene* scene, const char* sampler, uint
 }  // namespace
 
 TEST(ErrorPass, EstimatesTheActualErrorOfIndependentSamples) {
-    IntegratingSphereDesc d;
-    d.reflectance = 0.5f;
-    d.emission = 1.0f;
-    d.rings = 12;
-    IntegratingSphere s = make_integrating_sphere(d);
+    IntegratingSphere s = make_closed_sphere(0.5f, 1.0f, 12);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     for (const uint32_t bounces : {1u, 12u}) {
         const ErrorAgreement m = measure_error_pass(s.scene, "random", 16, bounces);
@@ -103,11 +99,7 @@ TEST(ErrorPass, EstimatesTheActualErrorOfIndependentSamples) {
 // pass never understates the error, for any sampler: the ratio of the variances stays within 4
 // standard errors of at most 1.
 TEST(ErrorPass, MeasuresWhatThePassMeansForEverySampler) {
-    IntegratingSphereDesc d;
-    d.reflectance = 0.5f;
-    d.emission = 1.0f;
-    d.rings = 12;
-    IntegratingSphere s = make_integrating_sphere(d);
+    IntegratingSphere s = make_closed_sphere(0.5f, 1.0f, 12);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     for (const uint32_t bounces : {1u, 12u}) {
         for (const char* sampler : setting_choices("sampler")) {

@@ -29,19 +29,9 @@ StratumScene* lit_sphere() {
     stratum_scene_create(&scene);
     const StratumMaterialDesc grey{STRATUM_MATERIAL_DIFFUSE, {0.6f, 0.5f, 0.4f}, 1, 0, 0, 1.5f, {0, 0, 0},
                                    STRATUM_MICROFACET_GGX};
-    uint32_t mat = 0, mesh_id = 0;
+    uint32_t mat = 0;
     stratum_scene_add_material(scene, &grey, &mat);
-    const SphereMesh sphere = make_sphere(1.0f, 12, 24);
-    const std::vector<uint32_t> mats(sphere.triangles.size() / 3, 0u);
-    const StratumMeshDesc mesh{sphere.positions.data(),
-                               static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(),
-                               static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
-    stratum_scene_add_mesh(scene, &mesh, &mesh_id);
-    stratum_scene_add_instance(scene, mesh_id, kIdentity);
+    add_mesh_instance(scene, make_sphere(1.0f, 12, 24), mat);
     const float sky[3] = {0.3f, 0.4f, 0.5f};
     stratum_scene_set_background(scene, sky);
     StratumLightDesc light{};

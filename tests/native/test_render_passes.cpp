@@ -306,11 +306,7 @@ TEST(RenderPasses, FirstSamplePassesKeepSampleZeroAndTheErrorPassIsTheMeansStand
 // cos(π/128) of the unit radius, normals within π/64 of the radial direction: chords change by
 // < 1e-3).
 TEST(RenderPasses, TheAoPassInsideAClosedSphereIsOneMinusAQuarterOfTheDistanceSquared) {
-    IntegratingSphereDesc d;
-    d.reflectance = 0.5f;
-    d.emission = 0.0f;
-    d.rings = 64;
-    IntegratingSphere s = make_integrating_sphere(d);
+    IntegratingSphere s = make_closed_sphere(0.5f, 0.0f, 64);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     StratumRenderer* r = nullptr;
     ASSERT_EQ(stratum_renderer_create(s.scene, &r), STRATUM_OK);
