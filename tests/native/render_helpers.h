@@ -9,7 +9,6 @@
 #include <concepts>
 #include <initializer_list>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -84,33 +83,6 @@ struct RenderOutput {
     std::string error;    // stratum_last_error() of the first failed call; "" on success
 };
 
-// Renders `scene` with integer settings {name, value} and returns the pixels.
-inline RenderOutput render(StratumScene* scene, std::initializer_list<std::pair<const char*, int64_t>> ints,
-                           const char* sampler = "random") {
-    RenderOutput out;
-    StratumRenderer* r = nullptr;
-    if (stratum_renderer_create(scene, &r) != STRATUM_OK) return out;
-    int64_t width = 0, height = 0;
-    for (const auto& [name, value] : ints) {
-        if (stratum_renderer_set_int(r, name, value) != STRATUM_OK) {
-            stratum_renderer_destroy(r);
-            return out;
-        }
-        if (std::string_view(name) == "width") width = value;
-        if (std::string_view(name) == "height") height = value;
-    }
-    stratum_renderer_set_string(r, "sampler", sampler);
-    if (stratum_renderer_start(r) == STRATUM_OK) {
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(r, 1000, &done);
-        stratum_renderer_progress(r, &out.progress);
-        out.rgba.resize(static_cast<size_t>(width * height * 4));
-        stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size());
-    }
-    stratum_renderer_destroy(r);
-    return out;
-}
-
 // A camera at `position` looking down −Z with a 90° horizontal field of view.
 inline StratumCameraDesc camera_at(float x, float y, float z) {
     StratumCameraDesc c{18.0f, 36.0f, 36.0f, STRATUM_SENSOR_FIT_AUTO, 0, 0, 1e-3f, 1e3f, {}, 0, 0, 0,
@@ -154,6 +126,35 @@ struct Setting {
 };
 using Settings = std::vector<Setting>;
 
+// Sets `settings` on `r` in order, up to the first one it rejects: that one's
+// stratum_last_error(), or "" when every setting is accepted.
+inline std::string apply_settings(StratumRenderer* r, const Settings& settings) {
+    for (const Setting& s : settings) {
+        StratumStatus status = STRATUM_OK;
+        switch (s.kind) {
+            case Setting::Kind::Int:
+                status = stratum_renderer_set_int(r, s.name.c_str(), s.int_value);
+                break;
+            case Setting::Kind::Float:
+                status = stratum_renderer_set_float(r, s.name.c_str(), s.float_value);
+                break;
+            case Setting::Kind::String:
+                status = stratum_renderer_set_string(r, s.name.c_str(), s.string_value.c_str());
+                break;
+        }
+        if (status != STRATUM_OK) return stratum_last_error();
+    }
+    return "";
+}
+
+// Starts `r` and waits until its render has ended; false when it does not start.
+inline bool render_to_end(StratumRenderer* r) {
+    if (stratum_renderer_start(r) != STRATUM_OK) return false;
+    int32_t done = 0;
+    while (!done) stratum_renderer_wait(r, 1000, &done);
+    return true;
+}
+
 // Renders `scene` with `settings` (ints, floats and strings by name) and returns the pixels and
 // the renderer's notices. A rejected setting leaves rgba empty and names the failure in `error`.
 inline RenderOutput render(StratumScene* scene, const Settings& settings) {
@@ -163,31 +164,17 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
         out.error = stratum_last_error();
         return out;
     }
+    out.error = apply_settings(r, settings);
+    if (!out.error.empty()) {
+        stratum_renderer_destroy(r);
+        return out;
+    }
     int64_t width = 0, height = 0;
     for (const Setting& s : settings) {
-        StratumStatus status = STRATUM_OK;
-        switch (s.kind) {
-            case Setting::Kind::Int:
-                status = stratum_renderer_set_int(r, s.name.c_str(), s.int_value);
-                if (s.name == "width") width = s.int_value;
-                if (s.name == "height") height = s.int_value;
-                break;
-            case Setting::Kind::Float:
-                status = stratum_renderer_set_float(r, s.name.c_str(), s.float_value);
-                break;
-            case Setting::Kind::String:
-                status = stratum_renderer_set_string(r, s.name.c_str(), s.string_value.c_str());
-                break;
-        }
-        if (status != STRATUM_OK) {
-            out.error = stratum_last_error();
-            stratum_renderer_destroy(r);
-            return out;
-        }
+        if (s.kind == Setting::Kind::Int && s.name == "width") width = s.int_value;
+        if (s.kind == Setting::Kind::Int && s.name == "height") height = s.int_value;
     }
-    if (stratum_renderer_start(r) == STRATUM_OK) {
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(r, 1000, &done);
+    if (render_to_end(r)) {
         // After the render: the notices of start, of the scene build and of the render's end.
         const char* notices = nullptr;
         if (stratum_renderer_notices(r, &notices) == STRATUM_OK && notices) out.notices = notices;
@@ -199,6 +186,15 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
     }
     stratum_renderer_destroy(r);
     return out;
+}
+
+// Renders `scene` with integer settings {name, value} and the sampler named `sampler`.
+inline RenderOutput render(StratumScene* scene, std::initializer_list<std::pair<const char*, int64_t>> ints,
+                           const char* sampler = "random") {
+    Settings settings;
+    for (const auto& [name, value] : ints) settings.emplace_back(name, value);
+    settings.emplace_back("sampler", sampler);
+    return render(scene, settings);
 }
 
 // Mean of one channel over the pixels of an image and its standard error s/√P, s the sample

@@ -82,9 +82,7 @@ std::vector<float> render_ao(const AoScene& s, const char* hemisphere, double ao
                     stratum_renderer_set_string(r, "hemisphere", hemisphere) == STRATUM_OK &&
                     stratum_renderer_set_float(r, "ao_distance", ao_distance) == STRATUM_OK;
     EXPECT_TRUE(ok) << stratum_last_error();
-    if (ok && stratum_renderer_start(r) == STRATUM_OK) {
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(r, 1000, &done);
+    if (ok && render_to_end(r)) {
         std::vector<float> rgba(static_cast<size_t>(size * size * 4));
         stratum_renderer_read_pixels(r, rgba.data(), rgba.size());
         for (size_t i = 0; i < rgba.size(); i += 4) grey.push_back(rgba[i]);

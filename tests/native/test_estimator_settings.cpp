@@ -46,9 +46,7 @@ struct RendererFixture : ::testing::Test {
         stratum_renderer_set_int(renderer, "width", 4);
         stratum_renderer_set_int(renderer, "height", 4);
         stratum_renderer_set_int(renderer, "samples", 1);
-        EXPECT_EQ(stratum_renderer_start(renderer), STRATUM_OK) << stratum_last_error();
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(renderer, 1000, &done);
+        EXPECT_TRUE(render_to_end(renderer)) << stratum_last_error();
         const char* notices = nullptr;
         EXPECT_EQ(stratum_renderer_notices(renderer, &notices), STRATUM_OK);
         return notices ? notices : "";

@@ -68,19 +68,17 @@ StratumRenderer* start(StratumScene* scene, const char* sampler, const char* int
                        int64_t count) {
     StratumRenderer* r = nullptr;
     EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
-    for (const auto& [name, value] : std::vector<std::pair<const char*, int64_t>>{{"width", kSize},
-                                                                                  {"height", kSize},
-                                                                                  {"samples", kSamples},
-                                                                                  {"seed", 3},
-                                                                                  {"sample_offset", offset},
-                                                                                  {"sample_count", count}})
-        EXPECT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK) << stratum_last_error();
-    EXPECT_EQ(stratum_renderer_set_string(r, "sampler", sampler), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "integrator", integrator), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "passes", kPasses), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    EXPECT_EQ(apply_settings(r, {{"width", kSize},
+                                 {"height", kSize},
+                                 {"samples", kSamples},
+                                 {"seed", 3},
+                                 {"sample_offset", offset},
+                                 {"sample_count", count},
+                                 {"sampler", sampler},
+                                 {"integrator", integrator},
+                                 {"passes", kPasses}}),
+              "");
+    EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
     return r;
 }
 
@@ -159,9 +157,7 @@ TEST(FilmExchange, RefusesSumsThatDoNotBelongTogether) {
     stratum_renderer_set_int(other, "height", 8);
     stratum_renderer_set_int(other, "samples", kSamples);
     stratum_renderer_set_int(other, "sample_offset", 4);
-    stratum_renderer_start(other);
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(other, 1000, &done);
+    render_to_end(other);
     const std::vector<uint8_t> small = sums_of(other);
     EXPECT_EQ(stratum_renderer_add_sums(a, small.data(), small.size()), STRATUM_ERROR_INVALID_ARGUMENT);
     // Bytes that are not sums: truncated, or garbage.
