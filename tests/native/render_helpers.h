@@ -16,6 +16,11 @@ namespace stratum_test {
 
 inline constexpr float kIdentity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
 
+// A grey Lambertian material of reflectance k, not emitting.
+inline StratumMaterialDesc diffuse_grey(float k) {
+    return {STRATUM_MATERIAL_DIFFUSE, {k, k, k}, 1.0f, 0.0f, 0.0f, 1.5f, {0, 0, 0}, STRATUM_MICROFACET_GGX};
+}
+
 // A UV sphere of radius r centred at the origin, wound so normals point outward.
 struct SphereMesh {
     std::vector<float> positions;

@@ -45,8 +45,7 @@ const char* const kDistributions[] = {"uniform_angles", "uniform", "cosine"};
 struct AoScene : SceneHandle {
     uint32_t material = 0;
     AoScene() {
-        const StratumMaterialDesc grey{STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1, 0, 0, 1.5f, {0, 0, 0},
-                                       STRATUM_MICROFACET_GGX};
+        const StratumMaterialDesc grey = diffuse_grey(0.5f);
         EXPECT_EQ(stratum_scene_add_material(scene, &grey, &material), STRATUM_OK);
     }
 

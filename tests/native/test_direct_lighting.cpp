@@ -31,17 +31,7 @@ constexpr float kPiF = 3.14159265358979f;
 constexpr float kFloorReflectance = 0.5f;
 
 struct Floor : SceneHandle {
-    Floor() {
-        const StratumMaterialDesc floor{STRATUM_MATERIAL_DIFFUSE,
-                                        {kFloorReflectance, kFloorReflectance, kFloorReflectance},
-                                        1.0f,
-                                        0.0f,
-                                        0.0f,
-                                        1.5f,
-                                        {0, 0, 0},
-                                        STRATUM_MICROFACET_GGX};
-        add_quad(floor, 0.0f, 10.0f);
-    }
+    Floor() { add_quad(diffuse_grey(kFloorReflectance), 0.0f, 10.0f); }
     // A square of half side `half` at height z.
     void add_quad(const StratumMaterialDesc& material, float z, float half) {
         uint32_t mat = 0;

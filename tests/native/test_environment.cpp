@@ -28,14 +28,7 @@ constexpr float kReflectance = 0.5f;
 
 struct EnvFloor : SceneHandle {
     EnvFloor() {
-        const StratumMaterialDesc floor{STRATUM_MATERIAL_DIFFUSE,
-                                        {kReflectance, kReflectance, kReflectance},
-                                        1.0f,
-                                        0.0f,
-                                        0.0f,
-                                        1.5f,
-                                        {0, 0, 0},
-                                        STRATUM_MICROFACET_GGX};
+        const StratumMaterialDesc floor = diffuse_grey(kReflectance);
         uint32_t mat = 0;
         EXPECT_EQ(stratum_scene_add_material(scene, &floor, &mat), STRATUM_OK);
         EXPECT_TRUE(add_square_instance(scene, 0.0f, 10.0f, mat)) << stratum_last_error();

@@ -19,10 +19,7 @@ namespace {
 
 struct RendererFixture : ::testing::Test {
     void SetUp() override {
-        const StratumMaterialDesc wall{
-            STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, 0.0f, 1.5f, {0, 0, 0},
-            STRATUM_MICROFACET_GGX};
-        scene = make_sphere_interior(wall, 8, 0.0f, 0.0f, 0.0f);
+        scene = make_sphere_interior(diffuse_grey(0.5f), 8, 0.0f, 0.0f, 0.0f);
         ASSERT_NE(scene, nullptr) << stratum_last_error();
         ASSERT_EQ(stratum_renderer_create(scene, &renderer), STRATUM_OK) << stratum_last_error();
     }
