@@ -193,7 +193,7 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
     return out;
 }
 
-// Renders `scene` with integer settings {name, value} and the sampler named `sampler`.
+// render(scene, settings) with the integer settings {name, value} followed by ("sampler", sampler).
 inline RenderOutput render(StratumScene* scene, std::initializer_list<std::pair<const char*, int64_t>> ints,
                            const char* sampler = "random") {
     Settings settings;
