@@ -9,13 +9,17 @@
 #include <concepts>
 #include <initializer_list>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
 namespace stratum_test {
 
 inline constexpr float kIdentity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+
+// A grey Lambertian material of reflectance k, not emitting.
+inline StratumMaterialDesc diffuse_grey(float k) {
+    return {STRATUM_MATERIAL_DIFFUSE, {k, k, k}, 1.0f, 0.0f, 0.0f, 1.5f, {0, 0, 0}, STRATUM_MICROFACET_GGX};
+}
 
 // A UV sphere of radius r centred at the origin, wound so normals point outward.
 struct SphereMesh {
@@ -44,39 +48,45 @@ inline SphereMesh make_sphere(float r, uint32_t rings, uint32_t segments) {
     return m;
 }
 
+// Adds `m` with material id `material` on every triangle, and one instance of it at the
+// origin; false when the scene rejects either.
+inline bool add_mesh_instance(StratumScene* scene, const SphereMesh& m, uint32_t material) {
+    const std::vector<uint32_t> mats(m.triangles.size() / 3, material);
+    const StratumMeshDesc mesh{m.positions.data(),
+                               static_cast<uint32_t>(m.positions.size() / 3),
+                               m.triangles.data(),
+                               static_cast<uint32_t>(m.triangles.size() / 3),
+                               nullptr,
+                               nullptr,
+                               mats.data()};
+    uint32_t mesh_id = 0;
+    return stratum_scene_add_mesh(scene, &mesh, &mesh_id) == STRATUM_OK &&
+           stratum_scene_add_instance(scene, mesh_id, kIdentity) == STRATUM_OK;
+}
+
+// Adds the quad `corners` (four vertices x, y, z in order around it; two triangles 0-1-2 and
+// 0-2-3) with material id `material`, and one instance of it at the origin.
+inline bool add_quad_instance(StratumScene* scene, const float (&corners)[12], uint32_t material) {
+    const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
+    const uint32_t mats[] = {material, material};
+    const StratumMeshDesc mesh{corners, 4, triangles, 2, nullptr, nullptr, mats};
+    uint32_t mesh_id = 0;
+    return stratum_scene_add_mesh(scene, &mesh, &mesh_id) == STRATUM_OK &&
+           stratum_scene_add_instance(scene, mesh_id, kIdentity) == STRATUM_OK;
+}
+
+// A horizontal square of half side `half` at height z, facing +Z, centred on the Z axis.
+inline bool add_square_instance(StratumScene* scene, float z, float half, uint32_t material) {
+    const float corners[12] = {-half, -half, z, half, -half, z, half, half, z, -half, half, z};
+    return add_quad_instance(scene, corners, material);
+}
+
 struct RenderOutput {
     std::vector<float> rgba;
     StratumProgress progress{};
     std::string notices;  // stratum_renderer_notices when the render has ended
     std::string error;    // stratum_last_error() of the first failed call; "" on success
 };
-
-// Renders `scene` with integer settings {name, value} and returns the pixels.
-inline RenderOutput render(StratumScene* scene, std::initializer_list<std::pair<const char*, int64_t>> ints,
-                           const char* sampler = "random") {
-    RenderOutput out;
-    StratumRenderer* r = nullptr;
-    if (stratum_renderer_create(scene, &r) != STRATUM_OK) return out;
-    int64_t width = 0, height = 0;
-    for (const auto& [name, value] : ints) {
-        if (stratum_renderer_set_int(r, name, value) != STRATUM_OK) {
-            stratum_renderer_destroy(r);
-            return out;
-        }
-        if (std::string_view(name) == "width") width = value;
-        if (std::string_view(name) == "height") height = value;
-    }
-    stratum_renderer_set_string(r, "sampler", sampler);
-    if (stratum_renderer_start(r) == STRATUM_OK) {
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(r, 1000, &done);
-        stratum_renderer_progress(r, &out.progress);
-        out.rgba.resize(static_cast<size_t>(width * height * 4));
-        stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size());
-    }
-    stratum_renderer_destroy(r);
-    return out;
-}
 
 // A camera at `position` looking down −Z with a 90° horizontal field of view.
 inline StratumCameraDesc camera_at(float x, float y, float z) {
@@ -95,20 +105,10 @@ inline StratumScene* make_sphere_interior(const StratumMaterialDesc& material, u
                                           float y, float z) {
     StratumScene* scene = nullptr;
     if (stratum_scene_create(&scene) != STRATUM_OK) return nullptr;
-    uint32_t mat = 0, mesh_id = 0;
-    const SphereMesh sphere = make_sphere(1.0f, rings, 2 * rings);
-    const std::vector<uint32_t> mats(sphere.triangles.size() / 3, 0u);
-    const StratumMeshDesc mesh{sphere.positions.data(),
-                               static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(),
-                               static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
+    uint32_t mat = 0;
     const StratumCameraDesc camera = camera_at(x, y, z);
     if (stratum_scene_add_material(scene, &material, &mat) != STRATUM_OK ||
-        stratum_scene_add_mesh(scene, &mesh, &mesh_id) != STRATUM_OK ||
-        stratum_scene_add_instance(scene, mesh_id, kIdentity) != STRATUM_OK ||
+        !add_mesh_instance(scene, make_sphere(1.0f, rings, 2 * rings), mat) ||
         stratum_scene_set_camera(scene, &camera) != STRATUM_OK) {
         stratum_scene_destroy(scene);
         return nullptr;
@@ -131,6 +131,35 @@ struct Setting {
 };
 using Settings = std::vector<Setting>;
 
+// Sets `settings` on `r` in order, up to the first one it rejects: that one's
+// stratum_last_error(), or "" when every setting is accepted.
+inline std::string apply_settings(StratumRenderer* r, const Settings& settings) {
+    for (const Setting& s : settings) {
+        StratumStatus status = STRATUM_OK;
+        switch (s.kind) {
+            case Setting::Kind::Int:
+                status = stratum_renderer_set_int(r, s.name.c_str(), s.int_value);
+                break;
+            case Setting::Kind::Float:
+                status = stratum_renderer_set_float(r, s.name.c_str(), s.float_value);
+                break;
+            case Setting::Kind::String:
+                status = stratum_renderer_set_string(r, s.name.c_str(), s.string_value.c_str());
+                break;
+        }
+        if (status != STRATUM_OK) return stratum_last_error();
+    }
+    return "";
+}
+
+// Starts `r` and waits until its render has ended; false when it does not start.
+inline bool render_to_end(StratumRenderer* r) {
+    if (stratum_renderer_start(r) != STRATUM_OK) return false;
+    int32_t done = 0;
+    while (!done) stratum_renderer_wait(r, 1000, &done);
+    return true;
+}
+
 // Renders `scene` with `settings` (ints, floats and strings by name) and returns the pixels and
 // the renderer's notices. A rejected setting leaves rgba empty and names the failure in `error`.
 inline RenderOutput render(StratumScene* scene, const Settings& settings) {
@@ -140,31 +169,17 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
         out.error = stratum_last_error();
         return out;
     }
+    out.error = apply_settings(r, settings);
+    if (!out.error.empty()) {
+        stratum_renderer_destroy(r);
+        return out;
+    }
     int64_t width = 0, height = 0;
     for (const Setting& s : settings) {
-        StratumStatus status = STRATUM_OK;
-        switch (s.kind) {
-            case Setting::Kind::Int:
-                status = stratum_renderer_set_int(r, s.name.c_str(), s.int_value);
-                if (s.name == "width") width = s.int_value;
-                if (s.name == "height") height = s.int_value;
-                break;
-            case Setting::Kind::Float:
-                status = stratum_renderer_set_float(r, s.name.c_str(), s.float_value);
-                break;
-            case Setting::Kind::String:
-                status = stratum_renderer_set_string(r, s.name.c_str(), s.string_value.c_str());
-                break;
-        }
-        if (status != STRATUM_OK) {
-            out.error = stratum_last_error();
-            stratum_renderer_destroy(r);
-            return out;
-        }
+        if (s.kind == Setting::Kind::Int && s.name == "width") width = s.int_value;
+        if (s.kind == Setting::Kind::Int && s.name == "height") height = s.int_value;
     }
-    if (stratum_renderer_start(r) == STRATUM_OK) {
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(r, 1000, &done);
+    if (render_to_end(r)) {
         // After the render: the notices of start, of the scene build and of the render's end.
         const char* notices = nullptr;
         if (stratum_renderer_notices(r, &notices) == STRATUM_OK && notices) out.notices = notices;
@@ -176,6 +191,15 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
     }
     stratum_renderer_destroy(r);
     return out;
+}
+
+// render(scene, settings) with the integer settings {name, value} followed by ("sampler", sampler).
+inline RenderOutput render(StratumScene* scene, std::initializer_list<std::pair<const char*, int64_t>> ints,
+                           const char* sampler = "random") {
+    Settings settings;
+    for (const auto& [name, value] : ints) settings.emplace_back(name, value);
+    settings.emplace_back("sampler", sampler);
+    return render(scene, settings);
 }
 
 // Mean of one channel over the pixels of an image and its standard error s/√P, s the sample
@@ -325,21 +349,11 @@ inline IntegratingSphere make_integrating_sphere(const IntegratingSphereDesc& d)
     const float k = d.reflectance, e = d.emission;
     const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {k, k, k}, 1.0f, 0.0f, 0.0f, 1.5f, {e, e, e},
                                    STRATUM_MICROFACET_GGX};
-    const SphereMesh& m = out.sphere.mesh;
-    const std::vector<uint32_t> mats(m.triangles.size() / 3, 0u);
-    const StratumMeshDesc mesh{m.positions.data(),
-                               static_cast<uint32_t>(m.positions.size() / 3),
-                               m.triangles.data(),
-                               static_cast<uint32_t>(m.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
     const StratumCameraDesc camera = camera_at(d.camera[0], d.camera[1], d.camera[2]);
     const float black[3] = {0.0f, 0.0f, 0.0f};  // the port opens onto nothing
-    uint32_t mat = 0, mesh_id = 0;
+    uint32_t mat = 0;
     bool ok = stratum_scene_add_material(scene, &wall, &mat) == STRATUM_OK &&
-              stratum_scene_add_mesh(scene, &mesh, &mesh_id) == STRATUM_OK &&
-              stratum_scene_add_instance(scene, mesh_id, kIdentity) == STRATUM_OK &&
+              add_mesh_instance(scene, out.sphere.mesh, mat) &&
               stratum_scene_set_camera(scene, &camera) == STRATUM_OK &&
               stratum_scene_set_background(scene, black) == STRATUM_OK;
     if (ok && d.point_power > 0.0f) {
@@ -356,6 +370,16 @@ inline IntegratingSphere make_integrating_sphere(const IntegratingSphereDesc& d)
     }
     out.scene = scene;
     return out;
+}
+
+// A closed sphere (no port, no lamp) of wall reflectance k and emission L_e, seen from the
+// default camera.
+inline IntegratingSphere make_closed_sphere(float k, float emission, uint32_t rings = 12) {
+    IntegratingSphereDesc d;
+    d.reflectance = k;
+    d.emission = emission;
+    d.rings = rings;
+    return make_integrating_sphere(d);
 }
 
 // Sphere B (research/textbook.md §2.1 test B): wall emission L_e, reflectance k, port fraction

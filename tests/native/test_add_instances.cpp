@@ -14,6 +14,10 @@
 #include <string>
 #include <vector>
 
+#include "scene_handle.h"
+
+using stratum_test::SceneHandle;
+
 namespace {
 
 using Matrix = std::array<float, 16>;
@@ -27,12 +31,6 @@ Matrix translated(float x, float y, float z) {
     m[11] = z;
     return m;
 }
-
-struct SceneHandle {
-    StratumScene* s = nullptr;
-    SceneHandle() { EXPECT_EQ(stratum_scene_create(&s), STRATUM_OK); }
-    ~SceneHandle() { stratum_scene_destroy(s); }
-};
 
 // One material and two one-triangle meshes (ids 0 and 1).
 void add_meshes(StratumScene* s) {
@@ -74,21 +72,22 @@ TEST(AddInstances, BatchSavesTheSameSceneAsOneCallPerInstance) {
         transforms.insert(transforms.end(), m.begin(), m.end());
     }
     SceneHandle one_by_one, batch;
-    add_meshes(one_by_one.s);
-    add_meshes(batch.s);
+    add_meshes(one_by_one.scene);
+    add_meshes(batch.scene);
     for (size_t i = 0; i < ids.size(); ++i)
-        ASSERT_EQ(stratum_scene_add_instance(one_by_one.s, ids[i], transforms.data() + 16 * i), STRATUM_OK);
+        ASSERT_EQ(stratum_scene_add_instance(one_by_one.scene, ids[i], transforms.data() + 16 * i),
+                  STRATUM_OK);
     uint32_t failed = 7;
-    ASSERT_EQ(stratum_scene_add_instances(batch.s, 4, ids.data(), transforms.data(), &failed), STRATUM_OK)
+    ASSERT_EQ(stratum_scene_add_instances(batch.scene, 4, ids.data(), transforms.data(), &failed), STRATUM_OK)
         << stratum_last_error();
     EXPECT_EQ(failed, UINT32_MAX);
-    EXPECT_EQ(saved(batch.s, "stratum_add_instances_batch.json"),
-              saved(one_by_one.s, "stratum_add_instances_single.json"));
+    EXPECT_EQ(saved(batch.scene, "stratum_add_instances_batch.json"),
+              saved(one_by_one.scene, "stratum_add_instances_single.json"));
 }
 
 TEST(AddInstances, RejectedRowAddsNothingAndIsNamed) {
-    SceneHandle scene;
-    add_meshes(scene.s);
+    SceneHandle h;
+    add_meshes(h.scene);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     struct Case {
         uint32_t bad_row;
@@ -113,14 +112,14 @@ TEST(AddInstances, RejectedRowAddsNothingAndIsNamed) {
         ids[c.bad_row] = c.mesh_id;
         std::copy(c.transform.begin(), c.transform.end(), transforms.begin() + 16 * c.bad_row);
         uint32_t failed = 7;
-        EXPECT_EQ(stratum_scene_add_instances(scene.s, 4, ids.data(), transforms.data(), &failed),
+        EXPECT_EQ(stratum_scene_add_instances(h.scene, 4, ids.data(), transforms.data(), &failed),
                   STRATUM_ERROR_INVALID_ARGUMENT);
         const std::string error = stratum_last_error();
         EXPECT_EQ(error.rfind("stratum_scene_add_instances: ", 0), 0u) << error;
         EXPECT_NE(error.find(c.named), std::string::npos) << error;
         EXPECT_EQ(failed, c.bad_row) << error;
         // All or nothing: the rows before the bad one were not added either.
-        EXPECT_FALSE(has_instance(scene.s, 0, kIdentity, 0)) << c.named;
+        EXPECT_FALSE(has_instance(h.scene, 0, kIdentity, 0)) << c.named;
     }
     // The out index is optional; a good batch after refused ones starts at instance 0.
     const uint32_t ids[] = {1, 0};
@@ -129,24 +128,24 @@ TEST(AddInstances, RejectedRowAddsNothingAndIsNamed) {
         t.insert(t.end(), kIdentity.begin(), kIdentity.end());
         return t;
     }();
-    ASSERT_EQ(stratum_scene_add_instances(scene.s, 2, ids, transforms.data(), nullptr), STRATUM_OK);
-    EXPECT_TRUE(has_instance(scene.s, 1, kIdentity, 0));
-    EXPECT_FALSE(has_instance(scene.s, 2, kIdentity, 0));
+    ASSERT_EQ(stratum_scene_add_instances(h.scene, 2, ids, transforms.data(), nullptr), STRATUM_OK);
+    EXPECT_TRUE(has_instance(h.scene, 1, kIdentity, 0));
+    EXPECT_FALSE(has_instance(h.scene, 2, kIdentity, 0));
 }
 
 TEST(AddInstances, NullArraysAreErrorsUnlessTheBatchIsEmpty) {
-    SceneHandle scene;
-    add_meshes(scene.s);
+    SceneHandle h;
+    add_meshes(h.scene);
     uint32_t failed = 7;
-    EXPECT_EQ(stratum_scene_add_instances(scene.s, 0, nullptr, nullptr, &failed), STRATUM_OK);
+    EXPECT_EQ(stratum_scene_add_instances(h.scene, 0, nullptr, nullptr, &failed), STRATUM_OK);
     EXPECT_EQ(failed, UINT32_MAX);
-    EXPECT_EQ(stratum_scene_add_instances(scene.s, 3, nullptr, kIdentity.data(), &failed),
+    EXPECT_EQ(stratum_scene_add_instances(h.scene, 3, nullptr, kIdentity.data(), &failed),
               STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(stratum_last_error()).find("NULL"), std::string::npos);
     EXPECT_EQ(failed, UINT32_MAX);  // no row was rejected: the call was
     const uint32_t id = 0;
-    EXPECT_EQ(stratum_scene_add_instances(scene.s, 1, &id, nullptr, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_add_instances(h.scene, 1, &id, nullptr, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_EQ(stratum_scene_add_instances(nullptr, 1, &id, kIdentity.data(), &failed),
               STRATUM_ERROR_INVALID_ARGUMENT);
-    EXPECT_FALSE(has_instance(scene.s, 0, kIdentity, 0));
+    EXPECT_FALSE(has_instance(h.scene, 0, kIdentity, 0));
 }

@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "render_helpers.h"
+#include "scene_handle.h"
 #include "setting_choices.h"
 
 using namespace stratum_test;
@@ -41,34 +42,21 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr float kOffset = 1e-4f;  // ray_offset.h at |p| <= 1
 const char* const kDistributions[] = {"uniform_angles", "uniform", "cosine"};
 
-struct AoScene {
-    StratumScene* scene = nullptr;
+struct AoScene : SceneHandle {
     uint32_t material = 0;
     AoScene() {
-        EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
-        const StratumMaterialDesc grey{STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1, 0, 0, 1.5f, {0, 0, 0},
-                                       STRATUM_MICROFACET_GGX};
+        const StratumMaterialDesc grey = diffuse_grey(0.5f);
         EXPECT_EQ(stratum_scene_add_material(scene, &grey, &material), STRATUM_OK);
     }
-    ~AoScene() { stratum_scene_destroy(scene); }
-    AoScene(const AoScene&) = delete;
-    AoScene& operator=(const AoScene&) = delete;
 
-    void add_quad(const float (&corners)[12]) {
-        const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
-        const uint32_t mats[] = {material, material};
-        const StratumMeshDesc mesh{corners, 4, triangles, 2, nullptr, nullptr, mats};
-        uint32_t id = 0;
-        EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, &id), STRATUM_OK);
-        EXPECT_EQ(stratum_scene_add_instance(scene, id, kIdentity), STRATUM_OK);
-    }
     // Horizontal square of half side `half` at height z.
     void add_horizontal(float z, float half) {
-        add_quad({-half, -half, z, half, -half, z, half, half, z, -half, half, z});
+        EXPECT_TRUE(add_square_instance(scene, z, half, material)) << stratum_last_error();
     }
     // Vertical wall in the plane x = 0: y in [-half, half], z in [0, height].
     void add_wall(float half, float height) {
-        add_quad({0, -half, 0, 0, half, 0, 0, half, height, 0, -half, height});
+        const float corners[12] = {0, -half, 0, 0, half, 0, 0, half, height, 0, -half, height};
+        EXPECT_TRUE(add_quad_instance(scene, corners, material)) << stratum_last_error();
     }
     // Camera at (x, 0, z) looking straight down; `lens_mm` 5000 sees a tiny footprint.
     void look_down_at(float x, float z, float lens_mm = 5000.0f) {
@@ -93,9 +81,7 @@ std::vector<float> render_ao(const AoScene& s, const char* hemisphere, double ao
                     stratum_renderer_set_string(r, "hemisphere", hemisphere) == STRATUM_OK &&
                     stratum_renderer_set_float(r, "ao_distance", ao_distance) == STRATUM_OK;
     EXPECT_TRUE(ok) << stratum_last_error();
-    if (ok && stratum_renderer_start(r) == STRATUM_OK) {
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(r, 1000, &done);
+    if (ok && render_to_end(r)) {
         std::vector<float> rgba(static_cast<size_t>(size * size * 4));
         stratum_renderer_read_pixels(r, rgba.data(), rgba.size());
         for (size_t i = 0; i < rgba.size(); i += 4) grey.push_back(rgba[i]);

@@ -8,17 +8,14 @@
 #include <string>
 #include <vector>
 
+#include "scene_handle.h"
 #include "setting_choices.h"
+
+using stratum_test::SceneHandle;
 
 namespace {
 
 constexpr float kIdentity[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
-
-struct SceneHandle {
-    StratumScene* s = nullptr;
-    SceneHandle() { EXPECT_EQ(stratum_scene_create(&s), STRATUM_OK); }
-    ~SceneHandle() { stratum_scene_destroy(s); }
-};
 
 uint32_t add_grey(StratumScene* s) {
     StratumMaterialDesc m{STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, 0.5f, 1.5f, {0, 0, 0},
@@ -53,45 +50,45 @@ TEST(Api, ModelListingsNameEveryValue) {
 }
 
 TEST(Api, NanVertexIsRejectedWithItsIndex) {
-    SceneHandle scene;
-    const uint32_t mat = add_grey(scene.s);
+    SceneHandle h;
+    const uint32_t mat = add_grey(h.scene);
     const float nan = std::numeric_limits<float>::quiet_NaN();
     const float positions[] = {0, 0, 0, 1, 0, 0, 0, nan, 0};
     const uint32_t triangles[] = {0, 1, 2};
     const StratumMeshDesc mesh{positions, 3, triangles, 1, nullptr, nullptr, &mat};
-    EXPECT_EQ(stratum_scene_add_mesh(scene.s, &mesh, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_add_mesh(h.scene, &mesh, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("vertex 2"), std::string::npos) << last_error();
     EXPECT_NE(last_error().find("nan"), std::string::npos) << last_error();
 }
 
 TEST(Api, OutOfRangeIndicesAndZeroSizesAreRejected) {
-    SceneHandle scene;
-    const uint32_t mat = add_grey(scene.s);
+    SceneHandle h;
+    const uint32_t mat = add_grey(h.scene);
     const float positions[] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const uint32_t bad_triangles[] = {0, 1, 7};
     StratumMeshDesc mesh{positions, 3, bad_triangles, 1, nullptr, nullptr, &mat};
-    EXPECT_EQ(stratum_scene_add_mesh(scene.s, &mesh, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_add_mesh(h.scene, &mesh, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("vertex index 7"), std::string::npos) << last_error();
 
     const uint32_t triangles[] = {0, 1, 2};
     const uint32_t bad_material = 5;
     mesh = {positions, 3, triangles, 1, nullptr, nullptr, &bad_material};
-    EXPECT_EQ(stratum_scene_add_mesh(scene.s, &mesh, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_add_mesh(h.scene, &mesh, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("material id 5"), std::string::npos) << last_error();
 
     mesh = {positions, 0, triangles, 1, nullptr, nullptr, &mat};
-    EXPECT_EQ(stratum_scene_add_mesh(scene.s, &mesh, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_add_mesh(h.scene, &mesh, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("vertex_count is 0"), std::string::npos) << last_error();
 
-    EXPECT_EQ(stratum_scene_add_instance(scene.s, 3, kIdentity), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_add_instance(h.scene, 3, kIdentity), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("mesh_id 3"), std::string::npos) << last_error();
 }
 
 TEST(Api, BadMaterialLightAndCameraValuesAreNamed) {
-    SceneHandle scene;
+    SceneHandle h;
     StratumMaterialDesc m{STRATUM_MATERIAL_DIFFUSE, {0.5f, 1.5f, 0.5f}, 1.0f, 0.0f, 0.5f, 1.5f, {0, 0, 0},
                           STRATUM_MICROFACET_GGX};
-    EXPECT_EQ(stratum_scene_add_material(scene.s, &m, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_add_material(h.scene, &m, nullptr), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("base_color[1] = 1.5"), std::string::npos) << last_error();
 
     StratumLightDesc l{};
@@ -100,23 +97,23 @@ TEST(Api, BadMaterialLightAndCameraValuesAreNamed) {
     l.size_x = 0;
     l.size_y = 1;
     std::copy(kIdentity, kIdentity + 16, l.transform);
-    EXPECT_EQ(stratum_scene_add_light(scene.s, &l), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_add_light(h.scene, &l), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("size_x"), std::string::npos) << last_error();
 
     StratumCameraDesc c{50, 36, 24, STRATUM_SENSOR_FIT_AUTO, 0, 0, 10.0f, 1.0f, {}, 0, 0, 0, 0, 0, 0};
     std::copy(kIdentity, kIdentity + 16, c.transform);
-    EXPECT_EQ(stratum_scene_set_camera(scene.s, &c), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_set_camera(h.scene, &c), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("clip_start"), std::string::npos) << last_error();
     c.clip_start = 0.1f;
     c.transform[3] = std::numeric_limits<float>::infinity();
-    EXPECT_EQ(stratum_scene_set_camera(scene.s, &c), STRATUM_ERROR_INVALID_ARGUMENT);
+    EXPECT_EQ(stratum_scene_set_camera(h.scene, &c), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("element 3"), std::string::npos) << last_error();
 }
 
 TEST(Api, UnknownSettingNamesAndValuesAreRejected) {
-    SceneHandle scene;
+    SceneHandle h;
     StratumRenderer* r = nullptr;
-    ASSERT_EQ(stratum_renderer_create(scene.s, &r), STRATUM_OK);
+    ASSERT_EQ(stratum_renderer_create(h.scene, &r), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_int(r, "sampels", 4), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("'sampels'"), std::string::npos) << last_error();
     EXPECT_EQ(stratum_renderer_set_string(r, "sampler", "no_such"), STRATUM_ERROR_INVALID_ARGUMENT);
@@ -145,9 +142,9 @@ TEST(Api, NullPointersAreErrorsNotCrashes) {
 }
 
 TEST(Api, LightIntegratorIsAcceptedAndBadIntegratorNamesAreRejected) {
-    SceneHandle scene;
+    SceneHandle h;
     StratumRenderer* r = nullptr;
-    ASSERT_EQ(stratum_renderer_create(scene.s, &r), STRATUM_OK);
+    ASSERT_EQ(stratum_renderer_create(h.scene, &r), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_string(r, "integrator", "light"), STRATUM_OK) << last_error();
     EXPECT_EQ(stratum_renderer_set_string(r, "integrator", "Light"), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(last_error().find("'Light'"), std::string::npos) << last_error();

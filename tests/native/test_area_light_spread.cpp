@@ -83,9 +83,7 @@ TEST(AreaLightSpread, SpreadPiIsTheLambertianLight) {
     // Through the ABI: spread 0 and spread π render the same image.
     using namespace stratum_test;
     const auto image = [](float spread) {
-        const StratumMaterialDesc wall{STRATUM_MATERIAL_DIFFUSE, {0.7f, 0.7f, 0.7f}, 1, 0, 0, 1.5f, {0, 0, 0},
-                                       STRATUM_MICROFACET_GGX};
-        StratumScene* scene = make_sphere_interior(wall, 8, 0, 0, 0.2f);
+        StratumScene* scene = make_sphere_interior(diffuse_grey(0.7f), 8, 0, 0, 0.2f);
         StratumLightDesc light{};
         light.type = STRATUM_LIGHT_AREA_RECTANGLE;
         light.color[0] = light.color[1] = light.color[2] = 1;

@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <functional>
+#include <initializer_list>
 #include <random>
 #include <vector>
 
@@ -64,9 +65,11 @@ Vec3 direction(float theta, float phi) {
 // lobe only if it spans several cells; at 80 degrees the lobes of alpha < 0.05 get too thin.
 const float kViewThetas[] = {0.17f, 0.87f, 1.22f};
 
-TEST(Bsdf, SamplingMatchesPdfChiSquare) {
-    uint64_t seed = 100;
-    for (const Material& m : test_materials()) {
+// Pearson's χ² of each of `materials`' sampled directions against its pdf, at each view angle,
+// with the seeds first_seed, first_seed + 1, ... in that order.
+void expect_sampling_matches_pdf(const std::vector<Material>& materials, uint64_t first_seed) {
+    uint64_t seed = first_seed;
+    for (const Material& m : materials) {
         for (const float theta : kViewThetas) {
             const Vec3 wo = direction(theta, 0.3f);
             const ChiSquare r = chi_square_directions(
@@ -85,6 +88,8 @@ TEST(Bsdf, SamplingMatchesPdfChiSquare) {
     }
 }
 
+TEST(Bsdf, SamplingMatchesPdfChiSquare) { expect_sampling_matches_pdf(test_materials(), 100); }
+
 // Principled V2 with the node's distribution "GGX" (what Blender 3.x files keep after
 // versioning): its sampling must match its pdf like the others.
 std::vector<Material> v2_ggx_materials() {
@@ -92,68 +97,40 @@ std::vector<Material> v2_ggx_materials() {
             v2(Rgb(0.9f, 0.6f, 0.3f), 0.3f, 0.6f, 0.8f, 1.5f, MicrofacetDistribution::Ggx)};
 }
 
-TEST(Principled, V2GgxSamplingMatchesPdfChiSquare) {
-    uint64_t seed = 300;
-    for (const Material& m : v2_ggx_materials()) {
+TEST(Principled, V2GgxSamplingMatchesPdfChiSquare) { expect_sampling_matches_pdf(v2_ggx_materials(), 300); }
+
+// 2000 samples per view angle of each of `materials` (random numbers seeded with `seed`): each
+// sample's pdf is the one eval gives, and its weight is value / pdf in each of `channels`.
+void expect_weight_is_value_over_pdf(const std::vector<Material>& materials, uint64_t seed,
+                                     std::initializer_list<float Rgb::*> channels) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
+    for (const Material& m : materials) {
         for (const float theta : kViewThetas) {
-            const Vec3 wo = direction(theta, 0.3f);
-            const ChiSquare r = chi_square_directions(
-                [&](Vec2 u, float u_lobe, Vec3* wi) {
-                    BsdfSample s;
-                    if (!bsdf_sample(m, wo, u_lobe, u, &s)) return false;
-                    *wi = s.wi;
-                    return true;
-                },
-                [&](Vec3 wi) { return bsdf_eval(m, wo, wi).pdf; }, seed++);
-            EXPECT_GT(r.p_value, kSignificance) << "theta_o " << theta << ": chi2 " << r.statistic;
-            EXPECT_LE(r.density_mass, 1.0 + 5e-3);
+            const Vec3 wo = direction(theta, 1.1f);
+            for (int i = 0; i < 2000; ++i) {
+                BsdfSample s;
+                // Drawn in sequence: the order of evaluation of function arguments is unspecified
+                // (GCC and clang differ), and the test must see the same numbers with either.
+                const Vec2 u{uniform(rng), uniform(rng)};
+                const float lobe = uniform(rng);
+                if (!bsdf_sample(m, wo, lobe, u, &s)) continue;
+                const BsdfEval e = bsdf_eval(m, wo, s.wi);
+                ASSERT_GT(s.pdf, 0.0f);
+                EXPECT_NEAR(s.pdf, e.pdf, 1e-4f * e.pdf);
+                for (float Rgb::*c : channels)
+                    EXPECT_NEAR(s.weight.*c, e.value.*c / e.pdf, 1e-4f * (1.0f + s.weight.*c));
+            }
         }
     }
 }
 
 TEST(Principled, V2GgxWeightIsValueOverPdf) {
-    std::mt19937_64 rng(8);
-    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
-    for (const Material& m : v2_ggx_materials()) {
-        for (const float theta : kViewThetas) {
-            const Vec3 wo = direction(theta, 1.1f);
-            for (int i = 0; i < 2000; ++i) {
-                BsdfSample s;
-                // Drawn in sequence: the order of evaluation of function arguments is unspecified
-                // (GCC and clang differ), and the test must see the same numbers with either.
-                const Vec2 u{uniform(rng), uniform(rng)};
-                const float lobe = uniform(rng);
-                if (!bsdf_sample(m, wo, lobe, u, &s)) continue;
-                const BsdfEval e = bsdf_eval(m, wo, s.wi);
-                ASSERT_GT(s.pdf, 0.0f);
-                EXPECT_NEAR(s.pdf, e.pdf, 1e-4f * e.pdf);
-                EXPECT_NEAR(s.weight.r, e.value.r / e.pdf, 1e-4f * (1.0f + s.weight.r));
-            }
-        }
-    }
+    expect_weight_is_value_over_pdf(v2_ggx_materials(), 8, {&Rgb::r});
 }
 
 TEST(Bsdf, WeightIsValueOverPdfAndPdfMatchesEval) {
-    std::mt19937_64 rng(7);
-    std::uniform_real_distribution<float> uniform(0.0f, kOneMinusEpsilon);
-    for (const Material& m : test_materials()) {
-        for (const float theta : kViewThetas) {
-            const Vec3 wo = direction(theta, 1.1f);
-            for (int i = 0; i < 2000; ++i) {
-                BsdfSample s;
-                // Drawn in sequence: the order of evaluation of function arguments is unspecified
-                // (GCC and clang differ), and the test must see the same numbers with either.
-                const Vec2 u{uniform(rng), uniform(rng)};
-                const float lobe = uniform(rng);
-                if (!bsdf_sample(m, wo, lobe, u, &s)) continue;
-                const BsdfEval e = bsdf_eval(m, wo, s.wi);
-                ASSERT_GT(s.pdf, 0.0f);
-                EXPECT_NEAR(s.pdf, e.pdf, 1e-4f * e.pdf);
-                EXPECT_NEAR(s.weight.r, e.value.r / e.pdf, 1e-4f * (1.0f + s.weight.r));
-                EXPECT_NEAR(s.weight.b, e.value.b / e.pdf, 1e-4f * (1.0f + s.weight.b));
-            }
-        }
-    }
+    expect_weight_is_value_over_pdf(test_materials(), 7, {&Rgb::r, &Rgb::b});
 }
 
 struct Albedo {

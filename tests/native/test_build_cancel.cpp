@@ -88,9 +88,7 @@ TEST(BuildCancel, CancelDuringTheBvhBuildEndsTheRender) {
     EXPECT_LT(seconds, 0.5);
     // The next start builds again, and a render to the end works.
     ASSERT_EQ(stratum_renderer_set_int(r, "threads", 0), STRATUM_OK);
-    ASSERT_EQ(stratum_renderer_start(r), STRATUM_OK);
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    ASSERT_TRUE(render_to_end(r)) << stratum_last_error();
     EXPECT_EQ(stratum_renderer_progress(r, &p), STRATUM_OK) << stratum_last_error();
     EXPECT_EQ(p.cancelled, 0);
     EXPECT_GT(p.build_seconds, 0.0);

@@ -9,20 +9,16 @@
 #include <sstream>
 #include <string>
 
+#include "scene_handle.h"
+
+using stratum_test::SceneHandle;
+
 namespace {
 
 StratumMaterialDesc diffuse(float grey) {
     return {STRATUM_MATERIAL_DIFFUSE, {grey, grey, grey}, 0.5f, 0, 0.5f, 1.45f, {0, 0, 0},
             STRATUM_MICROFACET_GGX};
 }
-
-struct SceneHandle {
-    StratumScene* scene = nullptr;
-    SceneHandle() { EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK); }
-    ~SceneHandle() { stratum_scene_destroy(scene); }
-    SceneHandle(const SceneHandle&) = delete;
-    SceneHandle& operator=(const SceneHandle&) = delete;
-};
 
 void expect_rejected(StratumStatus status, const std::string& fragment) {
     EXPECT_EQ(status, STRATUM_ERROR_INVALID_ARGUMENT);

@@ -21,6 +21,7 @@
 #include <utility>
 
 #include "render_helpers.h"
+#include "scene_handle.h"
 
 using namespace stratum_test;
 
@@ -29,32 +30,13 @@ namespace {
 constexpr float kPiF = 3.14159265358979f;
 constexpr float kFloorReflectance = 0.5f;
 
-struct Floor {
-    StratumScene* scene = nullptr;
-    Floor() {
-        EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
-        const StratumMaterialDesc floor{STRATUM_MATERIAL_DIFFUSE,
-                                        {kFloorReflectance, kFloorReflectance, kFloorReflectance},
-                                        1.0f,
-                                        0.0f,
-                                        0.0f,
-                                        1.5f,
-                                        {0, 0, 0},
-                                        STRATUM_MICROFACET_GGX};
-        add_quad(floor, 0.0f, 10.0f);
-    }
-    ~Floor() { stratum_scene_destroy(scene); }
+struct Floor : SceneHandle {
+    Floor() { add_quad(diffuse_grey(kFloorReflectance), 0.0f, 10.0f); }
     // A square of half side `half` at height z.
     void add_quad(const StratumMaterialDesc& material, float z, float half) {
         uint32_t mat = 0;
         EXPECT_EQ(stratum_scene_add_material(scene, &material, &mat), STRATUM_OK);
-        const float positions[] = {-half, -half, z, half, -half, z, half, half, z, -half, half, z};
-        const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
-        const uint32_t mats[] = {mat, mat};
-        const StratumMeshDesc mesh{positions, 4, triangles, 2, nullptr, nullptr, mats};
-        uint32_t id = 0;
-        EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, &id), STRATUM_OK);
-        EXPECT_EQ(stratum_scene_add_instance(scene, id, kIdentity), STRATUM_OK);
+        EXPECT_TRUE(add_square_instance(scene, z, half, mat)) << stratum_last_error();
     }
     // Mean floor radiance seen from height `camera_z`, its standard error, and the largest
     // relative bias of averaging over the footprint for a light at height `light_z`.

@@ -17,6 +17,7 @@
 #include "chi_square.h"
 #include "lights/environment_light.h"
 #include "render_helpers.h"
+#include "scene_handle.h"
 
 using namespace stratum_test;
 
@@ -25,29 +26,13 @@ namespace {
 constexpr double kPiD = 3.14159265358979323846;
 constexpr float kReflectance = 0.5f;
 
-struct EnvFloor {
-    StratumScene* scene = nullptr;
+struct EnvFloor : SceneHandle {
     EnvFloor() {
-        EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
-        const StratumMaterialDesc floor{STRATUM_MATERIAL_DIFFUSE,
-                                        {kReflectance, kReflectance, kReflectance},
-                                        1.0f,
-                                        0.0f,
-                                        0.0f,
-                                        1.5f,
-                                        {0, 0, 0},
-                                        STRATUM_MICROFACET_GGX};
-        uint32_t mat = 0, id = 0;
+        const StratumMaterialDesc floor = diffuse_grey(kReflectance);
+        uint32_t mat = 0;
         EXPECT_EQ(stratum_scene_add_material(scene, &floor, &mat), STRATUM_OK);
-        const float h = 10.0f;
-        const float positions[] = {-h, -h, 0, h, -h, 0, h, h, 0, -h, h, 0};
-        const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
-        const uint32_t mats[] = {mat, mat};
-        const StratumMeshDesc mesh{positions, 4, triangles, 2, nullptr, nullptr, mats};
-        EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, &id), STRATUM_OK);
-        EXPECT_EQ(stratum_scene_add_instance(scene, id, kIdentity), STRATUM_OK);
+        EXPECT_TRUE(add_square_instance(scene, 0.0f, 10.0f, mat)) << stratum_last_error();
     }
-    ~EnvFloor() { stratum_scene_destroy(scene); }
 
     // Pixels of a 16x16 render from (0, 0, 1), looking down (or up at the sky).
     std::vector<float> render_view(bool look_up, int64_t samples = 64) {

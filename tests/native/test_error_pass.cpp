@@ -38,15 +38,15 @@ ErrorAgreement measure_error_pass(StratumScene* scene, const char* sampler, uint
     for (uint32_t seed = 0; seed < kSeeds; ++seed) {
         StratumRenderer* r = nullptr;
         EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
-        for (const char* name : {"width", "height"}) stratum_renderer_set_int(r, name, kSize);
-        stratum_renderer_set_int(r, "samples", samples);
-        stratum_renderer_set_int(r, "max_bounces", max_bounces);
-        stratum_renderer_set_int(r, "seed", seed);
-        EXPECT_EQ(stratum_renderer_set_string(r, "sampler", sampler), STRATUM_OK);
-        EXPECT_EQ(stratum_renderer_set_string(r, "passes", "Stratum Error"), STRATUM_OK);
-        EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK);
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(r, 1000, &done);
+        EXPECT_EQ(apply_settings(r, {{"width", kSize},
+                                     {"height", kSize},
+                                     {"samples", samples},
+                                     {"max_bounces", max_bounces},
+                                     {"seed", seed},
+                                     {"sampler", sampler},
+                                     {"passes", "Stratum Error"}}),
+                  "");
+        EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
         std::vector<float> rgba(pixels * 4), error(pixels * 3);
         EXPECT_EQ(stratum_renderer_read_pixels(r, rgba.data(), rgba.size()), STRATUM_OK);
         EXPECT_EQ(stratum_renderer_read_pass(r, "Stratum Error", error.data(), error.size()), STRATUM_OK);
@@ -76,11 +76,7 @@ ErrorAgreement measure_error_pass(StratumScene* scene, const char* sampler, uint
 }  // namespace
 
 TEST(ErrorPass, EstimatesTheActualErrorOfIndependentSamples) {
-    IntegratingSphereDesc d;
-    d.reflectance = 0.5f;
-    d.emission = 1.0f;
-    d.rings = 12;
-    IntegratingSphere s = make_integrating_sphere(d);
+    IntegratingSphere s = make_closed_sphere(0.5f, 1.0f, 12);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     for (const uint32_t bounces : {1u, 12u}) {
         const ErrorAgreement m = measure_error_pass(s.scene, "random", 16, bounces);
@@ -103,11 +99,7 @@ TEST(ErrorPass, EstimatesTheActualErrorOfIndependentSamples) {
 // pass never understates the error, for any sampler: the ratio of the variances stays within 4
 // standard errors of at most 1.
 TEST(ErrorPass, MeasuresWhatThePassMeansForEverySampler) {
-    IntegratingSphereDesc d;
-    d.reflectance = 0.5f;
-    d.emission = 1.0f;
-    d.rings = 12;
-    IntegratingSphere s = make_integrating_sphere(d);
+    IntegratingSphere s = make_closed_sphere(0.5f, 1.0f, 12);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     for (const uint32_t bounces : {1u, 12u}) {
         for (const char* sampler : setting_choices("sampler")) {

@@ -19,10 +19,7 @@ namespace {
 
 struct RendererFixture : ::testing::Test {
     void SetUp() override {
-        const StratumMaterialDesc wall{
-            STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, 0.0f, 1.5f, {0, 0, 0},
-            STRATUM_MICROFACET_GGX};
-        scene = make_sphere_interior(wall, 8, 0.0f, 0.0f, 0.0f);
+        scene = make_sphere_interior(diffuse_grey(0.5f), 8, 0.0f, 0.0f, 0.0f);
         ASSERT_NE(scene, nullptr) << stratum_last_error();
         ASSERT_EQ(stratum_renderer_create(scene, &renderer), STRATUM_OK) << stratum_last_error();
     }
@@ -46,9 +43,7 @@ struct RendererFixture : ::testing::Test {
         stratum_renderer_set_int(renderer, "width", 4);
         stratum_renderer_set_int(renderer, "height", 4);
         stratum_renderer_set_int(renderer, "samples", 1);
-        EXPECT_EQ(stratum_renderer_start(renderer), STRATUM_OK) << stratum_last_error();
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(renderer, 1000, &done);
+        EXPECT_TRUE(render_to_end(renderer)) << stratum_last_error();
         const char* notices = nullptr;
         EXPECT_EQ(stratum_renderer_notices(renderer, &notices), STRATUM_OK);
         return notices ? notices : "";

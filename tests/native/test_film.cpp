@@ -92,9 +92,7 @@ TEST(Film, TheNormalPassThroughTheAbiFacesTheCameraAndLeavesTheImageAsItWas) {
             EXPECT_EQ(stratum_renderer_set_int(r, name, 9), STRATUM_OK);
         EXPECT_EQ(stratum_renderer_set_int(r, "samples", 8), STRATUM_OK);
         EXPECT_EQ(stratum_renderer_set_string(r, "passes", passes), STRATUM_OK) << stratum_last_error();
-        EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK);
-        int32_t done = 0;
-        while (!done) stratum_renderer_wait(r, 1000, &done);
+        EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
         std::vector<float> rgba(9 * 9 * 4);
         EXPECT_EQ(stratum_renderer_read_pixels(r, rgba.data(), rgba.size()), STRATUM_OK);
         if (normal) {

@@ -29,19 +29,9 @@ StratumScene* lit_sphere() {
     stratum_scene_create(&scene);
     const StratumMaterialDesc grey{STRATUM_MATERIAL_DIFFUSE, {0.6f, 0.5f, 0.4f}, 1, 0, 0, 1.5f, {0, 0, 0},
                                    STRATUM_MICROFACET_GGX};
-    uint32_t mat = 0, mesh_id = 0;
+    uint32_t mat = 0;
     stratum_scene_add_material(scene, &grey, &mat);
-    const SphereMesh sphere = make_sphere(1.0f, 12, 24);
-    const std::vector<uint32_t> mats(sphere.triangles.size() / 3, 0u);
-    const StratumMeshDesc mesh{sphere.positions.data(),
-                               static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(),
-                               static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
-    stratum_scene_add_mesh(scene, &mesh, &mesh_id);
-    stratum_scene_add_instance(scene, mesh_id, kIdentity);
+    add_mesh_instance(scene, make_sphere(1.0f, 12, 24), mat);
     const float sky[3] = {0.3f, 0.4f, 0.5f};
     stratum_scene_set_background(scene, sky);
     StratumLightDesc light{};
@@ -78,19 +68,17 @@ StratumRenderer* start(StratumScene* scene, const char* sampler, const char* int
                        int64_t count) {
     StratumRenderer* r = nullptr;
     EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
-    for (const auto& [name, value] : std::vector<std::pair<const char*, int64_t>>{{"width", kSize},
-                                                                                  {"height", kSize},
-                                                                                  {"samples", kSamples},
-                                                                                  {"seed", 3},
-                                                                                  {"sample_offset", offset},
-                                                                                  {"sample_count", count}})
-        EXPECT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK) << stratum_last_error();
-    EXPECT_EQ(stratum_renderer_set_string(r, "sampler", sampler), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "integrator", integrator), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "passes", kPasses), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    EXPECT_EQ(apply_settings(r, {{"width", kSize},
+                                 {"height", kSize},
+                                 {"samples", kSamples},
+                                 {"seed", 3},
+                                 {"sample_offset", offset},
+                                 {"sample_count", count},
+                                 {"sampler", sampler},
+                                 {"integrator", integrator},
+                                 {"passes", kPasses}}),
+              "");
+    EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
     return r;
 }
 
@@ -169,9 +157,7 @@ TEST(FilmExchange, RefusesSumsThatDoNotBelongTogether) {
     stratum_renderer_set_int(other, "height", 8);
     stratum_renderer_set_int(other, "samples", kSamples);
     stratum_renderer_set_int(other, "sample_offset", 4);
-    stratum_renderer_start(other);
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(other, 1000, &done);
+    render_to_end(other);
     const std::vector<uint8_t> small = sums_of(other);
     EXPECT_EQ(stratum_renderer_add_sums(a, small.data(), small.size()), STRATUM_ERROR_INVALID_ARGUMENT);
     // Bytes that are not sums: truncated, or garbage.

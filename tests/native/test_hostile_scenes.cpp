@@ -348,9 +348,7 @@ TEST(HostileScenes, FilmBeyondMemoryIsRefusedNamingTheSize) {
                                       {"crop_width", 8},
                                       {"crop_height", 8}})
         ASSERT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK) << name;
-    ASSERT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    ASSERT_TRUE(render_to_end(r)) << stratum_last_error();
     std::vector<float> rgba(8 * 8 * 4);
     EXPECT_EQ(stratum_renderer_read_pixels(r, rgba.data(), rgba.size()), STRATUM_OK) << stratum_last_error();
     EXPECT_TRUE(all_finite(rgba));

@@ -83,15 +83,14 @@ IndexImages render_indices(StratumScene* scene, const char* passes = "IndexOB,In
     IndexImages out;
     StratumRenderer* r = nullptr;
     EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
-    for (const char* name : {"width", "height"})
-        EXPECT_EQ(stratum_renderer_set_int(r, name, kSize), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_int(r, "samples", 4), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "filter_type", "box"), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_float(r, "filter_width", 1.0), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "passes", passes), STRATUM_OK) << stratum_last_error();
-    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK);
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    EXPECT_EQ(apply_settings(r, {{"width", kSize},
+                                 {"height", kSize},
+                                 {"samples", 4},
+                                 {"filter_type", "box"},
+                                 {"filter_width", 1.0},
+                                 {"passes", passes}}),
+              "");
+    EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
     out.rgba.resize(kSize * kSize * 4);
     EXPECT_EQ(stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size()), STRATUM_OK);
     if (passes[0] != '\0') {

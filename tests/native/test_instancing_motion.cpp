@@ -265,8 +265,7 @@ TEST(InstanceVisibility, AbiValidatesInstancesByName) {
     EXPECT_NE(error(d).find("instance mesh_id 0 out of range [0, 0)"), std::string::npos) << error(d);
     const float pos[9] = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const uint32_t tri[3] = {0, 1, 2}, mats[1] = {0};
-    const StratumMaterialDesc grey{STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1, 0, 0, 1.5f, {0, 0, 0},
-                                   STRATUM_MICROFACET_GGX};
+    const StratumMaterialDesc grey = diffuse_grey(0.5f);
     stratum_scene_add_material(scene, &grey, nullptr);
     const StratumMeshDesc mesh{pos, 3, tri, 1, nullptr, nullptr, mats};
     ASSERT_EQ(stratum_scene_add_mesh(scene, &mesh, nullptr), STRATUM_OK);

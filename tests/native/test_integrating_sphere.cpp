@@ -22,20 +22,8 @@
 
 using namespace stratum_test;
 
-namespace {
-
-IntegratingSphere closed_sphere(float k, float emission, uint32_t rings = 12) {
-    IntegratingSphereDesc d;
-    d.reflectance = k;
-    d.emission = emission;
-    d.rings = rings;
-    return make_integrating_sphere(d);
-}
-
-}  // namespace
-
 TEST(IntegratingSphere, RadianceIsEmissionOverOneMinusReflectance) {
-    IntegratingSphere s = closed_sphere(0.5f, 1.0f);
+    IntegratingSphere s = make_closed_sphere(0.5f, 1.0f);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     for (const uint32_t bounces : {0u, 1u, 3u, 24u}) {
         const Measurement m =
@@ -55,7 +43,7 @@ TEST(IntegratingSphere, RadianceIsEmissionOverOneMinusReflectance) {
 
 TEST(IntegratingSphere, HighReflectanceConvergesToGeometricSeries) {
     // k = 0.8: L_e / (1 − k) = 5 with 60 bounces (0.8^61 < 1e-5 of the total).
-    IntegratingSphere s = closed_sphere(0.8f, 1.0f);
+    IntegratingSphere s = make_closed_sphere(0.8f, 1.0f);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     const Measurement m = measure(
         s.scene, {{"width", 16}, {"height", 16}, {"samples", 64}, {"max_bounces", 60}, {"seed", 11u}});
@@ -99,7 +87,7 @@ TEST(IntegratingSphere, PortedSphereRadianceIsEmissionOverOneMinusKTimesOneMinus
 TEST(IntegratingSphere, EverySamplerIsUnbiased) {
     const std::vector<const char*> samplers = setting_choices("sampler");
     ASSERT_GE(samplers.size(), 1u);
-    IntegratingSphere s = closed_sphere(0.5f, 1.0f);
+    IntegratingSphere s = make_closed_sphere(0.5f, 1.0f);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     const double expected = sphere_b_radiance(1.0, 0.5, 0.0, 6);
     for (const char* name : samplers) {
@@ -121,18 +109,7 @@ TEST(Determinism, SameSeedGivesBitIdenticalImagesForAnyThreadCount) {
                                    {0.5f, 0.5f, 0.5f},       STRATUM_MICROFACET_GGX};
     uint32_t mat = 0;
     ASSERT_EQ(stratum_scene_add_material(scene, &wall, &mat), STRATUM_OK);
-    const SphereMesh sphere = make_sphere(1.0f, 6, 12);
-    const std::vector<uint32_t> mats(sphere.triangles.size() / 3, mat);
-    const StratumMeshDesc mesh{sphere.positions.data(),
-                               static_cast<uint32_t>(sphere.positions.size() / 3),
-                               sphere.triangles.data(),
-                               static_cast<uint32_t>(sphere.triangles.size() / 3),
-                               nullptr,
-                               nullptr,
-                               mats.data()};
-    uint32_t mesh_id = 0;
-    ASSERT_EQ(stratum_scene_add_mesh(scene, &mesh, &mesh_id), STRATUM_OK);
-    ASSERT_EQ(stratum_scene_add_instance(scene, mesh_id, kIdentity), STRATUM_OK);
+    ASSERT_TRUE(add_mesh_instance(scene, make_sphere(1.0f, 6, 12), mat)) << stratum_last_error();
     const StratumCameraDesc camera = camera_at(0, 0, 0.5f);
     ASSERT_EQ(stratum_scene_set_camera(scene, &camera), STRATUM_OK);
     const auto one =

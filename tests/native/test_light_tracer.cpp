@@ -60,9 +60,7 @@ Image render_image(StratumScene* scene, const Options& o) {
     }
     EXPECT_EQ(stratum_renderer_set_string(r, "integrator", o.integrator), STRATUM_OK);
     EXPECT_EQ(stratum_renderer_set_string(r, "sampler", "random"), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
     const char* notices = nullptr;
     EXPECT_EQ(stratum_renderer_notices(r, &notices), STRATUM_OK);
     out.notices = notices ? notices : "";

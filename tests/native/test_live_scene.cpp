@@ -106,9 +106,7 @@ StratumScene* build(const Values& v) {
 }
 
 std::vector<float> render_with(StratumRenderer* r) {
-    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
     std::vector<float> rgba(24 * 16 * 4);
     EXPECT_EQ(stratum_renderer_read_pixels(r, rgba.data(), rgba.size()), STRATUM_OK);
     return rgba;

@@ -84,20 +84,19 @@ Passes render_passes(StratumScene* scene, const char* passes, const char* integr
     Passes out;
     StratumRenderer* r = nullptr;
     EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
-    for (const char* name : {"width", "height"})
-        EXPECT_EQ(stratum_renderer_set_int(r, name, kSize), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_int(r, "samples", 8), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "filter_type", "box"), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_float(r, "filter_width", 1.0), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "integrator", integrator), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "sampler", sampler), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_float(r, "mist_start", 0.0), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_float(r, "mist_depth", kMistDepth), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_float(r, "mist_falloff", 1.0), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "passes", passes), STRATUM_OK) << stratum_last_error();
-    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK);
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    EXPECT_EQ(apply_settings(r, {{"width", kSize},
+                                 {"height", kSize},
+                                 {"samples", 8},
+                                 {"filter_type", "box"},
+                                 {"filter_width", 1.0},
+                                 {"integrator", integrator},
+                                 {"sampler", sampler},
+                                 {"mist_start", 0.0},
+                                 {"mist_depth", kMistDepth},
+                                 {"mist_falloff", 1.0},
+                                 {"passes", passes}}),
+              "");
+    EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
     out.rgba.resize(kSize * kSize * 4);
     EXPECT_EQ(stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size()), STRATUM_OK);
     const auto read = [&](const char* name, size_t channels, std::vector<float>* v) {
@@ -306,22 +305,14 @@ TEST(RenderPasses, FirstSamplePassesKeepSampleZeroAndTheErrorPassIsTheMeansStand
 // cos(π/128) of the unit radius, normals within π/64 of the radial direction: chords change by
 // < 1e-3).
 TEST(RenderPasses, TheAoPassInsideAClosedSphereIsOneMinusAQuarterOfTheDistanceSquared) {
-    IntegratingSphereDesc d;
-    d.reflectance = 0.5f;
-    d.emission = 0.0f;
-    d.rings = 64;
-    IntegratingSphere s = make_integrating_sphere(d);
+    IntegratingSphere s = make_closed_sphere(0.5f, 0.0f, 64);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     StratumRenderer* r = nullptr;
     ASSERT_EQ(stratum_renderer_create(s.scene, &r), STRATUM_OK);
-    for (const char* name : {"width", "height"})
-        EXPECT_EQ(stratum_renderer_set_int(r, name, kSize), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_int(r, "samples", 64), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_float(r, "ao_distance", 1.0), STRATUM_OK);
-    EXPECT_EQ(stratum_renderer_set_string(r, "passes", "AO"), STRATUM_OK) << stratum_last_error();
-    EXPECT_EQ(stratum_renderer_start(r), STRATUM_OK);
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    const Settings ao_settings = {
+        {"width", kSize}, {"height", kSize}, {"samples", 64}, {"ao_distance", 1.0}, {"passes", "AO"}};
+    EXPECT_EQ(apply_settings(r, ao_settings), "");
+    EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
     std::vector<float> ao(kSize * kSize * 3);
     EXPECT_EQ(stratum_renderer_read_pass(r, "AO", ao.data(), ao.size()), STRATUM_OK);
     stratum_renderer_destroy(r);

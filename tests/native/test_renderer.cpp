@@ -125,9 +125,7 @@ TEST(Renderer, BorderRenderEqualsTheCropOfTheFullRender) {
                                       {"crop_height", kCh}}) {
         ASSERT_EQ(stratum_renderer_set_int(r, name, value), STRATUM_OK) << stratum_last_error();
     }
-    ASSERT_EQ(stratum_renderer_start(r), STRATUM_OK) << stratum_last_error();
-    int32_t done = 0;
-    while (!done) stratum_renderer_wait(r, 1000, &done);
+    ASSERT_TRUE(render_to_end(r)) << stratum_last_error();
     std::vector<float> region(static_cast<size_t>(kCw * kCh * 4));
     // The full frame's size is refused: the image is the region.
     std::vector<float> too_big(static_cast<size_t>(kW * kH * 4));

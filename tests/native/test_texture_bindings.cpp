@@ -11,6 +11,7 @@
 #include <string>
 
 #include "render_scene/material_texturing.h"
+#include "scene_handle.h"
 #include "stratum/stratum.h"
 
 using namespace stratum;
@@ -148,10 +149,8 @@ TEST(TextureBindings, NoTangentKeepsTheNormal) {
 
 namespace {
 
-struct AbiScene {
-    StratumScene* scene = nullptr;
+struct AbiScene : stratum_test::SceneHandle {
     AbiScene() {
-        EXPECT_EQ(stratum_scene_create(&scene), STRATUM_OK);
         const StratumMaterialDesc d{
             STRATUM_MATERIAL_DIFFUSE, {0.5f, 0.5f, 0.5f}, 1.0f, 0.0f, 0.0f, 1.5f, {0, 0, 0},
             STRATUM_MICROFACET_GGX};
@@ -166,7 +165,6 @@ struct AbiScene {
         EXPECT_EQ(stratum_scene_add_texture(scene, &t, &id), STRATUM_OK) << stratum_last_error();
         EXPECT_EQ(id, 0u);
     }
-    ~AbiScene() { stratum_scene_destroy(scene); }
 };
 
 StratumTextureBinding abi_binding(int32_t param) {
