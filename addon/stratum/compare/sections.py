@@ -5,6 +5,7 @@ lays out the page)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -336,21 +337,26 @@ def _bsdf_pair(native: Any) -> tuple[int, int]:
     return 0, 1
 
 
-def _distributions(native: Any) -> list[str]:
-    return [e.name for e in native.registry("hemisphere")]
+def _warped_points(native: Any, sampler: str, counts: Sequence[int], seed: int,
+                   dims: tuple[int, int]) -> list[tuple[str, list[tuple[int, np.ndarray]]]]:
+    """For each hemisphere distribution, (name, [(n, directions)]): the sampler's first n points
+    of one pixel of a 1x1 image at n spp in dimensions `dims`, mapped through the distribution
+    (the rows of figures.hemisphere_figure)."""
+    rows = []
+    for distribution in (e.name for e in native.registry("hemisphere")):
+        sets = []
+        for n in counts:
+            uv = native.sampler_points(sampler, n, seed, 1, 1, (0, 0), dims, n)
+            sets.append((n, native.warp_hemisphere(distribution, uv)[0]))
+        rows.append((distribution, sets))
+    return rows
 
 
 def hemisphere(res: Results, fig_dir: Path) -> str:
     native = _native()
     dims = _bsdf_pair(native)
     seed = res.first_seed or 0
-    rows = []
-    for distribution in _distributions(native):
-        sets = []
-        for n in HEMISPHERE_COUNTS:
-            uv = native.sampler_points("random", n, seed, 1, 1, (0, 0), dims, n)
-            sets.append((n, native.warp_hemisphere(distribution, uv)[0]))
-        rows.append((distribution, sets))
+    rows = _warped_points(native, "random", HEMISPHERE_COUNTS, seed, dims)
     path = figures.hemisphere_figure(fig_dir / "hemisphere_random.png",
                                      "random points mapped through each distribution", rows)
     note = ("Points of the sampler `random` (dimensions "
@@ -366,13 +372,7 @@ def fibonacci(res: Results, fig_dir: Path) -> str:
     native = _native()
     dims = _bsdf_pair(native)
     seed = res.first_seed or 0
-    rows = []
-    for distribution in _distributions(native):
-        sets = []
-        for n in FIBONACCI_COUNTS:
-            uv = native.sampler_points("fibonacci_static", n, seed, 1, 1, (0, 0), dims, n)
-            sets.append((n, native.warp_hemisphere(distribution, uv)[0]))
-        rows.append((distribution, sets))
+    rows = _warped_points(native, "fibonacci_static", FIBONACCI_COUNTS, seed, dims)
     path = figures.hemisphere_figure(fig_dir / "hemisphere_fibonacci.png",
                                      "Fibonacci lattice mapped through each distribution", rows)
     note = ("The article's table 1: the Fibonacci lattice (frac((j+1)/φ), (j+0.5)/n) of "
