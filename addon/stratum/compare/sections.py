@@ -337,11 +337,14 @@ def _bsdf_pair(native: Any) -> tuple[int, int]:
     return 0, 1
 
 
-def _warped_points(native: Any, sampler: str, counts: Sequence[int], seed: int,
-                   dims: tuple[int, int]) -> list[tuple[str, list[tuple[int, np.ndarray]]]]:
-    """For each hemisphere distribution, (name, [(n, directions)]): the sampler's first n points
-    of one pixel of a 1x1 image at n spp in dimensions `dims`, mapped through the distribution
-    (the rows of figures.hemisphere_figure)."""
+def _warped_points_figure(res: Results, fig_dir: Path, sampler: str, counts: Sequence[int],
+                          file_name: str, title: str) -> tuple[Path, tuple[int, int], int]:
+    """fig_dir/file_name: for each hemisphere distribution, the sampler's first n points (each
+    n of counts) of one pixel of a 1x1 image at n spp, in the dimensions of the first bounce's
+    BSDF direction, mapped through the distribution. Returns (path, dimensions, seed)."""
+    native = _native()
+    dims = _bsdf_pair(native)
+    seed = res.first_seed or 0
     rows = []
     for distribution in (e.name for e in native.registry("hemisphere")):
         sets = []
@@ -349,19 +352,16 @@ def _warped_points(native: Any, sampler: str, counts: Sequence[int], seed: int,
             uv = native.sampler_points(sampler, n, seed, 1, 1, (0, 0), dims, n)
             sets.append((n, native.warp_hemisphere(distribution, uv)[0]))
         rows.append((distribution, sets))
-    return rows
+    return figures.hemisphere_figure(fig_dir / file_name, title, rows), dims, seed
 
 
 def hemisphere(res: Results, fig_dir: Path) -> str:
-    native = _native()
-    dims = _bsdf_pair(native)
-    seed = res.first_seed or 0
-    rows = _warped_points(native, "random", HEMISPHERE_COUNTS, seed, dims)
-    path = figures.hemisphere_figure(fig_dir / "hemisphere_random.png",
-                                     "random points mapped through each distribution", rows)
+    path, dims, seed = _warped_points_figure(
+        res, fig_dir, "random", HEMISPHERE_COUNTS, "hemisphere_random.png",
+        "random points mapped through each distribution")
+    names = [_native().dimension_name(d) for d in dims]
     note = ("Points of the sampler `random` (dimensions "
-            f"{dims[0]}, {dims[1]}: {native.dimension_name(dims[0])}, "
-            f"{native.dimension_name(dims[1])}; seed {seed}) mapped by each hemisphere "
+            f"{dims[0]}, {dims[1]}: {names[0]}, {names[1]}; seed {seed}) mapped by each hemisphere "
             "distribution, as in the article's figures 2–4: top view = projection onto the "
             "tangent plane, side view = (x, z). uniform_angles crowds at the pole, uniform "
             "(sine) covers the hemisphere evenly, cosine thins out towards the horizon.")
@@ -369,12 +369,9 @@ def hemisphere(res: Results, fig_dir: Path) -> str:
 
 
 def fibonacci(res: Results, fig_dir: Path) -> str:
-    native = _native()
-    dims = _bsdf_pair(native)
-    seed = res.first_seed or 0
-    rows = _warped_points(native, "fibonacci_static", FIBONACCI_COUNTS, seed, dims)
-    path = figures.hemisphere_figure(fig_dir / "hemisphere_fibonacci.png",
-                                     "Fibonacci lattice mapped through each distribution", rows)
+    path, _, seed = _warped_points_figure(
+        res, fig_dir, "fibonacci_static", FIBONACCI_COUNTS, "hemisphere_fibonacci.png",
+        "Fibonacci lattice mapped through each distribution")
     note = ("The article's table 1: the Fibonacci lattice (frac((j+1)/φ), (j+0.5)/n) of "
             "the sampler `fibonacci_static` with n = spp points, mapped through each "
             "distribution. The sampler shifts the lattice toroidally by a per-seed offset "
