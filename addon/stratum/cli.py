@@ -11,7 +11,6 @@ many configurations (estimators x samplers x spp x seeds) through Blender and co
 from __future__ import annotations
 
 import argparse
-import json
 import subprocess
 import sys
 from pathlib import Path
@@ -20,53 +19,30 @@ import numpy as np
 
 from . import native
 from .blender_process import (
-    ADDON_PARENT,
     NOT_FOUND_MESSAGE,
-    background_command,
     blender_executable,
+    overrides_from_options,
+    script_command,
 )
 
-# Runs inside Blender; receives its arguments as JSON after "--".
-_BLENDER_SCRIPT = r"""
-import json, os, sys, traceback
-args = json.loads(sys.argv[sys.argv.index("--") + 1])
-sys.path.insert(0, args["addon_parent"])
-code = 1
+# Runs inside Blender after blender_process's shared start (arguments, add-on, settings).
+_RENDER_SCRIPT = r"""
+from stratum.engine import StratumRenderEngine
+out = args["output"]
+ext = os.path.splitext(out)[1].lower()
+fmt = {".png": "PNG", ".exr": "OPEN_EXR", ".jpg": "JPEG", ".jpeg": "JPEG",
+       ".tif": "TIFF", ".tiff": "TIFF", ".hdr": "HDR"}.get(ext, "PNG")
+scene.render.image_settings.file_format = fmt
+scene.render.filepath = out
+scene.render.use_file_extension = False
 try:
-    import bpy
-    import stratum
-    from stratum.engine import StratumRenderEngine
-    stratum.register()
-    scene = bpy.context.scene
-    scene.render.engine = "STRATUM"
-    s = scene.stratum
-    for name in ("samples", "seed", "max_bounces", "sampler"):
-        if args.get(name) is not None:
-            setattr(s, name, args[name])
-    if args.get("resolution"):
-        scene.render.resolution_x, scene.render.resolution_y = args["resolution"]
-        scene.render.resolution_percentage = 100
-    out = args["output"]
-    ext = os.path.splitext(out)[1].lower()
-    fmt = {".png": "PNG", ".exr": "OPEN_EXR", ".jpg": "JPEG", ".jpeg": "JPEG",
-           ".tif": "TIFF", ".tiff": "TIFF", ".hdr": "HDR"}.get(ext, "PNG")
-    scene.render.image_settings.file_format = fmt
-    scene.render.filepath = out
-    scene.render.use_file_extension = False
-    try:
-        bpy.ops.render.render(write_still=True)
-    except RuntimeError as exc:
-        print(f"stratum: render failed: {exc}", file=sys.stderr)
-    errors = [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
-    for level, m in StratumRenderEngine.last_reports:
-        print(f"stratum: {level.lower()}: {m}", file=sys.stderr)
-    code = 0 if not errors and os.path.isfile(out) else 1
-except Exception:
-    traceback.print_exc()
-    code = 1
-sys.stdout.flush()
-sys.stderr.flush()
-os._exit(code)
+    bpy.ops.render.render(write_still=True)
+except RuntimeError as exc:
+    print(f"stratum: render failed: {exc}", file=sys.stderr)
+errors = [m for level, m in StratumRenderEngine.last_reports if level == "ERROR"]
+for level, m in StratumRenderEngine.last_reports:
+    print(f"stratum: {level.lower()}: {m}", file=sys.stderr)
+code = 0 if not errors and os.path.isfile(out) else 1
 """
 
 
@@ -296,17 +272,8 @@ def _cmd_render(ns: argparse.Namespace) -> int:
         from .distributed import command_line_render
 
         return command_line_render(ns, blender, scene, output)
-    payload = {
-        "addon_parent": str(ADDON_PARENT),
-        "samples": ns.samples,
-        "seed": ns.seed,
-        "max_bounces": ns.max_bounces,
-        "sampler": ns.sampler,
-        "resolution": list(ns.resolution) if ns.resolution else None,
-        "output": str(output),
-    }
-    cmd = background_command(blender, scene, "--python-expr", _BLENDER_SCRIPT, "--",
-                             json.dumps(payload))
+    cmd = script_command(blender, scene, _RENDER_SCRIPT, overrides_from_options(ns),
+                         ns.resolution, output=str(output))
     proc = subprocess.run(cmd, check=False)
     if proc.returncode != 0:
         print(f"stratum: Blender render failed (exit code {proc.returncode})", file=sys.stderr)

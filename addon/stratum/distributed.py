@@ -25,7 +25,7 @@ from pathlib import Path
 from typing import Any
 
 from . import native
-from .blender_process import ADDON_PARENT, background_command
+from .blender_process import overrides_from_options, script_command
 
 # Seconds a client waits for the scheduler before reporting it unreachable.
 CONNECT_TIMEOUT = 20
@@ -158,43 +158,24 @@ def render_on_cluster(client: Any, frame: Frame) -> tuple[native.Renderer, list[
     return merge(frame, results), notices
 
 
-# Runs inside Blender: captures the evaluated scene as a native scene file and the settings
-# the add-on would render it with (engine/frame.py renderer_settings), as JSON.
+# Runs inside Blender after blender_process's shared start (arguments, add-on, settings):
+# captures the evaluated scene as a native scene file and the settings the add-on would render
+# it with (engine/frame.py renderer_settings), as JSON.
 _EXPORT_SCRIPT = r"""
-import json, os, sys, traceback
-args = json.loads(sys.argv[sys.argv.index("--") + 1])
-sys.path.insert(0, args["addon_parent"])
-code = 1
-try:
-    import bpy
-    import stratum
-    from stratum import native
-    from stratum.engine.frame import renderer_settings
-    from stratum.export import export_scene
-    stratum.register()
-    scene = bpy.context.scene
-    scene.render.engine = "STRATUM"
-    for name, value in args["overrides"].items():
-        setattr(scene.stratum, name, value)
-    if args.get("resolution"):
-        scene.render.resolution_x, scene.render.resolution_y = args["resolution"]
-        scene.render.resolution_percentage = 100
-    from stratum.export.render_geometry import use_render_geometry
-    use_render_geometry(scene)
-    depsgraph = bpy.context.evaluated_depsgraph_get()
-    with native.Scene() as captured:
-        summary = export_scene(depsgraph, captured)
-        for warning in summary.warnings:
-            print(f"stratum: warning: {warning}", file=sys.stderr)
-        captured.save(args["scene_file"])
-    with open(args["settings_file"], "w") as f:
-        json.dump(renderer_settings(scene), f)
-    code = 0
-except Exception:
-    traceback.print_exc()
-sys.stdout.flush()
-sys.stderr.flush()
-os._exit(code)
+from stratum import native
+from stratum.engine.frame import renderer_settings
+from stratum.export import export_scene
+from stratum.export.render_geometry import use_render_geometry
+use_render_geometry(scene)
+depsgraph = bpy.context.evaluated_depsgraph_get()
+with native.Scene() as captured:
+    summary = export_scene(depsgraph, captured)
+    for warning in summary.warnings:
+        print(f"stratum: warning: {warning}", file=sys.stderr)
+    captured.save(args["scene_file"])
+with open(args["settings_file"], "w") as f:
+    json.dump(renderer_settings(scene), f)
+code = 0
 """
 
 
@@ -204,11 +185,8 @@ def export_blend(blender: str, blend: Path, overrides: dict[str, int | str],
     settings, with `overrides` of scene.stratum properties)."""
     with tempfile.TemporaryDirectory(prefix="stratum-export-") as tmp:
         scene_file, settings_file = Path(tmp) / "scene.stratum", Path(tmp) / "settings.json"
-        payload = {"addon_parent": str(ADDON_PARENT), "overrides": overrides,
-                   "resolution": list(resolution) if resolution else None,
-                   "scene_file": str(scene_file), "settings_file": str(settings_file)}
-        cmd = background_command(blender, blend, "--python-expr", _EXPORT_SCRIPT, "--",
-                                 json.dumps(payload))
+        cmd = script_command(blender, blend, _EXPORT_SCRIPT, overrides, resolution,
+                             scene_file=str(scene_file), settings_file=str(settings_file))
         proc = subprocess.run(cmd, check=False, env=os.environ.copy())
         if proc.returncode != 0 or not scene_file.is_file():
             raise DistributedError(f"exporting {blend} through Blender failed "
@@ -221,8 +199,7 @@ def command_line_render(ns: Any, blender: str, blend: Path, output: Path) -> int
     `output`; an exit code, the failure named on stderr."""
     import sys
 
-    overrides = {name: getattr(ns, name) for name in ("samples", "seed", "max_bounces", "sampler")
-                 if getattr(ns, name) is not None}
+    overrides = overrides_from_options(ns)
     client = cluster = None
     try:
         # The scheduler first: an unreachable one is reported before Blender runs.

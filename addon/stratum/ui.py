@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import bpy
 
 from . import properties
@@ -22,6 +24,16 @@ EXTRA_PANELS = (
 SKIP_PREFIXES = ("CYCLES_", "NODE_CYCLES_")
 
 _patched: list[type] = []
+
+
+def _settings_layout(panel: bpy.types.Panel,
+                     context: bpy.types.Context) -> tuple[bpy.types.UILayout, Any]:
+    """The panel's layout set up as Cycles' panels set theirs (labels left of their values,
+    no animation decorators), and the scene.stratum settings it draws."""
+    layout = panel.layout
+    layout.use_property_split = True
+    layout.use_property_decorate = False
+    return layout, context.scene.stratum
 
 
 class StratumButtonsPanel:
@@ -53,10 +65,7 @@ class STRATUM_RENDER_PT_sampling(StratumButtonsPanel, bpy.types.Panel):
     bl_label = "Sampling"
 
     def draw(self, context: bpy.types.Context) -> None:
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.stratum
+        layout, settings = _settings_layout(self, context)
         col = layout.column(align=True)
         col.prop(settings, "samples", text="Samples")
         col = layout.column()
@@ -74,12 +83,10 @@ class STRATUM_RENDER_PT_sampling_denoising(StratumButtonsPanel, bpy.types.Panel)
     bl_parent_id = "STRATUM_RENDER_PT_sampling"
 
     def draw(self, context: bpy.types.Context) -> None:
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
+        layout, settings = _settings_layout(self, context)
         col = layout.column(heading="Denoise", align=True)
-        col.prop(context.scene.stratum, "use_denoising", text="Render")
-        col.prop(context.scene.stratum, "use_preview_denoising", text="Viewport")
+        col.prop(settings, "use_denoising", text="Render")
+        col.prop(settings, "use_preview_denoising", text="Viewport")
 
 
 class STRATUM_RENDER_PT_viewport(StratumButtonsPanel, bpy.types.Panel):
@@ -88,10 +95,7 @@ class STRATUM_RENDER_PT_viewport(StratumButtonsPanel, bpy.types.Panel):
     bl_label = "Viewport"
 
     def draw(self, context: bpy.types.Context) -> None:
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.stratum
+        layout, settings = _settings_layout(self, context)
         col = layout.column()
         col.prop(settings, "preview_samples", text="Samples")
         col.prop(settings, "preview_start_resolution", text="Start Resolution")
@@ -108,10 +112,7 @@ class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
     bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context: bpy.types.Context) -> None:
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.stratum
+        layout, settings = _settings_layout(self, context)
         integrator = settings.integrator
         if integrator == "ao":
             # Ambient occlusion traces no light paths: no bounce limit or estimator applies.
@@ -145,10 +146,7 @@ class STRATUM_RENDER_PT_film(StratumButtonsPanel, bpy.types.Panel):
     bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context: bpy.types.Context) -> None:
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
-        settings = context.scene.stratum
+        layout, settings = _settings_layout(self, context)
         col = layout.column()
         col.prop(settings, "filter_type", text="Pixel Filter")
         col.prop(settings, "filter_width", text="Width")
@@ -159,11 +157,9 @@ class STRATUM_RENDER_PT_performance(StratumButtonsPanel, bpy.types.Panel):
     bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context: bpy.types.Context) -> None:
-        layout = self.layout
-        layout.use_property_split = True
-        layout.use_property_decorate = False
+        layout, settings = _settings_layout(self, context)
         col = layout.column()
-        col.prop(context.scene.stratum, "threads", text="Threads")
+        col.prop(settings, "threads", text="Threads")
 
 
 classes: tuple[type, ...] = (

@@ -1,7 +1,8 @@
 """What the Cycles-vs-Stratum agreement tests share: the peer settings (configure_cycles,
-configure_stratum), rendering a scene with two seeds (render_two_seeds) into `Renders` with
-their noise estimates, the noise gate (noise_failures, block_noise), the comparison at the
-image and block tolerances (compare) and the human-readable output.
+configure_stratum), the parts of the scenes they build (new_scene, add_diffuse_floor,
+add_camera), rendering a scene with two seeds (render_two_seeds) into `Renders` with their noise
+estimates, the noise gate (noise_failures, block_noise), the comparisons at the image and block
+tolerances (compare; assert_agreement for the small built scenes) and the human-readable output.
 
 Used by test_cycles_agreement.py, whose docstring derives the tolerances and the statistics,
 and by the camera, light, environment, estimator and feature agreement tests.
@@ -50,6 +51,51 @@ def set_frame_and_exr(scene: bpy.types.Scene, res: int) -> None:
     settings.color_depth = "32"
     settings.color_mode = "RGBA"
     settings.exr_codec = "ZIP"
+
+
+def new_scene(res: int) -> bpy.types.Scene:
+    """An empty scene on the factory settings, res x res (set_frame_and_exr), with an opaque
+    film and the Standard view transform."""
+    bpy.ops.wm.read_factory_settings(use_empty=True)
+    scene = bpy.context.scene
+    set_frame_and_exr(scene, res)
+    scene.render.film_transparent = False
+    scene.view_settings.view_transform = "Standard"
+    return scene
+
+
+def add_diffuse_floor(scene: bpy.types.Scene, half_size: float) -> None:
+    """A square plane at z = 0, 2 half_size on a side, whose material is one Diffuse BSDF
+    (0.8 grey)."""
+    mat = bpy.data.materials.new("floor")
+    mat.use_nodes = True
+    nodes = mat.node_tree.nodes
+    for n in list(nodes):
+        if n.bl_idname != "ShaderNodeOutputMaterial":
+            nodes.remove(n)
+    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
+    diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
+    mat.node_tree.links.new(diffuse.outputs[0], nodes["Material Output"].inputs["Surface"])
+    mesh = bpy.data.meshes.new("floor")
+    h = half_size
+    mesh.from_pydata([(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)], [], [(0, 1, 2, 3)])
+    mesh.materials.append(mat)
+    scene.collection.objects.link(bpy.data.objects.new("floor", mesh))
+
+
+def add_camera(scene: bpy.types.Scene, lens_mm: float, location: tuple[float, float, float],
+               rotation: tuple[float, float, float] = (0.0, 0.0, 0.0)) -> None:
+    """The scene's camera: a perspective one fitted to a 36 mm wide sensor (lens_mm sets the
+    horizontal angle, 2 atan(18 / lens_mm)) at `location`, Euler `rotation` (XYZ)."""
+    cam = bpy.data.cameras.new("cam")
+    cam.sensor_fit = "HORIZONTAL"
+    cam.sensor_width = 36.0
+    cam.lens = lens_mm
+    camera = bpy.data.objects.new("cam", cam)
+    camera.location = location
+    camera.rotation_euler = rotation
+    scene.collection.objects.link(camera)
+    scene.camera = camera
 
 
 def open_scene() -> bpy.types.Scene:
@@ -170,18 +216,19 @@ def _blocks(img: np.ndarray, block: int = BLOCK) -> np.ndarray:
     return img.reshape(nb, block, nb, block, img.shape[-1])
 
 
-def render_two_seeds(name: str, configure, out: Path = OUT, open_scene=open_scene) -> Renders:
-    """The scene open_scene() opens (the Cornell box by default) rendered with seeds SEEDS,
-    configure(scene, seed) choosing the renderer and its settings; EXRs in
-    out/<name>_seed<seed>.exr."""
+def render_two_seeds(name: str, configure, out: Path = OUT, open_scene=open_scene, *,
+                     res: int = RES, block: int = BLOCK) -> Renders:
+    """The scene open_scene() opens or builds (the Cornell box by default; res x res) rendered
+    with seeds SEEDS, configure(scene, seed) choosing the renderer and its settings, compared in
+    blocks of block x block pixels; EXRs in out/<name>_seed<seed>.exr."""
     images, seconds = [], []
     for seed in SEEDS:
         scene = open_scene()
         configure(scene, seed)
-        img, sec = render_exr(scene, out / f"{name}_seed{seed}.exr")
+        img, sec = render_exr(scene, out / f"{name}_seed{seed}.exr", res)
         images.append(img)
         seconds.append(sec)
-    renders = Renders(name, images, seconds)
+    renders = Renders(name, images, seconds, block)
     renders.calibrate()
     return renders
 
@@ -327,3 +374,39 @@ def compare(reference: Renders, candidate: Renders, out: Path, header: str) -> t
     agree = bool((np.abs(img_rel) <= IMAGE_TOL).all()) and bad.size == 0
     return report, agree
 
+
+
+def assert_agreement(reference: Renders, candidate: Renders, compared: np.ndarray, title: str,
+                     out: Path, *, image_tol: float = IMAGE_TOL,
+                     block_tol: float = BLOCK_TOL) -> None:
+    """Asserts per RGB channel that the candidate's image mean is within image_tol of the
+    reference's and its block means within block_tol where `compared` (per block and channel)
+    holds, relative to the reference. First asserts that 4 sigma of every such difference is
+    below half its tolerance, so that a failure is a difference of models, not noise. The report
+    (headed by title, a '.' per block not compared) is printed and written to out/report.txt."""
+    c, s = reference, candidate
+    c_img, s_img = c.mean.mean(axis=(0, 1)), s.mean.mean(axis=(0, 1))
+    img_sigma = np.sqrt(c.image_var() + s.image_var())
+    cb, sb = c.block_mean(), s.block_mean()
+    sigma_b = np.sqrt(c.block_var() + s.block_var())
+    rel_noise = K_SIGMA * sigma_b / np.maximum(cb, 1e-12)
+    assert (K_SIGMA * img_sigma < 0.5 * image_tol * c_img).all()
+    assert (K_SIGMA * sigma_b[compared] < 0.5 * block_tol * cb[compared]).all(), (
+        f"block noise too high: worst 4 sigma {float(rel_noise[compared].max()):.2%}")
+
+    img_rel = (s_img - c_img) / c_img
+    blk_rel = np.where(compared, (sb - cb) / np.maximum(cb, 1e-12), 0.0)
+    nb = c.res // c.block
+    report = (f"{title}, Blender {bpy.app.version_string}: image mean {c.name} "
+              f"{per_channel(c_img)}, {s.name} {per_channel(s_img)}, "
+              f"rel {per_channel(img_rel, '{:+.3%}')}; blocks: worst rel "
+              f"{float(np.abs(blk_rel).max()):+.2%}, worst 4 sigma "
+              f"{float(rel_noise[compared].max()):.2%}\n"
+              + "\n".join("  " + " ".join(
+                  f"{100 * blk_rel[by, bx].mean():+7.2f}%" if compared[by, bx].all()
+                  else "    .   " for bx in range(nb)) for by in reversed(range(nb))))
+    out.mkdir(parents=True, exist_ok=True)
+    (out / "report.txt").write_text(report + "\n")
+    print("\n" + report)
+    assert (np.abs(img_rel) <= image_tol).all(), report
+    assert (np.abs(blk_rel) <= block_tol).all(), report

@@ -18,8 +18,8 @@ variants: the texture's Vector input unlinked, and Texture Coordinate Generated 
 (Point, rotation Z = MAPPING_Z) -> Vector, which Stratum takes as a world-to-environment
 rotation.
 
-Asserted per RGB channel: image means within 2%, and 8 x 8 block means within 5% (every
-block is lit).
+Asserted per RGB channel (agreement.assert_agreement): image means within 2%, and 8 x 8 block
+means within 5% (agreement.py's IMAGE_TOL, BLOCK_TOL; every block is lit).
 
 Statistical reasoning. The sky pixels vary only by where the pixel filter puts the samples
 (texel edges inside a pixel's footprint); the plane's by the environment sampling. The module
@@ -40,23 +40,21 @@ import numpy as np
 import pytest
 
 from agreement import (
-    K_SIGMA,
     OUT,
     Renders,
+    add_camera,
+    add_diffuse_floor,
+    assert_agreement,
     configure_cycles,
     configure_stratum,
-    per_channel,
-    render_exr,
-    set_frame_and_exr,
+    new_scene,
+    render_two_seeds,
     stratum_available,
 )
 
 RES = 32
 BLOCK = 8
 SPP_PER_SEED = 1024
-SEEDS = (1, 2)
-IMAGE_TOL = 0.02
-BLOCK_TOL = 0.05
 ENV_W, ENV_H = 32, 16
 STRENGTH = 1.5
 MAPPING_Z = math.radians(60.0)
@@ -84,12 +82,7 @@ def _environment_pixels() -> np.ndarray:
 
 
 def _environment_scene(variant: str = "unmapped") -> bpy.types.Scene:
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    set_frame_and_exr(scene, RES)
-    scene.render.film_transparent = False
-    scene.view_settings.view_transform = "Standard"
-
+    scene = new_scene(RES)
     image = bpy.data.images.new("sky", ENV_W, ENV_H, alpha=True, float_buffer=True)
     image.pixels.foreach_set(_environment_pixels().reshape(-1))
     image.update()
@@ -111,31 +104,9 @@ def _environment_scene(variant: str = "unmapped") -> bpy.types.Scene:
         world.node_tree.links.new(mapping.outputs["Vector"], env.inputs["Vector"])
     scene.world = world
 
-    mat = bpy.data.materials.new("floor")
-    mat.use_nodes = True
-    nodes = mat.node_tree.nodes
-    for n in list(nodes):
-        if n.bl_idname != "ShaderNodeOutputMaterial":
-            nodes.remove(n)
-    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    mat.node_tree.links.new(diffuse.outputs[0], nodes["Material Output"].inputs["Surface"])
-    mesh = bpy.data.meshes.new("floor")
-    h = 20.0
-    mesh.from_pydata([(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)], [], [(0, 1, 2, 3)])
-    mesh.materials.append(mat)
-    scene.collection.objects.link(bpy.data.objects.new("floor", mesh))
-
-    cam = bpy.data.cameras.new("cam")
-    cam.sensor_fit = "HORIZONTAL"
-    cam.sensor_width = 36.0
-    cam.lens = 18.0  # 90 degrees
-    camera = bpy.data.objects.new("cam", cam)
-    camera.location = (0.0, 0.0, 1.0)
+    add_diffuse_floor(scene, 20.0)
     # Looks down local -Z: Rx(90) turns it to +Y, Rz(-60) then to 30 degrees left of +X.
-    camera.rotation_euler = (math.pi / 2, 0.0, math.radians(-60.0))
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    add_camera(scene, 18.0, (0.0, 0.0, 1.0), (math.pi / 2, 0.0, math.radians(-60.0)))  # 90 deg
     return scene
 
 
@@ -145,16 +116,9 @@ _configure_stratum = functools.partial(configure_stratum, samples=SPP_PER_SEED, 
 
 
 def _render_two_seeds(name: str, configure, variant: str) -> Renders:
-    images, seconds = [], []
-    for seed in SEEDS:
-        scene = _environment_scene(variant)
-        configure(scene, seed)
-        img, sec = render_exr(scene, ENV_OUT / f"{name}_{variant}_seed{seed}.exr", RES)
-        images.append(img)
-        seconds.append(sec)
-    renders = Renders(name, images, seconds, BLOCK)
-    renders.calibrate()
-    return renders
+    """EXRs in ENV_OUT/<variant>/<name>_seed<seed>.exr."""
+    return render_two_seeds(name, configure, ENV_OUT / variant,
+                            functools.partial(_environment_scene, variant), res=RES, block=BLOCK)
 
 
 @pytest.fixture(scope="module", params=VARIANTS)
@@ -214,30 +178,7 @@ def test_unsupported_environment_setups_warn_and_fall_back(recording_scene) -> N
 
 def test_environment_agrees_with_cycles(cycles_env: Renders, stratum_env: Renders,
                                         variant: str) -> None:
-    c, s = cycles_env, stratum_env
-    c_img, s_img = c.mean.mean(axis=(0, 1)), s.mean.mean(axis=(0, 1))
-    img_sigma = np.sqrt(c.image_var() + s.image_var())
-    cb, sb = c.block_mean(), s.block_mean()
-    sigma_b = np.sqrt(c.block_var() + s.block_var())
-    assert (cb > 0).all()
-    # The comparison is meaningful: 4 sigma of the differences well below the tolerances.
-    assert (K_SIGMA * img_sigma < 0.5 * IMAGE_TOL * c_img).all()
-    assert (K_SIGMA * sigma_b < 0.5 * BLOCK_TOL * cb).all(), (
-        f"block noise too high: worst 4 sigma {float((K_SIGMA * sigma_b / cb).max()):.2%}")
-
-    img_rel = (s_img - c_img) / c_img
-    blk_rel = (sb - cb) / cb
-    report = (f"environment texture ({variant}), Blender {bpy.app.version_string}: image mean "
-              f"cycles "
-              f"{per_channel(c_img)}, stratum {per_channel(s_img)}, "
-              f"rel {per_channel(img_rel, '{:+.3%}')}; "
-              f"blocks: worst rel {float(np.abs(blk_rel).max()):+.2%}, worst 4 sigma "
-              f"{float((K_SIGMA * sigma_b / cb).max()):.2%}\n"
-              + "\n".join("  " + " ".join(f"{100 * blk_rel[by, bx].mean():+7.2f}%"
-                                          for bx in range(RES // BLOCK))
-                          for by in reversed(range(RES // BLOCK))))
-    ENV_OUT.mkdir(parents=True, exist_ok=True)
-    (ENV_OUT / f"report_{variant}.txt").write_text(report + "\n")
-    print("\n" + report)
-    assert (np.abs(img_rel) <= IMAGE_TOL).all(), report
-    assert (np.abs(blk_rel) <= BLOCK_TOL).all(), report
+    compared = cycles_env.block_mean() > 0
+    assert compared.all()
+    assert_agreement(cycles_env, stratum_env, compared, f"environment texture ({variant})",
+                     ENV_OUT / variant)

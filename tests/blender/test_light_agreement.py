@@ -11,9 +11,10 @@ covered by test_feature_agreement.py's lights scene), black world, max_bounces 0
 only), a camera 5 m up looking down whose view (3.2 m) holds the whole cone (edge radius 2 tan 30 = 1.15 m) and a
 dark rim. RES x RES = 32 x 32, Blackman-Harris 1.5 px in both renderers, two seeds each.
 
-Asserted per RGB channel: image means within 2%, and 8 x 8 block means within 5% for every
-block whose Cycles mean is at least LIT_FRACTION of the brightest block (the lit ones; the
-corner blocks hold only the cone's rim and are left out).
+Asserted per RGB channel (agreement.assert_agreement): image means within 2%, and 8 x 8 block
+means within 5% (agreement.py's IMAGE_TOL, BLOCK_TOL) for every block whose Cycles mean is at
+least LIT_FRACTION of the brightest block (the lit ones; the corner blocks hold only the cone's
+rim and are left out).
 
 Statistical reasoning. With one delta light and NEE, a pixel's samples differ only by where the
 pixel filter puts them on the plane: the noise is the spread of the irradiance over a ~3-pixel
@@ -33,27 +34,24 @@ import functools
 import math
 
 import bpy
-import numpy as np
 import pytest
 
 from agreement import (
-    K_SIGMA,
     OUT,
     Renders,
+    add_camera,
+    add_diffuse_floor,
+    assert_agreement,
     configure_cycles,
     configure_stratum,
-    per_channel,
-    render_exr,
-    set_frame_and_exr,
+    new_scene,
+    render_two_seeds,
     stratum_available,
 )
 
 RES = 32
 BLOCK = 8
 SPP_PER_SEED = 1024
-SEEDS = (1, 2)
-IMAGE_TOL = 0.02
-BLOCK_TOL = 0.05
 LIT_FRACTION = 0.05
 POWER = 1000.0
 HEIGHT = 2.0
@@ -63,33 +61,14 @@ SPOT_OUT = OUT.parent / (OUT.name + "-spot")
 
 
 def _spot_scene() -> bpy.types.Scene:
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    set_frame_and_exr(scene, RES)
-    scene.render.film_transparent = False
-    scene.view_settings.view_transform = "Standard"
-
+    scene = new_scene(RES)
     world = bpy.data.worlds.new("black")
     world.use_nodes = True
     world.node_tree.nodes["Background"].inputs["Strength"].default_value = 0.0
     world.node_tree.nodes["Background"].inputs["Color"].default_value = (0, 0, 0, 1)
     world.color = (0.0, 0.0, 0.0)
     scene.world = world
-
-    mat = bpy.data.materials.new("floor")
-    mat.use_nodes = True
-    nodes = mat.node_tree.nodes
-    for n in list(nodes):
-        if n.bl_idname != "ShaderNodeOutputMaterial":
-            nodes.remove(n)
-    diffuse = nodes.new("ShaderNodeBsdfDiffuse")
-    diffuse.inputs["Color"].default_value = (0.8, 0.8, 0.8, 1.0)
-    mat.node_tree.links.new(diffuse.outputs[0], nodes["Material Output"].inputs["Surface"])
-    mesh = bpy.data.meshes.new("floor")
-    h = 3.0
-    mesh.from_pydata([(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)], [], [(0, 1, 2, 3)])
-    mesh.materials.append(mat)
-    scene.collection.objects.link(bpy.data.objects.new("floor", mesh))
+    add_diffuse_floor(scene, 3.0)
 
     spot = bpy.data.lights.new("spot", "SPOT")
     spot.energy = POWER
@@ -99,15 +78,7 @@ def _spot_scene() -> bpy.types.Scene:
     light = bpy.data.objects.new("spot", spot)
     light.location = (0.0, 0.0, HEIGHT)  # no rotation: points down local -Z
     scene.collection.objects.link(light)
-
-    cam = bpy.data.cameras.new("cam")
-    cam.sensor_fit = "HORIZONTAL"
-    cam.sensor_width = 36.0
-    cam.lens = 36.0 * 5.0 / 3.2  # 3.2 m wide at the plane, 5 m below
-    camera = bpy.data.objects.new("cam", cam)
-    camera.location = (0.0, 0.0, 5.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
+    add_camera(scene, 36.0 * 5.0 / 3.2, (0.0, 0.0, 5.0))  # 3.2 m wide at the plane, 5 m below
     return scene
 
 
@@ -117,16 +88,7 @@ _configure_stratum = functools.partial(configure_stratum, samples=SPP_PER_SEED, 
 
 
 def _render_two_seeds(name: str, configure) -> Renders:
-    images, seconds = [], []
-    for seed in SEEDS:
-        scene = _spot_scene()
-        configure(scene, seed)
-        img, sec = render_exr(scene, SPOT_OUT / f"{name}_seed{seed}.exr", RES)
-        images.append(img)
-        seconds.append(sec)
-    renders = Renders(name, images, seconds, BLOCK)
-    renders.calibrate()
-    return renders
+    return render_two_seeds(name, configure, SPOT_OUT, _spot_scene, res=RES, block=BLOCK)
 
 
 @pytest.fixture(scope="module")
@@ -149,29 +111,7 @@ def test_spot_light_agrees_with_cycles(cycles_spot: Renders, stratum_spot: Rende
     mid = c.mean[RES // 2 - 1:RES // 2 + 1, RES // 2 - 1:RES // 2 + 1].mean(axis=(0, 1))
     assert mid == pytest.approx([centre] * 3, rel=0.01), f"Cycles centre {mid}, expected {centre}"
 
-    c_img, s_img = c.mean.mean(axis=(0, 1)), s.mean.mean(axis=(0, 1))
-    img_sigma = np.sqrt(c.image_var() + s.image_var())
-    cb, sb = c.block_mean(), s.block_mean()
-    sigma_b = np.sqrt(c.block_var() + s.block_var())
+    cb = c.block_mean()
     lit = cb >= LIT_FRACTION * cb.max()
     assert lit.sum() >= 3 * 12, f"too few lit blocks: {lit.sum() // 3}"
-    # The comparison is meaningful: 4 sigma of the differences well below the tolerances.
-    assert (K_SIGMA * img_sigma < 0.5 * IMAGE_TOL * c_img).all()
-    assert (K_SIGMA * sigma_b[lit] < 0.5 * BLOCK_TOL * cb[lit]).all(), (
-        f"block noise too high: worst 4 sigma {float((K_SIGMA * sigma_b / cb)[lit].max()):.2%}")
-
-    img_rel = (s_img - c_img) / c_img
-    blk_rel = np.where(lit, (sb - cb) / np.maximum(cb, 1e-12), 0.0)
-    report = (f"spot light, Blender {bpy.app.version_string}: image mean cycles "
-              f"{per_channel(c_img)}, stratum {per_channel(s_img)}, "
-              f"rel {per_channel(img_rel, '{:+.3%}')}; blocks: worst rel "
-              f"{float(np.abs(blk_rel).max()):+.2%}, worst 4 sigma "
-              f"{float((K_SIGMA * sigma_b / np.maximum(cb, 1e-12))[lit].max()):.2%}\n"
-              + "\n".join("  " + " ".join(
-                  "    .   " if not lit[by, bx].all() else f"{100 * blk_rel[by, bx].mean():+7.2f}%"
-                  for bx in range(RES // BLOCK)) for by in reversed(range(RES // BLOCK))))
-    SPOT_OUT.mkdir(parents=True, exist_ok=True)
-    (SPOT_OUT / "report.txt").write_text(report + "\n")
-    print("\n" + report)
-    assert (np.abs(img_rel) <= IMAGE_TOL).all(), report
-    assert (np.abs(blk_rel) <= BLOCK_TOL).all(), report
+    assert_agreement(c, s, lit, "spot light", SPOT_OUT)

@@ -5,6 +5,7 @@ lays out the page)."""
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -336,26 +337,31 @@ def _bsdf_pair(native: Any) -> tuple[int, int]:
     return 0, 1
 
 
-def _distributions(native: Any) -> list[str]:
-    return [e.name for e in native.registry("hemisphere")]
-
-
-def hemisphere(res: Results, fig_dir: Path) -> str:
+def _warped_points_figure(res: Results, fig_dir: Path, sampler: str, counts: Sequence[int],
+                          file_name: str, title: str) -> tuple[Path, tuple[int, int], int]:
+    """fig_dir/file_name: for each hemisphere distribution, the sampler's first n points (each
+    n of counts) of one pixel of a 1x1 image at n spp, in the dimensions of the first bounce's
+    BSDF direction, mapped through the distribution. Returns (path, dimensions, seed)."""
     native = _native()
     dims = _bsdf_pair(native)
     seed = res.first_seed or 0
     rows = []
-    for distribution in _distributions(native):
+    for distribution in (e.name for e in native.registry("hemisphere")):
         sets = []
-        for n in HEMISPHERE_COUNTS:
-            uv = native.sampler_points("random", n, seed, 1, 1, (0, 0), dims, n)
+        for n in counts:
+            uv = native.sampler_points(sampler, n, seed, 1, 1, (0, 0), dims, n)
             sets.append((n, native.warp_hemisphere(distribution, uv)[0]))
         rows.append((distribution, sets))
-    path = figures.hemisphere_figure(fig_dir / "hemisphere_random.png",
-                                     "random points mapped through each distribution", rows)
+    return figures.hemisphere_figure(fig_dir / file_name, title, rows), dims, seed
+
+
+def hemisphere(res: Results, fig_dir: Path) -> str:
+    path, dims, seed = _warped_points_figure(
+        res, fig_dir, "random", HEMISPHERE_COUNTS, "hemisphere_random.png",
+        "random points mapped through each distribution")
+    names = [_native().dimension_name(d) for d in dims]
     note = ("Points of the sampler `random` (dimensions "
-            f"{dims[0]}, {dims[1]}: {native.dimension_name(dims[0])}, "
-            f"{native.dimension_name(dims[1])}; seed {seed}) mapped by each hemisphere "
+            f"{dims[0]}, {dims[1]}: {names[0]}, {names[1]}; seed {seed}) mapped by each hemisphere "
             "distribution, as in the article's figures 2–4: top view = projection onto the "
             "tangent plane, side view = (x, z). uniform_angles crowds at the pole, uniform "
             "(sine) covers the hemisphere evenly, cosine thins out towards the horizon.")
@@ -363,18 +369,9 @@ def hemisphere(res: Results, fig_dir: Path) -> str:
 
 
 def fibonacci(res: Results, fig_dir: Path) -> str:
-    native = _native()
-    dims = _bsdf_pair(native)
-    seed = res.first_seed or 0
-    rows = []
-    for distribution in _distributions(native):
-        sets = []
-        for n in FIBONACCI_COUNTS:
-            uv = native.sampler_points("fibonacci_static", n, seed, 1, 1, (0, 0), dims, n)
-            sets.append((n, native.warp_hemisphere(distribution, uv)[0]))
-        rows.append((distribution, sets))
-    path = figures.hemisphere_figure(fig_dir / "hemisphere_fibonacci.png",
-                                     "Fibonacci lattice mapped through each distribution", rows)
+    path, _, seed = _warped_points_figure(
+        res, fig_dir, "fibonacci_static", FIBONACCI_COUNTS, "hemisphere_fibonacci.png",
+        "Fibonacci lattice mapped through each distribution")
     note = ("The article's table 1: the Fibonacci lattice (frac((j+1)/φ), (j+0.5)/n) of "
             "the sampler `fibonacci_static` with n = spp points, mapped through each "
             "distribution. The sampler shifts the lattice toroidally by a per-seed offset "

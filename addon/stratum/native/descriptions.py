@@ -20,6 +20,10 @@ from .abi import (
 )
 from .models import closure_model, light_type
 
+# The default transform of lights and cameras: the 4x4 identity, row-major (a tuple: one
+# default shared by every instance must be immutable).
+IDENTITY_TRANSFORM: tuple[float, ...] = tuple(np.eye(4, dtype=np.float32).ravel())
+
 
 @dataclass
 class Material:
@@ -98,7 +102,7 @@ class Light:
     angle: float = 0.0
     size_x: float = 1.0
     size_y: float = 1.0
-    transform: Sequence[float] | np.ndarray = tuple(np.eye(4, dtype=np.float32).ravel())
+    transform: Sequence[float] | np.ndarray = IDENTITY_TRANSFORM
     spot_size: float = math.pi  # full cone angle (spot lights)
     spot_blend: float = 0.0
     visibility: int = VISIBLE_ALL
@@ -115,7 +119,7 @@ class Camera:
     shift_y: float = 0.0
     clip_start: float = 0.1
     clip_end: float = 1000.0
-    transform: Sequence[float] | np.ndarray = tuple(np.eye(4, dtype=np.float32).ravel())
+    transform: Sequence[float] | np.ndarray = IDENTITY_TRANSFORM
     type: int | str = CAMERA_PERSPECTIVE  # or "PERSP" / "ORTHO"
     ortho_scale: float = 6.0  # orthographic: extent of the fitted image side (scene units)
     aperture_radius: float = 0.0  # thin lens radius (scene units); 0 = pinhole
