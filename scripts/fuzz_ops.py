@@ -184,12 +184,6 @@ STRING_SETTINGS = ["sampler", "filter_type", "integrator", "hemisphere", "light_
 STRING_SETTINGS += ["mis_heuristic", "light_selection", "triangle_sampling", "rr_mode"]
 SETTING_NAMES = INT_SETTINGS + FLOAT_SETTINGS + STRING_SETTINGS
 
-# render_ops.cpp string_values(): fixed values, then the choices of the settings (samplers, filters,
-# integrators, hemispheres) in menu order, read from the library at run time.
-FIXED_VALUES = ["box", "blackman_harris", "gaussian", "mis", "nee", "bsdf", "power", "balance", "max"]
-FIXED_VALUES += ["mixed", "uniform", "solid_angle", "area", "throughput", "albedo", "off", "on", "", "Random"]
-FIXED_VALUES += ["path "]
-
 
 def render(
     settings: list[tuple[str, int | float | str]] = (),
