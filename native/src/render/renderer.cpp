@@ -356,15 +356,20 @@ bool Renderer::wait(int timeout_ms) {
 RenderProgress Renderer::progress() const {
     std::lock_guard lock(state_mutex_);
     RenderProgress p;
-    // Read before the serial: a tile publishes its pixels, then bumps the serial, then counts
-    // its samples, so the serial read here covers every sample counted.
-    const double pixel_samples_done = static_cast<double>(pixel_samples_done_.load());
-    p.done = done_.load();
-    p.cancelled = cancelled_;
+    // The counters in the order that makes one consistent snapshot, samples_done <=
+    // samples_average <= samples_in_progress (all loads sequentially consistent). The render
+    // thread stores samples_in_progress, then its tiles count their samples, then it stores
+    // samples_done: so samples_done is read first (every sample it covers is counted by then) and
+    // samples_in_progress last (it covers every sample counted before). The serial is read after
+    // the samples: a tile publishes its pixels, then bumps the serial, then counts its samples,
+    // so the serial read here covers every sample counted.
     p.samples_done = samples_done_.load();
-    p.samples_total = samples_total_.load();
+    const double pixel_samples_done = static_cast<double>(pixel_samples_done_.load());
     p.samples_in_progress = samples_in_progress_.load();
     p.update_serial = update_serial_.load();
+    p.done = done_.load();
+    p.cancelled = cancelled_;
+    p.samples_total = samples_total_.load();
     p.rays = static_cast<double>(rays_.load());
     p.build_seconds = build_seconds_;
     p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;
