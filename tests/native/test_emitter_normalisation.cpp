@@ -194,11 +194,14 @@ TEST(EmitterNormalisation, PathTracingMeasuresTheClosedFormIrradiance) {
         const char* name = emitter == Emitter::MeshQuad ? "mesh quad" : "area lamp";
         StratumScene* scene = make_panel_scene(emitter);
         ASSERT_NE(scene, nullptr) << stratum_last_error();
-        const Measurement m = measure_irradiance(scene, "path");
-        ASSERT_TRUE(m.error.empty()) << m.error;
-        EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error)
-            << name << ": E " << m.mean << " expected " << expected << " se " << m.standard_error;
-        EXPECT_GT(m.standard_error, 0.0) << name;
+        for (const char* selection : {"mixed", "tree"}) {
+            const Measurement m = measure_irradiance(scene, "path", {{"light_selection", selection}});
+            ASSERT_TRUE(m.error.empty()) << m.error;
+            EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error)
+                << name << ", " << selection << ": E " << m.mean << " expected " << expected << " se "
+                << m.standard_error;
+            EXPECT_GT(m.standard_error, 0.0) << name;
+        }
         stratum_scene_destroy(scene);
     }
 }
@@ -245,6 +248,8 @@ TEST(EmitterNormalisation, EveryWayOfFindingAPanelTwoCentimetresAwayMeasuresTheC
         {"nee, solid angle", {{"light_sampling", "nee"}, {"triangle_sampling", "solid_angle"}}},
         {"mis, area", {{"light_sampling", "mis"}, {"triangle_sampling", "area"}}},
         {"mis, solid angle", {{"light_sampling", "mis"}, {"triangle_sampling", "solid_angle"}}},
+        {"nee, tree", {{"light_sampling", "nee"}, {"light_selection", "tree"}}},
+        {"mis, tree", {{"light_sampling", "mis"}, {"light_selection", "tree"}}},
     };
     for (const Case& c : cases) {
         // 16 seeds: the image is far from uniform (lit in a strip next to the panel), so the

@@ -5,7 +5,7 @@
 // Sphere B: emissive walls L_e = 1, k = 0.5, port h ≈ 0.103 (96 rings, top 20 removed).
 // Sphere A: the same mesh, walls not emitting, a point lamp Φ = 4π at the centre.
 // Each case is a combination of `integrator` (path, direct, light), `light_sampling` (bsdf, nee,
-// mis) × `mis_heuristic` (balance, power, max), `light_selection` (mixed, power, uniform; the
+// mis) × `mis_heuristic` (balance, power, max), `light_selection` (mixed, power, uniform, tree; the
 // sphere's triangles differ in area, so uniform and power choose differently, while mixed equals
 // power with a single emissive object), `triangle_sampling` (solid_angle, the default, and area;
 // the walls' own and nearly coplanar neighbouring triangles take the area branch either way:
@@ -94,6 +94,15 @@ const std::vector<EstimatorCase>& path_cases() {
           {"rr_min_depth", 0}},
          30,
          0},
+        {"mis power, tree selection", {{"light_sampling", "mis"}, {"light_selection", "tree"}}, 2, 0},
+        {"nee, tree selection, area triangle sampling, rr off",
+         {{"light_sampling", "nee"},
+          {"light_selection", "tree"},
+          {"triangle_sampling", "area"},
+          {"rr_mode", "off"}},
+         2,
+         0},
+        {"direct, tree selection", {{"integrator", "direct"}, {"light_selection", "tree"}}, 2, 0},
         {"nee, power selection, rr albedo from 0",
          {{"light_sampling", "nee"},
           {"light_selection", "power"},

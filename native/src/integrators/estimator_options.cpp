@@ -37,9 +37,12 @@ constexpr std::array kLightSelection = {
                   "Half proportional to power, half uniform over the lights (a defensive mixture)"},
     RegistryEntry{"power", "Power", "Proportional to each light's power: p_j = Phi_j / sum Phi (eq. 5.14)"},
     RegistryEntry{"uniform", "Uniform", "Every light with the same probability 1/N"},
+    RegistryEntry{"tree", "Light Tree",
+                  "A tree over the lights picks one by its power, distance and orientation from each shading "
+                  "point (Conty Estevez & Kulla 2018); light tracing emits by power"},
 };
 constexpr std::array kLightSelectionValues = {LightSelection::Mixed, LightSelection::Power,
-                                              LightSelection::Uniform};
+                                              LightSelection::Uniform, LightSelection::Tree};
 
 constexpr std::array kTriangleSampling = {
     RegistryEntry{

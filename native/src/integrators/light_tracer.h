@@ -9,7 +9,8 @@
 // | transparent_max_bounces | Transparent pass-throughs per particle (not bounces), and per   |
 // |                         | connection ray                                                  |
 // | film_transparent        | camera-ray part: background seen directly gives alpha 0         |
-// | light_selection         | the distribution particles choose their light by (LightSet)     |
+// | light_selection         | the distribution particles choose their light by (LightSet);    |
+// |                         | `tree` emits by power (a particle has no shading point)         |
 // | rr_mode, rr_min_depth   | roulette from scattering vertex rr_min_depth on: throughput     |
 // |                         | (survival min(1, max T), T = particle flux / emitted flux) or    |
 // |                         | albedo (min(1, max f cos/p) of the sampled scattering: ρ for    |

@@ -72,7 +72,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             const Rgb lamp =
                 lights.lamp_radiance(origin, dir, found ? hit.t : t_max,
                                      camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility,
-                                     &lamp_pdf, &lamp_t, selection);
+                                     &lamp_pdf, &lamp_t, selection, scatter_origin, scatter_normal);
             if (!lamp.is_black()) {
                 float w = 1.0f;
                 if (!camera_visible_path && scatter_pdf > 0.0f) {

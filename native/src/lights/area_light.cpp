@@ -99,6 +99,24 @@ bool AreaLight::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 /*center
     return true;
 }
 
+std::optional<LightBounds> AreaLight::bounds() const {
+    LightBounds b;
+    b.lo = b.hi = center_ - axis_x_ - axis_y_;
+    for (const Vec3 corner :
+         {center_ + axis_x_ - axis_y_, center_ - axis_x_ + axis_y_, center_ + axis_x_ + axis_y_}) {
+        b.lo = component_min(b.lo, corner);
+        b.hi = component_max(b.hi, corner);
+    }
+    b.axis = normal_;
+    b.theta_o = 0.0f;
+    // f(a) > 0 only for tan a < tan h; tan h = ∞ without spread (h = π/2). Padded for rounding
+    // at grazing angles, where the contribution is 0 anyway.
+    const double half =
+        std::isinf(tan_half_spread_) ? 0.5 * kPi : std::atan(static_cast<double>(tan_half_spread_));
+    b.theta_e = static_cast<float>(half + LightBounds::kConePadding);
+    return b;
+}
+
 namespace {
 
 void check_area_light_params(const LightParams& given, LightParams* params) {

@@ -48,6 +48,9 @@ public:
     // the radiance toward the ray's origin (spread included) and the solid-angle pdf with which
     // sample() at the origin produces this direction. False for the back side or a miss.
     bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const override;
+    // The box of the shape's corners (an ellipse's bounding rectangle); one normal (θ_o = 0),
+    // emitting within the spread's half angle h of it (π/2 without spread): f(a) = 0 for a ≥ h.
+    std::optional<LightBounds> bounds() const override;
     // A light-tracing particle (textbook 6.3): point uniform in area (p_A = 1/A), direction
     // cosine-distributed about the normal within the spread's cone of half angle h (a uniform
     // point of the disk of radius sin h lifted to the sphere: p_ω = cos/(π sin²h), h = π/2

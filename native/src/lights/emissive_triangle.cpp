@@ -99,4 +99,15 @@ bool EmissiveTriangle::sample_emission(Vec2 u_position, Vec2 u_direction, Vec3 /
     return true;
 }
 
+std::optional<LightBounds> EmissiveTriangle::bounds() const {
+    LightBounds b;
+    b.lo = component_min(p0_, component_min(p0_ + e1_, p0_ + e2_));
+    b.hi = component_max(p0_, component_max(p0_ + e1_, p0_ + e2_));
+    b.axis = normal_;
+    b.theta_o = 0.0f;
+    b.theta_e = static_cast<float>(0.5 * kPi + LightBounds::kConePadding);
+    b.two_sided = true;
+    return b;
+}
+
 }  // namespace stratum

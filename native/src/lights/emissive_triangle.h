@@ -60,6 +60,8 @@ public:
     bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling mode, LightSample* out) const override;
     // Solid-angle pdf of reaching `hit` on this triangle from (p, n) by sample() in `mode`.
     float pdf(Vec3 p, Vec3 n, Vec3 hit, TriangleSampling mode = TriangleSampling::SolidAngle) const;
+    // The box of the vertices; the normal, two-sided, each face emitting over its hemisphere.
+    std::optional<LightBounds> bounds() const override;
     // A light-tracing particle (textbook 6.3): point uniform in area (p_A = 1/A), a face chosen
     // with probability ½ by u_direction.x (rescaled and reused), direction cosine-distributed
     // about that face's normal (p_ω = cos/π): weight L cos/(½ p_A p_ω) = 2π A L_e.

@@ -19,6 +19,10 @@
 // | intersect        | the ray (origin, unit dir) meets the lamp's emitting face before t_max:   |
 // |                  | distance, radiance toward the origin, and the solid-angle pdf with which  |
 // |                  | sample() at the origin picks dir (for MIS)                                |
+// | bounds           | the light tree's bound (lights/light_bounds.h): box of the emitting       |
+// |                  | points and orientation cone; phi is left 0, LightSet fills in power().    |
+// |                  | nullopt for lights at infinity (sun, environment), which the tree leaves  |
+// |                  | out and chooses with a fixed probability (LightSet)                       |
 //
 // A light is built from the host's LightParams by its model's entry (LightModel), defined in the
 // light's own file and registered by type in lights/light_registry.cpp.
@@ -29,9 +33,11 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "core/math.h"
 #include "lights/emission_sample.h"
+#include "lights/light_bounds.h"
 #include "lights/light_sample.h"
 #include "lights/light_selection.h"
 #include "scene/scene.h"
@@ -57,6 +63,9 @@ public:
                            float* /*pdf*/) const {
         return false;
     }
+    // A light that does not say where it is counts as one at infinity: chosen outside the tree,
+    // with a probability that does not depend on the shading point (never biased, only slower).
+    virtual std::optional<LightBounds> bounds() const { return std::nullopt; }
 };
 
 // How one light type becomes a light: defined in the light's own file, registered by type in

@@ -7,9 +7,12 @@
 
 namespace stratum {
 
-// Power (textbook 5.14), uniform, or half of each over light objects (lights/light_set.h).
-enum class LightSelection : uint8_t { Mixed, Power, Uniform };
-inline constexpr uint32_t kLightSelectionModes = 3;
+// Power (textbook 5.14), uniform, or half of each over light objects (lights/light_set.h); or
+// the light tree (lights/light_tree.h), whose probabilities depend on the shading point.
+enum class LightSelection : uint8_t { Mixed, Power, Uniform, Tree };
+inline constexpr uint32_t kLightSelectionModes = 4;
+// The modes whose probabilities are one table for the whole scene (all but the tree).
+inline constexpr uint32_t kStaticLightSelectionModes = 3;
 // A point on an emissive triangle: uniform in the solid angle it subtends (Arvo 1995), or
 // uniform in its area (textbook eq. 5.9).
 enum class TriangleSampling : uint8_t { SolidAngle, Area };

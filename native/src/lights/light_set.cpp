@@ -1,6 +1,7 @@
 #include "lights/light_set.h"
 
 #include <algorithm>
+#include <optional>
 #include <unordered_map>
 
 namespace stratum {
@@ -36,7 +37,7 @@ void LightSet::finalize(float scene_radius) {
     for (uint32_t o : object_) ++object_size[o];
     const double objects = static_cast<double>(object_power.size());
     const double uniform = 1.0 / static_cast<double>(std::max<size_t>(1, lights_.size()));
-    for (uint32_t mode = 0; mode < kLightSelectionModes; ++mode) {
+    for (uint32_t mode = 0; mode < kStaticLightSelectionModes; ++mode) {
         probability_[mode].resize(lights_.size());
         cdf_[mode].resize(lights_.size());
         double running = 0.0;
@@ -52,7 +53,9 @@ void LightSet::finalize(float scene_radius) {
                     p = 0.5 * by_power + 0.5 * in_object / objects;
                     break;
                 }
+                // The tree's choice without a shading point (emission) is power's table.
                 case LightSelection::Power:
+                case LightSelection::Tree:
                     p = by_power;
                     break;
                 case LightSelection::Uniform:
@@ -64,11 +67,75 @@ void LightSet::finalize(float scene_radius) {
         }
         if (!cdf_[mode].empty()) cdf_[mode].back() = 1.0f;
     }
+    // The tree mode's split between the lights at infinity and the tree (header).
+    infinite_.clear();
+    is_infinite_.assign(lights_.size(), 0);
+    tree_has_lights_ = false;
+    for (size_t i = 0; i < lights_.size(); ++i) {
+        if (lights_[i]->bounds()) {
+            tree_has_lights_ = tree_has_lights_ || power[i] > 0.0;
+        } else {
+            infinite_.push_back(static_cast<uint32_t>(i));
+            is_infinite_[i] = 1;
+        }
+    }
+    const size_t choices = infinite_.size() + (tree_has_lights_ ? 1 : 0);
+    infinite_probability_ = choices > 0 ? 1.0f / static_cast<float>(choices) : 0.0f;
+    tree_cache_ = std::make_unique<TreeCache>();
+}
+
+const LightTree& LightSet::tree() const {
+    std::call_once(tree_cache_->once, [this] {
+        std::vector<LightBounds> bounds;
+        std::vector<uint32_t> index;
+        for (size_t i = 0; i < lights_.size(); ++i) {
+            std::optional<LightBounds> b = lights_[i]->bounds();
+            if (!b) continue;
+            b->phi = power_[i];
+            bounds.push_back(*b);
+            index.push_back(static_cast<uint32_t>(i));
+        }
+        tree_cache_->tree = std::make_unique<const LightTree>(bounds, index);
+    });
+    return *tree_cache_->tree;
+}
+
+float LightSet::probability(uint32_t index, Vec3 p, Vec3 n, LightSelection selection) const {
+    if (selection != LightSelection::Tree) return probability(index, selection);
+    if (is_infinite_[index]) return infinite_probability_;
+    // The tree's share, 1 − N_inf p_inf, as choose() forms it.
+    const float share = 1.0f - static_cast<float>(infinite_.size()) * infinite_probability_;
+    return share * tree().pmf(p, n, index);
+}
+
+uint32_t LightSet::choose(float u, Vec3 p, Vec3 n, LightSelection selection, float* choice) const {
+    if (selection != LightSelection::Tree) {
+        const uint32_t index = choose(u, selection);
+        *choice = lights_.empty() ? 0.0f : probability(index, selection);
+        return lights_.empty() ? static_cast<uint32_t>(lights_.size()) : index;
+    }
+    *choice = 0.0f;
+    const auto none = static_cast<uint32_t>(lights_.size());
+    if (lights_.empty()) return none;
+    const float infinite_total = static_cast<float>(infinite_.size()) * infinite_probability_;
+    if (u < infinite_total) {
+        const auto k = std::min(static_cast<size_t>(u / infinite_probability_), infinite_.size() - 1);
+        *choice = infinite_probability_;
+        return infinite_[k];
+    }
+    if (!tree_has_lights_) return none;
+    const float share = 1.0f - infinite_total;
+    const float u_tree = std::min((u - infinite_total) / share, kOneMinusEpsilon);
+    float pmf = 0.0f;
+    const uint32_t index = tree().choose(p, n, u_tree, &pmf);
+    if (index == LightTree::kNone) return none;
+    *choice = share * pmf;
+    return index;
 }
 
 uint32_t LightSet::choose(float u, LightSelection selection) const {
     if (lights_.empty()) return 0;
-    const std::vector<float>& cdf = cdf_[static_cast<size_t>(selection)];
+    const std::vector<float>& cdf = cdf_[static_table(selection)];
     const auto it = std::upper_bound(cdf.begin(), cdf.end(), u);
     return static_cast<uint32_t>(std::min(static_cast<size_t>(it - cdf.begin()), lights_.size() - 1));
 }
@@ -76,8 +143,8 @@ uint32_t LightSet::choose(float u, LightSelection selection) const {
 bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, LightSelection selection,
                       TriangleSampling triangle) const {
     if (lights_.empty()) return false;
-    const uint32_t index = choose(u_choice, selection);
-    const float choice = probability(index, selection);
+    float choice = 0.0f;
+    const uint32_t index = choose(u_choice, p, n, selection, &choice);
     if (!(choice > 0.0f)) return false;
     if (!lights_[index]->sample(p, n, u, triangle, out)) return false;
     out->pdf *= choice;
@@ -88,11 +155,13 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
 float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit, LightSelection selection,
                                       TriangleSampling triangle) const {
     const auto& tri = static_cast<const EmissiveTriangle&>(*lights_[index]);
-    return probability(index, selection) * tri.pdf(p, n, hit, triangle);
+    return probability(index, p, n, selection) * tri.pdf(p, n, hit, triangle);
 }
 
 Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf, float* t_out,
-                            LightSelection selection) const {
+                            LightSelection selection, Vec3 choice_point, Vec3 choice_normal) const {
+    uint32_t nearest_lamp = 0;
+    bool found = false;
     Rgb radiance(0.0f);
     float nearest = t_max, nearest_pdf = 0.0f;
     for (const uint32_t i : hittable_lamps_) {
@@ -102,17 +171,23 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
         if (lights_[i]->intersect(origin, dir, nearest, &t, &L, &solid_angle_pdf)) {
             nearest = t;
             radiance = L;
-            nearest_pdf = probability(i, selection) * solid_angle_pdf;
+            nearest_pdf = solid_angle_pdf;
+            nearest_lamp = i;
+            found = true;
         }
     }
-    if (pdf) *pdf = nearest_pdf;
+    // The choice probability of the nearest lamp only (the tree's costs a descent).
+    if (pdf)
+        *pdf = found ? probability(nearest_lamp, choice_point, choice_normal, selection) * nearest_pdf : 0.0f;
     if (t_out) *t_out = nearest;
     return radiance;
 }
 
 float LightSet::environment_pdf(Vec3 wi, LightSelection selection) const {
     if (!environment_) return 0.0f;
-    return probability(environment_index_, selection) * environment_->pdf(wi);
+    const float choice = selection == LightSelection::Tree ? infinite_probability_
+                                                           : probability(environment_index_, selection);
+    return choice * environment_->pdf(wi);
 }
 
 bool LightSet::sample_emission(float u_choice, Vec2 u_position, Vec2 u_direction, LightSelection selection,

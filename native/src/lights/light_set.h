@@ -9,6 +9,13 @@
 //   half by power, half uniform over light objects (a Blender lamp, or all emissive triangles
 //   of one object, chosen within the object by power):
 //       p(j) = ½ Φ_j / ΣΦ + ½ (1/G) Φ_j / Φ_g(j),   G objects, Φ_g the power of j's object.
+// * tree: the light tree (lights/light_tree.h) over the finite lights, its probabilities
+//   depending on the shading point (p, n); the lights at infinity (sun, environment: no
+//   bounds()) stay outside it and are chosen as pbrt-v4's BVHLightSampler does, each with
+//       p_inf = 1 / (N_inf + 1)   (1 / N_inf when the tree is empty),
+//   the tree with the rest, 1 − N_inf p_inf. Light tracing has no shading point to choose for:
+//   its emission (sample_emission) chooses by power under `tree`. The tree is built on first
+//   use (a render with another mode never pays for it).
 // Any p > 0 wherever a light contributes keeps NEE unbiased; a zero total power makes the
 // power choice uniform.
 #pragma once
@@ -17,6 +24,7 @@
 #include <concepts>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -24,6 +32,7 @@
 #include "lights/environment_light.h"
 #include "lights/light.h"
 #include "lights/light_selection.h"
+#include "lights/light_tree.h"
 
 namespace stratum {
 
@@ -51,12 +60,22 @@ public:
     // Power Φ_j of light `index` (W; the sun's and the environment's through the scene's
     // cross-section), as the selection distributions use it.
     double power(uint32_t index) const { return power_[index]; }
-    // The probability with which `selection` chooses light `index`.
+    // The probability with which `selection` chooses light `index` without a shading point:
+    // the tree's emission choice is by power (header).
     float probability(uint32_t index, LightSelection selection = LightSelection::Mixed) const {
-        return probability_[static_cast<size_t>(selection)][index];
+        return probability_[static_table(selection)][index];
     }
-    // The light `selection` chooses for u in [0,1); size() when there are no lights.
+    // The probability with which `selection` chooses light `index` for the shading point p of
+    // normal n (unit, or 0): the tree's, or the table above for the other modes.
+    float probability(uint32_t index, Vec3 p, Vec3 n, LightSelection selection) const;
+    // The light `selection` chooses for u in [0,1) without a shading point (the tree's emission
+    // choice is by power); size() when there are no lights.
     uint32_t choose(float u, LightSelection selection = LightSelection::Mixed) const;
+    // The light `selection` chooses for u in [0,1) at (p, n), and its probability (*choice);
+    // size() (choice 0) when there is none.
+    uint32_t choose(float u, Vec3 p, Vec3 n, LightSelection selection, float* choice) const;
+    // The light tree over the finite lights, built on first use (thread-safe, deterministic).
+    const LightTree& tree() const;
     // Chooses a light with u_choice and samples it with u for the shading point p of normal n
     // (unit; 0 when it has none); out->pdf includes the choice. `triangle` is how a point on a
     // chosen emissive triangle is taken (n shapes it: lights/emissive_triangle.h).
@@ -79,11 +98,14 @@ public:
     // emitting face the ray (dir unit) meets before t_max; black if none. Lamps are not in the
     // BVH: this is how camera rays (Cycles' Object > Visibility > Camera on a light) and
     // BSDF-scattered rays find them. *pdf (if not null) = the pdf (choice × solid angle) with
-    // which sample() at `origin` picks that direction, for MIS.
+    // which sample() at `origin` picks that direction, for MIS; under `tree` the choice is the
+    // one at (choice_point, choice_normal), the vertex whose NEE the pdf is compared with.
     // *t (if not null) = the distance to the lamp.
     Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
-                      float* t = nullptr, LightSelection selection = LightSelection::Mixed) const;
+                      float* t = nullptr, LightSelection selection = LightSelection::Mixed,
+                      Vec3 choice_point = {}, Vec3 choice_normal = {}) const;
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
+    // No shading point is needed: under `tree` a light at infinity has the fixed p_inf.
     const EnvironmentLight* environment() const { return environment_; }
     float environment_pdf(Vec3 wi, LightSelection selection = LightSelection::Mixed) const;
     // Whether some light can be reached only by light sampling: a point or spot lamp of radius
@@ -97,8 +119,23 @@ private:
     std::vector<uint32_t> visibility_;      // StratumVisibility bits of each light
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)
     std::vector<double> power_;             // Φ_j, set by finalize()
-    // Per LightSelection: cdf[i] = P(choice < i+1) (last = 1), and the choice probabilities.
-    std::array<std::vector<float>, kLightSelectionModes> cdf_, probability_;
+    // The table a mode chooses by without a shading point: its own, power's for the tree.
+    static size_t static_table(LightSelection selection) {
+        return static_cast<size_t>(selection == LightSelection::Tree ? LightSelection::Power : selection);
+    }
+    // Per static LightSelection: cdf[i] = P(choice < i+1) (last = 1), and the choice probabilities.
+    std::array<std::vector<float>, kStaticLightSelectionModes> cdf_, probability_;
+    // Lights at infinity (no bounds()), each chosen by the tree mode with infinite_probability_.
+    std::vector<uint32_t> infinite_;
+    std::vector<uint8_t> is_infinite_;
+    float infinite_probability_ = 0.0f;
+    bool tree_has_lights_ = false;
+    // Built by tree() on first use; a unique_ptr so that LightSet stays movable.
+    struct TreeCache {
+        std::once_flag once;
+        std::unique_ptr<const LightTree> tree;
+    };
+    std::unique_ptr<TreeCache> tree_cache_ = std::make_unique<TreeCache>();
     uint32_t delta_lights_ = 0;
     const EnvironmentLight* environment_ = nullptr;  // owned by lights_
     uint32_t environment_index_ = 0;

@@ -49,6 +49,10 @@ public:
     // The disk met by the ray (origin, unit dir) before t_max (radius > 0 only): distance,
     // radiance and sample()'s solid-angle pdf of dir.
     bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const override;
+    // The ball of radius r about the centre (the facing disk's points), emitting every way.
+    std::optional<LightBounds> bounds() const override {
+        return omnidirectional_bounds(position_, radius_, 0.0);
+    }
     // A light-tracing particle (textbook 6.4): from the centre, direction uniform on the sphere
     // (p_ω = 1/(4π)), weight I/p_ω = P. A radius r is Cycles' disk facing each receiver, which
     // no emitter in space reproduces: the particle leaves the centre and its first hit at

@@ -1,5 +1,8 @@
 #include "lights/spot_light.h"
 
+#include <algorithm>
+#include <cmath>
+
 #include "lights/light_param_checks.h"
 #include "sampling/warps.h"
 
@@ -68,6 +71,19 @@ bool SpotLight::sample_emission(Vec2 /*u_position*/, Vec2 u_direction, Vec3 /*ce
     out->weight = intensity_ * (attenuation(local.z) * 2.0f * kPi * (1.0f - cos_half_));
     out->soft_radius = radius_;
     return true;
+}
+
+std::optional<LightBounds> SpotLight::bounds() const {
+    LightBounds b = omnidirectional_bounds(position_, radius_, 0.0);
+    b.axis = axis_;
+    // attenuation() is 1 from cos θ ≥ cos θ_h + smooth on, 0 from cos θ ≤ cos θ_h on; the
+    // padding covers float rounding at the hard edge of a spot without blend.
+    const double theta_h = std::acos(static_cast<double>(cos_half_));
+    const double theta_o = std::acos(std::min(1.0, static_cast<double>(cos_half_) + smooth_));
+    b.theta_o = static_cast<float>(theta_o);
+    b.theta_e =
+        static_cast<float>(std::min(static_cast<double>(kPi), theta_h - theta_o + LightBounds::kConePadding));
+    return b;
 }
 
 namespace {

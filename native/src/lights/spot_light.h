@@ -42,6 +42,9 @@ public:
     bool sample(Vec3 p, Vec3 n, Vec2 u, TriangleSampling triangle_sampling, LightSample* out) const override;
     // As PointLight::intersect, with the angular factor of the direction −dir.
     bool intersect(Vec3 origin, Vec3 dir, float t_max, float* t, Rgb* radiance, float* pdf) const override;
+    // The ball of radius r about the centre; cone about the axis: full intensity within θ_o
+    // (where the blend's smoothstep reaches 1), none beyond θ_h = θ_o + θ_e.
+    std::optional<LightBounds> bounds() const override;
     // The angular factor I(θ) / (P/(4π)) for cos θ = cos_theta (θ from the axis).
     float attenuation(float cos_theta) const;
     // Radiance of the facing disk of a lamp with a radius at angular factor a: I a / (π r²),
