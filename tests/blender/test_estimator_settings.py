@@ -29,7 +29,7 @@ DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection"
             "triangle_sampling": "solid_angle", "rr_mode": "throughput", "rr_min_depth": 3,
             "control_variate": 0.0}
 # Values per enum, as the library lists them (native/src/integrators/estimator_options.cpp).
-ENUM_SIZES = {"triangle_sampling": 2}
+ENUM_SIZES = {"triangle_sampling": 2, "light_selection": 4}
 
 
 def _enum_identifiers(name: str) -> list[str]:
