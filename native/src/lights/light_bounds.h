@@ -31,7 +31,11 @@
 //
 // Split cost (the paper's eq. 2, pbrt-v4 BVHLightSampler::EvaluateCost): Φ M_Ω area(box) K_r,
 //     M_Ω = 2π(1 − cos θ_o) + π/2 (2 θ_w sin θ_o − cos(θ_o − 2θ_w) − 2 θ_o sin θ_o + cos θ_o),
-// θ_w = min(θ_o + θ_e, π), K_r = longest box side / side along the split axis.
+// θ_w = min(θ_o + θ_e, π), K_r = longest box side / side along the split axis. The box's sides
+// count as at least one bucket of the node's centroid box long: a row of point lamps has a box
+// of area 0, and with the exact area every split peeled off one row at no cost (a 32 × 32 grid
+// of lamps built 26 levels deep instead of 13, and NEE variance 0.18× power selection's instead
+// of 0.13×).
 #pragma once
 
 #include <algorithm>
@@ -53,11 +57,6 @@ struct LightBounds {
 
     Vec3 centre() const { return (lo + hi) * 0.5f; }
     Vec3 diagonal() const { return hi - lo; }
-    double surface_area() const {
-        const Vec3 d = diagonal();
-        return 2.0 * (static_cast<double>(d.x) * d.y + static_cast<double>(d.y) * d.z +
-                      static_cast<double>(d.z) * d.x);
-    }
 };
 
 inline Vec3 component_min(Vec3 a, Vec3 b) {
@@ -119,18 +118,34 @@ inline double sin_sub_clamped(double sin_a, double cos_a, double sin_b, double c
     return cos_a > cos_b ? 0.0 : sin_a * cos_b - cos_a * sin_b;
 }
 
-// The header's importance I of bounds b at the shading point p of normal n (unit, or 0).
-inline double importance(const LightBounds& b, Vec3 p, Vec3 n) {
-    const Vec3 c = b.centre();
-    const Vec3 to_p = p - c;
+// What importance() reads of a bound, the cone's trigonometry done once (the tree's nodes).
+struct ImportanceBound {
+    Vec3 centre, axis;
+    double radius2;  // (|diagonal|/2)², the bounding sphere's radius squared
+    double phi;
+    double cos_o, sin_o, cos_e;
+    bool two_sided;
+
+    explicit ImportanceBound(const LightBounds& b)
+        : centre(b.centre()),
+          axis(b.axis),
+          radius2(dot(b.diagonal() * 0.5f, b.diagonal() * 0.5f)),
+          phi(b.phi),
+          cos_o(std::cos(static_cast<double>(b.theta_o))),
+          sin_o(std::sin(static_cast<double>(b.theta_o))),
+          cos_e(std::cos(static_cast<double>(b.theta_e))),
+          two_sided(b.two_sided) {}
+};
+
+// The header's importance I of bound b at the shading point p of normal n (unit, or 0).
+inline double importance(const ImportanceBound& b, Vec3 p, Vec3 n) {
+    const Vec3 to_p = p - b.centre;
     const double d2 = dot(to_p, to_p);
-    const Vec3 half = b.diagonal() * 0.5f;
-    const double radius2 = dot(half, half);
-    const double clamped_d2 = std::max({d2, radius2, 1e-30});
-    // θ_b: the bounding sphere (centre c, radius |half diagonal|) seen from p.
+    const double clamped_d2 = std::max({d2, b.radius2, 1e-30});
+    // θ_b: the bounding sphere seen from p.
     double cos_b = -1.0, sin_b = 0.0;
-    if (d2 > radius2) {
-        const double sin2 = radius2 / d2;
+    if (d2 > b.radius2) {
+        const double sin2 = b.radius2 / d2;
         cos_b = std::sqrt(std::max(0.0, 1.0 - sin2));
         sin_b = std::sqrt(sin2);
     }
@@ -140,12 +155,10 @@ inline double importance(const LightBounds& b, Vec3 p, Vec3 n) {
     double cos_w = d2 > 0.0 ? b.axis.x * wx + b.axis.y * wy + b.axis.z * wz : 1.0;
     if (b.two_sided) cos_w = std::abs(cos_w);
     const double sin_w = std::sqrt(std::max(0.0, 1.0 - cos_w * cos_w));
-    const double cos_o = std::cos(static_cast<double>(b.theta_o)),
-                 sin_o = std::sin(static_cast<double>(b.theta_o));
-    const double cos_x = cos_sub_clamped(sin_w, cos_w, sin_o, cos_o);
-    const double sin_x = sin_sub_clamped(sin_w, cos_w, sin_o, cos_o);
+    const double cos_x = cos_sub_clamped(sin_w, cos_w, b.sin_o, b.cos_o);
+    const double sin_x = sin_sub_clamped(sin_w, cos_w, b.sin_o, b.cos_o);
     const double cos_theta = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-    if (cos_theta < std::cos(static_cast<double>(b.theta_e))) return 0.0;
+    if (cos_theta < b.cos_e) return 0.0;
     double result = b.phi * std::max(0.0, cos_theta) / clamped_d2;
     if (dot(n, n) > 0.0f) {
         const double cos_i = d2 > 0.0 ? std::abs(n.x * wx + n.y * wy + n.z * wz) : 1.0;
@@ -155,8 +168,9 @@ inline double importance(const LightBounds& b, Vec3 p, Vec3 n) {
     return result;
 }
 
-// The header's split cost of bounds b for a split along `axis` (0, 1, 2).
-inline double split_cost(const LightBounds& b, int axis) {
+// The header's split cost of bounds b for a split along `axis` (0, 1, 2); each side of the box
+// counts as at least min_extent long in its area (below).
+inline double split_cost(const LightBounds& b, int axis, float min_extent) {
     const double theta_o = b.theta_o, theta_e = b.theta_e;
     const double theta_w = std::min(theta_o + theta_e, static_cast<double>(kPi));
     const double cos_o = std::cos(theta_o), sin_o = std::sin(theta_o);
@@ -164,10 +178,12 @@ inline double split_cost(const LightBounds& b, int axis) {
         2.0 * kPi * (1.0 - cos_o) +
         0.5 * kPi *
             (2.0 * theta_w * sin_o - std::cos(theta_o - 2.0 * theta_w) - 2.0 * theta_o * sin_o + cos_o);
-    const Vec3 d = b.diagonal();
+    const Vec3 d = component_max(b.diagonal(), Vec3(min_extent, min_extent, min_extent));
     const double longest = std::max({d.x, d.y, d.z});
     const double k_r = d[axis] > 0.0f ? longest / d[axis] : 1.0;
-    return b.phi * m_omega * k_r * b.surface_area();
+    const double area = 2.0 * (static_cast<double>(d.x) * d.y + static_cast<double>(d.y) * d.z +
+                               static_cast<double>(d.z) * d.x);
+    return b.phi * m_omega * k_r * area;
 }
 
 }  // namespace stratum

@@ -23,10 +23,10 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
                              uint32_t depth) {
     depth_ = std::max(depth_, depth);
     const auto index = static_cast<uint32_t>(nodes_.size());
-    nodes_.push_back({});
+    nodes_.push_back({ImportanceBound(items[begin].bounds), 0, true});
     if (end - begin == 1) {
         const Item& item = items[begin];
-        nodes_[index] = {item.bounds, item.light, true};
+        nodes_[index] = {ImportanceBound(item.bounds), item.light, true};
         trails_[item.light] = {bits, depth, index};
         return item.bounds;
     }
@@ -45,6 +45,8 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
         const auto b = static_cast<int>(kBuckets * ((item.bounds.centre()[axis] - centre_lo[axis]) / extent));
         return std::clamp(b, 0, kBuckets - 1);
     };
+    const Vec3 centre_extent = centre_hi - centre_lo;
+    const float min_extent = std::max({centre_extent.x, centre_extent.y, centre_extent.z}) / kBuckets;
     if (depth < kMedianDepth) {
         for (int axis = 0; axis < 3; ++axis) {
             if (!(centre_hi[axis] > centre_lo[axis])) continue;
@@ -70,7 +72,8 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
             }
             for (int split = 1; split < kBuckets; ++split) {
                 if (!any_below[split] || !any_above[split]) continue;
-                const double cost = split_cost(below[split], axis) + split_cost(above[split], axis);
+                const double cost =
+                    split_cost(below[split], axis, min_extent) + split_cost(above[split], axis, min_extent);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_axis = axis;
@@ -99,13 +102,13 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
     build(items, begin, split, bits, depth + 1);
     const auto second = static_cast<uint32_t>(nodes_.size());
     build(items, split, end, bits | (uint64_t{1} << depth), depth + 1);
-    nodes_[index] = {all, second, false};
+    nodes_[index] = {ImportanceBound(all), second, false};
     return all;
 }
 
 float LightTree::first_child_probability(uint32_t node, Vec3 p, Vec3 n) const {
-    const double i0 = importance(nodes_[node + 1].bounds, p, n);
-    const double i1 = importance(nodes_[nodes_[node].child_or_light].bounds, p, n);
+    const double i0 = importance(nodes_[node + 1].bound, p, n);
+    const double i1 = importance(nodes_[nodes_[node].child_or_light].bound, p, n);
     if (!(i0 + i1 > 0.0)) return -1.0f;
     return static_cast<float>(i0 / (i0 + i1));
 }
@@ -115,7 +118,7 @@ uint32_t LightTree::choose(Vec3 p, Vec3 n, float u, float* pmf) const {
     if (nodes_.empty()) return kNone;
     // The root alone: a tree of one light takes it wherever it can contribute.
     if (nodes_[0].leaf) {
-        if (!(importance(nodes_[0].bounds, p, n) > 0.0)) return kNone;
+        if (!(importance(nodes_[0].bound, p, n) > 0.0)) return kNone;
         *pmf = 1.0f;
         return nodes_[0].child_or_light;
     }
@@ -140,7 +143,7 @@ uint32_t LightTree::choose(Vec3 p, Vec3 n, float u, float* pmf) const {
 
 float LightTree::pmf(Vec3 p, Vec3 n, uint32_t light) const {
     if (light >= trails_.size() || trails_[light].leaf == kNone) return 0.0f;
-    if (nodes_[0].leaf) return importance(nodes_[0].bounds, p, n) > 0.0 ? 1.0f : 0.0f;
+    if (nodes_[0].leaf) return importance(nodes_[0].bound, p, n) > 0.0 ? 1.0f : 0.0f;
     const Trail& trail = trails_[light];
     float probability = 1.0f;
     uint32_t node = 0;

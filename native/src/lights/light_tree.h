@@ -55,7 +55,7 @@ public:
 
 private:
     struct Node {
-        LightBounds bounds;
+        ImportanceBound bound;
         // Inner node: the second child's index (the first is the next node); leaf: the light.
         uint32_t child_or_light;
         bool leaf;
