@@ -191,7 +191,7 @@ TEST(LightTree, ZeroPmfOnlyWhereTheLightCannotContribute) {
             ++zeros;
             for (int s = 0; s < 16; ++s) {
                 LightSample ls;
-                const Vec2 u(rng.uniform(0.0f, 1.0f), rng.uniform(0.0f, 1.0f));
+                const Vec2 u{rng.uniform(0.0f, 1.0f), rng.uniform(0.0f, 1.0f)};
                 if (!set.light(i).sample(p, n, u, TriangleSampling::Area, &ls)) continue;
                 EXPECT_TRUE(ls.radiance.is_black() || dot(ls.wi, n) == 0.0f)
                     << "light " << i << " at shading point " << k << " has pmf 0 but lights it";
