@@ -17,7 +17,8 @@ does around a render (denoising).
 from __future__ import annotations
 
 PROPERTIES: tuple[str, ...] = (
-    "samples", "sampler", "hemisphere", "seed", "integrator", "ao_distance", "max_bounces",
+    "samples", "use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples", "sampler",
+    "hemisphere", "seed", "integrator", "ao_distance", "max_bounces",
     "light_sampling", "mis_heuristic", "triangle_sampling", "light_selection", "rr_mode",
     "rr_min_depth", "control_variate", "filter_type", "filter_width", "threads",
 )

@@ -16,10 +16,19 @@
 
 namespace stratum {
 
+// Adaptive sampling (render/adaptive_sampling.h): what the settings say; the renderer resolves
+// the automatic values.
+struct AdaptiveSettings {
+    bool enabled = false;
+    float threshold = 0.01f;   // 0 = automatic
+    uint32_t min_samples = 0;  // 0 = automatic
+};
+
 struct RenderSettings {
     uint32_t width = 64, height = 64;
     uint32_t samples = 16;
     uint32_t seed = 0;
+    AdaptiveSettings adaptive;
     // A subset of the frame's sample indices, as Cycles' sample subset: the render takes indices
     // [sample_offset, sample_offset + sample_count) of the `samples` the sampler's sequence is
     // built for (sample_count = 0: up to `samples`). Renders of disjoint subsets, their exact
