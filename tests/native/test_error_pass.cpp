@@ -3,9 +3,10 @@
 // L_e = 1), each pixel is rendered with 32 seeds; the spread of its value over the seeds is its
 // actual error, and the error pass of each render estimates that same quantity from one render.
 //
-// Squared, the two agree in expectation for independent samples: the pass is s/√n with s² the
-// unbiased sample variance of the pixel's n samples, so E[pass²] = σ²/n, the variance of the
-// pixel mean, which the seeds' sample variance also estimates without bias. The test compares
+// Squared, the two agree in expectation for independent samples: the pass is then s/√n with s²
+// the unbiased sample variance of the pixel's n samples (the film's gain is 1 for the
+// independent samplers), so E[pass²] = σ²/n, the variance of the pixel mean, which the seeds'
+// sample variance also estimates without bias. The test compares
 // the means over the pixels of both (red channel; the sphere is grey).
 #include <gtest/gtest.h>
 
@@ -94,10 +95,11 @@ TEST(ErrorPass, EstimatesTheActualErrorOfIndependentSamples) {
 
 // What docs/passes.md reports: the ratio actual / estimated error (square roots of the means
 // above) for every sampler. Samples of one pixel from a low-discrepancy sequence are not
-// independent: their spread overstates the error of their mean, so the ratio falls below 1 (to
-// 0.5-0.6 at 12 bounces for the stratified, Sobol and Fibonacci samplers). On this scene the
-// pass never understates the error, for any sampler: the ratio of the variances stays within 4
-// standard errors of at most 1.
+// independent; the pass scales their spread by the gain it measures from the pixel's prefixes
+// (film/error_estimate.h). At 16 samples of a 12-bounce path the prefixes do not yet show the
+// whole gain (ratio 0.52-0.58 for sobol, zsobol, stratified, lhs, fibonacci), so on this scene
+// the pass still never understates the error, for any sampler: the ratio of the variances stays
+// within 4 standard errors of at most 1.
 TEST(ErrorPass, MeasuresWhatThePassMeansForEverySampler) {
     IntegratingSphere s = make_closed_sphere(0.5f, 1.0f, 12);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();

@@ -1,6 +1,7 @@
 // A frame's samples split into ranges rendered apart (sample_offset, sample_count), their exact
 // sums added (stratum_renderer_read_sums / _add_sums): every pass bit-identical to one render of
-// all the samples, for every sampler, for splits into halves, uneven parts and single samples.
+// all the samples, for every sampler, for splits into halves, uneven parts and single samples
+// (the error pass: see `comparable`).
 #include <gtest/gtest.h>
 
 #include <cstring>
@@ -110,6 +111,15 @@ Passes merged(StratumScene* scene, const char* sampler, const char* integrator,
     return out;
 }
 
+// The passes the exchange keeps bit for bit. The Stratum Error pass of combined sums is the
+// independent-samples estimate (film/film.h: a render's prefix sums, which measure a
+// low-discrepancy sampler's gain, are its own); for the independent samplers that is the whole
+// render's too.
+Passes comparable(Passes passes, const std::string& sampler) {
+    if (sampler != "random" && sampler != "lcg") passes.values.pop_back();  // Stratum Error, the last
+    return passes;
+}
+
 }  // namespace
 
 TEST(FilmExchange, SplitSampleRangesAddUpToTheWholeRenderBitForBitForEverySampler) {
@@ -124,7 +134,8 @@ TEST(FilmExchange, SplitSampleRangesAddUpToTheWholeRenderBitForBitForEverySample
         const Passes expected = read_passes(whole);
         stratum_renderer_destroy(whole);
         for (const auto& split : splits)
-            EXPECT_TRUE(merged(scene, sampler, "path", split) == expected)
+            EXPECT_TRUE(comparable(merged(scene, sampler, "path", split), sampler) ==
+                        comparable(expected, sampler))
                 << sampler << ", split into " << split.size() << " ranges";
     }
     stratum_scene_destroy(scene);
@@ -135,7 +146,8 @@ TEST(FilmExchange, LightTracingSplatsAddUpToTheWholeRender) {
     StratumRenderer* whole = start(scene, "sobol", "light", 0, 0);
     const Passes expected = read_passes(whole);
     stratum_renderer_destroy(whole);
-    EXPECT_TRUE(merged(scene, "sobol", "light", {{0, 5}, {5, 3}}) == expected);
+    EXPECT_TRUE(comparable(merged(scene, "sobol", "light", {{0, 5}, {5, 3}}), "sobol") ==
+                comparable(expected, "sobol"));
     stratum_scene_destroy(scene);
 }
 

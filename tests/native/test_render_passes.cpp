@@ -292,9 +292,10 @@ TEST(RenderPasses, FirstSamplePassesKeepSampleZeroAndTheErrorPassIsTheMeansStand
     EXPECT_NEAR(error[0], std::sqrt(5.0 / 12.0), 1e-6);
     EXPECT_EQ(error[1], 0.0f);
     EXPECT_EQ(error[2], 0.0f);
-    // The memory budget counts the sums (RGBA + depth + 3 squares, 16-byte fixed point) and the
-    // published floats (RGBA + depth + count + 3 errors).
-    EXPECT_EQ(Film::bytes_per_pixel(passes, false), 8.0 * 16 + 9.0 * 4 + 4);
+    // The memory budget counts the sums (RGBA + depth + 3 squares, 16-byte fixed point), the
+    // published floats (RGBA + depth + count + 3 errors), the count, and the error estimate's
+    // prefix sums (RGB at 3 levels, 16 bytes each), their counts and the estimate (gain, count).
+    EXPECT_EQ(Film::bytes_per_pixel(passes, false), 8.0 * 16 + 9.0 * 4 + 4 + 9.0 * 16 + 3 * 4 + 8);
 }
 
 // Cycles' AO pass inside a closed unit sphere: from a wall point, the direction at angle θ to the

@@ -5,12 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <complex>
 #include <cstdio>
 #include <memory>
 #include <set>
 #include <vector>
 
+#include "error_spectrum.h"
 #include "sampling/sobol_sampler.h"
 #include "sampling/zsobol_sampler.h"
 
@@ -188,27 +188,6 @@ std::vector<double> error_image(const Sampler& s, uint32_t w, uint32_t spp) {
     return e;
 }
 
-// |DFT|^2 of a w x w image, by rows then columns (O(w^3)).
-std::vector<double> power_spectrum(const std::vector<double>& img, uint32_t w) {
-    using C = std::complex<double>;
-    std::vector<C> twiddle(w), a(img.begin(), img.end()), b(a.size());
-    for (uint32_t k = 0; k < w; ++k) twiddle[k] = std::polar(1.0, -2.0 * M_PI * k / w);
-    for (uint32_t y = 0; y < w; ++y)
-        for (uint32_t k = 0; k < w; ++k) {
-            C sum = 0;
-            for (uint32_t x = 0; x < w; ++x) sum += a[y * w + x] * twiddle[(k * x) % w];
-            b[y * w + k] = sum;
-        }
-    std::vector<double> power(a.size());
-    for (uint32_t kx = 0; kx < w; ++kx)
-        for (uint32_t ky = 0; ky < w; ++ky) {
-            C sum = 0;
-            for (uint32_t y = 0; y < w; ++y) sum += b[y * w + kx] * twiddle[(ky * y) % w];
-            power[ky * w + kx] = std::norm(sum);
-        }
-    return power;
-}
-
 }  // namespace
 
 TEST(ZSobolSampler, ErrorIsBlueNoiseAtFourSamplesPerPixel) {
@@ -220,8 +199,8 @@ TEST(ZSobolSampler, ErrorIsBlueNoiseAtFourSamplesPerPixel) {
     // frequencies x 4 seeds has an exponentially distributed power, so the ratio has a relative
     // standard error of about 1/sqrt(800) = 3.5%: 0.65 is many sigma from both 1 and 0.14.
     const uint32_t w = 64, spp = 4;
-    double low_z = 0, all_z = 0, low_s = 0, all_s = 0, mse_z = 0, mse_s = 0;
-    int n_low = 0, n_all = 0;
+    stratum_test::SpectrumBands bands_z, bands_s;
+    double mse_z = 0, mse_s = 0;
     for (uint32_t seed : {1u, 2u, 3u, 4u}) {
         const ZSobolSampler z({spp, seed, w, w});
         const SobolSampler s({spp, seed, w, w});
@@ -230,24 +209,10 @@ TEST(ZSobolSampler, ErrorIsBlueNoiseAtFourSamplesPerPixel) {
             mse_z += ez[i] * ez[i] / double(ez.size());
             mse_s += es[i] * es[i] / double(es.size());
         }
-        const std::vector<double> pz = power_spectrum(ez, w), ps = power_spectrum(es, w);
-        for (uint32_t ky = 0; ky < w; ++ky)
-            for (uint32_t kx = 0; kx < w; ++kx) {
-                if (kx == 0 && ky == 0) continue;
-                const int fx = kx < w / 2 ? int(kx) : int(kx) - int(w);
-                const int fy = ky < w / 2 ? int(ky) : int(ky) - int(w);
-                const bool low = fx * fx + fy * fy <= int(w / 8) * int(w / 8);
-                all_z += pz[ky * w + kx];
-                all_s += ps[ky * w + kx];
-                ++n_all;
-                if (low) {
-                    low_z += pz[ky * w + kx];
-                    low_s += ps[ky * w + kx];
-                    ++n_low;
-                }
-            }
+        bands_z.add(ez, w);
+        bands_s.add(es, w);
     }
-    const double ratio_z = (low_z / n_low) / (all_z / n_all), ratio_s = (low_s / n_low) / (all_s / n_all);
+    const double ratio_z = bands_z.low_frequency_ratio(), ratio_s = bands_s.low_frequency_ratio();
     std::printf("low-frequency power ratio: zsobol %.3f, sobol %.3f; per-pixel MSE zsobol/sobol %.3f\n",
                 ratio_z, ratio_s, mse_z / mse_s);
     EXPECT_LT(ratio_z, 0.65);

@@ -10,6 +10,29 @@ namespace {
 
 bool is_finite(const Rgb& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
 
+// The passes a film holds: those asked for, and the Error pass's sums of squares when it tracks
+// prefixes (its error estimate scales them).
+std::vector<Pass> film_passes(std::span<const Pass> passes, bool track_prefixes) {
+    std::vector<Pass> out(passes.begin(), passes.end());
+    if (track_prefixes && std::find(out.begin(), out.end(), Pass::Error) == out.end())
+        out.push_back(Pass::Error);
+    return out;
+}
+
+// s²/n: the variance of the mean of n independent samples estimated from their sum and sum of
+// squares, s² = n/(n−1)·(Σx²/n − x̄²). The fixed-point means of x and x² are each within
+// ε = 2^-41 of the exact ones, so Σx²/n − x̄² is within ε(1 + 2|x̄| + 3ε) of its exact value,
+// plus the double arithmetic's few roundings of x̄² (4·x̄²·2^-53): a spread within that is no
+// spread (a constant pixel has an error of 0).
+double independent_variance(FilmSum sum, FilmSum sum_sq, double n) {
+    if (n < 2.0) return 0.0;
+    const double mean = from_fixed(sum) / n;
+    const double rounding =
+        kFixedRounding * (1.0 + 2.0 * std::abs(mean) + 3.0 * kFixedRounding) + 4.0 * mean * mean * 0x1p-53;
+    const double spread = std::max(0.0, from_fixed(sum_sq) / n - mean * mean - rounding);
+    return spread / (n - 1.0);
+}
+
 }  // namespace
 
 FilmLayout::FilmLayout(std::span<const Pass> passes) {
@@ -27,22 +50,27 @@ FilmLayout::FilmLayout(std::span<const Pass> passes) {
 }
 
 Film::Film(const PixelRegion& region, uint32_t frame_width, uint32_t frame_height, const PixelFilter& filter,
-           std::span<const Pass> passes, bool light_paths)
+           std::span<const Pass> passes, bool light_paths, bool track_prefixes)
     : region_(region),
       frame_width_(frame_width),
       frame_height_(frame_height),
       filter_(filter),
-      layout_(passes),
+      layout_(film_passes(passes, track_prefixes)),
       sums_(region.pixel_count() * sums_stride(), 0),
       counts_(region.pixel_count(), 0),
       splat_sums_(light_paths ? 3 * region.pixel_count() : 0, 0),
+      prefix_sums_(layout_.has(Pass::Error) ? 9 * region.pixel_count() : 0, 0),
+      prefix_counts_(tracks_prefixes() ? 3 * region.pixel_count() : 0, 0),
+      estimates_(tracks_prefixes() ? region.pixel_count() : 0),
       published_(region.pixel_count() * published_stride(), 0.0f) {}
 
-double Film::bytes_per_pixel(std::span<const Pass> passes, bool light_paths) {
-    const FilmLayout layout(passes);
+double Film::bytes_per_pixel(std::span<const Pass> passes, bool light_paths, bool track_prefixes) {
+    const FilmLayout layout(film_passes(passes, track_prefixes));
+    const bool prefixes = layout.has(Pass::Error);
     return (4.0 + layout.sum_channels()) * sizeof(FilmSum) +
            (4.0 + layout.published_channels()) * sizeof(float) + sizeof(uint32_t) +
-           (light_paths ? 3 * sizeof(FilmSum) : 0);
+           (light_paths ? 3 * sizeof(FilmSum) : 0) +
+           (prefixes ? 9 * sizeof(FilmSum) + 3 * sizeof(uint32_t) + sizeof(PixelErrorEstimate) : 0);
 }
 
 void Film::load_sums(size_t pixel, FilmSum* out) const {
@@ -52,6 +80,67 @@ void Film::load_sums(size_t pixel, FilmSum* out) const {
 void Film::store_sums(size_t pixel, const FilmSum* sums, uint32_t count) {
     std::copy_n(sums, sums_stride(), &sums_[pixel * sums_stride()]);
     counts_[pixel] = count;
+    if (tracks_prefixes() && count > 0 && (count & (count - 1)) == 0) {
+        // The levels move down one (P becomes P/2, P/2 becomes P/4) and P's sums come in.
+        FilmSum* level = &prefix_sums_[9 * pixel];
+        uint32_t* counts = &prefix_counts_[3 * pixel];
+        std::copy_n(level, 6, level + 3);
+        std::copy_n(sums, 3, level);
+        counts[2] = counts[1];
+        counts[1] = counts[0];
+        counts[0] = count;
+    }
+}
+
+Rgb Film::mean(size_t pixel) const {
+    const FilmSum* sum = &sums_[pixel * sums_stride()];
+    const double n = counts_[pixel];
+    if (n == 0) return Rgb(0.0f);
+    return Rgb(static_cast<float>(from_fixed(sum[0]) / n), static_cast<float>(from_fixed(sum[1]) / n),
+               static_cast<float>(from_fixed(sum[2]) / n));
+}
+
+double Film::standard_error(size_t pixel, uint32_t c) const {
+    if (!layout_.has(Pass::Error)) return 0.0;
+    const FilmSum* sum = &sums_[pixel * sums_stride()];
+    const FilmSum* sum_sq = sum + 4 + layout_.entry(Pass::Error).sum_offset;
+    const double gain = !estimates_.empty() && estimates_[pixel].count > 0 ? estimates_[pixel].gain : 1.0;
+    return std::sqrt(gain * independent_variance(sum[c], sum_sq[c], counts_[pixel]));
+}
+
+void Film::estimate_errors(bool independent_samples) {
+    if (!tracks_prefixes()) return;
+    if (independent_samples) {
+        std::unique_lock lock(published_mutex_);
+        for (size_t p = 0; p < estimates_.size(); ++p) estimates_[p] = {1.0f, counts_[p]};
+        return;
+    }
+    const size_t pixels = region_.pixel_count();
+    std::vector<PrefixMeans> prefixes(pixels);
+    for (size_t p = 0; p < pixels; ++p) {
+        const uint32_t* counts = &prefix_counts_[3 * p];
+        const FilmSum* level = &prefix_sums_[9 * p];
+        // The levels are nested prefixes only when each halves the one above (a pixel whose
+        // sums were stored at other counts has none).
+        const uint32_t levels = counts[0] >= 4 && counts[1] * 2 == counts[0] && counts[2] * 4 == counts[0] ? 3
+                                : counts[0] >= 2 && counts[1] * 2 == counts[0]                             ? 2
+                                                                               : 0;
+        // The sums hold P samples (as they do when every pixel reaches a power of two).
+        if (levels == 0 || counts_[p] != counts[0]) continue;
+        prefixes[p].count = counts[0];
+        prefixes[p].levels = levels;
+        const FilmSum* sum = &sums_[p * sums_stride()];
+        const FilmSum* sum_sq = sum + 4 + layout_.entry(Pass::Error).sum_offset;
+        for (uint32_t c = 0; c < 3; ++c)
+            prefixes[p].iid_variance += independent_variance(sum[c], sum_sq[c], counts[0]);
+        for (uint32_t l = 0; l < levels; ++l)
+            for (uint32_t c = 0; c < 3; ++c)
+                prefixes[p].mean[l][c] = from_fixed(level[3 * l + c]) / counts[l];
+    }
+    std::vector<PixelErrorEstimate> estimates(pixels);
+    estimate_pixel_errors(region_, prefixes, estimates);
+    std::unique_lock lock(published_mutex_);
+    estimates_ = std::move(estimates);
 }
 
 bool Film::add_sample(FilmSum* sums, uint32_t sample_index, Rgb radiance, float alpha,
@@ -147,20 +236,7 @@ void Film::publish_pixel(size_t p, double n, const FilmSum* splats) {
                 out[0] = static_cast<float>(count);
                 break;
             case PassKind::StandardError:
-                // Sample variance s² = n/(n−1) (Σx²/n − x̄²); the mean's standard error is s/√n.
-                for (uint32_t c = 0; c < e.channels; ++c) {
-                    // The fixed-point means of x and x² are each within ε = 2^-41 of the exact
-                    // ones, so Σx²/n − x̄² is within ε(1 + 2|x̄| + 3ε) of its exact value, plus
-                    // the double arithmetic's few roundings of x̄² (4·x̄²·2^-53): a spread within
-                    // that is no spread (a constant pixel has an error of 0).
-                    const double mean = from_fixed(sum[c]) / camera_samples;
-                    const double rounding =
-                        kFixedRounding * (1.0 + 2.0 * std::abs(mean) + 3.0 * kFixedRounding) +
-                        4.0 * mean * mean * 0x1p-53;
-                    const double spread =
-                        std::max(0.0, from_fixed(s[c]) / camera_samples - mean * mean - rounding);
-                    out[c] = count < 2 ? 0.0f : saturate_to_float(std::sqrt(spread / (camera_samples - 1.0)));
-                }
+                for (uint32_t c = 0; c < e.channels; ++c) out[c] = saturate_to_float(standard_error(p, c));
                 break;
             case PassKind::Radiance:
                 break;

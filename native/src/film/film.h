@@ -25,8 +25,17 @@
 // | Average passes         | sum / count of the pixel's camera samples                      |
 // | FirstSample passes     | the value of sample index 0                                    |
 // | Debug Sample Count     | the count of the pixel's camera samples                        |
-// | Stratum Error          | sqrt((Σx²/n − x̄²)/(n − 1)) per RGB channel over the pixel's n  |
-// |                        | camera samples x (0 for n < 2; light-path splats not included) |
+// | Stratum Error          | sqrt(G·(Σx²/n − x̄²)/(n − 1)) per RGB channel over the pixel's  |
+// |                        | n camera samples x (0 for n < 2; light-path splats not         |
+// |                        | included), G the sampler's gain film/error_estimate.h measures |
+// |                        | from the prefixes (1 before estimate_errors() ran, and for     |
+// |                        | films combined from sample ranges rendered apart)              |
+//
+// Prefix tracking (films with the Stratum Error pass or adaptive sampling, which adds the pass's
+// sums of squares to its film): at each power-of-two
+// count P a pixel's RGB sums are kept, with those at P/2 and P/4, so that estimate_errors() can
+// measure the error of its mean from its nested prefixes. They are this render's own: the
+// exchange of sums between renders does not carry them.
 #pragma once
 
 #include <array>
@@ -39,6 +48,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "film/error_estimate.h"
 #include "film/passes.h"
 #include "film/pixel_filter.h"
 #include "film/pixel_region.h"
@@ -145,11 +155,13 @@ struct Splat {
 
 class Film {
 public:
-    // `passes`: the passes besides Combined; `light_paths`: whether splats will be added.
+    // `passes`: the passes besides Combined; `light_paths`: whether splats will be added;
+    // `track_prefixes`: keep the prefix sums of error estimates (always with the Error pass).
     Film(const PixelRegion& region, uint32_t frame_width, uint32_t frame_height, const PixelFilter& filter,
-         std::span<const Pass> passes, bool light_paths);
+         std::span<const Pass> passes, bool light_paths, bool track_prefixes = false);
     // The memory a film of these passes takes per pixel (for the renderer's memory budget).
-    static double bytes_per_pixel(std::span<const Pass> passes, bool light_paths);
+    static double bytes_per_pixel(std::span<const Pass> passes, bool light_paths,
+                                  bool track_prefixes = false);
 
     const PixelRegion& region() const { return region_; }
     uint32_t frame_width() const { return frame_width_; }
@@ -157,12 +169,25 @@ public:
     const PixelFilter& filter() const { return filter_; }
     const FilmLayout& layout() const { return layout_; }
     bool has_light_paths() const { return !splat_sums_.empty(); }
+    bool tracks_prefixes() const { return !prefix_sums_.empty(); }
 
     // A copy of the pixel's sums: the thread adds a pass's samples to it and stores it back with
     // store_sums only if the pass completed (a pixel cancelled mid-pass keeps its previous sum).
     // `count` is the number of camera samples the sums hold.
     void load_sums(size_t pixel, FilmSum* out) const;
     void store_sums(size_t pixel, const FilmSum* sums, uint32_t count);
+    // Recomputes every pixel's error estimate from its prefix sums (films that track prefixes;
+    // not while samples are stored): called when the pixels reach a power-of-two count. For
+    // independent samples the gain is known, G = 1 (s²/n is unbiased), and is not measured.
+    void estimate_errors(bool independent_samples);
+    // The pixel's last estimate (count 0: none).
+    const PixelErrorEstimate& error_estimate(size_t pixel) const { return estimates_[pixel]; }
+    // The estimated standard error of channel c of the pixel's Combined mean: what the Error
+    // pass shows (films that track prefixes or hold the Error pass).
+    double standard_error(size_t pixel, uint32_t c) const;
+    // The pixel's camera samples and the mean of its Combined RGB.
+    uint32_t sample_count(size_t pixel) const { return counts_[pixel]; }
+    Rgb mean(size_t pixel) const;
     // Sums per pixel in load_sums / store_sums.
     uint32_t sums_stride() const { return 4 + layout_.sum_channels(); }
     // Adds camera sample `sample_index` (radiance, alpha and the integrator's pass values) to a
@@ -218,6 +243,11 @@ private:
     std::vector<FilmSum> sums_;        // sums_stride() per pixel
     std::vector<uint32_t> counts_;     // camera samples summed per pixel
     std::vector<FilmSum> splat_sums_;  // RGB per pixel, when light paths splat
+    // Prefix tracking: RGB sums at the last three power-of-two counts P, P/2, P/4 (9 per pixel)
+    // and those counts (3 per pixel, 0 = none); the estimates made from them.
+    std::vector<FilmSum> prefix_sums_;
+    std::vector<uint32_t> prefix_counts_;
+    std::vector<PixelErrorEstimate> estimates_;
     uint32_t sample_begin_ = 0, sample_end_ = 0;
     // Published values (published_stride() per pixel). Tiles publish disjoint pixels under a
     // shared lock; read() takes it exclusively.

@@ -188,6 +188,11 @@ std::string Film::add_sums(const Film& other) {
         counts_[p] += other.counts_[p];
     }
     for (size_t i = 0; i < splat_sums_.size(); ++i) splat_sums_[i] += other.splat_sums_[i];
+    // Prefix sums are of one render's samples: the combined pixels have none, and their error
+    // is the independent-samples estimate (film/film.h).
+    prefix_sums_.clear();
+    prefix_counts_.clear();
+    estimates_.clear();
     set_sample_range(std::min(sample_begin_, other.sample_begin_), std::max(sample_end_, other.sample_end_));
     publish_everything();
     return {};

@@ -11,8 +11,8 @@
 // |               | kernel/film/data_passes.h, film_overwrite_pass_* at sample 0)             |
 // | SampleCount   | the number of camera samples the pixel holds (the film counts them)       |
 // | StandardError | per RGB channel, the estimated standard error of the mean of Combined's   |
-// |               | camera samples, sqrt((Σx²/n − x̄²)/(n − 1)), from the sums of squares the  |
-// |               | film keeps (0 below 2 samples)                                            |
+// |               | camera samples, sqrt(G·(Σx²/n − x̄²)/(n − 1)), from the sums of squares   |
+// |               | the film keeps and the gain G of film/error_estimate.h (0 below 2 samples) |
 //
 // Average and FirstSample passes are written by the integrator (PassValues::write); the film
 // derives SampleCount and StandardError itself. Adding a pass: a line here (at the end: the
@@ -76,10 +76,10 @@ inline constexpr std::array kPasses = {
              "Shading normal of the first non-mirror surface in Cycles' camera space (x right, y up, z "
              "forward), as Cycles gives a denoiser (0 where none)"},
     PassInfo{"Debug Sample Count", 1, PassKind::SampleCount, "Camera samples taken in each pixel"},
-    PassInfo{
-        "Stratum Error", 3, PassKind::StandardError,
-        "Estimated standard error of each pixel's Combined RGB mean, from its samples' spread: valid for "
-        "independent samples (random); see docs/passes.md for the low-discrepancy samplers"},
+    PassInfo{"Stratum Error", 3, PassKind::StandardError,
+             "Estimated standard error of each pixel's Combined RGB mean: its samples' spread s/sqrt(n), "
+             "times the "
+             "sampler's gain measured from the pixel's power-of-two prefixes (docs/passes.md)"},
     PassInfo{"UV", 3, PassKind::Average,
              "Texture coordinates (u, v, 0) of the first opaque surface's UV map (0 where none)"},
     PassInfo{"Emit", 3, PassKind::Average,

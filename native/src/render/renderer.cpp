@@ -85,17 +85,39 @@ std::string Renderer::start() {
     if (render_scene_)
         for (const std::string& notice : render_scene_->notices()) add_notice(notice);
     const uint64_t light_paths = integrator->light_paths_per_sample(settings_.width, settings_.height);
+    AdaptiveSampling adaptive = AdaptiveSampling::resolve(settings_.adaptive, settings_.samples);
+    if (adaptive.enabled && light_paths > 0) {
+        adaptive.enabled = false;
+        add_notice("Adaptive sampling is off for the " + std::string(settings_.integrator->info.name) +
+                   " integrator: its light paths reach every pixel in every pass, so every pixel takes all "
+                   "samples.");
+    }
+    if (adaptive.enabled && settings_.sampler->structure == SampleStructure::WholeCount)
+        add_notice("The " + std::string(settings_.sampler->info.name) +
+                   " sampler lays its points out for the whole sample count: a pixel adaptive sampling stops "
+                   "early holds part of them, without their stratification (progressive samplers such as "
+                   "sobol keep a net at every power of two).");
+    // A pixel stops on the error of its whole sequence so far: a subset has no such sequence.
+    if (adaptive.enabled && (first_sample != 0 || last_sample != settings_.samples))
+        return "adaptive sampling decides per pixel from its first sample on, so it cannot render the sample "
+               "subset sample_offset = " +
+               std::to_string(settings_.sample_offset) +
+               ", sample_count = " + std::to_string(settings_.sample_count) +
+               ": turn use_adaptive_sampling off, or render all samples";
     // The film of a 65536 x 20000 render asks for 63.5 GiB: refused here, naming the size, rather
     // than granted by overcommit and OOM-killed.
-    const double film_bytes =
-        static_cast<double>(region.pixel_count()) * Film::bytes_per_pixel(settings_.passes, light_paths > 0);
+    const double film_bytes = static_cast<double>(region.pixel_count()) *
+                              (Film::bytes_per_pixel(settings_.passes, light_paths > 0, adaptive.enabled) +
+                               (adaptive.enabled ? 1 : 0));
     if (film_bytes > memory_budget_bytes())
         return "a " + std::to_string(region.width) + " x " + std::to_string(region.height) +
                " pixel render needs " + gib(film_bytes) + " for its film, more than half of this machine's " +
                gib(physical_memory_bytes()) + " of memory";
     film_ = std::make_unique<Film>(region, settings_.width, settings_.height,
                                    PixelFilter(settings_.filter_type, settings_.filter_width),
-                                   settings_.passes, light_paths > 0);
+                                   settings_.passes, light_paths > 0, adaptive.enabled);
+    adaptive_ = adaptive;
+    stopped_.assign(adaptive.enabled ? region.pixel_count() : 0, 0);
     integrator_ = std::move(integrator);
     sampler_ = settings_.sampler->create(
         SamplerSettings{settings_.samples, settings_.seed, settings_.width, settings_.height});
@@ -166,14 +188,24 @@ void Renderer::run() {
         // border render is bit-identical to the same pixel of the full render.
         const Camera camera(*scene_.camera, s.width, s.height);
         // Sample indices [first_sample_, last_sample_); progress counts them from first_sample_.
-        // Pass ends stay at powers of two of the index (a subset starting at 0 is the full
+        // Pass ends stay at powers of two of the count (a subset starting at 0 is the full
         // render's prefix).
-        uint32_t begin = first_sample_;
-        while (begin < last_sample_ && !cancel_.load()) {
-            const uint32_t end =
-                std::min({last_sample_, std::max(begin + 1, 2 * begin), begin + kMaxPassSamples});
-            samples_in_progress_.store(end - first_sample_);
+        const uint32_t total = last_sample_ - first_sample_;
+        uint32_t done = 0;
+        while (done < total && !cancel_.load()) {
+            const uint32_t next = std::min({total, std::max(done + 1, 2 * done), done + kMaxPassSamples});
+            const uint32_t begin = first_sample_ + done, end = first_sample_ + next;
+            samples_in_progress_.store(next);
             trace_camera_samples(camera, begin, end, arena);
+            if (!cancel_.load() && film_->tracks_prefixes() && (next & (next - 1)) == 0) {
+                film_->estimate_errors(s.sampler->structure == SampleStructure::Independent);
+                if (adaptive_.checks_at(next, total)) stop_converged_pixels(*film_, adaptive_, stopped_);
+                // The error pass shows the new estimates (films with light paths publish below).
+                if (light_paths_ == 0) {
+                    film_->publish_everything();
+                    update_serial_.fetch_add(1);
+                }
+            }
             if (light_paths_ > 0 && !cancel_.load()) {
                 trace_light_paths(camera, begin, end, arena);
                 if (!cancel_.load()) {
@@ -183,9 +215,9 @@ void Renderer::run() {
             }
             if (!cancel_.load()) {
                 film_->set_sample_range(first_sample_, end);
-                samples_done_.store(end - first_sample_);
+                samples_done_.store(next);
             }
-            begin = end;
+            done = next;
         }
         report_dropped(render_scene_->refused_rays() - refused_before);
         std::lock_guard lock(state_mutex_);
@@ -227,6 +259,11 @@ void Renderer::trace_camera_samples(const Camera& camera, uint32_t begin, uint32
                                   for (uint32_t x = tile.cols().begin(); x < tile.cols().end(); ++x) {
                                       if (cancel_.load(std::memory_order_relaxed)) break;
                                       const size_t p = region.index(x, y);
+                                      // A pixel adaptive sampling stopped is done with this pass too.
+                                      if (!stopped_.empty() && stopped_[p]) {
+                                          pixel_samples += end - begin;
+                                          continue;
+                                      }
                                       film_->load_sums(p, sums.data());
                                       uint32_t i = begin;
                                       for (; i < end; ++i) {
@@ -401,6 +438,12 @@ std::vector<uint8_t> Renderer::sums_bytes(std::string* error) const {
         // A cancelled pass leaves pixels with different sample counts: no range describes them.
         if (cancelled_ || !error_.empty()) {
             *error = "the render was cancelled or failed: its sums hold no complete sample range";
+            return {};
+        }
+        if (adaptive_.enabled) {
+            *error =
+                "adaptive sampling stopped pixels at different sample counts: its sums hold no common "
+                "sample range";
             return {};
         }
     }

@@ -3,7 +3,10 @@
 //
 // Passes cover sample ranges [0,1), [1,2), [2,4), [4,8), ... capped at kMaxPassSamples: every
 // intermediate image holds a power-of-two-aligned prefix of each pixel's samples, so
-// low-discrepancy properties hold at every update (research/samplers.md §5.6). The film's sums
+// low-discrepancy properties hold at every update (research/samplers.md §5.6). At the pass ends
+// that are powers of two, the film estimates each pixel's error (film/error_estimate.h) and
+// adaptive sampling stops the pixels that have converged (render/adaptive_sampling.h), which
+// take no samples after that: each pixel holds a power-of-two prefix of its sequence. The film's sums
 // are exact (film/film.h), so the image is bit-identical for any thread count.
 // Within a pass, tiles of at most kTileSize² pixels publish as they finish and count their
 // pixel samples, so the image and the progress move many times per pass (a 512² frame has
@@ -27,6 +30,7 @@
 
 #include "film/film.h"
 #include "integrators/integrator.h"
+#include "render/adaptive_sampling.h"
 #include "render/render_settings.h"
 #include "render_scene/render_scene.h"
 #include "scene/live_scene.h"
@@ -114,6 +118,8 @@ private:
     uint64_t light_paths_ = 0;                     // light paths per sample index
     uint32_t first_sample_ = 0, last_sample_ = 0;  // the sample indices rendered (sample_range)
     double work_per_sample_ = 0;                   // progress units per sample index (fraction_done)
+    AdaptiveSampling adaptive_;                    // resolved; off with light paths
+    std::vector<uint8_t> stopped_;                 // per pixel of the region: adaptive sampling stopped it
 
     std::thread worker_;
     std::atomic<bool> cancel_{false}, done_{true};

@@ -1,0 +1,89 @@
+#include "film/error_estimate.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace stratum {
+
+namespace {
+
+// ρ = 2^b within b ∈ [1, 3] (see the table in the header).
+constexpr double kMinRatio = 1.5, kMaxRatio = 8.0;
+
+// Sums of v over the (2r+1)-wide window along rows, then along columns (a separable box sum;
+// the window is cut at the region's edges).
+std::vector<double> box_sum(const std::vector<double>& v, uint32_t width, uint32_t height, uint32_t r) {
+    std::vector<double> rows(v.size(), 0.0), out(v.size(), 0.0);
+    for (uint32_t y = 0; y < height; ++y) {
+        const double* in = &v[static_cast<size_t>(y) * width];
+        for (uint32_t x = 0; x < width; ++x) {
+            const uint32_t lo = x >= r ? x - r : 0, hi = std::min(width - 1, x + r);
+            double s = 0.0;
+            for (uint32_t k = lo; k <= hi; ++k) s += in[k];
+            rows[static_cast<size_t>(y) * width + x] = s;
+        }
+    }
+    for (uint32_t y = 0; y < height; ++y) {
+        const uint32_t lo = y >= r ? y - r : 0, hi = std::min(height - 1, y + r);
+        for (uint32_t x = 0; x < width; ++x) {
+            double s = 0.0;
+            for (uint32_t k = lo; k <= hi; ++k) s += rows[static_cast<size_t>(k) * width + x];
+            out[static_cast<size_t>(y) * width + x] = s;
+        }
+    }
+    return out;
+}
+
+}  // namespace
+
+void estimate_pixel_errors(const PixelRegion& region, std::span<const PrefixMeans> prefixes,
+                           std::span<PixelErrorEstimate> out) {
+    const size_t pixels = region.pixel_count();
+    // ρ from Σ_c d1² and Σ_c d2² of the pixels that have both, pooled.
+    std::vector<double> d1_sq(pixels, 0.0), d2_sq(pixels, 0.0);
+    for (size_t p = 0; p < pixels; ++p) {
+        const PrefixMeans& m = prefixes[p];
+        if (m.levels < 3) continue;
+        for (uint32_t c = 0; c < 3; ++c) {
+            const double d1 = m.mean[0][c] - m.mean[1][c], d2 = m.mean[1][c] - m.mean[2][c];
+            d1_sq[p] += d1 * d1;
+            d2_sq[p] += d2 * d2;
+        }
+    }
+    const std::vector<double> pooled_d1 = box_sum(d1_sq, region.width, region.height, kRatePoolRadius);
+    const std::vector<double> pooled_d2 = box_sum(d2_sq, region.width, region.height, kRatePoolRadius);
+    // Each pixel's V_P and s²/P (channels summed), pooled into G.
+    std::vector<double> prefix_variance(pixels, 0.0), iid_variance(pixels, 0.0);
+    for (size_t p = 0; p < pixels; ++p) {
+        const PrefixMeans& m = prefixes[p];
+        if (m.levels < 2) continue;
+        // Independent samples' 2 where the neighbourhood holds no spread or no second level.
+        double ratio = kMinRatio;
+        if (m.levels == 3 && pooled_d1[p] > 0.0)
+            ratio = std::clamp(pooled_d2[p] / pooled_d1[p], kMinRatio, kMaxRatio);
+        for (uint32_t c = 0; c < 3; ++c) {
+            // E d1² = (ρ − 1)·Var(I_P) and E d2²/ρ = (ρ − 1)·Var(I_P): both draws, averaged.
+            const double d1 = m.mean[0][c] - m.mean[1][c];
+            double v = d1 * d1 / (ratio - 1.0);
+            if (m.levels == 3) {
+                const double d2 = m.mean[1][c] - m.mean[2][c];
+                v = 0.5 * (v + d2 * d2 / (ratio * (ratio - 1.0)));
+            }
+            prefix_variance[p] += v;
+        }
+        iid_variance[p] = m.iid_variance;
+    }
+    const std::vector<double> pooled_prefix =
+        box_sum(prefix_variance, region.width, region.height, kPoolRadius);
+    const std::vector<double> pooled_iid = box_sum(iid_variance, region.width, region.height, kPoolRadius);
+    for (size_t p = 0; p < pixels; ++p) {
+        PixelErrorEstimate& e = out[p];
+        e = PixelErrorEstimate{};
+        if (prefixes[p].levels < 2) continue;
+        e.count = prefixes[p].count;
+        // No spread around the pixel at all: nothing to correct, G = 1.
+        if (pooled_iid[p] > 0.0) e.gain = static_cast<float>(pooled_prefix[p] / pooled_iid[p]);
+    }
+}
+
+}  // namespace stratum
