@@ -251,22 +251,3 @@ class _RecordingLayout:
 
     def label(self, text: str = "", **_: Any) -> None:
         self.drawn.append(text)
-
-
-@pytest.mark.parametrize("integrator", ["path", "ao"])
-def test_sampling_panel_draws_the_sampling_settings(stratum_addon: Any, integrator: str) -> None:
-    from types import SimpleNamespace
-
-    from stratum import ui
-
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    names = {i.identifier for i in _menu("integrator").enum_items}
-    if integrator not in names:
-        pytest.skip(f"integrator {integrator!r} is not registered")
-    scene.stratum.integrator = integrator
-    drawn: list[str] = []
-    panel = SimpleNamespace(layout=_RecordingLayout(drawn))
-    ui.STRATUM_RENDER_PT_sampling.draw(panel, SimpleNamespace(scene=scene))  # type: ignore[arg-type]
-    assert {"samples", "sampler", "hemisphere", "integrator", "seed"} <= set(drawn)
-    assert ("ao_distance" in drawn) == (integrator == "ao")
