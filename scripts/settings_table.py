@@ -53,11 +53,20 @@ def _default(setting: native.Setting) -> str:
     return f"`{setting.default}`"
 
 
-def _in_blender(name: str) -> str:
+def _in_blender(setting: native.Setting) -> str:
+    name = setting.name
     if name in blender_settings.PROPERTIES:
         text = f"`scene.stratum.{name}`"
+        if blender_settings.is_switch(setting):
+            text += " (a checkbox)"
         if name in blender_settings.UI_DEFAULTS:
             text += f" (default `{blender_settings.UI_DEFAULTS[name]}`)"
+        viewport = [prop for prop, stands_for in blender_settings.VIEWPORT_SETTINGS.items()
+                    if stands_for == name]
+        for prop in viewport:
+            default = blender_settings.VIEWPORT_DEFAULTS[prop]
+            shown = ("on" if default else "off") if isinstance(default, bool) else f"`{default}`"
+            text += f"; the Rendered viewport's: `scene.stratum.{prop}` (default {shown})"
         return text
     if name in blender_settings.FROM_BLENDER:
         return blender_settings.FROM_BLENDER[name]
@@ -76,7 +85,7 @@ def settings_markdown() -> str:
         "|---|---|---|---|---|",
     ]
     lines += [f"| `{s.name}` | {_cell(s.description)} | {_cell(_values(s))} | "
-              f"{_default(s)} | {_cell(_in_blender(s.name))} |" for s in settings]
+              f"{_default(s)} | {_cell(_in_blender(s))} |" for s in settings]
     lines += ["", CHOICES_INTRO, ""]
     for s in settings:
         if s.kind != native.SettingKind.CHOICE:

@@ -16,6 +16,8 @@ does around a render (denoising).
 
 from __future__ import annotations
 
+from .native import Setting, SettingKind
+
 PROPERTIES: tuple[str, ...] = (
     "samples", "use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples", "sampler",
     "hemisphere", "seed", "integrator", "ao_distance", "max_bounces",
@@ -72,6 +74,15 @@ UI_DEFAULTS: dict[str, int | float | str] = {
     "samples": 64,
 }
 
+
+
+def is_switch(setting: Setting) -> bool:
+    """A use_* integer setting of range 0..1, whose property is a checkbox (BoolProperty) as
+    Cycles' use_* switches are; the engine sends its value as 0 or 1 (engine/frame.py)."""
+    return (setting.kind == SettingKind.INT and setting.name.startswith("use_")
+            and (setting.minimum, setting.maximum) == (0, 1))
+
+
 # Blender-only properties of scene.stratum, not library settings: the Rendered viewport's
 # (engine/viewport.py). name -> (label, description).
 VIEWPORT_PROPERTIES: dict[str, tuple[str, str]] = {
@@ -88,14 +99,36 @@ VIEWPORT_PROPERTIES: dict[str, tuple[str, str]] = {
     "compare_sampler": ("Compare Sampler", "Sampler of the right part of a split viewport"),
     "split_position": ("Split Position", "Where the viewport is split, from its left (0) to "
                        "its right (1) edge"),
+    "use_preview_adaptive_sampling": ("Viewport Adaptive Sampling",
+                                      "Adaptive sampling in the Rendered viewport (its Noise "
+                                      "Threshold checkbox); F12 renders use Render's"),
+    "preview_adaptive_threshold": ("Viewport Noise Threshold",
+                                   "Noise threshold of the Rendered viewport's adaptive "
+                                   "sampling (0 = automatic: max(0.001, 1/samples))"),
+    "preview_adaptive_min_samples": ("Viewport Min Samples",
+                                     "Samples every pixel of the Rendered viewport takes before "
+                                     "adaptive sampling may stop it (0 = automatic)"),
+}
+# Viewport properties that stand for a library setting in the Rendered viewport, as Cycles'
+# preview_* settings do: the viewport renders with their value instead of the F12 render's
+# (engine/viewport.py), and they take that setting's range and kind.
+VIEWPORT_SETTINGS: dict[str, str] = {
+    "use_preview_adaptive_sampling": "use_adaptive_sampling",
+    "preview_adaptive_threshold": "adaptive_threshold",
+    "preview_adaptive_min_samples": "adaptive_min_samples",
 }
 # Defaults of the viewport properties: Cycles' start resolution (64), not its viewport sample
 # count (1024 in 3.x is meant for a GPU; 32 refines a CPU viewport in seconds), and the sampler
-# compared with the library's default sampler, `random`.
+# compared with the library's default sampler, `random`. Adaptive sampling is off, as the
+# library's default for F12 is; when on, Cycles' viewport threshold (0.1, ten times its F12
+# one) is the starting point.
 VIEWPORT_DEFAULTS: dict[str, int | float | bool | str] = {
     "preview_samples": 32,
     "preview_start_resolution": 64,
     "use_split_view": False,
     "compare_sampler": "sobol",
     "split_position": 0.5,
+    "use_preview_adaptive_sampling": False,
+    "preview_adaptive_threshold": 0.1,
+    "preview_adaptive_min_samples": 0,
 }

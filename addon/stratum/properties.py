@@ -4,6 +4,9 @@ range, choices and default, so the UI and the library cannot disagree. Which set
 properties, and the few defaults that differ from the library's, are in blender_settings.py;
 what only the UI decides (soft limits, subtypes) is here.
 
+A use_* setting of range 0..1 (blender_settings.is_switch) is a checkbox, as Cycles' use_*
+switches are; the engine sends it to the library as 0 or 1.
+
 Enum items carry explicit numbers equal to the choice's position in the library's list:
 Blender stores an EnumProperty as that number, and the library only appends choices, so a
 saved .blend keeps its choice when choices are added.
@@ -28,6 +31,8 @@ from .blender_settings import (
     UI_DEFAULTS,
     VIEWPORT_DEFAULTS,
     VIEWPORT_PROPERTIES,
+    VIEWPORT_SETTINGS,
+    is_switch,
 )
 
 # Where a slider stops dragging; typing goes on to the library's maximum.
@@ -36,6 +41,13 @@ SOFT_MAXIMA: dict[str, int | float] = {
     "ao_distance": 100.0,
     "filter_width": 10.0,
     "control_variate": 10.0,
+    # Cycles' maximum of its Min Samples (adaptive_min_samples)
+    "adaptive_min_samples": 4096,
+}
+# Decimals a float shows (Blender's default is 3): a noise threshold of 0.0050 should not
+# read 0.005 next to Cycles' 4 decimals.
+PRECISIONS: dict[str, int] = {
+    "adaptive_threshold": 4,
 }
 # Blender's ranges include their minimum. Where the library excludes its minimum
 # (open_minimum), the UI stops at the smallest value worth offering instead.
@@ -87,15 +99,35 @@ def _number_options(setting: native.Setting, largest: int | float) -> dict[str, 
     options: dict[str, Any] = {"min": lo, "max": hi}
     if setting.name in SOFT_MAXIMA:
         options["soft_max"] = SOFT_MAXIMA[setting.name]
+    if setting.name in PRECISIONS:
+        options["precision"] = PRECISIONS[setting.name]
     if setting.unit in UNIT_SUBTYPES:
         options["subtype"] = UNIT_SUBTYPES[setting.unit]
     return options
 
 
-def make_property(setting: native.Setting) -> Any:
-    """The bpy property of one INT, FLOAT or CHOICE setting."""
-    common = {"name": setting.label, "description": setting.description,
-              "default": UI_DEFAULTS.get(setting.name, setting.default)}
+def switch_description(description: str) -> str:
+    """A 0/1 setting's description says what 1 does ("1: a pixel stops ..."); a checkbox's
+    tooltip says it without the "1: "."""
+    if not description.startswith("1: "):
+        return description
+    text = description[len("1: "):]
+    return text[:1].upper() + text[1:]
+
+
+def make_property(setting: native.Setting, label: str | None = None,
+                  description: str | None = None, default: Any = None) -> Any:
+    """The bpy property of one INT, FLOAT or CHOICE setting (a checkbox for a switch); label,
+    description and default replace the library's (and UI_DEFAULTS') when given."""
+    if default is None:
+        default = UI_DEFAULTS.get(setting.name, setting.default)
+    common = {"name": setting.label if label is None else label,
+              "description": setting.description if description is None else description,
+              "default": default}
+    if is_switch(setting):
+        if description is None:
+            common["description"] = switch_description(setting.description)
+        return BoolProperty(**common | {"default": bool(default)})
     if setting.kind == native.SettingKind.INT:
         return IntProperty(**common, **_number_options(setting, INT_MAX))
     if setting.kind == native.SettingKind.FLOAT:
@@ -145,7 +177,11 @@ def _viewport_properties(by_name: dict[str, native.Setting]) -> dict[str, Any]:
     samples = by_name["samples"]
     samplers = [(choice.name, choice.label, choice.description, number)
                 for number, choice in enumerate(by_name["sampler"].choices)]
-    return {
+    # The viewport's stand-ins for library settings (a library without one has no stand-in).
+    stand_ins = {name: make_property(by_name[setting], *VIEWPORT_PROPERTIES[name],
+                                     default=VIEWPORT_DEFAULTS[name])
+                 for name, setting in VIEWPORT_SETTINGS.items() if setting in by_name}
+    return stand_ins | {
         "preview_samples": IntProperty(**common("preview_samples"), min=samples.minimum,
                                        max=min(samples.maximum, INT_MAX),
                                        soft_max=SOFT_MAXIMA["samples"]),

@@ -61,21 +61,89 @@ class STRATUM_RENDER_PT_library(StratumButtonsPanel, bpy.types.Panel):
         col.label(text=properties.load_error)
 
 
+# What a setting applies to, by integrator (names from the library's integrator registry).
+# A setting that does not apply is drawn greyed out (layout.active = False), as Cycles greys
+# its own, so the panels keep their shape when the integrator changes: ambient occlusion traces
+# no light paths; `direct` is the path tracer with max_bounces 0; the light tracer starts at
+# the lights, so light sampling, its heuristic and the control variate are path-tracer
+# choices.
+NO_LIGHT_PATHS = frozenset({"ao"})
+NO_BOUNCE_LIMIT = frozenset({"ao", "direct"})
+NO_LIGHT_SAMPLING = frozenset({"ao", "light"})
+
+
+def draw_noise_threshold(layout: bpy.types.UILayout, settings: Any, use: str, threshold: str,
+                         samples: str, min_samples: str) -> None:
+    """Cycles' Noise Threshold block (its Sampling > Render and > Viewport panels): a checkbox
+    and the threshold on one row under the heading, then the sample count, read Max Samples
+    while adaptive sampling is on, and Min Samples. What adaptive sampling alone uses is greyed
+    out while it is off (Cycles hides Min Samples; greyed, it stays where it will be)."""
+    adaptive = bool(getattr(settings, use))
+    heading = layout.column(align=True, heading="Noise Threshold")
+    row = heading.row(align=True)
+    row.prop(settings, use, text="")
+    sub = row.row()
+    sub.active = adaptive
+    sub.prop(settings, threshold, text="")
+    col = layout.column(align=True)
+    col.prop(settings, samples, text="Max Samples" if adaptive else "Samples")
+    sub = col.column(align=True)
+    sub.active = adaptive
+    sub.prop(settings, min_samples, text="Min Samples")
+
+
 class STRATUM_RENDER_PT_sampling(StratumButtonsPanel, bpy.types.Panel):
+    """Holds the Viewport, Render, Denoising, Advanced and Lights subpanels and nothing of its
+    own, as Cycles' Sampling panel."""
+
     bl_label = "Sampling"
 
     def draw(self, context: bpy.types.Context) -> None:
+        """Draws nothing: every setting is in a subpanel (bpy refuses a Panel without draw)."""
+
+
+class STRATUM_RENDER_PT_sampling_viewport(StratumButtonsPanel, bpy.types.Panel):
+    """The Rendered viewport's sampling: its own noise threshold and samples, as Cycles'."""
+
+    bl_label = "Viewport"
+    bl_parent_id = "STRATUM_RENDER_PT_sampling"
+
+    def draw(self, context: bpy.types.Context) -> None:
         layout, settings = _settings_layout(self, context)
-        col = layout.column(align=True)
-        col.prop(settings, "samples", text="Samples")
+        draw_noise_threshold(layout, settings, "use_preview_adaptive_sampling",
+                             "preview_adaptive_threshold", "preview_samples",
+                             "preview_adaptive_min_samples")
+        layout.column().prop(settings, "preview_start_resolution", text="Start Resolution")
+
+
+class STRATUM_RENDER_PT_sampling_viewport_split(StratumButtonsPanel, bpy.types.Panel):
+    """Stratum's sampler split view: the viewport's right part with another sampler."""
+
+    bl_label = "Split View"
+    bl_parent_id = "STRATUM_RENDER_PT_sampling_viewport"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw_header(self, context: bpy.types.Context) -> None:
+        self.layout.prop(context.scene.stratum, "use_split_view", text="")
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
         col = layout.column()
-        col.prop(settings, "sampler", text="Sampler")
-        col.prop(settings, "hemisphere", text="Hemisphere")
-        col.prop(settings, "seed", text="Seed")
-        col = layout.column()
-        col.prop(settings, "integrator", text="Integrator")
-        if settings.integrator == "ao":
-            col.prop(settings, "ao_distance", text="AO Distance")
+        col.active = settings.use_split_view
+        col.prop(settings, "compare_sampler", text="Right Sampler")
+        col.prop(settings, "split_position", text="Position", slider=True)
+
+
+class STRATUM_RENDER_PT_sampling_render(StratumButtonsPanel, bpy.types.Panel):
+    """F12 renders' sampling: noise threshold and samples, as Cycles'."""
+
+    bl_label = "Render"
+    bl_parent_id = "STRATUM_RENDER_PT_sampling"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
+        draw_noise_threshold(layout, settings, "use_adaptive_sampling", "adaptive_threshold",
+                             "samples", "adaptive_min_samples")
 
 
 class STRATUM_RENDER_PT_sampling_denoising(StratumButtonsPanel, bpy.types.Panel):
@@ -89,56 +157,111 @@ class STRATUM_RENDER_PT_sampling_denoising(StratumButtonsPanel, bpy.types.Panel)
         col.prop(settings, "use_preview_denoising", text="Viewport")
 
 
-class STRATUM_RENDER_PT_viewport(StratumButtonsPanel, bpy.types.Panel):
-    """The Rendered viewport: its samples, start resolution and the sampler split view."""
+class STRATUM_RENDER_PT_sampling_advanced(StratumButtonsPanel, bpy.types.Panel):
+    """Cycles' Sampling > Advanced: the pattern (Stratum's sampler) and its seed, and the
+    distribution of diffuse directions."""
 
-    bl_label = "Viewport"
+    bl_label = "Advanced"
+    bl_parent_id = "STRATUM_RENDER_PT_sampling"
+    bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context: bpy.types.Context) -> None:
         layout, settings = _settings_layout(self, context)
         col = layout.column()
-        col.prop(settings, "preview_samples", text="Samples")
-        col.prop(settings, "preview_start_resolution", text="Start Resolution")
-        col = layout.column(heading="Split View")
-        col.prop(settings, "use_split_view", text="Compare Samplers")
-        sub = col.column()
-        sub.active = settings.use_split_view
-        sub.prop(settings, "compare_sampler", text="Right Sampler")
-        sub.prop(settings, "split_position", text="Position", slider=True)
+        col.prop(settings, "sampler", text="Pattern")
+        col.prop(settings, "seed", text="Seed")
+        col.prop(settings, "hemisphere", text="Hemisphere")
+
+
+class STRATUM_RENDER_PT_sampling_lights(StratumButtonsPanel, bpy.types.Panel):
+    """Cycles' Sampling > Lights (its Light Tree switch): how a light sample picks a light."""
+
+    bl_label = "Lights"
+    bl_parent_id = "STRATUM_RENDER_PT_sampling"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
+        col = layout.column()
+        col.active = settings.integrator not in NO_LIGHT_PATHS
+        col.prop(settings, "light_selection", text="Light Selection")
 
 
 class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
+    """The light-transport algorithm; its subpanels hold what shapes its paths."""
+
     bl_label = "Light Paths"
     bl_options = {"DEFAULT_CLOSED"}
 
     def draw(self, context: bpy.types.Context) -> None:
         layout, settings = _settings_layout(self, context)
-        integrator = settings.integrator
-        if integrator == "ao":
-            # Ambient occlusion traces no light paths: no bounce limit or estimator applies.
-            layout.label(text="Ambient occlusion has no light-path settings")
-            return
-        # Each option only where it changes the estimator: `direct` is the path tracer with
-        # max_bounces 0; the light tracer starts at the lights, so light sampling, its MIS
-        # heuristic and the control variate are path-tracer choices; the heuristic only weighs
-        # the two strategies of MIS; the minimum depth only matters while roulette is on.
-        path_tracer = integrator != "light"
-        if integrator != "direct":
-            layout.column().prop(settings, "max_bounces", text="Max Bounces")
         col = layout.column()
-        if path_tracer:
-            col.prop(settings, "light_sampling", text="Light Sampling")
-            if settings.light_sampling == "mis":
-                col.prop(settings, "mis_heuristic", text="MIS Heuristic")
-            if settings.light_sampling != "bsdf":
-                col.prop(settings, "triangle_sampling", text="Triangle Sampling")
-        col.prop(settings, "light_selection", text="Light Selection")
+        col.prop(settings, "integrator", text="Integrator")
+        sub = col.column()
+        sub.active = settings.integrator == "ao"
+        sub.prop(settings, "ao_distance", text="AO Distance")
+
+
+class STRATUM_RENDER_PT_light_paths_max_bounces(StratumButtonsPanel, bpy.types.Panel):
+    bl_label = "Max Bounces"
+    bl_parent_id = "STRATUM_RENDER_PT_light_paths"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
+        col = layout.column(align=True)
+        col.active = settings.integrator not in NO_BOUNCE_LIMIT
+        col.prop(settings, "max_bounces", text="Total")
+
+
+class STRATUM_RENDER_PT_light_paths_roulette(StratumButtonsPanel, bpy.types.Panel):
+    """Russian roulette: how paths end before the bounce limit, and from which bounce (Cycles'
+    Min Light Bounces)."""
+
+    bl_label = "Russian Roulette"
+    bl_parent_id = "STRATUM_RENDER_PT_light_paths"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
         col = layout.column()
-        col.prop(settings, "rr_mode", text="Russian Roulette")
-        if settings.rr_mode != "off":
-            col.prop(settings, "rr_min_depth", text="Min Depth")
-        if path_tracer:
-            layout.column().prop(settings, "control_variate", text="Control Variate")
+        col.active = settings.integrator not in NO_LIGHT_PATHS
+        col.prop(settings, "rr_mode", text="Mode")
+        sub = col.column()
+        sub.active = settings.rr_mode != "off"
+        sub.prop(settings, "rr_min_depth", text="Min Depth")
+
+
+class STRATUM_RENDER_PT_light_paths_direct_light(StratumButtonsPanel, bpy.types.Panel):
+    """How the path tracer finds emission: light samples, BSDF samples or both by MIS."""
+
+    bl_label = "Direct Light"
+    bl_parent_id = "STRATUM_RENDER_PT_light_paths"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
+        col = layout.column()
+        col.active = settings.integrator not in NO_LIGHT_SAMPLING
+        col.prop(settings, "light_sampling", text="Light Sampling")
+        sub = col.column()
+        sub.active = settings.light_sampling == "mis"
+        sub.prop(settings, "mis_heuristic", text="MIS Heuristic")
+        sub = col.column()
+        sub.active = settings.light_sampling != "bsdf"
+        sub.prop(settings, "triangle_sampling", text="Triangle Sampling")
+
+
+class STRATUM_RENDER_PT_light_paths_control_variate(StratumButtonsPanel, bpy.types.Panel):
+    """The path tracer's control variate: an ambient radiance whose known integral is added
+    back at each scattering vertex."""
+
+    bl_label = "Control Variate"
+    bl_parent_id = "STRATUM_RENDER_PT_light_paths"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
+        col = layout.column()
+        col.active = settings.integrator not in NO_LIGHT_SAMPLING
+        col.prop(settings, "control_variate", text="Ambient Radiance")
 
 
 class STRATUM_RENDER_PT_film(StratumButtonsPanel, bpy.types.Panel):
@@ -162,12 +285,21 @@ class STRATUM_RENDER_PT_performance(StratumButtonsPanel, bpy.types.Panel):
         col.prop(settings, "threads", text="Threads")
 
 
+# In Cycles' order: a subpanel after its parent, siblings top to bottom.
 classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_library,
     STRATUM_RENDER_PT_sampling,
+    STRATUM_RENDER_PT_sampling_viewport,
+    STRATUM_RENDER_PT_sampling_viewport_split,
+    STRATUM_RENDER_PT_sampling_render,
     STRATUM_RENDER_PT_sampling_denoising,
-    STRATUM_RENDER_PT_viewport,
+    STRATUM_RENDER_PT_sampling_advanced,
+    STRATUM_RENDER_PT_sampling_lights,
     STRATUM_RENDER_PT_light_paths,
+    STRATUM_RENDER_PT_light_paths_max_bounces,
+    STRATUM_RENDER_PT_light_paths_roulette,
+    STRATUM_RENDER_PT_light_paths_direct_light,
+    STRATUM_RENDER_PT_light_paths_control_variate,
     STRATUM_RENDER_PT_film,
     STRATUM_RENDER_PT_performance,
 )

@@ -12,17 +12,15 @@ from __future__ import annotations
 
 import math
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
 import bpy
 import numpy as np
 import pytest
-from stratum import native, properties
+from stratum import native
 from stratum.engine import StratumRenderEngine, final_render, frame
 
 from conftest import engine_reports, render_still
-from test_registration import _RecordingLayout
 
 ENUMS = ("light_sampling", "mis_heuristic", "light_selection", "triangle_sampling", "rr_mode")
 DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection": "mixed",
@@ -138,40 +136,3 @@ def test_strategies_that_sample_the_point_light_have_no_notice(
     pixels = render_still(scene, tmp_path / f"{light_sampling}.exr")
     assert StratumRenderEngine.last_reports == []
     assert pixels is not None and pixels[..., :3].max() > 0.0
-
-
-class _Layout(_RecordingLayout):
-    """test_registration's recording layout, plus the label the AO case draws."""
-
-    def label(self, **_: Any) -> None:
-        pass
-
-
-def test_light_paths_panel_draws_for_every_integrator(library: Any, scene_builder: Any) -> None:
-    """The panel shows each option only where it matters (a typo in a property name raises
-    here); the native registry decides which integrators exist."""
-    from stratum import ui
-
-    b = scene_builder()
-    drawn: list[str] = []
-    panel = SimpleNamespace(layout=_Layout(drawn))
-    for integrator in (e.name for e in native.registry("integrator")):
-        b.scene.stratum.integrator = integrator
-        for light_sampling in _enum_identifiers("light_sampling"):
-            for rr_mode in _enum_identifiers("rr_mode"):
-                b.scene.stratum.light_sampling = light_sampling
-                b.scene.stratum.rr_mode = rr_mode
-                drawn.clear()
-                ui.STRATUM_RENDER_PT_light_paths.draw(panel, SimpleNamespace(scene=b.scene))
-                if integrator == "ao":
-                    assert drawn == []
-                    continue
-                path_tracer = integrator != "light"
-                assert {"rr_mode", "light_selection"} <= set(drawn)
-                assert ("max_bounces" in drawn) == (integrator != "direct")
-                assert ("light_sampling" in drawn) == path_tracer
-                assert ("control_variate" in drawn) == path_tracer
-                assert ("mis_heuristic" in drawn) == (path_tracer and light_sampling == "mis")
-                assert ("triangle_sampling" in drawn) == (path_tracer and light_sampling != "bsdf")
-                assert ("rr_min_depth" in drawn) == (rr_mode != "off")
-    assert properties.load_error == ""

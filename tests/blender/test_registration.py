@@ -83,8 +83,16 @@ def test_properties_are_the_library_settings(library: Any) -> None:
     rna = bpy.types.Scene.bl_rna.properties["stratum"].fixed_type.properties
     for name in blender_settings.PROPERTIES:
         setting, prop = library.setting(name), rna[name]
-        assert (prop.name, prop.description) == (setting.label, setting.description), name
         default = blender_settings.UI_DEFAULTS.get(name, setting.default)
+        if blender_settings.is_switch(setting):
+            # A checkbox, whose tooltip says what 1 does without the "1: "
+            assert prop.type == "BOOLEAN", name
+            assert prop.name == setting.label, name
+            assert prop.description == properties.switch_description(setting.description)
+            assert prop.description[0].isupper() and "1: " not in prop.description, name
+            assert prop.default == bool(default), name
+            continue
+        assert (prop.name, prop.description) == (setting.label, setting.description), name
         if setting.kind == library.SettingKind.CHOICE:
             assert prop.default == default, name
             assert [(i.identifier, i.name, i.description, i.value) for i in prop.enum_items] == [
@@ -243,22 +251,3 @@ class _RecordingLayout:
 
     def label(self, text: str = "", **_: Any) -> None:
         self.drawn.append(text)
-
-
-@pytest.mark.parametrize("integrator", ["path", "ao"])
-def test_sampling_panel_draws_the_sampling_settings(stratum_addon: Any, integrator: str) -> None:
-    from types import SimpleNamespace
-
-    from stratum import ui
-
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
-    names = {i.identifier for i in _menu("integrator").enum_items}
-    if integrator not in names:
-        pytest.skip(f"integrator {integrator!r} is not registered")
-    scene.stratum.integrator = integrator
-    drawn: list[str] = []
-    panel = SimpleNamespace(layout=_RecordingLayout(drawn))
-    ui.STRATUM_RENDER_PT_sampling.draw(panel, SimpleNamespace(scene=scene))  # type: ignore[arg-type]
-    assert {"samples", "sampler", "hemisphere", "integrator", "seed"} <= set(drawn)
-    assert ("ao_distance" in drawn) == (integrator == "ao")

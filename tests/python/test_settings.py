@@ -78,3 +78,43 @@ def test_the_tables_name_every_setting_choice_and_pass(native: Any) -> None:
 def test_the_script_refuses_a_readme_without_markers(native: Any) -> None:
     with pytest.raises(ValueError, match="settings:begin"):
         _settings_table().with_tables("# A README without the markers\n")
+
+
+def _int_setting(native: Any, name: str, minimum: int, maximum: int) -> Any:
+    return native.Setting(name=name, label="", description="", kind=native.SettingKind.INT,
+                          minimum=minimum, maximum=maximum, open_minimum=False, unit="",
+                          default=0, choices=())
+
+
+def test_switches_are_use_settings_of_range_0_to_1(native: Any) -> None:
+    """The rule that makes a setting a checkbox in Blender: an integer named use_* that takes
+    0 or 1; film_transparent (0/1, not use_*) comes from Blender's own checkbox and stays an
+    integer setting, and a use_* setting of a wider range is a number."""
+    assert blender_settings.is_switch(native.setting("use_adaptive_sampling"))
+    assert not blender_settings.is_switch(native.setting("film_transparent"))
+    assert not blender_settings.is_switch(native.setting("adaptive_min_samples"))
+    assert blender_settings.is_switch(_int_setting(native, "use_x", 0, 1))
+    assert not blender_settings.is_switch(_int_setting(native, "use_x", 0, 2))
+    assert not blender_settings.is_switch(_int_setting(native, "x", 0, 1))
+    switches = [s.name for s in native.settings() if blender_settings.is_switch(s)]
+    assert switches and all(name in blender_settings.PROPERTIES for name in switches)
+
+
+def test_viewport_stand_ins_name_property_settings(native: Any) -> None:
+    """Each viewport stand-in (preview_*) replaces a scene.stratum setting in the viewport, has
+    a label and a default, and its default is a value its setting takes."""
+    for prop, name in blender_settings.VIEWPORT_SETTINGS.items():
+        assert name in blender_settings.PROPERTIES, prop
+        assert prop in blender_settings.VIEWPORT_PROPERTIES, prop
+        setting, default = native.setting(name), blender_settings.VIEWPORT_DEFAULTS[prop]
+        if blender_settings.is_switch(setting):
+            assert isinstance(default, bool), prop
+        else:
+            assert type(default) is type(setting.default), prop
+            assert setting.minimum <= default <= setting.maximum, prop
+
+
+def test_the_table_says_which_settings_are_checkboxes(native: Any) -> None:
+    text = _settings_table().settings_markdown()
+    assert "`scene.stratum.use_adaptive_sampling` (a checkbox)" in text
+    assert "`scene.stratum.preview_adaptive_threshold` (default `0.1`)" in text

@@ -22,15 +22,17 @@ BLENDER = os.environ.get("BLENDER", "blender")
 
 
 def run_scenario(script: str, blend: Path, name: str, timeout: float = 600.0,
-                 env: dict[str, str] | None = None) -> dict[str, Any]:
-    """Runs tests/ui/<script> on `blend`; its output folder is out/ui/<name> (screenshots,
-    results.json, blender.log). Fails with Blender's log when the scenario did not finish."""
+                 env: dict[str, str] | None = None,
+                 screen: tuple[int, int] = (1280, 800)) -> dict[str, Any]:
+    """Runs tests/ui/<script> on `blend` on a virtual screen of `screen` pixels; its output
+    folder is out/ui/<name> (screenshots, results.json, blender.log). Fails with Blender's log
+    when the scenario did not finish."""
     if shutil.which("xvfb-run") is None:
         pytest.fail("xvfb-run is missing: run scripts/setup.sh (Debian package xvfb)")
     out = OUT / name
     shutil.rmtree(out, ignore_errors=True)
     out.mkdir(parents=True)
-    command = ["xvfb-run", "-a", "-s", "-screen 0 1280x800x24", BLENDER, str(blend),
+    command = ["xvfb-run", "-a", "-s", f"-screen 0 {screen[0]}x{screen[1]}x24", BLENDER, str(blend),
                "--factory-startup", "-noaudio", "--python", str(UI / script), "--", str(out)]
     environment = dict(os.environ, PYTHONPATH=os.pathsep.join([str(UI), str(REPO / "addon")]),
                        **(env or {}))

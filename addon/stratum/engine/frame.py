@@ -40,7 +40,7 @@ def result_size(scene: Any) -> tuple[int, int]:
 def renderer_settings(scene: Any) -> dict[str, int | float | str]:
     """Native settings from the output resolution, border and film, and every scene.stratum
     property (blender_settings.py says which setting comes from where); name -> value, the
-    Python type selecting set_int / set_float / set_string, as the properties return them.
+    Python type selecting set_int / set_float / set_string (a checkbox's bool as 0 or 1).
     The border and film settings are only sent when used, so a library without them still
     renders every other scene."""
     s = scene.stratum
@@ -51,5 +51,11 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
         extra.update(zip(("crop_x", "crop_y", "crop_width", "crop_height"), region, strict=True))
     if scene.render.film_transparent:
         extra["film_transparent"] = 1
-    chosen = {name: getattr(s, name) for name in blender_settings.PROPERTIES}
+    chosen = {name: library_value(getattr(s, name)) for name in blender_settings.PROPERTIES}
     return {"width": width, "height": height} | chosen | extra
+
+
+def library_value(value: Any) -> int | float | str:
+    """A property's value as the library takes it: a checkbox (blender_settings.is_switch) as
+    0 or 1, the integer setting it is; anything else as it is."""
+    return int(value) if isinstance(value, bool) else value

@@ -36,11 +36,11 @@ from typing import Any
 
 import numpy as np
 
-from .. import native, properties
+from .. import blender_settings, native, properties
 from ..export import ExportError
 from ..export.camera import convert_camera
 from . import denoise
-from .frame import renderer_settings
+from .frame import library_value, renderer_settings
 from .viewport_session import Denoiser, Rect, View, ViewportSession, ViewportSettings
 
 SENSOR_MM = 36.0
@@ -134,9 +134,14 @@ def view_from_context(context: Any, depsgraph: Any) -> View:
 
 def settings_from_scene(scene: Any) -> ViewportSettings:
     """The viewport's settings: the scene's render settings (engine/frame.py) with the
-    viewport's sample count, start resolution and split view (scene.stratum)."""
+    viewport's sample count, adaptive sampling, start resolution and split view
+    (scene.stratum)."""
     s = scene.stratum
-    native_settings = renderer_settings(scene)
+    # The viewport's own stand-ins for library settings (adaptive sampling) replace the F12
+    # render's values.
+    native_settings = renderer_settings(scene) | {
+        setting: library_value(getattr(s, name))
+        for name, setting in blender_settings.VIEWPORT_SETTINGS.items()}
     return ViewportSettings(
         samples=int(s.preview_samples),
         sampler=str(s.sampler),
