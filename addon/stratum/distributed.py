@@ -132,6 +132,10 @@ def connect(address: str) -> tuple[Any, Any]:
 def render_on_cluster(client: Any, frame: Frame) -> tuple[native.Renderer, list[str]]:
     """Renders the frame's samples split over the client's workers (one range each, pinned to
     it while it lives); returns the merged renderer and the workers' notices (once each)."""
+    if int(frame.settings.get("use_adaptive_sampling", 0)):
+        raise DistributedError("adaptive sampling (use_adaptive_sampling) stops each pixel on its "
+                               "whole sample sequence, which no worker of a split frame holds: "
+                               "render on one machine, or with use_adaptive_sampling=0")
     workers = sorted(client.scheduler_info().get("workers", {}))
     if not workers:
         raise DistributedError("the Dask cluster has no workers")

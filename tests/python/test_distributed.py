@@ -87,6 +87,9 @@ def test_a_worker_failure_and_an_unreachable_scheduler_are_named(
         broken = Frame(b"not a scene file", {"width": 8, "height": 8, "samples": 2})
         with pytest.raises(DistributedError, match=r"a worker failed rendering samples \[0, 2\)"):
             render_on_cluster(client, broken)
+        adaptive = Frame(b"", {"width": 8, "height": 8, "samples": 2, "use_adaptive_sampling": 1})
+        with pytest.raises(DistributedError, match="use_adaptive_sampling=0"):
+            render_on_cluster(client, adaptive)
     monkeypatch.setattr("stratum.distributed.CONNECT_TIMEOUT", 2)
     with pytest.raises(DistributedError, match="cannot reach the Dask scheduler"):
         connect("tcp://127.0.0.1:9")
