@@ -202,6 +202,10 @@ def test_batches_balance_cost(native: Any) -> None:
     ("path:light_sampling=nee,triangle_sampling=area,path:light_sampling=nee",
      [("path", "nee+tri-area", {"light_sampling": "nee", "triangle_sampling": "area"}),
       ("path", "nee", {"light_sampling": "nee"})]),
+    ("path,path:use_adaptive_sampling=1,adaptive_threshold=0.02",
+     [("path", "mis-power", {}),
+      ("path", "mis-power+adaptive1+thr0.02",
+       {"use_adaptive_sampling": 1, "adaptive_threshold": 0.02})]),
 ])
 def test_estimator_specs_parse_resolve_and_label(native: Any, text: str,
                                                   expected: list[Any]) -> None:
@@ -250,6 +254,14 @@ def test_bad_estimator_specs_name_the_bad_part(native: Any, text: str, named: st
     with pytest.raises(estimators.SpecError) as info:
         estimators.resolve_all(estimators.parse_specs(text, INTEGRATORS), {})
     assert named in str(info.value)
+
+
+def test_a_scenes_checkbox_resolves_to_the_librarys_0_or_1(native: Any) -> None:
+    """The probe reads scene.stratum.use_adaptive_sampling, a checkbox, as a bool."""
+    [est] = estimators.resolve_all(estimators.parse_specs("path", INTEGRATORS), {},
+                                   {"use_adaptive_sampling": True, "adaptive_threshold": 0.05})
+    assert est.setting("use_adaptive_sampling") == 1
+    assert est.setting("adaptive_threshold") == 0.05
 
 
 def test_setting_values_are_the_native_renderers(native: Any, tiny_scene: Any) -> None:

@@ -10,6 +10,9 @@ settings (issue 6) one configuration renders with, and the short label tables an
 | rr_mode           | rr-<value>                         |
 | rr_min_depth      | rrmin<value>                       |
 | control_variate   | cv<value>                          |
+| use_adaptive_sampling | adaptive<value> (0 or 1)       |
+| adaptive_threshold    | thr<value>                     |
+| adaptive_min_samples  | min<value>                     |
 
 The names are render settings of the library, and their values, ranges and defaults are the
 library's (native.settings(), read on first use: importing this module loads nothing); the
@@ -39,10 +42,12 @@ Value = str | int | float
 # The settings an estimator spec may name, in the order every Estimator carries them.
 SETTING_NAMES: tuple[str, ...] = ("light_sampling", "mis_heuristic", "light_selection",
                                   "triangle_sampling", "rr_mode", "rr_min_depth",
-                                  "control_variate")
+                                  "control_variate", "use_adaptive_sampling",
+                                  "adaptive_threshold", "adaptive_min_samples")
 PATH = "path"  # the integrator whose label names its light-sampling strategy
 _SUFFIX = {"light_selection": "sel-", "triangle_sampling": "tri-", "rr_mode": "rr-",
-           "rr_min_depth": "rrmin", "control_variate": "cv"}
+           "rr_min_depth": "rrmin", "control_variate": "cv", "use_adaptive_sampling": "adaptive",
+           "adaptive_threshold": "thr", "adaptive_min_samples": "min"}
 
 
 class SpecError(ValueError):
@@ -218,7 +223,9 @@ def resolve(spec: Spec, common: Mapping[str, Value],
     values = defaults()
     for name, value in (scene or {}).items():
         if name in values:
-            values[name] = parse_value(name, str(value), "the scene's setting")
+            # A checkbox property (use_*) reads as a bool; the library's value is 0 or 1.
+            text = str(int(value)) if isinstance(value, bool) else str(value)
+            values[name] = parse_value(name, text, "the scene's setting")
     values.update(common)
     values.update(dict(spec.given))
     label = make_label(spec.integrator, values, (n for n, _ in spec.given))
