@@ -7,9 +7,6 @@ namespace stratum {
 
 namespace {
 
-// ρ = 2^b within b ∈ [1, 3] (see the table in the header).
-constexpr double kMinRatio = 1.5, kMaxRatio = 8.0;
-
 // Sums of v over the (2r+1)-wide window along rows, then along columns (a separable box sum;
 // the window is cut at the region's edges).
 std::vector<double> box_sum(const std::vector<double>& v, uint32_t width, uint32_t height, uint32_t r) {
@@ -39,7 +36,7 @@ std::vector<double> box_sum(const std::vector<double>& v, uint32_t width, uint32
 void estimate_pixel_errors(const PixelRegion& region, std::span<const PrefixMeans> prefixes,
                            std::span<PixelErrorEstimate> out) {
     const size_t pixels = region.pixel_count();
-    // ρ from Σ_c d1² and Σ_c d2² of the pixels that have both, pooled.
+    // f from Σ_c d1² and Σ_c d2² of the pixels that have both, pooled.
     std::vector<double> d1_sq(pixels, 0.0), d2_sq(pixels, 0.0);
     for (size_t p = 0; p < pixels; ++p) {
         const PrefixMeans& m = prefixes[p];
@@ -50,24 +47,25 @@ void estimate_pixel_errors(const PixelRegion& region, std::span<const PrefixMean
             d2_sq[p] += d2 * d2;
         }
     }
-    const std::vector<double> pooled_d1 = box_sum(d1_sq, region.width, region.height, kRatePoolRadius);
-    const std::vector<double> pooled_d2 = box_sum(d2_sq, region.width, region.height, kRatePoolRadius);
+    const std::vector<double> pooled_d1 = box_sum(d1_sq, region.width, region.height, kSharePoolRadius);
+    const std::vector<double> pooled_d2 = box_sum(d2_sq, region.width, region.height, kSharePoolRadius);
     // Each pixel's V_P and s²/P (channels summed), pooled into G.
     std::vector<double> prefix_variance(pixels, 0.0), iid_variance(pixels, 0.0);
     for (size_t p = 0; p < pixels; ++p) {
         const PrefixMeans& m = prefixes[p];
         if (m.levels < 2) continue;
-        // Independent samples' 2 where the neighbourhood holds no spread or no second level.
-        double ratio = kMinRatio;
+        // f: the share of E d1² that falls as 1/m (the rest as 1/m³), pooled; 1 without a
+        // second level or any spread.
+        double f = 1.0;
         if (m.levels == 3 && pooled_d1[p] > 0.0)
-            ratio = std::clamp(pooled_d2[p] / pooled_d1[p], kMinRatio, kMaxRatio);
+            f = std::clamp((8.0 * pooled_d1[p] - pooled_d2[p]) / (6.0 * pooled_d1[p]), 0.0, 1.0);
+        const double to_variance = f + (1.0 - f) / 7.0;
         for (uint32_t c = 0; c < 3; ++c) {
-            // E d1² = (ρ − 1)·Var(I_P) and E d2²/ρ = (ρ − 1)·Var(I_P): both draws, averaged.
             const double d1 = m.mean[0][c] - m.mean[1][c];
-            double v = d1 * d1 / (ratio - 1.0);
+            double v = d1 * d1 * to_variance;
             if (m.levels == 3) {
                 const double d2 = m.mean[1][c] - m.mean[2][c];
-                v = 0.5 * (v + d2 * d2 / (ratio * (ratio - 1.0)));
+                v = 0.5 * (v + d2 * d2 / (2.0 * f + 8.0 * (1.0 - f)) * to_variance);
             }
             prefix_variance[p] += v;
         }

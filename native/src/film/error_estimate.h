@@ -16,23 +16,28 @@
 // | P             | the pixel's last power-of-two count (P >= 2)                             |
 // | I_m           | mean of the pixel's first m samples, per RGB channel                     |
 // | d1, d2        | I_P − I_{P/2} and I_{P/2} − I_{P/4}                                      |
-// | b             | the variance rate: Var(I_m) = C·m^-b (1: independent samples; up to 3:   |
-// |               | Owen-scrambled nets on smooth integrands, Owen 1997)                     |
-// | ρ = 2^b       | Σd2² / Σd1² over the neighbourhood, clamped to [2, 8]                     |
-// | V_P           | (d1²/(ρ − 1) + d2²/(ρ(ρ − 1)))/2: a pixel's prefix estimate of Var(I_P)   |
-// | G             | Σ V_P / Σ s²/P over the neighbourhood (channels summed)                   |
+// | model         | Var(I_m) = B/m + A/m³: a part that falls as for independent samples      |
+// |               | (high-dimensional paths) and one as for Owen-scrambled nets on smooth    |
+// |               | integrands (Owen 1997)                                                   |
+// | f             | B/P over E d1² = (8·Σd1² − Σd2²)/(6·Σd1²), pooled over the share         |
+// |               | neighbourhood, clamped to [0, 1] (1 without d2)                          |
+// | V_P           | a pixel's prefix estimate of Var(I_P): the mean of d1² and               |
+// |               | d2²/(2f + 8(1 − f)), times f + (1 − f)/7                                 |
+// | G             | Σ V_P / Σ s²/P over the gain neighbourhood (channels summed)             |
 // | Var(I_n)      | G·s²/n                                                                   |
-// | neighbourhood | the (2·kPoolRadius + 1)² pixels around the pixel                          |
 //
 // Derivation. I_P = (I_{P/2} + J)/2 with J the mean of the second half; when both halves have
 // the same variance (independent samples; the two halves of an Owen-scrambled (0,k,2)-net are
-// nets scrambled alike), Cov(I_P, I_{P/2}) = Var(I_P), so
-//   E d1² = Var(I_{P/2}) − Var(I_P) = (2^b − 1)·Var(I_P),   E d2² = 2^b·(2^b − 1)·Var(I_P),
-// and E d2²/E d1² = 2^b: V_P is unbiased for Var(I_P) from two draws. A pixel's own V_P is
-// too noisy to use alone (two draws of a heavy-tailed path-tracing estimate: its median is a
-// third of its mean on the Cornell box), so it only measures the gain G, pooled with the
+// nets scrambled alike), Cov(I_P, I_{P/2}) = Var(I_P), so E d1² = Var(I_{P/2}) − Var(I_P). Under
+// the model, E d1² = B/P + 7A/P³ and E d2² = 2B/P + 56A/P³, so B/P = (8·E d1² − E d2²)/6, and
+// Var(I_P) = B/P + A/P³ = E d1²·(f + (1 − f)/7); E d2² = E d1²·(2f + 8(1 − f)) makes d2 a
+// second draw. Independent samples have f = 1 and V_P = E d1² = σ²/P. A single rate (one power
+// law) fitted to the two differences would take the steeper, coarser one for the finest level
+// and understate a pixel whose smooth direct light hides a slower indirect part. A pixel's own
+// V_P is too noisy to use alone (two draws of a heavy-tailed path-tracing estimate: its median
+// is a third of its mean on the Cornell box), so it only measures the gain G, pooled with the
 // neighbours', which the pixel's s²/n then carries. For independent samples G → 1; for the
-// low-discrepancy samplers G < 1 where their points help. At P = 2 there is no d2: ρ = 2.
+// low-discrepancy samplers G < 1 where their points help.
 #pragma once
 
 #include <cstdint>
@@ -43,8 +48,8 @@
 
 namespace stratum {
 
-// The neighbourhoods a pixel's gain G and rate ρ are pooled over: (2r + 1)² pixels.
-inline constexpr uint32_t kPoolRadius = 2, kRatePoolRadius = 8;
+// The neighbourhoods a pixel's gain G and share f are pooled over: (2r + 1)² pixels.
+inline constexpr uint32_t kPoolRadius = 2, kSharePoolRadius = 8;
 
 // A pixel's prefix means I_P, I_{P/2}, I_{P/4} (RGB each) at its last power-of-two count P, and
 // the independent-samples estimate s²/P of Var(I_P) (levels < 2: no estimate).

@@ -100,11 +100,12 @@ Rgb Film::mean(size_t pixel) const {
                static_cast<float>(from_fixed(sum[2]) / n));
 }
 
-double Film::standard_error(size_t pixel, uint32_t c) const {
+double Film::standard_error(size_t pixel, uint32_t c, bool with_gain) const {
     if (!layout_.has(Pass::Error)) return 0.0;
     const FilmSum* sum = &sums_[pixel * sums_stride()];
     const FilmSum* sum_sq = sum + 4 + layout_.entry(Pass::Error).sum_offset;
-    const double gain = !estimates_.empty() && estimates_[pixel].count > 0 ? estimates_[pixel].gain : 1.0;
+    const double gain =
+        with_gain && !estimates_.empty() && estimates_[pixel].count > 0 ? estimates_[pixel].gain : 1.0;
     return std::sqrt(gain * independent_variance(sum[c], sum_sq[c], counts_[pixel]));
 }
 

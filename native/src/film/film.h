@@ -183,8 +183,9 @@ public:
     // The pixel's last estimate (count 0: none).
     const PixelErrorEstimate& error_estimate(size_t pixel) const { return estimates_[pixel]; }
     // The estimated standard error of channel c of the pixel's Combined mean: what the Error
-    // pass shows (films that track prefixes or hold the Error pass).
-    double standard_error(size_t pixel, uint32_t c) const;
+    // pass shows (films that track prefixes or hold the Error pass); without the gain, the
+    // independent-samples estimate s/√n (what adaptive sampling stops on).
+    double standard_error(size_t pixel, uint32_t c, bool with_gain = true) const;
     // The pixel's camera samples and the mean of its Combined RGB.
     uint32_t sample_count(size_t pixel) const { return counts_[pixel]; }
     Rgb mean(size_t pixel) const;

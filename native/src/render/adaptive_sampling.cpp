@@ -33,7 +33,7 @@ double relative_error(const Film& film, size_t pixel) {
     const double s = static_cast<double>(mean.r) + mean.g + mean.b;
     const double normaliser = s < 1.0 ? std::sqrt(std::max(0.0, s)) : s;
     double sigma = 0.0;
-    for (uint32_t c = 0; c < 3; ++c) sigma += film.standard_error(pixel, c);
+    for (uint32_t c = 0; c < 3; ++c) sigma += film.standard_error(pixel, c, /*with_gain=*/false);
     return std::sqrt(2.0 / std::numbers::pi) * sigma / (kNormaliserEpsilon + normaliser);
 }
 
@@ -42,7 +42,8 @@ void stop_converged_pixels(const Film& film, const AdaptiveSampling& adaptive,
     const PixelRegion& region = film.region();
     const uint32_t w = region.width, h = region.height;
     const double limit = kThresholdScale * adaptive.threshold;
-    // Unconverged: a sampling pixel without an estimate, or whose error is at the limit or above.
+    // Unconverged: a sampling pixel without an estimate yet, or whose error is at the limit or
+    // above.
     std::vector<uint8_t> unconverged(region.pixel_count(), 0);
     for (size_t p = 0; p < unconverged.size(); ++p)
         unconverged[p] =
@@ -54,11 +55,29 @@ void stop_converged_pixels(const Film& film, const AdaptiveSampling& adaptive,
             const size_t p = static_cast<size_t>(y) * w + x;
             rows[p] = unconverged[p] || (x > 0 && unconverged[p - 1]) || (x + 1 < w && unconverged[p + 1]);
         }
+    std::vector<uint8_t> active(unconverged.size(), 0);
     for (uint32_t y = 0; y < h; ++y)
         for (uint32_t x = 0; x < w; ++x) {
             const size_t p = static_cast<size_t>(y) * w + x;
-            const bool active = rows[p] || (y > 0 && rows[p - w]) || (y + 1 < h && rows[p + w]);
-            if (!active) stopped[p] = 1;
+            active[p] = rows[p] || (y > 0 && rows[p - w]) || (y + 1 < h && rows[p + w]);
+        }
+    // Blocks aligned in the full frame (a border render's pixels keep the full render's blocks).
+    const uint32_t b = std::max(1u, adaptive.block);
+    const uint32_t bx0 = region.x / b, by0 = region.y / b;
+    const uint32_t bx1 = (region.x + w + b - 1) / b, by1 = (region.y + h + b - 1) / b;
+    for (uint32_t by = by0; by < by1; ++by)
+        for (uint32_t bx = bx0; bx < bx1; ++bx) {
+            const uint32_t x0 = std::max(bx * b, region.x) - region.x;
+            const uint32_t x1 = std::min((bx + 1) * b, region.x + w) - region.x;
+            const uint32_t y0 = std::max(by * b, region.y) - region.y;
+            const uint32_t y1 = std::min((by + 1) * b, region.y + h) - region.y;
+            bool any_active = false;
+            for (uint32_t y = y0; y < y1; ++y)
+                for (uint32_t x = x0; x < x1; ++x)
+                    any_active = any_active || active[static_cast<size_t>(y) * w + x];
+            if (any_active) continue;
+            for (uint32_t y = y0; y < y1; ++y)
+                for (uint32_t x = x0; x < x1; ++x) stopped[static_cast<size_t>(y) * w + x] = 1;
         }
 }
 

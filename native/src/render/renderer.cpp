@@ -117,6 +117,7 @@ std::string Renderer::start() {
                                    PixelFilter(settings_.filter_type, settings_.filter_width),
                                    settings_.passes, light_paths > 0, adaptive.enabled);
     adaptive_ = adaptive;
+    if (settings_.sampler->screen_space) adaptive_.block = kScreenBlock;
     stopped_.assign(adaptive.enabled ? region.pixel_count() : 0, 0);
     integrator_ = std::move(integrator);
     sampler_ = settings_.sampler->create(

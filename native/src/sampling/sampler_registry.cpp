@@ -63,12 +63,14 @@ const std::array kSamplers = {
         {"zsobol", "Sobol (blue-noise pixels)",
          "Sobol ordered over the image in Z-order so pixel errors form blue noise (Ahmed & Wonka 2020)"},
         &make<ZSobolSampler>,
-        SampleStructure::Progressive},
+        SampleStructure::Progressive,
+        true},
     SamplerEntry{{"bluenoise", "Blue noise (void-and-cluster)",
                   "Values read from a 128x128 void-and-cluster texture so neighbouring pixels' errors form "
                   "blue noise"},
                  &make<BlueNoiseSampler>,
-                 SampleStructure::Progressive},
+                 SampleStructure::Progressive,
+                 true},
     SamplerEntry{
         {"fibonacci", "Fibonacci lattice",
          "Fibonacci lattice of the sample count per dimension pair, randomly shifted in every pixel"},

@@ -24,6 +24,9 @@ struct SamplerEntry {
     RegistryEntry info;
     std::unique_ptr<Sampler> (*create)(const SamplerSettings&);
     SampleStructure structure;
+    // Neighbouring pixels' samples are spread jointly (blue-noise error): adaptive sampling
+    // stops aligned blocks of pixels together so the joint structure holds within them.
+    bool screen_space = false;
 };
 
 std::span<const SamplerEntry> sampler_registry();
