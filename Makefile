@@ -114,6 +114,7 @@ bench: build microbench
 	$(BLENDER_BG) --python scripts/bench.py
 	$(BLENDER_BG) --python scripts/bench_samplers.py
 	$(BLENDER_BG) --python scripts/bench_quality.py
+	$(BLENDER_BG) --python scripts/bench_adaptive.py
 	$(BLENDER_BG) --python scripts/bench_memory.py
 	$(BLENDER_BG) --python scripts/bench_progress.py
 	$(PY) scripts/bench_textures.py

@@ -251,10 +251,11 @@ class StratumScene:
         self.native.close()
 
     def render(self, overrides: dict[str, int | float | str] | None = None,
-               pixels: bool = False) -> dict[str, Any]:
+               pixels: bool = False, passes: tuple[str, ...] = ()) -> dict[str, Any]:
         """One render: build and path-tracing seconds, wall time start -> done, rays, samples
         per second (pixels x samples / path-tracing seconds) and, with `pixels`, the linear RGB
-        as float64 (height, width, 3)."""
+        as float64 (height, width, 3); each of `passes` (which the overrides' "passes" must
+        hold) under its name."""
         from stratum import native
 
         settings = self.settings | (overrides or {})
@@ -276,6 +277,8 @@ class StratumScene:
             if pixels:
                 rgba = renderer.read_pixels().reshape(height, width, 4)
                 out["rgb"] = rgba[:, :, :3].astype(np.float64)
+            for name in passes:
+                out[name] = renderer.read_pass(name)
         return out
 
 

@@ -109,10 +109,15 @@ def measure(images: list[np.ndarray], seconds: list[float], a: np.ndarray, b: np
 
 
 def cycles_render(name: str, args: argparse.Namespace, tmp: Path, seed: int, samples: int,
-                  ) -> tuple[np.ndarray, float]:
-    """Cycles' image (linear RGB) and path-tracing seconds, its default pattern, `seed`."""
+                  adaptive_threshold: float = 0.0) -> tuple[np.ndarray, float]:
+    """Cycles' image (linear RGB) and path-tracing seconds, its default pattern, `seed`; with
+    adaptive_threshold > 0, Cycles' adaptive sampling at that threshold up to `samples`."""
     scene = open_scene(SCENES[name], args.res, samples)
     c = scene.cycles
+    if adaptive_threshold > 0.0:
+        c.use_adaptive_sampling = True
+        c.adaptive_threshold = adaptive_threshold
+        c.adaptive_min_samples = 0
     c.sampling_pattern = type(c).bl_rna.properties["sampling_pattern"].default
     c.seed = seed
     c.use_animated_seed = False

@@ -1,6 +1,7 @@
 """Every figure of issue 15 in one table: target, measured, met or not, gathered from the JSON
 the benchmark sections wrote into out/bench/ (bench.py: render, export; bench_samplers.py;
-bench_quality.py; bench_memory.py; bench_distributed.py). The last step of `make bench`.
+bench_quality.py; bench_adaptive.py; bench_memory.py; bench_distributed.py). The last step of
+`make bench`.
 
     .venv/bin/python scripts/bench_summary.py [--results out/bench] [--out out/bench_summary.txt]
 
@@ -95,6 +96,25 @@ def quality_rows(s: Section | None) -> list[Row]:
     return rows
 
 
+def adaptive_rows(s: Section | None) -> list[Row]:
+    """Issue 16, acceptance 4: adaptive sampling's MSE x time <= 0.7x fixed sampling's, per
+    Stratum sampler, beside Cycles' own ratio (bench_adaptive.py)."""
+    rows = []
+    for name in ("cornell_box", "wolf"):
+        r = (s or {}).get("scenes", {}).get(name, {})
+        groups = [("Cycles", r.get("cycles", {}).get("cycles", {}))]
+        groups += list(r.get("stratum", {}).items())
+        for who, runs in groups:
+            fixed = product(runs.get("fixed", {}))
+            for label, run in runs.items():
+                if label == "fixed":
+                    continue
+                target, limit = ("", None) if who == "Cycles" else ("<= 0.70x", 0.7)
+                rows.append(Row(f"16 MSE x time {label}/fixed {who}, {name}", target,
+                                ratio(product(run), fixed), limit=limit))
+    return rows
+
+
 def export_rows(s: Section | None) -> list[Row]:
     """Target 5: Stratum's export + BVH against Cycles' whole sync."""
     cases = (s or {}).get("cases", {})
@@ -134,7 +154,7 @@ def memory_rows(s: Section | None) -> list[Row]:
 
 BUILDERS: tuple[tuple[str, Callable[[Section | None], list[Row]]], ...] = (
     ("render", render_rows), ("samplers", sampler_rows), ("render", embree_rows),
-    ("samplers", triangle_rows), ("quality", quality_rows),
+    ("samplers", triangle_rows), ("quality", quality_rows), ("adaptive", adaptive_rows),
     ("export", export_rows), ("distributed", distributed_rows), ("memory", memory_rows))
 
 SETTINGS = ("res", "samples", "rounds", "seeds", "reference_samples", "repeats", "threads",
