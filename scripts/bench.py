@@ -29,7 +29,10 @@ Then the export section (acceptance 3 of issue 5), each scene built in this scri
 * monkey_1m: Suzanne subdivided 5 times (Catmull-Clark, applied: 503 808 quads = 1 007 616
   triangles, one object), a camera and a sun;
 * instances_10k: 10 000 instances of one 12-triangle cube (vertex instancing) plus the child
-  object itself, a camera and a sun.
+  object itself, a camera and a sun;
+* emissive_100k: a grid of 100 352 emissive triangles (every one a light), a camera and a sun:
+  Stratum's light tree build (seconds, MB: progress().light_tree_seconds / _bytes) is printed
+  and recorded beside its BVH build.
 
 For each, Stratum's export (depsgraph -> native scene, timed around export_scene) and BVH build
 (progress().build_seconds of a 1-sample 32 x 32 render) against Cycles' synchronisation of the
@@ -240,6 +243,7 @@ def bench_export_case(build: Callable[[], bpy.types.Scene], stratum_ok: bool,
                 pass
             p = renderer.progress()
     out.update({"export": t_export, "build": p.build_seconds,
+                "light_tree": p.light_tree_seconds, "light_tree_bytes": p.light_tree_bytes,
                 "triangles": summary.triangles, "instances": summary.instances,
                 "instanced_triangles": summary.instanced_triangles})
     return out
@@ -313,6 +317,10 @@ def export_lines(name: str, r: dict[str, float | int | None]) -> list[str]:
             # above, the only one available where Cycles prints no status lines (bpy wheel).
             f"  ratio Stratum (export + BVH) / Cycles F12:        {ratio(both, r['cycles_f12'])}",
         ]
+        if r.get("light_tree"):
+            # Built before the first sample (within the render, not the BVH build).
+            lines.append(f"  {'Stratum light tree build':30s}{fmt(r['light_tree']):>10s}   "
+                         f"{(r['light_tree_bytes'] or 0) / 1e6:.1f} MB")
     return lines
 
 

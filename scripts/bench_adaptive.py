@@ -45,6 +45,7 @@ from bench_quality import (
     cache_path,
     cached_halves,
     cycles_render,
+    light_tree_on,
     measure,
     scene_key,
 )
@@ -79,8 +80,11 @@ def bench_scene(name: str, args: argparse.Namespace, tmp: Path) -> dict[str, Any
             cache_path(name, "stratum", key),
             lambda seed: st.render({"sampler": REFERENCE_SAMPLER, "seed": seed,
                                     "samples": args.reference_samples // 2}, pixels=True)["rgb"])
-        key = scene_key(name, args) | {"renderer": "cycles", "blender": bpy.app.version_string,
-                                       "build": bpy.app.build_hash.decode(errors="replace")}
+        # As bench_quality keys its Cycles references (with the light tree where Cycles has it).
+        tree = {"light_tree": True} if light_tree_on(scene) else {}
+        key = scene_key(name, args) | tree | {
+            "renderer": "cycles", "blender": bpy.app.version_string,
+            "build": bpy.app.build_hash.decode(errors="replace")}
         cy_a, cy_b, _ = cached_halves(
             cache_path(name, "cycles", key),
             lambda seed: cycles_render(name, args, tmp, seed, args.reference_samples // 2)[0])

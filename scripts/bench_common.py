@@ -272,6 +272,7 @@ class StratumScene:
             out: dict[str, Any] = {
                 "build": p.build_seconds, "trace": p.render_seconds, "wall": wall,
                 "rays": p.rays, "samples_done": p.samples_done,
+                "light_tree_seconds": p.light_tree_seconds, "light_tree_bytes": p.light_tree_bytes,
                 "samples_per_s": (width * height * p.samples_done / p.render_seconds
                                   if p.render_seconds > 0 else 0.0)}
             if pixels:
@@ -396,6 +397,34 @@ def build_instances_10k() -> bpy.types.Scene:
     return scene
 
 
+def build_emissive_100k() -> bpy.types.Scene:
+    """A flat grid of EMISSIVE_SIDE^2 quads (100 352 triangles) with an Emission material, seen
+    from the camera: every triangle is a light, so Stratum's default light selection (auto)
+    builds its light tree over 100k leaves (issue 16: "build time and memory reported")."""
+    scene = _empty_scene()
+    bmesh = _bmesh()
+    bm = bmesh.new()
+    bmesh.ops.create_grid(bm, x_segments=EMISSIVE_SIDE, y_segments=EMISSIVE_SIDE, size=1.0)
+    mesh = bpy.data.meshes.new("emitter")
+    bm.to_mesh(mesh)
+    bm.free()
+    material = bpy.data.materials.new("emission")
+    material.use_nodes = True
+    nodes = material.node_tree.nodes
+    nodes.clear()
+    emission = nodes.new("ShaderNodeEmission")
+    emission.inputs["Strength"].default_value = 2.0
+    output = nodes.new("ShaderNodeOutputMaterial")
+    material.node_tree.links.new(emission.outputs["Emission"], output.inputs["Surface"])
+    mesh.materials.append(material)
+    ob = bpy.data.objects.new("emitter", mesh)
+    ob.rotation_euler = (math.pi / 2, 0.0, 0.0)
+    scene.collection.objects.link(ob)
+    return scene
+
+
+EMISSIVE_SIDE = 224  # 224^2 quads = 100 352 triangles
+
 EXPORT_CASES: tuple[tuple[str, Callable[[], bpy.types.Scene]], ...] = (
     ("monkey_1m", build_monkey_1m), ("monkey_1m_smooth", build_monkey_1m_smooth),
-    ("instances_10k", build_instances_10k))
+    ("instances_10k", build_instances_10k), ("emissive_100k", build_emissive_100k))

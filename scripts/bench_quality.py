@@ -4,6 +4,18 @@ samplers relative to Cycles 3.4, each renderer against its own reference.
     blender -b --factory-startup --python scripts/bench_quality.py [-- --res 128 --samples 64
         --seeds 3 --reference-samples 2048 --scene cornell_box --scene wolf]
 
+Light selection (issue 16, acceptance 4), with Cycles 5.0 and its light tree (the bpy wheel):
+
+    .venv/bin/python scripts/bench_quality.py --scene many_lights_hall --sampler sobol
+        --light-selection tree,power,uniform,mixed --section quality_lights
+
+--light-selection makes Stratum's series every --sampler x every listed light_selection (the
+reference stays at the scene's default, auto: the tree for the hall; every mode converges to
+the same image); Cycles renders with its light tree on (scene.cycles.use_light_tree, Cycles
+>= 3.5). Under the bpy wheel Cycles prints no status lines, so its path-tracing time is taken
+from two renders' totals: (total(N) - total(1)) N / (N - 1), the 1-spp render holding the
+same scene synchronisation and one sample (the 1-spp total is measured once per seed).
+
 Per scene (default the Cornell box and Wolf, at --res squared, bounces 8, Blackman-Harris 1.5,
 all threads): Cycles with its default pattern (progressive multi-jitter in 3.4; adaptive
 sampling and denoising off) and Stratum at its defaults with each --sampler (default random,
@@ -42,6 +54,7 @@ import numpy as np
 from bench_common import (
     CACHE,
     CORNELL,
+    REPO,
     WOLF,
     StratumScene,
     configure_stratum,
@@ -55,7 +68,8 @@ from bench_common import (
 )
 from bench_results import mse, noise_mse, reference_noise, write_section
 
-SCENES = {"cornell_box": CORNELL, "wolf": WOLF}
+SCENES = {"cornell_box": CORNELL, "wolf": WOLF,
+          "many_lights_hall": REPO / "scenes" / "many_lights_hall.blend"}
 REFERENCE_SEEDS = (1001, 1002)
 OWEN_SCRAMBLED = ("sobol", "zsobol", "halton_owen")
 # Stratum's reference sampler: Owen-scrambled Sobol is unbiased, its two seeds are independent
@@ -73,10 +87,22 @@ def parse_args() -> argparse.Namespace:
     p.add_argument("--reference-samples", type=int, default=2048)
     p.add_argument("--scene", choices=sorted(SCENES), action="append", default=None)
     p.add_argument("--sampler", action="append", default=None)
+    p.add_argument("--light-selection", default="",
+                   help="comma-separated light_selection values: Stratum series per sampler x value")
+    p.add_argument("--section", default="quality", help="out/bench/<section>.json")
     args = p.parse_args(script_argv())
     args.scene = args.scene or ["cornell_box", "wolf"]
     args.sampler = args.sampler or ["random", *OWEN_SCRAMBLED]
+    args.light_selection = [v for v in args.light_selection.split(",") if v]
     return args
+
+
+def stratum_series(args: argparse.Namespace) -> dict[str, dict[str, str]]:
+    """Stratum's series: label -> settings (a sampler, and a light_selection when listed)."""
+    if not args.light_selection:
+        return {s: {"sampler": s} for s in args.sampler}
+    return {f"{s} {sel}": {"sampler": s, "light_selection": sel}
+            for s in args.sampler for sel in args.light_selection}
 
 
 def cache_path(scene: str, renderer: str, key: dict[str, Any]) -> Path:
@@ -108,24 +134,49 @@ def measure(images: list[np.ndarray], seconds: list[float], a: np.ndarray, b: np
             "seconds": min(seconds), "seconds_all": seconds}
 
 
+def light_tree_on(scene: bpy.types.Scene) -> bool | None:
+    """Turns Cycles' light tree on where it has one (>= 3.5); None where it has none."""
+    c = scene.cycles
+    if not hasattr(c, "use_light_tree"):
+        return None
+    c.use_light_tree = True
+    return True
+
+
 def cycles_render(name: str, args: argparse.Namespace, tmp: Path, seed: int, samples: int,
                   adaptive_threshold: float = 0.0) -> tuple[np.ndarray, float]:
-    """Cycles' image (linear RGB) and path-tracing seconds, its default pattern, `seed`; with
-    adaptive_threshold > 0, Cycles' adaptive sampling at that threshold up to `samples`."""
-    scene = open_scene(SCENES[name], args.res, samples)
-    c = scene.cycles
-    if adaptive_threshold > 0.0:
-        c.use_adaptive_sampling = True
-        c.adaptive_threshold = adaptive_threshold
-        c.adaptive_min_samples = 0
-    c.sampling_pattern = type(c).bl_rna.properties["sampling_pattern"].default
-    c.seed = seed
-    c.use_animated_seed = False
+    """Cycles' image (linear RGB) and path-tracing seconds, its default pattern and light
+    tree, `seed`; with adaptive_threshold > 0, Cycles' adaptive sampling at that threshold up
+    to `samples`. Without status lines (the bpy wheel) the time is (total(N) - total(1))
+    N / (N - 1) (module doc)."""
+    def open_cycles(spp: int) -> bpy.types.Scene:
+        scene = open_scene(SCENES[name], args.res, spp)
+        c = scene.cycles
+        # The default pattern; 5.0's enum has dynamic items and no default identifier: the
+        # scene's own pattern stays (Automatic in a file it did not store one in).
+        default = type(c).bl_rna.properties["sampling_pattern"].default
+        if default:
+            c.sampling_pattern = default
+        c.seed = seed
+        c.use_animated_seed = False
+        if adaptive_threshold > 0.0:
+            c.use_adaptive_sampling = True
+            c.adaptive_threshold = adaptive_threshold
+            c.adaptive_min_samples = 0
+        light_tree_on(scene)
+        return scene
+
     exr = tmp / f"cycles-{seed}.exr"
-    r = render_cycles(scene, write_exr=exr)
-    if r["trace"] is None:
-        raise RuntimeError("Cycles printed no status lines (run in Blender's executable)")
-    return read_exr_rgb(exr), r["trace"]
+    r = render_cycles(open_cycles(samples), write_exr=exr)
+    image = read_exr_rgb(exr)
+    if r["trace"] is not None:
+        return image, r["trace"]
+    if samples < 2:
+        raise RuntimeError("Cycles printed no status lines and 1 spp leaves nothing to subtract")
+    one = render_cycles(open_cycles(1), write_exr=tmp / f"cycles-{seed}-1spp.exr")
+    total, base = r["total"], one["total"]
+    assert total is not None and base is not None
+    return image, max(total - base, 0.0) * samples / (samples - 1)
 
 
 def bench_scene(name: str, args: argparse.Namespace, tmp: Path,
@@ -143,23 +194,29 @@ def bench_scene(name: str, args: argparse.Namespace, tmp: Path,
         key = scene_key(name, args) | {"renderer": "stratum", "library": stratum_library_id(),
                                        "sampler": REFERENCE_SAMPLER}
         st_a, st_b, st_cached = cached_halves(cache_path(name, "stratum", key), stratum_half)
-        key = scene_key(name, args) | {"renderer": "cycles", "blender": bpy.app.version_string,
-                                       "build": bpy.app.build_hash.decode(errors="replace")}
+        # Cycles with a light tree (>= 3.5) renders its references with it on.
+        tree = {"light_tree": True} if light_tree_on(scene) else {}
+        key = scene_key(name, args) | tree | {
+            "renderer": "cycles", "blender": bpy.app.version_string,
+            "build": bpy.app.build_hash.decode(errors="replace")}
         cy_a, cy_b, cy_cached = cached_halves(
             cache_path(name, "cycles", key),
             lambda seed: cycles_render(name, args, tmp, seed, args.reference_samples // 2)[0])
         cycles_runs: list[tuple[np.ndarray, float]] = []
-        stratum_runs: dict[str, list[dict[str, Any]]] = {s: [] for s in args.sampler}
+        series = stratum_series(args)
+        stratum_runs: dict[str, list[dict[str, Any]]] = {label: [] for label in series}
         for seed in range(1, args.seeds + 1):
             cycles_runs.append(cycles_render(name, args, tmp, seed, args.samples))
-            for sampler in args.sampler:
-                stratum_runs[sampler].append(
-                    st.render({"sampler": sampler, "seed": seed}, pixels=True))
-    pattern = type(bpy.context.scene.cycles).bl_rna.properties["sampling_pattern"].default
+            for label, settings in series.items():
+                stratum_runs[label].append(st.render(settings | {"seed": seed}, pixels=True))
+    pattern = bpy.context.scene.cycles.sampling_pattern
     cyc = measure([im for im, _ in cycles_runs], [t for _, t in cycles_runs], cy_a, cy_b)
     cyc |= {"reference_noise": reference_noise(cy_a, cy_b), "reference_cached": cy_cached,
-            "pattern": pattern}
+            "pattern": pattern, "light_tree": light_tree_on(bpy.context.scene),
+            "blender": bpy.app.version_string}
     samplers = {s: measure([r["rgb"] for r in runs], [r["trace"] for r in runs], st_a, st_b)
+                | {"light_tree_seconds": max(r["light_tree_seconds"] for r in runs),
+                   "light_tree_bytes": max(r["light_tree_bytes"] for r in runs)}
                 for s, runs in stratum_runs.items()}
     return cyc, {"reference_noise": reference_noise(st_a, st_b), "reference_cached": st_cached,
                  "samplers": samplers}
@@ -171,7 +228,8 @@ def scene_lines(name: str, cyc: dict[str, Any], st: dict[str, Any]) -> list[str]
               f"Stratum {st['reference_noise']:.3e}"),
              (f"  {'':22s}{'MSE vs ref':>12s}{'noise MSE':>12s}{'seconds':>9s}"
               f"{'MSE x s':>11s}{'/ Cycles':>10s}")]
-    rows = [(f"Cycles {PATTERN_NAMES.get(cyc['pattern'], cyc['pattern'])}", cyc)]
+    tree = " light tree" if cyc.get("light_tree") else ""
+    rows = [(f"Cycles {PATTERN_NAMES.get(cyc['pattern'], cyc['pattern'])}{tree}", cyc)]
     rows += [(f"Stratum {s}", r) for s, r in st["samplers"].items()]
     for label, r in rows:
         product = r["noise_mse"] * r["seconds"]
@@ -186,6 +244,10 @@ def main() -> int:
     if reason:
         print(f"bench_quality: Stratum not available ({reason})", file=sys.stderr)
         return 2
+    if args.section == "quality" and args.light_selection:
+        print("bench_quality: --light-selection writes its own --section (e.g. quality_lights)",
+              file=sys.stderr)
+        return 2
     results: dict[str, Any] = {}
     lines = [(f"Equal-time quality: {args.res}x{args.res}, {args.samples} spp, {args.seeds} "
               f"seeds, references of {args.reference_samples} spp (two independent halves):")]
@@ -198,7 +260,9 @@ def main() -> int:
     data = {"res": args.res, "samples": args.samples, "seeds": args.seeds,
             "reference_samples": args.reference_samples, "owen_scrambled": list(OWEN_SCRAMBLED),
             "scenes": results}
-    print(f"written {write_section('quality', data)}")
+    if args.light_selection:
+        data["light_selection"] = args.light_selection
+    print(f"written {write_section(args.section, data)}")
     return 0
 
 

@@ -22,7 +22,11 @@ The runs (the source documents' experiments, with more samplers, seeds and spp):
 * est_small, est_large, est_glossy: the estimator ladder of issue 6 (bsdf, nee by area and by
   solid angle, mis-balance / power / max, mis-power by area, light, direct) on the Cornell box with a small light, a large light and glossy
   surfaces (scripts/study_estimators.py); out/study/estimators.md has their tables (MSE at
-  equal samples and at equal time) and the textbook's claims checked against them.
+  equal samples and at equal time) and the textbook's claims checked against them;
+* lights_hall: scenes/many_lights_hall.blend (1,000 lamps), light_selection tree, power,
+  uniform and mixed at equal time (scripts/study_lights.py); out/study/lights.md, which also
+  shows Cycles' light tree (out/bench/quality_lights.json) and auto's threshold
+  (out/study/auto_lights.json) when `make study` has measured them.
 
     .venv/bin/python scripts/study.py [--out out/study] [--jobs 2] [--only cornell,wolf]
                                       [--quick] [--dry-run] [--summary-only]
@@ -50,6 +54,7 @@ REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO / "addon"))  # this checkout's stratum, for study_estimators
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 import study_estimators
+import study_lights
 from study_figures import export_docs, make_figures
 from study_summary import AO_HEMISPHERES, AO_SAMPLERS, write_summary
 
@@ -100,7 +105,7 @@ def plan_runs(quick: bool) -> list[Run]:
         runs.append(Run(name, "scenes/ao_study.blend", ",".join(AO_SAMPLERS), ao_spp, ao_seeds,
                         ao_res, ao_ref, ["--integrator", "ao", "--hemisphere", hemisphere],
                         None if name == AO_REFERENCE_RUN else AO_REFERENCE_RUN))
-    return runs + study_estimators.plan_runs(quick, Run)
+    return runs + study_estimators.plan_runs(quick, Run) + study_lights.plan_runs(quick, Run)
 
 
 # ---- running ---------------------------------------------------------------------------------

@@ -13,6 +13,7 @@ from pathlib import Path
 from typing import Any
 
 import study_estimators
+import study_lights
 
 BASELINE = "lcg"  # the coursework's "Standard" sampler
 AO_HEMISPHERES = ("uniform_angles", "uniform", "cosine")
@@ -208,6 +209,9 @@ def write_summary(out: Path, log: list[dict[str, Any]]) -> None:
     if headline["estimators"]:
         parts += ["## Estimators (issue 6)", "", "Also in estimators.md:", "",
                   estimator_text.split("\n", 1)[1].replace("\n## ", "\n### "), ""]
+    lights_text, headline["lights"] = study_lights.write_page(out, load_results)
+    parts += ["## Light selection (issue 16)", "", "Also in lights.md:", "",
+              lights_text.split("\n", 1)[1].replace("\n## ", "\n### "), ""]
     if log:
         total = sum(r["seconds"] for r in log)
         parts += ["## Run time", "", "| run | minutes |", "|---|---|"]

@@ -23,11 +23,14 @@ from stratum.engine import StratumRenderEngine, final_render, frame
 from conftest import engine_reports, render_still
 
 ENUMS = ("light_sampling", "mis_heuristic", "light_selection", "triangle_sampling", "rr_mode")
-DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection": "mixed",
+DEFAULTS = {"light_sampling": "mis", "mis_heuristic": "power", "light_selection": "auto",
             "triangle_sampling": "solid_angle", "rr_mode": "throughput", "rr_min_depth": 3,
             "control_variate": 0.0}
 # Values per enum, as the library lists them (native/src/integrators/estimator_options.cpp).
-ENUM_SIZES = {"triangle_sampling": 2, "light_selection": 4}
+ENUM_SIZES = {"triangle_sampling": 2, "light_selection": 5}
+# Defaults appended after the menu's other items (a .blend stores an item's position, so the
+# older items keep theirs): light_selection's auto (issue 16).
+APPENDED_DEFAULTS = ("light_selection",)
 
 
 def _enum_identifiers(name: str) -> list[str]:
@@ -42,9 +45,11 @@ def test_properties_exist_with_the_contract_defaults(library: Any, scene_builder
     rna = type(s).bl_rna.properties
     assert (rna["rr_min_depth"].hard_min, rna["rr_min_depth"].hard_max) == (0, 1024)
     assert rna["control_variate"].hard_min == 0.0
-    # The first item of each menu is the native default (the contract's "first value").
+    # The first item of each menu is the native default (the contract's "first value"), but
+    # for a default appended later, the last.
     for name in ENUMS:
-        assert _enum_identifiers(name)[0] == DEFAULTS[name], name
+        position = -1 if name in APPENDED_DEFAULTS else 0
+        assert _enum_identifiers(name)[position] == DEFAULTS[name], name
 
 
 @pytest.mark.parametrize("name", ENUMS)

@@ -61,7 +61,7 @@ TEST(SettingRegistry, DefaultsAreTheDocumentedOnes) {
     EXPECT_EQ(def("filter_type"), "blackman_harris");
     EXPECT_EQ(def("light_sampling"), "mis");
     EXPECT_EQ(def("mis_heuristic"), "power");
-    EXPECT_EQ(def("light_selection"), "mixed");
+    EXPECT_EQ(def("light_selection"), "auto");
     EXPECT_EQ(def("triangle_sampling"), "solid_angle");
     EXPECT_EQ(def("rr_mode"), "throughput");
     EXPECT_EQ(def("passes"), "");
@@ -158,7 +158,7 @@ TEST(SettingRegistry, ChoicesOnlyGrowAtTheEnd) {
         {"filter_type", {"box", "blackman_harris"}},
         {"light_sampling", {"mis", "nee", "bsdf"}},
         {"mis_heuristic", {"power", "balance", "max"}},
-        {"light_selection", {"mixed", "power", "uniform"}},
+        {"light_selection", {"mixed", "power", "uniform", "tree", "auto"}},
         {"triangle_sampling", {"solid_angle", "area"}},
         {"rr_mode", {"throughput", "albedo", "off"}},
         {"bvh", {"static", "dynamic"}},

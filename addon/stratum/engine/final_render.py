@@ -65,8 +65,12 @@ def format_stats(progress: native.Progress, elapsed: float) -> str:
         rays = f"{rate:.0f}"
     tenths = math.floor(progress.samples_average * 10)
     samples = f"{tenths // 10}" if tenths % 10 == 0 else f"{tenths / 10:.1f}"
-    return (f"Sample {samples}/{progress.samples_total} | {elapsed:.1f}s | "
-            f"{rays} rays/s")
+    stats = f"Sample {samples}/{progress.samples_total} | {elapsed:.1f}s | {rays} rays/s"
+    # The light tree's cost, once built (issue 16: "build time and memory reported").
+    if progress.light_tree_bytes > 0:
+        stats += (f" | Light tree {progress.light_tree_seconds * 1e3:.0f} ms, "
+                  f"{progress.light_tree_bytes / 1e6:.2f} MB")
+    return stats
 
 
 class PixelWriter:

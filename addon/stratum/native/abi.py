@@ -255,6 +255,8 @@ class _Progress(ctypes.Structure):
         ("fraction_done", ctypes.c_double),
         ("samples_in_progress", ctypes.c_int32),
         ("samples_average", ctypes.c_double),
+        ("light_tree_seconds", ctypes.c_double),
+        ("light_tree_bytes", ctypes.c_double),
     ]
 
 

@@ -31,6 +31,10 @@ class Progress:
     # mean over the image from the work finished, moving as tiles finish (stratum.h).
     samples_in_progress: int
     samples_average: float
+    # The light tree the render chooses lights by (0, 0 when it uses none): build seconds and
+    # bytes held (stratum/render.h).
+    light_tree_seconds: float = 0.0
+    light_tree_bytes: float = 0.0
 
 
 class Renderer(_Handle):
@@ -135,6 +139,8 @@ class Renderer(_Handle):
             fraction_done=float(p.fraction_done),
             samples_in_progress=int(p.samples_in_progress),
             samples_average=float(p.samples_average),
+            light_tree_seconds=float(p.light_tree_seconds),
+            light_tree_bytes=float(p.light_tree_bytes),
         )
 
     def read_pixels(self, out: np.ndarray | None = None) -> np.ndarray:

@@ -30,7 +30,7 @@ STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
  *   string: sampler (a choice: stratum_setting_choice), filter_type ("box", "blackman_harris"),
  *           integrator (path, light, direct, ao), hemisphere (a choice),
  *           light_sampling ("mis", "nee", "bsdf"), mis_heuristic ("power", "balance", "max"),
- *           light_selection ("mixed", "power", "uniform"),
+ *           light_selection ("mixed", "power", "uniform", "tree", "auto"),
  *           triangle_sampling ("solid_angle", "area": how NEE takes a point on an emissive
  *           triangle), rr_mode ("throughput", "albedo", "off"),
  *           passes (comma-separated pass names besides Combined: stratum_pass_info)
@@ -71,6 +71,11 @@ typedef struct StratumProgress {
     /* Samples per pixel on average, from the work finished: samples_done plus the finished part
      * of the pass in progress; it moves as tiles finish (Cycles' "Sample N/M" counts the same). */
     double samples_average;
+    /* The light tree the render chooses lights by (light_selection "tree", or "auto" in a scene
+     * of many lights), built before its first sample: the build's seconds (within
+     * render_seconds) and the bytes it holds; both 0 when the render uses no tree. */
+    double light_tree_seconds;
+    double light_tree_bytes;
 } StratumProgress;
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);

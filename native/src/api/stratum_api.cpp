@@ -406,7 +406,9 @@ StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgres
                                p.render_seconds,
                                p.fraction_done,
                                static_cast<int32_t>(p.samples_in_progress),
-                               p.samples_average};
+                               p.samples_average,
+                               p.light_tree_seconds,
+                               p.light_tree_bytes};
         // A failure inside the render thread is reported by the next progress call.
         return p.error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_INTERNAL, "render failed: " + p.error);
     });

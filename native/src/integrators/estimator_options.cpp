@@ -7,7 +7,8 @@ namespace stratum {
 
 namespace {
 
-// Menu order (default first): a host stores a choice by its position.
+// Menu order (default first, except light_selection's auto, appended): a host stores a choice by
+// its position.
 constexpr std::array kLightSampling = {
     RegistryEntry{"mis", "Multiple Importance",
                   "Light sampling (next-event estimation) and BSDF sampling combined by multiple importance "
@@ -40,9 +41,14 @@ constexpr std::array kLightSelection = {
     RegistryEntry{"tree", "Light Tree",
                   "A tree over the lights picks one by its power, distance and orientation from each shading "
                   "point (Conty Estevez & Kulla 2018); light tracing emits by power"},
+    // Appended last (a host stores the position), the default (integrators/integrator.h).
+    RegistryEntry{"auto", "Automatic",
+                  "The light tree when the scene holds more than 3 lights (lamps, suns, the world, "
+                  "emissive triangles), else mixed"},
 };
 constexpr std::array kLightSelectionValues = {LightSelection::Mixed, LightSelection::Power,
-                                              LightSelection::Uniform, LightSelection::Tree};
+                                              LightSelection::Uniform, LightSelection::Tree,
+                                              LightSelection::Auto};
 
 constexpr std::array kTriangleSampling = {
     RegistryEntry{

@@ -13,9 +13,10 @@
 // | rr_mode           | off, throughput,      | (5.5–5.6): survival min(1, max β) or             |
 // |                   | albedo                | min(1, max ρ), ρ the closures' albedo            |
 // | light_selection   | mixed, power, uniform,| (5.14) p_j = Φ_j/ΣΦ; uniform 1/N; mixed = ½ power |
-// |                   | tree                  | + ½ uniform over objects (lights/light_set.h);   |
+// |                   | tree, auto            | + ½ uniform over objects (lights/light_set.h);   |
 // |                   |                       | tree: Conty Estévez & Kulla 2018, per shading    |
-// |                   |                       | point (lights/light_tree.h)                      |
+// |                   |                       | point (lights/light_tree.h); auto (the default): |
+// |                   |                       | tree above 3 lights, else mixed (LightSet)       |
 // | triangle_sampling | solid_angle, area     | the point NEE takes on an emissive triangle:     |
 // |                   |                       | uniform in the solid angle it subtends (Arvo     |
 // |                   |                       | 1995; lights/emissive_triangle.h), or uniform in |

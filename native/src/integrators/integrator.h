@@ -38,7 +38,7 @@ struct IntegratorSettings {
     // The estimator ladder (integrators/estimator_options.h; textbook §4–§6).
     LightSampling light_sampling = LightSampling::Mis;
     MisHeuristic mis_heuristic = MisHeuristic::Power;
-    LightSelection light_selection = LightSelection::Mixed;
+    LightSelection light_selection = LightSelection::Auto;
     TriangleSampling triangle_sampling = TriangleSampling::SolidAngle;
     RouletteMode rr_mode = RouletteMode::Throughput;
     // Roulette starts at this bounce (0 = at the first vertex).

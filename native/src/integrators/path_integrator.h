@@ -47,6 +47,12 @@ namespace stratum {
 class PathIntegrator final : public Integrator {
 public:
     explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
+    // The light tree, when this render chooses lights by it, is built here, before the first
+    // sample: not by the first light sample while every other thread waits for it.
+    void prepare(const RenderScene& scene) override {
+        if (scene.lights().resolve(settings_.light_selection) == LightSelection::Tree)
+            (void)scene.lights().tree();
+    }
     RadianceSample estimate(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                             const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;

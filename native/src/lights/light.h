@@ -22,7 +22,9 @@
 // | bounds           | the light tree's bound (lights/light_bounds.h): box of the emitting       |
 // |                  | points and orientation cone; phi is left 0, LightSet fills in power().    |
 // |                  | nullopt for lights at infinity (sun, environment), which the tree leaves  |
-// |                  | out and chooses with a fixed probability (LightSet)                       |
+// |                  | out and chooses with a fixed probability (LightSet). A hittable lamp's    |
+// |                  | box must also hold every point intersect() meets: lamp_radiance finds     |
+// |                  | lamps through a BVH of these boxes (lights/lamp_bvh.h)                    |
 //
 // A light is built from the host's LightParams by its model's entry (LightModel), defined in the
 // light's own file and registered by type in lights/light_registry.cpp.

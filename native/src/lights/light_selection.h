@@ -8,9 +8,10 @@
 namespace stratum {
 
 // Power (textbook 5.14), uniform, or half of each over light objects (lights/light_set.h); or
-// the light tree (lights/light_tree.h), whose probabilities depend on the shading point.
-enum class LightSelection : uint8_t { Mixed, Power, Uniform, Tree };
-inline constexpr uint32_t kLightSelectionModes = 4;
+// the light tree (lights/light_tree.h), whose probabilities depend on the shading point; or
+// auto, the tree or mixed by the scene's number of lights (LightSet::resolve).
+enum class LightSelection : uint8_t { Mixed, Power, Uniform, Tree, Auto };
+inline constexpr uint32_t kLightSelectionModes = 5;
 // The modes whose probabilities are one table for the whole scene (all but the tree).
 inline constexpr uint32_t kStaticLightSelectionModes = 3;
 // A point on an emissive triangle: uniform in the solid angle it subtends (Arvo 1995), or

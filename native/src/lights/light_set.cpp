@@ -1,6 +1,9 @@
 #include "lights/light_set.h"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <unordered_map>
 
@@ -53,9 +56,11 @@ void LightSet::finalize(float scene_radius) {
                     p = 0.5 * by_power + 0.5 * in_object / objects;
                     break;
                 }
-                // The tree's choice without a shading point (emission) is power's table.
+                // The tree's choice without a shading point (emission) is power's table; auto
+                // is resolved to tree or mixed before a table is read (static_table).
                 case LightSelection::Power:
                 case LightSelection::Tree:
+                case LightSelection::Auto:
                     p = by_power;
                     break;
                 case LightSelection::Uniform:
@@ -67,49 +72,71 @@ void LightSet::finalize(float scene_radius) {
         }
         if (!cdf_[mode].empty()) cdf_[mode].back() = 1.0f;
     }
-    // The tree mode's split between the lights at infinity and the tree (header).
-    infinite_.clear();
-    is_infinite_.assign(lights_.size(), 0);
-    tree_has_lights_ = false;
-    for (size_t i = 0; i < lights_.size(); ++i) {
-        if (lights_[i]->bounds()) {
-            tree_has_lights_ = tree_has_lights_ || power[i] > 0.0;
-        } else {
-            infinite_.push_back(static_cast<uint32_t>(i));
-            is_infinite_[i] = 1;
-        }
+    // Boxes of the lamps rays meet, for lamp_radiance. A lamp that gives no bounds() gets the
+    // whole space (tested by every ray, as before the hierarchy).
+    std::vector<LampBvh::Box> boxes;
+    boxes.reserve(hittable_lamps_.size());
+    constexpr float kEverywhere = 0.25f * std::numeric_limits<float>::max();
+    for (const uint32_t i : hittable_lamps_) {
+        const std::optional<LightBounds> b = lights_[i]->bounds();
+        boxes.push_back(b ? LampBvh::Box{b->lo, b->hi}
+                          : LampBvh::Box{Vec3(-kEverywhere, -kEverywhere, -kEverywhere),
+                                         Vec3(kEverywhere, kEverywhere, kEverywhere)});
     }
-    const size_t choices = infinite_.size() + (tree_has_lights_ ? 1 : 0);
-    infinite_probability_ = choices > 0 ? 1.0f / static_cast<float>(choices) : 0.0f;
+    lamp_bvh_ = LampBvh(boxes);
     tree_cache_ = std::make_unique<TreeCache>();
 }
 
-const LightTree& LightSet::tree() const {
+const LightSet::TreeCache& LightSet::tree_state() const {
     std::call_once(tree_cache_->once, [this] {
+        const auto start = std::chrono::steady_clock::now();
+        TreeCache& cache = *tree_cache_;
+        // The split between the lights at infinity and the tree (header).
+        cache.is_infinite.assign(lights_.size(), 0);
         std::vector<LightBounds> bounds;
         std::vector<uint32_t> index;
         for (size_t i = 0; i < lights_.size(); ++i) {
             std::optional<LightBounds> b = lights_[i]->bounds();
-            if (!b) continue;
+            if (!b) {
+                cache.infinite.push_back(static_cast<uint32_t>(i));
+                cache.is_infinite[i] = 1;
+                continue;
+            }
+            cache.tree_has_lights = cache.tree_has_lights || power_[i] > 0.0;
             b->phi = power_[i];
             bounds.push_back(*b);
             index.push_back(static_cast<uint32_t>(i));
         }
-        tree_cache_->tree = std::make_unique<const LightTree>(bounds, index);
+        const size_t choices = cache.infinite.size() + (cache.tree_has_lights ? 1 : 0);
+        cache.infinite_probability = choices > 0 ? 1.0f / static_cast<float>(choices) : 0.0f;
+        cache.tree = std::make_unique<const LightTree>(bounds, index);
+        cache.report.seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        cache.report.bytes = cache.tree->memory_bytes() + cache.infinite.capacity() * sizeof(uint32_t) +
+                             cache.is_infinite.capacity();
+        cache.built.store(true, std::memory_order_release);
     });
-    return *tree_cache_->tree;
+    return *tree_cache_;
+}
+
+const LightTree& LightSet::tree() const { return *tree_state().tree; }
+
+std::optional<LightSet::TreeReport> LightSet::tree_report() const {
+    if (!tree_cache_->built.load(std::memory_order_acquire)) return std::nullopt;
+    return tree_cache_->report;
 }
 
 float LightSet::probability(uint32_t index, Vec3 p, Vec3 n, LightSelection selection) const {
-    if (selection != LightSelection::Tree) return probability(index, selection);
-    if (is_infinite_[index]) return infinite_probability_;
+    if (resolve(selection) != LightSelection::Tree) return probability(index, selection);
+    const TreeCache& state = tree_state();
+    if (state.is_infinite[index]) return state.infinite_probability;
     // The tree's share, 1 − N_inf p_inf, as choose() forms it.
-    const float share = 1.0f - static_cast<float>(infinite_.size()) * infinite_probability_;
-    return share * tree().pmf(p, n, index);
+    const float share = 1.0f - static_cast<float>(state.infinite.size()) * state.infinite_probability;
+    return share * state.tree->pmf(p, n, index);
 }
 
 uint32_t LightSet::choose(float u, Vec3 p, Vec3 n, LightSelection selection, float* choice) const {
-    if (selection != LightSelection::Tree) {
+    if (resolve(selection) != LightSelection::Tree) {
         const uint32_t index = choose(u, selection);
         *choice = lights_.empty() ? 0.0f : probability(index, selection);
         return lights_.empty() ? static_cast<uint32_t>(lights_.size()) : index;
@@ -117,17 +144,19 @@ uint32_t LightSet::choose(float u, Vec3 p, Vec3 n, LightSelection selection, flo
     *choice = 0.0f;
     const auto none = static_cast<uint32_t>(lights_.size());
     if (lights_.empty()) return none;
-    const float infinite_total = static_cast<float>(infinite_.size()) * infinite_probability_;
+    const TreeCache& state = tree_state();
+    const float infinite_total = static_cast<float>(state.infinite.size()) * state.infinite_probability;
     if (u < infinite_total) {
-        const auto k = std::min(static_cast<size_t>(u / infinite_probability_), infinite_.size() - 1);
-        *choice = infinite_probability_;
-        return infinite_[k];
+        const auto k =
+            std::min(static_cast<size_t>(u / state.infinite_probability), state.infinite.size() - 1);
+        *choice = state.infinite_probability;
+        return state.infinite[k];
     }
-    if (!tree_has_lights_) return none;
+    if (!state.tree_has_lights) return none;
     const float share = 1.0f - infinite_total;
     const float u_tree = std::min((u - infinite_total) / share, kOneMinusEpsilon);
     float pmf = 0.0f;
-    const uint32_t index = tree().choose(p, n, u_tree, &pmf);
+    const uint32_t index = state.tree->choose(p, n, u_tree, &pmf);
     if (index == LightTree::kNone) return none;
     *choice = share * pmf;
     return index;
@@ -164,18 +193,24 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
     bool found = false;
     Rgb radiance(0.0f);
     float nearest = t_max, nearest_pdf = 0.0f;
-    for (const uint32_t i : hittable_lamps_) {
-        if (!(visibility_[i] & visibility)) continue;
+    // The lamps whose boxes the ray crosses before the nearest hit so far. The result is the
+    // one a loop over all lamps in index order finds: the nearest (t < t_max), and of lamps at
+    // the same distance the first by index (so a tie is met again at t = nearest, inclusive).
+    lamp_bvh_.visit(origin, dir, nearest, [&](uint32_t item) {
+        const uint32_t i = hittable_lamps_[item];
+        if (!(visibility_[i] & visibility)) return;
+        const float limit = found ? std::nextafter(nearest, std::numeric_limits<float>::infinity()) : nearest;
         float t, solid_angle_pdf;
         Rgb L;
-        if (lights_[i]->intersect(origin, dir, nearest, &t, &L, &solid_angle_pdf)) {
+        if (lights_[i]->intersect(origin, dir, limit, &t, &L, &solid_angle_pdf) &&
+            (!found || t < nearest || i < nearest_lamp)) {
             nearest = t;
             radiance = L;
             nearest_pdf = solid_angle_pdf;
             nearest_lamp = i;
             found = true;
         }
-    }
+    });
     // The choice probability of the nearest lamp only (the tree's costs a descent).
     if (pdf)
         *pdf = found ? probability(nearest_lamp, choice_point, choice_normal, selection) * nearest_pdf : 0.0f;
@@ -185,8 +220,9 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
 
 float LightSet::environment_pdf(Vec3 wi, LightSelection selection) const {
     if (!environment_) return 0.0f;
-    const float choice = selection == LightSelection::Tree ? infinite_probability_
-                                                           : probability(environment_index_, selection);
+    const float choice = resolve(selection) == LightSelection::Tree
+                             ? tree_state().infinite_probability
+                             : probability(environment_index_, selection);
     return choice * environment_->pdf(wi);
 }
 

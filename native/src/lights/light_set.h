@@ -14,22 +14,31 @@
 //   bounds()) stay outside it and are chosen as pbrt-v4's BVHLightSampler does, each with
 //       p_inf = 1 / (N_inf + 1)   (1 / N_inf when the tree is empty),
 //   the tree with the rest, 1 − N_inf p_inf. Light tracing has no shading point to choose for:
-//   its emission (sample_emission) chooses by power under `tree`. The tree is built on first
-//   use (a render with another mode never pays for it).
+//   its emission (sample_emission) chooses by power under `tree`. The tree, and the split into
+//   lights at infinity and the rest (every light's bounds()), are made on first use: a render
+//   with another mode never pays for them.
+// * auto (the default): tree when the scene holds more than kAutoTreeLights = 3 light entries
+//   (lamps, suns, the environment, emissive triangles), else mixed. Measured at equal time
+//   (scripts/study_auto_lights.py, docs/study.md "Light selection"; MSE x seconds of tree over
+//   mixed): 1 lamp 1.03-1.07 (the descent's cost, nothing to gain), 2 lamps 0.58 scattered but
+//   1.02 in a tight cluster, 4 lamps 0.14 scattered and 0.71 clustered, 8-64 lamps 0.11-0.73.
 // Any p > 0 wherever a light contributes keeps NEE unbiased; a zero total power makes the
 // power choice uniform.
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <concepts>
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <utility>
 #include <vector>
 
 #include "lights/emissive_triangle.h"
 #include "lights/environment_light.h"
+#include "lights/lamp_bvh.h"
 #include "lights/light.h"
 #include "lights/light_selection.h"
 #include "lights/light_tree.h"
@@ -38,6 +47,10 @@ namespace stratum {
 
 class LightSet {
 public:
+    // `auto` chooses the tree above this many light entries (header; the measurement behind it
+    // is in docs/study.md "Light selection").
+    static constexpr size_t kAutoTreeLights = 3;
+
     // `object` groups lights that belong to one scene object (the triangles of one emissive
     // mesh); every Blender lamp is an object of its own. `visibility` (StratumVisibility bits)
     // is copied into every LightSample of the light. Returns the index of the added light.
@@ -56,6 +69,12 @@ public:
     bool empty() const { return lights_.empty(); }
     size_t size() const { return lights_.size(); }
     const Light& light(uint32_t index) const { return *lights_[index]; }
+    // The mode `selection` stands for in this scene: auto's choice (header), the others as they are.
+    LightSelection resolve(LightSelection selection) const {
+        return selection != LightSelection::Auto
+                   ? selection
+                   : (lights_.size() > kAutoTreeLights ? LightSelection::Tree : LightSelection::Mixed);
+    }
     uint32_t visibility(uint32_t index) const { return visibility_[index]; }
     // Power Φ_j of light `index` (W; the sun's and the environment's through the scene's
     // cross-section), as the selection distributions use it.
@@ -76,6 +95,14 @@ public:
     uint32_t choose(float u, Vec3 p, Vec3 n, LightSelection selection, float* choice) const;
     // The light tree over the finite lights, built on first use (thread-safe, deterministic).
     const LightTree& tree() const;
+    // What building the tree cost: seconds (with every light's bounds()) and bytes held.
+    struct TreeReport {
+        double seconds = 0.0;
+        size_t bytes = 0;
+    };
+    // The report once tree() has been built, else nullopt; never builds it (a progress query
+    // from another thread may call it while a render builds the tree).
+    std::optional<TreeReport> tree_report() const;
     // Chooses a light with u_choice and samples it with u for the shading point p of normal n
     // (unit; 0 when it has none); out->pdf includes the choice. `triangle` is how a point on a
     // chosen emissive triangle is taken (n shapes it: lights/emissive_triangle.h).
@@ -118,23 +145,28 @@ private:
     std::vector<uint32_t> object_;          // object of each light
     std::vector<uint32_t> visibility_;      // StratumVisibility bits of each light
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)
+    LampBvh lamp_bvh_;                      // over hittable_lamps_ (its items number them)
     std::vector<double> power_;             // Φ_j, set by finalize()
     // The table a mode chooses by without a shading point: its own, power's for the tree.
-    static size_t static_table(LightSelection selection) {
+    size_t static_table(LightSelection selection) const {
+        selection = resolve(selection);
         return static_cast<size_t>(selection == LightSelection::Tree ? LightSelection::Power : selection);
     }
     // Per static LightSelection: cdf[i] = P(choice < i+1) (last = 1), and the choice probabilities.
     std::array<std::vector<float>, kStaticLightSelectionModes> cdf_, probability_;
-    // Lights at infinity (no bounds()), each chosen by the tree mode with infinite_probability_.
-    std::vector<uint32_t> infinite_;
-    std::vector<uint8_t> is_infinite_;
-    float infinite_probability_ = 0.0f;
-    bool tree_has_lights_ = false;
-    // Built by tree() on first use; a unique_ptr so that LightSet stays movable.
+    // Made by tree_state() on first use; a unique_ptr so that LightSet stays movable.
     struct TreeCache {
         std::once_flag once;
         std::unique_ptr<const LightTree> tree;
+        // Lights at infinity (no bounds()), each chosen by the tree mode with infinite_probability.
+        std::vector<uint32_t> infinite;
+        std::vector<uint8_t> is_infinite;
+        float infinite_probability = 0.0f;
+        bool tree_has_lights = false;
+        TreeReport report;
+        std::atomic<bool> built{false};  // report is complete (release/acquire)
     };
+    const TreeCache& tree_state() const;
     std::unique_ptr<TreeCache> tree_cache_ = std::make_unique<TreeCache>();
     uint32_t delta_lights_ = 0;
     const EnvironmentLight* environment_ = nullptr;  // owned by lights_

@@ -139,6 +139,7 @@ std::string Renderer::start() {
     {
         std::lock_guard lock(state_mutex_);
         render_seconds_ = 0;
+        light_tree_seconds_ = light_tree_bytes_ = 0;
         cancelled_ = false;
         error_.clear();
     }
@@ -185,6 +186,15 @@ void Renderer::run() {
             rendering_ = true;
         }
         integrator_->prepare(*render_scene_);
+        // The light tree, if this render chooses lights by it and prepare() built it (a tree an
+        // earlier render built is reported only when this one uses it too).
+        const LightSet& lights = render_scene_->lights();
+        const auto tree = lights.tree_report();
+        if (tree && lights.resolve(s.estimator.light_selection) == LightSelection::Tree) {
+            std::lock_guard lock(state_mutex_);
+            light_tree_seconds_ = tree->seconds;
+            light_tree_bytes_ = static_cast<double>(tree->bytes);
+        }
         // Camera and sampler see the full frame and full-frame pixel coordinates, so a pixel of a
         // border render is bit-identical to the same pixel of the full render.
         const Camera camera(*scene_.camera, s.width, s.height);
@@ -410,6 +420,8 @@ RenderProgress Renderer::progress() const {
     p.samples_total = samples_total_.load();
     p.rays = static_cast<double>(rays_.load());
     p.build_seconds = build_seconds_;
+    p.light_tree_seconds = light_tree_seconds_;
+    p.light_tree_bytes = light_tree_bytes_;
     p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;
     const double pixel_samples_total = work_per_sample_ * p.samples_total;
     p.fraction_done = pixel_samples_total > 0 ? pixel_samples_done / pixel_samples_total : 0.0;

@@ -50,6 +50,9 @@ struct RenderProgress {
     uint32_t update_serial = 0;
     double rays = 0, build_seconds = 0, render_seconds = 0;
     double fraction_done = 0;
+    // The light tree this render chooses lights by (0 when it uses none): its build time, with
+    // the lights' bounds, and the bytes it holds (LightSet::tree_report).
+    double light_tree_seconds = 0, light_tree_bytes = 0;
     std::string error;  // a failure inside the render thread
 };
 
@@ -129,6 +132,7 @@ private:
     mutable std::mutex state_mutex_;
     std::condition_variable done_cv_;
     double build_seconds_ = 0, render_seconds_ = 0;
+    double light_tree_seconds_ = 0, light_tree_bytes_ = 0;
     std::chrono::steady_clock::time_point render_start_;
     bool rendering_ = false;  // path tracing (not BVH build) in progress
     bool cancelled_ = false;
