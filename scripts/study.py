@@ -27,6 +27,9 @@ The runs (the source documents' experiments, with more samplers, seeds and spp):
   uniform and mixed at equal time (scripts/study_lights.py); out/study/lights.md, which also
   shows Cycles' light tree (out/bench/quality_lights.json) and auto's threshold
   (out/study/auto_lights.json) when `make study` has measured them.
+* adaptive_<scene>_<sampler>: the Cornell box and Wolf, sobol, zsobol and random, fixed and
+  adaptive sampling at equal time (scripts/study_adaptive.py); out/study/adaptive.md, which also
+  shows Cycles' adaptive sampling (out/bench/adaptive.json) when `make bench` has measured it.
 
     .venv/bin/python scripts/study.py [--out out/study] [--jobs 2] [--only cornell,wolf]
                                       [--quick] [--dry-run] [--summary-only]
@@ -53,6 +56,7 @@ from typing import Any
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO / "addon"))  # this checkout's stratum, for study_estimators
 sys.path.insert(0, str(Path(__file__).resolve().parent))
+import study_adaptive
 import study_estimators
 import study_lights
 from study_figures import export_docs, make_figures
@@ -105,7 +109,8 @@ def plan_runs(quick: bool) -> list[Run]:
         runs.append(Run(name, "scenes/ao_study.blend", ",".join(AO_SAMPLERS), ao_spp, ao_seeds,
                         ao_res, ao_ref, ["--integrator", "ao", "--hemisphere", hemisphere],
                         None if name == AO_REFERENCE_RUN else AO_REFERENCE_RUN))
-    return runs + study_estimators.plan_runs(quick, Run) + study_lights.plan_runs(quick, Run)
+    return (runs + study_estimators.plan_runs(quick, Run) + study_lights.plan_runs(quick, Run)
+            + study_adaptive.plan_runs(quick, Run))
 
 
 # ---- running ---------------------------------------------------------------------------------

@@ -12,6 +12,7 @@ import math
 from pathlib import Path
 from typing import Any
 
+import study_adaptive
 import study_estimators
 import study_lights
 
@@ -212,6 +213,9 @@ def write_summary(out: Path, log: list[dict[str, Any]]) -> None:
     lights_text, headline["lights"] = study_lights.write_page(out, load_results)
     parts += ["## Light selection (issue 16)", "", "Also in lights.md:", "",
               lights_text.split("\n", 1)[1].replace("\n## ", "\n### "), ""]
+    adaptive_text, headline["adaptive"] = study_adaptive.write_page(out, load_results)
+    parts += ["## Adaptive sampling (issue 16)", "", "Also in adaptive.md:", "",
+              adaptive_text.split("\n", 1)[1].replace("\n## ", "\n### "), ""]
     if log:
         total = sum(r["seconds"] for r in log)
         parts += ["## Run time", "", "| run | minutes |", "|---|---|"]
