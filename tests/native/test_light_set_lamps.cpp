@@ -17,35 +17,17 @@
 #include <random>
 #include <vector>
 
+#include "light_placement.h"
 #include "lights/area_light.h"
 #include "lights/light_set.h"
 #include "lights/point_light.h"
 #include "scene/scene.h"
 
 using namespace stratum;
+using stratum_test::facing;
+using stratum_test::Random;
 
 namespace {
-
-struct Random {
-    std::mt19937 engine;
-    explicit Random(uint32_t seed) : engine(seed) {}
-    float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(engine); }
-    Vec3 point(float extent) {
-        return {uniform(-extent, extent), uniform(-extent, extent), uniform(-extent, extent)};
-    }
-    Vec3 direction() {
-        const float z = uniform(-1.0f, 1.0f), phi = uniform(0.0f, 2.0f * kPi);
-        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-        return {r * std::cos(phi), r * std::sin(phi), z};
-    }
-};
-
-Transform facing(Vec3 position, Vec3 axis, float scale) {
-    const Frame frame = Frame::from_normal(-axis);
-    const Vec3 x = frame.s * scale, y = frame.t * scale, z = frame.n;
-    const float m[12] = {x.x, y.x, z.x, position.x, x.y, y.y, z.y, position.y, x.z, y.z, z.z, position.z};
-    return Transform::from_row_major(m);
-}
 
 struct Hit {
     Rgb radiance;

@@ -14,6 +14,7 @@
 #include <random>
 #include <vector>
 
+#include "light_placement.h"
 #include "lights/area_light.h"
 #include "lights/emissive_triangle.h"
 #include "lights/light_set.h"
@@ -22,30 +23,10 @@
 #include "lights/sun_light.h"
 
 using namespace stratum;
+using stratum_test::facing;
+using stratum_test::Random;
 
 namespace {
-
-struct Random {
-    std::mt19937 engine;
-    explicit Random(uint32_t seed) : engine(seed) {}
-    float uniform(float lo, float hi) { return std::uniform_real_distribution<float>(lo, hi)(engine); }
-    Vec3 point(float extent) {
-        return {uniform(-extent, extent), uniform(-extent, extent), uniform(-extent, extent)};
-    }
-    Vec3 direction() {
-        const float z = uniform(-1.0f, 1.0f), phi = uniform(0.0f, 2.0f * kPi);
-        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
-        return {r * std::cos(phi), r * std::sin(phi), z};
-    }
-};
-
-// A light-to-world transform at `position` whose local −Z is `axis` (unit); `scale` on x, y.
-Transform facing(Vec3 position, Vec3 axis, float scale = 1.0f) {
-    const Frame frame = Frame::from_normal(-axis);
-    const Vec3 x = frame.s * scale, y = frame.t * scale, z = frame.n;
-    const float m[12] = {x.x, y.x, z.x, position.x, x.y, y.y, z.y, position.y, x.z, y.z, z.z, position.z};
-    return Transform::from_row_major(m);
-}
 
 // Lights of every kind in turn; with `directional` false only those that shine every way (point
 // lamps and two-sided triangles), whose tree has no dead end (below).
