@@ -385,6 +385,17 @@ TEST(AdaptiveSampling, RefusesASampleSubsetAndTellsWhatItDoesNotApplyTo) {
     size_t bytes = 0;
     EXPECT_NE(stratum_renderer_sums_size(r, &bytes), STRATUM_OK);
     EXPECT_NE(std::string(stratum_last_error()).find("adaptive sampling"), std::string::npos);
+    // Nor does it take other sums into its film.
+    StratumRenderer* fixed = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene, &fixed), STRATUM_OK);
+    ASSERT_EQ(apply_settings(fixed, {{"width", 8}, {"height", 8}, {"samples", 16}}), "");
+    ASSERT_TRUE(render_to_end(fixed));
+    ASSERT_EQ(stratum_renderer_sums_size(fixed, &bytes), STRATUM_OK);
+    std::vector<uint8_t> sums(bytes);
+    ASSERT_EQ(stratum_renderer_read_sums(fixed, sums.data(), sums.size()), STRATUM_OK);
+    EXPECT_NE(stratum_renderer_add_sums(r, sums.data(), sums.size()), STRATUM_OK);
+    EXPECT_NE(std::string(stratum_last_error()).find("adaptive sampling"), std::string::npos);
+    stratum_renderer_destroy(fixed);
     stratum_renderer_destroy(r);
     stratum_scene_destroy(scene);
 }

@@ -470,6 +470,9 @@ std::string Renderer::add_sums(std::unique_ptr<Film> sums) {
         if (film_ && cancelled_)
             return "this renderer's last render was cancelled: its sums hold no complete range";
     }
+    if (film_ && adaptive_.enabled)
+        return "this renderer's last render stopped pixels at different sample counts (adaptive sampling): "
+               "other sums cannot continue it";
     if (film_) return film_->add_sums(*sums);
     film_ = std::move(sums);
     width_ = film_->region().width;
