@@ -224,6 +224,28 @@ def test_session_converges_to_preview_samples_and_stops(library: Any, cornell: A
         session.free()
 
 
+def test_viewport_adaptive_sampling_converges_to_the_adaptive_render(library: Any,
+                                                                     cornell: Any) -> None:
+    """With the viewport's own Noise Threshold on, the converged frame is the fresh render with
+    those settings, whose pixels stopped at different counts (the F12 settings stay off)."""
+    cornell.stratum.use_preview_adaptive_sampling = True
+    cornell.stratum.preview_adaptive_threshold = 0.1
+    cornell.stratum.preview_adaptive_min_samples = 4
+    assert not cornell.stratum.use_adaptive_sampling
+    depsgraph = _depsgraph()
+    session, view = _session(cornell, depsgraph)
+    try:
+        frame, _ = converge(session)
+        assert frame.final and frame.samples == SAMPLES
+        settings = settings_from_scene(cornell)
+        assert settings.native["use_adaptive_sampling"] == 1
+        np.testing.assert_array_equal(frame.pixels, fresh_render(depsgraph, view, settings))
+        counts = fresh_render(depsgraph, view, settings, None, "Debug Sample Count")
+        assert counts.min() < SAMPLES <= counts.max(), (counts.min(), counts.max())
+    finally:
+        session.free()
+
+
 def _move_box() -> None:
     bpy.data.objects["TallBox"].location.x += 0.12
 
