@@ -2,30 +2,34 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace stratum {
 
 namespace {
 
 // Sums of v over the (2r+1)-wide window along rows, then along columns (a separable box sum;
-// the window is cut at the region's edges).
+// the window is cut at the region's edges). Running sums: O(1) per pixel whatever r.
 std::vector<double> box_sum(const std::vector<double>& v, uint32_t width, uint32_t height, uint32_t r) {
     std::vector<double> rows(v.size(), 0.0), out(v.size(), 0.0);
+    const auto window = [r](uint32_t i, uint32_t n) {
+        return std::pair{i >= r ? i - r : 0u, std::min(n - 1, i + r)};
+    };
+    std::vector<double> prefix(std::max(width, height) + 1, 0.0);
     for (uint32_t y = 0; y < height; ++y) {
         const double* in = &v[static_cast<size_t>(y) * width];
+        for (uint32_t x = 0; x < width; ++x) prefix[x + 1] = prefix[x] + in[x];
         for (uint32_t x = 0; x < width; ++x) {
-            const uint32_t lo = x >= r ? x - r : 0, hi = std::min(width - 1, x + r);
-            double s = 0.0;
-            for (uint32_t k = lo; k <= hi; ++k) s += in[k];
-            rows[static_cast<size_t>(y) * width + x] = s;
+            const auto [lo, hi] = window(x, width);
+            rows[static_cast<size_t>(y) * width + x] = prefix[hi + 1] - prefix[lo];
         }
     }
-    for (uint32_t y = 0; y < height; ++y) {
-        const uint32_t lo = y >= r ? y - r : 0, hi = std::min(height - 1, y + r);
-        for (uint32_t x = 0; x < width; ++x) {
-            double s = 0.0;
-            for (uint32_t k = lo; k <= hi; ++k) s += rows[static_cast<size_t>(k) * width + x];
-            out[static_cast<size_t>(y) * width + x] = s;
+    for (uint32_t x = 0; x < width; ++x) {
+        for (uint32_t y = 0; y < height; ++y)
+            prefix[y + 1] = prefix[y] + rows[static_cast<size_t>(y) * width + x];
+        for (uint32_t y = 0; y < height; ++y) {
+            const auto [lo, hi] = window(y, height);
+            out[static_cast<size_t>(y) * width + x] = prefix[hi + 1] - prefix[lo];
         }
     }
     return out;
