@@ -97,7 +97,7 @@ TEST(ErrorPass, EstimatesTheActualErrorOfIndependentSamples) {
 // above) for every sampler. Samples of one pixel from a low-discrepancy sequence are not
 // independent; the pass scales their spread by the gain it measures from the pixel's prefixes
 // (film/error_estimate.h). At 16 samples of a 12-bounce path the prefixes do not yet show the
-// whole gain (ratio 0.52-0.58 for sobol, zsobol, stratified, lhs, fibonacci), so on this scene
+// whole gain (ratio 0.63-0.66 for sobol, zsobol, stratified, lhs, fibonacci), so on this scene
 // the pass still never understates the error, for any sampler: the ratio of the variances stays
 // within 4 standard errors of at most 1.
 TEST(ErrorPass, MeasuresWhatThePassMeansForEverySampler) {
