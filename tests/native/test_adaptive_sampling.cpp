@@ -126,7 +126,6 @@ TEST(AdaptiveSampling, APixelStopsOnlyWhenItsNeighboursHaveConverged) {
                     if (is_power_of_two(i + 1)) film.store_sums(p, sums.data(), i + 1);
                 }
             }
-        film.estimate_errors(/*independent_samples=*/true);
         AdaptiveSampling adaptive = AdaptiveSampling::resolve(AdaptiveSettings{true, 0.01f, 4}, 64);
         std::vector<uint8_t> stopped(30, 0);
         stop_converged_pixels(film, adaptive, stopped);
@@ -302,7 +301,7 @@ AdaptiveSpectrum adaptive_spectrum(double threshold, uint32_t fixed_samples, boo
                     film.store_sums(p, sums.data(), end);
                 }
             if (is_power_of_two(end)) {
-                film.estimate_errors(false);
+                film.estimate_errors();
                 if (adaptive.checks_at(end, total)) stop_converged_pixels(film, adaptive, stopped);
             }
         }

@@ -109,13 +109,8 @@ double Film::standard_error(size_t pixel, uint32_t c, bool with_gain) const {
     return std::sqrt(gain * independent_variance(sum[c], sum_sq[c], counts_[pixel]));
 }
 
-void Film::estimate_errors(bool independent_samples) {
+void Film::estimate_errors() {
     if (!tracks_prefixes()) return;
-    if (independent_samples) {
-        std::unique_lock lock(published_mutex_);
-        for (size_t p = 0; p < estimates_.size(); ++p) estimates_[p] = {1.0f, counts_[p]};
-        return;
-    }
     const size_t pixels = region_.pixel_count();
     std::vector<PrefixMeans> prefixes(pixels);
     for (size_t p = 0; p < pixels; ++p) {

@@ -32,9 +32,9 @@
 // |                        | films combined from sample ranges rendered apart)              |
 //
 // Prefix tracking (films with the Stratum Error pass or adaptive sampling, which adds the pass's
-// sums of squares to its film): at each power-of-two
-// count P a pixel's RGB sums are kept, with those at P/2 and P/4, so that estimate_errors() can
-// measure the error of its mean from its nested prefixes. They are this render's own: the
+// sums of squares to its film): at each power-of-two count P a pixel's RGB sums are kept, with
+// those at P/2 and P/4, so that estimate_errors() can measure the error of its mean from its
+// nested prefixes. They are this render's own: the
 // exchange of sums between renders does not carry them.
 #pragma once
 
@@ -176,12 +176,10 @@ public:
     // `count` is the number of camera samples the sums hold.
     void load_sums(size_t pixel, FilmSum* out) const;
     void store_sums(size_t pixel, const FilmSum* sums, uint32_t count);
-    // Recomputes every pixel's error estimate from its prefix sums (films that track prefixes;
-    // not while samples are stored): called when the pixels reach a power-of-two count. For
-    // independent samples the gain is known, G = 1 (s²/n is unbiased), and is not measured.
-    void estimate_errors(bool independent_samples);
-    // The pixel's last estimate (count 0: none).
-    const PixelErrorEstimate& error_estimate(size_t pixel) const { return estimates_[pixel]; }
+    // Recomputes every pixel's gain G from its prefix sums (films that track prefixes; not while
+    // samples are stored): called when the pixels reach a power-of-two count. Not for
+    // independent samples, whose gain is known: G = 1, s²/n is unbiased.
+    void estimate_errors();
     // The estimated standard error of channel c of the pixel's Combined mean: what the Error
     // pass shows (films that track prefixes or hold the Error pass); without the gain, the
     // independent-samples estimate s/√n (what adaptive sampling stops on).

@@ -78,8 +78,7 @@ inline constexpr std::array kPasses = {
     PassInfo{"Debug Sample Count", 1, PassKind::SampleCount, "Camera samples taken in each pixel"},
     PassInfo{"Stratum Error", 3, PassKind::StandardError,
              "Estimated standard error of each pixel's Combined RGB mean: its samples' spread s/sqrt(n), "
-             "times the "
-             "sampler's gain measured from the pixel's power-of-two prefixes (docs/passes.md)"},
+             "times the sampler's gain measured from the pixel's power-of-two prefixes (docs/passes.md)"},
     PassInfo{"UV", 3, PassKind::Average,
              "Texture coordinates (u, v, 0) of the first opaque surface's UV map (0 where none)"},
     PassInfo{"Emit", 3, PassKind::Average,

@@ -42,12 +42,10 @@ void stop_converged_pixels(const Film& film, const AdaptiveSampling& adaptive,
     const PixelRegion& region = film.region();
     const uint32_t w = region.width, h = region.height;
     const double limit = kThresholdScale * adaptive.threshold;
-    // Unconverged: a sampling pixel without an estimate yet, or whose error is at the limit or
-    // above.
+    // Unconverged: a sampling pixel whose error is at the limit or above.
     std::vector<uint8_t> unconverged(region.pixel_count(), 0);
     for (size_t p = 0; p < unconverged.size(); ++p)
-        unconverged[p] =
-            !stopped[p] && (film.error_estimate(p).count == 0 || !(relative_error(film, p) < limit));
+        unconverged[p] = !stopped[p] && !(relative_error(film, p) < limit);
     // Cycles' box dilation: rows, then columns.
     std::vector<uint8_t> rows(unconverged.size(), 0);
     for (uint32_t y = 0; y < h; ++y)

@@ -72,9 +72,9 @@ struct AdaptiveSampling {
 // Cycles' relative error e of a pixel's mean (table above), from its last error estimate.
 double relative_error(const Film& film, size_t pixel);
 
-// At a check, after film.estimate_errors(): marks stopped the still-sampling pixels whose own
-// error and their neighbours' are under the threshold (whole blocks, when adaptive.block > 1). `stopped`
-// holds a flag per pixel of the film's region; pixels stopped earlier count as converged.
+// At a check: marks stopped the still-sampling pixels whose own error and their neighbours' are
+// under the threshold (whole blocks, when adaptive.block > 1). `stopped` holds a flag per pixel
+// of the film's region; pixels stopped earlier count as converged.
 void stop_converged_pixels(const Film& film, const AdaptiveSampling& adaptive, std::vector<uint8_t>& stopped);
 
 }  // namespace stratum

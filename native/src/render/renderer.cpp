@@ -208,14 +208,18 @@ void Renderer::run() {
             const uint32_t begin = first_sample_ + done, end = first_sample_ + next;
             samples_in_progress_.store(next);
             trace_camera_samples(camera, begin, end, arena);
+            // At a power of two: the samplers' gains (independent samples have G = 1, nothing
+            // to measure), shown by the error pass (films with light paths publish below), and
+            // adaptive sampling's check, which stops on s/√n alone.
             if (!cancel_.load() && film_->tracks_prefixes() && (next & (next - 1)) == 0) {
-                film_->estimate_errors(s.sampler->structure == SampleStructure::Independent);
-                if (adaptive_.checks_at(next, total)) stop_converged_pixels(*film_, adaptive_, stopped_);
-                // The error pass shows the new estimates (films with light paths publish below).
-                if (light_paths_ == 0) {
-                    film_->publish_everything();
-                    update_serial_.fetch_add(1);
+                if (s.sampler->structure != SampleStructure::Independent) {
+                    film_->estimate_errors();
+                    if (light_paths_ == 0) {
+                        film_->publish_everything();
+                        update_serial_.fetch_add(1);
+                    }
                 }
+                if (adaptive_.checks_at(next, total)) stop_converged_pixels(*film_, adaptive_, stopped_);
             }
             if (light_paths_ > 0 && !cancel_.load()) {
                 trace_light_paths(camera, begin, end, arena);
