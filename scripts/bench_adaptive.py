@@ -12,7 +12,9 @@ each --threshold (Cycles' and Stratum's use_adaptive_sampling / adaptive_thresho
 min samples), seeds 1..--seeds, run in turn so the machine's load reaches all alike. Each run's
 figure is noise MSE x seconds (bench_results.noise_mse; the fastest of the seeds' times): for
 an unbiased renderer MSE falls as 1/time, so the product is the MSE at equal time up to a
-constant. The ratio adaptive / fixed of the products is the equal-time MSE ratio (target <= 0.7
+constant (for plain Monte Carlo; the low-discrepancy samplers' MSE falls faster, which favours the
+longer of two runs: scripts/study_adaptive.py interpolates at equal time instead). Stratum also
+renders with adaptive_metric mse at the scene's MSE_THRESHOLDS (or --mse-threshold). The ratio adaptive / fixed of the products is the equal-time MSE ratio (target <= 0.7
 for Stratum); Cycles' own ratio is its adaptive sampling's on the same scene. Mean samples per
 pixel are from the Debug Sample Count pass (Stratum) and from the render time ratio (Cycles
 reports none to Python). Written to out/bench/adaptive.json and printed.
@@ -58,6 +60,9 @@ def parse_args() -> argparse.Namespace:
     p.add_argument("--samples", type=int, default=64)
     p.add_argument("--max-samples", type=int, default=1024)
     p.add_argument("--threshold", type=float, action="append", default=None)
+    p.add_argument("--mse-threshold", type=float, default=None,
+                   help="threshold of Stratum's adaptive_metric mse (default: the scene's, "
+                        "MSE_THRESHOLDS)")
     p.add_argument("--seeds", type=int, default=2)
     p.add_argument("--reference-samples", type=int, default=2048)
     p.add_argument("--scene", choices=sorted(SCENES), action="append", default=None)
@@ -67,6 +72,11 @@ def parse_args() -> argparse.Namespace:
     args.sampler = args.sampler or ["sobol", "zsobol", "random"]
     args.threshold = args.threshold or [0.01, 0.05]
     return args
+
+
+# The metric mse's threshold per scene, as scripts/study_adaptive.py's: the image's RMS error
+# relative to its mean, where pixels take about a fifth of the most samples on average.
+MSE_THRESHOLDS = {"cornell_box": 0.1, "wolf": 0.03}
 
 
 def bench_scene(name: str, args: argparse.Namespace, tmp: Path) -> dict[str, Any]:
@@ -89,21 +99,25 @@ def bench_scene(name: str, args: argparse.Namespace, tmp: Path) -> dict[str, Any
             cache_path(name, "cycles", key),
             lambda seed: cycles_render(name, args, tmp, seed, args.reference_samples // 2)[0])
         runs: dict[tuple[str, str], list[tuple[np.ndarray, float, float]]] = {}
-        configs = [("fixed", 0.0), *((f"adaptive {t:g}", t) for t in args.threshold)]
+        mse_threshold = args.mse_threshold or MSE_THRESHOLDS.get(name, 0.05)
+        # (label, threshold, metric); Cycles has the metric relative alone.
+        configs = [("fixed", 0.0, "relative"),
+                   *((f"adaptive {t:g}", t, "relative") for t in args.threshold),
+                   (f"adaptive mse {mse_threshold:g}", mse_threshold, "mse")]
         for seed in range(1, args.seeds + 1):
-            for label, threshold in configs:
-                if threshold == 0.0:
-                    image, seconds = cycles_render(name, args, tmp, seed, args.samples)
-                else:
-                    image, seconds = cycles_render(name, args, tmp, seed, args.max_samples,
-                                                   adaptive_threshold=threshold)
-                runs.setdefault(("cycles", label), []).append((image, seconds, 0.0))
+            for label, threshold, metric in configs:
+                if metric == "relative":
+                    image, seconds = (
+                        cycles_render(name, args, tmp, seed, args.samples) if threshold == 0.0
+                        else cycles_render(name, args, tmp, seed, args.max_samples,
+                                           adaptive_threshold=threshold))
+                    runs.setdefault(("cycles", label), []).append((image, seconds, 0.0))
                 for sampler in args.sampler:
                     overrides: dict[str, Any] = {"sampler": sampler, "seed": seed,
                                                  "passes": "Debug Sample Count"}
                     if threshold > 0.0:
                         overrides |= {"samples": args.max_samples, "use_adaptive_sampling": 1,
-                                      "adaptive_threshold": threshold}
+                                      "adaptive_threshold": threshold, "adaptive_metric": metric}
                     r = st.render(overrides, pixels=True, passes=("Debug Sample Count",))
                     runs.setdefault((sampler, label), []).append(
                         (r["rgb"], r["trace"], float(np.mean(r["Debug Sample Count"]))))

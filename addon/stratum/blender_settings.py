@@ -19,7 +19,8 @@ from __future__ import annotations
 from .native import Setting, SettingKind
 
 PROPERTIES: tuple[str, ...] = (
-    "samples", "use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples", "sampler",
+    "samples", "use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples",
+    "adaptive_metric", "sampler",
     "hemisphere", "seed", "integrator", "ao_distance", "max_bounces",
     "light_sampling", "mis_heuristic", "triangle_sampling", "light_selection", "rr_mode",
     "rr_min_depth", "control_variate", "filter_type", "filter_width", "threads",

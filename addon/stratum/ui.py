@@ -73,11 +73,13 @@ NO_LIGHT_SAMPLING = frozenset({"ao", "light"})
 
 
 def draw_noise_threshold(layout: bpy.types.UILayout, settings: Any, use: str, threshold: str,
-                         samples: str, min_samples: str) -> None:
+                         samples: str, min_samples: str, metric: str | None = None) -> None:
     """Cycles' Noise Threshold block (its Sampling > Render and > Viewport panels): a checkbox
     and the threshold on one row under the heading, then the sample count, read Max Samples
     while adaptive sampling is on, and Min Samples. What adaptive sampling alone uses is greyed
-    out while it is off (Cycles hides Min Samples; greyed, it stays where it will be)."""
+    out while it is off (Cycles hides Min Samples; greyed, it stays where it will be). Stratum's
+    `metric` (what the threshold measures; one for F12 and the viewport) comes last, in the
+    Render panel only."""
     adaptive = bool(getattr(settings, use))
     heading = layout.column(align=True, heading="Noise Threshold")
     row = heading.row(align=True)
@@ -90,6 +92,8 @@ def draw_noise_threshold(layout: bpy.types.UILayout, settings: Any, use: str, th
     sub = col.column(align=True)
     sub.active = adaptive
     sub.prop(settings, min_samples, text="Min Samples")
+    if metric is not None:
+        sub.prop(settings, metric, text="Metric")
 
 
 class STRATUM_RENDER_PT_sampling(StratumButtonsPanel, bpy.types.Panel):
@@ -143,7 +147,7 @@ class STRATUM_RENDER_PT_sampling_render(StratumButtonsPanel, bpy.types.Panel):
     def draw(self, context: bpy.types.Context) -> None:
         layout, settings = _settings_layout(self, context)
         draw_noise_threshold(layout, settings, "use_adaptive_sampling", "adaptive_threshold",
-                             "samples", "adaptive_min_samples")
+                             "samples", "adaptive_min_samples", "adaptive_metric")
 
 
 class STRATUM_RENDER_PT_sampling_denoising(StratumButtonsPanel, bpy.types.Panel):

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -148,6 +149,56 @@ TEST(AdaptiveSampling, APixelStopsOnlyWhenItsNeighboursHaveConverged) {
     }
 }
 
+// The metric mse (adaptive_sampling.h): n_i ∝ σ_i, a pixel converged once its pooled spread σ̃
+// is at most λ n with λ = t² L̄² / mean σ̃. An 8 × 6 film of mean 0.5 everywhere, 4 samples a
+// pixel alternating 0.5 ± a: a = 0.05 in columns x < 4, a = 0.2 (4x the spread) in x >= 4. The
+// per-sample spread is σ = k a (k = √(4/3): film.h's unbiased variance of 4 samples). t is chosen
+// so that λ·4 lands at the geometric mean of the two spreads, 2x from each: pooling moves mean σ̃
+// by 5% (column 3 pools to (0.05 + 0.05 + 0.2)/3 k = 0.1 k), far inside that margin. So the calm
+// columns 0–2 stop, the noisy ones go on, and column 3, calm but next to the noisy ones, goes on
+// too (its pooled spread 0.1 k is above λ·4 = 0.095 k). Twice t stops every pixel (λ 4x), half of
+// it none; a black film stops everywhere (no spread at all).
+TEST(AdaptiveSampling, TheMseMetricGivesSamplesWhereTheSpreadIs) {
+    using namespace stratum;
+    const Pass passes[] = {Pass::Error};
+    const auto film_of = [&](float low, float high) {
+        auto film = std::make_unique<Film>(PixelRegion{0, 0, 8, 6}, 8, 6, PixelFilter(FilterType::Box, 1.0f),
+                                           passes, false, true);
+        std::vector<FilmSum> sums(film->sums_stride());
+        for (uint32_t y = 0; y < 6; ++y)
+            for (uint32_t x = 0; x < 8; ++x) {
+                std::fill(sums.begin(), sums.end(), 0);
+                const float a = x < 4 ? low : high;
+                for (uint32_t i = 0; i < 4; ++i) {
+                    const float v = i % 2 ? 0.5f + a : 0.5f - a;
+                    film->add_sample(sums.data(), i, Rgb(v * (low > 0.0f ? 1.0f : 0.0f)), 1.0f, nullptr);
+                    if (is_power_of_two(i + 1))
+                        film->store_sums(film->region().index(x, y), sums.data(), i + 1);
+                }
+            }
+        return film;
+    };
+    const double k = std::sqrt(4.0 / 3.0);
+    // λ·4 = 0.1 k with mean σ = 0.125 k and L̄ = 0.5: t² = 0.025 k · 0.125 k / 0.25.
+    const double t = std::sqrt(0.025 * k * 0.125 * k / 0.25);
+    const auto stopped_at = [&](const Film& film, double threshold) {
+        AdaptiveSampling adaptive = AdaptiveSampling::resolve(AdaptiveSettings{true, 0.01f, 4}, 64);
+        adaptive.metric = AdaptiveMetric::Mse;
+        adaptive.threshold = threshold;
+        std::vector<uint8_t> stopped(48, 0);
+        stop_converged_pixels(film, adaptive, stopped);
+        return stopped;
+    };
+    const auto film = film_of(0.05f, 0.2f);
+    const std::vector<uint8_t> at_t = stopped_at(*film, t);
+    for (uint32_t y = 0; y < 6; ++y)
+        for (uint32_t x = 0; x < 8; ++x)
+            EXPECT_EQ(at_t[film->region().index(x, y)], x < 3 ? 1 : 0) << "pixel (" << x << ", " << y << ")";
+    for (const uint8_t s : stopped_at(*film, 2.0 * t)) EXPECT_EQ(s, 1);
+    for (const uint8_t s : stopped_at(*film, 0.5 * t)) EXPECT_EQ(s, 0);
+    for (const uint8_t s : stopped_at(*film_of(0.0f, 0.0f), t)) EXPECT_EQ(s, 1);
+}
+
 // Acceptance 1: stopping on its own error can bias an estimator (a pixel whose samples came out
 // with a small spread stops, and its value is kept). On the closed sphere (k = 0.8, 60 bounces:
 // L = Σ 0.8^m, noisy) at the default threshold the image mean must stay within 0.5% of the
@@ -158,18 +209,23 @@ TEST(AdaptiveSampling, TheClosedSphereConvergesToItsClosedFormAtTheDefaultThresh
     IntegratingSphere s = make_closed_sphere(0.8f, 1.0f);
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     const double expected = sphere_b_radiance(1.0, 0.8, 0.0, 60);
-    for (const char* sampler : {"random", "sobol"}) {
+    // The metric mse at threshold 0.05 (the default 0.01 asks for more than 1024 samples here).
+    for (const auto& [sampler, metric] :
+         {std::pair{"random", "relative"}, std::pair{"sobol", "relative"}, std::pair{"sobol", "mse"}}) {
         std::vector<PixelStats> images;
         double samples = 0;
         std::set<float> counts;
         for (uint32_t seed = 0; seed < 8; ++seed) {
-            const AdaptiveRender r = render_with_counts(s.scene,
-                                                        {{"samples", 1024},
-                                                         {"max_bounces", 60},
-                                                         {"seed", seed},
-                                                         {"sampler", sampler},
-                                                         {"use_adaptive_sampling", 1}},
-                                                        32, 32);
+            const AdaptiveRender r =
+                render_with_counts(s.scene,
+                                   {{"samples", 1024},
+                                    {"max_bounces", 60},
+                                    {"seed", seed},
+                                    {"sampler", sampler},
+                                    {"use_adaptive_sampling", 1},
+                                    {"adaptive_metric", metric},
+                                    {"adaptive_threshold", metric[0] == 'm' ? 0.05 : 0.01}},
+                                   32, 32);
             ASSERT_TRUE(r.error.empty()) << r.error;
             images.push_back(pixel_stats(r.rgba));
             for (const float c : r.counts) {
@@ -180,13 +236,13 @@ TEST(AdaptiveSampling, TheClosedSphereConvergesToItsClosedFormAtTheDefaultThresh
         const SeedStats st = seed_stats(images);
         const double bias = st.mean / expected - 1.0;
         std::printf(
-            "%-6s adaptive: mean %.5f, closed form %.5f, bias %+.3f%% (se %.3f%%), mean samples %.1f\n",
-            sampler, st.mean, expected, 100.0 * bias, 100.0 * st.standard_error / expected, samples);
-        EXPECT_LT(4.0 * st.standard_error / expected, 0.005) << sampler;
-        EXPECT_LT(std::abs(bias), 0.005) << sampler;
+            "%-6s adaptive %-8s: mean %.5f, closed form %.5f, bias %+.3f%% (se %.3f%%), mean samples %.1f\n",
+            sampler, metric, st.mean, expected, 100.0 * bias, 100.0 * st.standard_error / expected, samples);
+        EXPECT_LT(4.0 * st.standard_error / expected, 0.005) << sampler << " " << metric;
+        EXPECT_LT(std::abs(bias), 0.005) << sampler << " " << metric;
         // Adaptive for real: pixels stopped before the 1024 samples, at several counts.
-        EXPECT_LT(samples, 1024.0) << sampler;
-        EXPECT_GE(counts.size(), 2u) << sampler;
+        EXPECT_LT(samples, 1024.0) << sampler << " " << metric;
+        EXPECT_GE(counts.size(), 2u) << sampler << " " << metric;
     }
     stratum_scene_destroy(s.scene);
 }
@@ -345,16 +401,25 @@ TEST(AdaptiveSampling, ZSobolErrorStaysBlueNoise) {
 
 TEST(AdaptiveSampling, IsBitIdenticalForAnyThreadCount) {
     StratumScene* scene = lit_plane(0.3f);
-    const Settings settings = {{"samples", 64}, {"sampler", "zsobol"},        {"use_adaptive_sampling", 1},
-                               {"seed", 2u},    {"adaptive_threshold", 0.02}, {"adaptive_min_samples", 4}};
-    Settings one = settings, two = settings;
-    one.emplace_back("threads", 1);
-    two.emplace_back("threads", 2);
-    const AdaptiveRender a = render_with_counts(scene, one, 24, 20),
-                         b = render_with_counts(scene, two, 24, 20);
-    ASSERT_TRUE(a.error.empty() && b.error.empty()) << a.error << b.error;
-    EXPECT_TRUE(a.rgba == b.rgba);
-    EXPECT_TRUE(a.counts == b.counts);
+    for (const auto& [metric, threshold] : {std::pair{"relative", 0.02}, std::pair{"mse", 0.1}}) {
+        const Settings settings = {{"samples", 64},
+                                   {"sampler", "zsobol"},
+                                   {"use_adaptive_sampling", 1},
+                                   {"seed", 2u},
+                                   {"adaptive_threshold", threshold},
+                                   {"adaptive_min_samples", 4},
+                                   {"adaptive_metric", metric}};
+        Settings one = settings, two = settings;
+        one.emplace_back("threads", 1);
+        two.emplace_back("threads", 2);
+        const AdaptiveRender a = render_with_counts(scene, one, 24, 20),
+                             b = render_with_counts(scene, two, 24, 20);
+        ASSERT_TRUE(a.error.empty() && b.error.empty()) << a.error << b.error;
+        EXPECT_TRUE(a.rgba == b.rgba) << metric;
+        EXPECT_TRUE(a.counts == b.counts) << metric;
+        // Adaptive for real: some pixels stopped before 64.
+        EXPECT_LT(*std::min_element(a.counts.begin(), a.counts.end()), 64.0f) << metric;
+    }
     stratum_scene_destroy(scene);
 }
 

@@ -13,6 +13,7 @@ settings (issue 6) one configuration renders with, and the short label tables an
 | use_adaptive_sampling | adaptive<value> (0 or 1)       |
 | adaptive_threshold    | thr<value>                     |
 | adaptive_min_samples  | min<value>                     |
+| adaptive_metric       | metric-<value> (relative, mse) |
 
 The names are render settings of the library, and their values, ranges and defaults are the
 library's (native.settings(), read on first use: importing this module loads nothing); the
@@ -43,11 +44,13 @@ Value = str | int | float
 SETTING_NAMES: tuple[str, ...] = ("light_sampling", "mis_heuristic", "light_selection",
                                   "triangle_sampling", "rr_mode", "rr_min_depth",
                                   "control_variate", "use_adaptive_sampling",
-                                  "adaptive_threshold", "adaptive_min_samples")
+                                  "adaptive_threshold", "adaptive_min_samples",
+                                  "adaptive_metric")
 PATH = "path"  # the integrator whose label names its light-sampling strategy
 _SUFFIX = {"light_selection": "sel-", "triangle_sampling": "tri-", "rr_mode": "rr-",
            "rr_min_depth": "rrmin", "control_variate": "cv", "use_adaptive_sampling": "adaptive",
-           "adaptive_threshold": "thr", "adaptive_min_samples": "min"}
+           "adaptive_threshold": "thr", "adaptive_min_samples": "min",
+           "adaptive_metric": "metric-"}
 
 
 class SpecError(ValueError):

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace stratum {
@@ -19,6 +20,7 @@ constexpr double kNormaliserEpsilon = 1e-4;
 AdaptiveSampling AdaptiveSampling::resolve(const AdaptiveSettings& settings, uint32_t samples) {
     AdaptiveSampling a;
     a.enabled = settings.enabled;
+    a.metric = settings.metric;
     a.threshold =
         settings.threshold > 0.0f ? settings.threshold : std::max(0.001, 1.0 / std::max(1u, samples));
     const double automatic = std::ceil(16.0 / std::pow(a.threshold, 0.3));
@@ -37,16 +39,49 @@ double relative_error(const Film& film, size_t pixel) {
     return std::sqrt(2.0 / std::numbers::pi) * sigma / (kNormaliserEpsilon + normaliser);
 }
 
-void stop_converged_pixels(const Film& film, const AdaptiveSampling& adaptive,
-                           std::vector<uint8_t>& stopped) {
+namespace {
+
+// A pixel's per-sample spread σ: √ of its per-sample variance, the mean over the channels of
+// n·(s_c/√n)² (film/film.h's standard error without the sampler's gain, as relative_error).
+double per_sample_spread(const Film& film, size_t pixel) {
+    double variance = 0.0;
+    for (uint32_t c = 0; c < 3; ++c) {
+        const double se = film.standard_error(pixel, c, /*with_gain=*/false);
+        variance += se * se;
+    }
+    return std::sqrt(film.sample_count(pixel) * variance / 3.0);
+}
+
+// The pooled spread σ̃ of every pixel of the film's region: max(σ, the mean σ of its 3×3
+// neighbourhood). A pixel whose few samples all missed a rare bright path (a caustic, a small
+// light seen through glass) has σ = 0 and would stop at its first check; its neighbours' spread
+// keeps it going. This replaces the box dilation for the metric mse: measured on the Cornell box
+// (64², sobol, max 1024, threshold 0.1), the dilation gave 0.68x the MSE of fixed sampling at
+// equal time, pooling 0.53x; with neither, pixels stopped on σ = 0 and the MSE was 5x fixed
+// sampling's (random, threshold 0.02).
+std::vector<double> pooled_spreads(const Film& film) {
     const PixelRegion& region = film.region();
     const uint32_t w = region.width, h = region.height;
-    const double limit = kThresholdScale * adaptive.threshold;
-    // Unconverged: a sampling pixel whose error is at the limit or above.
-    std::vector<uint8_t> unconverged(region.pixel_count(), 0);
-    for (size_t p = 0; p < unconverged.size(); ++p)
-        unconverged[p] = !stopped[p] && !(relative_error(film, p) < limit);
-    // Cycles' box dilation: rows, then columns.
+    std::vector<double> spread(region.pixel_count());
+    for (size_t p = 0; p < spread.size(); ++p) spread[p] = per_sample_spread(film, p);
+    std::vector<double> pooled(spread.size());
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            double sum = 0.0;
+            uint32_t count = 0;
+            for (uint32_t yy = y > 0 ? y - 1 : 0; yy <= std::min(y + 1, h - 1); ++yy)
+                for (uint32_t xx = x > 0 ? x - 1 : 0; xx <= std::min(x + 1, w - 1); ++xx) {
+                    sum += spread[static_cast<size_t>(yy) * w + xx];
+                    ++count;
+                }
+            const size_t p = static_cast<size_t>(y) * w + x;
+            pooled[p] = std::max(spread[p], sum / count);
+        }
+    return pooled;
+}
+
+// Cycles' box dilation (rows, then columns): a pixel next to an unconverged one is active.
+std::vector<uint8_t> dilate(const std::vector<uint8_t>& unconverged, uint32_t w, uint32_t h) {
     std::vector<uint8_t> rows(unconverged.size(), 0);
     for (uint32_t y = 0; y < h; ++y)
         for (uint32_t x = 0; x < w; ++x) {
@@ -59,6 +94,45 @@ void stop_converged_pixels(const Film& film, const AdaptiveSampling& adaptive,
             const size_t p = static_cast<size_t>(y) * w + x;
             active[p] = rows[p] || (y > 0 && rows[p - w]) || (y + 1 < h && rows[p + w]);
         }
+    return active;
+}
+
+}  // namespace
+
+double mse_stopping_slope(const Film& film, const std::vector<double>& spreads, double threshold) {
+    const size_t count = film.region().pixel_count();
+    double brightness = 0.0, spread = 0.0;
+    // In pixel order, so that the sums (and the pixels stopped) are the same for any thread count.
+    for (size_t p = 0; p < count; ++p) {
+        const Rgb mean = film.mean(p);
+        brightness += (static_cast<double>(mean.r) + mean.g + mean.b) / 3.0;
+        spread += spreads[p];
+    }
+    if (!(spread > 0.0)) return std::numeric_limits<double>::infinity();
+    const double mean_brightness = brightness / static_cast<double>(count);
+    const double mean_spread = spread / static_cast<double>(count);
+    return threshold * threshold * mean_brightness * mean_brightness / mean_spread;
+}
+
+void stop_converged_pixels(const Film& film, const AdaptiveSampling& adaptive,
+                           std::vector<uint8_t>& stopped) {
+    const PixelRegion& region = film.region();
+    const uint32_t w = region.width, h = region.height;
+    // Unconverged: a sampling pixel whose error is at the limit or above.
+    std::vector<uint8_t> unconverged(region.pixel_count(), 0);
+    std::vector<uint8_t> active;
+    if (adaptive.metric == AdaptiveMetric::Relative) {
+        const double limit = kThresholdScale * adaptive.threshold;
+        for (size_t p = 0; p < unconverged.size(); ++p)
+            unconverged[p] = !stopped[p] && !(relative_error(film, p) < limit);
+        active = dilate(unconverged, w, h);
+    } else {
+        const std::vector<double> spreads = pooled_spreads(film);
+        const double slope = mse_stopping_slope(film, spreads, adaptive.threshold);
+        for (size_t p = 0; p < unconverged.size(); ++p)
+            unconverged[p] = !stopped[p] && !(spreads[p] <= slope * film.sample_count(p));
+        active = std::move(unconverged);
+    }
     // Blocks aligned in the full frame (a border render's pixels keep the full render's blocks).
     const uint32_t b = std::max(1u, adaptive.block);
     const uint32_t bx0 = region.x / b, by0 = region.y / b;

@@ -18,10 +18,16 @@ namespace stratum {
 
 // Adaptive sampling (render/adaptive_sampling.h): what the settings say; the renderer resolves
 // the automatic values.
+enum class AdaptiveMetric : uint8_t {
+    Relative,  // each pixel's error relative to its own brightness (Cycles')
+    Mse,       // the image's mean squared error at equal time
+};
+
 struct AdaptiveSettings {
     bool enabled = false;
     float threshold = 0.01f;   // 0 = automatic
     uint32_t min_samples = 0;  // 0 = automatic
+    AdaptiveMetric metric = AdaptiveMetric::Relative;
 };
 
 struct RenderSettings {

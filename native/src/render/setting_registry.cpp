@@ -53,6 +53,20 @@ std::span<const RegistryEntry> bvh_choices() {
     return kLayouts;
 }
 
+std::span<const RegistryEntry> adaptive_metric_choices() {
+    static constexpr std::array kMetrics = {
+        RegistryEntry{"relative", "Relative",
+                      "A pixel stops when its error relative to its own brightness is under the threshold, "
+                      "as Cycles: noise evens out to the eye, dark pixels take the most samples"},
+        RegistryEntry{
+            "mse", "Mean Squared Error",
+            "Samples go where they lower the image's mean squared error most (a pixel's count grows "
+            "with its spread); the threshold is the image's RMS error relative to its mean "
+            "brightness"},
+    };
+    return kMetrics;
+}
+
 std::span<const RegistryEntry> pass_choices() {
     // Combined is always there: the list names the others.
     static const std::vector<RegistryEntry> infos = [] {
@@ -115,7 +129,8 @@ const std::array kSettings = {
                 [](const RenderSettings& s) { return s.adaptive.enabled ? 1.0 : 0.0; },
                 [](RenderSettings& s, double v) { s.adaptive.enabled = v != 0.0; }},
     SettingSpec{{"adaptive_threshold", "Noise Threshold",
-                 "Relative noise a pixel must fall under to stop sampling, as Cycles' adaptive_threshold "
+                 "Noise to fall under to stop sampling: a pixel's relative error, as Cycles' "
+                 "adaptive_threshold, or with Noise Metric mse the image's RMS error relative to its mean "
                  "(0 = automatic: max(0.001, 1/samples))"},
                 SettingKind::Float,
                 0.0,
@@ -124,6 +139,17 @@ const std::array kSettings = {
                 "",
                 nullptr,
                 STRATUM_FLOAT(adaptive.threshold)},
+    SettingSpec{
+        {"adaptive_metric", "Noise Metric",
+         "What adaptive sampling's noise threshold measures: each pixel's relative error (Cycles') or "
+         "the image's mean squared error at equal time"},
+        SettingKind::Choice,
+        0,
+        0,
+        false,
+        "",
+        &adaptive_metric_choices,
+        STRATUM_ENUM(adaptive.metric, AdaptiveMetric)},
     SettingSpec{{"adaptive_min_samples", "Min Samples",
                  "Samples every pixel takes before adaptive sampling may stop it, rounded up to a power "
                  "of two (0 = automatic, as Cycles: 16/threshold^0.3)"},
