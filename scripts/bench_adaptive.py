@@ -30,7 +30,6 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-import bpy
 import numpy as np
 from bench_common import (
     StratumScene,
@@ -38,20 +37,10 @@ from bench_common import (
     open_scene,
     run_main,
     script_argv,
-    stratum_library_id,
     stratum_reason,
 )
-from bench_quality import (
-    REFERENCE_SAMPLER,
-    SCENES,
-    cache_path,
-    cached_halves,
-    cycles_render,
-    light_tree_on,
-    measure,
-    scene_key,
-)
-from bench_results import write_section
+from bench_quality import SCENES, cycles_render, measure, references
+from bench_results import noise_mse_seconds, write_section
 
 
 def parse_args() -> argparse.Namespace:
@@ -84,20 +73,7 @@ def bench_scene(name: str, args: argparse.Namespace, tmp: Path) -> dict[str, Any
     configure_stratum(scene, args.samples)
     out: dict[str, Any] = {"cycles": {}, "stratum": {}}
     with StratumScene(scene) as st:
-        key = scene_key(name, args) | {"renderer": "stratum", "library": stratum_library_id(),
-                                       "sampler": REFERENCE_SAMPLER}
-        st_a, st_b, _ = cached_halves(
-            cache_path(name, "stratum", key),
-            lambda seed: st.render({"sampler": REFERENCE_SAMPLER, "seed": seed,
-                                    "samples": args.reference_samples // 2}, pixels=True)["rgb"])
-        # As bench_quality keys its Cycles references (with the light tree where Cycles has it).
-        tree = {"light_tree": True} if light_tree_on(scene) else {}
-        key = scene_key(name, args) | tree | {
-            "renderer": "cycles", "blender": bpy.app.version_string,
-            "build": bpy.app.build_hash.decode(errors="replace")}
-        cy_a, cy_b, _ = cached_halves(
-            cache_path(name, "cycles", key),
-            lambda seed: cycles_render(name, args, tmp, seed, args.reference_samples // 2)[0])
+        (st_a, st_b, _), (cy_a, cy_b, _) = references(name, args, tmp, scene, st)
         runs: dict[tuple[str, str], list[tuple[np.ndarray, float, float]]] = {}
         mse_threshold = args.mse_threshold or MSE_THRESHOLDS.get(name, 0.05)
         # (label, threshold, metric); Cycles has the metric relative alone.
@@ -135,9 +111,9 @@ def scene_lines(name: str, result: dict[str, Any]) -> list[str]:
     groups = [("Cycles", result["cycles"]["cycles"])]
     groups += [(f"Stratum {s}", r) for s, r in result["stratum"].items()]
     for who, rows in groups:
-        base = rows["fixed"]["noise_mse"] * rows["fixed"]["seconds"]
+        base = noise_mse_seconds(rows["fixed"])
         for label, r in rows.items():
-            product = r["noise_mse"] * r["seconds"]
+            product = noise_mse_seconds(r)
             spp = "" if r["mean_samples"] is None else f"{r['mean_samples']:.0f}"
             lines.append(f"  {who + ' ' + label:30s}{r['noise_mse']:12.4e}{r['seconds']:9.3f}"
                          f"{spp:>10s}{product:11.3e}{product / base:8.3f}x")

@@ -66,7 +66,13 @@ from bench_common import (
     stratum_library_id,
     stratum_reason,
 )
-from bench_results import mse, noise_mse, reference_noise, write_section
+from bench_results import (
+    mse,
+    noise_mse,
+    noise_mse_seconds,
+    reference_noise,
+    write_section,
+)
 
 SCENES = {"cornell_box": CORNELL, "wolf": WOLF,
           "many_lights_hall": REPO / "scenes" / "many_lights_hall.blend"}
@@ -124,6 +130,31 @@ def cached_halves(path: Path, render_half: Any) -> tuple[np.ndarray, np.ndarray,
     path.parent.mkdir(parents=True, exist_ok=True)
     np.savez_compressed(path, a=a, b=b)
     return a, b, False
+
+
+Halves = tuple[np.ndarray, np.ndarray, bool]
+
+
+def references(name: str, args: argparse.Namespace, tmp: Path, scene: Any, st: Any
+               ) -> tuple[Halves, Halves]:
+    """(Stratum's, Cycles') reference halves of scene `name` (cached_halves, keyed by the
+    scene file, resolution, samples, library or Blender build). st: the scene's StratumScene."""
+    def stratum_half(seed: int) -> np.ndarray:
+        return st.render({"sampler": REFERENCE_SAMPLER, "seed": seed,
+                          "samples": args.reference_samples // 2}, pixels=True)["rgb"]
+
+    key = scene_key(name, args) | {"renderer": "stratum", "library": stratum_library_id(),
+                                   "sampler": REFERENCE_SAMPLER}
+    stratum = cached_halves(cache_path(name, "stratum", key), stratum_half)
+    # Cycles with a light tree (>= 3.5) renders its references with it on.
+    tree = {"light_tree": True} if light_tree_on(scene) else {}
+    key = scene_key(name, args) | tree | {
+        "renderer": "cycles", "blender": bpy.app.version_string,
+        "build": bpy.app.build_hash.decode(errors="replace")}
+    cycles = cached_halves(
+        cache_path(name, "cycles", key),
+        lambda seed: cycles_render(name, args, tmp, seed, args.reference_samples // 2)[0])
+    return stratum, cycles
 
 
 def measure(images: list[np.ndarray], seconds: list[float], a: np.ndarray, b: np.ndarray,
@@ -187,21 +218,7 @@ def bench_scene(name: str, args: argparse.Namespace, tmp: Path,
     scene = open_scene(SCENES[name], args.res, args.samples)
     configure_stratum(scene, args.samples)
     with StratumScene(scene) as st:
-        def stratum_half(seed: int) -> np.ndarray:
-            return st.render({"sampler": REFERENCE_SAMPLER, "seed": seed,
-                              "samples": args.reference_samples // 2}, pixels=True)["rgb"]
-
-        key = scene_key(name, args) | {"renderer": "stratum", "library": stratum_library_id(),
-                                       "sampler": REFERENCE_SAMPLER}
-        st_a, st_b, st_cached = cached_halves(cache_path(name, "stratum", key), stratum_half)
-        # Cycles with a light tree (>= 3.5) renders its references with it on.
-        tree = {"light_tree": True} if light_tree_on(scene) else {}
-        key = scene_key(name, args) | tree | {
-            "renderer": "cycles", "blender": bpy.app.version_string,
-            "build": bpy.app.build_hash.decode(errors="replace")}
-        cy_a, cy_b, cy_cached = cached_halves(
-            cache_path(name, "cycles", key),
-            lambda seed: cycles_render(name, args, tmp, seed, args.reference_samples // 2)[0])
+        (st_a, st_b, st_cached), (cy_a, cy_b, cy_cached) = references(name, args, tmp, scene, st)
         cycles_runs: list[tuple[np.ndarray, float]] = []
         series = stratum_series(args)
         stratum_runs: dict[str, list[dict[str, Any]]] = {label: [] for label in series}
@@ -223,7 +240,7 @@ def bench_scene(name: str, args: argparse.Namespace, tmp: Path,
 
 
 def scene_lines(name: str, cyc: dict[str, Any], st: dict[str, Any]) -> list[str]:
-    base = cyc["noise_mse"] * cyc["seconds"]
+    base = noise_mse_seconds(cyc)
     lines = [(f"{name}: reference noise (subtracted) Cycles {cyc['reference_noise']:.3e}, "
               f"Stratum {st['reference_noise']:.3e}"),
              (f"  {'':22s}{'MSE vs ref':>12s}{'noise MSE':>12s}{'seconds':>9s}"
@@ -232,7 +249,7 @@ def scene_lines(name: str, cyc: dict[str, Any], st: dict[str, Any]) -> list[str]
     rows = [(f"Cycles {PATTERN_NAMES.get(cyc['pattern'], cyc['pattern'])}{tree}", cyc)]
     rows += [(f"Stratum {s}", r) for s, r in st["samplers"].items()]
     for label, r in rows:
-        product = r["noise_mse"] * r["seconds"]
+        product = noise_mse_seconds(r)
         lines.append(f"  {label:22s}{r['mse_vs_reference']:12.4e}{r['noise_mse']:12.4e}"
                      f"{r['seconds']:9.3f}{product:11.3e}{product / base:9.3f}x")
     return lines

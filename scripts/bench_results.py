@@ -74,6 +74,15 @@ def noise_mse(image: np.ndarray, half_a: np.ndarray, half_b: np.ndarray) -> floa
     return mse(image, reference) - reference_noise(half_a, half_b)
 
 
+def noise_mse_seconds(run: dict[str, Any]) -> float | None:
+    """A run's noise MSE x seconds (None when either is missing): for an unbiased renderer MSE
+    falls as 1/time, so the ratio of two runs' products is their MSE ratio at equal time (exactly
+    for plain Monte Carlo; low-discrepancy samplers' MSE falls faster, favouring the longer)."""
+    if "noise_mse" not in run or "seconds" not in run:
+        return None
+    return run["noise_mse"] * run["seconds"]
+
+
 # ---- the summary table ---------------------------------------------------------------------------
 
 

@@ -19,7 +19,15 @@ from typing import Any
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
-from bench_results import REPO, RESULTS, Row, format_table, ratio, read_sections
+from bench_results import (
+    REPO,
+    RESULTS,
+    Row,
+    format_table,
+    noise_mse_seconds,
+    ratio,
+    read_sections,
+)
 
 Section = dict[str, Any]
 
@@ -67,12 +75,6 @@ def triangle_rows(s: Section | None) -> list[Row]:
                       tri.get("area", {}).get("trace")), limit=1.08)]
 
 
-def product(r: dict[str, Any]) -> float | None:
-    if "noise_mse" not in r or "seconds" not in r:
-        return None
-    return r["noise_mse"] * r["seconds"]
-
-
 def quality_rows(s: Section | None) -> list[Row]:
     """Target 4: the best Stratum sampler's MSE x time <= 0.6x Cycles', every Owen-scrambled
     sampler's within 1.2x of the best's."""
@@ -81,9 +83,9 @@ def quality_rows(s: Section | None) -> list[Row]:
     rows = []
     for name in ("cornell_box", "wolf"):
         r = s.get("scenes", {}).get(name, {})
-        base = product(r.get("cycles", {}))
+        base = noise_mse_seconds(r.get("cycles", {}))
         samplers = r.get("stratum", {}).get("samplers", {})
-        products = {k: p for k, v in samplers.items() if (p := product(v)) is not None}
+        products = {k: p for k, v in samplers.items() if (p := noise_mse_seconds(v)) is not None}
         best_name = min(products, key=products.__getitem__) if products else None
         best = products.get(best_name) if best_name else None
         rows.append(Row(f"4 MSE x time best Stratum ({best_name or '-'})/Cycles, {name}",
@@ -105,13 +107,13 @@ def adaptive_rows(s: Section | None) -> list[Row]:
         groups = [("Cycles", r.get("cycles", {}).get("cycles", {}))]
         groups += list(r.get("stratum", {}).items())
         for who, runs in groups:
-            fixed = product(runs.get("fixed", {}))
+            fixed = noise_mse_seconds(runs.get("fixed", {}))
             for label, run in runs.items():
                 if label == "fixed":
                     continue
                 target, limit = ("", None) if who == "Cycles" else ("<= 0.70x", 0.7)
                 rows.append(Row(f"16 MSE x time {label}/fixed {who}, {name}", target,
-                                ratio(product(run), fixed), limit=limit))
+                                ratio(noise_mse_seconds(run), fixed), limit=limit))
     return rows
 
 

@@ -26,6 +26,7 @@ import json
 from pathlib import Path
 from typing import Any
 
+from bench_results import noise_mse_seconds
 from study_estimators import _means, equal_time, fmt
 
 # scene -> (file, resolution, the metric mse's threshold)
@@ -101,11 +102,11 @@ def cycles_lines(path: Path) -> tuple[list[str], dict[str, Any]]:
     for scene, r in data["scenes"].items():
         groups = [("Cycles", r["cycles"]["cycles"]), *r["stratum"].items()]
         for who, runs in groups:
-            fixed = runs["fixed"]["noise_mse"] * runs["fixed"]["seconds"]
+            fixed = noise_mse_seconds(runs["fixed"])
             for label, run in runs.items():
                 if label == "fixed":
                     continue
-                value = run["noise_mse"] * run["seconds"] / fixed
+                value = noise_mse_seconds(run) / fixed
                 numbers.setdefault(scene, {}).setdefault(who, {})[label] = value
                 lines.append(f"| {scene} | {who} | {label.removeprefix('adaptive ')} | "
                              f"{fmt(value, 3)} |")

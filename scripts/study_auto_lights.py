@@ -37,7 +37,7 @@ import numpy as np
 REPO = Path(__file__).resolve().parent.parent
 sys.path.insert(0, str(REPO / "addon"))  # this checkout's stratum
 sys.path.insert(0, str(Path(__file__).resolve().parent))
-from bench_results import noise_mse
+from bench_results import noise_mse, noise_mse_seconds
 
 LAYOUTS = ("scattered", "clustered")
 MODES = ("mixed", "tree")
@@ -138,7 +138,7 @@ def main(argv: list[str] | None = None) -> int:
                                  "seconds": float(np.median([t for _, t in done]))}
             finally:
                 scene.close()
-            product = {m: row[m]["noise_mse"] * row[m]["seconds"] for m in MODES}
+            product = {m: noise_mse_seconds(row[m]) for m in MODES}
             row["tree_over_mixed"] = product["tree"] / product["mixed"]
             results["rows"].append(row)
             print(f"{layout:10s}{n:5d}" + "".join(f"{row[m]['noise_mse']:14.4e}{row[m]['seconds']:9.3f}"

@@ -25,6 +25,7 @@ import json
 from pathlib import Path
 from typing import Any
 
+from bench_results import noise_mse_seconds
 from study_estimators import _means, equal_time, fmt
 
 RUN = "lights_hall"
@@ -83,7 +84,7 @@ def cycles_lines(path: Path) -> tuple[list[str], dict[str, Any]]:
     if hall is None:
         return [f"({path} holds no many_lights_hall)"], {}
     cyc, st = hall["cycles"], hall["stratum"]["samplers"]
-    base = cyc["noise_mse"] * cyc["seconds"]
+    base = noise_mse_seconds(cyc)
     lines = [(f"{data['res']}x{data['res']}, {data['samples']} spp, {data['seeds']} seeds, "
               f"references of {data['reference_samples']} spp; Cycles {cyc.get('blender', '?')}, "
               f"light tree {'on' if cyc.get('light_tree') else 'absent'}."), "",
@@ -92,7 +93,7 @@ def cycles_lines(path: Path) -> tuple[list[str], dict[str, Any]]:
              f"| Cycles | {fmt(cyc['noise_mse'])} | {fmt(cyc['seconds'], 3)} | {fmt(base)} | 1 | |"]
     numbers: dict[str, Any] = {"cycles_mse_x_seconds": base, "stratum": {}}
     for label, r in st.items():
-        product = r["noise_mse"] * r["seconds"]
+        product = noise_mse_seconds(r)
         numbers["stratum"][label] = {"mse_x_seconds": product, "ratio_to_cycles": product / base}
         build = (f"{r['light_tree_seconds'] * 1e3:.1f} ms, {r['light_tree_bytes'] / 1e6:.2f} MB"
                  if r.get("light_tree_bytes") else "")
