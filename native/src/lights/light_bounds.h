@@ -150,11 +150,13 @@ struct alignas(64) ImportancePair {
     uint32_t child[2];   // the child's pair (inner) or the caller's light (leaf)
     uint32_t flags = 0;  // bit k: child k is a leaf; bit 2 + k: child k is two-sided
 
-    // The bound's share of the cluster above: lane k of the pair from b, phi scaled by phi_scale.
+    // Lane k from bound b (its Φ times phi_scale) and the child's pair index or light.
     void set(int k, const LightBounds& b, double phi_scale, uint32_t child_or_light, bool leaf);
     bool leaf(int k) const { return (flags >> k) & 1u; }
     bool two_sided(int k) const { return (flags >> (2 + k)) & 1u; }
 };
+
+static_assert(sizeof(ImportancePair) == 128, "both children of a node in two cache lines");
 
 // Float-rounding allowances of importance() (the header's float section).
 inline constexpr float kRadiusPadding = 1.0f + 1e-5f;
