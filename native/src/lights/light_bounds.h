@@ -24,6 +24,24 @@
 // that it has the units of d². A strict θ' ≥ θ_e (pbrt: cos θ' ≤ cos θ_e) would zero a hard-
 // edged spot (θ_e = 0) everywhere; the test below is cos θ' < cos θ_e.
 //
+// Float (importance() runs twice per tree level for every choice and every MIS pmf; in double it
+// was ~40% of the many-lights hall's render time). I = 0 must stay exact-arithmetic safe, so
+// every zero test leans toward "can contribute" by more than float rounding:
+// * sin θ_w and sin θ_i are |w × ω| and |n × ω|, accurate to a few ulp; √(1 − cos²) would err by
+//   up to √ulp ≈ 2.4e-4 near cos = ±1, more than any margin below;
+// * the bounding sphere's radius is padded by kRadiusPadding − 1 = 1e-5 relative, so that near
+//   its surface (where cos θ_b = √(d² − r²)/d cancels) the padding's 2e-5 r² in d² − r² exceeds
+//   the ~3 ulp (2e-7 d²) rounding of d², and θ_b only grows;
+// * the cosines tested against cos θ_e and 0 are sums of products of values in [−1, 1], each
+//   off by a few ulp: the tests allow kCosMargin = 1e-5 (≥ 50× that rounding);
+// * a cluster that passes the tests weighs at least kMinImportance (FLT_MIN, a normal number, so
+//   flush-to-zero cannot remove it) and Φ is stored over the tree's total so that I ≤ 1e20 with
+//   d² ≥ kMinRadius2 = 1e-20 (closer counts as inside the sphere, θ_b = π; the cross products'
+//   squares then cannot underflow by more than 1e-9 in a sine): neither underflow nor overflow
+//   turns a contributing cluster to 0.
+// Where the margins make a cluster weigh FLT_MIN instead of 0 it is next to never chosen unless
+// its sibling weighs as little (then a light that adds nothing may be chosen where none was).
+//
 // Orientation union (the paper's §4.1, pbrt-v4 DirectionCone Union): the cone holding both
 // cones, half angle (θ_a + θ_d + θ_b)/2, axis rotated from w_a toward w_b; θ_e the larger. The
 // union's angle is widened by kConePadding so that float rounding never leaves a child's normal
@@ -40,6 +58,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 
 #include "core/math.h"
 
@@ -111,61 +131,99 @@ inline LightBounds merge(const LightBounds& a, const LightBounds& b) {
 }
 
 // cos(max(0, a − b)) and sin(max(0, a − b)) from the sines and cosines of a and b in [0, π].
-inline double cos_sub_clamped(double sin_a, double cos_a, double sin_b, double cos_b) {
-    return cos_a > cos_b ? 1.0 : cos_a * cos_b + sin_a * sin_b;
+inline float cos_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
+    return cos_a > cos_b ? 1.0f : cos_a * cos_b + sin_a * sin_b;
 }
-inline double sin_sub_clamped(double sin_a, double cos_a, double sin_b, double cos_b) {
-    return cos_a > cos_b ? 0.0 : sin_a * cos_b - cos_a * sin_b;
+inline float sin_sub_clamped(float sin_a, float cos_a, float sin_b, float cos_b) {
+    return cos_a > cos_b ? 0.0f : sin_a * cos_b - cos_a * sin_b;
 }
 
-// What importance() reads of a bound, the cone's trigonometry done once (the tree's nodes).
-struct ImportanceBound {
-    Vec3 centre, axis;
-    double radius2;  // (|diagonal|/2)², the bounding sphere's radius squared
-    double phi;
-    double cos_o, sin_o, cos_e;
-    bool two_sided;
+// What importance() reads of the two children of a tree node, side by side (struct of arrays,
+// lane k the child k) so that one descent step reads one 128-byte block; the cone's
+// trigonometry is done once at the build. Float throughout (the header's float section).
+struct alignas(64) ImportancePair {
+    float centre_x[2], centre_y[2], centre_z[2];
+    float axis_x[2], axis_y[2], axis_z[2];
+    float radius[2];  // the bounding sphere's radius times kRadiusPadding
+    float phi[2];  // Φ over the tree's total Φ ≤ 1, so that I ≤ 1/kMinRadius2 and I_0 + I_1 are finite
+    float cos_o[2], sin_o[2], cos_e[2];
+    uint32_t child[2];   // the child's pair (inner) or the caller's light (leaf)
+    uint32_t flags = 0;  // bit k: child k is a leaf; bit 2 + k: child k is two-sided
 
-    explicit ImportanceBound(const LightBounds& b)
-        : centre(b.centre()),
-          axis(b.axis),
-          radius2(dot(b.diagonal() * 0.5f, b.diagonal() * 0.5f)),
-          phi(b.phi),
-          cos_o(std::cos(static_cast<double>(b.theta_o))),
-          sin_o(std::sin(static_cast<double>(b.theta_o))),
-          cos_e(std::cos(static_cast<double>(b.theta_e))),
-          two_sided(b.two_sided) {}
+    // Lane k from bound b (its Φ times phi_scale) and the child's pair index or light.
+    void set(int k, const LightBounds& b, double phi_scale, uint32_t child_or_light, bool leaf);
+    bool leaf(int k) const { return (flags >> k) & 1u; }
+    bool two_sided(int k) const { return (flags >> (2 + k)) & 1u; }
 };
 
-// The header's importance I of bound b at the shading point p of normal n (unit, or 0).
-inline double importance(const ImportanceBound& b, Vec3 p, Vec3 n) {
-    const Vec3 to_p = p - b.centre;
-    const double d2 = dot(to_p, to_p);
-    const double clamped_d2 = std::max({d2, b.radius2, 1e-30});
-    // θ_b: the bounding sphere seen from p.
-    double cos_b = -1.0, sin_b = 0.0;
-    if (d2 > b.radius2) {
-        const double sin2 = b.radius2 / d2;
-        cos_b = std::sqrt(std::max(0.0, 1.0 - sin2));
-        sin_b = std::sqrt(sin2);
+static_assert(sizeof(ImportancePair) == 128, "both children of a node in two cache lines");
+
+// Float-rounding allowances of importance() (the header's float section).
+inline constexpr float kRadiusPadding = 1.0f + 1e-5f;
+inline constexpr float kCosMargin = 1e-5f;
+inline constexpr float kMinRadius2 = 1e-20f;
+inline constexpr float kMinImportance = std::numeric_limits<float>::min();
+
+inline void ImportancePair::set(int k, const LightBounds& b, double phi_scale, uint32_t child_or_light,
+                                bool is_leaf) {
+    const Vec3 c = b.centre(), half = b.diagonal() * 0.5f;
+    centre_x[k] = c.x;
+    centre_y[k] = c.y;
+    centre_z[k] = c.z;
+    axis_x[k] = b.axis.x;
+    axis_y[k] = b.axis.y;
+    axis_z[k] = b.axis.z;
+    radius[k] = static_cast<float>(std::sqrt(static_cast<double>(dot(half, half)))) * kRadiusPadding;
+    phi[k] = static_cast<float>(b.phi * phi_scale);
+    cos_o[k] = static_cast<float>(std::cos(static_cast<double>(b.theta_o)));
+    sin_o[k] = static_cast<float>(std::sin(static_cast<double>(b.theta_o)));
+    cos_e[k] = static_cast<float>(std::cos(static_cast<double>(b.theta_e)));
+    child[k] = child_or_light;
+    const uint32_t bits = (is_leaf ? 1u << k : 0u) | (b.two_sided ? 1u << (2 + k) : 0u);
+    flags = (flags & ~((1u << k) | (1u << (2 + k)))) | bits;
+}
+
+// The header's importance I of lane k of pair b at the shading point p; n is the unit normal
+// and has_normal false when n = 0 (the n-term is then skipped).
+inline float importance(const ImportancePair& b, int k, Vec3 p, Vec3 n, bool has_normal) {
+    const float tx = p.x - b.centre_x[k], ty = p.y - b.centre_y[k], tz = p.z - b.centre_z[k];
+    const float d2 = tx * tx + ty * ty + tz * tz;
+    const float r = b.radius[k], r2 = r * r;
+    // Inside the bounding sphere (θ_b = π) every angle bound is 0: I = Φ / max(r², tiny).
+    if (!(d2 > std::max(r2, kMinRadius2)))
+        return std::max(b.phi[k] / std::max(r2, kMinRadius2), kMinImportance);
+    // 1/d² and d side by side, 1/d from both: the chains of divisions and square roots that
+    // follow start together instead of one after the other (this is latency-bound).
+    const float inv_d2 = 1.0f / d2;
+    const float inv_d = std::sqrt(d2) * inv_d2;
+    const float sin_b = std::min(r * inv_d, 1.0f);
+    const float cos_b = std::sqrt(std::max(0.0f, d2 - r2)) * inv_d;
+    // θ' = 0 where the cone holds every direction (θ_o = π: point lamps and their clusters); the
+    // general formula gives cos θ' = 1 there too (cos θ_w > cos θ_o = −1, or both −1), at the
+    // cost of a square root.
+    float cos_theta = 1.0f;
+    if (b.cos_o[k] > -1.0f) {
+        const float ax = b.axis_x[k], ay = b.axis_y[k], az = b.axis_z[k];
+        // θ_w: its sine from |w × t|/d, not √(1 − cos²), which loses half the digits near ±1.
+        float cos_w = (ax * tx + ay * ty + az * tz) * inv_d;
+        const float qx = ay * tz - az * ty, qy = az * tx - ax * tz, qz = ax * ty - ay * tx;
+        const float sin_w = std::sqrt(qx * qx + qy * qy + qz * qz) * inv_d;
+        if (b.two_sided(k)) cos_w = std::abs(cos_w);
+        const float cos_x = cos_sub_clamped(sin_w, cos_w, b.sin_o[k], b.cos_o[k]);
+        const float sin_x = sin_sub_clamped(sin_w, cos_w, b.sin_o[k], b.cos_o[k]);
+        cos_theta = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
     }
-    const double inv_d = d2 > 0.0 ? 1.0 / std::sqrt(d2) : 0.0;
-    const double wx = to_p.x * inv_d, wy = to_p.y * inv_d, wz = to_p.z * inv_d;
-    // θ_w: an empty direction (p at the centre) is any direction, θ_w = 0 is the bound's best case.
-    double cos_w = d2 > 0.0 ? b.axis.x * wx + b.axis.y * wy + b.axis.z * wz : 1.0;
-    if (b.two_sided) cos_w = std::abs(cos_w);
-    const double sin_w = std::sqrt(std::max(0.0, 1.0 - cos_w * cos_w));
-    const double cos_x = cos_sub_clamped(sin_w, cos_w, b.sin_o, b.cos_o);
-    const double sin_x = sin_sub_clamped(sin_w, cos_w, b.sin_o, b.cos_o);
-    const double cos_theta = cos_sub_clamped(sin_x, cos_x, sin_b, cos_b);
-    if (cos_theta < b.cos_e) return 0.0;
-    double result = b.phi * std::max(0.0, cos_theta) / clamped_d2;
-    if (dot(n, n) > 0.0f) {
-        const double cos_i = d2 > 0.0 ? std::abs(n.x * wx + n.y * wy + n.z * wz) : 1.0;
-        const double sin_i = std::sqrt(std::max(0.0, 1.0 - cos_i * cos_i));
-        result *= std::max(0.0, cos_sub_clamped(sin_i, cos_i, sin_b, cos_b));
+    if (cos_theta < b.cos_e[k] - kCosMargin || cos_theta <= -kCosMargin) return 0.0f;
+    float result = b.phi[k] * std::max(0.0f, cos_theta) * inv_d2;
+    // cos θ'_i ≥ 0 (θ_i ≤ π/2 as cos θ_i = |n·ω|, θ_b ≤ π/2 outside the sphere): the n-term
+    // scales I but never zeroes it beyond the floor below.
+    if (has_normal) {
+        const float cos_i = std::abs(n.x * tx + n.y * ty + n.z * tz) * inv_d;
+        const float mx = n.y * tz - n.z * ty, my = n.z * tx - n.x * tz, mz = n.x * ty - n.y * tx;
+        const float sin_i = std::sqrt(mx * mx + my * my + mz * mz) * inv_d;
+        result *= cos_sub_clamped(sin_i, cos_i, sin_b, cos_b);
     }
-    return result;
+    return std::max(result, kMinImportance);
 }
 
 // The header's split cost of bounds b for a split along `axis` (0, 1, 2); each side of the box

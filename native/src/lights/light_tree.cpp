@@ -9,27 +9,31 @@ namespace stratum {
 LightTree::LightTree(const std::vector<LightBounds>& bounds, const std::vector<uint32_t>& light) {
     std::vector<Item> items;
     uint32_t lights = 0;
+    double total_phi = 0.0;
     for (size_t i = 0; i < bounds.size(); ++i) {
         lights = std::max(lights, light[i] + 1);
-        if (bounds[i].phi > 0.0) items.push_back({bounds[i], light[i]});
+        if (bounds[i].phi > 0.0) {
+            items.push_back({bounds[i], light[i]});
+            total_phi += bounds[i].phi;
+        }
     }
     trails_.resize(lights);
     if (items.empty()) return;
-    nodes_.reserve(2 * items.size() - 1);
-    build(items, 0, items.size(), 0, 0);
+    const double phi_scale = 1.0 / total_phi;
+    if (items.size() == 1) {
+        has_single_ = true;
+        single_.set(0, items[0].bounds, phi_scale, items[0].light, true);
+        trails_[items[0].light] = {0, 0, true};
+        return;
+    }
+    pairs_.reserve(items.size() - 1);
+    build(items, 0, items.size(), 0, 0, phi_scale);
 }
 
 LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end, uint64_t bits,
-                             uint32_t depth) {
-    depth_ = std::max(depth_, depth);
-    const auto index = static_cast<uint32_t>(nodes_.size());
-    nodes_.push_back({ImportanceBound(items[begin].bounds), 0, true});
-    if (end - begin == 1) {
-        const Item& item = items[begin];
-        nodes_[index] = {ImportanceBound(item.bounds), item.light, true};
-        trails_[item.light] = {bits, depth, index};
-        return item.bounds;
-    }
+                             uint32_t depth, double phi_scale) {
+    const auto index = static_cast<uint32_t>(pairs_.size());
+    pairs_.emplace_back();
     Vec3 centre_lo = items[begin].bounds.centre(), centre_hi = centre_lo;
     LightBounds all = items[begin].bounds;
     for (size_t i = begin + 1; i < end; ++i) {
@@ -99,70 +103,82 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
         });
     }
     const size_t split = static_cast<size_t>(middle - items.begin());
-    build(items, begin, split, bits, depth + 1);
-    const auto second = static_cast<uint32_t>(nodes_.size());
-    build(items, split, end, bits | (uint64_t{1} << depth), depth + 1);
-    nodes_[index] = {ImportanceBound(all), second, false};
+    const std::array<size_t, 3> range{begin, split, end};
+    for (int k = 0; k < 2; ++k) {
+        const uint64_t child_bits = bits | (static_cast<uint64_t>(k) << depth);
+        if (range[k + 1] - range[k] == 1) {
+            const Item& item = items[range[k]];
+            pairs_[index].set(k, item.bounds, phi_scale, item.light, true);
+            trails_[item.light] = {child_bits, depth + 1, true};
+            depth_ = std::max(depth_, depth + 1);
+        } else {
+            const auto child = static_cast<uint32_t>(pairs_.size());
+            const LightBounds bound = build(items, range[k], range[k + 1], child_bits, depth + 1, phi_scale);
+            pairs_[index].set(k, bound, phi_scale, child, false);
+        }
+    }
     return all;
 }
 
-float LightTree::first_child_probability(uint32_t node, Vec3 p, Vec3 n) const {
-    const double i0 = importance(nodes_[node + 1].bound, p, n);
-    const double i1 = importance(nodes_[nodes_[node].child_or_light].bound, p, n);
-    if (!(i0 + i1 > 0.0)) return -1.0f;
-    return static_cast<float>(i0 / (i0 + i1));
+float LightTree::first_child_probability(uint32_t pair, Vec3 p, Vec3 n, bool has_normal) const {
+    const ImportancePair& children = pairs_[pair];
+    const float i0 = importance(children, 0, p, n, has_normal);
+    const float i1 = importance(children, 1, p, n, has_normal);
+    if (!(i0 + i1 > 0.0f)) return -1.0f;
+    return i0 / (i0 + i1);
 }
 
 uint32_t LightTree::choose(Vec3 p, Vec3 n, float u, float* pmf) const {
     *pmf = 0.0f;
-    if (nodes_.empty()) return kNone;
-    // The root alone: a tree of one light takes it wherever it can contribute.
-    if (nodes_[0].leaf) {
-        if (!(importance(nodes_[0].bound, p, n) > 0.0)) return kNone;
+    const bool has_normal = dot(n, n) > 0.0f;
+    // A tree of one light takes it wherever it can contribute.
+    if (has_single_) {
+        if (!(importance(single_, 0, p, n, has_normal) > 0.0f)) return kNone;
         *pmf = 1.0f;
-        return nodes_[0].child_or_light;
+        return single_.child[0];
     }
+    if (pairs_.empty()) return kNone;
     float probability = 1.0f;
-    uint32_t node = 0;
-    while (!nodes_[node].leaf) {
-        const float p0 = first_child_probability(node, p, n);
+    uint32_t pair = 0;
+    for (;;) {
+        const float p0 = first_child_probability(pair, p, n, has_normal);
         if (p0 < 0.0f) return kNone;
+        int k = 0;
         if (u < p0) {
             u = std::min(u / p0, kOneMinusEpsilon);
             probability *= p0;
-            node = node + 1;
         } else {
             u = std::min((u - p0) / (1.0f - p0), kOneMinusEpsilon);
             probability *= 1.0f - p0;
-            node = nodes_[node].child_or_light;
+            k = 1;
         }
+        if (pairs_[pair].leaf(k)) {
+            *pmf = probability;
+            return pairs_[pair].child[k];
+        }
+        pair = pairs_[pair].child[k];
     }
-    *pmf = probability;
-    return nodes_[node].child_or_light;
 }
 
 float LightTree::pmf(Vec3 p, Vec3 n, uint32_t light) const {
-    if (light >= trails_.size() || trails_[light].leaf == kNone) return 0.0f;
-    if (nodes_[0].leaf) return importance(nodes_[0].bound, p, n) > 0.0 ? 1.0f : 0.0f;
+    if (light >= trails_.size() || !trails_[light].in_tree) return 0.0f;
+    const bool has_normal = dot(n, n) > 0.0f;
+    if (has_single_) return importance(single_, 0, p, n, has_normal) > 0.0f ? 1.0f : 0.0f;
     const Trail& trail = trails_[light];
     float probability = 1.0f;
-    uint32_t node = 0;
+    uint32_t pair = 0;
     for (uint32_t level = 0; level < trail.depth; ++level) {
-        const float p0 = first_child_probability(node, p, n);
+        const float p0 = first_child_probability(pair, p, n, has_normal);
         if (p0 < 0.0f) return 0.0f;
-        if ((trail.bits >> level) & 1u) {
-            probability *= 1.0f - p0;
-            node = nodes_[node].child_or_light;
-        } else {
-            probability *= p0;
-            node = node + 1;
-        }
+        const auto k = static_cast<int>((trail.bits >> level) & 1u);
+        probability *= k == 1 ? 1.0f - p0 : p0;
+        pair = pairs_[pair].child[k];
     }
     return probability;
 }
 
 size_t LightTree::memory_bytes() const {
-    return nodes_.capacity() * sizeof(Node) + trails_.capacity() * sizeof(Trail);
+    return pairs_.capacity() * sizeof(ImportancePair) + trails_.capacity() * sizeof(Trail);
 }
 
 }  // namespace stratum

@@ -19,6 +19,10 @@
 // goes left with u/p_0, else right with (u − p_0)/(1 − p_0). The pmf is the product of the
 // branch probabilities; pmf() recomputes it from the light's bit trail with the same operations,
 // so it equals the probability choose() returns bit for bit. Both zero: no light can reach p.
+// Layout: one ImportancePair per inner node holds the bounds of both its children side by side
+// (and their indices), so a descent step reads one 128-byte block and evaluates both children
+// in float (light_bounds.h); leaves live in their parent's pair. Φ is stored over the tree's
+// total: probabilities are ratios, and the scale keeps float importances finite.
 // Importance: pbrt-v4's single bound. Cycles 5.0 averages the bound from above (as here) with a
 // bound from below (the least contribution over the cluster), which helps where many clusters
 // share a maximum; the upper bound alone is the paper's measure, it is 0 only where nothing can
@@ -41,7 +45,7 @@ public:
     // A tree over bounds[i] for every i with phi > 0; `light` numbers them in the caller's list.
     LightTree(const std::vector<LightBounds>& bounds, const std::vector<uint32_t>& light);
 
-    bool empty() const { return nodes_.empty(); }
+    bool empty() const { return pairs_.empty() && !has_single_; }
     // The caller's light for u in [0, 1) at (p, n) and its probability (*pmf); kNone (pmf 0)
     // when the tree is empty or no light can reach p.
     uint32_t choose(Vec3 p, Vec3 n, float u, float* pmf) const;
@@ -51,29 +55,30 @@ public:
     // Bytes held by the tree (nodes and per-light trails), for the build report.
     size_t memory_bytes() const;
     uint32_t depth() const { return depth_; }
-    size_t node_count() const { return nodes_.size(); }
+    // Inner nodes and leaves.
+    size_t node_count() const { return has_single_ ? 1 : (pairs_.empty() ? 0 : 2 * pairs_.size() + 1); }
 
 private:
-    struct Node {
-        ImportanceBound bound;
-        // Inner node: the second child's index (the first is the next node); leaf: the light.
-        uint32_t child_or_light;
-        bool leaf;
-    };
     struct Trail {
         uint64_t bits = 0;  // bit k: the branch taken at depth k (1 = second child)
         uint32_t depth = 0;
-        uint32_t leaf = kNone;
+        bool in_tree = false;
     };
     struct Item {
         LightBounds bounds;
         uint32_t light;
     };
-    LightBounds build(std::vector<Item>& items, size_t begin, size_t end, uint64_t bits, uint32_t depth);
-    // Probability of the first child of inner node `node` at (p, n); negative when both are 0.
-    float first_child_probability(uint32_t node, Vec3 p, Vec3 n) const;
+    // Builds items [begin, end) (two or more) into pairs_[index] and below; returns their bound.
+    LightBounds build(std::vector<Item>& items, size_t begin, size_t end, uint64_t bits, uint32_t depth,
+                      double phi_scale);
+    // Probability of the first child of pair `pair` at (p, n); negative when both weigh 0.
+    float first_child_probability(uint32_t pair, Vec3 p, Vec3 n, bool has_normal) const;
 
-    std::vector<Node> nodes_;
+    // Inner nodes, the root first; each holds both children's bounds (lights/light_bounds.h).
+    std::vector<ImportancePair> pairs_;
+    // A tree of one light has no inner node: that light and its bound (lane 0).
+    ImportancePair single_{};
+    bool has_single_ = false;
     std::vector<Trail> trails_;  // by the caller's light index
     uint32_t depth_ = 0;
 };
