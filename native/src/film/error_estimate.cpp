@@ -6,10 +6,7 @@
 
 namespace stratum {
 
-namespace {
-
-// Sums of v over the (2r+1)-wide window along rows, then along columns (a separable box sum;
-// the window is cut at the region's edges). Running sums: O(1) per pixel whatever r.
+// Along rows, then along columns (separable), by running sums: O(1) per pixel whatever r.
 std::vector<double> box_sum(const std::vector<double>& v, uint32_t width, uint32_t height, uint32_t r) {
     std::vector<double> rows(v.size(), 0.0), out(v.size(), 0.0);
     const auto window = [r](uint32_t i, uint32_t n) {
@@ -34,8 +31,6 @@ std::vector<double> box_sum(const std::vector<double>& v, uint32_t width, uint32
     }
     return out;
 }
-
-}  // namespace
 
 void estimate_pixel_errors(const PixelRegion& region, std::span<const PrefixMeans> prefixes,
                            std::span<PixelErrorEstimate> out) {

@@ -66,6 +66,10 @@ struct PixelErrorEstimate {
     uint32_t count = 0;  // P
 };
 
+// Sums of v (width × height, row-major) over each pixel's (2r+1)² window, cut at the edges: the
+// pooling of the gains here and of the spreads of adaptive sampling's metric mse.
+std::vector<double> box_sum(const std::vector<double>& v, uint32_t width, uint32_t height, uint32_t r);
+
 // The gains of every pixel of `region` (rows bottom to top) from their prefix means.
 void estimate_pixel_errors(const PixelRegion& region, std::span<const PrefixMeans> prefixes,
                            std::span<PixelErrorEstimate> out);

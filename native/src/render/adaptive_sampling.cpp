@@ -6,6 +6,8 @@
 #include <limits>
 #include <numbers>
 
+#include "film/error_estimate.h"
+
 namespace stratum {
 
 namespace {
@@ -61,23 +63,13 @@ double per_sample_spread(const Film& film, size_t pixel) {
 // sampling's (random, threshold 0.02).
 std::vector<double> pooled_spreads(const Film& film) {
     const PixelRegion& region = film.region();
-    const uint32_t w = region.width, h = region.height;
     std::vector<double> spread(region.pixel_count());
     for (size_t p = 0; p < spread.size(); ++p) spread[p] = per_sample_spread(film, p);
-    std::vector<double> pooled(spread.size());
-    for (uint32_t y = 0; y < h; ++y)
-        for (uint32_t x = 0; x < w; ++x) {
-            double sum = 0.0;
-            uint32_t count = 0;
-            for (uint32_t yy = y > 0 ? y - 1 : 0; yy <= std::min(y + 1, h - 1); ++yy)
-                for (uint32_t xx = x > 0 ? x - 1 : 0; xx <= std::min(x + 1, w - 1); ++xx) {
-                    sum += spread[static_cast<size_t>(yy) * w + xx];
-                    ++count;
-                }
-            const size_t p = static_cast<size_t>(y) * w + x;
-            pooled[p] = std::max(spread[p], sum / count);
-        }
-    return pooled;
+    const std::vector<double> sums = box_sum(spread, region.width, region.height, 1);
+    const std::vector<double> counts =
+        box_sum(std::vector<double>(spread.size(), 1.0), region.width, region.height, 1);
+    for (size_t p = 0; p < spread.size(); ++p) spread[p] = std::max(spread[p], sums[p] / counts[p]);
+    return spread;
 }
 
 // Cycles' box dilation (rows, then columns): a pixel next to an unconverged one is active.
@@ -97,8 +89,8 @@ std::vector<uint8_t> dilate(const std::vector<uint8_t>& unconverged, uint32_t w,
     return active;
 }
 
-}  // namespace
-
+// The metric mse's λ at a check (adaptive_sampling.h): a pixel whose pooled spread is at most
+// λ n is converged; +inf when no pixel has any spread.
 double mse_stopping_slope(const Film& film, const std::vector<double>& spreads, double threshold) {
     const size_t count = film.region().pixel_count();
     double brightness = 0.0, spread = 0.0;
@@ -113,6 +105,8 @@ double mse_stopping_slope(const Film& film, const std::vector<double>& spreads, 
     const double mean_spread = spread / static_cast<double>(count);
     return threshold * threshold * mean_brightness * mean_brightness / mean_spread;
 }
+
+}  // namespace
 
 void stop_converged_pixels(const Film& film, const AdaptiveSampling& adaptive,
                            std::vector<uint8_t>& stopped) {

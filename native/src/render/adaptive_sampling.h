@@ -1,9 +1,9 @@
 // Adaptive sampling (issue 16, item 2): a pixel stops taking samples when the estimated error of
 // its mean, relative to its brightness, falls under the noise threshold (metric relative), or
-// when another sample would lower the image's MSE less than one elsewhere (metric mse, below). Settings and
-// error measure have the meanings of Cycles' (scene/integrator.cpp get_adaptive_sampling,
-// kernel/film/adaptive_sampling.h; Dammertz et al. 2010, §2.1); what differs is when a pixel
-// may stop and what its error is.
+// when another sample would lower the image's MSE less than one elsewhere (metric mse, below).
+// Settings and error measure have the meanings of Cycles' (scene/integrator.cpp
+// get_adaptive_sampling, kernel/film/adaptive_sampling.h; Dammertz et al. 2010, §2.1); what
+// differs is when a pixel may stop and what its error is.
 //
 // | quantity              | Cycles                              | Stratum                        |
 // |-----------------------|-------------------------------------|--------------------------------|
@@ -87,9 +87,6 @@ struct AdaptiveSampling {
 
 // Cycles' relative error e of a pixel's mean (table above), from its last error estimate.
 double relative_error(const Film& film, size_t pixel);
-// The metric mse's λ at a check (above): a pixel whose per-sample spread σ is at most λ n is
-// converged. +inf when no pixel has any spread.
-double mse_stopping_slope(const Film& film, const std::vector<double>& spreads, double threshold);
 
 // At a check: marks stopped the still-sampling pixels whose own error and their neighbours' are
 // under the threshold (whole blocks, when adaptive.block > 1). `stopped` holds a flag per pixel
