@@ -12,12 +12,13 @@ each --threshold (Cycles' and Stratum's use_adaptive_sampling / adaptive_thresho
 min samples), seeds 1..--seeds, run in turn so the machine's load reaches all alike. Each run's
 figure is noise MSE x seconds (bench_results.noise_mse; the fastest of the seeds' times): for
 an unbiased renderer MSE falls as 1/time, so the product is the MSE at equal time up to a
-constant (for plain Monte Carlo; the low-discrepancy samplers' MSE falls faster, which favours the
-longer of two runs: scripts/study_adaptive.py interpolates at equal time instead). Stratum also
-renders with adaptive_metric mse at the scene's MSE_THRESHOLDS (or --mse-threshold). The ratio adaptive / fixed of the products is the equal-time MSE ratio (target <= 0.7
-for Stratum); Cycles' own ratio is its adaptive sampling's on the same scene. Mean samples per
-pixel are from the Debug Sample Count pass (Stratum) and from the render time ratio (Cycles
-reports none to Python). Written to out/bench/adaptive.json and printed.
+constant (for plain Monte Carlo; the low-discrepancy samplers' MSE falls faster, which favours
+the longer of two runs: scripts/study_adaptive.py interpolates at equal time instead). Stratum
+also renders with adaptive_metric mse at study_adaptive's MSE_THRESHOLDS for the scene (or
+--mse-threshold). The ratio adaptive / fixed of the products is the equal-time MSE ratio
+(target <= 0.7 for Stratum); Cycles' own ratio is its adaptive sampling's on the same scene.
+Mean samples per pixel are from the Debug Sample Count pass (Stratum) and from the render time
+ratio (Cycles reports none to Python). Written to out/bench/adaptive.json and printed.
 """
 
 from __future__ import annotations
@@ -41,6 +42,7 @@ from bench_common import (
 )
 from bench_quality import SCENES, cycles_render, measure, references
 from bench_results import noise_mse_seconds, write_section
+from study_adaptive import MSE_THRESHOLDS
 
 
 def parse_args() -> argparse.Namespace:
@@ -51,7 +53,7 @@ def parse_args() -> argparse.Namespace:
     p.add_argument("--threshold", type=float, action="append", default=None)
     p.add_argument("--mse-threshold", type=float, default=None,
                    help="threshold of Stratum's adaptive_metric mse (default: the scene's, "
-                        "MSE_THRESHOLDS)")
+                        "study_adaptive.MSE_THRESHOLDS)")
     p.add_argument("--seeds", type=int, default=2)
     p.add_argument("--reference-samples", type=int, default=2048)
     p.add_argument("--scene", choices=sorted(SCENES), action="append", default=None)
@@ -61,11 +63,6 @@ def parse_args() -> argparse.Namespace:
     args.sampler = args.sampler or ["sobol", "zsobol", "random"]
     args.threshold = args.threshold or [0.01, 0.05]
     return args
-
-
-# The metric mse's threshold per scene, as scripts/study_adaptive.py's: the image's RMS error
-# relative to its mean, where pixels take about a fifth of the most samples on average.
-MSE_THRESHOLDS = {"cornell_box": 0.1, "wolf": 0.03}
 
 
 def bench_scene(name: str, args: argparse.Namespace, tmp: Path) -> dict[str, Any]:
