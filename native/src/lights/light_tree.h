@@ -39,6 +39,11 @@
 // The cut depends on (p, n) alone and is computed with the same float operations by cut() for
 // choose_in_cut() and by pmf(..., max_cut), so the pmf a BSDF ray's MIS weight uses is that of
 // the light sample bit for bit. max_cut = 1 is the unsplit tree (bit-identical images).
+// Measured on the many-lights hall (96 × 54, sobol, 8 bounces, 16–256 spp): 8 nodes halve the
+// MSE per sample (0.48–0.53×) but take 2.7–2.8× the time, 2 nodes 0.76–0.79× at 1.3–1.4×; the
+// sub-estimators' descents are the cost (descend() 25% of the profile, occlusion rays < 1%),
+// so at equal time splitting loses (MSE × s 1.05–1.49× the unsplit tree's) and the setting
+// light_tree_splits defaults to 1.
 // Importance: pbrt-v4's single bound. Cycles 5.0 averages the bound from above (as here) with a
 // bound from below (the least contribution over the cluster), which helps where many clusters
 // share a maximum; the upper bound alone is the paper's measure, it is 0 only where nothing can
