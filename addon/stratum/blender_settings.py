@@ -49,6 +49,9 @@ NOT_IN_BLENDER: dict[str, str] = {
                      "gives each Dask worker its range (distributed.py)",
     "sample_count": "a render in Blender takes all the samples; `stratum render --scheduler` "
                     "gives each Dask worker its range (distributed.py)",
+    "light_tree_splits": "an experiment: on the many-lights hall splitting lowers the MSE per "
+                         "sample but not per second, so renders keep the library's default (1, "
+                         "no splitting)",
 }
 
 # scene.stratum properties of the add-on alone: name -> (label, description, default). Off by

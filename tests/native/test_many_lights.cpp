@@ -110,6 +110,39 @@ struct LampFloor : SceneHandle {
 
 }  // namespace
 
+namespace {
+
+// The mean over kSeeds renders with `settings`, and its standard error (header).
+struct SeedMean {
+    double mean = 0.0, standard_error = 0.0;
+};
+
+SeedMean seed_mean(const LampFloor& floor, const Settings& settings) {
+    std::vector<double> means;
+    for (uint32_t seed = 0; seed < kSeeds; ++seed) {
+        Settings with_seed = settings;
+        with_seed.push_back({"seed", seed});
+        const RenderOutput out = render(floor.scene, with_seed);
+        EXPECT_TRUE(out.error.empty()) << out.error;
+        if (!out.error.empty()) return {};
+        means.push_back(pixel_stats(out.rgba, 1).mean);
+    }
+    SeedMean result;
+    for (const double m : means) result.mean += m;
+    result.mean /= kSeeds;
+    double ss = 0.0;
+    for (const double m : means) ss += (m - result.mean) * (m - result.mean);
+    result.standard_error = std::sqrt(ss / (kSeeds - 1) / kSeeds);
+    return result;
+}
+
+Settings floor_settings(const char* mode) {
+    return {{"width", 32},          {"height", 32},        {"samples", 64},          {"max_bounces", 0},
+            {"filter_type", "box"}, {"filter_width", 1.0}, {"light_selection", mode}};
+}
+
+}  // namespace
+
 TEST(ManyLights, EverySelectionModeMatchesTheClosedSum) {
     const std::vector<const char*> modes = setting_choices("light_selection");
     ASSERT_GE(modes.size(), 3u);
@@ -119,28 +152,52 @@ TEST(ManyLights, EverySelectionModeMatchesTheClosedSum) {
         const LampFloor floor(lamps);
         const double expected = expected_mean_radiance(lamps);
         for (const char* mode : modes) {
-            std::vector<double> means;
-            for (uint32_t seed = 0; seed < kSeeds; ++seed) {
-                const RenderOutput out = render(floor.scene, {{"width", 32},
-                                                              {"height", 32},
-                                                              {"samples", 64},
-                                                              {"max_bounces", 0},
-                                                              {"filter_type", "box"},
-                                                              {"filter_width", 1.0},
-                                                              {"light_selection", mode},
-                                                              {"seed", seed}});
-                ASSERT_TRUE(out.error.empty()) << out.error;
-                means.push_back(pixel_stats(out.rgba, 1).mean);
-            }
-            double mean = 0.0;
-            for (const double m : means) mean += m;
-            mean /= kSeeds;
-            double ss = 0.0;
-            for (const double m : means) ss += (m - mean) * (m - mean);
-            const double standard_error = std::sqrt(ss / (kSeeds - 1) / kSeeds);
-            EXPECT_NEAR(mean, expected, 4.0 * standard_error)
-                << n << " lamps, light_selection " << mode << ": mean " << mean << ", closed sum " << expected
-                << ", standard error " << standard_error;
+            const SeedMean m = seed_mean(floor, floor_settings(mode));
+            EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error)
+                << n << " lamps, light_selection " << mode << ": mean " << m.mean << ", closed sum "
+                << expected << ", standard error " << m.standard_error;
         }
+    }
+}
+
+// The light tree with adaptive splitting (lights/light_tree.h): one light sample per cut node,
+// summed. The floor points lie under the lamp grid (their distance to the root's bounding sphere
+// is below its radius), so the cut fills up to its cap; the same tolerance as above.
+TEST(ManyLights, TreeWithSplittingMatchesTheClosedSum) {
+    for (const uint32_t n : {1u, 16u, 1024u}) {
+        const std::vector<Lamp> lamps = lamp_grid(n);
+        const LampFloor floor(lamps);
+        const double expected = expected_mean_radiance(lamps);
+        for (const uint32_t splits : {2u, 8u, 16u}) {
+            Settings settings = floor_settings("tree");
+            settings.push_back({"light_tree_splits", splits});
+            const SeedMean m = seed_mean(floor, settings);
+            EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error)
+                << n << " lamps, " << splits << " splits: mean " << m.mean << ", closed sum " << expected
+                << ", standard error " << m.standard_error;
+        }
+    }
+}
+
+// Splitting keeps the image a function of the scene, the settings and the seed alone: the cut
+// depends on the shading point only, each sub-estimator reads the vertex's sample numbers
+// (lights/light_set.h), and nothing is shared between threads, so 1, 2 and 3 threads give the
+// same bits.
+TEST(ManyLights, TreeWithSplittingIsBitIdenticalForAnyThreadCount) {
+    const LampFloor floor(lamp_grid(1024));
+    std::vector<float> first;
+    for (const int64_t threads : {1, 2, 3}) {
+        Settings settings = floor_settings("tree");
+        settings.push_back({"light_tree_splits", 8});
+        settings.push_back({"samples", 4});
+        settings.push_back({"threads", threads});
+        const RenderOutput out = render(floor.scene, settings);
+        ASSERT_TRUE(out.error.empty()) << out.error;
+        if (first.empty()) {
+            first = out.rgba;
+            continue;
+        }
+        ASSERT_EQ(out.rgba.size(), first.size());
+        EXPECT_TRUE(out.rgba == first) << threads << " threads differ from 1";
     }
 }

@@ -39,6 +39,9 @@ struct IntegratorSettings {
     LightSampling light_sampling = LightSampling::Mis;
     MisHeuristic mis_heuristic = MisHeuristic::Power;
     LightSelection light_selection = LightSelection::Auto;
+    // The light tree's adaptive splitting: at most this many cut nodes, each one light sample,
+    // per NEE vertex (lights/light_tree.h); 1 = one light per vertex, no splitting.
+    uint32_t light_tree_splits = 1;
     TriangleSampling triangle_sampling = TriangleSampling::SolidAngle;
     RouletteMode rr_mode = RouletteMode::Throughput;
     // Roulette starts at this bounce (0 = at the first vertex).

@@ -1,5 +1,7 @@
 #include "integrators/path_integrator.h"
 
+#include <array>
+
 #include "integrators/camera_path_passes.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
@@ -53,6 +55,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     uint32_t bounce = 0, transparent_bounce = 0;
     const LightSet& lights = scene.lights();
     const LightSelection selection = settings_.light_selection;
+    const uint32_t tree_splits = settings_.light_tree_splits;
     const uint32_t max_shadow_surfaces = settings_.transparent_max_bounces;
     const float ambient = settings_.control_variate;  // L_a of the control variate (5.17)
     CameraPathPasses data(passes, settings_.mist);
@@ -69,10 +72,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         // sample that could have found the same direction (delta scattering: NEE could not).
         {
             float lamp_pdf = 0.0f, lamp_t = 0.0f;
-            const Rgb lamp =
-                lights.lamp_radiance(origin, dir, found ? hit.t : t_max,
-                                     camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility,
-                                     &lamp_pdf, &lamp_t, selection, scatter_origin, scatter_normal);
+            const Rgb lamp = lights.lamp_radiance(
+                origin, dir, found ? hit.t : t_max,
+                camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility, &lamp_pdf, &lamp_t,
+                selection, scatter_origin, scatter_normal, tree_splits);
             if (!lamp.is_black()) {
                 float w = 1.0f;
                 if (!camera_visible_path && scatter_pdf > 0.0f) {
@@ -121,7 +124,8 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             const float light_pdf =
                 light_pdf_matters(scatter_pdf) && hit.emissive_light != kNoLight
                     ? lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin, scatter_normal,
-                                                   hit.position, selection, settings_.triangle_sampling)
+                                                   hit.position, selection, settings_.triangle_sampling,
+                                                   tree_splits)
                     : 0.0f;
             L += beta * emission * hit_weight(scatter_pdf, light_pdf);
         }
@@ -144,12 +148,17 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
 
         // Next-event estimation (textbook 5.7–5.16), MIS-weighted against BSDF sampling. Lights
         // below the surface count only for closures that transmit.
-        LightSample ls;
-        if (settings_.light_sampling != LightSampling::Bsdf && closures.has_non_delta() &&
-            lights.sample(hit.position, sp.ns,
-                          sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
-                          sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), &ls, selection,
-                          settings_.triangle_sampling)) {
+        // With the tree's splitting (light_tree_splits > 1) one sample per cut node, summed.
+        std::array<LightSample, LightTree::kMaxCut> light_samples;
+        const uint32_t light_sample_count =
+            settings_.light_sampling != LightSampling::Bsdf && closures.has_non_delta()
+                ? lights.sample_cut(hit.position, sp.ns,
+                                    sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
+                                    sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)),
+                                    light_samples.data(), selection, settings_.triangle_sampling, tree_splits)
+                : 0u;
+        for (uint32_t s = 0; s < light_sample_count; ++s) {
+            const LightSample& ls = light_samples[s];
             const float side = dot(ls.wi, sp.ng);
             const uint32_t kinds = lit_kinds(ls.visibility);
             if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) && kinds != 0) {

@@ -126,13 +126,14 @@ std::optional<LightSet::TreeReport> LightSet::tree_report() const {
     return tree_cache_->report;
 }
 
-float LightSet::probability(uint32_t index, Vec3 p, Vec3 n, LightSelection selection) const {
+float LightSet::probability(uint32_t index, Vec3 p, Vec3 n, LightSelection selection,
+                            uint32_t max_cut) const {
     if (resolve(selection) != LightSelection::Tree) return probability(index, selection);
     const TreeCache& state = tree_state();
     if (state.is_infinite[index]) return state.infinite_probability;
     // The tree's share, 1 − N_inf p_inf, as choose() forms it.
     const float share = 1.0f - static_cast<float>(state.infinite.size()) * state.infinite_probability;
-    return share * state.tree->pmf(p, n, index);
+    return share * state.tree->pmf(p, n, index, max_cut);
 }
 
 uint32_t LightSet::choose(float u, Vec3 p, Vec3 n, LightSelection selection, float* choice) const {
@@ -181,14 +182,57 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
     return true;
 }
 
+uint32_t LightSet::sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out,
+                              LightSelection selection, TriangleSampling triangle, uint32_t max_cut) const {
+    if (max_cut <= 1 || resolve(selection) != LightSelection::Tree)
+        return sample(p, n, u_choice, u, out, selection, triangle) ? 1u : 0u;
+    if (lights_.empty()) return 0;
+    const TreeCache& state = tree_state();
+    const float infinite_total = static_cast<float>(state.infinite.size()) * state.infinite_probability;
+    // A light at infinity is one choice as in choose(); the tree's share is split.
+    if (u_choice < infinite_total) return sample(p, n, u_choice, u, out, selection, triangle) ? 1u : 0u;
+    if (!state.tree_has_lights) return 0;
+    const float share = 1.0f - infinite_total;
+    const float u_tree = std::min((u_choice - infinite_total) / share, kOneMinusEpsilon);
+    LightTree::Cut cut;
+    state.tree->cut(p, n, max_cut, &cut);
+    // The R2 sequence's offsets (header): 1/φ, and 1/ψ, 1/ψ² with ψ³ = ψ + 1.
+    constexpr float kChoiceStep = 0.6180339887f, kPointStep[2] = {0.7548776662f, 0.5698402910f};
+    const auto rotate = [](float v, float offset) {
+        const float r = v + offset;
+        return std::min(r >= 1.0f ? r - 1.0f : r, kOneMinusEpsilon);
+    };
+    uint32_t count = 0;
+    for (uint32_t c = 0; c < cut.size; ++c) {
+        // c × offset mod 1, so that the rotation stays in [0, 1) for every c.
+        const auto step = [c](float offset) {
+            const float total = static_cast<float>(c) * offset;
+            return total - std::floor(total);
+        };
+        const float u_c = c == 0 ? u_tree : rotate(u_tree, step(kChoiceStep));
+        const Vec2 u_point =
+            c == 0 ? u : Vec2{rotate(u.x, step(kPointStep[0])), rotate(u.y, step(kPointStep[1]))};
+        float pmf = 0.0f;
+        const uint32_t index = state.tree->choose_in_cut(cut.node[c], p, n, u_c, &pmf);
+        if (index == LightTree::kNone || !(pmf > 0.0f)) continue;
+        LightSample& ls = out[count];
+        if (!lights_[index]->sample(p, n, u_point, triangle, &ls)) continue;
+        ls.pdf *= share * pmf;
+        ls.visibility = visibility_[index];
+        ++count;
+    }
+    return count;
+}
+
 float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit, LightSelection selection,
-                                      TriangleSampling triangle) const {
+                                      TriangleSampling triangle, uint32_t max_cut) const {
     const auto& tri = static_cast<const EmissiveTriangle&>(*lights_[index]);
-    return probability(index, p, n, selection) * tri.pdf(p, n, hit, triangle);
+    return probability(index, p, n, selection, max_cut) * tri.pdf(p, n, hit, triangle);
 }
 
 Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf, float* t_out,
-                            LightSelection selection, Vec3 choice_point, Vec3 choice_normal) const {
+                            LightSelection selection, Vec3 choice_point, Vec3 choice_normal,
+                            uint32_t max_cut) const {
     uint32_t nearest_lamp = 0;
     bool found = false;
     Rgb radiance(0.0f);
@@ -213,7 +257,9 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
     });
     // The choice probability of the nearest lamp only (the tree's costs a descent).
     if (pdf)
-        *pdf = found ? probability(nearest_lamp, choice_point, choice_normal, selection) * nearest_pdf : 0.0f;
+        *pdf = found
+                   ? probability(nearest_lamp, choice_point, choice_normal, selection, max_cut) * nearest_pdf
+                   : 0.0f;
     if (t_out) *t_out = nearest;
     return radiance;
 }

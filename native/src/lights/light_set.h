@@ -22,6 +22,16 @@
 //   (scripts/study_auto_lights.py, docs/study.md "Light selection"; MSE x seconds of tree over
 //   mixed): 1 lamp 1.03-1.07 (the descent's cost, nothing to gain), 2 lamps 0.58 scattered but
 //   1.02 in a tight cluster, 4 lamps 0.14 scattered and 0.71 clustered, 8-64 lamps 0.11-0.73.
+// * tree with splitting (light_tree_splits = max_cut > 1, lights/light_tree.h): the tree's
+//   share is one sub-estimator per node of the cut at p, each choosing a light below its node;
+//   sample_cut() returns one light sample per node, each with pdf share × (its probability
+//   below the node) × the light's point pdf, and NEE sums them. A light's probability for MIS
+//   is that same product (probability(), lamp_radiance(), emissive_triangle_pdf() with
+//   max_cut). Sub-estimator c takes the vertex's choice number and point rotated by c times
+//   the R2 sequence's offsets (Roberts 2018: 1/φ for the choice, 1/ψ, 1/ψ² for the point; c = 0
+//   unrotated), mod 1: a rotation mod 1 keeps each uniform, so each sub-estimator stays
+//   unbiased, and the sub-estimators' choices are decorrelated without new sampler dimensions
+//   (which would move every later dimension and change every image with splitting off).
 // Any p > 0 wherever a light contributes keeps NEE unbiased; a zero total power makes the
 // power choice uniform.
 #pragma once
@@ -86,7 +96,7 @@ public:
     }
     // The probability with which `selection` chooses light `index` for the shading point p of
     // normal n (unit, or 0): the tree's, or the table above for the other modes.
-    float probability(uint32_t index, Vec3 p, Vec3 n, LightSelection selection) const;
+    float probability(uint32_t index, Vec3 p, Vec3 n, LightSelection selection, uint32_t max_cut = 1) const;
     // The light `selection` chooses for u in [0,1) without a shading point (the tree's emission
     // choice is by power); size() when there are no lights.
     uint32_t choose(float u, LightSelection selection = LightSelection::Mixed) const;
@@ -109,6 +119,11 @@ public:
     bool sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out,
                 LightSelection selection = LightSelection::Mixed,
                 TriangleSampling triangle = TriangleSampling::SolidAngle) const;
+    // sample() with the tree's splitting (header): up to LightTree::kMaxCut light samples into
+    // out[], one per cut node whose light was sampled; returns their count. Exactly sample()
+    // when max_cut is 1 or `selection` is not the tree.
+    uint32_t sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, LightSelection selection,
+                        TriangleSampling triangle, uint32_t max_cut) const;
     // Light tracing: chooses a light with u_choice by `selection` and emits a particle from it
     // (the lights' sample_emission); out->weight is divided by the choice probability, so it
     // estimates the scene's total emitted flux. The sun and the environment shine over the
@@ -119,7 +134,8 @@ public:
     // triangle `index` (a SurfaceHit's emissive_light: always an EmissiveTriangle).
     float emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit,
                                 LightSelection selection = LightSelection::Mixed,
-                                TriangleSampling triangle = TriangleSampling::SolidAngle) const;
+                                TriangleSampling triangle = TriangleSampling::SolidAngle,
+                                uint32_t max_cut = 1) const;
     // Radiance of the nearest lamp surface (an area lamp, or the disk of a point/spot lamp with
     // a radius, facing the ray's origin) whose visibility has bit `visibility` and whose
     // emitting face the ray (dir unit) meets before t_max; black if none. Lamps are not in the
@@ -130,7 +146,7 @@ public:
     // *t (if not null) = the distance to the lamp.
     Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
                       float* t = nullptr, LightSelection selection = LightSelection::Mixed,
-                      Vec3 choice_point = {}, Vec3 choice_normal = {}) const;
+                      Vec3 choice_point = {}, Vec3 choice_normal = {}, uint32_t max_cut = 1) const;
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
     // No shading point is needed: under `tree` a light at infinity has the fixed p_inf.
     const EnvironmentLight* environment() const { return environment_; }

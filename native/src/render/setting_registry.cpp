@@ -8,6 +8,7 @@
 
 #include "film/pixel_filter.h"
 #include "integrators/estimator_options.h"
+#include "lights/light_tree.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
 
@@ -346,6 +347,16 @@ const std::array kSettings = {
         "",
         &light_selection_choices,
         STRATUM_OPTION(estimator.light_selection, light_selection_at)},
+    SettingSpec{{"light_tree_splits", "Light Tree Splits",
+                 "Light tree only: most light samples per shading point, one per node of the tree's "
+                 "adaptive cut (1: one light, no splitting)"},
+                SettingKind::Int,
+                1,
+                LightTree::kMaxCut,
+                false,
+                "",
+                nullptr,
+                STRATUM_UINT(estimator.light_tree_splits)},
     SettingSpec{{"triangle_sampling", "Triangle Sampling",
                  "How a light sample takes a point on an emissive triangle"},
                 SettingKind::Choice,
