@@ -131,7 +131,7 @@ bench: build microbench
 study: build
 	$(PY) scripts/study_auto_lights.py --out out/study
 	$(PY) scripts/bench_quality.py --scene many_lights_hall --sampler sobol --res 96 --samples 32 \
-		--reference-samples 1024 --light-selection tree,power,uniform,mixed --section quality_lights
+		--reference-samples 1024 --light-selection tree,tree:1,power,uniform,mixed --section quality_lights
 	$(PY) scripts/study.py --out out/study --jobs 2
 
 # One clang build with ASan, UBSan (findings abort) and libFuzzer coverage serves the sanitized

@@ -7,9 +7,10 @@ samplers relative to Cycles 3.4, each renderer against its own reference.
 Light selection (issue 16, acceptance 4), with Cycles 5.0 and its light tree (the bpy wheel):
 
     .venv/bin/python scripts/bench_quality.py --scene many_lights_hall --sampler sobol
-        --light-selection tree,power,uniform,mixed --section quality_lights
+        --light-selection tree,tree:1,power,uniform,mixed --section quality_lights
 
---light-selection makes Stratum's series every --sampler x every listed light_selection (the
+--light-selection makes Stratum's series every --sampler x every listed light_selection (tree:1
+is the tree without splitting, light_tree_splits 1; tree alone splits into the default 8; the
 reference stays at the scene's default, auto: the tree for the hall; every mode converges to
 the same image); Cycles renders with its light tree on (scene.cycles.use_light_tree, Cycles
 >= 3.5). Under the bpy wheel Cycles prints no status lines, so its path-tracing time is taken
@@ -94,7 +95,8 @@ def parse_args() -> argparse.Namespace:
     p.add_argument("--scene", choices=sorted(SCENES), action="append", default=None)
     p.add_argument("--sampler", action="append", default=None)
     p.add_argument("--light-selection", default="",
-                   help="comma-separated light_selection values: Stratum series per sampler x value")
+                   help="comma-separated light_selection values, each optionally :SPLITS (its "
+                        "light_tree_splits, e.g. tree:1): Stratum series per sampler x value")
     p.add_argument("--section", default="quality", help="out/bench/<section>.json")
     args = p.parse_args(script_argv())
     args.scene = args.scene or ["cornell_box", "wolf"]
@@ -103,12 +105,22 @@ def parse_args() -> argparse.Namespace:
     return args
 
 
-def stratum_series(args: argparse.Namespace) -> dict[str, dict[str, str]]:
-    """Stratum's series: label -> settings (a sampler, and a light_selection when listed)."""
+def selection_settings(item: str) -> dict[str, str | int]:
+    """A --light-selection item, SELECTION or SELECTION:SPLITS (e.g. tree:1, the tree without
+    splitting), as library settings."""
+    selection, _, splits = item.partition(":")
+    settings: dict[str, str | int] = {"light_selection": selection}
+    if splits:
+        settings["light_tree_splits"] = int(splits)
+    return settings
+
+
+def stratum_series(args: argparse.Namespace) -> dict[str, dict[str, str | int]]:
+    """Stratum's series: label -> settings (a sampler, and a light selection when listed)."""
     if not args.light_selection:
         return {s: {"sampler": s} for s in args.sampler}
-    return {f"{s} {sel}": {"sampler": s, "light_selection": sel}
-            for s in args.sampler for sel in args.light_selection}
+    return {f"{s} {item}": {"sampler": s} | selection_settings(item)
+            for s in args.sampler for item in args.light_selection}
 
 
 def cache_path(scene: str, renderer: str, key: dict[str, Any]) -> Path:

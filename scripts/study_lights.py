@@ -7,9 +7,9 @@ out/study/lights.md. scripts/study.py runs it.
 | lights_hall | scenes/many_lights_hall.blend   | 1,000 small lamps: the tree's MSE at equal time |
 |             |                                 | <= 0.2x power selection's                      |
 
-The run is one `stratum compare` over the four light_selection values of the path tracer
-(sampler sobol; reference: the default, auto = the tree in this scene, at high spp). Equal
-time as in scripts/study_estimators.py (MSE interpolated in log-log at the largest path-tracing
+The run is one `stratum compare` over the four light_selection values of the path tracer and
+the tree without splitting (sampler sobol; reference: the default, auto = the tree in this
+scene, at high spp). Equal time as in scripts/study_estimators.py (MSE interpolated in log-log at the largest path-tracing
 time every mode reached). Two more measurements, run by `make study` outside `compare`, are
 read when present:
 
@@ -30,7 +30,9 @@ from study_estimators import _means, equal_time, fmt
 
 RUN = "lights_hall"
 SCENE = "scenes/many_lights_hall.blend"
-SELECTIONS = ("tree", "power", "uniform", "mixed")
+# light_selection values; tree:1 is the tree without splitting (light_tree_splits 1), tree alone
+# the library's default of 8 cut nodes.
+SELECTIONS = ("tree", "tree:1", "power", "uniform", "mixed")
 SAMPLER = "sobol"
 BASE = "power"  # the acceptance's yardstick: tree <= 0.2x power at equal time
 QUALITY_LIGHTS = Path(__file__).resolve().parent.parent / "out" / "bench" / "quality_lights.json"
@@ -38,7 +40,14 @@ QUALITY_LIGHTS = Path(__file__).resolve().parent.parent / "out" / "bench" / "qua
 
 def series(selection: str) -> str:
     """The compare label of the path tracer's default estimator with `selection`."""
-    return f"mis-power+sel-{selection}"
+    name, _, splits = selection.partition(":")
+    return f"mis-power+sel-{name}" + (f"+split{splits}" if splits else "")
+
+
+def spec(selection: str) -> str:
+    """The compare --integrator spec of `selection` (SELECTIONS' syntax)."""
+    name, _, splits = selection.partition(":")
+    return f"path:light_selection={name}" + (f",light_tree_splits={splits}" if splits else "")
 
 
 def plan_runs(quick: bool, run_type: Any) -> list[Any]:
@@ -47,7 +56,7 @@ def plan_runs(quick: bool, run_type: Any) -> list[Any]:
         spp, seeds, resolution, reference_spp = [1, 4], 2, "48x27", 32
     else:
         spp, seeds, resolution, reference_spp = [1, 4, 16, 64], 4, "160x90", 2048
-    specs = ",".join(f"path:light_selection={s}" for s in SELECTIONS)
+    specs = ",".join(spec(s) for s in SELECTIONS)
     extra = ["--integrator", specs, "--reference-integrator", "path", "--reference-sampler", SAMPLER]
     return [run_type(RUN, SCENE, SAMPLER, spp, seeds, resolution, reference_spp, extra)]
 

@@ -22,7 +22,8 @@ PROPERTIES: tuple[str, ...] = (
     "samples", "use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples",
     "adaptive_metric", "sampler",
     "hemisphere", "seed", "integrator", "ao_distance", "max_bounces",
-    "light_sampling", "mis_heuristic", "triangle_sampling", "light_selection", "rr_mode",
+    "light_sampling", "mis_heuristic", "triangle_sampling", "light_selection",
+    "light_tree_splits", "rr_mode",
     "rr_min_depth", "control_variate", "filter_type", "filter_width", "threads",
 )
 
@@ -49,9 +50,6 @@ NOT_IN_BLENDER: dict[str, str] = {
                      "gives each Dask worker its range (distributed.py)",
     "sample_count": "a render in Blender takes all the samples; `stratum render --scheduler` "
                     "gives each Dask worker its range (distributed.py)",
-    "light_tree_splits": "an experiment: on the many-lights hall splitting lowers the MSE per "
-                         "sample but not per second, so renders keep the library's default (1, "
-                         "no splitting)",
 }
 
 # scene.stratum properties of the add-on alone: name -> (label, description, default). Off by

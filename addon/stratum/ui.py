@@ -68,6 +68,9 @@ class STRATUM_RENDER_PT_library(StratumButtonsPanel, bpy.types.Panel):
 # the lights, so light sampling, its heuristic and the control variate are path-tracer
 # choices.
 NO_LIGHT_PATHS = frozenset({"ao"})
+# The light_selection choices that may choose lights by the tree, the only ones light_tree_splits
+# changes (auto picks the tree in a scene of more than a few lights).
+TREE_SELECTIONS = frozenset({"tree", "auto"})
 NO_BOUNCE_LIMIT = frozenset({"ao", "direct"})
 NO_LIGHT_SAMPLING = frozenset({"ao", "light"})
 
@@ -189,6 +192,9 @@ class STRATUM_RENDER_PT_sampling_lights(StratumButtonsPanel, bpy.types.Panel):
         col = layout.column()
         col.active = settings.integrator not in NO_LIGHT_PATHS
         col.prop(settings, "light_selection", text="Light Selection")
+        sub = col.column()
+        sub.active = settings.light_selection in TREE_SELECTIONS
+        sub.prop(settings, "light_tree_splits", text="Tree Splits")
 
 
 class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):

@@ -159,7 +159,8 @@ def test_split_view_greys_out_when_off(library: Any, scene_builder: Any) -> None
 def test_light_selection_is_drawn_for_each_of_its_choices(library: Any,
                                                           scene_builder: Any) -> None:
     """Sampling > Lights draws whatever choices the library lists (a new one needs no UI
-    change), greyed out only for ambient occlusion, which samples no lights."""
+    change), greyed out only for ambient occlusion, which samples no lights; the tree's splits
+    also where the choice is no tree."""
     s = scene_builder().scene.stratum
     for choice in _items("light_selection"):
         s.light_selection = choice
@@ -167,6 +168,9 @@ def test_light_selection_is_drawn_for_each_of_its_choices(library: Any,
             s.integrator = integrator
             drawn = draw_panel(ui.STRATUM_RENDER_PT_sampling_lights, s.id_data)
             assert drawn.prop("light_selection").active == (integrator != "ao")
+            # Tree Splits sits under it, greyed out where no tree chooses the lights.
+            assert drawn.prop("light_tree_splits").active == (
+                integrator != "ao" and choice in ("tree", "auto"))
 
 
 def _active(records: dict[str, PanelRecord]) -> dict[str, bool]:

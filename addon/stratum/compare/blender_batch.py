@@ -7,9 +7,9 @@ Blender start-up is paid once per batch.
 BATCH.json: {"mode": "render" | "probe", "addon_parent": folder holding stratum/,
 "output_dir": str, "threads": int | null, "configs": [entry, ...], "probe_output": str}, an
 entry as made by plan.batch_entry. For each entry the script sets scene.stratum (sampler,
-samples, seed, integrator, hemisphere, max_bounces, threads, and the estimator settings
-light_sampling, mis_heuristic, light_selection, triangle_sampling, rr_mode, rr_min_depth,
-control_variate) and the render resolution, renders with the STRATUM engine, saves the Render
+samples, seed, integrator, hemisphere, max_bounces, threads, and the estimator settings of
+estimators.SETTING_NAMES: light sampling and selection, Russian roulette, control variate,
+adaptive sampling) and the render resolution, renders with the STRATUM engine, saves the Render
 Result as a linear 32-bit float OpenEXR (as scripts/render_to_files.py does), then writes the
 JSON sidecar (key, render time, EXR size and sha256). An estimator setting without a
 scene.stratum property (an add-on older than issue 6's Blender side) fails the configuration,

@@ -6,6 +6,7 @@ settings (issue 6) one configuration renders with, and the short label tables an
 | light_sampling    | path: bsdf / nee / mis-<heuristic> |
 | mis_heuristic     | (in mis-<heuristic>)               |
 | light_selection   | sel-<value>                        |
+| light_tree_splits | split<value>                       |
 | triangle_sampling | tri-<value>                        |
 | rr_mode           | rr-<value>                         |
 | rr_min_depth      | rrmin<value>                       |
@@ -42,15 +43,16 @@ Value = str | int | float
 
 # The settings an estimator spec may name, in the order every Estimator carries them.
 SETTING_NAMES: tuple[str, ...] = ("light_sampling", "mis_heuristic", "light_selection",
+                                  "light_tree_splits",
                                   "triangle_sampling", "rr_mode", "rr_min_depth",
                                   "control_variate", "use_adaptive_sampling",
                                   "adaptive_threshold", "adaptive_min_samples",
                                   "adaptive_metric")
 PATH = "path"  # the integrator whose label names its light-sampling strategy
-_SUFFIX = {"light_selection": "sel-", "triangle_sampling": "tri-", "rr_mode": "rr-",
-           "rr_min_depth": "rrmin", "control_variate": "cv", "use_adaptive_sampling": "adaptive",
-           "adaptive_threshold": "thr", "adaptive_min_samples": "min",
-           "adaptive_metric": "metric-"}
+_SUFFIX = {"light_selection": "sel-", "light_tree_splits": "split", "triangle_sampling": "tri-",
+           "rr_mode": "rr-", "rr_min_depth": "rrmin", "control_variate": "cv",
+           "use_adaptive_sampling": "adaptive", "adaptive_threshold": "thr",
+           "adaptive_min_samples": "min", "adaptive_metric": "metric-"}
 
 
 class SpecError(ValueError):
