@@ -210,6 +210,9 @@ TEST(AdaptiveSampling, TheClosedSphereConvergesToItsClosedFormAtTheDefaultThresh
     ASSERT_NE(s.scene, nullptr) << stratum_last_error();
     const double expected = sphere_b_radiance(1.0, 0.8, 0.0, 60);
     // The metric mse at threshold 0.05 (the default 0.01 asks for more than 1024 samples here).
+    // One light per vertex (light_tree_splits 1): the noisier estimator is the harder case for a
+    // bias from stopping, and with the tree's 8 splits every pixel of this uniform scene stops
+    // at the same count under mse, which would leave nothing adaptive to measure.
     for (const auto& [sampler, metric] :
          {std::pair{"random", "relative"}, std::pair{"sobol", "relative"}, std::pair{"sobol", "mse"}}) {
         std::vector<PixelStats> images;
@@ -220,6 +223,7 @@ TEST(AdaptiveSampling, TheClosedSphereConvergesToItsClosedFormAtTheDefaultThresh
                 render_with_counts(s.scene,
                                    {{"samples", 1024},
                                     {"max_bounces", 60},
+                                    {"light_tree_splits", 1},
                                     {"seed", seed},
                                     {"sampler", sampler},
                                     {"use_adaptive_sampling", 1},

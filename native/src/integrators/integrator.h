@@ -40,8 +40,9 @@ struct IntegratorSettings {
     MisHeuristic mis_heuristic = MisHeuristic::Power;
     LightSelection light_selection = LightSelection::Auto;
     // The light tree's adaptive splitting: at most this many cut nodes, each one light sample,
-    // per NEE vertex (lights/light_tree.h); 1 = one light per vertex, no splitting.
-    uint32_t light_tree_splits = 1;
+    // per NEE vertex (lights/light_tree.h); 1 = one light per vertex, no splitting. 8: the least
+    // MSE at equal time of 1, 4, 8 and 16 on the many-lights hall (docs/study.md).
+    uint32_t light_tree_splits = 8;
     TriangleSampling triangle_sampling = TriangleSampling::SolidAngle;
     RouletteMode rr_mode = RouletteMode::Throughput;
     // Roulette starts at this bounce (0 = at the first vertex).
