@@ -195,12 +195,13 @@ TEST(EmitterNormalisation, PathTracingMeasuresTheClosedFormIrradiance) {
         const char* name = emitter == Emitter::MeshQuad ? "mesh quad" : "area lamp";
         StratumScene* scene = make_panel_scene(emitter);
         ASSERT_NE(scene, nullptr) << stratum_last_error();
-        for (const char* selection : {"mixed", "tree", "tree split 8"}) {
-            const bool split = std::string(selection) == "tree split 8";
+        // "tree" splits (8 cut nodes, the default); "tree unsplit" is one light per vertex.
+        for (const char* selection : {"mixed", "tree", "tree unsplit"}) {
+            const bool unsplit = std::string(selection) == "tree unsplit";
             const Measurement m =
-                split ? measure_irradiance(scene, "path",
-                                           {{"light_selection", "tree"}, {"light_tree_splits", 8}})
-                      : measure_irradiance(scene, "path", {{"light_selection", selection}});
+                unsplit ? measure_irradiance(scene, "path",
+                                             {{"light_selection", "tree"}, {"light_tree_splits", 1}})
+                        : measure_irradiance(scene, "path", {{"light_selection", selection}});
             ASSERT_TRUE(m.error.empty()) << m.error;
             EXPECT_NEAR(m.mean, expected, 4.0 * m.standard_error)
                 << name << ", " << selection << ": E " << m.mean << " expected " << expected << " se "
@@ -255,8 +256,8 @@ TEST(EmitterNormalisation, EveryWayOfFindingAPanelTwoCentimetresAwayMeasuresTheC
         {"mis, solid angle", {{"light_sampling", "mis"}, {"triangle_sampling", "solid_angle"}}},
         {"nee, tree", {{"light_sampling", "nee"}, {"light_selection", "tree"}}},
         {"mis, tree", {{"light_sampling", "mis"}, {"light_selection", "tree"}}},
-        {"mis, tree split 8",
-         {{"light_sampling", "mis"}, {"light_selection", "tree"}, {"light_tree_splits", 8}}},
+        {"mis, tree unsplit",
+         {{"light_sampling", "mis"}, {"light_selection", "tree"}, {"light_tree_splits", 1}}},
     };
     for (const Case& c : cases) {
         // 16 seeds: the image is far from uniform (lit in a strip next to the panel), so the
