@@ -72,6 +72,16 @@ def seeds() -> dict[str, bytes]:
     s["box-settings"] = box_scene() + render(
         [("filter_type", "box"), ("filter_width", 2.0), ("film_transparent", 1), ("control_variate", 0.5)]
     )
+    s["box-adaptive"] = box_scene() + render(
+        [("use_adaptive_sampling", 1), ("adaptive_metric", "mse"), ("adaptive_threshold", 0.5),
+         ("adaptive_min_samples", 1)], samples=2
+    )
+    s["box-tree-split"] = box_scene() + render(
+        [("light_selection", "tree"), ("light_tree_splits", 16), ("passes", "Depth,Debug Sample Count")]
+    )
+    s["box-sample-range"] = box_scene() + render(
+        [("sample_offset", 1), ("sample_count", 1), ("bvh", "dynamic"), ("mist_depth", 2.0)]
+    )
     s["box-crop"] = box_scene() + render([("crop_x", 2), ("crop_y", 1), ("crop_width", 4), ("crop_height", 5)])
     s["box-cancel"] = box_scene() + render(mode=1) + render(mode=3, rerender=True) + render(mode=2, rerender=True)
     s["box-destroy"] = box_scene() + render(mode=4)

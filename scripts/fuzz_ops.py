@@ -182,7 +182,13 @@ INT_SETTINGS += ["crop_width", "crop_height", "film_transparent", "rr_min_depth"
 FLOAT_SETTINGS = ["filter_width", "ao_distance", "control_variate"]
 STRING_SETTINGS = ["sampler", "filter_type", "integrator", "hemisphere", "light_sampling"]
 STRING_SETTINGS += ["mis_heuristic", "light_selection", "triangle_sampling", "rr_mode"]
-SETTING_NAMES = INT_SETTINGS + FLOAT_SETTINGS + STRING_SETTINGS
+# The C++ table (native/fuzz/render_ops.cpp) in its order: the first names, two near misses, then
+# the names appended later (so that older programs keep their meaning).
+APPENDED_SETTINGS = ["use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples",
+                     "adaptive_metric", "light_tree_splits", "sample_offset", "sample_count", "bvh",
+                     "mist_start", "mist_depth", "mist_falloff", "passes"]
+SETTING_NAMES = (INT_SETTINGS + FLOAT_SETTINGS + STRING_SETTINGS + ["WIDTH", ""]
+                 + APPENDED_SETTINGS)
 
 
 def render(

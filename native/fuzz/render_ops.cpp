@@ -22,32 +22,15 @@ constexpr int kRenderLimitMs = 20000;
 // on a loaded machine, and still a finding for a render that ignores cancel.
 constexpr int kCancelLimitMs = 2000;
 
-const char* const kSettingNames[] = {"width",
-                                     "height",
-                                     "samples",
-                                     "max_bounces",
-                                     "seed",
-                                     "threads",
-                                     "crop_x",
-                                     "crop_y",
-                                     "crop_width",
-                                     "crop_height",
-                                     "film_transparent",
-                                     "rr_min_depth",
-                                     "filter_width",
-                                     "ao_distance",
-                                     "control_variate",
-                                     "sampler",
-                                     "filter_type",
-                                     "integrator",
-                                     "hemisphere",
-                                     "light_sampling",
-                                     "mis_heuristic",
-                                     "light_selection",
-                                     "triangle_sampling",
-                                     "rr_mode",
-                                     "WIDTH",
-                                     ""};
+const char* const kSettingNames[] = {
+    "width", "height", "samples", "max_bounces", "seed", "threads", "crop_x", "crop_y", "crop_width",
+    "crop_height", "film_transparent", "rr_min_depth", "filter_width", "ao_distance", "control_variate",
+    "sampler", "filter_type", "integrator", "hemisphere", "light_sampling", "mis_heuristic",
+    "light_selection", "triangle_sampling", "rr_mode", "WIDTH", "",
+    // Appended after the old entries, so that the corpus's programs keep naming what they named.
+    "use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples", "adaptive_metric",
+    "light_tree_splits", "sample_offset", "sample_count", "bvh", "mist_start", "mist_depth", "mist_falloff",
+    "passes"};
 
 // Every value the string settings know (the settings' choices read from the library, so new
 // entries are fuzzed too) and a few near misses.
@@ -62,8 +45,11 @@ const std::vector<const char*>& string_values() {
                                       "area",     "throughput",
                                       "albedo",   "off",
                                       "on",       "",
-                                      "Random",   "path "};
-        for (const char* setting : {"sampler", "filter_type", "integrator", "hemisphere"}) {
+                                      "Random",   "path ",
+                                      "Depth",    "Normal,Debug Sample Count,Depth",
+                                      "Mist,",    ",,"};
+        for (const char* setting : {"sampler", "filter_type", "integrator", "hemisphere", "light_selection",
+                                    "adaptive_metric", "bvh"}) {
             for (const char* name : setting_choice_names(setting)) v.push_back(name);
         }
         return v;
