@@ -20,7 +20,7 @@ LAYERS: list[tuple[str, ...]] = [
     ("scene",),
     ("bsdf", "lights"),
     ("render_scene",),
-    ("film",),
+    ("film", "radiosity"),
     ("integrators",),
     ("render",),
     ("api",),

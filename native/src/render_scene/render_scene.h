@@ -91,6 +91,29 @@ public:
 
     bool intersect(Vec3 origin, Vec3 direction, float t_min, float t_max, SurfaceHit* hit,
                    const RayQuery& query = {}) const;
+    // The closest hit as the BVH reports it (placement, triangle, barycentrics, t), without
+    // shading it: for methods that only need which surface element a ray meets (radiosity).
+    bool intersect_triangle(Vec3 origin, Vec3 direction, float t_min, float t_max, RayHit* hit,
+                            const RayQuery& query = {}) const {
+        return embree_.intersect(origin, direction, t_min, t_max, query.time, query.visibility, hit);
+    }
+    // The traced placements (RayHit::instance numbers them) and their triangles in world space
+    // (a moving placement at shutter open), for methods that work on the surfaces themselves.
+    struct PlacedTriangle {
+        Vec3 p0, p1, p2;
+        uint32_t material_id;
+    };
+    uint32_t placement_count() const { return static_cast<uint32_t>(instances_.size()); }
+    uint32_t placement_triangle_count(uint32_t placement) const {
+        return static_cast<uint32_t>(instances_[placement].mesh->triangles.size());
+    }
+    PlacedTriangle placed_triangle(uint32_t placement, uint32_t triangle) const {
+        const InstanceData& g = instances_[placement];
+        const auto& tri = g.mesh->triangles[triangle];
+        const Transform& m = g.object_to_world;
+        return {m.point(g.mesh->positions[tri[0]]), m.point(g.mesh->positions[tri[1]]),
+                m.point(g.mesh->positions[tri[2]]), g.mesh->material_ids[triangle]};
+    }
     bool occluded(Vec3 origin, Vec3 direction, float t_min, float t_max, const RayQuery& query = {}) const {
         return embree_.occluded(origin, direction, t_min, t_max, query.time, query.visibility);
     }
