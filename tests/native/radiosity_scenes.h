@@ -2,6 +2,7 @@
 // inspects patches and form factors, and the closed-form references they are checked against.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <vector>
 
@@ -90,6 +91,98 @@ inline stratum::Scene sphere_scene(const PortedSphereMesh& sphere, float k, floa
     stratum::Scene scene;
     scene.materials.push_back(lambert(k, emission));
     add_mesh(scene, sphere.mesh.positions, sphere.mesh.triangles, 0);
+    return scene;
+}
+
+// ---- the diffuse Cornell box (issue 17, acceptance 2) ------------------------------------------
+//
+// The box [−1, 1]³ open toward +Z, seen by camera_at(0, 0, 1.9) (90°: only the interior shows):
+// white floor, back wall and ceiling, red left and green right wall (the Cornell measurements'
+// reflectances), two white blocks turned about the vertical, and an emissive quad of 0.5 × 0.5
+// in the middle of the ceiling, coplanar with it (the ceiling is four quads around it), emitting
+// kCornellEmission from both faces and reflecting nothing. Every material is Lambertian.
+struct CornellQuad {
+    float corners[12];
+    uint32_t material;  // 0 white, 1 red, 2 green, 3 light
+};
+inline constexpr float kCornellEmission = 12.0f;
+inline constexpr float kCornellCamera[3] = {0.0f, 0.0f, 1.9f};
+inline constexpr float kCornellAlbedo[3][3] = {
+    {0.73f, 0.71f, 0.68f}, {0.63f, 0.065f, 0.05f}, {0.14f, 0.45f, 0.09f}};
+
+// The five faces (no bottom) of a box of half sides (hx, h/2, hz) standing on the floor y = −1
+// at (cx, cz), turned by `angle` about the vertical.
+inline void add_block(std::vector<CornellQuad>& quads, float cx, float cz, float hx, float hz, float height,
+                      float angle) {
+    const float c = std::cos(angle), s = std::sin(angle);
+    const auto at = [&](float x, float y, float z) {
+        return std::array<float, 3>{cx + c * x + s * z, y, cz - s * x + c * z};
+    };
+    const float y0 = -1.0f, y1 = -1.0f + height;
+    const std::array<float, 3> p[8] = {at(-hx, y0, -hz), at(hx, y0, -hz), at(hx, y0, hz), at(-hx, y0, hz),
+                                       at(-hx, y1, -hz), at(hx, y1, -hz), at(hx, y1, hz), at(-hx, y1, hz)};
+    const int faces[5][4] = {{4, 7, 6, 5}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+    for (const auto& f : faces) {
+        CornellQuad q{{}, 0};
+        for (int k = 0; k < 4; ++k)
+            for (int a = 0; a < 3; ++a) q.corners[3 * k + a] = p[f[k]][a];
+        quads.push_back(q);
+    }
+}
+
+inline std::vector<CornellQuad> cornell_quads() {
+    std::vector<CornellQuad> q = {
+        {{-1, -1, -1, 1, -1, -1, 1, -1, 1, -1, -1, 1}, 0},  // floor
+        {{-1, -1, -1, -1, 1, -1, 1, 1, -1, 1, -1, -1}, 0},  // back wall
+        {{-1, -1, -1, -1, -1, 1, -1, 1, 1, -1, 1, -1}, 1},  // left wall (red)
+        {{1, -1, -1, 1, 1, -1, 1, 1, 1, 1, -1, 1}, 2},      // right wall (green)
+        // The ceiling y = 1 around the light: front and back strips, left and right pieces.
+        {{-1, 1, -1, 1, 1, -1, 1, 1, -0.25f, -1, 1, -0.25f}, 0},
+        {{-1, 1, 0.25f, 1, 1, 0.25f, 1, 1, 1, -1, 1, 1}, 0},
+        {{-1, 1, -0.25f, -0.25f, 1, -0.25f, -0.25f, 1, 0.25f, -1, 1, 0.25f}, 0},
+        {{0.25f, 1, -0.25f, 1, 1, -0.25f, 1, 1, 0.25f, 0.25f, 1, 0.25f}, 0},
+        {{-0.25f, 1, -0.25f, 0.25f, 1, -0.25f, 0.25f, 1, 0.25f, -0.25f, 1, 0.25f}, 3},  // light
+    };
+    add_block(q, 0.35f, 0.3f, 0.3f, 0.3f, 0.6f, -0.3f);    // short block
+    add_block(q, -0.35f, -0.35f, 0.3f, 0.3f, 1.2f, 0.3f);  // tall block
+    return q;
+}
+
+inline stratum::Scene cornell_scene() {
+    stratum::Scene scene;
+    for (const auto& a : kCornellAlbedo) {
+        stratum::SceneMaterial m = lambert(0.0f);
+        m.closures[0].params.base_color = stratum::Rgb(a[0], a[1], a[2]);
+        scene.materials.push_back(m);
+    }
+    scene.materials.push_back(lambert(0.0f, kCornellEmission));
+    for (const CornellQuad& q : cornell_quads())
+        add_mesh(scene, std::vector<float>(q.corners, q.corners + 12), {0, 1, 2, 0, 2, 3}, q.material);
+    return scene;
+}
+
+// The same box through the C ABI (for renders), with its camera; nullptr on failure.
+inline StratumScene* make_cornell_box() {
+    StratumScene* scene = nullptr;
+    if (stratum_scene_create(&scene) != STRATUM_OK) return nullptr;
+    bool ok = true;
+    for (const auto& a : kCornellAlbedo) {
+        StratumMaterialDesc m = diffuse_grey(0.0f);
+        std::copy(a, a + 3, m.base_color);
+        uint32_t id = 0;
+        ok = ok && stratum_scene_add_material(scene, &m, &id) == STRATUM_OK;
+    }
+    StratumMaterialDesc light = diffuse_grey(0.0f);
+    light.emission[0] = light.emission[1] = light.emission[2] = kCornellEmission;
+    uint32_t id = 0;
+    ok = ok && stratum_scene_add_material(scene, &light, &id) == STRATUM_OK;
+    for (const CornellQuad& q : cornell_quads()) ok = ok && add_quad_instance(scene, q.corners, q.material);
+    const StratumCameraDesc camera = camera_at(kCornellCamera[0], kCornellCamera[1], kCornellCamera[2]);
+    ok = ok && stratum_scene_set_camera(scene, &camera) == STRATUM_OK;
+    if (!ok) {
+        stratum_scene_destroy(scene);
+        return nullptr;
+    }
     return scene;
 }
 

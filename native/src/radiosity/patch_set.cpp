@@ -24,6 +24,10 @@ bool degenerate(const RenderScene::PlacedTriangle& t) {
     return !(area > 0.0f) || !std::isfinite(area);
 }
 
+void throw_if_cancelled(const std::atomic<bool>* cancel) {
+    if (cancel && cancel->load(std::memory_order_relaxed)) throw RenderScene::BuildCancelled();
+}
+
 }  // namespace
 
 bool radiosity_approximates(const SceneMaterial& material) {
@@ -126,8 +130,7 @@ PatchSet::PatchSet(const RenderScene& scene, float patch_size, const std::atomic
     global = 0;
     for (uint32_t p = 0; p < scene.placement_count(); ++p) {
         for (uint32_t t = 0; t < scene.placement_triangle_count(p); ++t, ++global) {
-            if (global % kCancelCheckTriangles == 0 && cancel && cancel->load(std::memory_order_relaxed))
-                throw RenderScene::BuildCancelled();
+            if (global % kCancelCheckTriangles == 0) throw_if_cancelled(cancel);
             const uint32_t n = triangle_divisions_[global];
             if (n == 0) continue;
             const RenderScene::PlacedTriangle tri = scene.placed_triangle(p, t);
@@ -142,6 +145,8 @@ PatchSet::PatchSet(const RenderScene& scene, float patch_size, const std::atomic
             // Cells in sub-triangle order: the upright ones row by row, then the inverted ones.
             for (const bool inverted : {false, true}) {
                 for (uint32_t i = 0; i < n; ++i) {
+                    // A triangle far larger than the patch size is many rows of cells.
+                    if (i % 256 == 255) throw_if_cancelled(cancel);
                     for (uint32_t j = 0; j + i + (inverted ? 1 : 0) < n; ++j) {
                         Vec2 c[3];
                         cell_corners(i, j, inverted, c);
