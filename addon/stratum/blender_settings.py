@@ -25,6 +25,7 @@ PROPERTIES: tuple[str, ...] = (
     "light_sampling", "mis_heuristic", "triangle_sampling", "light_selection",
     "light_tree_splits", "rr_mode",
     "rr_min_depth", "control_variate", "filter_type", "filter_width", "threads",
+    "radiosity_patch_size", "radiosity_solver", "radiosity_tolerance", "radiosity_rays",
 )
 
 # Setting -> the Blender value it is taken from.

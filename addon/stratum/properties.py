@@ -48,11 +48,14 @@ SOFT_MAXIMA: dict[str, int | float] = {
 # read 0.005 next to Cycles' 4 decimals.
 PRECISIONS: dict[str, int] = {
     "adaptive_threshold": 4,
+    "radiosity_tolerance": 6,
 }
 # Blender's ranges include their minimum. Where the library excludes its minimum
 # (open_minimum), the UI stops at the smallest value worth offering instead.
 OPEN_MINIMUM_FLOORS: dict[str, float] = {
     "ao_distance": 1e-4,
+    # Below 1e-7 the solve's ΔE is at the rounding of its double sums (radiosity_system.h).
+    "radiosity_tolerance": 1e-7,
 }
 # Units the UI can display.
 UNIT_SUBTYPES: dict[str, str] = {

@@ -71,8 +71,14 @@ NO_LIGHT_PATHS = frozenset({"ao"})
 # The light_selection choices that may choose lights by the tree, the only ones light_tree_splits
 # changes (auto picks the tree in a scene of more than a few lights).
 TREE_SELECTIONS = frozenset({"tree", "auto"})
-NO_BOUNCE_LIMIT = frozenset({"ao", "direct"})
+NO_BOUNCE_LIMIT = frozenset({"ao", "direct", "radiosity"})
 NO_LIGHT_SAMPLING = frozenset({"ao", "light"})
+# Radiosity solves the scene once and shows it through a final gather: one light sample (by
+# the light selection and triangle sampling) and one gather ray per camera hit, no paths, so
+# no roulette, light-sampling strategy or control variate.
+FINAL_GATHER = frozenset({"radiosity"})
+RADIOSITY_SETTINGS = (("radiosity_patch_size", "Patch Size"), ("radiosity_solver", "Solver"),
+                      ("radiosity_tolerance", "Tolerance"), ("radiosity_rays", "Form Factor Rays"))
 
 
 def draw_noise_threshold(layout: bpy.types.UILayout, settings: Any, use: str, threshold: str,
@@ -210,6 +216,10 @@ class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
         sub = col.column()
         sub.active = settings.integrator == "ao"
         sub.prop(settings, "ao_distance", text="AO Distance")
+        sub = col.column()
+        sub.active = settings.integrator == "radiosity"
+        for name, text in RADIOSITY_SETTINGS:
+            sub.prop(settings, name, text=text)
 
 
 class STRATUM_RENDER_PT_light_paths_max_bounces(StratumButtonsPanel, bpy.types.Panel):
@@ -233,7 +243,7 @@ class STRATUM_RENDER_PT_light_paths_roulette(StratumButtonsPanel, bpy.types.Pane
     def draw(self, context: bpy.types.Context) -> None:
         layout, settings = _settings_layout(self, context)
         col = layout.column()
-        col.active = settings.integrator not in NO_LIGHT_PATHS
+        col.active = settings.integrator not in NO_LIGHT_PATHS | FINAL_GATHER
         col.prop(settings, "rr_mode", text="Mode")
         sub = col.column()
         sub.active = settings.rr_mode != "off"
@@ -250,12 +260,14 @@ class STRATUM_RENDER_PT_light_paths_direct_light(StratumButtonsPanel, bpy.types.
         layout, settings = _settings_layout(self, context)
         col = layout.column()
         col.active = settings.integrator not in NO_LIGHT_SAMPLING
-        col.prop(settings, "light_sampling", text="Light Sampling")
-        sub = col.column()
+        strategy = col.column()
+        strategy.active = settings.integrator not in FINAL_GATHER
+        strategy.prop(settings, "light_sampling", text="Light Sampling")
+        sub = strategy.column()
         sub.active = settings.light_sampling == "mis"
         sub.prop(settings, "mis_heuristic", text="MIS Heuristic")
         sub = col.column()
-        sub.active = settings.light_sampling != "bsdf"
+        sub.active = settings.light_sampling != "bsdf" or settings.integrator in FINAL_GATHER
         sub.prop(settings, "triangle_sampling", text="Triangle Sampling")
 
 
@@ -270,7 +282,7 @@ class STRATUM_RENDER_PT_light_paths_control_variate(StratumButtonsPanel, bpy.typ
     def draw(self, context: bpy.types.Context) -> None:
         layout, settings = _settings_layout(self, context)
         col = layout.column()
-        col.active = settings.integrator not in NO_LIGHT_SAMPLING
+        col.active = settings.integrator not in NO_LIGHT_SAMPLING | FINAL_GATHER
         col.prop(settings, "control_variate", text="Ambient Radiance")
 
 

@@ -358,7 +358,11 @@ def test_every_sampler_and_integrator_repeats_one_image(library: Any, case: str)
                     with library.Renderer(native_scene, width=16, height=16, samples=4,
                                           max_bounces=6, seed=3, sampler=sampler,
                                           integrator=integrator,
-                                          threads=THREADS[i % len(THREADS)]) as renderer:
+                                          threads=THREADS[i % len(THREADS)],
+                                          # radiosity's solve at its cheapest (one patch per
+                                          # triangle side, few rays): as deterministic at any size
+                                          radiosity_patch_size=100.0,
+                                          radiosity_rays=16) as renderer:
                         renderer.start()
                         while not renderer.wait(1000):
                             pass

@@ -181,6 +181,8 @@ def test_light_paths_grey_out_what_an_integrator_does_not_use(library: Any,
                                                               scene_builder: Any) -> None:
     """Every option stays in its place and is active only where it changes the estimator:
     ambient occlusion traces no light paths; `direct` is the path tracer with max_bounces 0;
+    radiosity's settings are its own, and its final gather takes a light sample (triangle
+    sampling) but traces no paths (no bounces, roulette, strategy or control variate);
     light sampling, its heuristic and the control variate are path-tracer choices; the
     heuristic only weighs MIS's two strategies; the minimum depth matters while roulette is
     on. The native registry decides which integrators exist."""
@@ -191,17 +193,22 @@ def test_light_paths_grey_out_what_an_integrator_does_not_use(library: Any,
             for rr_mode in _items("rr_mode"):
                 s.integrator, s.light_sampling, s.rr_mode = integrator, light_sampling, rr_mode
                 active = _active({p: draw_panel(_panel(p), s.id_data) for p in panels})
-                paths = integrator != "ao"
-                path_tracer = integrator not in ("ao", "light")
+                paths = integrator not in ("ao", "radiosity")
+                path_tracer = integrator not in ("ao", "light", "radiosity")
+                radiosity = integrator == "radiosity"
                 assert active == {
                     "integrator": True,
                     "ao_distance": integrator == "ao",
-                    "max_bounces": integrator not in ("ao", "direct"),
+                    "radiosity_patch_size": radiosity,
+                    "radiosity_solver": radiosity,
+                    "radiosity_tolerance": radiosity,
+                    "radiosity_rays": radiosity,
+                    "max_bounces": integrator not in ("ao", "direct", "radiosity"),
                     "rr_mode": paths,
                     "rr_min_depth": paths and rr_mode != "off",
                     "light_sampling": path_tracer,
                     "mis_heuristic": path_tracer and light_sampling == "mis",
-                    "triangle_sampling": path_tracer and light_sampling != "bsdf",
+                    "triangle_sampling": (path_tracer and light_sampling != "bsdf") or radiosity,
                     "control_variate": path_tracer,
                 }, (integrator, light_sampling, rr_mode)
 

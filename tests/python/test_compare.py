@@ -270,7 +270,11 @@ def test_setting_values_are_the_native_renderers(native: Any, tiny_scene: Any) -
     is no choice is a SpecError naming the value."""
     for name in estimators.SETTING_NAMES:
         setting = native.setting(name)
-        accepted = setting.choice_names() or [setting.minimum, setting.maximum]
+        # An open minimum (radiosity_tolerance's 0) is itself rejected: the next float32 (the
+        # renderer stores a float) is the end.
+        lowest = (float(np.nextafter(np.float32(setting.minimum), np.float32(math.inf)))
+                  if setting.open_minimum else setting.minimum)
+        accepted = setting.choice_names() or [lowest, setting.maximum]
         for value in accepted:
             parsed = estimators.parse_value(name, str(value), "test")
             with native.Renderer(tiny_scene, **{name: parsed}):

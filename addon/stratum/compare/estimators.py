@@ -15,14 +15,18 @@ settings (issue 6) one configuration renders with, and the short label tables an
 | adaptive_threshold    | thr<value>                     |
 | adaptive_min_samples  | min<value>                     |
 | adaptive_metric       | metric-<value> (relative, mse) |
+| radiosity_patch_size  | patch<value>                   |
+| radiosity_solver      | <value> (shooting, gauss_seidel, jacobi) |
+| radiosity_tolerance   | tol<value>                     |
+| radiosity_rays        | rays<value>                    |
 
 The names are render settings of the library, and their values, ranges and defaults are the
 library's (native.settings(), read on first use: importing this module loads nothing); the
 Blender properties scene.stratum.<name> carry the same names.
 
 Spec syntax: `INTEGRATOR[:NAME=VALUE[,NAME=VALUE...]]`, INTEGRATOR a name of the native
-integrator registry (path, direct, ao, light). In the comma-separated --integrator list an item
-of the form NAME=VALUE (no colon) continues the settings of the spec before it, so
+integrator registry (path, direct, ao, light, radiosity). In the comma-separated --integrator
+list an item of the form NAME=VALUE (no colon) continues the settings of the spec before it, so
 `path:light_sampling=mis,mis_heuristic=balance,direct` is two specs.
 
 Resolution of one configuration's settings: the spec's value, else --set's, else the scene's
@@ -47,12 +51,15 @@ SETTING_NAMES: tuple[str, ...] = ("light_sampling", "mis_heuristic", "light_sele
                                   "triangle_sampling", "rr_mode", "rr_min_depth",
                                   "control_variate", "use_adaptive_sampling",
                                   "adaptive_threshold", "adaptive_min_samples",
-                                  "adaptive_metric")
+                                  "adaptive_metric", "radiosity_patch_size", "radiosity_solver",
+                                  "radiosity_tolerance", "radiosity_rays")
 PATH = "path"  # the integrator whose label names its light-sampling strategy
 _SUFFIX = {"light_selection": "sel-", "light_tree_splits": "split", "triangle_sampling": "tri-",
            "rr_mode": "rr-", "rr_min_depth": "rrmin", "control_variate": "cv",
            "use_adaptive_sampling": "adaptive", "adaptive_threshold": "thr",
-           "adaptive_min_samples": "min", "adaptive_metric": "metric-"}
+           "adaptive_min_samples": "min", "adaptive_metric": "metric-",
+           "radiosity_patch_size": "patch", "radiosity_solver": "", "radiosity_tolerance": "tol",
+           "radiosity_rays": "rays"}
 
 
 class SpecError(ValueError):

@@ -70,6 +70,11 @@ def format_stats(progress: native.Progress, elapsed: float) -> str:
     if progress.light_tree_bytes > 0:
         stats += (f" | Light tree {progress.light_tree_seconds * 1e3:.0f} ms, "
                   f"{progress.light_tree_bytes / 1e6:.2f} MB")
+    # The radiosity solve's size and cost (issue 17: K and the memory used).
+    if progress.radiosity_patches > 0:
+        stats += (f" | Radiosity {progress.radiosity_patches:.0f} patches, "
+                  f"{progress.radiosity_bytes / 1e6:.1f} MB, {progress.radiosity_seconds:.2f} s, "
+                  f"{progress.radiosity_iterations:.0f} iterations")
     return stats
 
 

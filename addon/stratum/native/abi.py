@@ -257,6 +257,10 @@ class _Progress(ctypes.Structure):
         ("samples_average", ctypes.c_double),
         ("light_tree_seconds", ctypes.c_double),
         ("light_tree_bytes", ctypes.c_double),
+        ("radiosity_patches", ctypes.c_double),
+        ("radiosity_bytes", ctypes.c_double),
+        ("radiosity_seconds", ctypes.c_double),
+        ("radiosity_iterations", ctypes.c_double),
     ]
 
 

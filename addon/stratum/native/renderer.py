@@ -35,6 +35,12 @@ class Progress:
     # bytes held (stratum/render.h).
     light_tree_seconds: float = 0.0
     light_tree_bytes: float = 0.0
+    # The radiosity integrator's solve (all 0 for the others): patches K, the most bytes it held,
+    # seconds (form factors and solver) and solver iterations (stratum/render.h).
+    radiosity_patches: float = 0.0
+    radiosity_bytes: float = 0.0
+    radiosity_seconds: float = 0.0
+    radiosity_iterations: float = 0.0
 
 
 class Renderer(_Handle):
@@ -141,6 +147,10 @@ class Renderer(_Handle):
             samples_average=float(p.samples_average),
             light_tree_seconds=float(p.light_tree_seconds),
             light_tree_bytes=float(p.light_tree_bytes),
+            radiosity_patches=float(p.radiosity_patches),
+            radiosity_bytes=float(p.radiosity_bytes),
+            radiosity_seconds=float(p.radiosity_seconds),
+            radiosity_iterations=float(p.radiosity_iterations),
         )
 
     def read_pixels(self, out: np.ndarray | None = None) -> np.ndarray:

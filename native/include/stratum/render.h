@@ -24,11 +24,14 @@ STRATUM_API void stratum_renderer_destroy(StratumRenderer* renderer);
  *           crop_x, crop_y, crop_width, crop_height (the border region of the width x height
  *           frame in pixels, bottom-left origin; crop_width = 0 = the whole frame; the image
  *           read and written is the region), film_transparent (1: background alpha 0),
- *           rr_min_depth (first bounce Russian roulette may end a path, default 3)
+ *           rr_min_depth (first bounce Russian roulette may end a path, default 3),
+ *           radiosity_rays (form-factor rays per patch)
  *   float:  filter_width (pixels), ao_distance (scene units, > 0),
- *           control_variate (ambient radiance L_a of the control variate, >= 0; 0 = off)
+ *           control_variate (ambient radiance L_a of the control variate, >= 0; 0 = off),
+ *           radiosity_patch_size (scene units, 0 = automatic), radiosity_tolerance
  *   string: sampler (a choice: stratum_setting_choice), filter_type ("box", "blackman_harris"),
- *           integrator (path, light, direct, ao), hemisphere (a choice),
+ *           integrator (path, light, direct, ao, radiosity), hemisphere (a choice),
+ *           radiosity_solver ("shooting", "gauss_seidel", "jacobi"),
  *           light_sampling ("mis", "nee", "bsdf"), mis_heuristic ("power", "balance", "max"),
  *           light_selection ("mixed", "power", "uniform", "tree", "auto"),
  *           triangle_sampling ("solid_angle", "area": how NEE takes a point on an emissive
@@ -76,6 +79,13 @@ typedef struct StratumProgress {
      * render_seconds) and the bytes it holds; both 0 when the render uses no tree. */
     double light_tree_seconds;
     double light_tree_bytes;
+    /* The radiosity integrator's solve, before its first sample (0 for other integrators):
+     * patches K, the most bytes the solve held at once (patches, form factors, vectors), its
+     * seconds (form factors and solver, within render_seconds) and the solver's iterations. */
+    double radiosity_patches;
+    double radiosity_bytes;
+    double radiosity_seconds;
+    double radiosity_iterations;
 } StratumProgress;
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);

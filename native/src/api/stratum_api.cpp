@@ -408,7 +408,11 @@ StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgres
                                static_cast<int32_t>(p.samples_in_progress),
                                p.samples_average,
                                p.light_tree_seconds,
-                               p.light_tree_bytes};
+                               p.light_tree_bytes,
+                               p.radiosity_patches,
+                               p.radiosity_bytes,
+                               p.radiosity_seconds,
+                               p.radiosity_iterations};
         // A failure inside the render thread is reported by the next progress call.
         return p.error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_INTERNAL, "render failed: " + p.error);
     });

@@ -2,6 +2,7 @@
 // one camera ray, drawing every random number from the sampler at the named dimensions.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <span>
@@ -12,6 +13,8 @@
 #include "film/film.h"
 #include "integrators/camera_path_passes.h"
 #include "integrators/estimator_options.h"
+#include "radiosity/radiosity_settings.h"
+#include "radiosity/radiosity_solution.h"
 #include "render_scene/render_scene.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler.h"
@@ -51,6 +54,8 @@ struct IntegratorSettings {
     float control_variate = 0.0f;
     // The Mist pass's start, depth and falloff (Blender's world mist settings).
     MistSettings mist;
+    // `radiosity`: patch size, solver, tolerance, form-factor rays (radiosity/radiosity_settings.h).
+    RadiositySettings radiosity;
 };
 
 // One camera ray's estimate: the radiance, and the alpha the film stores (1 = covered; a
@@ -63,8 +68,12 @@ struct RadianceSample {
 class Integrator {
 public:
     virtual ~Integrator() = default;
-    // Called once per render, before any sample, with the scene it renders.
-    virtual void prepare(const RenderScene& scene) { (void)scene; }
+    // Called once per render, before any sample, with the scene it renders; a long preparation
+    // stops by throwing RenderScene::BuildCancelled once `cancel` (the render's) is set.
+    virtual void prepare(const RenderScene& scene, const std::atomic<bool>& cancel) {
+        (void)scene;
+        (void)cancel;
+    }
     // One camera ray's estimate; the integrator writes the extra passes the film holds into
     // `passes`. `rays` is incremented by the number of rays traced.
     virtual RadianceSample estimate(const RenderScene& scene, const Sampler& sampler,
@@ -96,6 +105,9 @@ public:
         (void)scene;
         return {};
     }
+    // What prepare() computed for the radiosity method (patches, memory, time), for the
+    // render's progress; null for the other integrators.
+    virtual const RadiosityReport* radiosity_report() const { return nullptr; }
 };
 
 struct IntegratorEntry {

@@ -4,6 +4,7 @@
 #include "integrators/integrator.h"
 #include "integrators/light_tracer.h"
 #include "integrators/path_integrator.h"
+#include "integrators/radiosity_integrator.h"
 
 namespace stratum {
 
@@ -42,6 +43,11 @@ const std::array kIntegrators = {
          "Openness 1 - AO of the first hit (seed 000 eq. 20): 1 = unoccluded (white), 0 = occluded within "
          "ao_distance; one ray per sample from the hemisphere setting's distribution; background 1"},
         &make<AoIntegrator>},
+    IntegratorEntry{
+        {"radiosity", "Radiosity",
+         "Radiosity for diffuse scenes (textbook §3): patches, form factors by ray casting, solved once "
+         "(radiosity_solver), seen through a final gather; other closures count by their diffuse albedo"},
+        &make<RadiosityIntegrator>},
 };
 
 }  // namespace

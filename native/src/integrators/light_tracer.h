@@ -67,7 +67,9 @@ public:
                             const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;
     // Chooses how often particles leave the sky (sky_probability) for this scene.
-    void prepare(const RenderScene& scene) override { sky_probability_ = sky_probability(scene); }
+    void prepare(const RenderScene& scene, const std::atomic<bool>&) override {
+        sky_probability_ = sky_probability(scene);
+    }
     // W x H particles per sample index: one per pixel of the full frame.
     uint64_t light_paths_per_sample(uint32_t frame_width, uint32_t frame_height) const override {
         return static_cast<uint64_t>(frame_width) * frame_height;

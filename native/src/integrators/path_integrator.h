@@ -49,7 +49,7 @@ public:
     explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
     // The light tree, when this render chooses lights by it, is built here, before the first
     // sample: not by the first light sample while every other thread waits for it.
-    void prepare(const RenderScene& scene) override {
+    void prepare(const RenderScene& scene, const std::atomic<bool>&) override {
         if (scene.lights().resolve(settings_.light_selection) == LightSelection::Tree)
             (void)scene.lights().tree();
     }

@@ -144,6 +144,7 @@ std::string Renderer::start() {
         std::lock_guard lock(state_mutex_);
         render_seconds_ = 0;
         light_tree_seconds_ = light_tree_bytes_ = 0;
+        radiosity_patches_ = radiosity_bytes_ = radiosity_seconds_ = radiosity_iterations_ = 0;
         cancelled_ = false;
         error_.clear();
     }
@@ -189,7 +190,14 @@ void Renderer::run() {
             render_start_ = t0;
             rendering_ = true;
         }
-        integrator_->prepare(*render_scene_);
+        arena.execute([&] { integrator_->prepare(*render_scene_, cancel_); });
+        if (const RadiosityReport* radiosity = integrator_->radiosity_report()) {
+            std::lock_guard lock(state_mutex_);
+            radiosity_patches_ = static_cast<double>(radiosity->patches);
+            radiosity_bytes_ = radiosity->peak_bytes;
+            radiosity_seconds_ = radiosity->form_factor_seconds + radiosity->solve_seconds;
+            radiosity_iterations_ = static_cast<double>(radiosity->iterations.size());
+        }
         // The light tree, if this render chooses lights by it and prepare() built it (a tree an
         // earlier render built is reported only when this one uses it too).
         const LightSet& lights = render_scene_->lights();
@@ -431,6 +439,10 @@ RenderProgress Renderer::progress() const {
     p.build_seconds = build_seconds_;
     p.light_tree_seconds = light_tree_seconds_;
     p.light_tree_bytes = light_tree_bytes_;
+    p.radiosity_patches = radiosity_patches_;
+    p.radiosity_bytes = radiosity_bytes_;
+    p.radiosity_seconds = radiosity_seconds_;
+    p.radiosity_iterations = radiosity_iterations_;
     p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;
     const double pixel_samples_total = work_per_sample_ * p.samples_total;
     p.fraction_done = pixel_samples_total > 0 ? pixel_samples_done / pixel_samples_total : 0.0;

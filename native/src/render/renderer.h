@@ -53,6 +53,9 @@ struct RenderProgress {
     // The light tree this render chooses lights by (0 when it uses none): its build time, with
     // the lights' bounds, and the bytes it holds (LightSet::tree_report).
     double light_tree_seconds = 0, light_tree_bytes = 0;
+    // The radiosity integrator's solve (0 for the other integrators): patches K, the most bytes
+    // it held at once, seconds (form factors and solver) and solver iterations.
+    double radiosity_patches = 0, radiosity_bytes = 0, radiosity_seconds = 0, radiosity_iterations = 0;
     std::string error;  // a failure inside the render thread
 };
 
@@ -133,6 +136,7 @@ private:
     std::condition_variable done_cv_;
     double build_seconds_ = 0, render_seconds_ = 0;
     double light_tree_seconds_ = 0, light_tree_bytes_ = 0;
+    double radiosity_patches_ = 0, radiosity_bytes_ = 0, radiosity_seconds_ = 0, radiosity_iterations_ = 0;
     std::chrono::steady_clock::time_point render_start_;
     bool rendering_ = false;  // path tracing (not BVH build) in progress
     bool cancelled_ = false;

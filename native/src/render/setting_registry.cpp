@@ -9,6 +9,7 @@
 #include "film/pixel_filter.h"
 #include "integrators/estimator_options.h"
 #include "lights/light_tree.h"
+#include "radiosity/radiosity_settings.h"
 #include "sampling/hemisphere.h"
 #include "sampling/sampler_registry.h"
 
@@ -427,6 +428,43 @@ const std::array kSettings = {
                     s.passes.clear();
                     for (const size_t c : choices) s.passes.push_back(static_cast<Pass>(c + 1));
                 }},
+    SettingSpec{{"radiosity_patch_size", "Patch Size",
+                 "Radiosity: longest edge of a patch; triangles are split until theirs are shorter (0 = "
+                 "automatic: the scene's bounding-box diagonal / 32)"},
+                SettingKind::Float,
+                0.0,
+                kFloatMax,
+                false,
+                "scene units",
+                nullptr,
+                STRATUM_FLOAT(estimator.radiosity.patch_size)},
+    SettingSpec{{"radiosity_solver", "Solver", "Radiosity: how the linear system of the patches is solved"},
+                SettingKind::Choice,
+                0,
+                0,
+                false,
+                "",
+                &radiosity_solver_choices,
+                STRATUM_ENUM(estimator.radiosity.solver, RadiositySolver)},
+    SettingSpec{{"radiosity_tolerance", "Tolerance",
+                 "Radiosity: the solve stops when the textbook's error estimate Delta E is at most this "
+                 "share of the scene's mean radiance"},
+                SettingKind::Float,
+                0.0,
+                1.0,
+                true,
+                "",
+                nullptr,
+                STRATUM_FLOAT(estimator.radiosity.tolerance)},
+    SettingSpec{{"radiosity_rays", "Form Factor Rays",
+                 "Radiosity: rays cast from each patch to estimate its form factors (Nusselt analogy)"},
+                SettingKind::Int,
+                1,
+                kMaxRadiosityRays,
+                false,
+                "",
+                nullptr,
+                STRATUM_UINT(estimator.radiosity.rays)},
 };
 
 #undef STRATUM_UINT
