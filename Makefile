@@ -126,10 +126,12 @@ bench: build microbench
 # The study: the sampler runs of issue 4 (Cornell box, Wolf, AO; 24.6 min measured on 2 shared
 # cores) and the estimator ladder of issue 6 (small-light, large-light and glossy Cornell boxes;
 # 30 min measured under load, 9.3 min on a quiet machine), `stratum compare` runs into
-# out/study/, then out/study/summary.md, out/study/estimators.md and figures. Not part of
-# `make test`. Re-running renders only what is missing.
+# out/study/, then out/study/summary.md, out/study/estimators.md and figures; the radiosity
+# solvers of issue 17 (scripts/study_radiosity.py, seconds) into out/study/radiosity.md. Not part
+# of `make test`. Re-running renders only what is missing.
 study: build
 	$(PY) scripts/study_auto_lights.py --out out/study
+	$(PY) scripts/study_radiosity.py --out out/study
 	$(PY) scripts/bench_quality.py --scene many_lights_hall --sampler sobol --res 96 --samples 32 \
 		--reference-samples 1024 --light-selection tree,tree:1,power,uniform,mixed --section quality_lights
 	$(PY) scripts/study.py --out out/study --jobs 2

@@ -30,6 +30,10 @@ The runs (the source documents' experiments, with more samplers, seeds and spp):
 * adaptive_<scene>_<sampler>: the Cornell box and Wolf, sobol, zsobol and random, fixed and
   adaptive sampling at equal time (scripts/study_adaptive.py); out/study/adaptive.md, which also
   shows Cycles' adaptive sampling (out/bench/adaptive.json) when `make bench` has measured it.
+* radiosity: not a compare run: `make study` runs scripts/study_radiosity.py first (the three
+  radiosity solvers on the diffuse Cornell box, residual against iterations and time, claim 12
+  of the textbook) into out/study/radiosity.json; the summary writes out/study/radiosity.md and
+  its figure from it.
 
     .venv/bin/python scripts/study.py [--out out/study] [--jobs 2] [--only cornell,wolf]
                                       [--quick] [--dry-run] [--summary-only]

@@ -15,6 +15,7 @@ from typing import Any
 import study_adaptive
 import study_estimators
 import study_lights
+import study_radiosity
 
 BASELINE = "lcg"  # the coursework's "Standard" sampler
 AO_HEMISPHERES = ("uniform_angles", "uniform", "cosine")
@@ -216,6 +217,9 @@ def write_summary(out: Path, log: list[dict[str, Any]]) -> None:
     adaptive_text, headline["adaptive"] = study_adaptive.write_page(out, load_results)
     parts += ["## Adaptive sampling (issue 16)", "", "Also in adaptive.md:", "",
               adaptive_text.split("\n", 1)[1].replace("\n## ", "\n### "), ""]
+    radiosity_text, headline["radiosity"] = study_radiosity.write_page(out, load_results)
+    parts += ["## Radiosity solvers (issue 17)", "", "Also in radiosity.md:", "",
+              radiosity_text.split("\n", 1)[1].replace("\n## ", "\n### "), ""]
     if log:
         total = sum(r["seconds"] for r in log)
         parts += ["## Run time", "", "| run | minutes |", "|---|---|"]

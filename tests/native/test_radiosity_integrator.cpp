@@ -208,6 +208,28 @@ TEST(RadiosityIntegrator, ReportsPatchesMemoryAndTimeInProgress) {
     EXPECT_GT(out.progress.radiosity_seconds, 0.0);
     EXPECT_GE(out.progress.radiosity_iterations, 1.0);
     EXPECT_EQ(out.notices, "");
+    // The solver's iterations, 4 numbers each: the last one's relative ΔE is under the
+    // tolerance (1e-3 by default) and the seconds grow.
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    ASSERT_EQ(apply_settings(r, {{"width", 8},
+                                 {"height", 8},
+                                 {"samples", 1},
+                                 {"integrator", "radiosity"},
+                                 {"radiosity_patch_size", 0.5}}),
+              "");
+    ASSERT_TRUE(render_to_end(r));
+    StratumProgress p{};
+    ASSERT_EQ(stratum_renderer_progress(r, &p), STRATUM_OK);
+    const size_t iterations = static_cast<size_t>(p.radiosity_iterations);
+    ASSERT_GE(iterations, 1u);
+    std::vector<double> history(4 * iterations);
+    EXPECT_NE(stratum_renderer_read_radiosity_iterations(r, history.data(), history.size() - 1), STRATUM_OK);
+    ASSERT_EQ(stratum_renderer_read_radiosity_iterations(r, history.data(), history.size()), STRATUM_OK)
+        << stratum_last_error();
+    EXPECT_LE(history[4 * (iterations - 1) + 1], 1e-3);
+    for (size_t k = 1; k < iterations; ++k) EXPECT_GE(history[4 * k + 3], history[4 * (k - 1) + 3]);
+    stratum_renderer_destroy(r);
     const RenderOutput path = render(scene, {{"width", 8}, {"height", 8}, {"samples", 1}});
     EXPECT_EQ(path.progress.radiosity_patches, 0.0);
     stratum_scene_destroy(scene);

@@ -153,6 +153,18 @@ class Renderer(_Handle):
             radiosity_iterations=float(p.radiosity_iterations),
         )
 
+    def radiosity_iterations(self) -> np.ndarray:
+        """The radiosity solve of the last render, one row per solver iteration: the textbook's
+        Delta E, Delta E over the mean radiance, the residual (radiance) and the solver's seconds
+        so far (stratum/render.h); no rows for the other integrators."""
+        rows = int(self.progress().radiosity_iterations)
+        out = np.empty((rows, 4), dtype=np.float64)
+        _check(self._lib,
+               self._lib.stratum_renderer_read_radiosity_iterations(
+                   self.handle, out.ctypes.data_as(ctypes.POINTER(ctypes.c_double)), out.size),
+               "stratum_renderer_read_radiosity_iterations")
+        return out
+
     def read_pixels(self, out: np.ndarray | None = None) -> np.ndarray:
         """Copies the current image (linear RGBA, rows bottom to top) into `out` (a contiguous
         float32 array of width*height*4 values, any shape) with one native copy."""

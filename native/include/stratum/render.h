@@ -90,6 +90,14 @@ typedef struct StratumProgress {
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);
 
+/* The radiosity integrator's solver iterations of the last render, radiosity_iterations of them
+ * (StratumProgress): 4 doubles each, in order the textbook's stopping estimate Delta E, Delta E
+ * over the mean radiance (what radiosity_tolerance bounds), the residual (both in radiance) and
+ * the solver's seconds so far. `count` is the number of doubles the buffer holds: 4 x the
+ * iterations. */
+STRATUM_API StratumStatus stratum_renderer_read_radiosity_iterations(const StratumRenderer* r, double* out,
+                                                                     size_t count);
+
 /* Copies the current image: width*height*4 floats (linear RGBA; for a border render the
  * region's size), rows bottom to top as Blender's render result. `count` is the number of floats the buffer
  * holds. */

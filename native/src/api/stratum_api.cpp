@@ -418,6 +418,25 @@ StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgres
     });
 }
 
+StratumStatus stratum_renderer_read_radiosity_iterations(const StratumRenderer* r, double* out,
+                                                         size_t count) {
+    return guarded("stratum_renderer_read_radiosity_iterations", [&] {
+        require(r && out, "renderer or out is NULL");
+        const std::vector<stratum::IterationReport> iterations = r->renderer.radiosity_iterations();
+        require(count == 4 * iterations.size(), "buffer holds " + std::to_string(count) +
+                                                    " doubles, the last render's radiosity solve needs " +
+                                                    std::to_string(4 * iterations.size()) + " (4 x its " +
+                                                    std::to_string(iterations.size()) + " iterations)");
+        for (const stratum::IterationReport& it : iterations) {
+            *out++ = it.delta_e;
+            *out++ = it.relative;
+            *out++ = it.residual;
+            *out++ = it.seconds;
+        }
+        return STRATUM_OK;
+    });
+}
+
 StratumStatus stratum_renderer_read_pixels(const StratumRenderer* r, float* rgba, size_t count) {
     return guarded("stratum_renderer_read_pixels", [&] {
         require(r && rgba, "renderer or rgba is NULL");

@@ -145,6 +145,7 @@ std::string Renderer::start() {
         render_seconds_ = 0;
         light_tree_seconds_ = light_tree_bytes_ = 0;
         radiosity_patches_ = radiosity_bytes_ = radiosity_seconds_ = radiosity_iterations_ = 0;
+        radiosity_history_.clear();
         cancelled_ = false;
         error_.clear();
     }
@@ -197,6 +198,7 @@ void Renderer::run() {
             radiosity_bytes_ = radiosity->peak_bytes;
             radiosity_seconds_ = radiosity->form_factor_seconds + radiosity->solve_seconds;
             radiosity_iterations_ = static_cast<double>(radiosity->iterations.size());
+            radiosity_history_ = radiosity->iterations;
         }
         // The light tree, if this render chooses lights by it and prepare() built it (a tree an
         // earlier render built is reported only when this one uses it too).
@@ -450,6 +452,11 @@ RenderProgress Renderer::progress() const {
     p.samples_average = work_per_sample_ > 0 ? pixel_samples_done / work_per_sample_ : 0.0;
     p.error = error_;
     return p;
+}
+
+std::vector<IterationReport> Renderer::radiosity_iterations() const {
+    std::lock_guard lock(state_mutex_);
+    return radiosity_history_;
 }
 
 void Renderer::read_pixels(float* rgba) const {

@@ -81,6 +81,8 @@ public:
     // True when the render has ended within the timeout.
     bool wait(int timeout_ms);
     RenderProgress progress() const;
+    // The radiosity integrator's solver iterations of the last render (empty for the others).
+    std::vector<IterationReport> radiosity_iterations() const;
     // width()*height()*4 floats, rows bottom to top: the border region (the whole frame when
     // there is none).
     void read_pixels(float* rgba) const;
@@ -137,6 +139,7 @@ private:
     double build_seconds_ = 0, render_seconds_ = 0;
     double light_tree_seconds_ = 0, light_tree_bytes_ = 0;
     double radiosity_patches_ = 0, radiosity_bytes_ = 0, radiosity_seconds_ = 0, radiosity_iterations_ = 0;
+    std::vector<IterationReport> radiosity_history_;
     std::chrono::steady_clock::time_point render_start_;
     bool rendering_ = false;  // path tracing (not BVH build) in progress
     bool cancelled_ = false;
