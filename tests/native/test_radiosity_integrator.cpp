@@ -323,3 +323,23 @@ TEST(RadiosityIntegrator, CancelDuringTheSolveIsPrompt) {
     stratum_renderer_destroy(r);
     stratum_scene_destroy(scene);
 }
+
+// A white closed enclosure that emits has no finite solution (κ = 1: M grows with every
+// iteration): the solve stops at its cap, the image shows the last iterate, finite, and the
+// render says so.
+TEST(RadiosityIntegrator, SaysWhenTheSolveStopsAtItsCap) {
+    IntegratingSphere s = make_closed_sphere(1.0f, 1.0f, 6);
+    ASSERT_NE(s.scene, nullptr) << stratum_last_error();
+    const RenderOutput out = render(s.scene, {{"width", 4},
+                                              {"height", 4},
+                                              {"samples", 1},
+                                              {"integrator", "radiosity"},
+                                              {"radiosity_solver", "gauss_seidel"},
+                                              {"radiosity_rays", 16},
+                                              {"radiosity_patch_size", 10.0}});
+    ASSERT_TRUE(out.error.empty()) << out.error;
+    EXPECT_NE(out.notices.find("radiosity: the solve stopped after 10000 iterations"), std::string::npos)
+        << out.notices;
+    for (const float v : out.rgba) EXPECT_TRUE(std::isfinite(v));
+    stratum_scene_destroy(s.scene);
+}

@@ -14,8 +14,9 @@
 // to the scene's extent gives the same K whatever the units. A cube room of side s has diagonal
 // s√3, so size = s√3/32 splits each face's two triangles (longest edge s√2) into
 // ⌊32√2/√3⌋ + 1 = 27 parts per edge, 729 patches each: 2 × 6 × 729 × 2 sides = 17,496 patches,
-// about 4.5 M form-factor rays at 256 rays and at most 36 MB of form factors. The default
-// tolerance 1e-3 is the accuracy the book finds Monte Carlo rarely beats (claim 13, 0.1 %).
+// about 4.5 M form-factor rays at 256 rays and at most 36 MB of form factors (twice that while
+// shooting, which also holds their transpose). The default tolerance 1e-3 is the accuracy the
+// book finds Monte Carlo rarely beats (claim 13, 0.1 %).
 #pragma once
 
 #include <cstddef>

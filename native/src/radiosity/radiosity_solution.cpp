@@ -61,8 +61,6 @@ RadiositySolution::RadiositySolution(const RenderScene& scene, const RadiositySe
     }
     form_factors.sky_irradiance = {};
     report_.patches = n;
-    report_.form_factors = form_factors.gather.entries();
-    report_.rays = form_factors.rays + lamps.rays;
     // A, κ and b now; M, a previous iterate and (shooting) U or (Jacobi) the next in the solve.
     const double vectors = static_cast<double>(n) * (sizeof(float) + sizeof(Rgb) + 4.0 * sizeof(DoubleRgb));
     double matrices = static_cast<double>(form_factors.gather.bytes());
@@ -84,7 +82,6 @@ RadiositySolution::RadiositySolution(const RenderScene& scene, const RadiositySe
     report_.iterations = std::move(solve.iterations);
     report_.converged = solve.converged;
     report_.solve_seconds = report_.iterations.empty() ? 0.0 : report_.iterations.back().seconds;
-    report_.kept_bytes = static_cast<double>(patches_.bytes() + exitance_.capacity() * sizeof(Rgb));
 }
 
 }  // namespace stratum

@@ -29,15 +29,12 @@ namespace stratum {
 
 // What the solve cost and how it ended (for the render's progress and for studies).
 struct RadiosityReport {
-    uint64_t patches = 0;       // K
-    uint64_t form_factors = 0;  // non-zero entries of Ĝ
-    uint64_t rays = 0;          // form-factor and lamp rays
-    double peak_bytes = 0.0;    // the most the solution held at once
-    double kept_bytes = 0.0;    // what it keeps for rendering (patches and M)
-    double form_factor_seconds = 0.0;
-    double solve_seconds = 0.0;  // the solver's own time (without the measures)
+    uint64_t patches = 0;              // K
+    double peak_bytes = 0.0;           // the most the solution held at once
+    double form_factor_seconds = 0.0;  // form factors, lamps and (shooting) the transpose
+    double solve_seconds = 0.0;        // the solver's own time (without the measures)
     std::vector<IterationReport> iterations;
-    bool converged = false;
+    bool converged = false;  // false: the solver stopped at SolveOptions::max_iterations
 };
 
 class RadiositySolution {

@@ -193,12 +193,20 @@ void Renderer::run() {
         }
         arena.execute([&] { integrator_->prepare(*render_scene_, cancel_); });
         if (const RadiosityReport* radiosity = integrator_->radiosity_report()) {
-            std::lock_guard lock(state_mutex_);
-            radiosity_patches_ = static_cast<double>(radiosity->patches);
-            radiosity_bytes_ = radiosity->peak_bytes;
-            radiosity_seconds_ = radiosity->form_factor_seconds + radiosity->solve_seconds;
-            radiosity_iterations_ = static_cast<double>(radiosity->iterations.size());
-            radiosity_history_ = radiosity->iterations;
+            {
+                std::lock_guard lock(state_mutex_);
+                radiosity_patches_ = static_cast<double>(radiosity->patches);
+                radiosity_bytes_ = radiosity->peak_bytes;
+                radiosity_seconds_ = radiosity->form_factor_seconds + radiosity->solve_seconds;
+                radiosity_iterations_ = static_cast<double>(radiosity->iterations.size());
+                radiosity_history_ = radiosity->iterations;
+            }
+            if (!radiosity->converged && !radiosity->iterations.empty())
+                add_notice("radiosity: the solve stopped after " +
+                           std::to_string(radiosity->iterations.size()) +
+                           " iterations without reaching radiosity_tolerance (its last Delta E is " +
+                           std::to_string(radiosity->iterations.back().relative) +
+                           " of the mean radiance): the image shows that iterate");
         }
         // The light tree, if this render chooses lights by it and prepare() built it (a tree an
         // earlier render built is reported only when this one uses it too).
