@@ -343,3 +343,41 @@ TEST(RadiosityIntegrator, SaysWhenTheSolveStopsAtItsCap) {
     for (const float v : out.rgba) EXPECT_TRUE(std::isfinite(v));
     stratum_scene_destroy(s.scene);
 }
+
+// The solve depends on the scene only: a renderer that renders again after a camera move keeps
+// it (the same report, to the bit; the viewport's start passes and orbits solve once), and the
+// image equals a fresh renderer's; a material edit or another radiosity setting solves anew.
+TEST(RadiosityIntegrator, KeepsItsSolveWhileOnlyTheCameraMoves) {
+    StratumScene* scene = make_cornell_box();
+    ASSERT_NE(scene, nullptr) << stratum_last_error();
+    const Settings settings = {{"width", 12},
+                               {"height", 12},
+                               {"samples", 4},
+                               {"integrator", "radiosity"},
+                               {"radiosity_patch_size", 0.5}};
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    ASSERT_EQ(apply_settings(r, settings), "");
+    const auto solve_seconds = [&] {
+        StratumProgress p{};
+        EXPECT_TRUE(render_to_end(r));
+        EXPECT_EQ(stratum_renderer_progress(r, &p), STRATUM_OK) << stratum_last_error();
+        EXPECT_GT(p.radiosity_patches, 0.0);
+        return p.radiosity_seconds;
+    };
+    const double first = solve_seconds();
+    const StratumCameraDesc moved = camera_at(0.2f, 0.1f, 2.5f);
+    ASSERT_EQ(stratum_scene_set_camera(scene, &moved), STRATUM_OK);
+    EXPECT_EQ(solve_seconds(), first) << "a camera move solved again";
+    std::vector<float> kept(12 * 12 * 4);
+    ASSERT_EQ(stratum_renderer_read_pixels(r, kept.data(), kept.size()), STRATUM_OK);
+    EXPECT_EQ(render(scene, settings).rgba, kept) << "the kept solve renders otherwise than a fresh one";
+    ASSERT_EQ(stratum_renderer_set_int(r, "radiosity_rays", 128), STRATUM_OK);
+    const double other_rays = solve_seconds();
+    EXPECT_NE(other_rays, first);
+    StratumMaterialDesc grey = diffuse_grey(0.5f);
+    ASSERT_EQ(stratum_scene_set_material(scene, 0, &grey), STRATUM_OK) << stratum_last_error();
+    EXPECT_NE(solve_seconds(), other_rays) << "a material edit kept the old solve";
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(scene);
+}

@@ -105,6 +105,14 @@ public:
         (void)scene;
         return {};
     }
+    // Takes over what `previous` (the integrator of the same renderer's last render, prepared
+    // for this render scene, which has not changed since but for the camera) computed in
+    // prepare(), when that stands for what this one's prepare() would compute; then the
+    // renderer does not call prepare(). A camera move in the viewport so keeps a radiosity solve.
+    virtual bool adopt(const Integrator& previous) {
+        (void)previous;
+        return false;
+    }
     // What prepare() computed for the radiosity method (patches, memory, time), for the
     // render's progress; null for the other integrators.
     virtual const RadiosityReport* radiosity_report() const { return nullptr; }

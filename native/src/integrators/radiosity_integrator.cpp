@@ -28,7 +28,14 @@ std::string model_name(int32_t model) {
 }  // namespace
 
 void RadiosityIntegrator::prepare(const RenderScene& scene, const std::atomic<bool>& cancel) {
-    solution_ = std::make_unique<const RadiositySolution>(scene, settings_.radiosity, &cancel);
+    solution_ = std::make_shared<const RadiositySolution>(scene, settings_.radiosity, &cancel);
+}
+
+bool RadiosityIntegrator::adopt(const Integrator& previous) {
+    const auto* other = dynamic_cast<const RadiosityIntegrator*>(&previous);
+    if (!other || !other->solution_ || !(other->settings_.radiosity == settings_.radiosity)) return false;
+    solution_ = other->solution_;
+    return true;
 }
 
 std::vector<std::string> RadiosityIntegrator::notices(const Scene& scene) const {

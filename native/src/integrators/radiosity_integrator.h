@@ -11,8 +11,10 @@
 // | film_transparent     | background seen by the camera gives alpha 0 |
 //
 // prepare() solves the scene once (radiosity/radiosity_solution.h): the solution depends on the
-// scene only. Each camera sample then takes, at the first surface x it meets (diffuse albedo
-// κ(x) of its textured closures, Diffuse Color as seen from the camera):
+// scene only, so the next render of the same renderer keeps it while only the camera changes
+// (adopt(): the viewport's start passes and orbits do not solve again). Each camera sample then takes, at the
+// first surface x it meets (diffuse albedo κ(x) of its textured closures, Diffuse Color as seen from the
+// camera):
 //     L = L_e(x) + (κ(x)/π) [ L_l c / p_l  +  M_r(y) ]
 // * L_l c / p_l: the path tracer's next-event estimation (LightSet::sample_cut: one light
 //   sample, or one per cut node of a split light tree, each with a shadow ray): the direct
@@ -47,6 +49,9 @@ class RadiosityIntegrator final : public Integrator {
 public:
     explicit RadiosityIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
     void prepare(const RenderScene& scene, const std::atomic<bool>& cancel) override;
+    // The previous render's solution, when it was a radiosity render with the same settings
+    // (the renderer vouches that the scene is the same): the solve depends on the scene only.
+    bool adopt(const Integrator& previous) override;
     RadianceSample estimate(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                             const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;
@@ -56,7 +61,7 @@ public:
 
 private:
     IntegratorSettings settings_;
-    std::unique_ptr<const RadiositySolution> solution_;
+    std::shared_ptr<const RadiositySolution> solution_;
 };
 
 }  // namespace stratum

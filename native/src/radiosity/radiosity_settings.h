@@ -35,6 +35,7 @@ struct RadiositySettings {
     RadiositySolver solver = RadiositySolver::Shooting;
     float tolerance = 1e-3f;
     uint32_t rays = 256;
+    bool operator==(const RadiositySettings&) const = default;
 };
 
 inline constexpr float kAutomaticPatchDivisions = 32.0f;

@@ -123,6 +123,7 @@ std::string Renderer::start() {
     adaptive_ = adaptive;
     if (settings_.sampler->screen_space) adaptive_.block = kScreenBlock;
     stopped_.assign(adaptive.enabled ? region.pixel_count() : 0, 0);
+    previous_integrator_ = std::move(integrator_);
     integrator_ = std::move(integrator);
     sampler_ = settings_.sampler->create(
         SamplerSettings{settings_.samples, settings_.seed, settings_.width, settings_.height});
@@ -160,6 +161,10 @@ void Renderer::run() {
         tbb::task_arena arena(s.threads == 0 ? tbb::task_arena::automatic : static_cast<int>(s.threads));
         // Edits since the last render: applied in place where the built scene can take them
         // (RenderScene::update), else the scene is built anew.
+        // Only the camera changed since the last render (or nothing): what the last integrator
+        // prepared for this render scene may stand (Integrator::adopt).
+        const bool scene_kept = render_scene_ && !pending_.rebuild && pending_.instances.empty() &&
+                                !pending_.materials && !pending_.lights && !pending_.world;
         if (render_scene_ && pending_.any()) {
             const auto t0 = Clock::now();
             bool updated = false;
@@ -191,7 +196,9 @@ void Renderer::run() {
             render_start_ = t0;
             rendering_ = true;
         }
-        arena.execute([&] { integrator_->prepare(*render_scene_, cancel_); });
+        const bool adopted = scene_kept && previous_integrator_ && integrator_->adopt(*previous_integrator_);
+        previous_integrator_.reset();
+        if (!adopted) arena.execute([&] { integrator_->prepare(*render_scene_, cancel_); });
         if (const RadiosityReport* radiosity = integrator_->radiosity_report()) {
             {
                 std::lock_guard lock(state_mutex_);

@@ -120,6 +120,9 @@ private:
     std::unique_ptr<RenderScene> render_scene_;
     // Of the current render, made by start() from the settings.
     std::unique_ptr<Integrator> integrator_;
+    // The last render's integrator, until this render has adopted what it prepared or prepared
+    // its own (Integrator::adopt).
+    std::unique_ptr<Integrator> previous_integrator_;
     std::unique_ptr<Sampler> sampler_;
     std::unique_ptr<Film> film_;
     uint32_t width_ = 0, height_ = 0;              // the region's size
