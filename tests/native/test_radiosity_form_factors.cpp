@@ -140,6 +140,7 @@ TEST(RadiosityFormFactors, CubeClosureFaceFactorsAndReciprocity) {
             face_var[I][J] += double(p.area) * p.area * to_face[J] * (1.0 - to_face[J]) / kRays;
         }
     }
+    double worst_z = 0.0, mean_parallel = 0.0, mean_adjacent = 0.0;
     for (int I = 0; I < 6; ++I) {
         ASSERT_NEAR(face_area[I], 4.0, 1e-4);
         for (int J = 0; J < 6; ++J) {
@@ -151,11 +152,15 @@ TEST(RadiosityFormFactors, CubeClosureFaceFactorsAndReciprocity) {
             const double exact = (I / 2 == J / 2) ? parallel : adjacent;
             const double sigma = std::sqrt(face_var[I][J]) / face_area[I];
             EXPECT_NEAR(estimate, exact, 4.5 * sigma) << "faces " << I << " -> " << J << " sigma " << sigma;
+            worst_z = std::max(worst_z, std::abs(estimate - exact) / sigma);
+            (I / 2 == J / 2 ? mean_parallel : mean_adjacent) += estimate / (I / 2 == J / 2 ? 6.0 : 24.0);
             // Reciprocity of faces: A_I F_IJ = A_J F_JI within both estimates' spread.
             const double spread = std::sqrt(face_var[I][J] + face_var[J][I]);
             EXPECT_NEAR(face_sum[I][J], face_sum[J][I], 4.5 * spread) << "faces " << I << ", " << J;
         }
     }
+    std::printf("cube faces: parallel %.5f (exact %.5f), adjacent %.5f (exact %.5f), worst |z| %.2f\n",
+                mean_parallel, parallel, mean_adjacent, adjacent, worst_z);
     // Reciprocity of patches.
     double z2 = 0.0, worst = 0.0;
     double pairs = 0.0;
