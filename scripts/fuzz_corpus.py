@@ -82,6 +82,10 @@ def seeds() -> dict[str, bytes]:
     s["box-sample-range"] = box_scene() + render(
         [("sample_offset", 1), ("sample_count", 1), ("bvh", "dynamic"), ("mist_depth", 2.0)]
     )
+    s["box-radiosity"] = box_scene() + render(
+        [("integrator", "radiosity"), ("radiosity_solver", "gauss_seidel"), ("radiosity_patch_size", 0.5),
+         ("radiosity_tolerance", 0.01)]
+    )
     s["box-crop"] = box_scene() + render([("crop_x", 2), ("crop_y", 1), ("crop_width", 4), ("crop_height", 5)])
     s["box-cancel"] = box_scene() + render(mode=1) + render(mode=3, rerender=True) + render(mode=2, rerender=True)
     s["box-destroy"] = box_scene() + render(mode=4)
@@ -90,6 +94,9 @@ def seeds() -> dict[str, bytes]:
     s["camera-dof"] = box_scene() + camera(3) + render()
     for kind, name in enumerate(["point", "sun", "rectangle", "ellipse", "spot", "spot-v1"]):
         s[f"light-{name}"] = material(1) + mesh(2) + instance(0) + light(kind) + camera(0) + render()
+    s["light-point-radiosity"] = material(1) + mesh(2) + instance(0) + light(0) + camera(0) + render(
+        [("integrator", "radiosity"), ("radiosity_solver", "shooting")]
+    )
     s["instances-batch"] = box_scene() + instances([(0, translate(0.5, 0, 0)), (0, rotate(1, 0.5))]) + render()
     s["instances-refused"] = (
         box_scene()

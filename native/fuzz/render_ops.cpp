@@ -30,7 +30,10 @@ const char* const kSettingNames[] = {
     // Appended after the old entries, so that the corpus's programs keep naming what they named.
     "use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples", "adaptive_metric",
     "light_tree_splits", "sample_offset", "sample_count", "bvh", "mist_start", "mist_depth", "mist_falloff",
-    "passes"};
+    "passes",
+    // radiosity_rays is left out: at its maximum (2^20 rays per patch) a legitimate solve of the
+    // fuzzer's scenes takes minutes, which kRenderLimitMs would report as a hang.
+    "radiosity_patch_size", "radiosity_solver", "radiosity_tolerance"};
 
 // Every value the string settings know (the settings' choices read from the library, so new
 // entries are fuzzed too) and a few near misses.
@@ -49,7 +52,8 @@ const std::vector<const char*>& string_values() {
                                       "Depth",    "Normal,Debug Sample Count,Depth",
                                       "Mist,",    ",,"};
         for (const char* setting : {"sampler", "filter_type", "integrator", "hemisphere", "light_selection",
-                                    "adaptive_metric", "bvh"}) {
+                                    "adaptive_metric", "bvh",
+                                    "radiosity_solver"}) {
             for (const char* name : setting_choice_names(setting)) v.push_back(name);
         }
         return v;
