@@ -52,8 +52,7 @@ const std::vector<const char*>& string_values() {
                                       "Depth",    "Normal,Debug Sample Count,Depth",
                                       "Mist,",    ",,"};
         for (const char* setting : {"sampler", "filter_type", "integrator", "hemisphere", "light_selection",
-                                    "adaptive_metric", "bvh",
-                                    "radiosity_solver"}) {
+                                    "adaptive_metric", "bvh", "radiosity_solver"}) {
             for (const char* name : setting_choice_names(setting)) v.push_back(name);
         }
         return v;

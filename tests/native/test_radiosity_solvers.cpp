@@ -78,6 +78,27 @@ TEST(RadiositySolvers, SphereBIsEmissionOverOneMinusAlbedo) {
     }
 }
 
+// The early stop (radiosity_system.h, record_iteration) must not cut short a solve that
+// converges slowly but within the cap: sphere B at κ = 0.99 contracts by 0.99 per Jacobi sweep,
+// so tolerance 1e-4 takes about ln(1e-4)/ln(0.99) ≈ 920 sweeps of the cap's 10,000. Its answer
+// is then within the geometric tail ΔE ≤ 1e-4 L̄ of L_e/(1 − κ) = 100, plus the float storage
+// of M (6e-8): we allow 2e-4.
+TEST(RadiositySolvers, ANearlyWhiteSphereConvergesSlowlyWithoutStoppingEarly) {
+    const PortedSphereMesh sphere = make_ported_sphere(8, 0);
+    const stratum::Scene scene = sphere_scene(sphere, 0.99f, 1.0f);
+    const RenderScene rs(scene);
+    const RadiositySolution solution(rs, settings(RadiositySolver::Jacobi, 0.5f, 64, 1e-4f), nullptr);
+    const size_t iterations = solution.report().iterations.size();
+    std::printf("sphere B at 0.99: K = %u, %zu iterations\n", solution.patches().size(), iterations);
+    ASSERT_TRUE(solution.report().converged) << iterations << " iterations";
+    EXPECT_GT(iterations, 500u);
+    const double expected = 1.0 / (1.0 - 0.99);
+    for (uint32_t i = 0; i < solution.patches().size(); ++i) {
+        if (!inner(solution.patches().patch(i))) continue;
+        EXPECT_NEAR(solution.exitance(i).r / kPi / expected, 1.0, 2e-4) << "patch " << i;
+    }
+}
+
 TEST(RadiositySolvers, SphereAIsTextbook317WithinTheTessellationBound) {
     const PortedSphereMesh sphere = make_ported_sphere(32, 0);
     stratum::Scene scene = sphere_scene(sphere, 0.8f);

@@ -81,6 +81,7 @@ RadiositySolution::RadiositySolution(const RenderScene& scene, const RadiositySe
     for (const DoubleRgb& m : solve.exitance) exitance_.push_back(m.to_float());
     report_.iterations = std::move(solve.iterations);
     report_.converged = solve.converged;
+    report_.projected_iterations = solve.projected_iterations;
     report_.solve_seconds = report_.iterations.empty() ? 0.0 : report_.iterations.back().seconds;
 }
 

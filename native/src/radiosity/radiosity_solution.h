@@ -34,7 +34,8 @@ struct RadiosityReport {
     double form_factor_seconds = 0.0;  // form factors, lamps and (shooting) the transpose
     double solve_seconds = 0.0;        // the solver's own time (without the measures)
     std::vector<IterationReport> iterations;
-    bool converged = false;  // false: the solver stopped at SolveOptions::max_iterations
+    bool converged = false;  // false: stopped at SolveOptions::max_iterations or short of its reach
+    double projected_iterations = 0.0;  // RadiositySolve::projected_iterations
 };
 
 class RadiositySolution {

@@ -208,12 +208,23 @@ void Renderer::run() {
                 radiosity_iterations_ = static_cast<double>(radiosity->iterations.size());
                 radiosity_history_ = radiosity->iterations;
             }
-            if (!radiosity->converged && !radiosity->iterations.empty())
+            if (!radiosity->converged && !radiosity->iterations.empty()) {
+                const double projected = radiosity->projected_iterations;
+                const std::string reach =
+                    projected <= 0.0 ? ""
+                    : std::isinf(projected)
+                        ? ": it no longer shrinks (a closed space whose surfaces reflect all the light they "
+                          "receive has no finite solution)"
+                        : ": at the rate it shrinks it would need about " +
+                              std::to_string(static_cast<uint64_t>(projected)) +
+                              " iterations, more than the solver's cap (surfaces that reflect almost all "
+                              "the light converge that slowly)";
                 add_notice("radiosity: the solve stopped after " +
                            std::to_string(radiosity->iterations.size()) +
                            " iterations without reaching radiosity_tolerance (its last Delta E is " +
-                           std::to_string(radiosity->iterations.back().relative) +
-                           " of the mean radiance): the image shows that iterate");
+                           std::to_string(radiosity->iterations.back().relative) + " of the mean radiance" +
+                           reach + "): the image shows that iterate");
+            }
         }
         // The light tree, if this render chooses lights by it and prepare() built it (a tree an
         // earlier render built is reported only when this one uses it too).
