@@ -43,6 +43,7 @@ SOFT_MAXIMA: dict[str, int | float] = {
     "control_variate": 10.0,
     # Cycles' maximum of its Min Samples (adaptive_min_samples)
     "adaptive_min_samples": 4096,
+    "guiding_training_samples": 4096,
 }
 # Decimals a float shows (Blender's default is 3): a noise threshold of 0.0050 should not
 # read 0.005 next to Cycles' 4 decimals.

@@ -77,6 +77,8 @@ NO_LIGHT_SAMPLING = frozenset({"ao", "light"})
 # the light selection and triangle sampling) and one gather ray per camera hit, no paths, so
 # no roulette, light-sampling strategy or control variate.
 FINAL_GATHER = frozenset({"radiosity"})
+# Path guiding guides the path tracer's scattered directions (`direct` scatters none it could use).
+GUIDED = frozenset({"path"})
 RADIOSITY_SETTINGS = (("radiosity_patch_size", "Patch Size"), ("radiosity_solver", "Solver"),
                       ("radiosity_tolerance", "Tolerance"), ("radiosity_rays", "Form Factor Rays"))
 
@@ -203,6 +205,27 @@ class STRATUM_RENDER_PT_sampling_lights(StratumButtonsPanel, bpy.types.Panel):
         sub.prop(settings, "light_tree_splits", text="Tree Splits")
 
 
+class STRATUM_RENDER_PT_sampling_path_guiding(StratumButtonsPanel, bpy.types.Panel):
+    """Cycles' Sampling > Path Guiding: a switch in the header, the training and the mixture's
+    share below; the path tracer's alone (GUIDED), greyed out for the other integrators."""
+
+    bl_label = "Path Guiding"
+    bl_parent_id = "STRATUM_RENDER_PT_sampling"
+    bl_options = {"DEFAULT_CLOSED"}
+
+    def draw_header(self, context: bpy.types.Context) -> None:
+        settings = context.scene.stratum
+        self.layout.active = settings.integrator in GUIDED
+        self.layout.prop(settings, "use_guiding", text="")
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
+        col = layout.column()
+        col.active = settings.integrator in GUIDED and settings.use_guiding
+        col.prop(settings, "guiding_training_samples", text="Training Samples")
+        col.prop(settings, "guiding_bsdf_fraction", text="BSDF Fraction")
+
+
 class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
     """The light-transport algorithm; its subpanels hold what shapes its paths."""
 
@@ -317,6 +340,7 @@ classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_sampling_denoising,
     STRATUM_RENDER_PT_sampling_advanced,
     STRATUM_RENDER_PT_sampling_lights,
+    STRATUM_RENDER_PT_sampling_path_guiding,
     STRATUM_RENDER_PT_light_paths,
     STRATUM_RENDER_PT_light_paths_max_bounces,
     STRATUM_RENDER_PT_light_paths_roulette,

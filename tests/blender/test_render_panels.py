@@ -1,5 +1,5 @@
 """The render-properties panels laid out like Cycles' (issue 16, acceptance 5): Sampling with
-its Viewport, Render, Denoising, Advanced and Lights subpanels, Light Paths with Max Bounces,
+its Viewport, Render, Denoising, Advanced, Lights and Path Guiding subpanels, Light Paths with Max Bounces,
 Russian Roulette, Direct Light and Control Variate; the Noise Threshold blocks; what greys out
 when. Runs in Blender 3.4 (run_in_blender.py) and under the bpy 5.0 wheel; the real UI's
 drawing of the same panels is tests/ui/test_panels_ui.py.
@@ -22,7 +22,8 @@ CHILDREN = {
                                    "STRATUM_RENDER_PT_sampling_render",
                                    "STRATUM_RENDER_PT_sampling_denoising",
                                    "STRATUM_RENDER_PT_sampling_advanced",
-                                   "STRATUM_RENDER_PT_sampling_lights"],
+                                   "STRATUM_RENDER_PT_sampling_lights",
+                                   "STRATUM_RENDER_PT_sampling_path_guiding"],
     "STRATUM_RENDER_PT_sampling_viewport": ["STRATUM_RENDER_PT_sampling_viewport_split"],
     "STRATUM_RENDER_PT_light_paths": ["STRATUM_RENDER_PT_light_paths_max_bounces",
                                       "STRATUM_RENDER_PT_light_paths_roulette",
@@ -218,3 +219,28 @@ def test_advanced_holds_the_pattern_seed_and_hemisphere(library: Any,
     drawn = draw_panel(ui.STRATUM_RENDER_PT_sampling_advanced, scene_builder().scene)
     assert [(p.name, p.text) for p in drawn.props] == [
         ("sampler", "Pattern"), ("seed", "Seed"), ("hemisphere", "Hemisphere")]
+
+
+def test_path_guiding_is_the_path_tracers_and_greys_out_when_off(library: Any,
+                                                                 scene_builder: Any) -> None:
+    """Sampling > Path Guiding (Cycles' place for it): the switch in its header, active for the
+    path tracer only; training samples and BSDF fraction active while it is on (issue 17,
+    acceptance 6). The settings reach the library under their registry names."""
+    s = scene_builder().scene.stratum
+    panel = ui.STRATUM_RENDER_PT_sampling_path_guiding
+    assert draw_panel(panel, s.id_data, header=True).names() == ["use_guiding"]
+    assert draw_panel(panel, s.id_data).names() == ["guiding_training_samples",
+                                                   "guiding_bsdf_fraction"]
+    for integrator in _items("integrator"):
+        for use in (False, True):
+            s.integrator, s.use_guiding = integrator, use
+            header = draw_panel(panel, s.id_data, header=True)
+            assert header.prop("use_guiding").active == (integrator == "path"), integrator
+            drawn = draw_panel(panel, s.id_data)
+            assert all(p.active == (integrator == "path" and use) for p in drawn.props), integrator
+    s.integrator, s.use_guiding = "path", True
+    s.guiding_training_samples, s.guiding_bsdf_fraction = 16, 0.25
+    settings = dict(renderer_settings(s.id_data))
+    assert settings["use_guiding"] == 1
+    assert settings["guiding_training_samples"] == 16
+    assert settings["guiding_bsdf_fraction"] == pytest.approx(0.25)

@@ -207,3 +207,40 @@ TEST(Determinism, EverySamplerAndIntegratorRepeatsOneImageForAnyThreadCount) {
     }
     stratum_scene_destroy(scene);
 }
+
+// Path guiding learns between passes from records counted in integers (guiding/guiding_tree.h),
+// so its tree, and the image, are the same for any thread count: the trained tree must differ
+// from the untrained one (nodes > 2) for the comparison to say something about the training.
+TEST(Determinism, PathGuidingRepeatsOneImageForAnyThreadCount) {
+    StratumScene* scene = cornell_box();
+    ASSERT_FALSE(::testing::Test::HasFailure());
+    for (const char* sampler : {"random", "sobol"}) {
+        std::vector<float> first;
+        double first_nodes = 0;
+        for (int i = 0; i < 6; ++i) {
+            const int64_t threads = kThreadCounts[i % 3];
+            const RenderOutput out = render(scene, Settings{{"width", 32},
+                                                            {"height", 32},
+                                                            {"samples", 16},
+                                                            {"max_bounces", 6},
+                                                            {"seed", 3},
+                                                            {"threads", threads},
+                                                            {"sampler", sampler},
+                                                            {"use_guiding", 1},
+                                                            {"guiding_training_samples", 8}});
+            ASSERT_TRUE(out.error.empty()) << sampler << ": " << out.error;
+            if (i == 0) {
+                first = out.rgba;
+                first_nodes = out.progress.guiding_nodes;
+                EXPECT_GT(first_nodes, 2.0) << sampler << ": the tree did not split";
+                EXPECT_GT(out.progress.guiding_bytes, 0.0);
+                continue;
+            }
+            EXPECT_EQ(out.progress.guiding_nodes, first_nodes) << sampler;
+            size_t differing = 0;
+            for (size_t k = 0; k < first.size(); ++k) differing += out.rgba[k] != first[k];
+            EXPECT_EQ(differing, 0u) << sampler << ": render " << i << " with " << threads << " threads";
+        }
+    }
+    stratum_scene_destroy(scene);
+}

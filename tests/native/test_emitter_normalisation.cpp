@@ -258,6 +258,9 @@ TEST(EmitterNormalisation, EveryWayOfFindingAPanelTwoCentimetresAwayMeasuresTheC
         {"mis, tree", {{"light_sampling", "mis"}, {"light_selection", "tree"}}},
         {"mis, tree unsplit",
          {{"light_sampling", "mis"}, {"light_selection", "tree"}, {"light_tree_splits", 1}}},
+        // Path guiding: the tree learns the panel from the first 32 samples (guided_direction.h).
+        {"bsdf, guided", {{"light_sampling", "bsdf"}, {"use_guiding", 1}}},
+        {"mis, guided 0.2", {{"light_sampling", "mis"}, {"use_guiding", 1}, {"guiding_bsdf_fraction", 0.2}}},
     };
     for (const Case& c : cases) {
         // 16 seeds: the image is far from uniform (lit in a strip next to the panel), so the

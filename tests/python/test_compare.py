@@ -206,6 +206,13 @@ def test_batches_balance_cost(native: Any) -> None:
      [("path", "mis-power", {}),
       ("path", "mis-power+adaptive1+thr0.02",
        {"use_adaptive_sampling": 1, "adaptive_threshold": 0.02})]),
+    # Path guiding (issue 17, acceptance 6): `path:use_guiding=1` and its two settings.
+    ("path,path:use_guiding=1,path:use_guiding=1,guiding_training_samples=8,"
+     "guiding_bsdf_fraction=0.25",
+     [("path", "mis-power", {}),
+      ("path", "mis-power+guided1", {"use_guiding": 1}),
+      ("path", "mis-power+guided1+train8+bf0.25",
+       {"use_guiding": 1, "guiding_training_samples": 8, "guiding_bsdf_fraction": 0.25})]),
 ])
 def test_estimator_specs_parse_resolve_and_label(native: Any, text: str,
                                                   expected: list[Any]) -> None:
@@ -241,6 +248,8 @@ def test_common_settings_apply_under_the_specs_own(native: Any) -> None:
     ("path:control_variate=-0.5", "'-0.5'"),
     ("path:control_variate=nan", "'nan'"),
     ("path:control_variate=much", "'much'"),
+    ("path:use_guiding=2", "2"),
+    ("path:guiding_bsdf_fraction=0.01", "0.01"),
     ("path:max_bouncez=3", "'max_bouncez'"),
     ("path:light_sampling", "'light_sampling'"),
     ("path:", "'path:'"),

@@ -16,7 +16,7 @@ ARCHITECTURE = REPO / "docs" / "architecture.md"
 # Lowest first; folders on one line are peers (neither includes the other).
 LAYERS: list[tuple[str, ...]] = [
     ("core",),
-    ("sampling", "texture", "accel"),
+    ("sampling", "texture", "accel", "guiding"),
     ("scene",),
     ("bsdf", "lights"),
     ("render_scene",),

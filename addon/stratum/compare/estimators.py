@@ -19,6 +19,9 @@ settings (issue 6) one configuration renders with, and the short label tables an
 | radiosity_solver      | <value> (shooting, gauss_seidel, jacobi) |
 | radiosity_tolerance   | tol<value>                     |
 | radiosity_rays        | rays<value>                    |
+| use_guiding           | guided<value> (0 or 1)         |
+| guiding_training_samples | train<value>                |
+| guiding_bsdf_fraction | bf<value>                      |
 
 The names are render settings of the library, and their values, ranges and defaults are the
 library's (native.settings(), read on first use: importing this module loads nothing); the
@@ -52,14 +55,16 @@ SETTING_NAMES: tuple[str, ...] = ("light_sampling", "mis_heuristic", "light_sele
                                   "control_variate", "use_adaptive_sampling",
                                   "adaptive_threshold", "adaptive_min_samples",
                                   "adaptive_metric", "radiosity_patch_size", "radiosity_solver",
-                                  "radiosity_tolerance", "radiosity_rays")
+                                  "radiosity_tolerance", "radiosity_rays", "use_guiding",
+                                  "guiding_training_samples", "guiding_bsdf_fraction")
 PATH = "path"  # the integrator whose label names its light-sampling strategy
 _SUFFIX = {"light_selection": "sel-", "light_tree_splits": "split", "triangle_sampling": "tri-",
            "rr_mode": "rr-", "rr_min_depth": "rrmin", "control_variate": "cv",
            "use_adaptive_sampling": "adaptive", "adaptive_threshold": "thr",
            "adaptive_min_samples": "min", "adaptive_metric": "metric-",
            "radiosity_patch_size": "patch", "radiosity_solver": "", "radiosity_tolerance": "tol",
-           "radiosity_rays": "rays"}
+           "radiosity_rays": "rays", "use_guiding": "guided",
+           "guiding_training_samples": "train", "guiding_bsdf_fraction": "bf"}
 
 
 class SpecError(ValueError):

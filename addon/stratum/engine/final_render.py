@@ -75,6 +75,10 @@ def format_stats(progress: native.Progress, elapsed: float) -> str:
         stats += (f" | Radiosity {progress.radiosity_patches:.0f} patches, "
                   f"{progress.radiosity_bytes / 1e6:.1f} MB, {progress.radiosity_seconds:.2f} s, "
                   f"{progress.radiosity_iterations:.0f} iterations")
+    # Path guiding's tree (issue 17: "report memory use and its growth").
+    if progress.guiding_nodes > 0:
+        stats += (f" | Guiding {progress.guiding_nodes:.0f} nodes, "
+                  f"{progress.guiding_bytes / 1e6:.2f} MB")
     return stats
 
 

@@ -261,6 +261,8 @@ class _Progress(ctypes.Structure):
         ("radiosity_bytes", ctypes.c_double),
         ("radiosity_seconds", ctypes.c_double),
         ("radiosity_iterations", ctypes.c_double),
+        ("guiding_nodes", ctypes.c_double),
+        ("guiding_bytes", ctypes.c_double),
     ]
 
 

@@ -41,6 +41,9 @@ class Progress:
     radiosity_bytes: float = 0.0
     radiosity_seconds: float = 0.0
     radiosity_iterations: float = 0.0
+    # Path guiding's tree (0, 0 without guiding): nodes and bytes after the last training pass.
+    guiding_nodes: float = 0.0
+    guiding_bytes: float = 0.0
 
 
 class Renderer(_Handle):
@@ -151,6 +154,8 @@ class Renderer(_Handle):
             radiosity_bytes=float(p.radiosity_bytes),
             radiosity_seconds=float(p.radiosity_seconds),
             radiosity_iterations=float(p.radiosity_iterations),
+            guiding_nodes=float(p.guiding_nodes),
+            guiding_bytes=float(p.guiding_bytes),
         )
 
     def radiosity_iterations(self) -> np.ndarray:

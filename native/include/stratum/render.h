@@ -86,6 +86,10 @@ typedef struct StratumProgress {
     double radiosity_bytes;
     double radiosity_seconds;
     double radiosity_iterations;
+    /* Path guiding's tree (use_guiding; 0 otherwise): its nodes and bytes after the last
+     * training pass, updated after each pass, so their growth per pass can be followed. */
+    double guiding_nodes;
+    double guiding_bytes;
 } StratumProgress;
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);

@@ -412,7 +412,9 @@ StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgres
                                p.radiosity_patches,
                                p.radiosity_bytes,
                                p.radiosity_seconds,
-                               p.radiosity_iterations};
+                               p.radiosity_iterations,
+                               p.guiding_nodes,
+                               p.guiding_bytes};
         // A failure inside the render thread is reported by the next progress call.
         return p.error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_INTERNAL, "render failed: " + p.error);
     });

@@ -13,6 +13,7 @@
 #include "film/film.h"
 #include "integrators/camera_path_passes.h"
 #include "integrators/estimator_options.h"
+#include "integrators/guided_direction.h"
 #include "radiosity/radiosity_settings.h"
 #include "radiosity/radiosity_solution.h"
 #include "render_scene/render_scene.h"
@@ -56,6 +57,14 @@ struct IntegratorSettings {
     MistSettings mist;
     // `radiosity`: patch size, solver, tolerance, form-factor rays (radiosity/radiosity_settings.h).
     RadiositySettings radiosity;
+    // Path guiding (`path` only; integrators/guided_direction.h, guiding/guiding_tree.h): the
+    // tree learns from sample indices below guiding_training_samples, then stays as it is; the
+    // closures draw a share guiding_bsdf_fraction of the directions, the tree the rest.
+    // 32 training samples: the passes up to 32 (1, 1, 2, 4, 8, 16 samples) are where the image is
+    // noisiest anyway, and the later, larger passes (32, 64 per pass) all use a trained tree.
+    bool use_guiding = false;
+    uint32_t guiding_training_samples = 32;
+    float guiding_bsdf_fraction = 0.5f;
 };
 
 // One camera ray's estimate: the radiance, and the alpha the film stores (1 = covered; a
@@ -113,6 +122,16 @@ public:
         (void)previous;
         return false;
     }
+    // After each complete pass of camera samples [begin, end) (not a cancelled one), in the render
+    // thread with no sample running: an integrator that learns from its samples (path guiding)
+    // folds what they taught it in here, so every pass reads a fixed state.
+    virtual void end_pass(uint32_t begin, uint32_t end) {
+        (void)begin;
+        (void)end;
+    }
+    // The path-guiding tree's size and training so far, for the render's progress; null when the
+    // integrator does not guide.
+    virtual const GuidingReport* guiding_report() const { return nullptr; }
     // What prepare() computed for the radiosity method (patches, memory, time), for the
     // render's progress; null for the other integrators.
     virtual const RadiosityReport* radiosity_report() const { return nullptr; }

@@ -21,6 +21,7 @@ std::unique_ptr<Integrator> make(const IntegratorSettings& settings) {
 std::unique_ptr<Integrator> make_direct(const IntegratorSettings& settings) {
     IntegratorSettings direct = settings;
     direct.max_bounces = 0;
+    direct.use_guiding = false;  // `path` only: one vertex learns nothing it could use
     return std::make_unique<PathIntegrator>(direct);
 }
 

@@ -1,8 +1,10 @@
 #include "integrators/path_integrator.h"
 
+#include <algorithm>
 #include <array>
 
 #include "integrators/camera_path_passes.h"
+#include "integrators/guided_direction.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
@@ -12,6 +14,27 @@
 #include "scene/visibility.h"
 
 namespace stratum {
+
+void PathIntegrator::prepare(const RenderScene& scene, const std::atomic<bool>&) {
+    if (scene.lights().resolve(settings_.light_selection) == LightSelection::Tree)
+        (void)scene.lights().tree();
+    if (settings_.use_guiding) {
+        guide_ = std::make_unique<GuidingTree>(scene.bounds_center(), 1.01f * scene.bounds_radius());
+        guiding_report_ = GuidingReport{guide_->node_count(), guide_->region_count(), guide_->bytes(), 0, 0};
+    }
+}
+
+void PathIntegrator::end_pass(uint32_t begin, uint32_t end) {
+    if (!guide_ || begin >= settings_.guiding_training_samples) return;
+    guiding_report_.records += guide_->update();
+    ++guiding_report_.training_passes;
+    guiding_report_.nodes = guide_->node_count();
+    guiding_report_.regions = guide_->region_count();
+    // The most it holds is now, with the next pass's counters; after the last training pass
+    // the counters go and the tree is read only.
+    guiding_report_.bytes = std::max<uint64_t>(guiding_report_.bytes, guide_->bytes());
+    if (end >= settings_.guiding_training_samples) guide_->stop_learning();
+}
 
 float PathIntegrator::hit_weight(float scatter_pdf, float light_pdf) const {
     // A camera ray or a delta scatter: no light sample could have found this emission (5.16).
@@ -59,6 +82,8 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     const uint32_t max_shadow_surfaces = settings_.transparent_max_bounces;
     const float ambient = settings_.control_variate;  // L_a of the control variate (5.17)
     CameraPathPasses data(passes, settings_.mist);
+    // Path guiding: this sample trains the tree while its index is below the training samples.
+    PathRecords records(guide_ && pixel.index < settings_.guiding_training_samples ? guide_.get() : nullptr);
 
     // `vertex` numbers every surface the path meets (bounces and pass-throughs), so each owns a
     // block of sample dimensions.
@@ -87,6 +112,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     w = hit_weight(scatter_pdf, lamp_pdf * scale);
                 }
                 L += beta * lamp * w;
+                records.add_found(beta * lamp * w, beta * lamp);
                 data.emitted(beta * lamp * w, camera_visible_path);
             }
         }
@@ -103,6 +129,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                                                         ? lights.environment_pdf(dir, selection)
                                                         : 0.0f);
             L += beta * scene.background(dir) * w;
+            records.add_found(beta * scene.background(dir) * w, beta * scene.background(dir));
             break;
         }
         const Vec3 wo_world = -dir;
@@ -128,6 +155,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                                                    tree_splits)
                     : 0.0f;
             L += beta * emission * hit_weight(scatter_pdf, light_pdf);
+            records.add_found(beta * emission * hit_weight(scatter_pdf, light_pdf), beta * emission);
         }
         if (bounce > settings_.max_bounces) {
             // Past the last bounce Cycles still follows transparent closures to collect the
@@ -145,6 +173,11 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
 
         const Frame frame = Frame::from_normal(sp.ns);
         const Vec3 wo = frame.to_local(wo_world);
+        // The guide at this vertex, where the closures have a non-delta part to guide.
+        GuidedVertex guide;
+        if (guide_ && closures.has_non_delta())
+            guide = GuidedVertex{guide_.get(), guide_->region(hit.position), settings_.guiding_bsdf_fraction,
+                                 frame};
 
         // Next-event estimation (textbook 5.7–5.16), MIS-weighted against BSDF sampling. Lights
         // below the surface count only for closures that transmit.
@@ -183,9 +216,11 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     if (!transmittance.is_black()) {
                         const float w =
                             ls.found_by_bsdf_rays && settings_.light_sampling == LightSampling::Mis
-                                ? mis_weight(settings_.mis_heuristic, ls.pdf, f.pdf)
+                                ? mis_weight(settings_.mis_heuristic, ls.pdf,
+                                             guide.active() ? guide.mixed_pdf(f.pdf, ls.wi) : f.pdf)
                                 : 1.0f;
                         L += beta * f.value * transmittance * ls.radiance * (w / ls.pdf);
+                        records.add(beta * f.value * transmittance * ls.radiance * (w / ls.pdf));
                     }
                 }
             }
@@ -199,11 +234,16 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         if (control_variate) L += beta * lambertian_albedo * ambient;
 
         BsdfSample bs;
-        if (!closures.sample(wo, sampler.get_1d(pixel, bounce_dimension(vertex, kDimBsdfLobe)),
-                             sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection)), &bs,
-                             settings_.hemisphere)) {
-            break;
-        }
+        const float u_lobe = sampler.get_1d(pixel, bounce_dimension(vertex, kDimBsdfLobe));
+        const Vec2 u_direction = sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection));
+        const bool sampled =
+            guide.active() ? sample_guided(closures, wo, guide,
+                                           sampler.get_1d(pixel, bounce_dimension(vertex, kDimGuideChoice)),
+                                           u_lobe, u_direction, &bs, settings_.hemisphere)
+                           : closures.sample(wo, u_lobe, u_direction, &bs, settings_.hemisphere);
+        // A guided direction the closures do not scatter into carries 0 (its control-variate
+        // part too: the Lambertian value is part of the closures' value there).
+        if (!sampled) break;
         // L_a f_L cos / p of this sample: the control variate's Monte Carlo part. A delta sample
         // carries no Lambertian density (closures.sample's one-sample MIS covers f_L with the
         // non-delta picks only).
@@ -243,6 +283,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                 beta *= 1.0f / survive;
             }
             L = L - beta_at_vertex * cv_subtract * (1.0f / survive);
+            if (bs.delta)
+                records.skip();
+            else
+                records.push(hit.position, wi, beta);
             ++bounce;
         }
         query.visibility = ray_visibility(bs.kind, query.visibility);
@@ -252,6 +296,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         t_max = kInfinity;
     }
     data.finish();
+    records.flush();
     return {L, std::clamp(1.0f - transparency, 0.0f, 1.0f)};
 }
 

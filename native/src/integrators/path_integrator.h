@@ -16,6 +16,9 @@
 // transparent_max_bounces | Transparent pass-throughs per path (and per shadow ray); not bounces | |
 // film_transparent        | background seen through camera/transparent rays gives alpha 0 | | hemisphere |
 // distribution diffuse lobes sample directions from (sampling/hemisphere.h) |
+// | use_guiding, guiding_training_samples, guiding_bsdf_fraction | path guiding: directions from
+// f · closures + (1 − f) · the tree learned from the first training samples (integrators/guided_direction.h)
+// |
 //
 // Cycles conventions followed (Cycles 3.4 and 4.x `integrator/intersect_closest.h`,
 // `shade_surface.h`, `shade_shadow.h`, `film/accumulate.h`):
@@ -49,10 +52,11 @@ public:
     explicit PathIntegrator(const IntegratorSettings& settings) : settings_(settings) {}
     // The light tree, when this render chooses lights by it, is built here, before the first
     // sample: not by the first light sample while every other thread waits for it.
-    void prepare(const RenderScene& scene, const std::atomic<bool>&) override {
-        if (scene.lights().resolve(settings_.light_selection) == LightSelection::Tree)
-            (void)scene.lights().tree();
-    }
+    // With guiding, the tree starts empty here (uniform guide) over a cube padded 1% around the
+    // scene's bounding sphere.
+    void prepare(const RenderScene& scene, const std::atomic<bool>&) override;
+    void end_pass(uint32_t begin, uint32_t end) override;
+    const GuidingReport* guiding_report() const override { return guide_ ? &guiding_report_ : nullptr; }
     RadianceSample estimate(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                             const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;
@@ -69,6 +73,9 @@ private:
     }
 
     IntegratorSettings settings_;
+    // Read-only within a pass (its counters take the records, order-independently).
+    std::unique_ptr<GuidingTree> guide_;
+    GuidingReport guiding_report_;
 };
 
 }  // namespace stratum

@@ -146,6 +146,7 @@ std::string Renderer::start() {
         render_seconds_ = 0;
         light_tree_seconds_ = light_tree_bytes_ = 0;
         radiosity_patches_ = radiosity_bytes_ = radiosity_seconds_ = radiosity_iterations_ = 0;
+        guiding_nodes_ = guiding_bytes_ = 0;
         radiosity_history_.clear();
         cancelled_ = false;
         error_.clear();
@@ -226,6 +227,7 @@ void Renderer::run() {
                            reach + "): the image shows that iterate");
             }
         }
+        report_guiding();
         // The light tree, if this render chooses lights by it and prepare() built it (a tree an
         // earlier render built is reported only when this one uses it too).
         const LightSet& lights = render_scene_->lights();
@@ -248,6 +250,12 @@ void Renderer::run() {
             const uint32_t begin = first_sample_ + done, end = first_sample_ + next;
             samples_in_progress_.store(next);
             trace_camera_samples(camera, begin, end, arena);
+            // Between passes, with no sample running: what the integrator learns (path guiding's
+            // tree) is folded in one thread, in a fixed order, and reported.
+            if (!cancel_.load()) {
+                integrator_->end_pass(begin, end);
+                report_guiding();
+            }
             // At a power of two: the samplers' gains (independent samples have G = 1, nothing
             // to measure), shown by the error pass (films with light paths publish below), and
             // adaptive sampling's check, which stops on s/√n alone.
@@ -409,6 +417,14 @@ void Renderer::trace_light_paths(const Camera& camera, uint32_t begin, uint32_t 
     }
 }
 
+void Renderer::report_guiding() {
+    if (const GuidingReport* guiding = integrator_->guiding_report()) {
+        std::lock_guard lock(state_mutex_);
+        guiding_nodes_ = static_cast<double>(guiding->nodes);
+        guiding_bytes_ = static_cast<double>(guiding->bytes);
+    }
+}
+
 void Renderer::add_notice(const std::string& notice) {
     std::lock_guard lock(notices_mutex_);
     notices_ += (notices_.empty() ? "" : "\n") + notice;
@@ -469,6 +485,8 @@ RenderProgress Renderer::progress() const {
     p.light_tree_bytes = light_tree_bytes_;
     p.radiosity_patches = radiosity_patches_;
     p.radiosity_bytes = radiosity_bytes_;
+    p.guiding_nodes = guiding_nodes_;
+    p.guiding_bytes = guiding_bytes_;
     p.radiosity_seconds = radiosity_seconds_;
     p.radiosity_iterations = radiosity_iterations_;
     p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;

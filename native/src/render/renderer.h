@@ -56,6 +56,8 @@ struct RenderProgress {
     // The radiosity integrator's solve (0 for the other integrators): patches K, the most bytes
     // it held at once, seconds (form factors and solver) and solver iterations.
     double radiosity_patches = 0, radiosity_bytes = 0, radiosity_seconds = 0, radiosity_iterations = 0;
+    // Path guiding's tree (0 without guiding): its nodes and bytes after the last training pass.
+    double guiding_nodes = 0, guiding_bytes = 0;
     std::string error;  // a failure inside the render thread
 };
 
@@ -103,6 +105,8 @@ private:
     void run();
     void join();
     void add_notice(const std::string& notice);
+    // Copies the integrator's guiding report (if it guides) into the progress.
+    void report_guiding();
     // Adds the notices of the samples dropped (dropped_samples_) or clamped (clamped_samples_) and
     // the rays dropped by this render.
     void report_dropped(uint64_t refused_rays);
@@ -142,6 +146,7 @@ private:
     double build_seconds_ = 0, render_seconds_ = 0;
     double light_tree_seconds_ = 0, light_tree_bytes_ = 0;
     double radiosity_patches_ = 0, radiosity_bytes_ = 0, radiosity_seconds_ = 0, radiosity_iterations_ = 0;
+    double guiding_nodes_ = 0, guiding_bytes_ = 0;
     std::vector<IterationReport> radiosity_history_;
     std::chrono::steady_clock::time_point render_start_;
     bool rendering_ = false;  // path tracing (not BVH build) in progress

@@ -21,6 +21,7 @@ enum BounceDimension : uint32_t {
     kDimLightPoint = 2,       // 2D: point on the chosen light
     kDimBsdfDirection = 4,    // 2D: scattered direction
     kDimBsdfLobe = 6,         // 1D: lobe of a layered BSDF
+    kDimGuideChoice = 7,      // 1D: path guiding: closures or guide (integrators/guided_direction.h)
 };
 
 // A light-tracing particle (x, y, i) draws from PixelSample{x, y, i} in the same layout: its

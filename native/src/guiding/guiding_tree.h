@@ -1,0 +1,154 @@
+// The path-guiding 5-D tree (textbook §5, eq. 5.19; the book's binary split): the incident
+// radiance of the scene stored over (x_n, y_n, z_n, s, t), positions normalised to a padded cube
+// around the scene and s = (cos θ + 1)/2, t = φ/2π of the world direction, so dω = 4π ds dt
+// and every cell of the (s, t) square has a solid angle 4π × its area.
+//
+// | quantity                 | meaning |
+// |--------------------------|---------|
+// | region                   | a leaf of the spatial part (binary splits along x, y or z) |
+// | directional tree         | each region's binary tree over (s, t); a region that splits gives both halves
+// a copy | | L̃ of a directional leaf  | mean recorded luminance of its cell, floored at kFloorFraction × the
+// region's mean | | p′(s, t)                 | L̃(cell) / ∫ L̃ ds dt (5.19), piecewise constant; pdf in solid
+// angle = p′ / 4π | | kSpatialThreshold        | records a region gathers before it splits | |
+// kDirectionalThreshold    | records a directional leaf gathers before it splits |
+//
+// The tree is a kd-tree of the 5-D space in which the spatial splits lie above the directional
+// ones (Müller et al. 2017's SD-tree has the same shape): then the distribution over directions
+// at a point is one binary tree whose nodes hold their integrals, sampled by one descent.
+// Split axis: spatially, the axis whose extent × balance of the records' halves is largest
+// (a wall's records all lie in one half of its normal axis, which is not split); directionally,
+// the axis whose halves' mean radiance differs most (the largest between-halves sum of squares),
+// the longer side of the cell when the halves agree.
+// Support: the floor keeps p′ > 0 for every direction of a region with recorded light, and a
+// region without any samples the whole sphere uniformly, so the guide alone covers every
+// direction a BSDF can scatter to.
+//
+// Concurrency and determinism: within a render pass the structure is read-only; record() adds
+// each record's count and fixed-point luminance into atomic integer counters of the leaves it
+// lands in (integer addition is associative, so the totals do not depend on the order of the
+// records or the thread count), and update(), between passes in one thread, folds them into the
+// estimates and splits. A record's luminance is clamped to kMaxRecordLuminance (it shapes the
+// guide only, never the estimate): at 2^-16 units a leaf holds 2^31 records per pass before its
+// 64-bit sum could wrap, and a leaf past that count drops its pass (checked in update()).
+#pragma once
+
+#include <array>
+#include <atomic>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "core/math.h"
+
+namespace stratum {
+
+class GuidingTree {
+public:
+    static constexpr uint32_t kSpatialThreshold = 16384;
+    static constexpr uint32_t kDirectionalThreshold = 32;
+    static constexpr float kFloorFraction = 0.01f;
+    static constexpr float kMaxRecordLuminance = 65536.0f;
+    // Depth limits: a directional cell of 2^-10 on a side (≈ 0.01 sr), spatial cells of 2^-12
+    // of the cube's side per axis; and at most kMaxNodes nodes: 2^18 × (48 bytes, and 1 KiB of
+    // counters per directional leaf while learning) ≤ 270 MiB while learning, 12 MiB after.
+    static constexpr uint32_t kMaxDirectionalDepth = 20, kMaxSpatialDepth = 36;
+    static constexpr size_t kMaxNodes = size_t{1} << 18;
+
+    // The cube the positions are normalised to: centre ± half_side (padded by the caller).
+    GuidingTree(Vec3 center, float half_side);
+
+    // The region (spatial leaf) holding point p; points outside the cube belong to the nearest.
+    uint32_t region(Vec3 p) const;
+    // A world direction drawn from p′ of `region` with (u.x, u.y) ∈ [0,1)², and its pdf in solid
+    // angle (hierarchical warping: each binary choice rescales the coordinate of its axis).
+    Vec3 sample(uint32_t region, Vec2 u, float* pdf) const;
+    // The solid-angle pdf sample() gives `direction` (unit) in `region`, computed with the same
+    // product of branch probabilities.
+    float pdf(uint32_t region, Vec3 direction) const;
+
+    // Thread-safe, order-independent: one estimate of the radiance arriving at `position` from
+    // `direction` (luminance ≥ 0; not finite values are ignored).
+    void record(Vec3 position, Vec3 direction, float luminance);
+    // Between passes (no concurrent record or sample): folds the pass's records into the
+    // estimates, splits the leaves past their thresholds, recomputes p′. Returns the records
+    // the pass held.
+    uint64_t update();
+    // Releases the per-pass counters: record() ignores records from then on.
+    void stop_learning();
+
+    size_t node_count() const { return spatial_.size() + directional_.size(); }
+    size_t region_count() const;
+    // Bytes held: nodes and the per-pass counters.
+    size_t bytes() const;
+
+    // (s, t) of a unit direction and back (s = (cos θ + 1)/2, t = φ/2π, θ from +z).
+    static Vec2 direction_to_st(Vec3 d);
+    static Vec3 st_to_direction(double s, double t);
+
+private:
+    struct Totals {
+        double count = 0, sum = 0;  // records and their summed luminance since the node was made
+    };
+    struct SpatialNode {
+        uint32_t child = 0;  // first of two children (0: a leaf; the root is nobody's child)
+        uint8_t axis = 0;    // 0, 1, 2 = x, y, z
+        uint8_t depth = 0;
+        uint32_t directional_root = 0;  // leaves: the root of the region's directional tree
+        uint32_t counters = 0;          // leaves: offset of the pass counters
+        Totals totals;
+    };
+    struct DirectionalNode {
+        uint32_t child = 0;
+        uint8_t axis = 0;  // 0 = s, 1 = t
+        uint8_t depth = 0;
+        uint32_t counters = 0;  // leaves: offset of the pass histogram
+        double mean = 0;        // leaves: L̃, the floored mean luminance
+        double integral = 0;    // ∫ L̃ ds dt over the node's cell
+        Totals totals;
+    };
+    // Per-pass counters. A region: records and luminance sum, and the same for the records in
+    // the lower half of each axis of its box. A directional leaf: records and luminance sum in
+    // each bin of a kHistogramSide² grid over its cell, so one update can split it several
+    // levels deep (a render trains in a handful of passes: 1, 1, 2, 4, 8, 16 samples).
+    static constexpr uint32_t kHistogramSide = 8;
+    static constexpr size_t kSpatialCounters = 8;
+    static constexpr size_t kDirectionalCounters = 2 * kHistogramSide * kHistogramSide;
+    struct Box {
+        double lo[3], hi[3];
+    };
+    // A directional leaf's pass histogram as numbers: count and luminance per bin (s-major).
+    struct Histogram {
+        std::array<double, kHistogramSide * kHistogramSide> count{}, sum{};
+    };
+
+    uint32_t descend_spatial(const double coords[3], Box* box) const;
+    uint32_t descend_directional(uint32_t root, double s, double t, double st_box[4]) const;
+    std::atomic<uint64_t>* counters_of_spatial(uint32_t node) const;
+    std::atomic<uint64_t>* counters_of_directional(uint32_t node) const;
+    // Splits `node` while its records pass the threshold, along the axis whose halves of the
+    // histogram bins [i0, i1) × [j0, j1) (its cell's part of its leaf's histogram) differ most.
+    void refine_directional(uint32_t node, const Histogram& h, uint32_t i0, uint32_t i1, uint32_t j0,
+                            uint32_t j1, double cell_s, double cell_t);
+    void split_spatial(uint32_t node, const std::atomic<uint64_t>* c, const Box& box);
+    // Copies the directional subtree at `from` into the slot `to`, totals scaled by `share`.
+    void copy_directional(uint32_t from, uint32_t to, double share);
+    void scale_directional(uint32_t node, double share);
+    // Folds the pass histograms of the leaves under `node` into their totals; lists the leaves
+    // that took records with their cells' sides.
+    void fold_directional(uint32_t node, double st_box[4], std::vector<uint32_t>* to_split,
+                          std::vector<std::array<double, 2>>* sides);
+    // Recomputes the leaves' floored means and every node's integral under `node`; returns it.
+    double integrate(uint32_t node, double floor, double fallback, double area);
+    void reset_counters();
+
+    Vec3 lo_;
+    float side_;
+    std::vector<SpatialNode> spatial_;
+    std::vector<DirectionalNode> directional_;
+    // The pass counters of the leaves at the last reset (offsets in the nodes).
+    std::unique_ptr<std::atomic<uint64_t>[]> counters_;
+    size_t counter_count_ = 0;
+};
+
+}  // namespace stratum
