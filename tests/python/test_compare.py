@@ -207,8 +207,8 @@ def test_batches_balance_cost(native: Any) -> None:
       ("path", "mis-power+adaptive1+thr0.02",
        {"use_adaptive_sampling": 1, "adaptive_threshold": 0.02})]),
     # Path guiding (issue 17, acceptance 6): `path:use_guiding=1` and its two settings.
-    ("path,path:use_guiding=1,path:use_guiding=1,guiding_training_samples=8,"
-     "guiding_bsdf_fraction=0.25",
+    (("path,path:use_guiding=1,path:use_guiding=1,guiding_training_samples=8,"
+      "guiding_bsdf_fraction=0.25"),
      [("path", "mis-power", {}),
       ("path", "mis-power+guided1", {"use_guiding": 1}),
       ("path", "mis-power+guided1+train8+bf0.25",
