@@ -26,7 +26,7 @@ PROPERTIES: tuple[str, ...] = (
     "light_tree_splits", "rr_mode",
     "rr_min_depth", "control_variate", "filter_type", "filter_width", "threads",
     "radiosity_patch_size", "radiosity_solver", "radiosity_tolerance", "radiosity_rays",
-    "use_guiding", "guiding_training_samples", "guiding_bsdf_fraction",
+    "use_guiding", "guiding_training_samples", "guiding_bsdf_fraction", "guiding_split",
 )
 
 # Setting -> the Blender value it is taken from.

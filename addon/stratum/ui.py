@@ -206,8 +206,9 @@ class STRATUM_RENDER_PT_sampling_lights(StratumButtonsPanel, bpy.types.Panel):
 
 
 class STRATUM_RENDER_PT_sampling_path_guiding(StratumButtonsPanel, bpy.types.Panel):
-    """Cycles' Sampling > Path Guiding: a switch in the header, the training and the mixture's
-    share below; the path tracer's alone (GUIDED), greyed out for the other integrators."""
+    """Cycles' Sampling > Path Guiding: a switch in the header, the training, the mixture's
+    share and the tree's split rule below; the path tracer's alone (GUIDED), greyed out for
+    the other integrators."""
 
     bl_label = "Path Guiding"
     bl_parent_id = "STRATUM_RENDER_PT_sampling"
@@ -224,6 +225,7 @@ class STRATUM_RENDER_PT_sampling_path_guiding(StratumButtonsPanel, bpy.types.Pan
         col.active = settings.integrator in GUIDED and settings.use_guiding
         col.prop(settings, "guiding_training_samples", text="Training Samples")
         col.prop(settings, "guiding_bsdf_fraction", text="BSDF Fraction")
+        col.prop(settings, "guiding_split", text="Split")
 
 
 class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):

@@ -230,7 +230,7 @@ def test_path_guiding_is_the_path_tracers_and_greys_out_when_off(library: Any,
     panel = ui.STRATUM_RENDER_PT_sampling_path_guiding
     assert draw_panel(panel, s.id_data, header=True).names() == ["use_guiding"]
     assert draw_panel(panel, s.id_data).names() == ["guiding_training_samples",
-                                                   "guiding_bsdf_fraction"]
+                                                   "guiding_bsdf_fraction", "guiding_split"]
     for integrator in _items("integrator"):
         for use in (False, True):
             s.integrator, s.use_guiding = integrator, use

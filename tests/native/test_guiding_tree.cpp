@@ -47,8 +47,8 @@ std::vector<Record> cone_records(size_t n, uint32_t seed) {
 
 // Trained as a render trains it: each pass's directions drawn half from the sphere uniformly
 // (standing in for the BSDF's share) and half from the tree as the last pass left it.
-GuidingTree trained_tree(int passes) {
-    GuidingTree tree(Vec3(0, 0, 0), 1.0f);
+GuidingTree trained_tree(int passes, GuidingSplit split = GuidingSplit::Binary) {
+    GuidingTree tree(Vec3(0, 0, 0), 1.0f, split);
     std::mt19937 rng(100);
     std::uniform_real_distribution<float> u(0.0f, 1.0f);
     for (int pass = 0; pass < passes; ++pass) {
@@ -97,8 +97,10 @@ TEST(GuidingTree, StCoordinatesRoundTrip) {
     }
 }
 
-TEST(GuidingTree, PdfIntegratesToOneAndConcentratesOnTheLight) {
-    const GuidingTree tree = trained_tree(6);
+class GuidingTreeSplits : public ::testing::TestWithParam<GuidingSplit> {};
+
+TEST_P(GuidingTreeSplits, PdfIntegratesToOneAndConcentratesOnTheLight) {
+    const GuidingTree tree = trained_tree(6, GetParam());
     EXPECT_GT(tree.node_count(), 100u);
     for (const Vec3 p : {Vec3(0, 0, 0), Vec3(0.3f, -0.2f, 0.1f), Vec3(-0.35f, 0.35f, -0.3f)}) {
         const uint32_t region = tree.region(p);
@@ -120,8 +122,8 @@ TEST(GuidingTree, PdfIntegratesToOneAndConcentratesOnTheLight) {
     }
 }
 
-TEST(GuidingTree, SampleMatchesPdfChiSquare) {
-    const GuidingTree tree = trained_tree(6);
+TEST_P(GuidingTreeSplits, SampleMatchesPdfChiSquare) {
+    const GuidingTree tree = trained_tree(6, GetParam());
     const uint32_t region = tree.region(Vec3(0.05f, 0.1f, -0.1f));
     constexpr int kBins = 32, kSub = 32;  // 32 × 32 bins of (s, t), each integrated on a 32² grid
     constexpr int kSamples = 400000;
@@ -149,6 +151,26 @@ TEST(GuidingTree, SampleMatchesPdfChiSquare) {
     const chi_square::ChiSquare r = chi_square::pearson(observed, expected);
     // One test at the 1% level, fixed seed.
     EXPECT_GT(r.p_value, 0.01) << "chi2 " << r.statistic << " dof " << r.dof;
+}
+
+INSTANTIATE_TEST_SUITE_P(BinaryAndFull, GuidingTreeSplits,
+                         ::testing::Values(GuidingSplit::Binary, GuidingSplit::Full));
+
+TEST(GuidingTree, FullSplitMakesOctantsAndQuadrants) {
+    // The book's 32 children: a region past its threshold splits into 8, a directional leaf
+    // into 4 quadrants at once (then each quadrant may split further in the same update).
+    GuidingTree tree(Vec3(0, 0, 0), 1.0f, GuidingSplit::Full);
+    for (const Record& r : cone_records(GuidingTree::kSpatialThreshold, 4))
+        tree.record(r.position, r.direction, r.luminance);
+    tree.update();
+    EXPECT_EQ(tree.region_count(), 8u);
+    GuidingTree small(Vec3(0, 0, 0), 1.0f, GuidingSplit::Full);
+    for (const Record& r : cone_records(GuidingTree::kDirectionalThreshold, 5))
+        small.record(r.position, r.direction, r.luminance);
+    small.update();
+    // One spatial node, a directional root, its 2 halves and their 2 × 2 quadrants; the
+    // quadrants hold about a quarter of the records each, under the threshold.
+    EXPECT_EQ(small.node_count(), 1u + 1u + 2u + 4u);
 }
 
 TEST(GuidingTree, SplitsOnlyPastTheThresholds) {

@@ -22,6 +22,7 @@ settings (issue 6) one configuration renders with, and the short label tables an
 | use_guiding           | guided<value> (0 or 1)         |
 | guiding_training_samples | train<value>                |
 | guiding_bsdf_fraction | bf<value>                      |
+| guiding_split         | split-<value> (binary, full)   |
 
 The names are render settings of the library, and their values, ranges and defaults are the
 library's (native.settings(), read on first use: importing this module loads nothing); the
@@ -56,7 +57,8 @@ SETTING_NAMES: tuple[str, ...] = ("light_sampling", "mis_heuristic", "light_sele
                                   "adaptive_threshold", "adaptive_min_samples",
                                   "adaptive_metric", "radiosity_patch_size", "radiosity_solver",
                                   "radiosity_tolerance", "radiosity_rays", "use_guiding",
-                                  "guiding_training_samples", "guiding_bsdf_fraction")
+                                  "guiding_training_samples", "guiding_bsdf_fraction",
+                                  "guiding_split")
 PATH = "path"  # the integrator whose label names its light-sampling strategy
 _SUFFIX = {"light_selection": "sel-", "light_tree_splits": "split", "triangle_sampling": "tri-",
            "rr_mode": "rr-", "rr_min_depth": "rrmin", "control_variate": "cv",
@@ -64,7 +66,8 @@ _SUFFIX = {"light_selection": "sel-", "light_tree_splits": "split", "triangle_sa
            "adaptive_min_samples": "min", "adaptive_metric": "metric-",
            "radiosity_patch_size": "patch", "radiosity_solver": "", "radiosity_tolerance": "tol",
            "radiosity_rays": "rays", "use_guiding": "guided",
-           "guiding_training_samples": "train", "guiding_bsdf_fraction": "bf"}
+           "guiding_training_samples": "train", "guiding_bsdf_fraction": "bf",
+           "guiding_split": "split-"}
 
 
 class SpecError(ValueError):

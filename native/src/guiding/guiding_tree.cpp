@@ -31,8 +31,19 @@ double lower_probability(double lower, double upper) {
 
 }  // namespace
 
-GuidingTree::GuidingTree(Vec3 center, float half_side)
-    : lo_(center - Vec3(half_side, half_side, half_side)), side_(2.0f * half_side) {
+std::span<const RegistryEntry> guiding_split_choices() {
+    static constexpr std::array kSplits = {
+        RegistryEntry{"binary", "Binary",
+                      "A node splits in two along the axis its records tell apart most (textbook §5)"},
+        RegistryEntry{"full", "All Axes",
+                      "A node splits along every axis at once: 8 octants of space, 4 quadrants of "
+                      "directions, the book's 32 children (textbook §5)"},
+    };
+    return kSplits;
+}
+
+GuidingTree::GuidingTree(Vec3 center, float half_side, GuidingSplit split)
+    : lo_(center - Vec3(half_side, half_side, half_side)), side_(2.0f * half_side), split_(split) {
     spatial_.push_back(SpatialNode{});
     directional_.push_back(DirectionalNode{});
     reset_counters();
@@ -250,41 +261,24 @@ void GuidingTree::fold_directional(uint32_t node, double st_box[4], std::vector<
     sides->push_back({st_box[1] - st_box[0], st_box[3] - st_box[2]});
 }
 
-void GuidingTree::refine_directional(uint32_t node, const Histogram& h, uint32_t i0, uint32_t i1, uint32_t j0,
-                                     uint32_t j1, double cell_s, double cell_t) {
-    const DirectionalNode parent = directional_[node];
-    if (parent.totals.count < kDirectionalThreshold || parent.depth >= kMaxDirectionalDepth ||
-        node_count() + 2 > kMaxNodes)
-        return;
-    // The pass's records in this node's bins, and in the lower half of each axis.
-    double count = 0, sum = 0;
-    std::array<double, 2> lower_count{}, lower_sum{};
-    const uint32_t mid_i = (i0 + i1) / 2, mid_j = (j0 + j1) / 2;
-    for (uint32_t i = i0; i < i1; ++i)
-        for (uint32_t j = j0; j < j1; ++j) {
+GuidingTree::BinCounts GuidingTree::bin_counts(const Histogram& h, const BinRange& r) {
+    BinCounts c;
+    const uint32_t mid_i = (r.i0 + r.i1) / 2, mid_j = (r.j0 + r.j1) / 2;
+    for (uint32_t i = r.i0; i < r.i1; ++i)
+        for (uint32_t j = r.j0; j < r.j1; ++j) {
             const uint32_t b = i * kHistogramSide + j;
-            count += h.count[b];
-            sum += h.sum[b];
-            if (i < mid_i) lower_count[0] += h.count[b], lower_sum[0] += h.sum[b];
-            if (j < mid_j) lower_count[1] += h.count[b], lower_sum[1] += h.sum[b];
+            c.count += h.count[b];
+            c.sum += h.sum[b];
+            if (i < mid_i) c.lower_count[0] += h.count[b], c.lower_sum[0] += h.sum[b];
+            if (j < mid_j) c.lower_count[1] += h.count[b], c.lower_sum[1] += h.sum[b];
         }
-    const bool splittable[2] = {i1 - i0 > 1, j1 - j0 > 1};
-    if (count < kMinPassRecordsToSplit || (!splittable[0] && !splittable[1])) return;
-    // The axis whose halves' mean radiance differs most; an empty half counts as dark (its
-    // directions drew no records: below the surfaces, or where the guide sent no samples).
-    // Equal differences: the longer side of the cell.
-    double difference[2] = {-1.0, -1.0};
-    for (int a = 0; a < 2; ++a) {
-        if (!splittable[a]) continue;
-        const double upper_count = count - lower_count[a];
-        const double lower_mean = lower_count[a] > 0.0 ? lower_sum[a] / lower_count[a] : 0.0;
-        const double upper_mean = upper_count > 0.0 ? (sum - lower_sum[a]) / upper_count : 0.0;
-        difference[a] = std::abs(lower_mean - upper_mean);
-    }
-    uint8_t axis = difference[1] > difference[0] ? 1 : 0;
-    if (difference[0] == difference[1]) axis = cell_t > cell_s ? 1 : 0;
-    const double count_share = lower_count[axis] / count;
-    const double sum_share = sum > 0.0 ? lower_sum[axis] / sum : count_share;
+    return c;
+}
+
+uint32_t GuidingTree::halve_directional(uint32_t node, uint8_t axis, const BinCounts& c) {
+    const double count_share = c.count > 0.0 ? c.lower_count[axis] / c.count : 0.5;
+    const double sum_share = c.sum > 0.0 ? c.lower_sum[axis] / c.sum : count_share;
+    const DirectionalNode parent = directional_[node];
     const auto child = static_cast<uint32_t>(directional_.size());
     DirectionalNode lower, upper;
     lower.depth = upper.depth = static_cast<uint8_t>(parent.depth + 1);
@@ -294,13 +288,53 @@ void GuidingTree::refine_directional(uint32_t node, const Histogram& h, uint32_t
     directional_.push_back(upper);
     directional_[node].child = child;
     directional_[node].axis = axis;
-    if (axis == 0) {
-        refine_directional(child, h, i0, mid_i, j0, j1, 0.5 * cell_s, cell_t);
-        refine_directional(child + 1, h, mid_i, i1, j0, j1, 0.5 * cell_s, cell_t);
-    } else {
-        refine_directional(child, h, i0, i1, j0, mid_j, cell_s, 0.5 * cell_t);
-        refine_directional(child + 1, h, i0, i1, mid_j, j1, cell_s, 0.5 * cell_t);
+    return child;
+}
+
+void GuidingTree::refine_directional(uint32_t node, const Histogram& h, const BinRange& r, double cell_s,
+                                     double cell_t) {
+    const DirectionalNode& n = directional_[node];
+    if (n.totals.count < kDirectionalThreshold || n.depth >= kMaxDirectionalDepth ||
+        node_count() + 6 > kMaxNodes)
+        return;
+    const BinCounts c = bin_counts(h, r);
+    const bool splittable[2] = {r.i1 - r.i0 > 1, r.j1 - r.j0 > 1};
+    if (c.count < kMinPassRecordsToSplit || (!splittable[0] && !splittable[1])) return;
+    uint8_t axis = splittable[0] ? 0 : 1;
+    if (split_ == GuidingSplit::Binary) {
+        // The axis whose halves' mean radiance differs most; an empty half counts as dark (its
+        // directions drew no records: below the surfaces, or where the guide sent no samples).
+        // Equal differences: the longer side of the cell.
+        double difference[2] = {-1.0, -1.0};
+        for (int a = 0; a < 2; ++a) {
+            if (!splittable[a]) continue;
+            const double upper_count = c.count - c.lower_count[a];
+            const double lower_mean = c.lower_count[a] > 0.0 ? c.lower_sum[a] / c.lower_count[a] : 0.0;
+            const double upper_mean = upper_count > 0.0 ? (c.sum - c.lower_sum[a]) / upper_count : 0.0;
+            difference[a] = std::abs(lower_mean - upper_mean);
+        }
+        axis = difference[1] > difference[0] ? 1 : 0;
+        if (difference[0] == difference[1]) axis = cell_t > cell_s ? 1 : 0;
     }
+    const uint32_t child = halve_directional(node, axis, c);
+    const uint32_t mid_i = (r.i0 + r.i1) / 2, mid_j = (r.j0 + r.j1) / 2;
+    const BinRange halves[2] = {
+        axis == 0 ? BinRange{r.i0, mid_i, r.j0, r.j1} : BinRange{r.i0, r.i1, r.j0, mid_j},
+        axis == 0 ? BinRange{mid_i, r.i1, r.j0, r.j1} : BinRange{r.i0, r.i1, mid_j, r.j1}};
+    const double half_s = axis == 0 ? 0.5 * cell_s : cell_s, half_t = axis == 1 ? 0.5 * cell_t : cell_t;
+    if (split_ == GuidingSplit::Full && axis == 0 && splittable[1]) {
+        // The book's split along every axis: both halves split along t as well (4 quadrants),
+        // then each quadrant refines on its own.
+        for (uint32_t k = 0; k < 2; ++k) {
+            const uint32_t quadrants = halve_directional(child + k, 1, bin_counts(h, halves[k]));
+            const BinRange& q = halves[k];
+            refine_directional(quadrants, h, {q.i0, q.i1, q.j0, mid_j}, half_s, 0.5 * cell_t);
+            refine_directional(quadrants + 1, h, {q.i0, q.i1, mid_j, q.j1}, half_s, 0.5 * cell_t);
+        }
+        return;
+    }
+    refine_directional(child, h, halves[0], half_s, half_t);
+    refine_directional(child + 1, h, halves[1], half_s, half_t);
 }
 
 void GuidingTree::copy_directional(uint32_t from, uint32_t to, double share) {
@@ -329,17 +363,7 @@ void GuidingTree::scale_directional(uint32_t node, double share) {
     }
 }
 
-void GuidingTree::split_spatial(uint32_t node, const std::atomic<uint64_t>* c, const Box& box) {
-    const PassCounts p = read_counts(c, 3);
-    // The axis along which the records spread most: extent × balance of the two halves.
-    int axis = spatial_[node].depth % 3;
-    double best = 0.0;
-    for (int a = 0; a < 3; ++a) {
-        const double balance = 4.0 * p.lower_count[a] * (p.count - p.lower_count[a]) / (p.count * p.count);
-        const double score = (box.hi[a] - box.lo[a]) * balance;
-        if (score > best) best = score, axis = a;
-    }
-    const double count_share = lower_share(p, axis, false), sum_share = lower_share(p, axis, true);
+void GuidingTree::halve_spatial(uint32_t node, int axis, double count_share, double sum_share) {
     const SpatialNode parent = spatial_[node];
     const auto child = static_cast<uint32_t>(spatial_.size());
     SpatialNode lower, upper;
@@ -357,6 +381,33 @@ void GuidingTree::split_spatial(uint32_t node, const std::atomic<uint64_t>* c, c
     spatial_.push_back(upper);
     spatial_[node].child = child;
     spatial_[node].axis = static_cast<uint8_t>(axis);
+}
+
+void GuidingTree::split_spatial(uint32_t node, const std::atomic<uint64_t>* c, const Box& box) {
+    const PassCounts p = read_counts(c, 3);
+    if (split_ == GuidingSplit::Full) {
+        // The book's split along every axis: 8 octants, x then y then z; the octants' shares of
+        // the totals are products of the axes' halves (the pass counted halves, not octants).
+        std::vector<uint32_t> level{node};
+        for (int a = 0; a < 3; ++a) {
+            std::vector<uint32_t> next;
+            for (const uint32_t n : level) {
+                halve_spatial(n, a, lower_share(p, a, false), lower_share(p, a, true));
+                next.insert(next.end(), {spatial_[n].child, spatial_[n].child + 1});
+            }
+            level = std::move(next);
+        }
+        return;
+    }
+    // The axis along which the records spread most: extent × balance of the two halves.
+    int axis = spatial_[node].depth % 3;
+    double best = 0.0;
+    for (int a = 0; a < 3; ++a) {
+        const double balance = 4.0 * p.lower_count[a] * (p.count - p.lower_count[a]) / (p.count * p.count);
+        const double score = (box.hi[a] - box.lo[a]) * balance;
+        if (score > best) best = score, axis = a;
+    }
+    halve_spatial(node, axis, lower_share(p, axis, false), lower_share(p, axis, true));
 }
 
 double GuidingTree::integrate(uint32_t node, double floor, double fallback, double area) {
@@ -418,7 +469,7 @@ uint64_t GuidingTree::update() {
             h.count[b] = static_cast<double>(c[2 * b].load(std::memory_order_relaxed));
             h.sum[b] = static_cast<double>(c[2 * b + 1].load(std::memory_order_relaxed)) / kUnitsPerLuminance;
         }
-        refine_directional(split_cells[k], h, 0, kHistogramSide, 0, kHistogramSide, cell_sides[k][0],
+        refine_directional(split_cells[k], h, {0, kHistogramSide, 0, kHistogramSide}, cell_sides[k][0],
                            cell_sides[k][1]);
     }
     for (size_t k = 0; k < split_regions.size(); ++k) {
@@ -431,7 +482,9 @@ uint64_t GuidingTree::update() {
             if (directional_[d].child != 0)
                 subtree.insert(subtree.end(), {directional_[d].child, directional_[d].child + 1});
         }
-        if (node_count() + 2 + size > kMaxNodes) break;
+        // A binary split copies the region's directional tree once, the split into octants 7 times.
+        const size_t copies = split_ == GuidingSplit::Full ? 7 : 1;
+        if (node_count() + 14 + copies * size > kMaxNodes) break;
         split_spatial(split_regions[k], counters_of_spatial(split_regions[k]), region_boxes[k]);
     }
     // p′ of every region anew: floors at a share of the region's mean radiance.

@@ -37,11 +37,20 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include "core/math.h"
+#include "core/registry.h"
 
 namespace stratum {
+
+// How a node splits (textbook §5): in two along the one axis the records tell apart most
+// (Binary, the book's binary split), or along every axis at once (Full, the book's 32 children:
+// a region into 8 octants, each directional cell into 4 quadrants).
+// Menu order (default first): a host stores a choice by its position, so never reorder.
+enum class GuidingSplit : uint8_t { Binary = 0, Full = 1 };
+std::span<const RegistryEntry> guiding_split_choices();
 
 class GuidingTree {
 public:
@@ -56,7 +65,7 @@ public:
     static constexpr size_t kMaxNodes = size_t{1} << 18;
 
     // The cube the positions are normalised to: centre ± half_side (padded by the caller).
-    GuidingTree(Vec3 center, float half_side);
+    GuidingTree(Vec3 center, float half_side, GuidingSplit split = GuidingSplit::Binary);
 
     // The region (spatial leaf) holding point p; points outside the cube belong to the nearest.
     uint32_t region(Vec3 p) const;
@@ -121,16 +130,30 @@ private:
     struct Histogram {
         std::array<double, kHistogramSide * kHistogramSide> count{}, sum{};
     };
+    // Bins [i0, i1) × [j0, j1) of a histogram: a node's part of its leaf's cell.
+    struct BinRange {
+        uint32_t i0, i1, j0, j1;
+    };
+    // Records and luminance in a range of bins, and in the lower half of each axis of it.
+    struct BinCounts {
+        double count = 0, sum = 0;
+        std::array<double, 2> lower_count{}, lower_sum{};
+    };
+    static BinCounts bin_counts(const Histogram& h, const BinRange& r);
 
     uint32_t descend_spatial(const double coords[3], Box* box) const;
     uint32_t descend_directional(uint32_t root, double s, double t, double st_box[4]) const;
     std::atomic<uint64_t>* counters_of_spatial(uint32_t node) const;
     std::atomic<uint64_t>* counters_of_directional(uint32_t node) const;
-    // Splits `node` while its records pass the threshold, along the axis whose halves of the
-    // histogram bins [i0, i1) × [j0, j1) (its cell's part of its leaf's histogram) differ most.
-    void refine_directional(uint32_t node, const Histogram& h, uint32_t i0, uint32_t i1, uint32_t j0,
-                            uint32_t j1, double cell_s, double cell_t);
+    // Splits `node` while its records pass the threshold, by the split rule, from the pass's
+    // records in the bins `r` of its leaf's histogram (its cell's part of it).
+    void refine_directional(uint32_t node, const Histogram& h, const BinRange& r, double cell_s,
+                            double cell_t);
+    // Splits `node` in two along `axis`; the children's totals are the parent's times the lower
+    // half's share of the records in `c`. Returns the lower child.
+    uint32_t halve_directional(uint32_t node, uint8_t axis, const BinCounts& c);
     void split_spatial(uint32_t node, const std::atomic<uint64_t>* c, const Box& box);
+    void halve_spatial(uint32_t node, int axis, double count_share, double sum_share);
     // Copies the directional subtree at `from` into the slot `to`, totals scaled by `share`.
     void copy_directional(uint32_t from, uint32_t to, double share);
     void scale_directional(uint32_t node, double share);
@@ -144,6 +167,7 @@ private:
 
     Vec3 lo_;
     float side_;
+    GuidingSplit split_;
     std::vector<SpatialNode> spatial_;
     std::vector<DirectionalNode> directional_;
     // The pass counters of the leaves at the last reset (offsets in the nodes).

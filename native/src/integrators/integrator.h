@@ -65,6 +65,7 @@ struct IntegratorSettings {
     bool use_guiding = false;
     uint32_t guiding_training_samples = 32;
     float guiding_bsdf_fraction = 0.5f;
+    GuidingSplit guiding_split = GuidingSplit::Binary;
 };
 
 // One camera ray's estimate: the radiance, and the alpha the film stores (1 = covered; a

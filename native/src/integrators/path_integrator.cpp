@@ -19,7 +19,8 @@ void PathIntegrator::prepare(const RenderScene& scene, const std::atomic<bool>&)
     if (scene.lights().resolve(settings_.light_selection) == LightSelection::Tree)
         (void)scene.lights().tree();
     if (settings_.use_guiding) {
-        guide_ = std::make_unique<GuidingTree>(scene.bounds_center(), 1.01f * scene.bounds_radius());
+        guide_ = std::make_unique<GuidingTree>(scene.bounds_center(), 1.01f * scene.bounds_radius(),
+                                               settings_.guiding_split);
         guiding_report_ = GuidingReport{guide_->node_count(), guide_->region_count(), guide_->bytes(), 0, 0};
     }
 }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "film/pixel_filter.h"
+#include "guiding/guiding_tree.h"
 #include "integrators/estimator_options.h"
 #include "lights/light_tree.h"
 #include "radiosity/radiosity_settings.h"
@@ -495,6 +496,15 @@ const std::array kSettings = {
                 "",
                 nullptr,
                 STRATUM_FLOAT(estimator.guiding_bsdf_fraction)},
+    SettingSpec{{"guiding_split", "Split",
+                 "Path guiding: how a node of the tree splits once it holds enough records"},
+                SettingKind::Choice,
+                0,
+                0,
+                false,
+                "",
+                &guiding_split_choices,
+                STRATUM_ENUM(estimator.guiding_split, GuidingSplit)},
 };
 
 #undef STRATUM_UINT
