@@ -183,15 +183,15 @@ void GuidingTree::record(Vec3 position, Vec3 direction, float luminance) {
     for (int a = 0; a < 3; ++a) coords[a] = clamp_unit((static_cast<double>(position[a]) - lo_[a]) / side_);
     Box box;
     const uint32_t leaf = descend_spatial(coords, &box);
-    std::atomic<uint64_t>* c = counters_of_spatial(leaf);
+    uint32_t cell_bin = 0;
+    for (int a = 0; a < 3; ++a)
+        cell_bin = cell_bin * kSpatialHistogramSide +
+                   std::min(kSpatialHistogramSide - 1,
+                            static_cast<uint32_t>((coords[a] - box.lo[a]) / (box.hi[a] - box.lo[a]) *
+                                                  kSpatialHistogramSide));
+    std::atomic<uint64_t>* c = counters_of_spatial(leaf) + 2 * cell_bin;
     c[0].fetch_add(1, std::memory_order_relaxed);
     c[1].fetch_add(units, std::memory_order_relaxed);
-    for (int a = 0; a < 3; ++a) {
-        if (coords[a] < 0.5 * (box.lo[a] + box.hi[a])) {
-            c[2 + 2 * a].fetch_add(1, std::memory_order_relaxed);
-            c[3 + 2 * a].fetch_add(units, std::memory_order_relaxed);
-        }
-    }
     const Vec2 st = direction_to_st(direction);
     double st_box[4];
     const uint32_t cell = descend_directional(spatial_[leaf].directional_root, st.x, st.y, st_box);
@@ -203,35 +203,6 @@ void GuidingTree::record(Vec3 position, Vec3 direction, float luminance) {
     c[0].fetch_add(1, std::memory_order_relaxed);
     c[1].fetch_add(units, std::memory_order_relaxed);
 }
-
-namespace {
-
-// A leaf's pass counters as numbers: records, luminance, and per axis the lower half's.
-struct PassCounts {
-    double count = 0, sum = 0;
-    std::array<double, 3> lower_count{}, lower_sum{};
-};
-
-PassCounts read_counts(const std::atomic<uint64_t>* c, int axes) {
-    PassCounts p;
-    p.count = static_cast<double>(c[0].load(std::memory_order_relaxed));
-    p.sum = static_cast<double>(c[1].load(std::memory_order_relaxed)) / kUnitsPerLuminance;
-    for (int a = 0; a < axes; ++a) {
-        p.lower_count[a] = static_cast<double>(c[2 + 2 * a].load(std::memory_order_relaxed));
-        p.lower_sum[a] =
-            static_cast<double>(c[3 + 2 * a].load(std::memory_order_relaxed)) / kUnitsPerLuminance;
-    }
-    return p;
-}
-
-// The share of a node's totals its lower child takes along `axis`: the lower half's share of
-// this pass's luminance (of its records when the pass carried no light).
-double lower_share(const PassCounts& p, int axis, bool by_sum) {
-    if (by_sum && p.sum > 0.0) return p.lower_sum[axis] / p.sum;
-    return p.count > 0.0 ? p.lower_count[axis] / p.count : 0.5;
-}
-
-}  // namespace
 
 void GuidingTree::fold_directional(uint32_t node, double st_box[4], std::vector<uint32_t>* to_split,
                                    std::vector<std::array<double, 2>>* sides) {
@@ -363,7 +334,36 @@ void GuidingTree::scale_directional(uint32_t node, double share) {
     }
 }
 
-void GuidingTree::halve_spatial(uint32_t node, int axis, double count_share, double sum_share) {
+GuidingTree::SpatialCounts GuidingTree::spatial_counts(const SpatialHistogram& h, const SpatialRange& r) {
+    SpatialCounts c;
+    uint32_t mid[3];
+    for (int a = 0; a < 3; ++a) mid[a] = (r.lo[a] + r.hi[a]) / 2;
+    for (uint32_t x = r.lo[0]; x < r.hi[0]; ++x)
+        for (uint32_t y = r.lo[1]; y < r.hi[1]; ++y)
+            for (uint32_t z = r.lo[2]; z < r.hi[2]; ++z) {
+                const uint32_t b = (x * kSpatialHistogramSide + y) * kSpatialHistogramSide + z;
+                const uint32_t v[3] = {x, y, z};
+                c.count += h.count[b];
+                c.sum += h.sum[b];
+                for (int a = 0; a < 3; ++a)
+                    if (v[a] < mid[a]) c.lower_count[a] += h.count[b], c.lower_sum[a] += h.sum[b];
+            }
+    return c;
+}
+
+bool GuidingTree::halve_spatial(uint32_t node, int axis, const SpatialCounts& c) {
+    // The upper half copies the region's directional tree: refused past kMaxNodes.
+    size_t size = 0;
+    for (std::vector<uint32_t> stack{spatial_[node].directional_root}; !stack.empty();) {
+        const uint32_t d = stack.back();
+        stack.pop_back();
+        ++size;
+        if (directional_[d].child != 0)
+            stack.insert(stack.end(), {directional_[d].child, directional_[d].child + 1});
+    }
+    if (node_count() + 2 + size > kMaxNodes) return false;
+    const double count_share = c.count > 0.0 ? c.lower_count[axis] / c.count : 0.5;
+    const double sum_share = c.sum > 0.0 ? c.lower_sum[axis] / c.sum : count_share;
     const SpatialNode parent = spatial_[node];
     const auto child = static_cast<uint32_t>(spatial_.size());
     SpatialNode lower, upper;
@@ -381,45 +381,60 @@ void GuidingTree::halve_spatial(uint32_t node, int axis, double count_share, dou
     spatial_.push_back(upper);
     spatial_[node].child = child;
     spatial_[node].axis = static_cast<uint8_t>(axis);
+    return true;
 }
 
-void GuidingTree::split_spatial(uint32_t node, const std::atomic<uint64_t>* c, const Box& box) {
-    const PassCounts p = read_counts(c, 3);
-    if (split_ == GuidingSplit::Full) {
-        // The book's split along every axis: 8 octants, x then y then z; the octants' shares of
-        // the totals are products of the axes' halves (the pass counted halves, not octants).
-        std::vector<uint32_t> level{node};
-        for (int a = 0; a < 3; ++a) {
-            std::vector<uint32_t> next;
-            for (const uint32_t n : level) {
-                halve_spatial(n, a, lower_share(p, a, false), lower_share(p, a, true));
-                next.insert(next.end(), {spatial_[n].child, spatial_[n].child + 1});
+void GuidingTree::refine_spatial(uint32_t node, const SpatialHistogram& h, const SpatialRange& r,
+                                 const Box& box, int forced_axis) {
+    if (forced_axis > 2) forced_axis = -1;
+    const SpatialCounts c = spatial_counts(h, r);
+    bool splittable[3];
+    for (int a = 0; a < 3; ++a) splittable[a] = r.hi[a] - r.lo[a] > 1;
+    int axis = -1;
+    if (forced_axis >= 0) {
+        // Inside the book's split into octants: the next axis, whatever the counts.
+        axis = forced_axis;
+    } else {
+        const SpatialNode& n = spatial_[node];
+        if (n.totals.count < kSpatialThreshold || n.depth >= kMaxSpatialDepth ||
+            c.count < kMinPassRecordsToSplit)
+            return;
+        if (split_ == GuidingSplit::Full) {
+            axis = 0;
+        } else {
+            // The axis along which the records spread most: extent × balance of the two halves
+            // (a wall's records all lie in one half of its normal axis, which is not split).
+            double best = 0.0;
+            for (int a = 0; a < 3; ++a) {
+                if (!splittable[a]) continue;
+                const double balance =
+                    4.0 * c.lower_count[a] * (c.count - c.lower_count[a]) / (c.count * c.count);
+                const double score = (box.hi[a] - box.lo[a]) * balance;
+                if (score > best) best = score, axis = a;
             }
-            level = std::move(next);
         }
-        return;
     }
-    // The axis along which the records spread most: extent × balance of the two halves.
-    int axis = spatial_[node].depth % 3;
-    double best = 0.0;
-    for (int a = 0; a < 3; ++a) {
-        const double balance = 4.0 * p.lower_count[a] * (p.count - p.lower_count[a]) / (p.count * p.count);
-        const double score = (box.hi[a] - box.lo[a]) * balance;
-        if (score > best) best = score, axis = a;
-    }
-    halve_spatial(node, axis, lower_share(p, axis, false), lower_share(p, axis, true));
+    if (axis < 0 || !splittable[axis] || !halve_spatial(node, axis, c)) return;
+    const uint32_t child = spatial_[node].child;
+    SpatialRange lower_range = r, upper_range = r;
+    lower_range.hi[axis] = upper_range.lo[axis] = (r.lo[axis] + r.hi[axis]) / 2;
+    Box lower_box = box, upper_box = box;
+    lower_box.hi[axis] = upper_box.lo[axis] = 0.5 * (box.lo[axis] + box.hi[axis]);
+    const int next = split_ == GuidingSplit::Full && axis < 2 ? axis + 1 : -1;
+    refine_spatial(child, h, lower_range, lower_box, next);
+    refine_spatial(child + 1, h, upper_range, upper_box, next);
 }
 
-double GuidingTree::integrate(uint32_t node, double floor, double fallback, double area) {
+double GuidingTree::integrate(uint32_t node, double floor, double area) {
     DirectionalNode& n = directional_[node];
     if (n.child == 0) {
-        n.mean = std::max(n.totals.count > 0.0 ? n.totals.sum / n.totals.count : fallback, floor);
+        n.mean = std::max(n.totals.count > 0.0 ? n.totals.sum / n.totals.count : 0.0, floor);
         n.integral = n.mean * area;
         return n.integral;
     }
     const uint32_t child = n.child;
-    const double lower = integrate(child, floor, fallback, 0.5 * area);
-    const double upper = integrate(child + 1, floor, fallback, 0.5 * area);
+    const double lower = integrate(child, floor, 0.5 * area);
+    const double upper = integrate(child + 1, floor, 0.5 * area);
     directional_[node].integral = lower + upper;
     return lower + upper;
 }
@@ -427,8 +442,7 @@ double GuidingTree::integrate(uint32_t node, double floor, double fallback, doub
 uint64_t GuidingTree::update() {
     if (!counters_) return 0;  // learning stopped
     uint64_t records = 0;
-    // Fold every region and its directional leaves; list the leaves that took records and the
-    // regions past their threshold.
+    // Fold every region and its directional leaves; list the leaves and regions that took records.
     std::vector<uint32_t> split_regions, split_cells;
     std::vector<Box> region_boxes;
     std::vector<std::array<double, 2>> cell_sides;
@@ -445,19 +459,20 @@ uint64_t GuidingTree::update() {
                 stack.push_back({n.child, lower});
                 continue;
             }
-            const uint64_t count = counters_of_spatial(node)[0].load(std::memory_order_relaxed);
+            const std::atomic<uint64_t>* c = counters_of_spatial(node);
+            uint64_t count = 0, units = 0;
+            for (size_t k = 0; k < kSpatialCounters; k += 2) {
+                count += c[k].load(std::memory_order_relaxed);
+                units += c[k + 1].load(std::memory_order_relaxed);
+            }
             records += count;
             if (count == 0 || count > kMaxPassRecords) continue;
-            const PassCounts p = read_counts(counters_of_spatial(node), 3);
-            spatial_[node].totals.count += p.count;
-            spatial_[node].totals.sum += p.sum;
+            spatial_[node].totals.count += static_cast<double>(count);
+            spatial_[node].totals.sum += static_cast<double>(units) / kUnitsPerLuminance;
             double st_box[4] = {0.0, 1.0, 0.0, 1.0};
             fold_directional(spatial_[node].directional_root, st_box, &split_cells, &cell_sides);
-            if (spatial_[node].totals.count >= kSpatialThreshold && spatial_[node].depth < kMaxSpatialDepth &&
-                count >= kMinPassRecordsToSplit) {
-                split_regions.push_back(node);
-                region_boxes.push_back(box);
-            }
+            split_regions.push_back(node);
+            region_boxes.push_back(box);
         }
     }
     // Directional splits first, so a region splitting in the same update hands its halves the
@@ -473,26 +488,22 @@ uint64_t GuidingTree::update() {
                            cell_sides[k][1]);
     }
     for (size_t k = 0; k < split_regions.size(); ++k) {
-        std::vector<uint32_t> subtree{spatial_[split_regions[k]].directional_root};
-        size_t size = 0;
-        while (!subtree.empty()) {
-            const uint32_t d = subtree.back();
-            subtree.pop_back();
-            ++size;
-            if (directional_[d].child != 0)
-                subtree.insert(subtree.end(), {directional_[d].child, directional_[d].child + 1});
+        SpatialHistogram h;
+        const std::atomic<uint64_t>* c = counters_of_spatial(split_regions[k]);
+        for (size_t b = 0; b < h.count.size(); ++b) {
+            h.count[b] = static_cast<double>(c[2 * b].load(std::memory_order_relaxed));
+            h.sum[b] = static_cast<double>(c[2 * b + 1].load(std::memory_order_relaxed)) / kUnitsPerLuminance;
         }
-        // A binary split copies the region's directional tree once, the split into octants 7 times.
-        const size_t copies = split_ == GuidingSplit::Full ? 7 : 1;
-        if (node_count() + 14 + copies * size > kMaxNodes) break;
-        split_spatial(split_regions[k], counters_of_spatial(split_regions[k]), region_boxes[k]);
+        const SpatialRange all{{0, 0, 0},
+                               {kSpatialHistogramSide, kSpatialHistogramSide, kSpatialHistogramSide}};
+        refine_spatial(split_regions[k], h, all, region_boxes[k], -1);
     }
     // p′ of every region anew: floors at a share of the region's mean radiance.
     for (uint32_t node = 0; node < spatial_.size(); ++node) {
         const SpatialNode& n = spatial_[node];
         if (n.child != 0) continue;
         const double mean = n.totals.count > 0.0 ? n.totals.sum / n.totals.count : 0.0;
-        integrate(n.directional_root, kFloorFraction * mean, 0.0, 1.0);
+        integrate(n.directional_root, kFloorFraction * mean, 1.0);
     }
     reset_counters();
     return records;

@@ -1,34 +1,37 @@
-// The path-guiding 5-D tree (textbook §5, eq. 5.19; the book's binary split): the incident
-// radiance of the scene stored over (x_n, y_n, z_n, s, t), positions normalised to a padded cube
-// around the scene and s = (cos θ + 1)/2, t = φ/2π of the world direction, so dω = 4π ds dt
-// and every cell of the (s, t) square has a solid angle 4π × its area.
+// The path-guiding 5-D tree (textbook §5, eq. 5.19): the incident radiance of the scene over
+// (x_n, y_n, z_n, s, t), positions normalised to a padded cube around the scene and
+// s = (cos θ + 1)/2, t = φ/2π of the world direction, so dω = 4π ds dt and every cell of the
+// (s, t) square has a solid angle 4π × its area.
 //
-// | quantity                 | meaning |
-// |--------------------------|---------|
-// | region                   | a leaf of the spatial part (binary splits along x, y or z) |
-// | directional tree         | each region's binary tree over (s, t); a region that splits gives both halves
-// a copy | | L̃ of a directional leaf  | mean recorded luminance of its cell, floored at kFloorFraction × the
-// region's mean | | p′(s, t)                 | L̃(cell) / ∫ L̃ ds dt (5.19), piecewise constant; pdf in solid
-// angle = p′ / 4π | | kSpatialThreshold        | records a region gathers before it splits | |
-// kDirectionalThreshold    | records a directional leaf gathers before it splits |
+// Quantities:
+// * region: a leaf of the spatial part (splits along x, y or z);
+// * directional tree: each region's binary tree over (s, t); a region that splits gives both
+//   halves a copy, counts scaled by their shares of its records;
+// * L̃ of a directional leaf: the mean recorded luminance of its cell, floored at
+//   kFloorFraction × the region's mean;
+// * p′(s, t) = L̃(cell) / ∫ L̃ ds dt (5.19), piecewise constant; pdf in solid angle = p′ / 4π;
+// * kSpatialThreshold, kDirectionalThreshold: records a region / a directional leaf holds
+//   before it splits (the book's "threshold number of samples"). 4096 and 512: the least
+//   variance of the thresholds tried (directional 32 to 2048, spatial 2048 to 16384) on a floor
+//   under a small lamp and on a room lit through a door, 128² pixels, 32 training samples;
+//   smaller leaves were worse, their L̃ resting on a few lucky paths.
 //
 // The tree is a kd-tree of the 5-D space in which the spatial splits lie above the directional
 // ones (Müller et al. 2017's SD-tree has the same shape): then the distribution over directions
 // at a point is one binary tree whose nodes hold their integrals, sampled by one descent.
-// Split axis: spatially, the axis whose extent × balance of the records' halves is largest
-// (a wall's records all lie in one half of its normal axis, which is not split); directionally,
-// the axis whose halves' mean radiance differs most (the largest between-halves sum of squares),
-// the longer side of the cell when the halves agree.
+// Split axis (GuidingSplit::Binary): spatially, the axis whose extent × balance of the records'
+// halves is largest (a wall's records all lie in one half of its normal axis, which is not
+// split); directionally, the axis whose halves' mean radiance differs most, the longer side of
+// the cell when they agree. GuidingSplit::Full splits along every axis at once (the book's 32).
 // Support: the floor keeps p′ > 0 for every direction of a region with recorded light, and a
-// region without any samples the whole sphere uniformly, so the guide alone covers every
-// direction a BSDF can scatter to.
+// region without light is uniform over the sphere, so the guide alone covers every direction.
 //
 // Concurrency and determinism: within a render pass the structure is read-only; record() adds
 // each record's count and fixed-point luminance into atomic integer counters of the leaves it
 // lands in (integer addition is associative, so the totals do not depend on the order of the
 // records or the thread count), and update(), between passes in one thread, folds them into the
 // estimates and splits. A record's luminance is clamped to kMaxRecordLuminance (it shapes the
-// guide only, never the estimate): at 2^-16 units a leaf holds 2^31 records per pass before its
+// guide only, never the estimate): at 2^-16 units a leaf holds 2^31 records per pass before a
 // 64-bit sum could wrap, and a leaf past that count drops its pass (checked in update()).
 #pragma once
 
@@ -54,13 +57,13 @@ std::span<const RegistryEntry> guiding_split_choices();
 
 class GuidingTree {
 public:
-    static constexpr uint32_t kSpatialThreshold = 16384;
-    static constexpr uint32_t kDirectionalThreshold = 32;
+    static constexpr uint32_t kSpatialThreshold = 4096;
+    static constexpr uint32_t kDirectionalThreshold = 512;
     static constexpr float kFloorFraction = 0.01f;
     static constexpr float kMaxRecordLuminance = 65536.0f;
     // Depth limits: a directional cell of 2^-10 on a side (≈ 0.01 sr), spatial cells of 2^-12
     // of the cube's side per axis; and at most kMaxNodes nodes: 2^18 × (48 bytes, and 1 KiB of
-    // counters per directional leaf while learning) ≤ 270 MiB while learning, 12 MiB after.
+    // counters per leaf while learning) ≤ 270 MiB while learning, 12 MiB after.
     static constexpr uint32_t kMaxDirectionalDepth = 20, kMaxSpatialDepth = 36;
     static constexpr size_t kMaxNodes = size_t{1} << 18;
 
@@ -116,12 +119,14 @@ private:
         double integral = 0;    // ∫ L̃ ds dt over the node's cell
         Totals totals;
     };
-    // Per-pass counters. A region: records and luminance sum, and the same for the records in
-    // the lower half of each axis of its box. A directional leaf: records and luminance sum in
-    // each bin of a kHistogramSide² grid over its cell, so one update can split it several
-    // levels deep (a render trains in a handful of passes: 1, 1, 2, 4, 8, 16 samples).
+    // Per-pass counters: records and luminance sum in each bin of a grid over the leaf's cell,
+    // kSpatialHistogramSide³ over a region's box, kHistogramSide² over a directional leaf's
+    // (s, t) cell, so one update can split a leaf several levels deep (a render trains in a
+    // handful of passes: 1, 1, 2, 4, 8, 16 samples; one level per pass would leave 64 cells).
     static constexpr uint32_t kHistogramSide = 8;
-    static constexpr size_t kSpatialCounters = 8;
+    static constexpr uint32_t kSpatialHistogramSide = 4;
+    static constexpr size_t kSpatialCounters =
+        2 * kSpatialHistogramSide * kSpatialHistogramSide * kSpatialHistogramSide;
     static constexpr size_t kDirectionalCounters = 2 * kHistogramSide * kHistogramSide;
     struct Box {
         double lo[3], hi[3];
@@ -152,8 +157,26 @@ private:
     // Splits `node` in two along `axis`; the children's totals are the parent's times the lower
     // half's share of the records in `c`. Returns the lower child.
     uint32_t halve_directional(uint32_t node, uint8_t axis, const BinCounts& c);
-    void split_spatial(uint32_t node, const std::atomic<uint64_t>* c, const Box& box);
-    void halve_spatial(uint32_t node, int axis, double count_share, double sum_share);
+    struct SpatialHistogram {
+        std::array<double, kSpatialHistogramSide * kSpatialHistogramSide * kSpatialHistogramSide> count{},
+            sum{};
+    };
+    // Bins [lo, hi) per axis of a region's histogram: a node's part of its leaf's box.
+    struct SpatialRange {
+        uint32_t lo[3], hi[3];
+    };
+    struct SpatialCounts {
+        double count = 0, sum = 0;
+        std::array<double, 3> lower_count{}, lower_sum{};
+    };
+    static SpatialCounts spatial_counts(const SpatialHistogram& h, const SpatialRange& r);
+    // Splits region `node` while it passes the threshold, from the pass's records in the bins
+    // `r` of its leaf's histogram; `forced_axis` ≥ 0: the split into octants continues there.
+    void refine_spatial(uint32_t node, const SpatialHistogram& h, const SpatialRange& r, const Box& box,
+                        int forced_axis);
+    // Splits `node` in two along `axis` (false past kMaxNodes); the halves' totals are the
+    // parent's times the lower half's share of the records in `c`.
+    bool halve_spatial(uint32_t node, int axis, const SpatialCounts& c);
     // Copies the directional subtree at `from` into the slot `to`, totals scaled by `share`.
     void copy_directional(uint32_t from, uint32_t to, double share);
     void scale_directional(uint32_t node, double share);
@@ -162,7 +185,7 @@ private:
     void fold_directional(uint32_t node, double st_box[4], std::vector<uint32_t>* to_split,
                           std::vector<std::array<double, 2>>* sides);
     // Recomputes the leaves' floored means and every node's integral under `node`; returns it.
-    double integrate(uint32_t node, double floor, double fallback, double area);
+    double integrate(uint32_t node, double floor, double area);
     void reset_counters();
 
     Vec3 lo_;
