@@ -50,7 +50,10 @@ namespace stratum {
 
 // How a node splits (textbook §5): in two along the one axis the records tell apart most
 // (Binary, the book's binary split), or along every axis at once (Full, the book's 32 children:
-// a region into 8 octants, each directional cell into 4 quadrants).
+// a region into 8 octants, each directional cell into 4 quadrants). Binary is the default: on a
+// floor under a lamp, a room lit through a door and a diffuse Cornell box (128², 64 samples)
+// Full gave the same variance within the noise of the measurement (0.97–1.24× Binary's) with
+// 2.3–4.4× the nodes (175k nodes, 99 MB in the room).
 // Menu order (default first): a host stores a choice by its position, so never reorder.
 enum class GuidingSplit : uint8_t { Binary = 0, Full = 1 };
 std::span<const RegistryEntry> guiding_split_choices();

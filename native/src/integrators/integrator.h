@@ -61,7 +61,9 @@ struct IntegratorSettings {
     // tree learns from sample indices below guiding_training_samples, then stays as it is; the
     // closures draw a share guiding_bsdf_fraction of the directions, the tree the rest.
     // 32 training samples: the passes up to 32 (1, 1, 2, 4, 8, 16 samples) are where the image is
-    // noisiest anyway, and the later, larger passes (32, 64 per pass) all use a trained tree.
+    // noisiest anyway, and the later, larger passes (32, 64 per pass) all use a trained tree;
+    // learning for 128 of 128 samples in the room lit through a door lowered the variance by 5%
+    // for 3.7× the nodes. Fixed after training, the tree costs no counters and no records.
     bool use_guiding = false;
     uint32_t guiding_training_samples = 32;
     float guiding_bsdf_fraction = 0.5f;
