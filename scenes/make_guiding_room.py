@@ -121,7 +121,7 @@ def main() -> None:
     scene.name = "GuidingRoom"
     build_room()
     cam = perspective_camera(lens=24.0, clip_start=0.05, location=(-1.6, -1.8, 1.4))
-    aim(cam, (0.6, 2.0, 0.9))
+    aim(cam, (-0.4, 2.0, 1.15))
     uniform_world(scene, (0.0, 0.0, 0.0))
     png_render_settings(scene, 128, 96)
     save(path)
