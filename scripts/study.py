@@ -34,6 +34,10 @@ The runs (the source documents' experiments, with more samplers, seeds and spp):
   radiosity solvers on the diffuse Cornell box, residual against iterations and time, claim 12
   of the textbook) into out/study/radiosity.json; the summary writes out/study/radiosity.md and
   its figure from it.
+* guiding: scenes/guiding_room.blend, Stratum's path tracer with and without path guiding and
+  Cycles' path guiding (the bpy wheel) at equal time; not a `compare` run: scripts/
+  study_guiding.py renders it in its own process (after the compare runs) into
+  out/study/guiding.md.
 
     .venv/bin/python scripts/study.py [--out out/study] [--jobs 2] [--only cornell,wolf]
                                       [--quick] [--dry-run] [--summary-only]
@@ -67,6 +71,7 @@ from study_figures import export_docs, make_figures
 from study_summary import AO_HEMISPHERES, AO_SAMPLERS, write_summary
 
 AO_REFERENCE_RUN = "ao_cosine"
+GUIDING = "guiding"  # scripts/study_guiding.py's part: not a compare Run
 
 
 @dataclass
@@ -140,12 +145,29 @@ def run_all(runs: list[Run], out: Path, jobs: int, dry_run: bool) -> list[dict[s
     return log
 
 
+def run_guiding(out: Path, quick: bool, dry_run: bool) -> list[dict[str, Any]]:
+    """scripts/study_guiding.py in its own process (it needs bpy: the venv's wheel)."""
+    cmd = [sys.executable, str(REPO / "scripts" / "study_guiding.py"), "--out", str(out)]
+    cmd += ["--quick"] if quick else []
+    print("study:", " ".join(cmd), flush=True)
+    if dry_run:
+        return []
+    start = time.monotonic()
+    path = os.pathsep.join(p for p in (str(REPO / "addon"), os.environ.get("PYTHONPATH")) if p)
+    code = subprocess.call(cmd, cwd=REPO, env={**os.environ, "PYTHONPATH": path})
+    seconds = time.monotonic() - start
+    print(f"study: {GUIDING} finished in {seconds / 60:.1f} min (exit {code})", flush=True)
+    if code != 0:
+        raise SystemExit(f"study: scripts/study_guiding.py failed (exit {code})")
+    return [{"name": GUIDING, "command": cmd, "seconds": seconds, "exit_code": code}]
+
+
 def main(argv: list[str] | None = None) -> int:
     p = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     p.add_argument("--out", default=str(REPO / "out" / "study"))
     p.add_argument("--jobs", type=int, default=2)
     p.add_argument("--only", help="comma-separated run names (cornell, wolf, ao_cosine, "
-                   "est_small, est_large, est_glossy, ...)")
+                   "est_small, est_large, est_glossy, ..., guiding)")
     p.add_argument("--quick", action="store_true", help="toy sizes, to test the pipeline")
     p.add_argument("--dry-run", action="store_true", help="print the commands only")
     p.add_argument("--summary-only", action="store_true",
@@ -158,14 +180,17 @@ def main(argv: list[str] | None = None) -> int:
     runs = plan_runs(args.quick)
     if args.only:
         wanted = set(args.only.split(","))
-        unknown = wanted - {r.name for r in runs}
+        unknown = wanted - {r.name for r in runs} - {GUIDING}
         if unknown:
             p.error(f"unknown run(s) {sorted(unknown)}; runs: {[r.name for r in runs]}")
         runs = [r for r in runs if r.name in wanted]
+    with_guiding = not args.only or GUIDING in args.only.split(",")
     log_path = out / "runs.json"
     previous = json.loads(log_path.read_text()) if log_path.is_file() else []
     if not args.summary_only:
         log = run_all(runs, out, args.jobs, args.dry_run)
+        if with_guiding:
+            log += run_guiding(out, args.quick, args.dry_run)
         if args.dry_run:
             return 0
         done = {r["name"] for r in log}
