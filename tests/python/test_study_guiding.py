@@ -1,4 +1,4 @@
-"""The path-guiding study (scripts/study_guiding.py): its pure parts on synthetic numbers (the
+"""The path-guiding study (scripts/study_guiding.py, study_guiding_page.py): its pure parts on synthetic numbers (the
 guiding tree's memory, equal time, the page's ratios and verdicts, the reference comparison),
 and its --quick run end to end under the bpy wheel. No timing is asserted."""
 
@@ -20,17 +20,18 @@ REPO = Path(__file__).resolve().parents[2]
 sys.path.insert(0, str(REPO / "scripts"))
 
 import study_guiding
+import study_guiding_page
 
 
 def test_memory_comes_from_the_progress_or_the_log_line() -> None:
     progress = SimpleNamespace(guiding_nodes=1234.0, guiding_bytes=3 * 2**20)
-    assert study_guiding.guiding_memory(progress, "") == {"nodes": 1234.0, "mib": 3.0}
+    assert study_guiding_page.guiding_memory(progress, "") == {"nodes": 1234.0, "mib": 3.0}
     # A library without the progress fields (or with them still zero): the last log line.
     log = ("guiding tree: 10 nodes, 0.01 MiB after pass 1\n"
            "guiding tree: 1,024 nodes, 0.75 MiB after pass 2\n")
     for p in (SimpleNamespace(), SimpleNamespace(guiding_nodes=0.0, guiding_bytes=0.0)):
-        assert study_guiding.guiding_memory(p, log) == {"nodes": 1024.0, "mib": 0.75}
-    assert study_guiding.guiding_memory(SimpleNamespace(), "Fra:1 nothing") is None
+        assert study_guiding_page.guiding_memory(p, log) == {"nodes": 1024.0, "mib": 0.75}
+    assert study_guiding_page.guiding_memory(SimpleNamespace(), "Fra:1 nothing") is None
 
 
 def _record(costs: dict[str, tuple[float, float] | None]) -> dict[str, Any]:
@@ -64,17 +65,17 @@ def test_equal_time_ratios_and_verdicts() -> None:
     costs = {"bsdf": (40.0, 0.25), "mis": (4.0, 0.5), "guided mis": (1.0, 0.8),
              "guided bsdf": (2.0, 0.6), "cycles": (5.0, 0.5), "cycles guided": (3.0, 0.7)}
     data = _record(costs)
-    numbers = study_guiding.analyse(data)
+    numbers = study_guiding_page.analyse(data)
     assert numbers["budget"] == pytest.approx(64.0)
     for label, (v, c) in costs.items():
         assert numbers["equal_time"][label]["mse"] == pytest.approx(v * c / 64.0)
-    assert study_guiding.ratio(numbers, "guided mis", "mis") == pytest.approx(0.8 / 2.0)
-    assert study_guiding.ratio(numbers, "cycles guided", "cycles") == pytest.approx(2.1 / 2.5)
-    data["references"]["cycles_vs_stratum"] = study_guiding.cycles_against_stratum_reference(data)
+    assert study_guiding_page.ratio(numbers, "guided mis", "mis") == pytest.approx(0.8 / 2.0)
+    assert study_guiding_page.ratio(numbers, "cycles guided", "cycles") == pytest.approx(2.1 / 2.5)
+    data["references"]["cycles_vs_stratum"] = study_guiding_page.cycles_against_stratum_reference(data)
     assert data["references"]["cycles_vs_stratum"]["cycles"] == {
         "spp": 256, "own": pytest.approx(5.0 / 256 + 0.01),
         "stratum": pytest.approx(5.0 / 256 + 0.02)}
-    text = study_guiding.page(data, numbers)
+    text = study_guiding_page.page(data, numbers)
     assert "- Stratum guided mis / Stratum mis: 0.4 (met: target <= 0.5)" in text
     # 0.8 against Cycles guided's 2.1: met; the guided bsdf row shows its memory column empty.
     assert "- Stratum guided mis / Cycles guided: 0.381 (met: target <= 1)" in text
@@ -88,10 +89,10 @@ def test_unavailable_guiding_is_marked_not_measured() -> None:
     data = _record({"bsdf": (40.0, 0.25), "mis": (4.0, 0.5), "guided mis": None,
                     "guided bsdf": None, "cycles": (5.0, 0.5), "cycles guided": (6.0, 0.5)})
     data["series"]["guided mis"].pop("memory")
-    numbers = study_guiding.analyse(data)
+    numbers = study_guiding_page.analyse(data)
     assert set(numbers["equal_time"]) == {"bsdf", "mis", "cycles", "cycles guided"}
-    data["references"]["cycles_vs_stratum"] = study_guiding.cycles_against_stratum_reference(data)
-    text = study_guiding.page(data, numbers)
+    data["references"]["cycles_vs_stratum"] = study_guiding_page.cycles_against_stratum_reference(data)
+    text = study_guiding_page.page(data, numbers)
     row = next(line for line in text.splitlines() if line.startswith("| guided mis |"))
     assert "not available (the library has no use_guiding)" in row
     assert "guiding tree" not in text
@@ -109,7 +110,7 @@ def test_worst_block_compares_bright_blocks_only() -> None:
     stratum = cycles.copy()
     stratum[:12, :12] *= 1.03
     stratum[12:, 12:] *= 1.5
-    worst = study_guiding.worst_block(stratum, cycles, block=12)
+    worst = study_guiding_page.worst_block(stratum, cycles, block=12)
     assert worst["compared"] == 9 and worst["of"] == 12
     assert worst["worst"] == pytest.approx(0.03)
     assert worst["mean"] == pytest.approx(0.03 * 3 / 9)
