@@ -14,8 +14,9 @@ light, strength EMISSION). The black well collimates the light: only points insi
 half-angle atan(OPENING / WELL_HEIGHT) ~ 18 degrees below the opening see the emitter, so it
 lights a patch of the floor near the front-right corner directly and every other surface only
 through the bounce from that patch; shadow rays from anywhere else are all blocked. The camera
-(24 mm, in the front-left corner looking at the back wall) does not see the lit patch: what it
-sees is lit by bounces only. The emitter is a mesh, not a lamp, so BSDF sampling can hit it
+(24 mm, in the front-left corner looking at the back wall) sees no directly lit point (the
+floor patch and the foot of the two walls beside it; tests/blender/test_guiding_room.py): what
+it sees is lit by bounces only. The emitter is a mesh, not a lamp, so BSDF sampling can hit it
 (`light_sampling=bsdf` sees it) and its radiance means the same in Cycles and Stratum.
 
 Materials are Diffuse BSDF nodes (Lambert), the world black, the stored resolution 128x96 at
@@ -121,7 +122,7 @@ def main() -> None:
     scene.name = "GuidingRoom"
     build_room()
     cam = perspective_camera(lens=24.0, clip_start=0.05, location=(-1.6, -1.8, 1.4))
-    aim(cam, (-0.4, 2.0, 1.15))
+    aim(cam, (-0.4, 2.0, 1.35))
     uniform_world(scene, (0.0, 0.0, 0.0))
     png_render_settings(scene, 128, 96)
     save(path)
