@@ -74,6 +74,11 @@ STRATUM_SERIES: dict[str, dict[str, int | str]] = {
     "guided bsdf": {"light_sampling": "bsdf", "use_guiding": 1},
 }
 CYCLES_SERIES = {"cycles": False, "cycles guided": True}  # label -> use_guiding
+# Cycles' guiding settings left at their defaults, recorded on the page.
+CYCLES_GUIDING_SETTINGS = ("guiding_training_samples", "surface_guiding_probability",
+                           "guiding_distribution_type", "guiding_directional_sampling_type",
+                           "use_guiding_direct_light", "use_guiding_mis_weights",
+                           "use_deterministic_guiding")
 REFERENCE_SEEDS = (1001, 1002)
 # Owen-scrambled Sobol for every Stratum render (series and reference), against Cycles' own
 # default pattern (Tabulated Sobol in 5.0): each renderer's best-behaved unbiased sampler.
@@ -249,6 +254,9 @@ def measure(config: Config) -> dict[str, Any]:
             "reference_spp": config.reference_spp, "load_average": list(os.getloadavg()),
             "blender": bpy.app.version_string, "cycles_guiding": cycles_guiding,
             "cycles_pattern": bpy.context.scene.cycles.sampling_pattern, "stratum_sampler": SAMPLER,
+            "cycles_guiding_settings": {name: getattr(bpy.context.scene.cycles, name)
+                                        for name in CYCLES_GUIDING_SETTINGS
+                                        if hasattr(bpy.context.scene.cycles, name)},
             "stratum_guiding": has_guiding, "references": compare_references(halves),
             "series": series}
 

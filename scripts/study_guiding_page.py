@@ -88,7 +88,9 @@ def page(data: dict[str, Any], numbers: dict[str, Any]) -> str:
               f"{data['blender']}, Cycles path guiding "
               f"{'compiled in' if data['cycles_guiding'] else 'absent'}; Stratum's sampler "
               f"{data.get('stratum_sampler', '?')}, Cycles' pattern "
-              f"{data.get('cycles_pattern', '?')}."), "",
+              f"{data.get('cycles_pattern', '?')}; Cycles' guiding settings: "
+              + ", ".join(f"{k} {v}" for k, v in data.get("cycles_guiding_settings", {}).items())
+              + "."), "",
              "| series | renderer | " + " | ".join(f"noise MSE {n} spp" for n in spps)
              + " | " + " | ".join(f"s at {n} spp" for n in spps)
              + f" | MSE at {fmt(budget)} s | / Stratum mis | / Cycles |"
