@@ -99,7 +99,7 @@ class Config:
 # (guiding_training_samples' default), so the longest series renders well past it: its guided
 # MSE was 1.02x its unguided at 128 spp and 0.83x at 1024 spp (equal samples).
 DEFAULT = Config(80, 60, (128, 1024), 2, 2048)
-QUICK = Config(32, 24, (4, 16), 1, 64)
+QUICK = Config(32, 24, (8, 32), 1, 128)
 
 
 # ---- measuring (bpy: the 5.0 wheel) -----------------------------------------------------------

@@ -64,12 +64,18 @@ def verdict(value: float | None, target: float) -> str:
 
 def analyse(data: dict[str, Any]) -> dict[str, Any]:
     """data (measure()'s record) + equal-time MSE per series: {"budget", "equal_time": {label:
-    {mse, extrapolated}}}."""
+    {mse, extrapolated}}, "unmeasurable": [labels]}. A series whose mean time or noise MSE is
+    not positive at some spp cannot enter the log-log interpolation: it is listed as
+    unmeasurable (at toy sizes Cycles' time by subtraction can come out as 0, and a noise MSE
+    below the reference's own noise can be negative)."""
     runs = {label: s["runs"] for label, s in data["series"].items() if s.get("runs")}
+    summary = series_results(runs)["summary"]
+    unmeasurable = sorted({row["series"] for row in summary if not row["mean"] > 0.0})
+    runs = {label: r for label, r in runs.items() if label not in unmeasurable}
     if not runs:
-        return {"budget": None, "equal_time": {}}
+        return {"budget": None, "equal_time": {}, "unmeasurable": unmeasurable}
     budget, at = equal_time(series_results(runs))
-    return {"budget": budget,
+    return {"budget": budget, "unmeasurable": unmeasurable,
             "equal_time": {label: {"mse": m, "extrapolated": ex} for label, (m, ex) in at.items()}}
 
 
@@ -104,7 +110,9 @@ def page(data: dict[str, Any], numbers: dict[str, Any]) -> str:
                for rs in by_spp.values()]
         at = numbers["equal_time"].get(label)
         if at is None:
-            cells = [s.get("unavailable") or "not measured", "", ""]
+            why = ("not measurable (a mean time or noise MSE <= 0)"
+                   if label in numbers.get("unmeasurable", []) else "not measured")
+            cells = [s.get("unavailable") or why, "", ""]
         else:
             cells = [fmt(at["mse"]) + ("*" if at["extrapolated"] else ""),
                      fmt(ratio(numbers, label, "mis")), fmt(ratio(numbers, label, "cycles"))]
