@@ -185,13 +185,14 @@ def figure(data: dict[str, Any], path: Path) -> Path | None:
                      for m in results["summary"] if r["metric"] == "trace_seconds"
                      and m["metric"] == "mse" and r["spp"] == m["spp"])
         ax.plot(*zip(*pts), marker="o", ms=3, ls="--" if s["renderer"] == "Cycles" else "-",
-                label=f"{s['renderer']} {label}")
+                label=label if label.startswith("cycles") else f"Stratum {label}")
         drawn = True
     if not drawn:
         plt.close(fig)
         return None
     ax.set_xscale("log")
     ax.set_yscale("log")
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # crowded on a short span
     ax.set_xlabel("path-tracing time [s]")
     ax.set_ylabel("noise MSE")
     ax.set_title(f"{Path(data['scene']).name}, {data['width']}x{data['height']}", fontsize=9)
