@@ -86,6 +86,9 @@ def seeds() -> dict[str, bytes]:
         [("integrator", "radiosity"), ("radiosity_solver", "gauss_seidel"), ("radiosity_patch_size", 0.5),
          ("radiosity_tolerance", 0.01)]
     )
+    s["box-guiding"] = box_scene() + render(
+        [("use_guiding", 1), ("guiding_training_samples", 1), ("guiding_bsdf_fraction", 0.3), ("guiding_split", "full")]
+    )
     s["box-crop"] = box_scene() + render([("crop_x", 2), ("crop_y", 1), ("crop_width", 4), ("crop_height", 5)])
     s["box-cancel"] = box_scene() + render(mode=1) + render(mode=3, rerender=True) + render(mode=2, rerender=True)
     s["box-destroy"] = box_scene() + render(mode=4)

@@ -187,7 +187,8 @@ STRING_SETTINGS += ["mis_heuristic", "light_selection", "triangle_sampling", "rr
 APPENDED_SETTINGS = ["use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples",
                      "adaptive_metric", "light_tree_splits", "sample_offset", "sample_count", "bvh",
                      "mist_start", "mist_depth", "mist_falloff", "passes",
-                     "radiosity_patch_size", "radiosity_solver", "radiosity_tolerance"]
+                     "radiosity_patch_size", "radiosity_solver", "radiosity_tolerance",
+                     "use_guiding", "guiding_training_samples", "guiding_bsdf_fraction", "guiding_split"]
 SETTING_NAMES = (INT_SETTINGS + FLOAT_SETTINGS + STRING_SETTINGS + ["WIDTH", ""]
                  + APPENDED_SETTINGS)
 

@@ -33,7 +33,8 @@ const char* const kSettingNames[] = {
     "passes",
     // radiosity_rays is left out: at its maximum (2^20 rays per patch) a legitimate solve of the
     // fuzzer's scenes takes minutes, which kRenderLimitMs would report as a hang.
-    "radiosity_patch_size", "radiosity_solver", "radiosity_tolerance"};
+    "radiosity_patch_size", "radiosity_solver", "radiosity_tolerance", "use_guiding",
+    "guiding_training_samples", "guiding_bsdf_fraction", "guiding_split"};
 
 // Every value the string settings know (the settings' choices read from the library, so new
 // entries are fuzzed too) and a few near misses.
@@ -52,7 +53,7 @@ const std::vector<const char*>& string_values() {
                                       "Depth",    "Normal,Debug Sample Count,Depth",
                                       "Mist,",    ",,"};
         for (const char* setting : {"sampler", "filter_type", "integrator", "hemisphere", "light_selection",
-                                    "adaptive_metric", "bvh", "radiosity_solver"}) {
+                                    "adaptive_metric", "bvh", "radiosity_solver", "guiding_split"}) {
             for (const char* name : setting_choice_names(setting)) v.push_back(name);
         }
         return v;
