@@ -127,8 +127,9 @@ bench: build microbench
 # cores) and the estimator ladder of issue 6 (small-light, large-light and glossy Cornell boxes;
 # 30 min measured under load, 9.3 min on a quiet machine), `stratum compare` runs into
 # out/study/, then out/study/summary.md, out/study/estimators.md and figures; the radiosity
-# solvers of issue 17 (scripts/study_radiosity.py, seconds) into out/study/radiosity.md. Not part
-# of `make test`. Re-running renders only what is missing.
+# solvers of issue 17 (scripts/study_radiosity.py, seconds) into out/study/radiosity.md, and path
+# guiding against Cycles' (scripts/study_guiding.py, run by study.py: about 7 min) into
+# out/study/guiding.md. Not part of `make test`. Re-running renders only what is missing.
 study: build
 	$(PY) scripts/study_auto_lights.py --out out/study
 	$(PY) scripts/study_radiosity.py --out out/study

@@ -220,6 +220,12 @@ def write_summary(out: Path, log: list[dict[str, Any]]) -> None:
     radiosity_text, headline["radiosity"] = study_radiosity.write_page(out, load_results)
     parts += ["## Radiosity solvers (issue 17)", "", "Also in radiosity.md:", "",
               radiosity_text.split("\n", 1)[1].replace("\n## ", "\n### "), ""]
+    # Path guiding's page is written by scripts/study_guiding.py under the bpy wheel (Cycles'
+    # guiding), so it is read as that script left it.
+    guiding = out / "guiding.md"
+    if guiding.exists():
+        parts += ["## Path guiding (issue 17)", "", "Also in guiding.md:", "",
+                  guiding.read_text().split("\n", 1)[1].replace("\n## ", "\n### "), ""]
     if log:
         total = sum(r["seconds"] for r in log)
         parts += ["## Run time", "", "| run | minutes |", "|---|---|"]
