@@ -1,6 +1,7 @@
 """Blender shader node graphs -> weighted closures, as Cycles flattens them (pure Python).
 
-    closures, uv_map = flatten_surface(surface_socket, blender_version, warn)
+    flat = flatten_surface(surface_socket, blender_version, warn)
+    flat.closures, flat.uv_map, flat.program
 
 Cycles evaluates a material's shader tree into a list of closures, each with an RGB weight:
 Mix Shader scales its first input by (1 - Fac) and its second by Fac, Add Shader passes its
@@ -56,6 +57,8 @@ from .fallbacks import (
     finite_product,
 )
 from .shader_flow import propagate
+from .shader_nodes import NodeCompiler
+from .shader_nodes.math_nodes import math_node
 
 Rgb = tuple[float, float, float]
 
@@ -90,13 +93,25 @@ class Binding:
 
 
 @dataclass(frozen=True)
+class ProgramInput:
+    """A closure parameter driven by the material's node program: the register holding it
+    (native.PROGRAM_PARAMS names the parameter)."""
+
+    param: str
+    register: int
+
+
+@dataclass(frozen=True)
 class _Key:
     """A shader node as the walk meets it: by name (unique in its tree), with the image weight
-    of the image-driven Mix Shader above it, if any. The node itself is carried, not compared."""
+    of the image-driven Mix Shader above it, if any, and the program register holding the
+    product of the node-driven Mix factors above it, if any. The node itself is carried, not
+    compared."""
 
     name: str
     node: Any = field(compare=False)
     binding: Binding | None = None
+    program_weight: int | None = None
 
 
 @dataclass
@@ -104,6 +119,7 @@ class Closure:
     weight: Rgb
     material: native.Material
     bindings: list[Binding] = field(default_factory=list)
+    programs: list[ProgramInput] = field(default_factory=list)
 
 
 class Flattener:
@@ -114,8 +130,11 @@ class Flattener:
         self.version = version
         self._warn = warn
         self._warned: set[tuple[str, str]] = set()
+        self._program_weight: int | None = None  # of the closure node being emitted
         self._bound: set[tuple[str, str]] = set()  # (node, socket) driven by a texture
         self.closures: list[Closure] = []
+        # The material's node program: every linked input that is not a plain image binding.
+        self.nodes = NodeCompiler(version, lambda node, message: self.warn(node, message))
 
     # ---- warnings and socket reading ------------------------------------------------------
 
@@ -193,19 +212,15 @@ class Flattener:
                             "largest float (3.4e38); limited to it", strength_name)
         return radiance
 
-    def texture(self, node: Any, name: str, param: int, bindings: list[Binding]) -> None:
-        """Records a binding if `name` is linked to an image (or, for Normal, to a Normal Map
-        of an image); warns about any other link (the socket's value is then used)."""
+    def texture(self, node: Any, name: str, param: int, bindings: list[Any]) -> None:
+        """Records what drives input `name`: an Image Texture linked directly (or, for Normal,
+        through a tangent-space Normal Map) as an image binding, anything else as an input of
+        the material's node program (a ProgramInput)."""
         socket = node.inputs.get(name)
         found = self._source(socket) if socket is not None else None
         if found is None:
             return
         src, out = found
-        if param in NATIVE_UNBINDABLE:
-            self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' "
-                           "is not supported (the renderer takes a constant there); using the "
-                           "socket's value")
-            return
         if param == native.PARAM_NORMAL:
             if src.bl_idname == NORMAL_MAP_NODE and getattr(src, "space", "TANGENT") == "TANGENT":
                 image = self._source(src.inputs["Color"])
@@ -222,21 +237,47 @@ class Flattener:
                     return
                 if image is None:
                     return  # a Normal Map with a constant colour: the flat normal
-                src = image[0]
-            self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' "
-                           "is not supported (only Image Texture -> Normal Map, tangent space); "
-                           "using the shading normal")
-            return
-        if src.bl_idname == IMAGE_NODE:
+        elif src.bl_idname == IMAGE_NODE and param not in NATIVE_UNBINDABLE:
             channel = 3 if out.name == "Alpha" else -1
             bindings.append(Binding(param, self._image(src), channel, 1.0, 0.0))
             self._bound.add((node.name, name))
             return
-        self.warn(src, f"node '{src.name}' ({src.bl_idname}) on '{name}' of '{node.name}' is not "
-                       "supported; using the socket's value")
+        self.program_input(node, name, PROGRAM_PARAM[param], bindings)
 
-    def unsupported_link(self, node: Any, name: str) -> None:
-        """Warns when an input Stratum reads only as a constant is linked."""
+    def program_input(self, node: Any, name: str, param: str, bindings: list[Any]) -> None:
+        """Drives `param` by what is linked to input `name` (nothing if it is unlinked)."""
+        socket = node.inputs.get(name)
+        if socket is None or not self.nodes.linked(socket):
+            return
+        register = self.nodes.value(socket, PROGRAM_KIND[param])
+        bindings.append(ProgramInput(param, register))
+        self._bound.add((node.name, name))
+
+    def emission_program(self, node: Any, color_name: str, strength_name: str,
+                         bindings: list[Any]) -> bool:
+        """Emission colour x strength computed by the program when either input is linked
+        (True then: the constant emission must be 0, see stratum_scene_bind_program)."""
+        color = node.inputs.get(color_name)
+        strength = node.inputs.get(strength_name)
+        if not any(s is not None and self.nodes.linked(s) for s in (color, strength)):
+            return False
+        c = self.nodes.value(color, "color") if color is not None else \
+            self.nodes.builder.constant((1.0, 1.0, 1.0))
+        k = self.nodes.value(strength, "float") if strength is not None else \
+            self.nodes.builder.constant(1.0)
+        zero = self.nodes.builder.constant(0.0)
+        channels = [math_node(self.nodes, c + i, k, zero, "MULTIPLY") for i in range(3)]
+        bindings.append(ProgramInput("emission", self.nodes.builder.combine(*channels)))
+        return True
+
+    def unsupported_link(self, node: Any, name: str, bindings: list[Any] | None = None) -> None:
+        """An input the native closure takes as a constant: driven by the program when it has a
+        program parameter (CONSTANT_PARAMS) and `bindings` is given, else a warning when it is
+        linked."""
+        param = CONSTANT_PARAMS.get(name)
+        if param is not None and bindings is not None:
+            self.program_input(node, name, param, bindings)
+            return
         socket = node.inputs.get(name)
         found = self._source(socket) if socket is not None else None
         if found is not None:
@@ -266,9 +307,10 @@ class Flattener:
         self.warn(child.node, f"node '{child.name}' feeds itself through '{parent.name}' (a "
                               "cycle); that link is ignored", "cycle")
 
-    def _visit(self, socket: Any, binding: Binding | None) -> _Key | None:
-        """The (node, image weight) feeding `socket`; None for nothing (unlinked: Cycles adds no
-        closure; muted: rendered as nothing, with a warning)."""
+    def _visit(self, socket: Any, binding: Binding | None,
+               program_weight: int | None = None) -> _Key | None:
+        """The (node, image weight, program weight) feeding `socket`; None for nothing
+        (unlinked: Cycles adds no closure; muted: rendered as nothing, with a warning)."""
         found = self._source(socket)
         if found is None:
             return None
@@ -276,46 +318,61 @@ class Flattener:
         if getattr(node, "mute", False):
             self.warn(node, f"muted node '{node.name}' is rendered as nothing")
             return None
-        return _Key(node.name, node, binding)
+        return _Key(node.name, node, binding, program_weight)
 
     def _inputs(self, key: _Key) -> list[tuple[_Key, float]]:
         """The shader inputs of a Mix or Add Shader with the factor each scales its weight by
         (Mix: 1 - Fac and Fac; an image Fac moves into the inputs' image weights); [] for a
         closure node."""
-        node, binding = key.node, key.binding
+        node, binding, weight = key.node, key.binding, key.program_weight
         kind = node.bl_idname
-        pairs: list[tuple[Any, float, Binding | None]] = []
+        pairs: list[tuple[Any, float, Binding | None, int | None]] = []
         if kind == "ShaderNodeAddShader":
-            pairs = [(node.inputs[0], 1.0, binding), (node.inputs[1], 1.0, binding)]
+            pairs = [(node.inputs[0], 1.0, binding, weight), (node.inputs[1], 1.0, binding, weight)]
         elif kind == "ShaderNodeMixShader":
-            pairs = self._mix_inputs(node, binding)
-        found = ((self._visit(socket, b), f) for socket, f, b in pairs)
+            pairs = self._mix_inputs(node, binding, weight)
+        found = ((self._visit(socket, b, w), f) for socket, f, b, w in pairs)
         return [(child, f) for child, f in found if child is not None]
 
-    def _mix_inputs(self, node: Any,
-                    binding: Binding | None) -> list[tuple[Any, float, Binding | None]]:
+    def _times(self, weight: int | None, factor: int) -> int:
+        """Program register of weight x factor (factor alone without a weight)."""
+        if weight is None:
+            return factor
+        return math_node(self.nodes, weight, factor, self.nodes.builder.constant(0.0), "MULTIPLY")
+
+    def _mix_inputs(self, node: Any, binding: Binding | None,
+                    weight: int | None) -> list[tuple[Any, float, Binding | None, int | None]]:
         fac_socket = node.inputs[0]
         found = self._source(fac_socket)
+        if found is not None and found[0].bl_idname != IMAGE_NODE:
+            # A node-driven factor: the program computes saturate(Fac) and 1 - saturate(Fac), as
+            # Cycles' svm_node_mix_closure; nested mixes multiply.
+            self._bound.add((node.name, fac_socket.name))
+            fac = self.nodes.value(fac_socket, "float")
+            zero, one = self.nodes.builder.constant(0.0), self.nodes.builder.constant(1.0)
+            saturated = math_node(self.nodes, fac, one, zero, "MULTIPLY", clamp=True)
+            rest = math_node(self.nodes, one, saturated, zero, "SUBTRACT")
+            return [(node.inputs[1], 1.0, binding, self._times(weight, rest)),
+                    (node.inputs[2], 1.0, binding, self._times(weight, saturated))]
         if found is not None and found[0].bl_idname == IMAGE_NODE:
             if binding is None:
                 channel = 3 if found[1].name == "Alpha" else -1
                 image = self._image(found[0])
                 # first input x (1 - fac), second x fac (fac from the image, per shading point)
                 return [(node.inputs[1], 1.0, Binding(native.PARAM_WEIGHT, image, channel, -1.0,
-                                                      1.0)),
+                                                      1.0), weight),
                         (node.inputs[2], 1.0, Binding(native.PARAM_WEIGHT, image, channel, 1.0,
-                                                      0.0))]
+                                                      0.0), weight)]
             self.warn(node, f"Mix Shader '{node.name}': an image factor inside another "
                             "image-driven mix is not supported; using its Fac value")
         fac = self.scalar(node, fac_socket.name, 0.5, UNIT)
-        if found is not None and found[0].bl_idname != IMAGE_NODE:
-            self.warn(found[0], f"node '{found[0].name}' ({found[0].bl_idname}) on the Fac of "
-                                f"'{node.name}' is not supported; using the Fac value {fac:g}")
-        return [(node.inputs[1], 1.0 - fac, binding), (node.inputs[2], fac, binding)]
+        return [(node.inputs[1], 1.0 - fac, binding, weight),
+                (node.inputs[2], fac, binding, weight)]
 
     def _leaf(self, key: _Key, weight: Rgb) -> None:
         """The closures of one shader node that is not a Mix or Add Shader."""
         node, binding = key.node, key.binding
+        self._program_weight = key.program_weight
         kind = node.bl_idname
         if kind == "ShaderNodeBsdfPrincipled":
             self._principled(node, weight, binding)
@@ -333,13 +390,21 @@ class Flattener:
             self._emit(weight, binding, *made)
 
     def _emit(self, weight: Rgb, weight_binding: Binding | None, material: native.Material,
-              bindings: list[Binding]) -> None:
-        if weight_binding is None and max(weight) <= 0.0:
+              bindings: list[Any], program_weight: int | None = None) -> None:
+        """Adds a closure; `program_weight` (a scalar register) multiplies its weight, after
+        the Mix factors above it (self._program_weight)."""
+        factor = self._program_weight
+        if program_weight is not None:
+            factor = self._times(factor, program_weight)
+        if weight_binding is None and factor is None and max(weight) <= 0.0:
             return  # Cycles drops closures of zero weight
-        all_bindings = list(bindings)
+        images = [b for b in bindings if isinstance(b, Binding)]
+        programs = [b for b in bindings if isinstance(b, ProgramInput)]
         if weight_binding is not None:
-            all_bindings.append(weight_binding)
-        self.closures.append(Closure(weight, material, all_bindings))
+            images.append(weight_binding)
+        if factor is not None:
+            programs.append(ProgramInput("weight", self.nodes.builder.broadcast(factor)))
+        self.closures.append(Closure(weight, material, images, programs))
 
     def _default_principled(self) -> native.Material:
         v2 = self.version >= (4, 0, 0)
@@ -387,7 +452,7 @@ class Flattener:
                 self.warn(node, f"'{node.name}': anisotropy is rendered as isotropic")
             glass = kind == "ShaderNodeBsdfGlass"
             if glass:
-                self.unsupported_link(node, "IOR")
+                self.unsupported_link(node, "IOR", bindings)
             return native.Material(
                 model=native.closure_model("glass" if glass else "glossy"),
                 base_color=self._reflectance(node, "Color"), roughness=roughness,
@@ -398,9 +463,9 @@ class Flattener:
             return native.Material(model=native.closure_model("transparent"),
                                    base_color=self._reflectance(node, "Color")), bindings
         if kind == "ShaderNodeEmission":
-            self.unsupported_link(node, "Strength")
-            self.texture(node, "Color", native.PARAM_EMISSION, bindings)
             emission = self.emission(node, "Color", "Strength", (1.0, 1.0, 1.0), 1.0)
+            if self.emission_program(node, "Color", "Strength", bindings):
+                emission = (0.0, 0.0, 0.0)
             return native.Material(model=native.closure_model("emission"),
                                    base_color=(0.0, 0.0, 0.0), emission=emission), bindings
         if kind == "ShaderNodeHoldout":
@@ -417,11 +482,15 @@ class Flattener:
         if unsupported:
             self.warn(node, f"Principled '{node.name}': " + ", ".join(f"'{n}'" for n in unsupported)
                       + " not supported (rendered without)")
-        bindings: list[Binding] = []
+        bindings: list[Any] = []
         for name, param in names["bindable"]:
-            self.texture(node, name, param, bindings)
+            if param != native.PARAM_EMISSION:
+                self.texture(node, name, param, bindings)
         for name in names["constant"]:
-            self.unsupported_link(node, name)
+            if name != "Emission Strength":
+                self.unsupported_link(node, name, bindings)
+        programmed_emission = self.emission_program(node, names["emission"], "Emission Strength",
+                                                    bindings)
         roughness = self._roughness(node)
         material = native.Material(
             model=native.closure_model("principled_v2" if v2 else "principled_v1"),
@@ -430,8 +499,8 @@ class Flattener:
             metallic=self.scalar(node, "Metallic", 0.0, UNIT),
             specular=self.scalar(node, names["specular"], 0.5, SPECULAR),
             ior=self.scalar(node, "IOR", 1.5, IOR),
-            emission=self.emission(node, names["emission"], "Emission Strength", (0.0, 0.0, 0.0),
-                                   1.0),
+            emission=(0.0, 0.0, 0.0) if programmed_emission else self.emission(
+                node, names["emission"], "Emission Strength", (0.0, 0.0, 0.0), 1.0),
             distribution=(native.MICROFACET_MULTISCATTER_GGX
                           if v2 and getattr(node, "distribution", "GGX") == "MULTI_GGX"
                           else native.MICROFACET_GGX),
@@ -449,10 +518,19 @@ class Flattener:
     def _principled_alpha(self, node: Any, weight: Rgb, weight_binding: Binding | None,
                           material: native.Material, bindings: list[Binding]) -> None:
         """Alpha < 1 is Mix(Transparent, Principled, Alpha), as Cycles compiles it."""
-        alpha_bindings: list[Binding] = []
+        alpha_bindings: list[Any] = []
         self.texture(node, "Alpha", native.PARAM_WEIGHT, alpha_bindings)
         transparent = native.Material(model=native.closure_model("transparent"),
                                       base_color=(1.0, 1.0, 1.0))
+        if alpha_bindings and isinstance(alpha_bindings[0], ProgramInput):
+            # A node-driven alpha: transparent x (1 - saturate(a)), the BSDF x saturate(a).
+            zero, one = self.nodes.builder.constant(0.0), self.nodes.builder.constant(1.0)
+            alpha_register = alpha_bindings[0].register
+            saturated = math_node(self.nodes, alpha_register, one, zero, "MULTIPLY", clamp=True)
+            rest = math_node(self.nodes, one, saturated, zero, "SUBTRACT")
+            self._emit(weight, weight_binding, transparent, [], rest)
+            self._emit(weight, weight_binding, material, bindings, saturated)
+            return
         if alpha_bindings:
             alpha = alpha_bindings[0]
             if weight_binding is not None:
@@ -497,6 +575,27 @@ PRINCIPLED_V2: dict[str, Any] = {
 }
 
 
+# Texture-bindable parameters and the program parameter a non-image link drives instead.
+PROGRAM_PARAM = {
+    native.PARAM_BASE_COLOR: "base_color", native.PARAM_ROUGHNESS: "roughness",
+    native.PARAM_METALLIC: "metallic", native.PARAM_NORMAL: "normal",
+    native.PARAM_EMISSION: "emission", native.PARAM_WEIGHT: "weight",
+    native.PARAM_TRANSMISSION: "transmission", native.PARAM_SPECULAR: "specular",
+}
+# What each program parameter reads from its socket.
+PROGRAM_KIND = {
+    "base_color": "color", "roughness": "float", "metallic": "float", "normal": "vector",
+    "emission": "color", "weight": "float", "transmission": "float", "specular": "float",
+    "ior": "float", "coat": "float", "coat_roughness": "float", "coat_tint": "color",
+}
+# Inputs the closures take as constants that a program may drive (both generations' names).
+CONSTANT_PARAMS = {
+    "IOR": "ior", "Clearcoat": "coat", "Clearcoat Roughness": "coat_roughness",
+    "Coat Weight": "coat", "Coat Roughness": "coat_roughness",
+    "Coat Tint": "coat_tint",
+}
+
+
 def _scale(weight: Rgb, factor: float) -> Rgb:
     return (weight[0] * factor, weight[1] * factor, weight[2] * factor)
 
@@ -505,11 +604,23 @@ def _is_combiner(node: Any) -> bool:
     return node.bl_idname in ("ShaderNodeMixShader", "ShaderNodeAddShader")
 
 
+@dataclass
+class FlatSurface:
+    """A surface tree flattened: its closures, the UV layer its image bindings read ("" = the
+    active render layer), and the node program its ProgramInputs read (None if it has none)
+    with the Image Texture nodes that program reads (its IMAGE nodes' mode 0 indexes them)."""
+
+    closures: list[Closure]
+    uv_map: str = ""
+    program: native.ShaderProgram | None = None
+    program_images: list[Any] = field(default_factory=list)
+
+
 def flatten_surface(surface: Any, version: tuple[int, int, int],
-                    warn: Callable[[Any, str], None]) -> tuple[list[Closure], str]:
-    """Closures of the tree linked to `surface` (a Material Output's Surface input) and the UV
-    layer its textures read ("" = active render layer). Textures reading different UV maps:
-    one warning, the first map wins (the native mesh carries one UV set)."""
+                    warn: Callable[[Any, str], None]) -> FlatSurface:
+    """The closures of the tree linked to `surface` (a Material Output's Surface input).
+    Textures reading different UV maps: one warning, the first map wins (the native mesh
+    carries one UV set)."""
     flattener = Flattener(version, warn)
     flattener.walk(surface, (1.0, 1.0, 1.0))
     uv_maps = [b.image.uv_map for c in flattener.closures for b in c.bindings]
@@ -519,4 +630,7 @@ def flatten_surface(surface: Any, version: tuple[int, int, int],
             flattener.warn(b.image.node, f"Image Texture '{b.image.node.name}' reads UV map "
                                          f"'{b.image.uv_map or 'active'}' but the material "
                                          f"already uses '{uv_map or 'active'}'; using the latter")
-    return flattener.closures, uv_map
+    uses_program = any(c.programs for c in flattener.closures)
+    program = flattener.nodes.builder.program if uses_program else None
+    return FlatSurface(flattener.closures, uv_map, program,
+                       list(flattener.nodes.images) if uses_program else [])

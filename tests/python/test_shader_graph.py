@@ -111,7 +111,7 @@ def principled_v2(**values: Any) -> Node:
 
 def flatten(surface: Socket, version: tuple[int, int, int] = V5) -> tuple[Any, list[str]]:
     warnings: list[str] = []
-    closures, _ = flatten_surface(surface, version, lambda node, msg: warnings.append(msg))
+    closures = flatten_surface(surface, version, lambda node, msg: warnings.append(msg)).closures
     return closures, warnings
 
 
@@ -274,7 +274,8 @@ def test_textures_and_normal_map_and_uv_map() -> None:
     link(normal_tex, "Color", nmap, "Color")
     link(nmap, "Normal", node, "Normal")
     warnings: list[str] = []
-    closures, uv_map = flatten_surface(output_with(node), V3, lambda n, m: warnings.append(m))
+    flat = flatten_surface(output_with(node), V3, lambda n, m: warnings.append(m))
+    closures, uv_map = flat.closures, flat.uv_map
     assert uv_map == "Second" and warnings == []
     by_param = {b.param: b for b in closures[0].bindings}
     assert by_param[native.PARAM_ROUGHNESS].image.node is rough

@@ -40,6 +40,7 @@ from .abi import (
     ERROR_OUT_OF_MEMORY,
     MICROFACET_GGX,
     MICROFACET_MULTISCATTER_GGX,
+    NODE_TYPES,
     OK,
     PARAM_BASE_COLOR,
     PARAM_EMISSION,
@@ -49,10 +50,13 @@ from .abi import (
     PARAM_SPECULAR,
     PARAM_TRANSMISSION,
     PARAM_WEIGHT,
+    PROGRAM_PARAMS,
     SENSOR_FIT_AUTO,
     SENSOR_FIT_HORIZONTAL,
     SENSOR_FIT_VERTICAL,
     SENSOR_FITS,
+    SHADER_INPUT_REGISTERS,
+    SHADER_INPUTS,
     STATUS_NAMES,
     TEXTURE_CLIP,
     TEXTURE_CLOSEST,
@@ -98,6 +102,7 @@ from .library import (
 from .models import closure_model, closure_models, light_type, light_types
 from .oidn import DenoiserUnavailable, denoise
 from .oidn import load_library as load_denoiser
+from .programs import ProgramBinding, ShaderNode, ShaderProgram
 from .renderer import Progress, Renderer
 from .scene import Scene
 from .settings import (
@@ -117,9 +122,11 @@ __all__ = [
     "CAMERA_EQUIRECTANGULAR", "CAMERA_ORTHOGRAPHIC", "CAMERA_PERSPECTIVE", "CAMERA_TYPES",
     "Camera", "ERROR_INTERNAL", "ERROR_INVALID_ARGUMENT", "ERROR_INVALID_STATE", "ERROR_IO",
     "DenoiserUnavailable", "ERROR_OUT_OF_MEMORY", "Instance", "LibraryLoadError", "Light",
-    "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "OK",
+    "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "NODE_TYPES", "OK",
     "PARAM_BASE_COLOR", "PARAM_EMISSION", "PARAM_METALLIC", "PARAM_NORMAL", "PARAM_ROUGHNESS",
-    "PARAM_SPECULAR", "PARAM_TRANSMISSION", "PARAM_WEIGHT", "Pass", "Progress",
+    "PARAM_SPECULAR", "PARAM_TRANSMISSION", "PARAM_WEIGHT", "PROGRAM_PARAMS", "Pass",
+    "ProgramBinding", "Progress", "SHADER_INPUTS", "SHADER_INPUT_REGISTERS", "ShaderNode",
+    "ShaderProgram",
     "REGISTRY_SETTINGS", "RegistryEntry", "Renderer", "SENSOR_FITS", "SENSOR_FIT_AUTO",
     "SENSOR_FIT_HORIZONTAL", "SENSOR_FIT_VERTICAL", "STATUS_NAMES", "Scene", "Setting",
     "SettingKind", "StratumError", "TEXTURE_CLIP", "TEXTURE_CLOSEST", "TEXTURE_EXTEND",

@@ -57,6 +57,31 @@ PARAM_WEIGHT = 5
 PARAM_TRANSMISSION = 6
 PARAM_SPECULAR = 7
 
+# StratumProgramParam: closure parameters a shader program drives.
+PROGRAM_PARAMS = {
+    "base_color": 0, "roughness": 1, "metallic": 2, "normal": 3, "emission": 4, "weight": 5,
+    "transmission": 6, "specular": 7, "ior": 8, "coat": 9, "coat_roughness": 10, "coat_tint": 11,
+}
+# StratumShaderInput: the registers the renderer writes at each shading point, and their widths.
+SHADER_INPUTS = {
+    "position": (0, 3), "normal": (3, 3), "true_normal": (6, 3), "incoming": (9, 3), "uv": (12, 3),
+    "generated": (15, 3), "object": (18, 3), "camera": (21, 3), "window": (24, 3),
+    "object_location": (27, 3), "backfacing": (30, 1), "object_random": (31, 1),
+    "ray_length": (32, 1), "object_index": (33, 1), "material_index": (34, 1),
+    "object_color": (35, 3), "object_alpha": (38, 1), "tangent": (39, 3), "parametric": (42, 3),
+    "object_normal": (45, 3), "dpdx": (48, 3), "dpdy": (51, 3), "dgenerated_dx": (54, 3),
+    "dgenerated_dy": (57, 3), "dobject_dx": (60, 3), "dobject_dy": (63, 3), "duv_dx": (66, 3),
+    "duv_dy": (69, 3), "reflection": (72, 3),
+}
+SHADER_INPUT_REGISTERS = 80
+# StratumShaderNodeType, by the names docs/shader_nodes.md uses.
+NODE_TYPES = {name: i for i, name in enumerate((
+    "math", "vector_math", "mix", "map_range", "clamp", "invert", "gamma", "bright_contrast", "hsv",
+    "separate_color", "combine_color", "rgb_to_bw", "color_ramp", "curves", "mapping",
+    "vector_rotate", "fresnel", "layer_weight", "image", "noise", "voronoi", "wave", "checker",
+    "brick", "gradient", "magic", "white_noise", "musgrave", "sky", "bump", "normal_map",
+    "blackbody", "wavelength", "vector_transform", "normal", "copy"))}
+
 VISIBLE_CAMERA = 1
 VISIBLE_DIFFUSE = 2
 VISIBLE_GLOSSY = 4
@@ -169,6 +194,40 @@ class _InstanceDesc(ctypes.Structure):
         ("visibility", ctypes.c_uint32),
         ("holdout", ctypes.c_int32),
         ("pass_index", ctypes.c_uint32),
+        ("random", ctypes.c_float),
+        ("color", ctypes.c_float * 4),
+    ]
+
+
+class _ShaderNode(ctypes.Structure):
+    _fields_ = [
+        ("type", ctypes.c_int32),
+        ("modes", ctypes.c_int32 * 6),
+        ("inputs", ctypes.c_uint32 * 12),
+        ("outputs", ctypes.c_uint32 * 6),
+        ("data_offset", ctypes.c_uint32),
+        ("data_count", ctypes.c_uint32),
+    ]
+
+
+class _ShaderProgramDesc(ctypes.Structure):
+    _fields_ = [
+        ("nodes", ctypes.POINTER(_ShaderNode)),
+        ("node_count", ctypes.c_uint32),
+        ("registers", ctypes.POINTER(ctypes.c_float)),
+        ("register_count", ctypes.c_uint32),
+        ("data", ctypes.POINTER(ctypes.c_float)),
+        ("data_count", ctypes.c_uint32),
+    ]
+
+
+class _ProgramBinding(ctypes.Structure):
+    _fields_ = [
+        ("material_id", ctypes.c_uint32),
+        ("closure_index", ctypes.c_uint32),
+        ("param", ctypes.c_int32),
+        ("program_id", ctypes.c_uint32),
+        ("register_index", ctypes.c_uint32),
     ]
 
 
@@ -345,6 +404,17 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
                                                  ctypes.POINTER(_TextureInfo)]),
         "stratum_scene_bind_texture": (c_int32, [p_void, ctypes.POINTER(_TextureBinding)]),
         "stratum_scene_add_instance_ex": (c_int32, [p_void, ctypes.POINTER(_InstanceDesc)]),
+        # shader node programs (stratum/shader_nodes.h)
+        "stratum_scene_add_shader_program": (c_int32, [p_void, ctypes.POINTER(_ShaderProgramDesc),
+                                                       p_u32]),
+        "stratum_scene_set_shader_program": (c_int32, [p_void, c_uint32,
+                                                       ctypes.POINTER(_ShaderProgramDesc)]),
+        "stratum_scene_bind_program": (c_int32, [p_void, ctypes.POINTER(_ProgramBinding)]),
+        "stratum_scene_set_background_program": (c_int32, [p_void, c_uint32, c_uint32, c_uint32,
+                                                           c_uint32]),
+        "stratum_scene_evaluate_program": (c_int32, [p_void, c_uint32, p_float, c_uint32,
+                                                     c_uint32, p_float]),
+        "stratum_scene_set_mesh_texture_space": (c_int32, [p_void, c_uint32, p_float, p_float]),
         # settings and passes
         "stratum_setting_count": (c_int32, []),
         "stratum_setting_info": (c_int32, [c_int32, ctypes.POINTER(_SettingInfo)]),

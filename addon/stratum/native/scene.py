@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from . import programs
 from .abi import (
     CAMERA_TYPES,
     SENSOR_FITS,
@@ -27,6 +28,7 @@ from .abi import (
 from .descriptions import Camera, Instance, Light, Material, Texture, TextureBinding, TextureInfo
 from .library import StratumError, _check, _Handle, load_library
 from .marshalling import _fields, _float_ptr, _matrix16, _set_struct, _uint32, _uint_ptr
+from .programs import ProgramBinding, ShaderProgram
 
 # Weighted closures of a closure material: [(weight RGB, material), ...].
 Closures = Sequence[tuple[Sequence[float], Mapping[str, Any] | Material]]
@@ -66,6 +68,9 @@ def _instance_desc(instance: Instance) -> _InstanceDesc:
     desc.visibility = _uint32(instance.visibility, "instance visibility")
     desc.holdout = 1 if instance.holdout else 0
     desc.pass_index = _uint32(instance.pass_index, "instance pass_index")
+    desc.random = float(instance.random)
+    for k, v in enumerate(instance.color):
+        desc.color[k] = float(v)
     return desc
 
 
@@ -338,6 +343,29 @@ class Scene(_Handle):
         _set_struct(desc, values, "camera")
         _check(self._lib, self._lib.stratum_scene_set_camera(self.handle, ctypes.byref(desc)),
                "stratum_scene_set_camera")
+
+    # Shader node programs (stratum/shader_nodes.h; marshalling in programs.py).
+    def add_shader_program(self, program: ShaderProgram) -> int:
+        return programs.add_program(self._lib, self.handle, program)
+
+    def set_shader_program(self, program_id: int, program: ShaderProgram) -> None:
+        programs.set_program(self._lib, self.handle, program_id, program)
+
+    def bind_program(self, binding: ProgramBinding) -> None:
+        programs.bind_program(self._lib, self.handle, binding)
+
+    def set_background_program(self, program_id: int, register_index: int, width: int = 1024,
+                               height: int = 512) -> None:
+        programs.set_background_program(self._lib, self.handle, program_id, register_index,
+                                        width, height)
+
+    def evaluate_program(self, program_id: int, inputs: np.ndarray, first: int,
+                         count: int) -> np.ndarray:
+        return programs.evaluate_program(self._lib, self.handle, program_id, inputs, first, count)
+
+    def set_mesh_texture_space(self, mesh_id: int, location: Sequence[float],
+                               size: Sequence[float]) -> None:
+        programs.set_mesh_texture_space(self._lib, self.handle, mesh_id, location, size)
 
     def set_background(self, rgb: Sequence[float] | np.ndarray) -> None:
         c = np.ascontiguousarray(np.asarray(rgb, dtype=np.float32).reshape(-1)[:3])

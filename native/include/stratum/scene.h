@@ -214,6 +214,12 @@ typedef struct StratumMeshDesc {
  * through instances. */
 STRATUM_API StratumStatus stratum_scene_add_mesh(StratumScene* scene, const StratumMeshDesc* mesh,
                                                  uint32_t* out_id);
+/* Blender's texture space of mesh `mesh_id` (Mesh.texspace_location and texspace_size): the box
+ * location +- size that generated coordinates map to [0,1]^3. Until set, the mesh's bounding box
+ * (Blender's automatic texture space); a size component of 0 reads as 1 and one below 1e-5 as
+ * 1e-5, as Blender keeps them. Each value finite, at most 1e12 in magnitude. */
+STRATUM_API StratumStatus stratum_scene_set_mesh_texture_space(StratumScene* scene, uint32_t mesh_id,
+                                                               const float location[3], const float size[3]);
 /* Places mesh `mesh_id` with an object-to-world transform (16 floats, row-major). A singular or
  * nearly singular transform (scale (nearly) 0 along some axis) is accepted, and the placement
  * is skipped when the render scene is built, with a notice (stratum_renderer_notices). */
@@ -249,6 +255,9 @@ typedef struct StratumInstanceDesc {
     int32_t holdout;         /* 1: Cycles' Object > Visibility > Holdout */
     uint32_t pass_index;     /* appended: Object > Relations > Pass Index, what the IndexOB pass
                                 holds; at most STRATUM_MAX_PASS_INDEX */
+    /* Appended (issue 18), what shader programs' Object Info node reads: */
+    float random;   /* [0,1]: Cycles' random_id / 0xFFFFFFFF */
+    float color[4]; /* the object's colour and alpha, each finite (all 0 reads as 1, 1, 1, 1) */
 } StratumInstanceDesc;
 
 /* Pass indices are stored in float passes: every integer up to 2^24 is exact there. */

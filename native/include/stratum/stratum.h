@@ -26,5 +26,6 @@
 #include "stratum/helpers.h"
 #include "stratum/render.h"
 #include "stratum/scene.h"
+#include "stratum/shader_nodes.h"
 
 #endif

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "api/scene_file_numbers.h"
+#include "api/scene_file_programs.h"
 
 namespace stratum {
 
@@ -132,7 +133,9 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                   {"motion", i.motion ? 1 : 0},
                                   {"visibility", i.visibility},
                                   {"holdout", i.holdout ? 1 : 0},
-                                  {"pass_index", i.pass_index}});
+                                  {"pass_index", i.pass_index},
+                                  {"random", i.random},
+                                  {"color", {i.color.r, i.color.g, i.color.b, i.alpha}}});
     }
     j["lights"] = json::array();
     for (const LightParams& l : scene.lights) {
@@ -197,6 +200,7 @@ std::string save_scene_file(const Scene& scene, const char* path) {
         }
         j["textures"] = {{"images", textures}, {"bindings", bindings}};
     }
+    save_programs(scene, j);
     if (const char* kind = special_file(path))
         return std::string("'") + path + "' is " + kind + ", not a regular file";
     std::ofstream out(path, std::ios::binary);
@@ -293,6 +297,8 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.visibility = field_or(i, "visibility", static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
             d.holdout = field_or<int32_t>(i, "holdout", 0);
             d.pass_index = field_or(i, "pass_index", static_cast<uint32_t>(0));
+            d.random = field_or(i, "random", 0.0f);
+            if (i.contains("color")) read_numbers(i, "color", d.color);
             if ((status = stratum_scene_add_instance_ex(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
@@ -399,6 +405,7 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                     return entry_point_failed(status);
             }
         }
+        if ((status = load_programs(j, scene)) != STRATUM_OK) return entry_point_failed(status);
         return STRATUM_OK;
     } catch (const std::exception& e) {
         *error = std::string("malformed scene: ") + e.what();

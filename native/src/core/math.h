@@ -53,6 +53,9 @@ struct Vec2 {
 };
 
 // Linear RGB radiance / reflectance.
+// Rec.709 luminance weights Cycles uses to turn a colour into a float (rgb_to_y, svm/convert.h).
+inline constexpr float kLuminanceR = 0.2126729f, kLuminanceG = 0.7151522f, kLuminanceB = 0.0721750f;
+
 struct Rgb {
     float r = 0, g = 0, b = 0;
     constexpr Rgb() = default;
@@ -130,6 +133,23 @@ struct Transform {
     }
     Vec3 column(int c) const { return {m[c], m[4 + c], m[8 + c]}; }
     Vec3 translation() const { return column(3); }
+    // The inverse (a singular linear part gives non-finite entries): the cofactor rows over the
+    // determinant, and the translation taken back through them.
+    Transform inverse() const {
+        const Vec3 c0(m[0], m[4], m[8]), c1(m[1], m[5], m[9]), c2(m[2], m[6], m[10]);
+        const Vec3 r0 = cross(c1, c2), r1 = cross(c2, c0), r2 = cross(c0, c1);
+        const float inv_det = 1.0f / dot(c0, r0);
+        Transform t;
+        const Vec3 rows[3] = {r0 * inv_det, r1 * inv_det, r2 * inv_det};
+        const Vec3 o = translation();
+        for (int i = 0; i < 3; ++i) {
+            t.m[4 * i] = rows[i].x;
+            t.m[4 * i + 1] = rows[i].y;
+            t.m[4 * i + 2] = rows[i].z;
+            t.m[4 * i + 3] = -dot(rows[i], o);
+        }
+        return t;
+    }
 };
 
 inline float safe_sqrt(float x) { return std::sqrt(std::max(x, 0.0f)); }

@@ -19,6 +19,13 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
         changed = true;
     }
     sp.backfacing = dot(hit.geometric_normal, wo_world) < 0.0f;
+    // Node programs after the images: a program's Normal output replaces a normal map's, as a
+    // node wired to the BSDF's Normal replaces what Cycles' default would be.
+    if (scene.programs().any(hit.material_id)) {
+        scene.programs().apply(hit, scene.program_inputs(hit, wo_world, sp.backfacing), sp.closures.closures(),
+                               sp.closures.count(), &sp.ns);
+        changed = true;
+    }
     // Both normals turn to the viewer's side together (Cycles: SD_BACKFACING negates Ng and N).
     // A shading normal that still points below the surface (a smooth mesh's interpolated normal
     // at a sharp fold) is not mirrored: the bend below keeps the side it leans to, as Cycles 3.x

@@ -46,8 +46,6 @@
 
 namespace stratum {
 
-// Rec.709 luminance weights Cycles uses to turn a colour into a float (rgb_to_y).
-inline constexpr float kLuminanceR = 0.2126729f, kLuminanceG = 0.7151522f, kLuminanceB = 0.0721750f;
 
 // The bindings of a scene, grouped by material for the per-hit lookup; shares the scene's
 // texture pixels.

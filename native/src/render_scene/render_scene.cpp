@@ -80,8 +80,9 @@ void RenderScene::set_materials(const Scene& scene) {
 }
 
 RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel, BvhLayout bvh)
-    : textures_(scene), background_(scene.background), bvh_(bvh) {
+    : textures_(scene), programs_(scene), background_(scene.background), bvh_(bvh) {
     set_materials(scene);
+    set_camera(scene);
     // The scene's extent first: it decides which placements can be traced at all.
     mesh_bounds_.assign(scene.meshes.size(), Bounds{});
     std::vector<bool> bounded(scene.meshes.size(), false);
@@ -126,7 +127,10 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel, Bv
                               inst.visibility,
                               inst.holdout,
                               inst.pass_index,
-                              {}});
+                              {},
+                              inst.random,
+                              inst.color,
+                              inst.alpha});
     }
     build_lights(scene, cancel);
     const std::string error =
@@ -247,12 +251,17 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
         g.visibility = inst.visibility;
         g.holdout = inst.holdout;
         g.pass_index = inst.pass_index;
+        g.random = inst.random;
+        g.color = inst.color;
+        g.alpha = inst.alpha;
         moved.push_back(placement);
     }
     if (changes.materials) {
         set_materials(scene);
         textures_ = TextureBindings(scene);
+        programs_ = MaterialPrograms(scene);
     }
+    if (changes.camera) set_camera(scene);
     if (changes.world) background_ = scene.background;
     // The light set depends on placed emitters, materials, lamps and world, not on the camera:
     // orbiting the view lists no light again.
@@ -329,6 +338,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     }
     hit->uv = {0.0f, 0.0f};
     hit->tangent_frame = TangentFrame{};
+    hit->dpdv = Vec3{};
     if (!mesh.corner_tangents.empty()) mikktspace_frame(mesh, k, tri, b0, h.b1, h.b2, m, hit);
     if (!mesh.corner_uvs.empty()) {
         const Vec2 t0 = mesh.corner_uvs[k], t1 = mesh.corner_uvs[k + 1], t2 = mesh.corner_uvs[k + 2];
@@ -339,6 +349,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
         const float det = du1 * dv2 - du2 * dv1;
         if (det != 0.0f) {
             hit->tangent_frame.dpdu = (e1 * dv2 - e2 * dv1) / det;
+            hit->dpdv = (e2 * du1 - e1 * du2) / det;
             hit->tangent_frame.bitangent_sign = det < 0.0f ? -1.0f : 1.0f;
         }
     }
@@ -350,7 +361,34 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->object_pass_index = g.pass_index;
     hit->material_pass_index = materials_[hit->material_id].pass_index;
     hit->t = h.t;
+    hit->object_position = mesh.positions[tri[0]] * b0 + mesh.positions[tri[1]] * h.b1 + mesh.positions[tri[2]] * h.b2;
+    hit->barycentric = {h.b1, h.b2};
+    hit->placement = h.instance;
     return true;
+}
+
+void RenderScene::set_camera(const Scene& scene) {
+    world_to_camera_.reset();
+    if (scene.camera) world_to_camera_ = scene.camera->camera_to_world.inverse();
+}
+
+ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing) const {
+    const InstanceData& g = instances_[hit.placement];
+    const Mesh& mesh = *g.mesh;
+    Vec3 loc, size;
+    if (mesh.texture_space) {
+        loc = (*mesh.texture_space)[0];
+        size = (*mesh.texture_space)[1];
+    } else {
+        // Blender's automatic texture space: the bounding box, a flat axis read as size 1.
+        const Bounds& b = mesh_bounds_[g.mesh_id];
+        loc = (b.lo + b.hi) * 0.5f;
+        size = (b.hi - b.lo) * 0.5f;
+        const auto fix = [](float v) { return v == 0.0f ? 1.0f : std::max(v, 1e-5f); };
+        size = Vec3(fix(size.x), fix(size.y), fix(size.z));
+    }
+    return {wo,      backfacing, g.object_to_world.translation(), loc, size, g.random, g.color, g.alpha,
+            world_to_camera_ ? &*world_to_camera_ : nullptr, &g.object_to_world};
 }
 
 }  // namespace stratum

@@ -8,6 +8,7 @@
 #include <atomic>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -15,6 +16,7 @@
 #include "accel/embree_scene.h"
 #include "bsdf/closure_set.h"
 #include "lights/light_set.h"
+#include "render_scene/material_programs.h"
 #include "render_scene/material_texturing.h"
 #include "scene/live_scene.h"
 #include "scene/scene.h"
@@ -37,6 +39,10 @@ struct SurfaceHit {
     uint32_t object_pass_index = 0;     // the instance's and the material's pass indices
     uint32_t material_pass_index = 0;   // (the IndexOB and IndexMA passes)
     float t = 0.0f;                     // distance along the ray (for LightSet::lamp_radiance's t_max)
+    Vec3 object_position{};             // the point in the object's space (interpolated vertices)
+    Vec3 dpdv{};                        // with tangent_frame.dpdu: the UV map's derivatives (0 without UVs)
+    Vec2 barycentric{0.0f, 0.0f};       // (b1, b2): weights of the triangle's second and third vertex
+    uint32_t placement = 0;             // the traced placement (RenderScene::program_inputs)
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;
@@ -128,6 +134,10 @@ public:
     const ClosureSet& closure_set(uint32_t id) const { return closure_sets_[id]; }
     // Image textures bound to material parameters (applied per shading point).
     const TextureBindings& textures() const { return textures_; }
+    // Shader-node programs bound to material parameters (applied per shading point, after the
+    // textures), and what their inputs are made of at a hit.
+    const MaterialPrograms& programs() const { return programs_; }
+    ProgramInputs program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing) const;
     // True if some instance moves over the shutter (the renderer then samples ray times).
     bool has_motion() const { return has_motion_; }
     // A sphere bounding the scene's geometry (radius >= 1), over which the light tracer emits
@@ -151,6 +161,9 @@ private:
         bool holdout;
         uint32_t pass_index;
         std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive; empty if none
+        float random;                           // Object Info: Random, colour and alpha
+        Rgb color;
+        float alpha;  // per triangle, kNoLight if not emissive; empty if none
     };
     static bool is_moving(const Instance& inst);
     // Whether Embree can trace the placement under the current ray-origin limit.
@@ -163,11 +176,15 @@ private:
     // Takes the scene's materials, builds each one's finalized closure set and notes whether any
     // has a Transparent closure.
     void set_materials(const Scene& scene);
+    // The camera's inverse transform, for the programs' camera coordinates.
+    void set_camera(const Scene& scene);
 
     std::vector<SceneMaterial> materials_;
     std::vector<ClosureSet> closure_sets_;  // per material
     bool has_transparent_closures_ = false;
     TextureBindings textures_;
+    MaterialPrograms programs_;
+    std::optional<Transform> world_to_camera_;  // camera coordinates of the programs' inputs
     std::vector<InstanceData> instances_;        // per traced placement
     std::vector<InstancePlacement> placements_;  // per traced placement, as given to Embree
     std::vector<uint32_t> placement_of_;         // per scene instance: its placement, or kNoLight

@@ -14,6 +14,7 @@
 #include "scene/material.h"
 #include "scene/visibility.h"
 #include "texture/texture.h"
+#include "shading/program_binding.h"
 #include "texture/texture_binding.h"
 
 namespace stratum {
@@ -29,6 +30,9 @@ struct Mesh {
     std::vector<uint32_t> material_ids;  // 1 per triangle
     // Bounding box of `positions` (object space), for the ABI's bound on placed extents.
     Vec3 bounds_lo{kHuge, kHuge, kHuge}, bounds_hi{-kHuge, -kHuge, -kHuge};
+    // Blender's texture space (generated coordinates): centre and half size per axis; unset, the
+    // bounding box (Blender's automatic texture space), see texture_space().
+    std::optional<std::array<Vec3, 2>> texture_space;
     static constexpr float kHuge = std::numeric_limits<float>::infinity();
 };
 
@@ -56,6 +60,10 @@ struct Instance {
     bool holdout = false;
     // Appended for issue 14: Object > Relations > Pass Index, what the IndexOB pass holds.
     uint32_t pass_index = 0;
+    // Appended for issue 18: Object Info's Random (Cycles: random_id / 0xFFFFFFFF), Color, Alpha.
+    float random = 0.0f;
+    Rgb color{1.0f};
+    float alpha = 1.0f;
 };
 
 // A light as the host describes it (StratumLightDesc). size_x, size_y, spot_size, spot_blend and
@@ -96,6 +104,10 @@ struct Scene {
     // they drive; at most one binding per (material, closure, parameter).
     std::vector<std::shared_ptr<const Texture>> textures;
     std::vector<TextureBinding> texture_bindings;
+    // Shader node programs (shading/shader_program.h) and the closure parameters they drive; at
+    // most one binding per (material, closure, parameter).
+    std::vector<std::shared_ptr<const ShaderProgram>> programs;
+    std::vector<ProgramBinding> program_bindings;
 };
 
 }  // namespace stratum

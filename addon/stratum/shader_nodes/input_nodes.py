@@ -1,0 +1,80 @@
+"""Nodes that read the shading point or hold constants: Texture Coordinate, Geometry, Object
+Info, UV Map, Value, RGB, Separate XYZ and Combine XYZ.
+
+| node (bl_idname)        | outputs -> renderer input (native.SHADER_INPUTS)                     |
+|-------------------------|-----------------------------------------------------------------------|
+| ShaderNodeTexCoord      | Generated, Normal (object space), UV, Object, Camera, Window,         |
+|                         | Reflection (2 dot(N, I) N - I, world space, as Cycles); not Window    |
+| ShaderNodeNewGeometry   | Position, Normal, Tangent, True Normal, Incoming, Parametric,         |
+|                         | Backfacing (Pointiness, Random Per Island: not supported)             |
+| ShaderNodeObjectInfo    | Location, Color, Alpha, Object Index, Material Index, Random          |
+| ShaderNodeUVMap         | UV (the mesh's one UV set; another map's name is warned about)        |
+
+Texture Coordinate's Object output of another object (its Object field set) and From Instancer
+are not supported: one warning, and the node's own object is used."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .compiler import NodeCompiler
+from .registry import translator
+
+
+@translator("ShaderNodeTexCoord")
+def texture_coordinate(c: NodeCompiler, node: Any) -> dict[str, int]:
+    if getattr(node, "object", None) is not None:
+        c.warn(node, f"Texture Coordinate '{node.name}': the Object output of another object is "
+                     "not supported; using this object's coordinates", "object")
+    if getattr(node, "from_instancer", False):
+        c.warn(node, f"Texture Coordinate '{node.name}': From Instancer is not supported",
+               "instancer")
+    return {"Generated": c.geometry("generated"), "Normal": c.geometry("object_normal"),
+            "UV": c.geometry("uv"), "Object": c.geometry("object"), "Camera": c.geometry("camera"),
+            "Reflection": c.geometry("reflection")}
+
+
+@translator("ShaderNodeNewGeometry")
+def geometry(c: NodeCompiler, node: Any) -> dict[str, int]:
+    return {"Position": c.geometry("position"), "Normal": c.geometry("normal"),
+            "Tangent": c.geometry("tangent"), "True Normal": c.geometry("true_normal"),
+            "Incoming": c.geometry("incoming"), "Parametric": c.geometry("parametric"),
+            "Backfacing": c.geometry("backfacing")}
+
+
+@translator("ShaderNodeObjectInfo")
+def object_info(c: NodeCompiler, node: Any) -> dict[str, int]:
+    return {"Location": c.geometry("object_location"), "Color": c.geometry("object_color"),
+            "Alpha": c.geometry("object_alpha"), "Object Index": c.geometry("object_index"),
+            "Material Index": c.geometry("material_index"), "Random": c.geometry("object_random")}
+
+
+@translator("ShaderNodeUVMap")
+def uv_map(c: NodeCompiler, node: Any) -> dict[str, int]:
+    if str(getattr(node, "uv_map", "")):
+        c.warn(node, f"UV Map '{node.name}': the mesh's active render UV map is used (Stratum "
+                     f"carries one UV set), not '{node.uv_map}'", "uv_map")
+    return {"UV": c.geometry("uv")}
+
+
+@translator("ShaderNodeValue")
+def value(c: NodeCompiler, node: Any) -> dict[str, int]:
+    return {"Value": c.constant_of(node.outputs[0], "float")}
+
+
+@translator("ShaderNodeRGB")
+def rgb(c: NodeCompiler, node: Any) -> dict[str, int]:
+    return {"Color": c.constant_of(node.outputs[0], "color")}
+
+
+@translator("ShaderNodeSeparateXYZ")
+def separate_xyz(c: NodeCompiler, node: Any) -> dict[str, int]:
+    v = c.input(node, "Vector", "vector")
+    return {"X": v, "Y": v + 1, "Z": v + 2}
+
+
+@translator("ShaderNodeCombineXYZ")
+def combine_xyz(c: NodeCompiler, node: Any) -> dict[str, int]:
+    x, y, z = (c.input(node, k, "float") for k in ("X", "Y", "Z"))
+    return {"Vector": c.builder.combine(x, y, z)}
+

@@ -1,0 +1,196 @@
+/* Stratum C ABI, part 5: shader node programs (issue 18).
+ *
+ * A Blender node graph (a material's, or the world's) is compiled by the host into a program: a
+ * straight-line list of nodes over a file of float registers, the shape of Cycles' SVM. Each
+ * node reads its inputs from registers and writes its outputs to registers; a vector or colour
+ * takes three consecutive registers. The program's registers start as the host gives them (the
+ * unlinked sockets' values), except the first STRATUM_SHADER_INPUT_REGISTERS, which the renderer
+ * fills at each shading point (the geometry a node can see, below). A node may only read
+ * registers: programs have no jumps, so every program ends, and a register read before it is
+ * written holds its initial value.
+ *
+ * Outputs drive closure parameters (stratum_scene_bind_program) or the world's radiance
+ * (stratum_scene_set_background_program). The node types and their modes follow Blender's
+ * nodes, socket for socket: docs/shader_nodes.md lists each node's registers and modes. */
+#ifndef STRATUM_SHADER_NODES_H
+#define STRATUM_SHADER_NODES_H
+
+#include "stratum/base.h"
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+typedef struct StratumScene StratumScene;
+
+/* Input registers the renderer writes before a program runs. Surfaces: world space, normals unit
+ * and turned toward the incoming ray (Cycles' sd->N, sd->Ng); the world: POSITION is the ray
+ * direction and the normals and INCOMING its opposite. */
+typedef enum StratumShaderInput {
+    STRATUM_INPUT_POSITION = 0,         /* 3: world position */
+    STRATUM_INPUT_NORMAL = 3,           /* 3: smooth shading normal (before any bump or map) */
+    STRATUM_INPUT_TRUE_NORMAL = 6,      /* 3: geometric normal */
+    STRATUM_INPUT_INCOMING = 9,         /* 3: unit direction toward the ray's origin (Cycles' I) */
+    STRATUM_INPUT_UV = 12,              /* 3: the mesh's UV (u, v, 0) */
+    STRATUM_INPUT_GENERATED = 15,       /* 3: object position in the mesh's texture space, [0,1] */
+    STRATUM_INPUT_OBJECT = 18,          /* 3: object-space position */
+    STRATUM_INPUT_CAMERA = 21,          /* 3: camera-space position (+Z forward, as Cycles) */
+    STRATUM_INPUT_WINDOW = 24,          /* 3: reserved for the screen position (written 0) */
+    STRATUM_INPUT_OBJECT_LOCATION = 27, /* 3: the object's origin in world space */
+    STRATUM_INPUT_BACKFACING = 30,      /* 1: 1 on the back (winding) face, else 0 */
+    STRATUM_INPUT_OBJECT_RANDOM = 31,   /* 1: Object Info's Random, [0,1] */
+    STRATUM_INPUT_RAY_LENGTH = 32,      /* 1: distance the ray travelled to the point */
+    STRATUM_INPUT_OBJECT_INDEX = 33,    /* 1: the object's pass index */
+    STRATUM_INPUT_MATERIAL_INDEX = 34,  /* 1: the material's pass index */
+    STRATUM_INPUT_OBJECT_COLOR = 35,    /* 3: the object's colour (Object Info's Color) */
+    STRATUM_INPUT_OBJECT_ALPHA = 38,    /* 1: its alpha */
+    STRATUM_INPUT_TANGENT = 39,         /* 3: unit tangent (the UV map's dpdu, else about Z) */
+    STRATUM_INPUT_PARAMETRIC = 42,      /* 3: barycentric (1 - u - v, u, 0) as Cycles' Parametric */
+    STRATUM_INPUT_OBJECT_NORMAL = 45,   /* 3: the shading normal in object space (Texture
+                                           Coordinate's Normal), unit */
+    /* The offsets a Bump node takes its finite differences over: two small steps in the tangent
+     * plane (world space), and what each step changes GENERATED, OBJECT and UV by. */
+    STRATUM_INPUT_DPDX = 48,
+    STRATUM_INPUT_DPDY = 51,
+    STRATUM_INPUT_DGENERATED_DX = 54,
+    STRATUM_INPUT_DGENERATED_DY = 57,
+    STRATUM_INPUT_DOBJECT_DX = 60,
+    STRATUM_INPUT_DOBJECT_DY = 63,
+    STRATUM_INPUT_DUV_DX = 66,
+    STRATUM_INPUT_DUV_DY = 69,
+    STRATUM_INPUT_REFLECTION = 72, /* 3: the view mirrored about the normal, 2 dot(N, I) N - I */
+    STRATUM_SHADER_INPUT_REGISTERS = 80
+} StratumShaderInput;
+
+/* Node types. Register use per node: docs/shader_nodes.md. */
+typedef enum StratumShaderNodeType {
+    STRATUM_NODE_MATH = 0,
+    STRATUM_NODE_VECTOR_MATH = 1,
+    STRATUM_NODE_MIX = 2,
+    STRATUM_NODE_MAP_RANGE = 3,
+    STRATUM_NODE_CLAMP = 4,
+    STRATUM_NODE_INVERT = 5,
+    STRATUM_NODE_GAMMA = 6,
+    STRATUM_NODE_BRIGHT_CONTRAST = 7,
+    STRATUM_NODE_HSV = 8,
+    STRATUM_NODE_SEPARATE_COLOR = 9,
+    STRATUM_NODE_COMBINE_COLOR = 10,
+    STRATUM_NODE_RGB_TO_BW = 11,
+    STRATUM_NODE_COLOR_RAMP = 12,
+    STRATUM_NODE_CURVES = 13,
+    STRATUM_NODE_MAPPING = 14,
+    STRATUM_NODE_VECTOR_ROTATE = 15,
+    STRATUM_NODE_FRESNEL = 16,
+    STRATUM_NODE_LAYER_WEIGHT = 17,
+    STRATUM_NODE_IMAGE = 18,
+    STRATUM_NODE_NOISE = 19,
+    STRATUM_NODE_VORONOI = 20,
+    STRATUM_NODE_WAVE = 21,
+    STRATUM_NODE_CHECKER = 22,
+    STRATUM_NODE_BRICK = 23,
+    STRATUM_NODE_GRADIENT = 24,
+    STRATUM_NODE_MAGIC = 25,
+    STRATUM_NODE_WHITE_NOISE = 26,
+    STRATUM_NODE_MUSGRAVE = 27,
+    STRATUM_NODE_SKY = 28,
+    STRATUM_NODE_BUMP = 29,
+    STRATUM_NODE_NORMAL_MAP = 30,
+    STRATUM_NODE_BLACKBODY = 31,
+    STRATUM_NODE_WAVELENGTH = 32,
+    STRATUM_NODE_VECTOR_TRANSFORM = 33,
+    STRATUM_NODE_NORMAL = 34,
+    STRATUM_NODE_COPY = 35, /* copies `modes[0]` (1 to 3) registers: a reroute of a value */
+    STRATUM_NODE_TYPE_COUNT = 36
+} StratumShaderNodeType;
+
+/* One node: `type`, its enumerations in `modes` (what each means: docs/shader_nodes.md), the
+ * register of each input and output (the first of three for a vector or colour; unused slots are
+ * ignored), and a range of the program's constant `data` (a Color Ramp's stops, a curve's table,
+ * the Sky's parameters). */
+typedef struct StratumShaderNode {
+    int32_t type;
+    int32_t modes[6];
+    uint32_t inputs[12];
+    uint32_t outputs[6];
+    uint32_t data_offset, data_count;
+} StratumShaderNode;
+
+typedef struct StratumShaderProgramDesc {
+    const StratumShaderNode* nodes;
+    uint32_t node_count;     /* at most 65536 */
+    const float* registers;  /* register_count initial values (any float; the first
+                                STRATUM_SHADER_INPUT_REGISTERS are overwritten) */
+    uint32_t register_count; /* STRATUM_SHADER_INPUT_REGISTERS to 65536 */
+    const float* data;       /* data_count constants the nodes' data ranges point into */
+    uint32_t data_count;     /* at most 2^24 */
+} StratumShaderProgramDesc;
+
+/* Adds a program; its id (0, 1, 2, ...) is written to out_id. Every node is checked: a known
+ * type, modes within their enumerations, registers and data ranges inside the program, an
+ * IMAGE node's texture an added texture. A bad node fails naming its index, type and field. */
+STRATUM_API StratumStatus stratum_scene_add_shader_program(StratumScene* scene,
+                                                           const StratumShaderProgramDesc* program,
+                                                           uint32_t* out_id);
+/* Replaces program `program_id` (a live edit: a parameter changed in Blender). */
+STRATUM_API StratumStatus stratum_scene_set_shader_program(StratumScene* scene, uint32_t program_id,
+                                                           const StratumShaderProgramDesc* program);
+
+/* Closure parameters a program can drive, with the registers each reads. Values are limited as
+ * Cycles limits the sockets: colours and emission >= 0, roughness, metallic, transmission and
+ * coat roughness to [0,1], specular and coat >= 0, IOR >= 1e-5, coat tint to [0,1]; a NaN reads
+ * 0. WEIGHT multiplies the closure's weight by an RGB value >= 0 (the host computes Mix Shader
+ * factors, saturated as Cycles saturates them). NORMAL is a world-space normal (the output of a
+ * Bump or Normal Map node; normalised, and one that is zero or not finite keeps the smooth
+ * normal); it is the shading point's normal for all closures. */
+typedef enum StratumProgramParam {
+    STRATUM_PROGRAM_BASE_COLOR = 0,      /* 3 */
+    STRATUM_PROGRAM_ROUGHNESS = 1,       /* 1 */
+    STRATUM_PROGRAM_METALLIC = 2,        /* 1 */
+    STRATUM_PROGRAM_NORMAL = 3,          /* 3 */
+    STRATUM_PROGRAM_EMISSION = 4,        /* 3: radiance, colour x strength */
+    STRATUM_PROGRAM_WEIGHT = 5,          /* 3 */
+    STRATUM_PROGRAM_TRANSMISSION = 6,    /* 1 */
+    STRATUM_PROGRAM_SPECULAR = 7,        /* 1 */
+    STRATUM_PROGRAM_IOR = 8,             /* 1 */
+    STRATUM_PROGRAM_COAT = 9,            /* 1 */
+    STRATUM_PROGRAM_COAT_ROUGHNESS = 10, /* 1 */
+    STRATUM_PROGRAM_COAT_TINT = 11       /* 3 */
+} StratumProgramParam;
+
+typedef struct StratumProgramBinding {
+    uint32_t material_id;
+    uint32_t closure_index; /* 0 for a material added with stratum_scene_add_material */
+    int32_t param;          /* StratumProgramParam */
+    uint32_t program_id;
+    uint32_t register_index; /* the first of the parameter's registers */
+} StratumProgramBinding;
+
+/* Drives one parameter of one closure by a program's register, evaluated at every shading point
+ * of the material (each program once per point, however many parameters it drives). A later
+ * binding of the same (material, closure, param) replaces the earlier one. Emission driven by a
+ * program is found by rays that hit the surface (its triangles are not sampled as lights unless
+ * the material's constant emission is not black). */
+STRATUM_API StratumStatus stratum_scene_bind_program(StratumScene* scene,
+                                                     const StratumProgramBinding* binding);
+
+/* The world's radiance is the RGB of register `register_index` of program `program_id`,
+ * evaluated for each direction (its inputs: POSITION = the direction, see above). It replaces
+ * the background colour and any environment image. The renderer bakes it into an environment
+ * of `width` x `height` texels (equirectangular, each the mean of 2 x 2 directions in it; width
+ * 4 to 16384, height 2 to 8192), which is then looked up and importance-sampled as an image. */
+STRATUM_API StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t program_id,
+                                                               uint32_t register_index, uint32_t width,
+                                                               uint32_t height);
+
+/* Evaluates program `program_id` with the given input registers (STRATUM_SHADER_INPUT_REGISTERS
+ * floats) and copies `count` registers starting at `first` to `out`: for hosts' tests and
+ * previews of a single node. */
+STRATUM_API StratumStatus stratum_scene_evaluate_program(const StratumScene* scene, uint32_t program_id,
+                                                         const float* inputs, uint32_t first, uint32_t count,
+                                                         float* out);
+
+#ifdef __cplusplus
+}
+#endif
+
+#endif

@@ -1,0 +1,94 @@
+#include "api/scene_file_programs.h"
+
+#include <vector>
+
+#include "api/scene_file_numbers.h"
+
+namespace stratum {
+
+using nlohmann::json;
+using scene_file::field;
+using scene_file::numbers;
+
+void save_programs(const Scene& scene, json& j) {
+    json spaces = json::array();
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        if (!scene.meshes[m].texture_space) continue;
+        const auto& [loc, size] = *scene.meshes[m].texture_space;
+        spaces.push_back(
+            {{"mesh", m}, {"location", {loc.x, loc.y, loc.z}}, {"size", {size.x, size.y, size.z}}});
+    }
+    if (!spaces.empty()) j["texture_spaces"] = spaces;
+    if (scene.programs.empty()) return;
+    json programs = json::array(), bindings = json::array();
+    for (const auto& p : scene.programs) {
+        // One row of 32 integers per node: type, modes[6], inputs[12], outputs[6], data range.
+        json nodes = json::array();
+        for (const ShaderNode& n : p->nodes) {
+            json row = json::array({n.type});
+            for (int32_t v : n.modes) row.push_back(v);
+            for (uint32_t v : n.inputs) row.push_back(v);
+            for (uint32_t v : n.outputs) row.push_back(v);
+            row.push_back(n.data_offset);
+            row.push_back(n.data_count);
+            nodes.push_back(row);
+        }
+        programs.push_back({{"nodes", nodes}, {"registers", p->registers}, {"data", p->data}});
+    }
+    for (const ProgramBinding& b : scene.program_bindings) {
+        bindings.push_back({{"material", b.material_id},
+                            {"closure", b.closure_index},
+                            {"param", static_cast<int>(b.param)},
+                            {"program", b.program_id},
+                            {"register", b.register_index}});
+    }
+    j["programs"] = {{"programs", programs}, {"bindings", bindings}};
+}
+
+StratumStatus load_programs(const json& j, StratumScene* scene) {
+    StratumStatus status = STRATUM_OK;
+    if (j.contains("texture_spaces")) {
+        for (const json& t : j.at("texture_spaces")) {
+            const auto loc = numbers<float>(t, "location"), size = numbers<float>(t, "size");
+            if (loc.size() != 3 || size.size() != 3)
+                throw std::runtime_error("texture space needs 3 + 3 numbers");
+            status = stratum_scene_set_mesh_texture_space(scene, field<uint32_t>(t, "mesh"), loc.data(),
+                                                          size.data());
+            if (status != STRATUM_OK) return status;
+        }
+    }
+    if (!j.contains("programs")) return STRATUM_OK;
+    for (const json& p : j.at("programs").at("programs")) {
+        std::vector<StratumShaderNode> nodes;
+        for (const json& row : p.at("nodes")) {
+            if (!row.is_array() || row.size() != 27)
+                throw std::runtime_error("a program node needs 27 numbers");
+            StratumShaderNode n{};
+            size_t k = 0;
+            const auto next_int = [&] { return scene_file::number<int32_t>(row.at(k++), "program node"); };
+            const auto next_uint = [&] { return scene_file::number<uint32_t>(row.at(k++), "program node"); };
+            n.type = next_int();
+            for (int32_t& v : n.modes) v = next_int();
+            for (uint32_t& v : n.inputs) v = next_uint();
+            for (uint32_t& v : n.outputs) v = next_uint();
+            n.data_offset = next_uint();
+            n.data_count = next_uint();
+            nodes.push_back(n);
+        }
+        const auto registers = numbers<float>(p, "registers");
+        const auto data = numbers<float>(p, "data");
+        const StratumShaderProgramDesc d{nodes.data(),     static_cast<uint32_t>(nodes.size()),
+                                         registers.data(), static_cast<uint32_t>(registers.size()),
+                                         data.data(),      static_cast<uint32_t>(data.size())};
+        if ((status = stratum_scene_add_shader_program(scene, &d, nullptr)) != STRATUM_OK) return status;
+    }
+    for (const json& b : j.at("programs").at("bindings")) {
+        const StratumProgramBinding d{field<uint32_t>(b, "material"), field<uint32_t>(b, "closure"),
+                                      field<int32_t>(b, "param"), field<uint32_t>(b, "program"),
+                                      field<uint32_t>(b, "register")};
+        if ((status = stratum_scene_bind_program(scene, &d)) != STRATUM_OK) return status;
+    }
+    return STRATUM_OK;
+}
+
+}  // namespace stratum

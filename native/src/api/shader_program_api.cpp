@@ -1,0 +1,154 @@
+// The shader-program entry points (stratum/shader_nodes.h).
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "api/abi_guard.h"
+#include "api/scene_handle.h"
+#include "api/shader_program_validation.h"
+#include "shading/world_baking.h"
+#include "stratum/stratum.h"
+
+extern "C" {
+
+StratumStatus stratum_scene_add_shader_program(StratumScene* scene, const StratumShaderProgramDesc* program,
+                                               uint32_t* out_id) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_add_shader_program", [&] {
+        require(scene && program, "scene or program is NULL");
+        const size_t textures = scene->live->read([](const stratum::Scene& s) { return s.textures.size(); });
+        auto checked = stratum::validate_shader_program(*program, textures);
+        const uint32_t id = scene->live->edit(stratum::LiveScene::Part::Materials, [&](stratum::Scene& s) {
+            s.programs.push_back(std::move(checked));
+            return static_cast<uint32_t>(s.programs.size() - 1);
+        });
+        if (out_id) *out_id = id;
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_shader_program(StratumScene* scene, uint32_t program_id,
+                                               const StratumShaderProgramDesc* program) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_set_shader_program", [&] {
+        require(scene && program, "scene or program is NULL");
+        const size_t textures = scene->live->read([&](const stratum::Scene& s) {
+            require(program_id < s.programs.size(), "program_id " + std::to_string(program_id) +
+                                                        " is not a program (the scene has " +
+                                                        std::to_string(s.programs.size()) + ")");
+            return s.textures.size();
+        });
+        auto checked = stratum::validate_shader_program(*program, textures);
+        scene->live->edit(stratum::LiveScene::Part::Materials,
+                          [&](stratum::Scene& s) { s.programs[program_id] = std::move(checked); });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_bind_program(StratumScene* scene, const StratumProgramBinding* binding) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_bind_program", [&] {
+        require(scene && binding, "scene or binding is NULL");
+        scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            const stratum::ProgramBinding b = stratum::validate_program_binding(*binding, s);
+            for (stratum::ProgramBinding& existing : s.program_bindings) {
+                if (existing.material_id == b.material_id && existing.closure_index == b.closure_index &&
+                    existing.param == b.param) {
+                    existing = b;
+                    return;
+                }
+            }
+            s.program_bindings.push_back(b);
+        });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t program_id,
+                                                   uint32_t register_index, uint32_t width, uint32_t height) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_set_background_program", [&] {
+        require(scene, "scene is NULL");
+        require(width >= 4 && width <= 16384,
+                "background width " + std::to_string(width) + " is outside [4, 16384]");
+        require(height >= 2 && height <= 8192,
+                "background height " + std::to_string(height) + " is outside [2, 8192]");
+        std::shared_ptr<const stratum::ShaderProgram> program;
+        std::vector<std::shared_ptr<const stratum::Texture>> textures;
+        scene->live->read([&](const stratum::Scene& s) {
+            require(program_id < s.programs.size(), "program_id " + std::to_string(program_id) +
+                                                        " is not a program (the scene has " +
+                                                        std::to_string(s.programs.size()) + ")");
+            program = s.programs[program_id];
+            textures = s.textures;
+            return 0;
+        });
+        require(static_cast<uint64_t>(register_index) + 3 <= program->registers.size(),
+                "background register " + std::to_string(register_index) + " (3 wide) is outside program " +
+                    std::to_string(program_id) + "'s " + std::to_string(program->registers.size()) +
+                    " registers");
+        // Baked outside the scene's lock: a large map takes a while, and renders may be reading.
+        stratum::Environment e = stratum::bake_environment(*program, textures, register_index, width, height);
+        scene->live->edit(stratum::LiveScene::Part::World,
+                          [&](stratum::Scene& s) { s.environment = std::move(e); });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_mesh_texture_space(StratumScene* scene, uint32_t mesh_id,
+                                                   const float location[3], const float size[3]) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_set_mesh_texture_space", [&] {
+        require(scene && location && size, "scene, location or size is NULL");
+        stratum::Vec3 loc(location[0], location[1], location[2]), half(size[0], size[1], size[2]);
+        for (int k = 0; k < 3; ++k) {
+            require(std::isfinite(location[k]) && std::abs(location[k]) <= 1e12f,
+                    "texture space location[" + std::to_string(k) + "] = " + std::to_string(location[k]) +
+                        " is not a finite value within 1e12");
+            require(std::isfinite(size[k]) && std::abs(size[k]) <= 1e12f,
+                    "texture space size[" + std::to_string(k) + "] = " + std::to_string(size[k]) +
+                        " is not a finite value within 1e12");
+        }
+        // Blender's rule for a degenerate texture space (BKE_mesh_texspace_calc): 0 reads 1, a
+        // tiny positive size 1e-5.
+        const auto fix = [](float v) { return v == 0.0f ? 1.0f : (v > 0.0f && v < 1e-5f ? 1e-5f : v); };
+        half = stratum::Vec3(fix(half.x), fix(half.y), fix(half.z));
+        scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            require(mesh_id < s.meshes.size(), "mesh_id " + std::to_string(mesh_id) +
+                                                   " is not a mesh (the scene has " +
+                                                   std::to_string(s.meshes.size()) + ")");
+            s.meshes[mesh_id].texture_space = std::array<stratum::Vec3, 2>{loc, half};
+        });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_evaluate_program(const StratumScene* scene, uint32_t program_id,
+                                             const float* inputs, uint32_t first, uint32_t count,
+                                             float* out) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_evaluate_program", [&] {
+        require(scene && inputs && (out || count == 0), "scene, inputs or out is NULL");
+        std::shared_ptr<const stratum::ShaderProgram> program;
+        std::vector<std::shared_ptr<const stratum::Texture>> textures;
+        scene->live->read([&](const stratum::Scene& s) {
+            require(program_id < s.programs.size(), "program_id " + std::to_string(program_id) +
+                                                        " is not a program (the scene has " +
+                                                        std::to_string(s.programs.size()) + ")");
+            program = s.programs[program_id];
+            textures = s.textures;
+            return 0;
+        });
+        require(static_cast<uint64_t>(first) + count <= program->registers.size(),
+                "registers [" + std::to_string(first) + ", +" + std::to_string(count) +
+                    ") are outside program " + std::to_string(program_id) + "'s " +
+                    std::to_string(program->registers.size()) + " registers");
+        stratum::ShaderRegisters r(*program);
+        std::copy(inputs, inputs + stratum::kShaderInputRegisters, r.data());
+        stratum::evaluate(*program, stratum::ShaderEvalContext{program.get(), &textures}, r);
+        std::copy(r.data() + first, r.data() + first + count, out);
+        return STRATUM_OK;
+    });
+}
+
+}  // extern "C"

@@ -1,0 +1,182 @@
+#include "render_scene/material_programs.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "render_scene/render_scene.h"
+
+namespace stratum {
+
+namespace {
+
+float at_least(float v, float lo) { return std::isnan(v) ? lo : std::max(v, lo); }
+float unit(float v) { return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f); }
+Rgb rgb_at_least0(const ShaderRegisters& r, uint32_t i) {
+    return {at_least(r[i], 0.0f), at_least(r[i + 1], 0.0f), at_least(r[i + 2], 0.0f)};
+}
+
+void put(float* r, uint32_t at, Vec3 v) {
+    r[at] = v.x;
+    r[at + 1] = v.y;
+    r[at + 2] = v.z;
+}
+
+// Object-space normal and the Bump node's offsets (see the StratumShaderInput list).
+void write_offsets(const SurfaceHit& hit, const ProgramInputs& in, float side, float* r) {
+    const Transform& m = *in.object_to_world;
+    const Transform inverse = m.inverse();
+    // Normals go to object space by the transpose of the linear part (inverse of the inverse
+    // transpose), up to scale.
+    const Vec3 n = hit.shading_normal * side;
+    const Vec3 on(m.m[0] * n.x + m.m[4] * n.y + m.m[8] * n.z, m.m[1] * n.x + m.m[5] * n.y + m.m[9] * n.z,
+                  m.m[2] * n.x + m.m[6] * n.y + m.m[10] * n.z);
+    const float onl = length(on);
+    put(r, STRATUM_INPUT_OBJECT_NORMAL, onl > 0.0f ? on / onl : n);
+    Vec3 t = hit.tangent_frame.dpdu - n * dot(n, hit.tangent_frame.dpdu);
+    if (!(dot(t, t) > 1e-20f)) t = std::abs(n.x) < 0.9f ? cross(n, Vec3(1, 0, 0)) : cross(n, Vec3(0, 1, 0));
+    t = normalize(t);
+    const Vec3 b = cross(n, t);
+    const float step = bump_step(hit.t, hit.position);
+    const Vec3 dx = t * step, dy = b * step;
+    put(r, STRATUM_INPUT_DPDX, dx);
+    put(r, STRATUM_INPUT_DPDY, dy);
+    const Vec3 ox = inverse.vector(dx), oy = inverse.vector(dy);
+    put(r, STRATUM_INPUT_DOBJECT_DX, ox);
+    put(r, STRATUM_INPUT_DOBJECT_DY, oy);
+    const Vec3 s2 = in.texspace_size * 2.0f;
+    put(r, STRATUM_INPUT_DGENERATED_DX, Vec3(ox.x / s2.x, ox.y / s2.y, ox.z / s2.z));
+    put(r, STRATUM_INPUT_DGENERATED_DY, Vec3(oy.x / s2.x, oy.y / s2.y, oy.z / s2.z));
+    // UV change of a step d in the triangle's plane: d = du dpdu + dv dpdv, solved in least
+    // squares (the 2 x 2 normal equations); 0 without UVs.
+    const Vec3 pu = hit.tangent_frame.dpdu, pv = hit.dpdv;
+    const float a = dot(pu, pu), bb = dot(pu, pv), c = dot(pv, pv), det = a * c - bb * bb;
+    const auto duv = [&](Vec3 d) {
+        if (!(std::abs(det) > 0.0f)) return Vec3(0.0f, 0.0f, 0.0f);
+        const float x = dot(pu, d), y = dot(pv, d);
+        return Vec3((c * x - bb * y) / det, (a * y - bb * x) / det, 0.0f);
+    };
+    put(r, STRATUM_INPUT_DUV_DX, duv(dx));
+    put(r, STRATUM_INPUT_DUV_DY, duv(dy));
+}
+
+}  // namespace
+
+MaterialPrograms::MaterialPrograms(const Scene& scene)
+    : programs_(scene.programs), textures_(scene.textures), per_material_(scene.materials.size()) {
+    for (const ProgramBinding& b : scene.program_bindings) per_material_[b.material_id].push_back(b);
+    for (auto& list : per_material_) {
+        std::stable_sort(list.begin(), list.end(), [](const ProgramBinding& a, const ProgramBinding& b) {
+            return a.program_id < b.program_id;
+        });
+    }
+}
+
+void write_surface_inputs(const SurfaceHit& hit, const ProgramInputs& in, float* r) {
+    std::fill(r, r + kShaderInputRegisters, 0.0f);
+    // Cycles' sd->N and sd->Ng face the incoming ray's side (SD_BACKFACING negates both).
+    const float side = in.backfacing ? -1.0f : 1.0f;
+    put(r, STRATUM_INPUT_POSITION, hit.position);
+    put(r, STRATUM_INPUT_NORMAL, hit.shading_normal * side);
+    put(r, STRATUM_INPUT_TRUE_NORMAL, hit.geometric_normal * side);
+    put(r, STRATUM_INPUT_INCOMING, in.wo);
+    const Vec3 n = hit.shading_normal * side;
+    put(r, STRATUM_INPUT_REFLECTION, n * (2.0f * dot(n, in.wo)) - in.wo);
+    put(r, STRATUM_INPUT_UV, Vec3(hit.uv.x, hit.uv.y, 0.0f));
+    // Blender's texture space maps [location - size, location + size] to [0, 1] (Cycles' generated
+    // attribute: (P - location) / (2 size) + 0.5).
+    const Vec3 g = (hit.object_position - in.texspace_location);
+    put(r, STRATUM_INPUT_GENERATED,
+        Vec3(g.x / (2.0f * in.texspace_size.x) + 0.5f, g.y / (2.0f * in.texspace_size.y) + 0.5f,
+             g.z / (2.0f * in.texspace_size.z) + 0.5f));
+    put(r, STRATUM_INPUT_OBJECT, hit.object_position);
+    if (in.world_to_camera) {
+        // Cycles' camera space looks down +Z (Blender's camera looks down -Z).
+        const Vec3 c = in.world_to_camera->point(hit.position);
+        put(r, STRATUM_INPUT_CAMERA, Vec3(c.x, c.y, -c.z));
+    }
+    put(r, STRATUM_INPUT_OBJECT_LOCATION, in.object_location);
+    r[STRATUM_INPUT_BACKFACING] = in.backfacing ? 1.0f : 0.0f;
+    r[STRATUM_INPUT_OBJECT_RANDOM] = in.object_random;
+    r[STRATUM_INPUT_RAY_LENGTH] = hit.t;
+    r[STRATUM_INPUT_OBJECT_INDEX] = static_cast<float>(hit.object_pass_index);
+    r[STRATUM_INPUT_MATERIAL_INDEX] = static_cast<float>(hit.material_pass_index);
+    put(r, STRATUM_INPUT_OBJECT_COLOR, Vec3(in.object_color.r, in.object_color.g, in.object_color.b));
+    r[STRATUM_INPUT_OBJECT_ALPHA] = in.object_alpha;
+    // The UV map's tangent where there is one (Cycles' Tangent node, UV map), else a tangent about
+    // the object's Z axis (its radial default), here in world space from the normal.
+    Vec3 t = hit.tangent_frame.dpdu;
+    if (!(dot(t, t) > 0.0f)) t = cross(Vec3(0.0f, 0.0f, 1.0f), hit.shading_normal);
+    t = t - hit.shading_normal * dot(hit.shading_normal, t);
+    const float tl = length(t);
+    put(r, STRATUM_INPUT_TANGENT, tl > 0.0f ? t / tl : Vec3(0.0f, 0.0f, 0.0f));
+    put(r, STRATUM_INPUT_PARAMETRIC,
+        Vec3(1.0f - hit.barycentric.x - hit.barycentric.y, hit.barycentric.x, 0.0f));
+    write_offsets(hit, in, side, r);
+}
+
+void MaterialPrograms::apply(const SurfaceHit& hit, const ProgramInputs& inputs, WeightedClosure* closures,
+                             uint32_t count, Vec3* shading_normal) const {
+    const std::vector<ProgramBinding>& bindings = per_material_[hit.material_id];
+    size_t i = 0;
+    while (i < bindings.size()) {
+        const uint32_t program_id = bindings[i].program_id;
+        const ShaderProgram& program = *programs_[program_id];
+        ShaderRegisters r(program);
+        write_surface_inputs(hit, inputs, r.data());
+        evaluate(program, ShaderEvalContext{&program, &textures_}, r);
+        for (; i < bindings.size() && bindings[i].program_id == program_id; ++i) {
+            const ProgramBinding& b = bindings[i];
+            if (b.closure_index >= count) continue;
+            WeightedClosure& c = closures[b.closure_index];
+            Material& m = c.params;
+            const uint32_t at = b.register_index;
+            switch (b.param) {
+                case ProgramParam::BaseColor:
+                    m.base_color = rgb_at_least0(r, at);
+                    break;
+                case ProgramParam::Roughness:
+                    m.roughness = unit(r[at]);
+                    break;
+                case ProgramParam::Metallic:
+                    m.metallic = unit(r[at]);
+                    break;
+                case ProgramParam::Transmission:
+                    m.transmission = unit(r[at]);
+                    break;
+                case ProgramParam::CoatRoughness:
+                    m.coat_roughness = unit(r[at]);
+                    break;
+                case ProgramParam::Specular:
+                    m.specular = at_least(r[at], 0.0f);
+                    break;
+                case ProgramParam::Coat:
+                    m.coat = at_least(r[at], 0.0f);
+                    break;
+                case ProgramParam::Ior:
+                    m.ior = at_least(r[at], 1e-5f);
+                    break;
+                case ProgramParam::Emission:
+                    m.emission = rgb_at_least0(r, at);
+                    break;
+                case ProgramParam::Weight:
+                    c.weight = c.weight * rgb_at_least0(r, at);
+                    break;
+                case ProgramParam::CoatTint:
+                    m.coat_tint = Rgb(unit(r[at]), unit(r[at + 1]), unit(r[at + 2]));
+                    break;
+                case ProgramParam::Normal: {
+                    const Vec3 n = r.vec3(at);
+                    const float len = length(n);
+                    if (len > 0.0f && std::isfinite(len)) {
+                        // The program's frame faces the viewer; the shading point's normal is
+                        // winding-oriented until build_closures turns it.
+                        *shading_normal = n / len * (inputs.backfacing ? -1.0f : 1.0f);
+                    }
+                    break;
+                }
+            }
+        }
+    }
+}
+
+}  // namespace stratum

@@ -1,0 +1,35 @@
+#include "shading/node_registry.h"
+
+#include <vector>
+
+#include "shading/nodes/node_families.h"
+
+namespace stratum {
+
+namespace {
+
+std::vector<NodeEntry> build_table() {
+    std::vector<NodeEntry> table(STRATUM_NODE_TYPE_COUNT, NodeEntry{});
+    const auto put = [&](int32_t type, NodeEntry entry) { table[type] = entry; };
+    put(STRATUM_NODE_MATH, math_node_entry());
+    put(STRATUM_NODE_COPY, copy_node_entry());
+    return table;
+}
+
+}  // namespace
+
+const NodeEntry* node_entry(int32_t type) {
+    static const std::vector<NodeEntry> table = build_table();
+    if (type < 0 || type >= static_cast<int32_t>(table.size()) || table[type].evaluate == nullptr)
+        return nullptr;
+    return &table[type];
+}
+
+std::string check_mode(const ShaderNode& node, int index, const char* what, int32_t count) {
+    const int32_t v = node.modes[index];
+    if (v >= 0 && v < count) return "";
+    return "mode " + std::to_string(index) + " (" + what + ") is " + std::to_string(v) + "; 0.." +
+           std::to_string(count - 1);
+}
+
+}  // namespace stratum

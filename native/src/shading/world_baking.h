@@ -1,0 +1,25 @@
+// The world's node program baked into an equirectangular environment image, which the
+// renderer then looks up and importance-samples as any environment (lights/environment_light.h).
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "scene/scene.h"
+#include "shading/shader_program.h"
+
+namespace stratum {
+
+// Each texel is the mean of the program's RGB at register `color` over 2 x 2 directions spread
+// over the texel (rows top (+Z) to bottom, the environment's mapping); a value that is NaN,
+// infinite or negative counts 0, as environment pixels do.
+Environment bake_environment(const ShaderProgram& program,
+                             const std::vector<std::shared_ptr<const Texture>>& textures, uint32_t color,
+                             uint32_t width, uint32_t height);
+
+// Writes the input registers a world program reads for direction `d` (unit): POSITION, and
+// (what Cycles' background shader sees) normals and INCOMING = -d, GENERATED and OBJECT = d.
+void write_world_inputs(Vec3 d, float* registers);
+
+}  // namespace stratum
