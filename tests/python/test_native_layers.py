@@ -17,6 +17,7 @@ ARCHITECTURE = REPO / "docs" / "architecture.md"
 LAYERS: list[tuple[str, ...]] = [
     ("core",),
     ("sampling", "texture", "accel", "guiding"),
+    ("shading",),
     ("scene",),
     ("bsdf", "lights"),
     ("render_scene",),

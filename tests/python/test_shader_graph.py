@@ -323,18 +323,19 @@ def test_other_bsdfs() -> None:
     assert closures[0].material.ior == pytest.approx(1.45)
 
 
-def test_image_on_emission_or_transmission_warns_and_uses_the_value() -> None:
-    # The native contract refuses PARAM_EMISSION / PARAM_TRANSMISSION bindings.
+def test_image_on_emission_or_transmission_goes_through_the_node_program() -> None:
+    # The native contract refuses image bindings of emission and transmission (emissive
+    # triangles are light-sampled with a constant): the program drives them instead, and the
+    # constant emission is 0 so that the triangles are not lights of the wrong radiance.
     node, glow, clear = principled_v2(**{"Emission Strength": 2.0,
                                          "Emission Color": (1.0, 0.5, 0.0, 1.0)}), \
         image("Glow"), image("Clear")
     link(glow, "Color", node, "Emission Color")
     link(clear, "Color", node, "Transmission Weight")
-    closures, warnings = flatten(output_with(node))
-    assert len(warnings) == 2
-    assert any("'Glow'" in w for w in warnings) and any("'Clear'" in w for w in warnings)
+    closures, _ = flatten(output_with(node))
     assert closures[0].bindings == []
-    assert closures[0].material.emission == pytest.approx((2.0, 1.0, 0.0))
+    assert sorted(p.param for p in closures[0].programs) == ["emission", "transmission"]
+    assert closures[0].material.emission == pytest.approx((0.0, 0.0, 0.0))
 
 
 def test_normal_map_strength_outside_unit_range_warns_in_4x_only() -> None:

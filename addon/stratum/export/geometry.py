@@ -71,8 +71,24 @@ def add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
         mesh_id = scene.add_mesh(arrays.positions, arrays.triangles, mat_ids,
                                  arrays.corner_normals, uvs, arrays.vertex_normals,
                                  arrays.corner_tangents)
+        texture_space = manual_texture_space(ob)
+        if texture_space is not None:
+            scene.set_mesh_texture_space(mesh_id, *texture_space)
     except native.StratumError as exc:
         raise ExportError(f"Object '{ob.name}': {exc}") from exc
     summary.meshes += 1
     summary.triangles += len(arrays.triangles)
     return (mesh_id, len(arrays.triangles))
+
+
+def manual_texture_space(ob: Any) -> tuple[tuple[float, ...], tuple[float, ...]] | None:
+    """(location, size) of the object data's texture space when the user set it (Auto Texture
+    Space off); None for the automatic one, the bounding box, which the renderer computes."""
+    data = getattr(ob, "data", None)
+    if data is None or getattr(data, "use_auto_texspace", True):
+        return None
+    location = getattr(data, "texspace_location", None)
+    size = getattr(data, "texspace_size", None)
+    if location is None or size is None:
+        return None
+    return tuple(float(v) for v in location), tuple(float(v) for v in size)

@@ -44,6 +44,10 @@ class ConvertedMaterial:
     uv_map: str = ""  # UV layer its textures read ("" = the mesh's active render layer)
     warnings: list[str] = field(default_factory=list)  # each names the material and node
     pass_index: int = 0  # Material > Settings > Pass Index (the IndexMA pass)
+    # The node program its closures' ProgramInputs read, and the Image Texture nodes that
+    # program reads (its IMAGE nodes' mode 0 indexes them); None without one.
+    program: native.ShaderProgram | None = None
+    program_images: list[Any] = field(default_factory=list)
 
 
 def _single(material: native.Material) -> list[Closure]:
@@ -74,25 +78,28 @@ def convert_material(material: Any | None) -> ConvertedMaterial:
                                     base_color=(1.0, 1.0, 1.0))),
             warnings=[volume_warning + "; its surface is transparent, as in Cycles"])
     if surface is None or linked_from(surface) is None:
-        # Cycles renders an unconnected surface black; keep it visible but say so.
+        # Cycles renders a Material Output with nothing connected black (and opaque): a lit
+        # plane gives 0.0 in 3.4. Rendered the same, and said.
         return ConvertedMaterial(
             _single(native.Material(model=native.closure_model("diffuse"),
-                                    base_color=DEFAULT_GREY)),
+                                    base_color=(0.0, 0.0, 0.0))),
             warnings=[f"Material '{material.name}': no shader connected to the Material Output "
-                      "(using grey diffuse)"])
+                      "(rendered black, as Cycles does)"])
     warnings: list[str] = []
 
     def warn(node: Any, message: str) -> None:
         warnings.append(f"Material '{material.name}': {message}")
 
-    closures, uv_map = flatten_surface(surface, tuple(bpy.app.version), warn)
+    flat = flatten_surface(surface, tuple(bpy.app.version), warn)
     if has_volume:
         warnings.append(volume_warning)
+    closures = flat.closures
     if not closures:
         # Every closure had weight 0: Cycles shades the surface black (and opaque).
         closures = _single(native.Material(model=native.closure_model("diffuse"),
                                            base_color=(0.0, 0.0, 0.0)))
-    return ConvertedMaterial(closures, uv_map, warnings)
+    return ConvertedMaterial(closures, flat.uv_map, warnings, program=flat.program,
+                             program_images=flat.program_images)
 
 
 def bump_shadowing_model(material: Any | None, version: tuple[int, ...]) -> int:
@@ -125,6 +132,11 @@ class SentMaterial:
     textures: tuple[tuple[Any, ...], ...]
     uv_map: str
     pass_index: int = 0
+    # Per program binding (closure index, parameter, register), the program's images (original
+    # image pointers) and the program itself (ShaderProgram.key()).
+    program_inputs: tuple[tuple[int, str, int], ...] = ()
+    program_images: tuple[int, ...] = ()
+    program: tuple[Any, ...] | None = None
 
     @property
     def images(self) -> frozenset[int]:
@@ -141,8 +153,19 @@ def sent_material(converted: ConvertedMaterial) -> SentMaterial:
             textures.append((index, b.param, original.as_pointer() if image is not None else 0,
                              str(node.interpolation), str(node.extension), b.channel, b.scale,
                              b.offset))
+    program_inputs = tuple((index, p.param, p.register)
+                           for index, closure in enumerate(converted.closures)
+                           for p in closure.programs)
     return SentMaterial(tuple((c.weight, c.material) for c in converted.closures),
-                        tuple(textures), converted.uv_map, converted.pass_index)
+                        tuple(textures), converted.uv_map, converted.pass_index, program_inputs,
+                        tuple(_image_pointer(node) for node in converted.program_images),
+                        converted.program.key() if converted.program is not None else None)
+
+
+def _image_pointer(node: Any) -> int:
+    image = getattr(node, "image", None)
+    original = getattr(image, "original", None) or image
+    return original.as_pointer() if original is not None else 0
 
 
 def _single_closure(closures: list[Closure]) -> native.Material | None:
@@ -168,6 +191,7 @@ class MaterialTable:
         self.uv_maps: dict[int, str] = {}  # material id -> UV layer its textures read
         self.textured: set[int] = set()  # material ids with texture bindings
         self.normal_mapped: set[int] = set()  # material ids with a Normal Map binding
+        self.programs: dict[int, int] = {}  # material id -> its native program id
 
     def _texture_warning(self, node: Any, message: str) -> None:
         self._summary.warn(f"Material '{self._material_name}': {message}")
@@ -201,7 +225,17 @@ class MaterialTable:
         before = self.sent[mat_id]
         if now.textures != before.textures or now.uv_map != before.uv_map:
             raise FullExportNeeded(f"Material '{material.name}': its image textures changed")
+        if (now.program_inputs != before.program_inputs
+                or now.program_images != before.program_images
+                or (now.program is None) != (before.program is None)):
+            raise FullExportNeeded(f"Material '{material.name}': its node program's outputs "
+                                   "changed")
         sends: list[Callable[[], None]] = []
+        if now.program != before.program and converted.program is not None:
+            # The same bindings with other values (a socket value, a node's mode): the program
+            # is replaced in place.
+            program = self._resolved_program(converted)
+            sends.append(partial(self._scene.set_shader_program, self.programs[mat_id], program))
         if now.closures != before.closures:
             single = _single_closure(converted.closures)
             if single is not None:
@@ -221,6 +255,11 @@ class MaterialTable:
 
         return named_edit(f"Material '{material.name}'", send)
 
+    def _resolved_program(self, converted: ConvertedMaterial) -> native.ShaderProgram:
+        assert converted.program is not None
+        ids = [self.textures.id_for(node) for node in converted.program_images]
+        return resolve_images(converted.program, ids)
+
     def _add(self, name: str, converted: ConvertedMaterial) -> int:
         closures = converted.closures
         self._material_name = name
@@ -239,16 +278,33 @@ class MaterialTable:
                         material_id=mat_id, closure_index=index, param=b.param,
                         texture_id=self.textures.id_for(b.image.node), channel=b.channel,
                         scale=b.scale, offset=b.offset))
+            if converted.program is not None:
+                program_id = self._scene.add_shader_program(self._resolved_program(converted))
+                self.programs[mat_id] = program_id
+                for index, closure in enumerate(closures):
+                    for p in closure.programs:
+                        self._scene.bind_program(native.ProgramBinding(
+                            mat_id, index, p.param, program_id, p.register))
         except native.StratumError as exc:
             raise ExportError(f"Material '{name}': {exc}") from exc
         self._summary.materials += 1
         self.sent[mat_id] = sent_material(converted)
         self.uv_maps[mat_id] = converted.uv_map
-        if any(c.bindings for c in closures):
+        if any(c.bindings for c in closures) or converted.program is not None:
+            # A node program may read the UV input: the mesh then carries its UVs.
             self.textured.add(mat_id)
         if any(b.param == native.PARAM_NORMAL for c in closures for b in c.bindings):
             self.normal_mapped.add(mat_id)
         return mat_id
+
+
+def resolve_images(program: native.ShaderProgram, texture_ids: list[int]) -> native.ShaderProgram:
+    """The program with each IMAGE node's mode 0 (an index into the compiler's image list)
+    replaced by the native texture id of that image."""
+    image_type = native.NODE_TYPES["image"]
+    nodes = [replace(n, modes=(texture_ids[n.modes[0]], *n.modes[1:]))
+             if n.type == image_type else n for n in program.nodes]
+    return native.ShaderProgram(nodes, list(program.registers), list(program.data))
 
 
 def _converted(material: Any, summary: ExportSummary) -> ConvertedMaterial:

@@ -71,7 +71,13 @@ from .object_sync import ExportedObjects, RowSignature, object_edits
 from .placements import LIGHT_ROW, UNSEEN, Geometry, place, row_template
 from .unsupported import UnsupportedObjects
 from .updates import Changes, IdUpdate, collect_updates, sort_updates
-from .world import Environment, convert_environment, convert_world
+from .world import (
+    Environment,
+    WorldProgram,
+    convert_environment,
+    convert_world,
+    convert_world_program,
+)
 
 
 @dataclass
@@ -93,6 +99,8 @@ class _Exported:
     background: tuple[float, float, float]
     environment: Environment | None
     shutter: tuple[bool, float, str]  # motion.shutter_settings
+    world_program: tuple[Any, ...] | None = None  # WorldProgram.key()
+    world_program_id: int | None = None
 
 
 class SceneSync:
@@ -160,6 +168,10 @@ class SceneSync:
             if environment is not None:
                 scene.set_environment(environment.rgb, environment.strength,
                                       environment.rotation)
+            world_program = convert_world_program(bl_scene, summary)
+            world_program_id = None
+            if world_program is not None:
+                world_program_id = _send_world_program(scene, world_program, None)
         except native.StratumError as exc:
             raise ExportError(f"World '{getattr(bl_scene.world, 'name', '')}': {exc}") from exc
 
@@ -229,7 +241,9 @@ class SceneSync:
         self._exported = _Exported(exported, materials,
                                    comparable(camera) if camera is not None else (),
                                    original_pointer(bl_scene.world), background, environment,
-                                   shutter_settings(bl_scene))
+                                   shutter_settings(bl_scene),
+                                   world_program.key() if world_program is not None else None,
+                                   world_program_id)
         self._stale = ""
         summary.export_seconds = time.perf_counter() - start
         return summary
@@ -313,7 +327,14 @@ def _world_edits(bl_scene: Any, changes: Changes, exported: _Exported, scene: An
     environment = convert_environment(bl_scene, summary)
     if environment is None and exported.environment is not None:
         raise FullExportNeeded(f"{name}: its environment image is gone")
+    world_program = convert_world_program(bl_scene, summary)
+    if (world_program is None) != (exported.world_program is None):
+        raise FullExportNeeded(f"{name}: its Background is now driven by nodes, or no longer")
     edits = []
+    if world_program is not None and world_program.key() != exported.world_program:
+        exported.world_program = world_program.key()
+        edits.append(named_edit(name, partial(_send_world_program, scene, world_program,
+                                              exported.world_program_id)))
     if background != exported.background:
         exported.background = background
         edits.append(named_edit(name, partial(scene.set_background, background)))
@@ -322,6 +343,16 @@ def _world_edits(bl_scene: Any, changes: Changes, exported: _Exported, scene: An
         edits.append(named_edit(name, partial(scene.set_environment, environment.rgb,
                                               environment.strength, environment.rotation)))
     return edits
+
+
+def _send_world_program(scene: Any, world: WorldProgram, program_id: int | None) -> int:
+    """Adds (or, given its id, replaces) the world's program and bakes it; returns its id."""
+    if program_id is None:
+        program_id = scene.add_shader_program(world.program)
+    else:
+        scene.set_shader_program(program_id, world.program)
+    scene.set_background_program(program_id, world.register, world.width, world.height)
+    return program_id
 
 
 def _same_environment(a: Environment, b: Environment | None) -> bool:

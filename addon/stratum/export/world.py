@@ -22,6 +22,7 @@ import math
 from dataclasses import dataclass
 from typing import Any
 
+import bpy
 import numpy as np
 
 from ..fallbacks import NON_NEGATIVE, Rgb, clamp, clamp_rgb, finite_product
@@ -130,12 +131,8 @@ def convert_world(scene: Any, summary: ExportSummary) -> Rgb:
         summary.warn(f"World '{world.name}': shader node '{node.name}' ({node.bl_idname}) is "
                      "not supported; using the world colour (constant background only)")
         return _color(world, "'Color'", world.color, summary)
-    # An Environment Texture on Color is exported by convert_environment (it replaces this).
-    linked = [s for s in ("Color", "Strength") if node.inputs[s].is_linked
-              and not (s == "Color" and _environment_node(node) is not None)]
-    if linked:
-        summary.warn(f"World '{world.name}': linked Background {', '.join(linked)} is not "
-                     "supported; using the socket values as a constant background")
+    # Linked inputs are exported by convert_world_program or, for an Environment Texture on
+    # Color, by convert_environment: either replaces this constant.
     color = _color(world, f"'Color' of '{node.name}'", socket_value(node, "Color"), summary)
     radiance, limited = finite_product(color, _strength(world, node, summary))
     if limited:
@@ -144,12 +141,63 @@ def convert_world(scene: Any, summary: ExportSummary) -> Rgb:
     return radiance
 
 
+@dataclass
+class WorldProgram:
+    """A world whose Background is driven by nodes: the program, the register of its radiance
+    (colour x strength) and the size of the map the renderer bakes it into."""
+
+    program: Any  # native.ShaderProgram
+    register: int
+    width: int
+    height: int
+
+    def key(self) -> tuple[Any, ...]:
+        return (self.program.key(), self.register, self.width, self.height)
+
+
+def _uses_program(background: Any) -> bool:
+    """Whether the Background's inputs need the node program: anything linked except an
+    Environment Texture alone on Color (exported as an image, looked up exactly)."""
+    color, strength = background.inputs["Color"], background.inputs["Strength"]
+    if strength.is_linked:
+        return True
+    return color.is_linked and _environment_node(background) is None
+
+
+def convert_world_program(scene: Any, summary: ExportSummary) -> WorldProgram | None:
+    """The world's node program (Background Color x Strength at each direction), or None when
+    the world is a constant or an environment image."""
+    background = _background_node(scene)
+    if background is None or not _uses_program(background):
+        return None
+    from ..shader_nodes import NodeCompiler
+    from ..shader_nodes.math_nodes import math_node
+
+    world = scene.world
+    compiler = NodeCompiler(tuple(bpy.app.version), lambda node, message: summary.warn(
+        f"World '{world.name}': {message}"))
+    color = compiler.value(background.inputs["Color"], "color")
+    strength = compiler.value(background.inputs["Strength"], "float")
+    zero = compiler.builder.constant(0.0)
+    channels = [math_node(compiler, color + k, strength, zero, "MULTIPLY") for k in range(3)]
+    register = compiler.builder.combine(*channels)
+    if compiler.images:
+        summary.warn(f"World '{world.name}': image textures inside the world's nodes are not "
+                     "supported; they read black")
+    # Cycles' Settings > Map Resolution sizes its importance map; Stratum also looks the baked
+    # map up, so it keeps at least 1024 x 512 texels (0.35 degrees).
+    cycles = getattr(world, "cycles", None)
+    resolution = int(getattr(cycles, "sampling_map_resolution", 1024) or 1024)
+    width = min(max(resolution, 1024), 4096)
+    return WorldProgram(compiler.builder.program, register, width, width // 2)
+
+
 def convert_environment(scene: Any, summary: ExportSummary) -> Environment | None:
     """The world's Environment Texture as an image for the native side, or None (then the
     constant background of convert_world applies)."""
     background = _background_node(scene)
     node = _environment_node(background) if background is not None else None
-    if node is None:
+    if node is None or _uses_program(background):
         return None
     world = scene.world
     image = node.image

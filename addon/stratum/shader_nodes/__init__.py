@@ -11,7 +11,7 @@ its native program node and its tolerance against Cycles."""
 
 from __future__ import annotations
 
-from . import input_nodes, math_nodes  # noqa: F401  (they register their translators)
+from . import input_nodes, math_nodes, surface_nodes  # noqa: F401  (they register translators)
 from .builder import ProgramBuilder
 from .compiler import NodeCompiler, Unsupported, socket_kind
 from .registry import TRANSLATORS, translator

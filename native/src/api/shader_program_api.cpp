@@ -6,8 +6,78 @@
 #include "api/abi_guard.h"
 #include "api/scene_handle.h"
 #include "api/shader_program_validation.h"
-#include "shading/world_baking.h"
+#include "render_scene/world_baking.h"
+#include "shading/program_layout.h"
 #include "stratum/stratum.h"
+
+// The layers below the API use shading/program_layout.h's copy of the public values.
+static_assert(stratum::shader_input::kPosition == STRATUM_INPUT_POSITION);
+static_assert(stratum::shader_input::kNormal == STRATUM_INPUT_NORMAL);
+static_assert(stratum::shader_input::kTrueNormal == STRATUM_INPUT_TRUE_NORMAL);
+static_assert(stratum::shader_input::kIncoming == STRATUM_INPUT_INCOMING);
+static_assert(stratum::shader_input::kUv == STRATUM_INPUT_UV);
+static_assert(stratum::shader_input::kGenerated == STRATUM_INPUT_GENERATED);
+static_assert(stratum::shader_input::kObject == STRATUM_INPUT_OBJECT);
+static_assert(stratum::shader_input::kCamera == STRATUM_INPUT_CAMERA);
+static_assert(stratum::shader_input::kWindow == STRATUM_INPUT_WINDOW);
+static_assert(stratum::shader_input::kObjectLocation == STRATUM_INPUT_OBJECT_LOCATION);
+static_assert(stratum::shader_input::kBackfacing == STRATUM_INPUT_BACKFACING);
+static_assert(stratum::shader_input::kObjectRandom == STRATUM_INPUT_OBJECT_RANDOM);
+static_assert(stratum::shader_input::kRayLength == STRATUM_INPUT_RAY_LENGTH);
+static_assert(stratum::shader_input::kObjectIndex == STRATUM_INPUT_OBJECT_INDEX);
+static_assert(stratum::shader_input::kMaterialIndex == STRATUM_INPUT_MATERIAL_INDEX);
+static_assert(stratum::shader_input::kObjectColor == STRATUM_INPUT_OBJECT_COLOR);
+static_assert(stratum::shader_input::kObjectAlpha == STRATUM_INPUT_OBJECT_ALPHA);
+static_assert(stratum::shader_input::kTangent == STRATUM_INPUT_TANGENT);
+static_assert(stratum::shader_input::kParametric == STRATUM_INPUT_PARAMETRIC);
+static_assert(stratum::shader_input::kObjectNormal == STRATUM_INPUT_OBJECT_NORMAL);
+static_assert(stratum::shader_input::kDpdx == STRATUM_INPUT_DPDX);
+static_assert(stratum::shader_input::kDpdy == STRATUM_INPUT_DPDY);
+static_assert(stratum::shader_input::kDgeneratedDx == STRATUM_INPUT_DGENERATED_DX);
+static_assert(stratum::shader_input::kDgeneratedDy == STRATUM_INPUT_DGENERATED_DY);
+static_assert(stratum::shader_input::kDobjectDx == STRATUM_INPUT_DOBJECT_DX);
+static_assert(stratum::shader_input::kDobjectDy == STRATUM_INPUT_DOBJECT_DY);
+static_assert(stratum::shader_input::kDuvDx == STRATUM_INPUT_DUV_DX);
+static_assert(stratum::shader_input::kDuvDy == STRATUM_INPUT_DUV_DY);
+static_assert(stratum::shader_input::kReflection == STRATUM_INPUT_REFLECTION);
+static_assert(stratum::shader_input::kCount == STRATUM_SHADER_INPUT_REGISTERS);
+static_assert(stratum::node_type::kMath == STRATUM_NODE_MATH);
+static_assert(stratum::node_type::kVectorMath == STRATUM_NODE_VECTOR_MATH);
+static_assert(stratum::node_type::kMix == STRATUM_NODE_MIX);
+static_assert(stratum::node_type::kMapRange == STRATUM_NODE_MAP_RANGE);
+static_assert(stratum::node_type::kClamp == STRATUM_NODE_CLAMP);
+static_assert(stratum::node_type::kInvert == STRATUM_NODE_INVERT);
+static_assert(stratum::node_type::kGamma == STRATUM_NODE_GAMMA);
+static_assert(stratum::node_type::kBrightContrast == STRATUM_NODE_BRIGHT_CONTRAST);
+static_assert(stratum::node_type::kHsv == STRATUM_NODE_HSV);
+static_assert(stratum::node_type::kSeparateColor == STRATUM_NODE_SEPARATE_COLOR);
+static_assert(stratum::node_type::kCombineColor == STRATUM_NODE_COMBINE_COLOR);
+static_assert(stratum::node_type::kRgbToBw == STRATUM_NODE_RGB_TO_BW);
+static_assert(stratum::node_type::kColorRamp == STRATUM_NODE_COLOR_RAMP);
+static_assert(stratum::node_type::kCurves == STRATUM_NODE_CURVES);
+static_assert(stratum::node_type::kMapping == STRATUM_NODE_MAPPING);
+static_assert(stratum::node_type::kVectorRotate == STRATUM_NODE_VECTOR_ROTATE);
+static_assert(stratum::node_type::kFresnel == STRATUM_NODE_FRESNEL);
+static_assert(stratum::node_type::kLayerWeight == STRATUM_NODE_LAYER_WEIGHT);
+static_assert(stratum::node_type::kImage == STRATUM_NODE_IMAGE);
+static_assert(stratum::node_type::kNoise == STRATUM_NODE_NOISE);
+static_assert(stratum::node_type::kVoronoi == STRATUM_NODE_VORONOI);
+static_assert(stratum::node_type::kWave == STRATUM_NODE_WAVE);
+static_assert(stratum::node_type::kChecker == STRATUM_NODE_CHECKER);
+static_assert(stratum::node_type::kBrick == STRATUM_NODE_BRICK);
+static_assert(stratum::node_type::kGradient == STRATUM_NODE_GRADIENT);
+static_assert(stratum::node_type::kMagic == STRATUM_NODE_MAGIC);
+static_assert(stratum::node_type::kWhiteNoise == STRATUM_NODE_WHITE_NOISE);
+static_assert(stratum::node_type::kMusgrave == STRATUM_NODE_MUSGRAVE);
+static_assert(stratum::node_type::kSky == STRATUM_NODE_SKY);
+static_assert(stratum::node_type::kBump == STRATUM_NODE_BUMP);
+static_assert(stratum::node_type::kNormalMap == STRATUM_NODE_NORMAL_MAP);
+static_assert(stratum::node_type::kBlackbody == STRATUM_NODE_BLACKBODY);
+static_assert(stratum::node_type::kWavelength == STRATUM_NODE_WAVELENGTH);
+static_assert(stratum::node_type::kVectorTransform == STRATUM_NODE_VECTOR_TRANSFORM);
+static_assert(stratum::node_type::kNormal == STRATUM_NODE_NORMAL);
+static_assert(stratum::node_type::kCopy == STRATUM_NODE_COPY);
+static_assert(stratum::node_type::kTypeCount == STRATUM_NODE_TYPE_COUNT);
 
 extern "C" {
 

@@ -6,6 +6,7 @@
 
 #include "api/validation.h"
 #include "shading/node_registry.h"
+#include "shading/program_layout.h"
 
 namespace stratum {
 
@@ -85,7 +86,7 @@ std::shared_ptr<const ShaderProgram> validate_shader_program(const StratumShader
                     std::to_string(d.data_count) + " data values");
         const std::string problem = entry->check(n, *program);
         require(problem.empty(), where + ": " + problem);
-        if (s.type == STRATUM_NODE_IMAGE) {
+        if (s.type == node_type::kImage) {
             require(n.modes[0] >= 0 && static_cast<size_t>(n.modes[0]) < texture_count,
                     where + ": texture " + std::to_string(n.modes[0]) + " is not a texture (the scene has " +
                         std::to_string(texture_count) + ")");

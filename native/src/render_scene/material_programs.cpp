@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "render_scene/render_scene.h"
 
@@ -9,6 +10,12 @@ namespace stratum {
 
 namespace {
 
+// Cycles lets a node-driven emission go negative (the pixel then is); NaN reads 0 and an
+// infinity the largest float, so that sums stay finite.
+float finite(float v) {
+    if (std::isnan(v)) return 0.0f;
+    return std::clamp(v, -std::numeric_limits<float>::max(), std::numeric_limits<float>::max());
+}
 float at_least(float v, float lo) { return std::isnan(v) ? lo : std::max(v, lo); }
 float unit(float v) { return std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f); }
 Rgb rgb_at_least0(const ShaderRegisters& r, uint32_t i) {
@@ -31,21 +38,21 @@ void write_offsets(const SurfaceHit& hit, const ProgramInputs& in, float side, f
     const Vec3 on(m.m[0] * n.x + m.m[4] * n.y + m.m[8] * n.z, m.m[1] * n.x + m.m[5] * n.y + m.m[9] * n.z,
                   m.m[2] * n.x + m.m[6] * n.y + m.m[10] * n.z);
     const float onl = length(on);
-    put(r, STRATUM_INPUT_OBJECT_NORMAL, onl > 0.0f ? on / onl : n);
+    put(r, shader_input::kObjectNormal, onl > 0.0f ? on / onl : n);
     Vec3 t = hit.tangent_frame.dpdu - n * dot(n, hit.tangent_frame.dpdu);
     if (!(dot(t, t) > 1e-20f)) t = std::abs(n.x) < 0.9f ? cross(n, Vec3(1, 0, 0)) : cross(n, Vec3(0, 1, 0));
     t = normalize(t);
     const Vec3 b = cross(n, t);
     const float step = bump_step(hit.t, hit.position);
     const Vec3 dx = t * step, dy = b * step;
-    put(r, STRATUM_INPUT_DPDX, dx);
-    put(r, STRATUM_INPUT_DPDY, dy);
+    put(r, shader_input::kDpdx, dx);
+    put(r, shader_input::kDpdy, dy);
     const Vec3 ox = inverse.vector(dx), oy = inverse.vector(dy);
-    put(r, STRATUM_INPUT_DOBJECT_DX, ox);
-    put(r, STRATUM_INPUT_DOBJECT_DY, oy);
+    put(r, shader_input::kDobjectDx, ox);
+    put(r, shader_input::kDobjectDy, oy);
     const Vec3 s2 = in.texspace_size * 2.0f;
-    put(r, STRATUM_INPUT_DGENERATED_DX, Vec3(ox.x / s2.x, ox.y / s2.y, ox.z / s2.z));
-    put(r, STRATUM_INPUT_DGENERATED_DY, Vec3(oy.x / s2.x, oy.y / s2.y, oy.z / s2.z));
+    put(r, shader_input::kDgeneratedDx, Vec3(ox.x / s2.x, ox.y / s2.y, ox.z / s2.z));
+    put(r, shader_input::kDgeneratedDy, Vec3(oy.x / s2.x, oy.y / s2.y, oy.z / s2.z));
     // UV change of a step d in the triangle's plane: d = du dpdu + dv dpdv, solved in least
     // squares (the 2 x 2 normal equations); 0 without UVs.
     const Vec3 pu = hit.tangent_frame.dpdu, pv = hit.dpdv;
@@ -55,8 +62,8 @@ void write_offsets(const SurfaceHit& hit, const ProgramInputs& in, float side, f
         const float x = dot(pu, d), y = dot(pv, d);
         return Vec3((c * x - bb * y) / det, (a * y - bb * x) / det, 0.0f);
     };
-    put(r, STRATUM_INPUT_DUV_DX, duv(dx));
-    put(r, STRATUM_INPUT_DUV_DY, duv(dy));
+    put(r, shader_input::kDuvDx, duv(dx));
+    put(r, shader_input::kDuvDy, duv(dy));
 }
 
 }  // namespace
@@ -75,41 +82,41 @@ void write_surface_inputs(const SurfaceHit& hit, const ProgramInputs& in, float*
     std::fill(r, r + kShaderInputRegisters, 0.0f);
     // Cycles' sd->N and sd->Ng face the incoming ray's side (SD_BACKFACING negates both).
     const float side = in.backfacing ? -1.0f : 1.0f;
-    put(r, STRATUM_INPUT_POSITION, hit.position);
-    put(r, STRATUM_INPUT_NORMAL, hit.shading_normal * side);
-    put(r, STRATUM_INPUT_TRUE_NORMAL, hit.geometric_normal * side);
-    put(r, STRATUM_INPUT_INCOMING, in.wo);
+    put(r, shader_input::kPosition, hit.position);
+    put(r, shader_input::kNormal, hit.shading_normal * side);
+    put(r, shader_input::kTrueNormal, hit.geometric_normal * side);
+    put(r, shader_input::kIncoming, in.wo);
     const Vec3 n = hit.shading_normal * side;
-    put(r, STRATUM_INPUT_REFLECTION, n * (2.0f * dot(n, in.wo)) - in.wo);
-    put(r, STRATUM_INPUT_UV, Vec3(hit.uv.x, hit.uv.y, 0.0f));
+    put(r, shader_input::kReflection, n * (2.0f * dot(n, in.wo)) - in.wo);
+    put(r, shader_input::kUv, Vec3(hit.uv.x, hit.uv.y, 0.0f));
     // Blender's texture space maps [location - size, location + size] to [0, 1] (Cycles' generated
     // attribute: (P - location) / (2 size) + 0.5).
     const Vec3 g = (hit.object_position - in.texspace_location);
-    put(r, STRATUM_INPUT_GENERATED,
+    put(r, shader_input::kGenerated,
         Vec3(g.x / (2.0f * in.texspace_size.x) + 0.5f, g.y / (2.0f * in.texspace_size.y) + 0.5f,
              g.z / (2.0f * in.texspace_size.z) + 0.5f));
-    put(r, STRATUM_INPUT_OBJECT, hit.object_position);
+    put(r, shader_input::kObject, hit.object_position);
     if (in.world_to_camera) {
         // Cycles' camera space looks down +Z (Blender's camera looks down -Z).
         const Vec3 c = in.world_to_camera->point(hit.position);
-        put(r, STRATUM_INPUT_CAMERA, Vec3(c.x, c.y, -c.z));
+        put(r, shader_input::kCamera, Vec3(c.x, c.y, -c.z));
     }
-    put(r, STRATUM_INPUT_OBJECT_LOCATION, in.object_location);
-    r[STRATUM_INPUT_BACKFACING] = in.backfacing ? 1.0f : 0.0f;
-    r[STRATUM_INPUT_OBJECT_RANDOM] = in.object_random;
-    r[STRATUM_INPUT_RAY_LENGTH] = hit.t;
-    r[STRATUM_INPUT_OBJECT_INDEX] = static_cast<float>(hit.object_pass_index);
-    r[STRATUM_INPUT_MATERIAL_INDEX] = static_cast<float>(hit.material_pass_index);
-    put(r, STRATUM_INPUT_OBJECT_COLOR, Vec3(in.object_color.r, in.object_color.g, in.object_color.b));
-    r[STRATUM_INPUT_OBJECT_ALPHA] = in.object_alpha;
+    put(r, shader_input::kObjectLocation, in.object_location);
+    r[shader_input::kBackfacing] = in.backfacing ? 1.0f : 0.0f;
+    r[shader_input::kObjectRandom] = in.object_random;
+    r[shader_input::kRayLength] = hit.t;
+    r[shader_input::kObjectIndex] = static_cast<float>(hit.object_pass_index);
+    r[shader_input::kMaterialIndex] = static_cast<float>(hit.material_pass_index);
+    put(r, shader_input::kObjectColor, Vec3(in.object_color.r, in.object_color.g, in.object_color.b));
+    r[shader_input::kObjectAlpha] = in.object_alpha;
     // The UV map's tangent where there is one (Cycles' Tangent node, UV map), else a tangent about
     // the object's Z axis (its radial default), here in world space from the normal.
     Vec3 t = hit.tangent_frame.dpdu;
     if (!(dot(t, t) > 0.0f)) t = cross(Vec3(0.0f, 0.0f, 1.0f), hit.shading_normal);
     t = t - hit.shading_normal * dot(hit.shading_normal, t);
     const float tl = length(t);
-    put(r, STRATUM_INPUT_TANGENT, tl > 0.0f ? t / tl : Vec3(0.0f, 0.0f, 0.0f));
-    put(r, STRATUM_INPUT_PARAMETRIC,
+    put(r, shader_input::kTangent, tl > 0.0f ? t / tl : Vec3(0.0f, 0.0f, 0.0f));
+    put(r, shader_input::kParametric,
         Vec3(1.0f - hit.barycentric.x - hit.barycentric.y, hit.barycentric.x, 0.0f));
     write_offsets(hit, in, side, r);
 }
@@ -156,7 +163,7 @@ void MaterialPrograms::apply(const SurfaceHit& hit, const ProgramInputs& inputs,
                     m.ior = at_least(r[at], 1e-5f);
                     break;
                 case ProgramParam::Emission:
-                    m.emission = rgb_at_least0(r, at);
+                    m.emission = Rgb(finite(r[at]), finite(r[at + 1]), finite(r[at + 2]));
                     break;
                 case ProgramParam::Weight:
                     c.weight = c.weight * rgb_at_least0(r, at);

@@ -9,7 +9,7 @@
 // | Roughness, Metallic, Transmission, CoatRoughness | clamp(v, 0, 1)                        |
 // | Specular, Coat | max(v, 0)                                                               |
 // | Ior            | max(v, 1e-5)                                                            |
-// | Emission       | max(v, 0) per channel, the radiance                                     |
+// | Emission       | v, the radiance (negative as in Cycles: such a surface darkens the pixel)|
 // | Weight         | closure weight *= max(v, 0) per channel                                 |
 // | CoatTint       | clamp(v, 0, 1) per channel                                              |
 // | Normal         | the point's shading normal: v normalised, in the program's frame (turned|
@@ -76,7 +76,7 @@ private:
     std::vector<std::vector<ProgramBinding>> per_material_;
 };
 
-// Writes the input registers (STRATUM_SHADER_INPUT_REGISTERS) of a surface point.
+// Writes the input registers (shader_input::kCount) of a surface point.
 void write_surface_inputs(const SurfaceHit& hit, const ProgramInputs& inputs, float* registers);
 
 }  // namespace stratum

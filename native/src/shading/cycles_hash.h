@@ -85,7 +85,9 @@ struct Hash3 {
 struct Hash4 {
     float x, y, z, w;
 };
-inline Hash3 hash_float_to_float3(float k) { return {hash_float(k), hash_float2(k, 1.0f), hash_float2(k, 2.0f)}; }
+inline Hash3 hash_float_to_float3(float k) {
+    return {hash_float(k), hash_float2(k, 1.0f), hash_float2(k, 2.0f)};
+}
 inline Hash3 hash_float2_to_float3(float x, float y) {
     return {hash_float2(x, y), hash_float3(x, y, 1.0f), hash_float3(x, y, 2.0f)};
 }
@@ -96,11 +98,14 @@ inline Hash3 hash_float4_to_float3(float x, float y, float z, float w) {
     return {hash_float4(x, y, z, w), hash_float4(z, x, w, y), hash_float4(w, z, y, x)};
 }
 inline Hash4 hash_float4_to_float4(float x, float y, float z, float w) {
-    return {hash_float4(x, y, z, w), hash_float4(w, x, y, z), hash_float4(z, w, x, y), hash_float4(y, z, w, x)};
+    return {hash_float4(x, y, z, w), hash_float4(w, x, y, z), hash_float4(z, w, x, y),
+            hash_float4(y, z, w, x)};
 }
 // float2 results: (first, second) components.
 inline Hash3 hash_float_to_float2(float k) { return {hash_float(k), hash_float2(k, 1.0f), 0.0f}; }
-inline Hash3 hash_float2_to_float2(float x, float y) { return {hash_float2(x, y), hash_float3(x, y, 1.0f), 0.0f}; }
+inline Hash3 hash_float2_to_float2(float x, float y) {
+    return {hash_float2(x, y), hash_float3(x, y, 1.0f), 0.0f};
+}
 inline Hash3 hash_float3_to_float2(float x, float y, float z) {
     return {hash_float3(x, y, z), hash_float3(z, x, y), 0.0f};
 }

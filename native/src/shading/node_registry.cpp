@@ -9,10 +9,12 @@ namespace stratum {
 namespace {
 
 std::vector<NodeEntry> build_table() {
-    std::vector<NodeEntry> table(STRATUM_NODE_TYPE_COUNT, NodeEntry{});
+    std::vector<NodeEntry> table(node_type::kTypeCount, NodeEntry{});
     const auto put = [&](int32_t type, NodeEntry entry) { table[type] = entry; };
-    put(STRATUM_NODE_MATH, math_node_entry());
-    put(STRATUM_NODE_COPY, copy_node_entry());
+    put(node_type::kMath, math_node_entry());
+    put(node_type::kCopy, copy_node_entry());
+    put(node_type::kBump, bump_node_entry());
+    put(node_type::kNormalMap, normal_map_node_entry());
     return table;
 }
 

@@ -11,13 +11,13 @@
 #include <vector>
 
 #include "core/math.h"
-#include "stratum/shader_nodes.h"
+#include "shading/program_layout.h"
 
 namespace stratum {
 
 struct Texture;
 
-inline constexpr uint32_t kShaderInputRegisters = STRATUM_SHADER_INPUT_REGISTERS;
+inline constexpr uint32_t kShaderInputRegisters = shader_input::kCount;
 
 // StratumShaderNode, checked; `table` indexes ShaderProgram::tables (a node's precomputed data,
 // e.g. the Sky's), or is kNoTable.

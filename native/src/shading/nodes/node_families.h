@@ -8,5 +8,7 @@ namespace stratum {
 
 NodeEntry math_node_entry();  // nodes/math_node.cpp
 NodeEntry copy_node_entry();  // nodes/math_node.cpp
+NodeEntry bump_node_entry();        // nodes/bump_node.cpp
+NodeEntry normal_map_node_entry();  // nodes/bump_node.cpp
 
 }  // namespace stratum

@@ -1,4 +1,4 @@
-#include "shading/world_baking.h"
+#include "render_scene/world_baking.h"
 
 #include <tbb/parallel_for.h>
 
@@ -15,17 +15,17 @@ void write_world_inputs(Vec3 d, float* r) {
         r[at + 1] = v.y;
         r[at + 2] = v.z;
     };
-    put(STRATUM_INPUT_POSITION, d);
-    put(STRATUM_INPUT_NORMAL, -d);
-    put(STRATUM_INPUT_TRUE_NORMAL, -d);
-    put(STRATUM_INPUT_INCOMING, -d);
-    put(STRATUM_INPUT_GENERATED, d);
-    put(STRATUM_INPUT_OBJECT, d);
-    put(STRATUM_INPUT_OBJECT_NORMAL, -d);
-    put(STRATUM_INPUT_REFLECTION, d);
-    put(STRATUM_INPUT_OBJECT_COLOR, Vec3(1.0f, 1.0f, 1.0f));
-    r[STRATUM_INPUT_OBJECT_ALPHA] = 1.0f;
-    r[STRATUM_INPUT_RAY_LENGTH] = std::numeric_limits<float>::infinity();
+    put(shader_input::kPosition, d);
+    put(shader_input::kNormal, -d);
+    put(shader_input::kTrueNormal, -d);
+    put(shader_input::kIncoming, -d);
+    put(shader_input::kGenerated, d);
+    put(shader_input::kObject, d);
+    put(shader_input::kObjectNormal, -d);
+    put(shader_input::kReflection, d);
+    put(shader_input::kObjectColor, Vec3(1.0f, 1.0f, 1.0f));
+    r[shader_input::kObjectAlpha] = 1.0f;
+    r[shader_input::kRayLength] = std::numeric_limits<float>::infinity();
 }
 
 Environment bake_environment(const ShaderProgram& program,
