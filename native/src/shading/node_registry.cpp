@@ -15,6 +15,16 @@ std::vector<NodeEntry> build_table() {
     put(node_type::kCopy, copy_node_entry());
     put(node_type::kBump, bump_node_entry());
     put(node_type::kNormalMap, normal_map_node_entry());
+    put(node_type::kMix, mix_node_entry());
+    put(node_type::kInvert, invert_node_entry());
+    put(node_type::kGamma, gamma_node_entry());
+    put(node_type::kBrightContrast, bright_contrast_node_entry());
+    put(node_type::kHsv, hsv_node_entry());
+    put(node_type::kRgbToBw, rgb_to_bw_node_entry());
+    put(node_type::kSeparateColor, separate_color_node_entry());
+    put(node_type::kCombineColor, combine_color_node_entry());
+    put(node_type::kColorRamp, color_ramp_node_entry());
+    put(node_type::kCurves, curves_node_entry());
     return table;
 }
 

@@ -10,5 +10,17 @@ NodeEntry math_node_entry();  // nodes/math_node.cpp
 NodeEntry copy_node_entry();  // nodes/math_node.cpp
 NodeEntry bump_node_entry();        // nodes/bump_node.cpp
 NodeEntry normal_map_node_entry();  // nodes/bump_node.cpp
+NodeEntry math_node_entry();             // nodes/math_node.cpp
+NodeEntry copy_node_entry();             // nodes/math_node.cpp
+NodeEntry mix_node_entry();              // nodes/mix_node.cpp
+NodeEntry invert_node_entry();           // nodes/color_adjust_nodes.cpp
+NodeEntry gamma_node_entry();            // nodes/color_adjust_nodes.cpp
+NodeEntry bright_contrast_node_entry();  // nodes/color_adjust_nodes.cpp
+NodeEntry hsv_node_entry();              // nodes/color_adjust_nodes.cpp
+NodeEntry rgb_to_bw_node_entry();        // nodes/color_adjust_nodes.cpp
+NodeEntry separate_color_node_entry();   // nodes/color_convert_nodes.cpp
+NodeEntry combine_color_node_entry();    // nodes/color_convert_nodes.cpp
+NodeEntry color_ramp_node_entry();       // nodes/ramp_node.cpp
+NodeEntry curves_node_entry();           // nodes/ramp_node.cpp
 
 }  // namespace stratum
