@@ -11,7 +11,13 @@ its native program node and its tolerance against Cycles."""
 
 from __future__ import annotations
 
-from . import input_nodes, math_nodes, surface_nodes  # noqa: F401  (they register translators)
+from . import (  # noqa: F401  (they register their translators)
+    color_nodes,
+    input_nodes,
+    math_nodes,
+    ramp_nodes,
+    surface_nodes,
+)
 from .builder import ProgramBuilder
 from .compiler import NodeCompiler, Unsupported, socket_kind
 from .registry import TRANSLATORS, translator
