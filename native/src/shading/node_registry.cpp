@@ -25,6 +25,8 @@ std::vector<NodeEntry> build_table() {
     put(node_type::kCombineColor, combine_color_node_entry());
     put(node_type::kColorRamp, color_ramp_node_entry());
     put(node_type::kCurves, curves_node_entry());
+    put(node_type::kNoise, noise_node_entry());
+    put(node_type::kMusgrave, musgrave_node_entry());
     return table;
 }
 

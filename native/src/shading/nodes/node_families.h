@@ -23,4 +23,7 @@ NodeEntry combine_color_node_entry();    // nodes/color_convert_nodes.cpp
 NodeEntry color_ramp_node_entry();       // nodes/ramp_node.cpp
 NodeEntry curves_node_entry();           // nodes/ramp_node.cpp
 
+NodeEntry noise_node_entry();     // nodes/noise_texture.cpp
+NodeEntry musgrave_node_entry();  // nodes/musgrave_texture.cpp
+
 }  // namespace stratum
