@@ -15,6 +15,7 @@ from . import (  # noqa: F401  (they register their translators)
     color_nodes,
     input_nodes,
     math_nodes,
+    noise_textures,
     ramp_nodes,
     surface_nodes,
 )
