@@ -127,7 +127,7 @@ def test_musgrave_types_map_to_cycles_order(kind: str) -> None:
 
 
 def test_unknown_modes_warn_and_use_the_socket_value() -> None:
-    c, reg, warnings = read(noise_node((5, 0, 0), noise_dimensions="5D"), "Fac", (5, 0, 0))
+    c, _, warnings = read(noise_node((5, 0, 0), noise_dimensions="5D"), "Fac", (5, 0, 0))
     assert len(warnings) == 1 and "dimensions 5D" in warnings[0]
     assert not [n for n in c.builder.program.nodes if n.type == NOISE]
     c, _, warnings = read(musgrave_node(musgrave_type="SPIKY"), "Fac", (3, 4, 1))
@@ -159,3 +159,20 @@ def test_evaluates_through_the_native_library() -> None:
     assert fac[0] == pytest.approx(0.5, abs=1e-7)
     inputs[GENERATED:GENERATED + 3] = (2.3, -3.6, 7.1)
     assert abs(scene.evaluate_program(pid, inputs, reg, 3)[0] - 0.5) > 1e-3
+
+
+class Mapping:
+    translation = (0.0, 0.0, 0.0)
+    rotation = (0.0, 0.0, 0.0)
+    scale = (1.0, 1.0, 1.0)
+    use_min = use_max = False
+    mapping_x, mapping_y, mapping_z = "X", "Y", "Z"
+
+
+def test_a_hidden_texture_mapping_is_warned_about() -> None:
+    _, _, warnings = read(noise_node((5, 0, 0), texture_mapping=Mapping()), "Fac", (5, 0, 0))
+    assert not warnings
+    moved = Mapping()
+    moved.scale = (2.0, 1.0, 1.0)
+    _, _, warnings = read(musgrave_node(texture_mapping=moved), "Fac", (3, 4, 1))
+    assert len(warnings) == 1 and "texture mapping" in warnings[0]

@@ -62,6 +62,20 @@ def _optional(c: NodeCompiler, node: Any, key: str, default: float) -> int:
     return c.builder.constant(default)
 
 
+def _warn_texture_mapping(c: NodeCompiler, node: Any) -> None:
+    """The hidden per-node texture mapping (set only from Python), which Cycles applies to the
+    Vector: not translated, so a non-identity one is warned about."""
+    tm = getattr(node, "texture_mapping", None)
+    if tm is None:
+        return
+    identity = (tuple(tm.translation) == (0.0, 0.0, 0.0) and tuple(tm.rotation) == (0.0, 0.0, 0.0)
+                and tuple(tm.scale) == (1.0, 1.0, 1.0) and not tm.use_min and not tm.use_max
+                and (tm.mapping_x, tm.mapping_y, tm.mapping_z) == ("X", "Y", "Z"))
+    if not identity:
+        c.warn(node, f"'{node.name}': its texture mapping (node.texture_mapping) is not "
+                     "supported; the Vector is used unmapped", "texture_mapping")
+
+
 def _output_read(node: Any, key: str) -> bool:
     for out in getattr(node, "outputs", ()):
         if identifier(out) == key:
@@ -75,6 +89,7 @@ def noise_texture(c: NodeCompiler, node: Any) -> dict[str, int]:
     generation = noise_generation(c.version)
     kind = _fractal_type(node, "noise_type") if generation >= 2 else FRACTAL_TYPES.index("FBM")
     normalize = bool(getattr(node, "normalize", True)) if generation >= 1 else True
+    _warn_texture_mapping(c, node)
     vector, w = _point_inputs(c, node, dims)
     inputs = (vector, w, c.input(node, "Scale", "float"), c.input(node, "Detail", "float"),
               c.input(node, "Roughness", "float"), _optional(c, node, "Lacunarity", 2.0),
@@ -90,6 +105,7 @@ def noise_texture(c: NodeCompiler, node: Any) -> dict[str, int]:
 def musgrave_texture(c: NodeCompiler, node: Any) -> dict[str, int]:
     dims = _dimensions(node, "musgrave_dimensions")
     kind = _fractal_type(node, "musgrave_type")
+    _warn_texture_mapping(c, node)
     vector, w = _point_inputs(c, node, dims)
     inputs = (vector, w, *(c.input(node, k, "float") for k in
                            ("Scale", "Detail", "Dimension", "Lacunarity", "Offset", "Gain")))
