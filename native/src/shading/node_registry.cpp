@@ -27,6 +27,8 @@ std::vector<NodeEntry> build_table() {
     put(node_type::kCurves, curves_node_entry());
     put(node_type::kNoise, noise_node_entry());
     put(node_type::kMusgrave, musgrave_node_entry());
+    put(node_type::kVoronoi, voronoi_node_entry());
+    put(node_type::kWhiteNoise, white_noise_node_entry());
     return table;
 }
 

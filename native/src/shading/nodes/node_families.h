@@ -26,4 +26,7 @@ NodeEntry curves_node_entry();           // nodes/ramp_node.cpp
 NodeEntry noise_node_entry();     // nodes/noise_texture.cpp
 NodeEntry musgrave_node_entry();  // nodes/musgrave_texture.cpp
 
+NodeEntry voronoi_node_entry();      // nodes/voronoi_texture.cpp
+NodeEntry white_noise_node_entry();  // nodes/white_noise_texture.cpp
+
 }  // namespace stratum
