@@ -18,6 +18,7 @@ from . import (  # noqa: F401  (they register their translators)
     noise_textures,
     ramp_nodes,
     surface_nodes,
+    voronoi_textures,
 )
 from .builder import ProgramBuilder
 from .compiler import NodeCompiler, Unsupported, socket_kind
