@@ -29,6 +29,17 @@ std::vector<NodeEntry> build_table() {
     put(node_type::kMusgrave, musgrave_node_entry());
     put(node_type::kVoronoi, voronoi_node_entry());
     put(node_type::kWhiteNoise, white_noise_node_entry());
+    put(node_type::kVectorMath, vector_math_node_entry());
+    put(node_type::kMapRange, map_range_node_entry());
+    put(node_type::kClamp, clamp_node_entry());
+    put(node_type::kMapping, mapping_node_entry());
+    put(node_type::kVectorRotate, vector_rotate_node_entry());
+    put(node_type::kVectorTransform, vector_transform_node_entry());
+    put(node_type::kFresnel, fresnel_node_entry());
+    put(node_type::kLayerWeight, layer_weight_node_entry());
+    put(node_type::kNormal, normal_node_entry());
+    put(node_type::kBlackbody, blackbody_node_entry());
+    put(node_type::kWavelength, wavelength_node_entry());
     return table;
 }
 

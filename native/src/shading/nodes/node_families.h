@@ -29,4 +29,16 @@ NodeEntry musgrave_node_entry();  // nodes/musgrave_texture.cpp
 NodeEntry voronoi_node_entry();      // nodes/voronoi_texture.cpp
 NodeEntry white_noise_node_entry();  // nodes/white_noise_texture.cpp
 
+NodeEntry vector_math_node_entry();       // nodes/vector_math_node.cpp
+NodeEntry map_range_node_entry();         // nodes/map_range_node.cpp
+NodeEntry clamp_node_entry();             // nodes/map_range_node.cpp
+NodeEntry mapping_node_entry();           // nodes/mapping_node.cpp
+NodeEntry vector_rotate_node_entry();     // nodes/mapping_node.cpp
+NodeEntry vector_transform_node_entry();  // nodes/mapping_node.cpp
+NodeEntry fresnel_node_entry();           // nodes/fresnel_node.cpp
+NodeEntry layer_weight_node_entry();      // nodes/fresnel_node.cpp
+NodeEntry normal_node_entry();            // nodes/fresnel_node.cpp
+NodeEntry blackbody_node_entry();         // nodes/blackbody_node.cpp
+NodeEntry wavelength_node_entry();        // nodes/blackbody_node.cpp
+
 }  // namespace stratum
