@@ -17,7 +17,9 @@ from . import (  # noqa: F401  (they register their translators)
     math_nodes,
     noise_textures,
     ramp_nodes,
+    surface_inputs,
     surface_nodes,
+    vector_nodes,
     voronoi_textures,
 )
 from .builder import ProgramBuilder

@@ -1,0 +1,104 @@
+"""Nodes that read the view at the shading point, and colour converters: Fresnel, Layer Weight,
+Blackbody and Wavelength (docs/shader_nodes.md).
+
+Fresnel and Layer Weight read the renderer's incoming direction and back-face flag, and the
+node's Normal input when it is linked, else the shading normal, as Cycles does. Blackbody and
+Wavelength take Cycles' colour to the working space by the matrices Cycles derives from the
+Blender version's OpenColorIO config (ShaderManager::init_xyz_transforms): its XYZ from the
+config's aces_interchange role, Rec.709 through Cycles' built-in XYZ -> Rec.709 matrix."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from .compiler import NodeCompiler
+from .registry import translator
+
+Matrix = tuple[tuple[float, float, float], ...]
+
+# Cycles' built-in XYZ (D65) -> Rec.709 matrix.
+XYZ_TO_REC709_CYCLES: Matrix = ((3.2404542, -1.5371385, -0.4985314),
+                                (-0.9692660, 1.8760108, 0.0415560),
+                                (0.0556434, -0.2040259, 1.0572252))
+# Blender 3.x config: "Linear ACES" is reached from Linear (Rec.709) through srgb_to_xyz.spimtx,
+# so its XYZ -> scene linear is that file's inverse.
+SRGB_TO_XYZ_3X: Matrix = ((0.4124564, 0.3575761, 0.1804375),
+                          (0.2126729, 0.7151522, 0.0721750),
+                          (0.0193339, 0.1191920, 0.9503041))
+# Blender 4.x/5.x config: Linear Rec.709 from Linear CIE-XYZ D65.
+XYZ_TO_REC709_4X: Matrix = ((3.2409699, -1.5373832, -0.4986108),
+                            (-0.9692436, 1.8759675, 0.0415551),
+                            (0.0556301, -0.2039770, 1.0569715))
+
+
+def _inverse(m: Matrix) -> Matrix:
+    (a, b, c), (d, e, f), (g, h, i) = m
+    det = a * (e * i - f * h) - b * (d * i - f * g) + c * (d * h - e * g)
+    return ((( e * i - f * h) / det, (c * h - b * i) / det, (b * f - c * e) / det),
+            ((f * g - d * i) / det, (a * i - c * g) / det, (c * d - a * f) / det),
+            ((d * h - e * g) / det, (b * g - a * h) / det, (a * e - b * d) / det))
+
+
+def _product(m: Matrix, n: Matrix) -> Matrix:
+    return tuple(tuple(sum(m[r][k] * n[k][col] for k in range(3)) for col in range(3))
+                 for r in range(3))
+
+
+def xyz_to_rgb(version: tuple[int, ...]) -> Matrix:
+    """The XYZ -> working RGB matrix Cycles uses in Blender `version`."""
+    return _inverse(SRGB_TO_XYZ_3X) if tuple(version[:1]) < (4,) else XYZ_TO_REC709_4X
+
+
+IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
+
+
+def rec709_to_rgb(version: tuple[int, ...]) -> Matrix:
+    """Cycles' Rec.709 -> working RGB: the identity when its XYZ -> RGB is within 0.001 of the
+    built-in XYZ -> Rec.709 (the film's is_rec709, true for both Blender generations' default
+    configs), else XYZ -> RGB after the built-in Rec.709 -> XYZ."""
+    xyz = xyz_to_rgb(version)
+    if all(abs(xyz[r][k] - XYZ_TO_REC709_CYCLES[r][k]) <= 0.001 for r in range(3)
+           for k in range(3)):
+        return IDENTITY
+    return _product(xyz, _inverse(XYZ_TO_REC709_CYCLES))
+
+
+def _flat(m: Matrix) -> list[float]:
+    return [v for row in m for v in row]
+
+
+def _view(c: NodeCompiler, node: Any) -> tuple[int, int, int]:
+    """Normal (linked, else the shading normal), incoming direction, back-face flag."""
+    socket = c.socket(node, "Normal")
+    normal = c.value(socket, "vector") if c.linked(socket) else c.geometry("normal")
+    return normal, c.geometry("incoming"), c.geometry("backfacing")
+
+
+@translator("ShaderNodeFresnel")
+def fresnel(c: NodeCompiler, node: Any) -> dict[str, int]:
+    ior = c.input(node, "IOR", "float")
+    normal, incoming, backfacing = _view(c, node)
+    return {"Fac": c.builder.node("fresnel", (), (ior, normal, incoming, backfacing), (1,))[0]}
+
+
+@translator("ShaderNodeLayerWeight")
+def layer_weight(c: NodeCompiler, node: Any) -> dict[str, int]:
+    blend = c.input(node, "Blend", "float")
+    normal, incoming, backfacing = _view(c, node)
+    fres, facing = c.builder.node("layer_weight", (), (blend, normal, incoming, backfacing),
+                                  (1, 1))
+    return {"Fresnel": fres, "Facing": facing}
+
+
+@translator("ShaderNodeBlackbody")
+def blackbody(c: NodeCompiler, node: Any) -> dict[str, int]:
+    t = c.input(node, "Temperature", "float")
+    matrix = _flat(rec709_to_rgb(c.version))
+    return {"Color": c.builder.node("blackbody", (), (t,), (3,), matrix)[0]}
+
+
+@translator("ShaderNodeWavelength")
+def wavelength(c: NodeCompiler, node: Any) -> dict[str, int]:
+    nm = c.input(node, "Wavelength", "float")
+    matrix = _flat(xyz_to_rgb(c.version))
+    return {"Color": c.builder.node("wavelength", (), (nm,), (3,), matrix)[0]}
