@@ -268,3 +268,24 @@ TEST(ShaderPrograms, BakesTheWorldProgram) {
         }
     }
 }
+
+// Cycles' CPU kernels fuse Wrap's and Floored Modulo's product and difference (one rounding):
+// Cycles renders Wrap(1e9, 3, 0) as -32 in Blender 3.4 and 5.0 (measured), where the two-rounding
+// formula gives 1.
+TEST(ShaderPrograms, MathWrapRoundsOnceAsCyclesDoes) {
+    SceneHandle h;
+    constexpr int32_t kWrap = 34, kFlooredModulo = 40;
+    std::vector<float> regs(kInputs + 6, 0.0f);
+    regs[kInputs] = 1e9f;
+    regs[kInputs + 1] = 3.0f;
+    StratumShaderNode wrap = math(kWrap, kInputs, kInputs + 1, kInputs + 3);
+    wrap.inputs[2] = kInputs + 2;
+    const std::vector<StratumShaderNode> nodes = {wrap,
+                                                  math(kFlooredModulo, kInputs, kInputs + 1, kInputs + 4)};
+    ASSERT_EQ(add(h.scene, nodes, regs), STRATUM_OK) << stratum_last_error();
+    std::vector<float> inputs(kInputs, 0.0f);
+    float out[2] = {0.0f, 0.0f};
+    ASSERT_EQ(stratum_scene_evaluate_program(h.scene, 0, inputs.data(), kInputs + 3, 2, out), STRATUM_OK);
+    EXPECT_EQ(out[0], -32.0f);
+    EXPECT_EQ(out[1], std::fma(-std::floor(1e9f / 3.0f), 3.0f, 1e9f));
+}

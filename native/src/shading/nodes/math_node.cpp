@@ -134,7 +134,9 @@ float math(int32_t op, float a, float b, float c) {
         case Modulo:
             return b != 0.0f ? std::fmod(a, b) : 0.0f;
         case FlooredModulo:
-            return b != 0.0f ? a - std::floor(a / b) * b : 0.0f;
+            // Cycles' CPU kernels contract this and Wrap's product and difference into one fused
+            // multiply-add: Wrap(1e9, 3, 0) renders -32 in 3.4 and 5.0, not 1 (measured).
+            return b != 0.0f ? std::fma(-std::floor(a / b), b, a) : 0.0f;
         case Trunc:
             return a >= 0.0f ? std::floor(a) : std::ceil(a);
         case Snap:
@@ -142,7 +144,7 @@ float math(int32_t op, float a, float b, float c) {
         case Wrap: {
             // wrapf(value, max, min)
             const float range = b - c;
-            return range != 0.0f ? a - range * std::floor((a - c) / range) : c;
+            return range != 0.0f ? std::fma(-range, std::floor((a - c) / range), a) : c;
         }
         case PingPong:
             return b != 0.0f ? std::fabs(fract((a - b) / (b * 2.0f)) * b * 2.0f - b) : 0.0f;
