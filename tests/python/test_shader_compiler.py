@@ -188,3 +188,13 @@ def test_bump_of_a_linear_height_tilts_the_normal_by_its_gradient(version: tuple
               dpdy=(0, step, 0), dobject_dx=(step, 0, 0), dobject_dy=(0, step, 0))
     expected = np.array([-1.0, 0.0, 1.0]) / np.sqrt(2.0)
     assert out == pytest.approx(expected, abs=1e-4)
+
+
+def test_a_link_from_an_unavailable_output_is_ignored_as_blender_does() -> None:
+    source = math("Source", "ADD", 0.5, 0.25)
+    source.outputs[0].enabled = False
+    target = consumer(0.125)
+    link(source, "Value", target)
+    c, register, warnings = compiled(target)
+    assert not warnings
+    assert run(c, register)[0] == pytest.approx(0.125)

@@ -207,8 +207,11 @@ class NodeCompiler:
         scope = self._scope
         first = True
         for _ in range(10_000):
+            # Blender ignores a muted or invalid link and one from an unavailable output (a
+            # 1D Voronoi's Position): the input then has its own value.
             links = [link for link in (getattr(socket, "links", None) or ())
-                     if not getattr(link, "is_muted", False) and getattr(link, "is_valid", True)]
+                     if not getattr(link, "is_muted", False) and getattr(link, "is_valid", True)
+                     and getattr(link.from_socket, "enabled", True)]
             if not getattr(socket, "is_linked", False) or not links:
                 return None if first else (None, socket, scope)
             first = False
