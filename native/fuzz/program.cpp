@@ -25,7 +25,7 @@ void ProgramState::new_scene() {
         scene = nullptr;
     }
     closures.clear();
-    meshes = textures = instances = lights = 0;
+    meshes = textures = instances = lights = programs = 0;
     if (checked(
             "stratum_scene_create", [&] { return stratum_scene_create(&scene); }, [] { return "&scene"; }) !=
         STRATUM_OK)
@@ -63,7 +63,7 @@ void run_program(ByteReader& in) {
     constexpr size_t kCount = sizeof kOperations / sizeof kOperations[0];
     // Operations added later take the top byte values, which the modulo gave to the first
     // operations: every committed input that does not use them replays as it was written.
-    constexpr uint8_t kAddInstances = 254, kVertexNormals = 253;
+    constexpr uint8_t kAddInstances = 254, kVertexNormals = 253, kAddShaderProgram = 252, kBindProgram = 251;
     ProgramState state;
     state.new_scene();
     for (unsigned i = 0; i < kMaxOperations && !in.exhausted(); ++i) {
@@ -72,6 +72,10 @@ void run_program(ByteReader& in) {
             op_add_instances(in, state);
         else if (opcode == kVertexNormals)
             op_vertex_normals(in, state);
+        else if (opcode == kAddShaderProgram)
+            op_add_shader_program(in, state);
+        else if (opcode == kBindProgram)
+            op_bind_program(in, state);
         else
             kOperations[opcode % kCount](in, state);
     }

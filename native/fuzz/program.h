@@ -15,7 +15,7 @@ struct ProgramState {
     StratumScene* scene = nullptr;
     StratumRenderer* renderer = nullptr;
     std::vector<uint32_t> closures;  // closure count of each material, in id order
-    uint32_t meshes = 0, textures = 0, instances = 0, lights = 0;
+    uint32_t meshes = 0, textures = 0, instances = 0, lights = 0, programs = 0;
     // The renderer's border region as last accepted (crop_width 0 = the whole frame), to know
     // how many pixels a finished render has.
     uint32_t crop_width = 0, crop_height = 0;
@@ -70,5 +70,7 @@ void op_sampling(ByteReader& in, ProgramState& s);
 void op_models(ByteReader& in, ProgramState& s);
 void op_add_instances(ByteReader& in, ProgramState& s);
 void op_vertex_normals(ByteReader& in, ProgramState& s);
+void op_add_shader_program(ByteReader& in, ProgramState& s);  // program_ops.cpp
+void op_bind_program(ByteReader& in, ProgramState& s);
 
 }  // namespace stratum::fuzz

@@ -246,8 +246,11 @@ def test_invert_gamma_bright_contrast_rgb_to_bw(native: Any,
         [0.6, 0.0, 1.4], abs=1e-6)
     node = Node("ShaderNodeRGBToBW", [Socket("Color", "RGBA", rgba(1.0, 0.5, 0.25))],
                 [Socket("Val")])
+    # The colour configuration's luminance weights: 3.x's Rec.709, 4.x/5.x's (measured in 5.0).
+    weights = (0.2126729, 0.7151522, 0.0721750) if version < (4, 0, 0) else \
+        (0.2126390, 0.7151687, 0.0721923)
     assert evaluate(native, node, "Val", "float", version)[0] == pytest.approx(
-        0.2126729 + 0.5 * 0.7151522 + 0.25 * 0.0721750, abs=1e-6)
+        weights[0] + 0.5 * weights[1] + 0.25 * weights[2], abs=1e-6)
 
 
 # ---- Separate / Combine ----------------------------------------------------------------------

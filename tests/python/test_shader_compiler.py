@@ -157,13 +157,14 @@ def test_conversions_follow_cycles() -> None:
     assert run(c, register, object=(0.3, 0.6, 1.2))[0] == pytest.approx(0.7, 1e-6)
 
 
-def test_object_info_random_is_not_exported_yet_and_says_so() -> None:
-    info = Node("ShaderNodeObjectInfo", "Object Info", (), ["Random", "Location"])
+def test_object_info_reads_the_instance_inputs() -> None:
+    info = Node("ShaderNodeObjectInfo", "Object Info", (),
+                ["Random", "Location", Socket("Color", (0.0, 0.0, 0.0, 1.0)), "Alpha"])
     target = consumer(0.5)
     link(info, "Random", target)
     c, register, warnings = compiled(target)
-    assert len(warnings) == 1 and "Random" in warnings[0]
-    assert run(c, register)[0] == pytest.approx(0.5)
+    assert not warnings
+    assert run(c, register, object_random=0.375)[0] == pytest.approx(0.375)
 
 
 @pytest.mark.parametrize("version", [V3, V5])

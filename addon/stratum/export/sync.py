@@ -189,6 +189,8 @@ class SceneSync:
         placed: list[Placement] = []
         rows = exported.rows
         instancers: dict[int, int] = {}  # evaluated instancer pointer -> original pointer
+        # Per placed row: (random_id, object colour RGBA), what Object Info reads.
+        object_info: dict[int, tuple[int, tuple[float, ...]]] = {}
         index = -1
         for index, instance in enumerate(depsgraph.object_instances):
             if should_stop is not None and index % 256 == 0 and should_stop():
@@ -233,9 +235,11 @@ class SceneSync:
             elif template is not None:
                 moved = motion.get(instance_key(instance, ob)) if motion else None
                 placed.append((index, *template, moved))
+                object_info[index] = (instance.random_id, tuple(ob.color))
         unsupported.report(summary)
         matrices = instance_matrices(depsgraph, index + 1)
         place(placed, renderable(placed, matrices, summary), matrices, scene, summary, exported)
+        _send_object_info(scene, exported, object_info, summary.instances)
 
         summary.textures = materials.textures.count
         self._exported = _Exported(exported, materials,
@@ -343,6 +347,26 @@ def _world_edits(bl_scene: Any, changes: Changes, exported: _Exported, scene: An
         edits.append(named_edit(name, partial(scene.set_environment, environment.rgb,
                                               environment.strength, environment.rotation)))
     return edits
+
+
+def _send_object_info(scene: Any, exported: ExportedObjects,
+                      object_info: dict[int, tuple[int, tuple[float, ...]]], count: int) -> None:
+    """Object Info's Random (Cycles: random_id / 0xFFFFFFFF, in float) and Color of every native
+    instance, in one call."""
+    if count == 0:
+        return
+    random_ids = np.zeros(count, dtype=np.uint32)
+    colors = np.ones((count, 4), dtype=np.float32)
+    for row, native_index in zip(exported.instance_rows.tolist(), exported.indices, strict=True):
+        if native_index >= 0:
+            random_id, color = object_info[row]
+            random_ids[native_index] = random_id
+            colors[native_index] = color
+    random = random_ids.astype(np.float32) * np.float32(1.0 / 0xFFFFFFFF)
+    try:
+        scene.set_instance_object_info(0, np.minimum(random, np.float32(1.0)), colors)
+    except native.StratumError as exc:
+        raise ExportError(f"Object Info: {exc}") from exc
 
 
 def _send_world_program(scene: Any, world: WorldProgram, program_id: int | None) -> int:

@@ -71,7 +71,7 @@ SHADER_INPUTS = {
     "object_color": (35, 3), "object_alpha": (38, 1), "tangent": (39, 3), "parametric": (42, 3),
     "object_normal": (45, 3), "dpdx": (48, 3), "dpdy": (51, 3), "dgenerated_dx": (54, 3),
     "dgenerated_dy": (57, 3), "dobject_dx": (60, 3), "dobject_dy": (63, 3), "duv_dx": (66, 3),
-    "duv_dy": (69, 3), "reflection": (72, 3),
+    "duv_dy": (69, 3), "reflection": (72, 3), "uv_tangent": (75, 3),
 }
 SHADER_INPUT_REGISTERS = 80
 # StratumShaderNodeType, by the names docs/shader_nodes.md uses.
@@ -194,8 +194,6 @@ class _InstanceDesc(ctypes.Structure):
         ("visibility", ctypes.c_uint32),
         ("holdout", ctypes.c_int32),
         ("pass_index", ctypes.c_uint32),
-        ("random", ctypes.c_float),
-        ("color", ctypes.c_float * 4),
     ]
 
 
@@ -415,6 +413,8 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
         "stratum_scene_evaluate_program": (c_int32, [p_void, c_uint32, p_float, c_uint32,
                                                      c_uint32, p_float]),
         "stratum_scene_set_mesh_texture_space": (c_int32, [p_void, c_uint32, p_float, p_float]),
+        "stratum_scene_set_instance_object_info": (c_int32, [p_void, c_uint32, c_uint32, p_float,
+                                                             p_float]),
         # settings and passes
         "stratum_setting_count": (c_int32, []),
         "stratum_setting_info": (c_int32, [c_int32, ctypes.POINTER(_SettingInfo)]),

@@ -91,8 +91,6 @@ class Instance:
     visibility: int = VISIBLE_ALL
     holdout: bool = False
     pass_index: int = 0  # Object > Relations > Pass Index (the IndexOB pass)
-    random: float = 0.0  # Object Info > Random: Cycles' random_id / 0xFFFFFFFF
-    color: tuple[float, float, float, float] = (1.0, 1.0, 1.0, 1.0)  # Object > Viewport Display
 
 
 @dataclass

@@ -134,3 +134,22 @@ def set_mesh_texture_space(lib: Any, handle: Any, mesh_id: int, location: Any, s
     _check(lib, lib.stratum_scene_set_mesh_texture_space(handle, _uint32(mesh_id, "mesh_id"),
                                                          _float_ptr(loc), _float_ptr(half)),
            "stratum_scene_set_mesh_texture_space")
+
+
+def set_instance_object_info(lib: Any, handle: Any, first: int, random: Any, color: Any) -> None:
+    arrays = []
+    count = None
+    for values, width in ((random, 1), (color, 4)):
+        if values is None:
+            arrays.append(None)
+            continue
+        flat = np.ascontiguousarray(np.asarray(values, dtype=np.float32).reshape(-1))
+        n = flat.size // width
+        if count is not None and n != count:
+            raise ValueError("object info: random and color describe different instance counts")
+        count = n
+        arrays.append(flat)
+    pointers = [_float_ptr(a) if a is not None else None for a in arrays]
+    _check(lib, lib.stratum_scene_set_instance_object_info(
+        handle, _uint32(first, "first"), _uint32(count or 0, "count"), *pointers),
+        "stratum_scene_set_instance_object_info")

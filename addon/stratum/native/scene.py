@@ -68,9 +68,6 @@ def _instance_desc(instance: Instance) -> _InstanceDesc:
     desc.visibility = _uint32(instance.visibility, "instance visibility")
     desc.holdout = 1 if instance.holdout else 0
     desc.pass_index = _uint32(instance.pass_index, "instance pass_index")
-    desc.random = float(instance.random)
-    for k, v in enumerate(instance.color):
-        desc.color[k] = float(v)
     return desc
 
 
@@ -362,6 +359,12 @@ class Scene(_Handle):
     def evaluate_program(self, program_id: int, inputs: np.ndarray, first: int,
                          count: int) -> np.ndarray:
         return programs.evaluate_program(self._lib, self.handle, program_id, inputs, first, count)
+
+    def set_instance_object_info(self, first: int, random: np.ndarray | None,
+                                 color: np.ndarray | None = None) -> None:
+        """Object Info's Random (n floats in [0, 1]) and Color and Alpha (n x 4) of instances
+        first .. first + n - 1; None leaves that part."""
+        programs.set_instance_object_info(self._lib, self.handle, first, random, color)
 
     def set_mesh_texture_space(self, mesh_id: int, location: Sequence[float],
                                size: Sequence[float]) -> None:

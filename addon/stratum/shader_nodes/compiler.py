@@ -22,8 +22,10 @@ from typing import Any
 from .builder import FLOAT, VECTOR, ProgramBuilder
 
 FLOAT_TYPES = frozenset({"VALUE", "INT", "BOOLEAN"})
-# Rec.709 luminance, Cycles' colour-to-float conversion (svm/convert.h rgb_to_gray).
+# Cycles' colour-to-float conversion (svm/convert.h rgb_to_gray): the luminance weights of the
+# colour configuration, Blender 3.x's Rec.709 and 4.x/5.x's (measured in Cycles 5.0).
 LUMINANCE = (0.2126729, 0.7151522, 0.0721750)
+LUMINANCE_4 = (0.2126390, 0.7151687, 0.0721923)
 
 
 class Unsupported(Exception):
@@ -70,6 +72,11 @@ class NodeCompiler:
         # Image Texture nodes the program reads, in IMAGE node mode-0 order (the exporter maps
         # them to texture ids: shader_nodes.resolve_images).
         self.images: list[Any] = []
+
+    @property
+    def modern_luminance(self) -> bool:
+        """Whether this Blender's colour configuration has 4.x's luminance weights."""
+        return self.version >= (4, 0, 0)
 
     # ---- warnings ---------------------------------------------------------------------------
 
@@ -174,7 +181,7 @@ class NodeCompiler:
             return register
         if want == "float":
             if have == "color":
-                return self.builder.to_float_from_color(register)
+                return self.builder.to_float_from_color(register, self.modern_luminance)
             return self.builder.to_float_from_vector(register)
         if have == "float":
             return self.builder.broadcast(register)
@@ -193,7 +200,8 @@ class NodeCompiler:
             if have == "float":
                 return self.builder.constant(values[0])
             if have == "color":
-                luminance = sum(w * v for w, v in zip(LUMINANCE, values, strict=True))
+                weights = LUMINANCE_4 if self.modern_luminance else LUMINANCE
+                luminance = sum(w * v for w, v in zip(weights, values, strict=True))
                 return self.builder.constant(luminance)
             return self.builder.constant(sum(values) / 3.0)
         if have == "float":

@@ -7,7 +7,7 @@ Info, UV Map, Value, RGB, Separate XYZ and Combine XYZ.
 |                         | Reflection (2 dot(N, I) N - I, world space, as Cycles); not Window    |
 | ShaderNodeNewGeometry   | Position, Normal, Tangent, True Normal, Incoming, Parametric,         |
 |                         | Backfacing (Pointiness, Random Per Island: not supported)             |
-| ShaderNodeObjectInfo    | Location, Object Index, Material Index (not yet Random, Color, Alpha) |
+| ShaderNodeObjectInfo    | Location, Color, Alpha, Object Index, Material Index, Random          |
 | ShaderNodeUVMap         | UV (the mesh's one UV set; another map's name is warned about)        |
 
 Texture Coordinate's Object output of another object (its Object field set) and From Instancer
@@ -44,10 +44,9 @@ def geometry(c: NodeCompiler, node: Any) -> dict[str, int]:
 
 @translator("ShaderNodeObjectInfo")
 def object_info(c: NodeCompiler, node: Any) -> dict[str, int]:
-    # Random, Color and Alpha are read by the renderer (StratumInstanceDesc) but not exported
-    # per instance yet: those outputs are warned about and give the consuming socket's value.
-    return {"Location": c.geometry("object_location"), "Object Index": c.geometry("object_index"),
-            "Material Index": c.geometry("material_index")}
+    return {"Location": c.geometry("object_location"), "Color": c.geometry("object_color"),
+            "Alpha": c.geometry("object_alpha"), "Object Index": c.geometry("object_index"),
+            "Material Index": c.geometry("material_index"), "Random": c.geometry("object_random")}
 
 
 @translator("ShaderNodeUVMap")

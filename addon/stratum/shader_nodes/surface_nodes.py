@@ -68,5 +68,5 @@ def normal_map(c: NodeCompiler, node: Any) -> dict[str, int]:
     strength = c.input(node, "Strength", "float")
     modern = int(c.version >= (4, 0, 0))
     normal = c.builder.node("normal_map", (0 if space == "TANGENT" else 1, modern), (
-        color, strength, c.geometry("normal"), c.geometry("tangent")), (3,))[0]
+        color, strength, c.geometry("normal"), c.geometry("uv_tangent")), (3,))[0]
     return {"Normal": normal}

@@ -255,14 +255,18 @@ typedef struct StratumInstanceDesc {
     int32_t holdout;         /* 1: Cycles' Object > Visibility > Holdout */
     uint32_t pass_index;     /* appended: Object > Relations > Pass Index, what the IndexOB pass
                                 holds; at most STRATUM_MAX_PASS_INDEX */
-    /* Appended (issue 18), what shader programs' Object Info node reads: */
-    float random;   /* [0,1]: Cycles' random_id / 0xFFFFFFFF */
-    float color[4]; /* the object's colour and alpha, each finite (all 0 reads as 1, 1, 1, 1) */
 } StratumInstanceDesc;
 
 /* Pass indices are stored in float passes: every integer up to 2^24 is exact there. */
 #define STRATUM_MAX_PASS_INDEX 16777216u
 
+/* What shader programs' Object Info node reads of instances first .. first + count - 1: Random
+ * (random[i] in [0,1]: Cycles' random_id / 0xFFFFFFFF; NULL leaves it) and the object's colour
+ * and alpha (color[4 i .. 4 i + 3], each finite; NULL leaves them). Until set, random 0 and
+ * colour (1, 1, 1, 1); stratum_scene_set_instance keeps them. */
+STRATUM_API StratumStatus stratum_scene_set_instance_object_info(StratumScene* scene, uint32_t first,
+                                                                 uint32_t count, const float* random,
+                                                                 const float* color);
 /* Places an instance. A mesh placed many times is stored once (Embree instancing). */
 STRATUM_API StratumStatus stratum_scene_add_instance_ex(StratumScene* scene,
                                                         const StratumInstanceDesc* instance);

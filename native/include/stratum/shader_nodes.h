@@ -44,7 +44,8 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_MATERIAL_INDEX = 34,  /* 1: the material's pass index */
     STRATUM_INPUT_OBJECT_COLOR = 35,    /* 3: the object's colour (Object Info's Color) */
     STRATUM_INPUT_OBJECT_ALPHA = 38,    /* 1: its alpha */
-    STRATUM_INPUT_TANGENT = 39,         /* 3: unit tangent (the UV map's dpdu, else about Z) */
+    STRATUM_INPUT_TANGENT = 39,         /* 3: Geometry's Tangent: radial about the object's Z in
+                                           generated space, in the shading plane (as Cycles) */
     STRATUM_INPUT_PARAMETRIC = 42,      /* 3: barycentric (1 - u - v, u, 0) as Cycles' Parametric */
     STRATUM_INPUT_OBJECT_NORMAL = 45,   /* 3: the shading normal in object space (Texture
                                            Coordinate's Normal), unit */
@@ -59,6 +60,7 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_DUV_DX = 66,
     STRATUM_INPUT_DUV_DY = 69,
     STRATUM_INPUT_REFLECTION = 72, /* 3: the view mirrored about the normal, 2 dot(N, I) N - I */
+    STRATUM_INPUT_UV_TANGENT = 75, /* 3: the UV map's dpdu in the shading plane, unit (0 without UVs) */
     STRATUM_SHADER_INPUT_REGISTERS = 80
 } StratumShaderInput;
 

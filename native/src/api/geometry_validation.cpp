@@ -195,18 +195,6 @@ Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>
     inst.visibility = validate_visibility(d.visibility, "instance visibility");
     inst.holdout = d.holdout == 1;
     inst.pass_index = validate_pass_index(d.pass_index, "instance pass_index");
-    if (!(d.random >= 0.0f && d.random <= 1.0f))
-        throw ValidationError("instance random = " + fmt(d.random) + " is outside [0, 1]");
-    for (int k = 0; k < 4; ++k) {
-        if (!std::isfinite(d.color[k]))
-            throw ValidationError("instance color[" + std::to_string(k) + "] = " + fmt(d.color[k]) + " is not finite");
-    }
-    inst.random = d.random;
-    const bool unset = d.color[0] == 0.0f && d.color[1] == 0.0f && d.color[2] == 0.0f && d.color[3] == 0.0f;
-    if (!unset) {
-        inst.color = Rgb(d.color[0], d.color[1], d.color[2]);
-        inst.alpha = d.color[3];
-    }
     return inst;
 }
 

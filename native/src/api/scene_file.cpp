@@ -287,6 +287,7 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             if ((status = stratum_scene_add_mesh(scene, &d, nullptr)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
+        uint32_t instance_index = 0;
         for (const json& i : j.at("instances")) {
             StratumInstanceDesc d{};
             d.mesh_id = field<uint32_t>(i, "mesh");
@@ -297,9 +298,14 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.visibility = field_or(i, "visibility", static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
             d.holdout = field_or<int32_t>(i, "holdout", 0);
             d.pass_index = field_or(i, "pass_index", static_cast<uint32_t>(0));
-            d.random = field_or(i, "random", 0.0f);
-            if (i.contains("color")) read_numbers(i, "color", d.color);
             if ((status = stratum_scene_add_instance_ex(scene, &d)) != STRATUM_OK)
+                return entry_point_failed(status);
+            // Files written before Object Info: random 0, colour white.
+            const float random = field_or(i, "random", 0.0f);
+            float color[4] = {1.0f, 1.0f, 1.0f, 1.0f};
+            if (i.contains("color")) read_numbers(i, "color", color);
+            if ((status = stratum_scene_set_instance_object_info(scene, instance_index++, 1, &random,
+                                                                 color)) != STRATUM_OK)
                 return entry_point_failed(status);
         }
         for (const json& l : j.at("lights")) {

@@ -40,6 +40,7 @@ static_assert(stratum::shader_input::kDobjectDy == STRATUM_INPUT_DOBJECT_DY);
 static_assert(stratum::shader_input::kDuvDx == STRATUM_INPUT_DUV_DX);
 static_assert(stratum::shader_input::kDuvDy == STRATUM_INPUT_DUV_DY);
 static_assert(stratum::shader_input::kReflection == STRATUM_INPUT_REFLECTION);
+static_assert(stratum::shader_input::kUvTangent == STRATUM_INPUT_UV_TANGENT);
 static_assert(stratum::shader_input::kCount == STRATUM_SHADER_INPUT_REGISTERS);
 static_assert(stratum::node_type::kMath == STRATUM_NODE_MATH);
 static_assert(stratum::node_type::kVectorMath == STRATUM_NODE_VECTOR_MATH);

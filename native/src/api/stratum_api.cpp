@@ -231,7 +231,44 @@ StratumStatus stratum_scene_set_instance(StratumScene* scene, uint32_t index,
                                                     std::to_string(s.instances.size()) + ")");
             return stratum::validate_instance(*instance, s.meshes);
         });
-        scene->live->edit_instance(index, [&](stratum::Instance& i) { i = validated; });
+        scene->live->edit_instance(index, [&](stratum::Instance& i) {
+            // Object Info's values are set apart (stratum_scene_set_instance_object_info).
+            const float random = i.random, alpha = i.alpha;
+            const stratum::Rgb color = i.color;
+            i = validated;
+            i.random = random;
+            i.color = color;
+            i.alpha = alpha;
+        });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_instance_object_info(StratumScene* scene, uint32_t first, uint32_t count,
+                                                     const float* random, const float* color) {
+    return guarded("stratum_scene_set_instance_object_info", [&] {
+        require(scene != nullptr, "scene is NULL");
+        for (uint32_t k = 0; random && k < count; ++k)
+            require(
+                random[k] >= 0.0f && random[k] <= 1.0f,
+                "random[" + std::to_string(k) + "] = " + std::to_string(random[k]) + " is outside [0, 1]");
+        for (uint64_t k = 0; color && k < 4ull * count; ++k)
+            require(std::isfinite(color[k]),
+                    "color[" + std::to_string(k) + "] = " + std::to_string(color[k]) + " is not finite");
+        const size_t instances =
+            scene->live->read([](const stratum::Scene& s) { return s.instances.size(); });
+        require(static_cast<uint64_t>(first) + count <= instances,
+                "instances [" + std::to_string(first) + ", +" + std::to_string(count) +
+                    ") are outside the scene's " + std::to_string(instances));
+        for (uint32_t k = 0; k < count; ++k) {
+            scene->live->edit_instance(first + k, [&](stratum::Instance& i) {
+                if (random) i.random = random[k];
+                if (color) {
+                    i.color = stratum::Rgb(color[4 * k], color[4 * k + 1], color[4 * k + 2]);
+                    i.alpha = color[4 * k + 3];
+                }
+            });
+        }
         return STRATUM_OK;
     });
 }

@@ -22,6 +22,8 @@ Rgb rgb_at_least0(const ShaderRegisters& r, uint32_t i) {
     return {at_least(r[i], 0.0f), at_least(r[i + 1], 0.0f), at_least(r[i + 2], 0.0f)};
 }
 
+Vec3 read3(const float* r, uint32_t at) { return {r[at], r[at + 1], r[at + 2]}; }
+
 void put(float* r, uint32_t at, Vec3 v) {
     r[at] = v.x;
     r[at + 1] = v.y;
@@ -109,13 +111,19 @@ void write_surface_inputs(const SurfaceHit& hit, const ProgramInputs& in, float*
     r[shader_input::kMaterialIndex] = static_cast<float>(hit.material_pass_index);
     put(r, shader_input::kObjectColor, Vec3(in.object_color.r, in.object_color.g, in.object_color.b));
     r[shader_input::kObjectAlpha] = in.object_alpha;
-    // The UV map's tangent where there is one (Cycles' Tangent node, UV map), else a tangent about
-    // the object's Z axis (its radial default), here in world space from the normal.
-    Vec3 t = hit.tangent_frame.dpdu;
-    if (!(dot(t, t) > 0.0f)) t = cross(Vec3(0.0f, 0.0f, 1.0f), hit.shading_normal);
-    t = t - hit.shading_normal * dot(hit.shading_normal, t);
-    const float tl = length(t);
-    put(r, shader_input::kTangent, tl > 0.0f ? t / tl : Vec3(0.0f, 0.0f, 0.0f));
+    // Cycles' Tangent without a UV map (kernel/geom/primitive.h primitive_tangent): the radial
+    // tangent about the object's Z axis in generated space, (-(g.y - 0.5), g.x - 0.5, 0), taken to
+    // world space as a normal is, then projected into the shading plane.
+    const Vec3 gen = read3(r, shader_input::kGenerated);
+    const Vec3 radial = in.object_to_world->normal(Vec3(-(gen.y - 0.5f), gen.x - 0.5f, 0.0f));
+    const Vec3 sn = hit.shading_normal * side;
+    const Vec3 across = cross(radial, sn);
+    const float across_length = length(across);
+    put(r, shader_input::kTangent,
+        across_length > 0.0f ? cross(sn, across / across_length) : Vec3(0.0f, 0.0f, 0.0f));
+    const Vec3 du = hit.tangent_frame.dpdu - sn * dot(sn, hit.tangent_frame.dpdu);
+    const float du_length = length(du);
+    put(r, shader_input::kUvTangent, du_length > 0.0f ? du / du_length : Vec3(0.0f, 0.0f, 0.0f));
     put(r, shader_input::kParametric,
         Vec3(1.0f - hit.barycentric.x - hit.barycentric.y, hit.barycentric.x, 0.0f));
     write_offsets(hit, in, side, r);

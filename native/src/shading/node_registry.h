@@ -33,6 +33,15 @@ struct NodeEntry {
 // The entry of `type`, or null for an unknown type.
 const NodeEntry* node_entry(int32_t type);
 
+// Cycles' colour-to-float conversion (svm/convert.h rgb_to_gray): the luminance weights of the
+// colour configuration's scene-linear space. `weights` 0: Blender 3.x's config (Rec.709,
+// 0.2126729, 0.7151522, 0.0721750); 1: Blender 4.x/5.x's (0.2126390, 0.7151687, 0.0721923,
+// measured: Cycles 5.0 renders RGB to BW with exactly these).
+inline float luminance(Rgb c, int32_t weights) {
+    if (weights == 1) return 0.2126390f * c.r + 0.7151687f * c.g + 0.0721923f * c.b;
+    return kLuminanceR * c.r + kLuminanceG * c.g + kLuminanceB * c.b;
+}
+
 // "" when a mode lies in [0, count), else the message naming it.
 std::string check_mode(const ShaderNode& node, int index, const char* what, int32_t count);
 

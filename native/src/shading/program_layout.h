@@ -38,6 +38,7 @@ inline constexpr uint32_t kDobjectDy = 63;
 inline constexpr uint32_t kDuvDx = 66;
 inline constexpr uint32_t kDuvDy = 69;
 inline constexpr uint32_t kReflection = 72;
+inline constexpr uint32_t kUvTangent = 75;
 inline constexpr uint32_t kCount = 80;
 }  // namespace shader_input
 

@@ -73,8 +73,11 @@ void evaluate_hsv(const ShaderNode& n, const ShaderEvalContext&, ShaderRegisters
 }
 
 void evaluate_rgb_to_bw(const ShaderNode& n, const ShaderEvalContext&, ShaderRegisters& r) {
-    const Rgb c = r.rgb(n.inputs[0]);
-    r[n.outputs[0]] = kLuminanceR * c.r + kLuminanceG * c.g + kLuminanceB * c.b;
+    r[n.outputs[0]] = luminance(r.rgb(n.inputs[0]), n.modes[0]);
+}
+
+std::string check_rgb_to_bw(const ShaderNode& n, const ShaderProgram&) {
+    return check_mode(n, 0, "luminance weights", 2);
 }
 
 }  // namespace
@@ -85,6 +88,8 @@ NodeEntry bright_contrast_node_entry() {
     return {"bright_contrast", {3, 1, 1}, {3}, no_modes, nullptr, evaluate_bright_contrast};
 }
 NodeEntry hsv_node_entry() { return {"hsv", {1, 1, 1, 1, 3}, {3}, check_hsv, nullptr, evaluate_hsv}; }
-NodeEntry rgb_to_bw_node_entry() { return {"rgb_to_bw", {3}, {1}, no_modes, nullptr, evaluate_rgb_to_bw}; }
+NodeEntry rgb_to_bw_node_entry() {
+    return {"rgb_to_bw", {3}, {1}, check_rgb_to_bw, nullptr, evaluate_rgb_to_bw};
+}
 
 }  // namespace stratum

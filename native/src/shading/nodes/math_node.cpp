@@ -199,12 +199,22 @@ void evaluate_math(const ShaderNode& n, const ShaderEvalContext&, ShaderRegister
 }
 
 // Copy kinds: the compiler's value moves and socket conversions.
-enum CopyKind : int32_t { Float, Vector, FloatToVector, VectorToFloat, ColorToFloat, CopyKindCount };
+// ColorToFloat uses Blender 3.x's luminance weights, ColorToFloat4 4.x/5.x's (node_registry.h).
+enum CopyKind : int32_t {
+    Float,
+    Vector,
+    FloatToVector,
+    VectorToFloat,
+    ColorToFloat,
+    ColorToFloat4,
+    CopyKindCount
+};
 
 std::string check_copy(const ShaderNode& n, const ShaderProgram& program) {
     std::string e = check_mode(n, 0, "kind", CopyKindCount);
     if (!e.empty()) return e;
-    const bool vector_in = n.modes[0] == Vector || n.modes[0] == VectorToFloat || n.modes[0] == ColorToFloat;
+    const bool vector_in = n.modes[0] == Vector || n.modes[0] == VectorToFloat ||
+                           n.modes[0] == ColorToFloat || n.modes[0] == ColorToFloat4;
     const bool vector_out = n.modes[0] == Vector || n.modes[0] == FloatToVector;
     const size_t count = program.registers.size();
     if (vector_in && static_cast<uint64_t>(n.inputs[0]) + 3 > count) return "input register is not 3 wide";
@@ -228,7 +238,7 @@ void evaluate_copy(const ShaderNode& n, const ShaderEvalContext&, ShaderRegister
             r[out] = (r[in] + r[in + 1] + r[in + 2]) * (1.0f / 3.0f);
             break;
         default:
-            r[out] = kLuminanceR * r[in] + kLuminanceG * r[in + 1] + kLuminanceB * r[in + 2];
+            r[out] = luminance(r.rgb(in), n.modes[0] == ColorToFloat4 ? 1 : 0);
             break;
     }
 }

@@ -8,10 +8,10 @@ namespace stratum {
 
 NodeEntry math_node_entry();  // nodes/math_node.cpp
 NodeEntry copy_node_entry();  // nodes/math_node.cpp
+
 NodeEntry bump_node_entry();        // nodes/bump_node.cpp
 NodeEntry normal_map_node_entry();  // nodes/bump_node.cpp
-NodeEntry math_node_entry();             // nodes/math_node.cpp
-NodeEntry copy_node_entry();             // nodes/math_node.cpp
+
 NodeEntry mix_node_entry();              // nodes/mix_node.cpp
 NodeEntry invert_node_entry();           // nodes/color_adjust_nodes.cpp
 NodeEntry gamma_node_entry();            // nodes/color_adjust_nodes.cpp
