@@ -51,6 +51,12 @@ Rgba texel_or_zero(const Texture& t, int x, int y) {
     return t.texel(static_cast<uint32_t>(x), static_cast<uint32_t>(y));
 }
 
+// A texel with its colour multiplied by its alpha (Cycles' associated storage) when `associate`.
+Rgba associated(Rgba v, bool associate) {
+    if (associate) v = {v.r * v.a, v.g * v.a, v.b * v.a, v.a};
+    return v;
+}
+
 void accumulate(Rgba* sum, Rgba v, float w) {
     sum->r += w * v.r;
     sum->g += w * v.g;
@@ -58,10 +64,11 @@ void accumulate(Rgba* sum, Rgba v, float w) {
     sum->a += w * v.a;
 }
 
-// An interpolated texel of an sRGB-encoded texture decoded to linear (alpha is not encoded).
+}  // namespace
+
 // Texels whose decoding is infinite were replaced at load (texture_building.h); the rounding of
 // bilinear weights can still carry a value an ulp past the last one that decodes finite: saturate.
-Rgba decoded(const Texture& t, Rgba v) {
+Rgba texture_decode(const Texture& t, Rgba v) {
     if (!t.srgb_encoded) return v;
     const auto decode = [](float c) {
         return std::min(srgb_texel_to_linear(c), std::numeric_limits<float>::max());
@@ -69,16 +76,18 @@ Rgba decoded(const Texture& t, Rgba v) {
     return {decode(v.r), decode(v.g), decode(v.b), v.a};
 }
 
-}  // namespace
-
 Rgba texture_lookup(const Texture& t, Vec2 uv) {
+    return texture_decode(t, texture_lookup_encoded(t, uv, false));
+}
+
+Rgba texture_lookup_encoded(const Texture& t, Vec2 uv, bool associate) {
     const int w = static_cast<int>(t.width), h = static_cast<int>(t.height);
     if (!std::isfinite(uv.x) || !std::isfinite(uv.y)) return {};
     int ix = 0, iy = 0;
     if (t.interpolation == TextureInterpolation::Closest) {
         split_floor(uv.x * static_cast<float>(w), &ix);
         split_floor(uv.y * static_cast<float>(h), &iy);
-        return decoded(t, texel_or_zero(t, wrap(ix, w, t.extension), wrap(iy, h, t.extension)));
+        return associated(texel_or_zero(t, wrap(ix, w, t.extension), wrap(iy, h, t.extension)), associate);
     }
     // Texel i covers [i, i+1) in x = u w and is centred at i + 0.5: shifting by 0.5 puts the
     // two neighbours at floor(x) and floor(x) + 1 with weight fraction(x).
@@ -87,11 +96,11 @@ Rgba texture_lookup(const Texture& t, Vec2 uv) {
     const int x0 = wrap(ix, w, t.extension), x1 = wrap(ix + 1, w, t.extension);
     const int y0 = wrap(iy, h, t.extension), y1 = wrap(iy + 1, h, t.extension);
     Rgba sum;
-    accumulate(&sum, texel_or_zero(t, x0, y0), (1.0f - tx) * (1.0f - ty));
-    accumulate(&sum, texel_or_zero(t, x1, y0), tx * (1.0f - ty));
-    accumulate(&sum, texel_or_zero(t, x0, y1), (1.0f - tx) * ty);
-    accumulate(&sum, texel_or_zero(t, x1, y1), tx * ty);
-    return decoded(t, sum);
+    accumulate(&sum, associated(texel_or_zero(t, x0, y0), associate), (1.0f - tx) * (1.0f - ty));
+    accumulate(&sum, associated(texel_or_zero(t, x1, y0), associate), tx * (1.0f - ty));
+    accumulate(&sum, associated(texel_or_zero(t, x0, y1), associate), (1.0f - tx) * ty);
+    accumulate(&sum, associated(texel_or_zero(t, x1, y1), associate), tx * ty);
+    return sum;
 }
 
 }  // namespace stratum

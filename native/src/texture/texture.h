@@ -48,4 +48,13 @@ struct Texture {
 // The texture's value at UV (u, v): u left to right, v bottom to top, [0,1]^2 one tile.
 Rgba texture_lookup(const Texture& texture, Vec2 uv);
 
+// The same lookup before the sRGB decoding, with each texel's colour multiplied by its alpha
+// before interpolating when `associate` (Cycles stores colour images associated and interpolates
+// them so: svm/image.h); texture_lookup(t, uv) = texture_decode(t, texture_lookup_encoded(t, uv,
+// false)).
+Rgba texture_lookup_encoded(const Texture& texture, Vec2 uv, bool associate);
+// Decodes an interpolated value of an sRGB-encoded texture to linear (alpha is not encoded); the
+// value itself for other textures.
+Rgba texture_decode(const Texture& texture, Rgba value);
+
 }  // namespace stratum
