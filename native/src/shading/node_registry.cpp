@@ -40,6 +40,11 @@ std::vector<NodeEntry> build_table() {
     put(node_type::kNormal, normal_node_entry());
     put(node_type::kBlackbody, blackbody_node_entry());
     put(node_type::kWavelength, wavelength_node_entry());
+    put(node_type::kChecker, checker_node_entry());
+    put(node_type::kGradient, gradient_node_entry());
+    put(node_type::kBrick, brick_node_entry());
+    put(node_type::kMagic, magic_node_entry());
+    put(node_type::kImage, image_node_entry());
     return table;
 }
 
