@@ -13,9 +13,11 @@ from __future__ import annotations
 
 from . import (  # noqa: F401  (they register their translators)
     color_nodes,
+    image_node,
     input_nodes,
     math_nodes,
     noise_textures,
+    pattern_textures,
     ramp_nodes,
     surface_inputs,
     surface_nodes,
