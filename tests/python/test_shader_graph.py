@@ -332,10 +332,17 @@ def test_image_on_emission_or_transmission_goes_through_the_node_program() -> No
         image("Glow"), image("Clear")
     link(glow, "Color", node, "Emission Color")
     link(clear, "Color", node, "Transmission Weight")
-    closures, _ = flatten(output_with(node))
-    assert closures[0].bindings == []
-    assert sorted(p.param for p in closures[0].programs) == ["emission", "transmission"]
-    assert closures[0].material.emission == pytest.approx((0.0, 0.0, 0.0))
+    warnings: list[str] = []
+    flat = flatten_surface(output_with(node), V5, lambda n, msg: warnings.append(msg))
+    closure = flat.closures[0]
+    assert warnings == []
+    assert closure.bindings == []
+    assert sorted(p.param for p in closure.programs) == ["emission", "transmission"]
+    assert closure.material.emission == (0.0, 0.0, 0.0)
+    assert [n.name for n in flat.program_images] == ["Clear", "Glow"]
+    assert flat.program is not None
+    image_nodes = [n for n in flat.program.nodes if n.type == native.NODE_TYPES["image"]]
+    assert sorted(n.modes[0] for n in image_nodes) == [0, 1]
 
 
 def test_normal_map_strength_outside_unit_range_warns_in_4x_only() -> None:
