@@ -36,6 +36,19 @@ BRICK_BASE = {"node": "ShaderNodeTexBrick", "output": "Color",
               "inputs": {"Color1": (0.8, 0.3, 0.1, 1), "Color2": (0.1, 0.4, 0.9, 1),
                          "Mortar": (0.05, 0.05, 0.05, 1), "Scale": 3.0, "Mortar Size": 0.05,
                          "Mortar Smooth": 0.4, "Bias": 0.1}}
+WAVE_BASE = {"node": "ShaderNodeTexWave", "output": "Fac",
+             "inputs": {"Scale": 2.0, "Distortion": 0.0, "Phase Offset": 0.7}}
+WAVE = [
+    *({**WAVE_BASE, "props": {"wave_type": "BANDS", "bands_direction": d, "wave_profile": p},
+       "name": f"wave bands {d} {p}"}
+      for d in ("X", "Y", "Z", "DIAGONAL") for p in ("SIN", "SAW", "TRI")),
+    *({**WAVE_BASE, "props": {"wave_type": "RINGS", "rings_direction": d, "wave_profile": "SIN"},
+       "name": f"wave rings {d}"} for d in ("X", "Y", "Z", "SPHERICAL")),
+    *({**WAVE_BASE, "props": {"wave_type": t, "wave_profile": "SAW"},
+       "inputs": {"Scale": 2.0, "Distortion": 4.0, "Detail": detail, "Detail Scale": 1.7,
+                  "Detail Roughness": 0.6}, "name": f"wave {t} distorted detail {detail}"}
+      for t in ("BANDS", "RINGS") for detail in (0.0, 2.5, 7.0)),
+]
 CASES: list[dict[str, Any]] = [
     {"node": None, "name": "generated", "output": "Generated"},
     {"node": None, "name": "uv", "output": "UV"},
@@ -51,6 +64,7 @@ CASES: list[dict[str, Any]] = [
     {**BRICK_BASE, "props": {}, "output": "Fac", "name": "brick smooth mortar fac",
      "inputs": {**BRICK_BASE["inputs"], "Mortar Size": 0.1, "Mortar Smooth": 1.0, "Scale": 2.93}},
     *MAGIC,
+    *WAVE,
     {"node": "ShaderNodeTexImage", "props": {"interpolation": "Closest"}, "output": "Color",
      "inputs": {}, "name": "image closest"},
     {"node": "ShaderNodeTexImage", "props": {"interpolation": "Linear"}, "output": "Color",
@@ -99,7 +113,9 @@ def node_sockets(bl_idname: str) -> dict[str, Any]:
 
     props = {p: getattr(node, p) for p in ("gradient_type", "offset", "offset_frequency",
                                              "squash", "squash_frequency", "turbulence_depth",
-                                             "projection", "interpolation", "extension")
+                                             "projection", "interpolation", "extension",
+                                             "wave_type", "bands_direction", "rings_direction",
+                                             "wave_profile")
              if hasattr(node, p)}
     found = {"in": [(s.identifier, s.type, default(s)) for s in node.inputs],
              "out": [(s.identifier, s.type, 0.0) for s in node.outputs], "props": props}

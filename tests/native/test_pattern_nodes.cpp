@@ -439,6 +439,79 @@ TEST(PatternNodes, ImageSrgbAssociatesBeforeDecoding) {
     }
 }
 
+// ---- Wave -----------------------------------------------------------------------------------
+
+std::vector<float> wave(std::array<int32_t, 5> modes, std::vector<float> p, float scale, float distortion,
+                        float detail, float detail_scale, float roughness, float phase) {
+    OneNode n(STRATUM_NODE_WAVE, {modes[0], modes[1], modes[2], modes[3], modes[4]},
+              {p, v1(scale), v1(distortion), v1(detail), v1(detail_scale), v1(roughness), v1(phase)}, {3, 1});
+    return n.run();
+}
+
+// Without distortion, from svm/wave.h re-derived in double: the nudged point, the band or ring
+// coordinate, the phase and the profile.
+double wave_reference(int type, int direction, int profile, std::array<double, 3> p, double phase) {
+    const double pi = 3.14159265358979323846;
+    for (double& c : p) c = (c + 1e-6) * 0.999999;
+    double n;
+    if (type == 0) {
+        n = direction < 3 ? 20.0 * p[direction] : 10.0 * (p[0] + p[1] + p[2]);
+    } else {
+        if (direction < 3) p[direction] = 0.0;
+        n = 20.0 * std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+    }
+    n += phase;
+    if (profile == 0) return 0.5 - 0.5 * std::cos(n);  // 1/2 + sin(n - pi/2) / 2
+    const double t = n / (2.0 * pi);
+    if (profile == 1) return t - std::floor(t);
+    return 2.0 * std::fabs(t - std::floor(t + 0.5));
+}
+
+TEST(PatternNodes, WaveEveryTypeDirectionAndProfile) {
+    const std::vector<std::array<double, 3>> points = {
+        {0.13, 0.41, 0.07}, {-0.32, 0.18, 0.55}, {0.9, -0.6, 0.2}};
+    for (int type = 0; type < 2; ++type)
+        for (int direction = 0; direction < 4; ++direction)
+            for (int profile = 0; profile < 3; ++profile)
+                for (const auto& q : points) {
+                    const std::array<int32_t, 5> modes = {type, type == 0 ? direction : 0,
+                                                          type == 1 ? direction : 0, profile, 3};
+                    const std::vector<float> out =
+                        wave(modes, v3(q[0], q[1], q[2]), 1.5f, 0.0f, 2.0f, 1.0f, 0.5f, 0.3f);
+                    const double want =
+                        wave_reference(type, direction, profile, {q[0] * 1.5, q[1] * 1.5, q[2] * 1.5}, 0.3);
+                    // Saw and triangle wrap: compare on the circle.
+                    const double d = std::fabs(out[3] - want);
+                    EXPECT_LT(profile == 0 ? d : std::min(d, std::fabs(d - 1.0)), 2e-5)
+                        << "type " << type << " direction " << direction << " profile " << profile;
+                    EXPECT_EQ(out[0], out[3]);
+                }
+}
+
+TEST(PatternNodes, WaveDistortionNoiseByGeneration) {
+    const std::vector<float> p = v3(0.37, 0.21, 0.64);
+    const auto fac = [&](int generation, float roughness) {
+        return wave({0, 0, 0, 1, generation}, p, 3.0f, 2.0f, 3.5f, 1.3f, roughness, 0.0f)[3];
+    };
+    const float undistorted = wave({0, 0, 0, 1, 3}, p, 3.0f, 0.0f, 3.5f, 1.3f, 0.5f, 0.0f)[3];
+    for (int generation = 0; generation < 4; ++generation) EXPECT_NE(fac(generation, 0.5f), undistorted);
+    // 3.x normalises a sum of unsigned noise, 4.x of signed noise: the same field, rounded apart;
+    // 4.2's wrapping of the coordinates matters only beyond 100000.
+    EXPECT_NEAR(fac(0, 0.5f), fac(1, 0.5f), 1e-5);
+    EXPECT_NEAR(fac(2, 0.5f), fac(3, 0.5f), 1e-6);
+    // 4.0 clamps the roughness to [0, 1], 4.1 does not: equal at 0.5, not at 1.7.
+    EXPECT_EQ(fac(1, 0.5f), fac(2, 0.5f));
+    EXPECT_NE(fac(1, 1.7f), fac(2, 1.7f));
+    EXPECT_EQ(fac(1, 1.7f), fac(1, 1.0f));
+    // The noise is normalised to [0, 1]: a distortion d moves n by at most d.
+    for (int generation = 0; generation < 4; ++generation) {
+        const std::vector<float> out =
+            wave({0, 0, 0, 1, generation}, p, 3.0f, 0.001f, 3.5f, 1.3f, 0.5f, 0.0f);
+        const double shift = (out[3] - undistorted) * 2.0 * 3.14159265358979323846;
+        EXPECT_LE(std::fabs(shift), 0.001 + 1e-5) << generation;
+    }
+}
+
 // ---- checks ---------------------------------------------------------------------------------
 
 TEST(PatternNodes, ChecksNameNodeAndField) {
@@ -447,6 +520,19 @@ TEST(PatternNodes, ChecksNameNodeAndField) {
         const std::string e = n.error();
         EXPECT_NE(e.find("gradient"), std::string::npos) << e;
         EXPECT_NE(e.find("type"), std::string::npos) << e;
+    }
+    const std::vector<std::pair<std::array<int32_t, 5>, const char*>> bad_wave = {
+        {{2, 0, 0, 0, 0}, "type"},
+        {{0, 4, 0, 0, 0}, "bands direction"},
+        {{0, 0, -1, 0, 0}, "rings direction"},
+        {{0, 0, 0, 3, 0}, "profile"},
+        {{0, 0, 0, 0, 4}, "noise generation"}};
+    for (const auto& [m, field] : bad_wave) {
+        OneNode n(STRATUM_NODE_WAVE, {m[0], m[1], m[2], m[3], m[4]},
+                  {v3(0, 0, 0), v1(1), v1(0), v1(2), v1(1), v1(0.5), v1(0)}, {3, 1});
+        const std::string e = n.error();
+        EXPECT_NE(e.find("wave"), std::string::npos) << e;
+        EXPECT_NE(e.find(field), std::string::npos) << e;
     }
     {
         OneNode n(STRATUM_NODE_MAGIC, {11}, {v3(0, 0, 0), v1(1), v1(1)}, {3, 1});

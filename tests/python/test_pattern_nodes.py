@@ -278,3 +278,46 @@ def test_image_projection_unsupported(projection: str) -> None:
     assert len(warnings) == 1 and projection in warnings[0]
     assert c.images == []
     assert c.builder.program.registers[col:col + 3] == [0.0, 0.0, 0.0]
+
+
+# ---- Wave ---------------------------------------------------------------------------------------
+
+def wave_node(version: tuple[int, int, int], **props: Any) -> Node:
+    values = {"wave_type": "BANDS", "bands_direction": "X", "rings_direction": "X",
+              "wave_profile": "SIN"}
+    values.update(props)
+    return Node("ShaderNodeTexWave", "Wave",
+                [Socket("Vector", "VECTOR", (0.0, 0.0, 0.0)), Socket("Scale", "VALUE", 5.0),
+                 Socket("Distortion", "VALUE", 0.0), Socket("Detail", "VALUE", 2.0),
+                 Socket("Detail Scale", "VALUE", 1.0), Socket("Detail Roughness", "VALUE", 0.5),
+                 Socket("Phase Offset", "VALUE", 0.0)], outputs(version), **values)
+
+
+@pytest.mark.parametrize(("version", "generation"), [
+    ((3, 4, 1), 0), ((3, 6, 0), 0), ((4, 0, 2), 1), ((4, 1, 1), 2), ((4, 2, 0), 3), (V5, 3)])
+def test_wave_noise_generation_by_version(version: tuple[int, int, int], generation: int) -> None:
+    c, _, warnings = compile_output(wave_node(version), "Fac", "float", version)
+    assert warnings == []
+    assert last_node(c).modes[4] == generation
+
+
+@pytest.mark.parametrize(("props", "modes"), [
+    ({"wave_type": "RINGS", "rings_direction": "SPHERICAL", "wave_profile": "TRI"}, (1, 0, 3, 2)),
+    ({"bands_direction": "DIAGONAL", "wave_profile": "SAW"}, (0, 3, 0, 1)),
+    ({"bands_direction": "Z"}, (0, 2, 0, 0))])
+def test_wave_modes(props: dict[str, str], modes: tuple[int, ...]) -> None:
+    c, _, _ = compile_output(wave_node(V5, **props), "Fac", "float")
+    assert tuple(last_node(c).modes[:4]) == modes
+
+
+def test_wave_bands_x_value() -> None:
+    # Generated x = 0.1, scale 5: n = 20 x (0.5 + 1e-6) x 0.999999; sine profile 1/2 - cos(n)/2.
+    c, fac, _ = compile_output(wave_node(V5), "Fac", "float")
+    n = 20 * (0.5 + 1e-6) * 0.999999
+    assert evaluate(c, fac, 1, (0.1, 0.3, 0.2))[0] == pytest.approx(0.5 - math.cos(n) / 2,
+                                                                     abs=2e-6)
+
+
+def test_wave_unknown_profile_warns() -> None:
+    _, _, warnings = compile_output(wave_node(V5, wave_profile="SQUARE"), "Fac", "float")
+    assert len(warnings) == 1 and "SQUARE" in warnings[0]

@@ -1,4 +1,4 @@
-"""Pattern textures: Checker, Gradient, Brick and Magic (Wave: see the note below), the same
+"""Pattern textures: Checker, Gradient, Brick, Magic and Wave, the same
 sockets in Blender 3.4 and 4.x/5.x (5.x names the Fac output "Factor"; its identifier stays
 "Fac").
 
@@ -10,6 +10,8 @@ sockets in Blender 3.4 and 4.x/5.x (5.x names the Fac output "Factor"; its ident
 |                       |          | generation (0 before Blender 3.5, 1 after); data:  |
 |                       |          | offset, squash                                     |
 | ShaderNodeTexMagic    | magic    | turbulence_depth                                   |
+| ShaderNodeTexWave     | wave     | wave_type, bands_direction, rings_direction,       |
+|                       |          | wave_profile, noise generation (wave_generation)   |
 
 An unlinked Vector is the "generated" renderer input, as Cycles. A node whose hidden texture
 mapping (node.texture_mapping, Cycles' TextureMapping) is not the identity gives a warning: it
@@ -104,3 +106,36 @@ def magic(c: NodeCompiler, node: Any) -> dict[str, int]:
     inputs = (vector(c, node), c.input(node, "Scale", "float"),
               c.input(node, "Distortion", "float"))
     return color_fac(c.builder.node("magic", (depth,), inputs, (3, 1)))
+
+
+WAVE_TYPES = ("BANDS", "RINGS")
+BANDS_DIRECTIONS = ("X", "Y", "Z", "DIAGONAL")
+RINGS_DIRECTIONS = ("X", "Y", "Z", "SPHERICAL")
+WAVE_PROFILES = ("SIN", "SAW", "TRI")
+
+
+def wave_generation(version: tuple[int, ...]) -> int:
+    """The distortion's fBM: 0 Blender 3.x, 1 4.0, 2 4.1, 3 4.2+ (wave_texture.cpp)."""
+    if version < (4, 0, 0):
+        return 0
+    if version < (4, 1, 0):
+        return 1
+    return 2 if version < (4, 2, 0) else 3
+
+
+def _choice(node: Any, prop: str, choices: tuple[str, ...]) -> int:
+    value = str(getattr(node, prop, choices[0]))
+    if value not in choices:
+        raise Unsupported(f"Wave Texture '{node.name}': {prop} {value} is not supported")
+    return choices.index(value)
+
+
+@translator("ShaderNodeTexWave")
+def wave(c: NodeCompiler, node: Any) -> dict[str, int]:
+    modes = (_choice(node, "wave_type", WAVE_TYPES),
+             _choice(node, "bands_direction", BANDS_DIRECTIONS),
+             _choice(node, "rings_direction", RINGS_DIRECTIONS),
+             _choice(node, "wave_profile", WAVE_PROFILES), wave_generation(c.version))
+    inputs = (vector(c, node), *(c.input(node, k, "float") for k in (
+        "Scale", "Distortion", "Detail", "Detail Scale", "Detail Roughness", "Phase Offset")))
+    return color_fac(c.builder.node("wave", modes, inputs, (3, 1)))

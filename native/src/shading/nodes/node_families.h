@@ -42,11 +42,12 @@ NodeEntry blackbody_node_entry();         // nodes/blackbody_node.cpp
 NodeEntry wavelength_node_entry();        // nodes/blackbody_node.cpp
 
 // Pattern textures and the Image node: nodes/checker_texture.cpp, gradient_texture.cpp,
-// brick_texture.cpp, magic_texture.cpp, image_node.cpp.
+// brick_texture.cpp, magic_texture.cpp, image_node.cpp, wave_texture.cpp.
 NodeEntry checker_node_entry();
 NodeEntry gradient_node_entry();
 NodeEntry brick_node_entry();
 NodeEntry magic_node_entry();
 NodeEntry image_node_entry();
+NodeEntry wave_node_entry();
 
 }  // namespace stratum
