@@ -19,6 +19,7 @@ from . import (  # noqa: F401  (they register their translators)
     noise_textures,
     pattern_textures,
     ramp_nodes,
+    sky_texture,
     surface_inputs,
     surface_nodes,
     vector_nodes,

@@ -46,6 +46,7 @@ std::vector<NodeEntry> build_table() {
     put(node_type::kMagic, magic_node_entry());
     put(node_type::kImage, image_node_entry());
     put(node_type::kWave, wave_node_entry());
+    put(node_type::kSky, sky_node_entry());
     return table;
 }
 

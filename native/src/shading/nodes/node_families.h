@@ -49,5 +49,6 @@ NodeEntry brick_node_entry();
 NodeEntry magic_node_entry();
 NodeEntry image_node_entry();
 NodeEntry wave_node_entry();
+NodeEntry sky_node_entry();  // nodes/sky_texture.cpp
 
 }  // namespace stratum

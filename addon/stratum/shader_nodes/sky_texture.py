@@ -1,0 +1,101 @@
+"""Sky Texture (ShaderNodeTexSky) into the native `sky` node.
+
+| sky_type (Blender)              | native model | data                                         |
+|---------------------------------|--------------|----------------------------------------------|
+| PREETHAM (3.x, 4.x, 5.x)        | 0            | 32 coefficients computed here (as Cycles)    |
+| NISHITA (3.x, 4.x)              | 2            | elevation, rotation, size, intensity,        |
+|                                 |              | altitude, air, dust, ozone (table natively)  |
+| HOSEK_WILKIE                    | -            | not supported yet (warned)                   |
+| SINGLE_/MULTIPLE_SCATTERING 5.x | -            | not supported yet (warned)                   |
+
+The Vector input unlinked reads Cycles' default, the Generated coordinate (for the world, the
+ray's direction). A Texture Mapping other than the identity is warned about and ignored."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Sequence
+from typing import Any
+
+from .compiler import NodeCompiler, Unsupported
+from .registry import translator
+
+PREETHAM, HOSEK_WILKIE, NISHITA = 0, 1, 2
+
+
+def _perez(k: Sequence[float], theta: float, gamma: float) -> float:
+    return ((1.0 + k[0] * math.exp(k[1] / math.cos(theta)))
+            * (1.0 + k[2] * math.exp(k[3] * gamma) + k[4] * math.cos(gamma) ** 2))
+
+
+def preetham_data(sun_direction: Sequence[float], turbidity: float) -> list[float]:
+    """The 32 values Cycles' sky_texture_precompute_preetham packs: the sun's phi and theta,
+    the zenith Y, x, y (divided by the Perez function at the zenith), and per channel the five
+    Perez coefficients padded with four zeros."""
+    x, y, z = (float(v) for v in sun_direction)
+    norm = math.sqrt(x * x + y * y + z * z)  # Blender's sync normalises the direction
+    if norm > 0.0:
+        x, y, z = x / norm, y / norm, z / norm
+    theta = math.acos(max(-1.0, min(1.0, z)))
+    phi = math.atan2(x, y)
+    t, t2 = float(turbidity), float(turbidity) ** 2
+    th2, th3 = theta * theta, theta ** 3
+    chi = (4.0 / 9.0 - t / 120.0) * (math.pi - 2.0 * theta)
+    zenith_y = ((4.0453 * t - 4.9710) * math.tan(chi) - 0.2155 * t + 2.4192) * 0.06
+    zenith_x = ((0.00166 * th3 - 0.00375 * th2 + 0.00209 * theta) * t2
+                + (-0.02903 * th3 + 0.06377 * th2 - 0.03202 * theta + 0.00394) * t
+                + (0.11693 * th3 - 0.21196 * th2 + 0.06052 * theta + 0.25886))
+    zenith_yy = ((0.00275 * th3 - 0.00610 * th2 + 0.00317 * theta) * t2
+                 + (-0.04214 * th3 + 0.08970 * th2 - 0.04153 * theta + 0.00516) * t
+                 + (0.15346 * th3 - 0.26756 * th2 + 0.06670 * theta + 0.26688))
+    perez_y = [0.1787 * t - 1.4630, -0.3554 * t + 0.4275, -0.0227 * t + 5.3251,
+               0.1206 * t - 2.5771, -0.0670 * t + 0.3703]
+    perez_x = [-0.0193 * t - 0.2592, -0.0665 * t + 0.0008, -0.0004 * t + 0.2125,
+               -0.0641 * t - 0.8989, -0.0033 * t + 0.0452]
+    perez_yy = [-0.0167 * t - 0.2608, -0.0950 * t + 0.0092, -0.0079 * t + 0.2102,
+                -0.0441 * t - 1.6537, -0.0109 * t + 0.0529]
+    data = [phi, theta]
+    # Cycles calls perez(config, 0, theta): theta 0 as the view angle, the sun's theta as gamma.
+    data += [zenith_y / _perez(perez_y, 0.0, theta), zenith_x / _perez(perez_x, 0.0, theta),
+             zenith_yy / _perez(perez_yy, 0.0, theta)]
+    for k in (perez_y, perez_x, perez_yy):
+        data += k + [0.0] * 4
+    return data
+
+
+def nishita_data(node: Any) -> list[float]:
+    """Elevation, rotation, size, intensity, altitude, air, dust and ozone, as Blender holds
+    them (the native node applies Cycles' clamps and wraps)."""
+    dust = getattr(node, "dust_density", getattr(node, "aerosol_density", 1.0))
+    return [float(node.sun_elevation), float(node.sun_rotation), float(node.sun_size),
+            float(node.sun_intensity), float(node.altitude), float(node.air_density),
+            float(dust), float(node.ozone_density)]
+
+
+def _mapping_is_identity(node: Any) -> bool:
+    mapping = getattr(node, "texture_mapping", None)
+    if mapping is None:
+        return True
+    same = (tuple(getattr(mapping, "translation", (0, 0, 0))) == (0, 0, 0)
+            and tuple(getattr(mapping, "rotation", (0, 0, 0))) == (0, 0, 0)
+            and tuple(getattr(mapping, "scale", (1, 1, 1))) == (1, 1, 1))
+    return same and not getattr(mapping, "use_min", False) and not getattr(mapping, "use_max",
+                                                                            False)
+
+
+@translator("ShaderNodeTexSky")
+def translate_sky(c: NodeCompiler, node: Any) -> dict[str, int]:
+    sky_type = str(node.sky_type)
+    if sky_type == "PREETHAM":
+        model, data = PREETHAM, preetham_data(node.sun_direction, node.turbidity)
+        disc = 0
+    elif sky_type == "NISHITA":
+        model, data = NISHITA, nishita_data(node)
+        disc = int(bool(node.sun_disc))
+    else:
+        raise Unsupported(f"Sky Texture '{node.name}': sky type {sky_type} is not supported")
+    if not _mapping_is_identity(node):
+        c.warn(node, f"Sky Texture '{node.name}': its Texture Mapping is ignored", "mapping")
+    vector = c.vector_or(node, "Vector", "generated")
+    color = c.builder.node("sky", (model, disc), (vector,), (3,), data)[0]
+    return {"Color": color}

@@ -1,0 +1,54 @@
+// The daylight models of Blender's Sky Texture, as pure math (no node code): the evaluation of
+// Preetham's and Hosek-Wilkie's analytic skies from their packed coefficients, and Nishita's
+// single-scattering atmosphere precomputed into a table (Blender 3.x's intern/sky, which Cycles
+// 3.4 bakes at 512 x 128 texels: third_party/sky/source/sky_nishita.cpp there).
+//
+// References: A. J. Preetham, P. Shirley, B. Smits, "A Practical Analytic Model for Daylight"
+// (SIGGRAPH 1999); L. Hosek, A. Wilkie, "An Analytic Model for Full Spectral Sky-Dome Radiance"
+// (SIGGRAPH 2012); T. Nishita et al., "Display of the Earth Taking into Account Atmospheric
+// Scattering" (SIGGRAPH 1993). Cycles: kernel/svm/sky.h, scene/shader_nodes.cpp SkyTextureNode.
+#pragma once
+
+#include <vector>
+
+#include "core/math.h"
+
+namespace stratum::sky {
+
+// The coefficients of Preetham's and Hosek-Wilkie's models as Cycles packs them (32 floats): the
+// sun's phi and theta, the three channels' zenith radiances, then 9 configuration values per
+// channel. Preetham's channels are Y, x, y (the perez coefficients in the first 5 of each);
+// Hosek-Wilkie's are X, Y, Z.
+inline constexpr int kAnalyticDataCount = 32;
+
+// Preetham's sky for direction `dir` (not normalised, as Cycles reads it), in linear Rec.709.
+Rgb preetham(const float* data, Vec3 dir);
+// Hosek-Wilkie's sky, scaled by 2 pi / 683 as Cycles scales it, in linear Rec.709.
+Rgb hosek_wilkie(const float* data, Vec3 dir);
+
+// CIE XYZ (D65) to linear Rec.709, negative components clamped to 0 (Cycles' xyz_to_rgb_clamped
+// with Blender's default colour management).
+Rgb xyz_to_rec709(Vec3 xyz);
+
+// Nishita's atmosphere, Blender 3.x. The parameters as the node holds them.
+struct NishitaParams {
+    float sun_elevation = 0.0f;  // radians
+    float sun_size = 0.0f;       // angular diameter, radians (clamped to >= 0.0005 as Cycles)
+    float altitude = 0.0f;       // metres (clamped to [1, 59999] as Cycles)
+    float air_density = 1.0f, dust_density = 1.0f, ozone_density = 1.0f;
+};
+
+inline constexpr int kNishitaWidth = 512;   // longitudes over the full circle
+inline constexpr int kNishitaHeight = 128;  // elevations 0 .. pi/2, denser toward the horizon
+
+// The sky's XYZ radiance for every texel: row y at elevation (pi/2 + pi/(4 height)) (y/height)^2,
+// column x at longitude 2 pi x / width - pi from the sun, mirrored about the sun's meridian;
+// kNishitaWidth * kNishitaHeight * 3 floats, rows from the horizon up.
+std::vector<float> nishita_sky_table(const NishitaParams& p);
+
+// The sun disc's XYZ radiance at its lowest and highest point (each clamped to the horizon):
+// the sun's irradiance over the disc's solid angle, attenuated by Rayleigh and Mie extinction
+// along the ray to the sun (no ozone, as Blender 3.x).
+void nishita_sun_pixels(const NishitaParams& p, Vec3& bottom, Vec3& top);
+
+}  // namespace stratum::sky
