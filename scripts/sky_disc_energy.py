@@ -3,7 +3,9 @@
     PYTHONPATH=addon .venv/bin/python scripts/sky_disc_energy.py [--width 1024] [--size 0.545]
 
 The renderer bakes a world program into an equirectangular map, each texel the mean of 2 x 2
-directions (shading/world_baking.cpp). For a Nishita sky, this compares the disc's share of the
+directions (shading/world_baking.cpp, which now integrates texels next to a sharp feature again
+with 16 x 16 directions: tests/native/test_sky_nodes.cpp checks that). This measures the plain
+2 x 2 bake, the reason for that refinement. For a Nishita sky, it compares the disc's share of the
 irradiance on a horizontal plane, sum over texels of (with disc - without disc) cos(theta) dOmega,
 with the integral of the disc itself (a 400 x 400 grid over the disc's tangent plane)."""
 

@@ -178,8 +178,9 @@ STRATUM_API StratumStatus stratum_scene_bind_program(StratumScene* scene,
 /* The world's radiance is the RGB of register `register_index` of program `program_id`,
  * evaluated for each direction (its inputs: POSITION = the direction, see above). It replaces
  * the background colour and any environment image. The renderer bakes it into an environment
- * of `width` x `height` texels (equirectangular, each the mean of 2 x 2 directions in it; width
- * 4 to 16384, height 2 to 8192), which is then looked up and importance-sampled as an image. */
+ * of `width` x `height` texels (equirectangular, each the mean of 2 x 2 directions in it, or of
+ * 16 x 16 next to a sharp feature such as a sun disc; width 4 to 16384, height 2 to 8192), which
+ * is then looked up and importance-sampled as an image. */
 STRATUM_API StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t program_id,
                                                                uint32_t register_index, uint32_t width,
                                                                uint32_t height);
