@@ -129,19 +129,20 @@ std::vector<float> nishita(float elevation, float rotation, float size, float in
     return {elevation, rotation, size, intensity, altitude, air, dust, ozone};
 }
 
-TEST(SkyNodes, NishitaSkyNearCycles34) {
-    // Cycles 3.4's pixels (altitude 1000 m, sun 30 degrees up, rotation -40 degrees). Measured
-    // difference 0.25% (scripts/compare_sky.py; other settings differ by up to 7% near the
-    // horizon, an open question in docs/shader_nodes.md), so this checks 0.5%.
+TEST(SkyNodes, NishitaMatchesCycles34) {
+    // Cycles 3.4's pixels (altitude 1000 m, sun 30 degrees up, rotation -40 degrees, a 40-degree
+    // disc at intensity 0.7): four of the sky and one of the disc. Measured worst difference over
+    // all 2048 pixels of three settings: 1e-5 (scripts/compare_sky.py).
     SkyProgram p;
     ASSERT_EQ(p.add(2, 1, nishita(0.5235988f, -0.6981317f, 0.6981317f, 0.7f, 1000.0f, 1, 1, 1)), STRATUM_OK);
     const double cases[][6] = {{-0.688929379, -0.41288352, 0.595737696, 0.9589324, 1.5480665, 2.72938943},
                                {0.0754529238, 0.50849402, 0.857753277, 0.999887347, 1.54214358, 2.72126937},
                                {0.23565042, -0.0590394139, 0.970042944, 0.560015321, 0.921980262, 1.70723093},
-                               {-0.326833487, -0.913300633, 0.243026495, 1.92639804, 3.01294923, 4.60674906}};
+                               {-0.326833487, -0.913300633, 0.243026495, 1.92639804, 3.01294923, 4.60674906},
+                               {-0.345204473, 0.576001406, 0.740983248, 199.735474, 164.289703, 128.994507}};
     for (const auto& c : cases) {
         const auto got = p.at(c[0], c[1], c[2]);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 5e-3 * c[3 + k]);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
     }
 }
 

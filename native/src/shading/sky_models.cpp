@@ -62,7 +62,6 @@ constexpr float kMieG = 0.76f;                // aerosols' anisotropy
 constexpr float kEarthRadius = 6360e3f;       // m
 constexpr float kAtmosphereRadius = 6420e3f;  // m
 constexpr int kViewSteps = 32;
-constexpr int kSunSteps = 16;
 constexpr int kWavelengths = 21;  // 380 to 780 nm every 20 nm
 constexpr float kWavelengthStep = 20.0f;
 
@@ -158,18 +157,27 @@ Vec3 atmosphere_exit(Vec3 p, Vec3 d) {
 }
 
 // Optical depth factors (Rayleigh, Mie, ozone densities integrated over metres) from `p` to the
-// top of the atmosphere along `d`: kSunSteps segments, each at its midpoint's density.
+// top of the atmosphere along `d`. Blender's intern/sky (3.0 and later; Cycles' own copy at
+// v3.4.0 still marches 16 midpoints, but Blender builds with intern/sky) integrates with an 8-node
+// Gauss-Laguerre rule: the densities fall roughly exponentially along the ray, so the rule for
+// integral of f(x) exp(-x) over [0, inf), its nodes scaled by 1/25 to stay inside the atmosphere
+// and exp(x_i)/25 folded into the weights, is exact for a density e^(-25 t).
+constexpr std::array<float, 8> kLaguerreNodes = {0.006811185292f, 0.03614807107f, 0.09004346519f,
+                                                 0.1706680068f,   0.2818362161f,  0.4303406404f,
+                                                 0.6296271457f,   0.9145252695f};
+constexpr std::array<float, 8> kLaguerreWeights = {0.01750893642f, 0.04135477391f, 0.06678839063f,
+                                                   0.09507698807f, 0.1283416365f,  0.1707430204f,
+                                                   0.2327233347f,  0.3562490486f};
+
 Vec3 optical_depth_to_space(Vec3 p, Vec3 d) {
     const float length_m = length(atmosphere_exit(p, d) - p);
-    const float step = length_m / kSunSteps;
-    const Vec3 segment = d * step;
+    const Vec3 ray = d * length_m;
     Vec3 depth;
-    Vec3 at = p + segment * 0.5f;
-    for (int i = 0; i < kSunSteps; ++i) {
-        depth += densities(length(at) - kEarthRadius);
-        at += segment;
+    for (size_t i = 0; i < kLaguerreNodes.size(); ++i) {
+        const Vec3 at = p + ray * kLaguerreNodes[i];
+        depth += densities(length(at) - kEarthRadius) * kLaguerreWeights[i];
     }
-    return depth * step;
+    return depth * length_m;
 }
 
 // Single scattering of sunlight into the ray from `origin` along `dir`, per wavelength.
