@@ -61,23 +61,26 @@ def test_preetham_node_evaluates_at_the_zenith() -> None:
     assert got == pytest.approx([0.48978439, 0.469021291, 0.537845731], rel=1e-4)
 
 
-@pytest.mark.parametrize(("version", "dust_name"), [(V3, "dust_density"), (V5, "aerosol_density")])
-def test_nishita_passes_blender_values(version: tuple[int, int, int], dust_name: str) -> None:
+@pytest.mark.parametrize(("version", "sky_type", "dust_name", "model"),
+                         [(V3, "NISHITA", "dust_density", 2),
+                          (V5, "SINGLE_SCATTERING", "aerosol_density", 3)])
+def test_nishita_passes_blender_values(version: tuple[int, int, int], sky_type: str,
+                                       dust_name: str, model: int) -> None:
     props = {"sun_elevation": 0.4, "sun_rotation": -1.0, "sun_size": 0.02,
              "sun_intensity": 0.5, "altitude": 300.0, "air_density": 1.5, "ozone_density": 2.0,
              dust_name: 3.0}
-    node = sky("NISHITA", sun_disc=False, **props)
+    node = sky(sky_type, sun_disc=False, **props)
     if dust_name != "dust_density":
         del node.dust_density
     c, _ = compile_sky(node, version)
     program = c.builder.program
     n = program.nodes[-1]
-    assert tuple(n.modes)[:2] == (2, 0)
+    assert tuple(n.modes)[:2] == (model, 0)
     data = list(program.data)[n.data_offset:n.data_offset + n.data_count]
     assert data == pytest.approx([0.4, -1.0, 0.02, 0.5, 300.0, 1.5, 3.0, 2.0])
 
 
-@pytest.mark.parametrize("sky_type", ["HOSEK_WILKIE", "SINGLE_SCATTERING", "MULTIPLE_SCATTERING"])
+@pytest.mark.parametrize("sky_type", ["HOSEK_WILKIE", "MULTIPLE_SCATTERING"])
 def test_unsupported_types_warn_through_the_compiler(sky_type: str) -> None:
     from stratum.shader_nodes import Unsupported
 
@@ -93,3 +96,10 @@ def test_texture_mapping_other_than_identity_is_warned() -> None:
                                            scale=(1, 1, 1), use_min=False, use_max=False)
     translate_sky(c, node)
     assert any("Texture Mapping" in w for w in warnings)
+
+
+@pytest.mark.parametrize(("version", "matrix"), [(V3, 0), ((4, 2, 0), 1), (V5, 1)])
+def test_xyz_matrix_follows_the_blender_generation(version: tuple[int, int, int],
+                                                   matrix: int) -> None:
+    c, _ = compile_sky(sky("PREETHAM"), version)
+    assert tuple(c.builder.program.nodes[-1].modes)[2] == matrix

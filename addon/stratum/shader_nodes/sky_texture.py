@@ -5,8 +5,9 @@
 | PREETHAM (3.x, 4.x, 5.x)        | 0            | 32 coefficients computed here (as Cycles)    |
 | NISHITA (3.x, 4.x)              | 2            | elevation, rotation, size, intensity,        |
 |                                 |              | altitude, air, dust, ozone (table natively)  |
+| SINGLE_SCATTERING (5.x)         | 3            | the same 8 (aerosol density as dust)         |
 | HOSEK_WILKIE                    | -            | not supported yet (warned)                   |
-| SINGLE_/MULTIPLE_SCATTERING 5.x | -            | not supported yet (warned)                   |
+| MULTIPLE_SCATTERING (5.x)       | -            | not supported yet (warned)                   |
 
 The Vector input unlinked reads Cycles' default, the Generated coordinate (for the world, the
 ray's direction). A Texture Mapping other than the identity is warned about and ignored."""
@@ -20,7 +21,7 @@ from typing import Any
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
-PREETHAM, HOSEK_WILKIE, NISHITA = 0, 1, 2
+PREETHAM, HOSEK_WILKIE, NISHITA, SINGLE_SCATTERING = 0, 1, 2, 3
 
 
 def _perez(k: Sequence[float], theta: float, gamma: float) -> float:
@@ -89,13 +90,18 @@ def translate_sky(c: NodeCompiler, node: Any) -> dict[str, int]:
     if sky_type == "PREETHAM":
         model, data = PREETHAM, preetham_data(node.sun_direction, node.turbidity)
         disc = 0
-    elif sky_type == "NISHITA":
-        model, data = NISHITA, nishita_data(node)
+    elif sky_type in ("NISHITA", "SINGLE_SCATTERING"):
+        model = NISHITA if sky_type == "NISHITA" else SINGLE_SCATTERING
+        data = nishita_data(node)
         disc = int(bool(node.sun_disc))
     else:
         raise Unsupported(f"Sky Texture '{node.name}': sky type {sky_type} is not supported")
     if not _mapping_is_identity(node):
         c.warn(node, f"Sky Texture '{node.name}': its Texture Mapping is ignored", "mapping")
     vector = c.vector_or(node, "Vector", "generated")
-    color = c.builder.node("sky", (model, disc), (vector,), (3,), data)[0]
+    # XYZ to Rec.709 as the version's colour management defines it (3.x: the sRGB matrix of its
+    # srgb_to_xyz.spimtx; 4.x and later: the exact BT.709 one). Nishita is a 3.x/4.x type and
+    # SINGLE_SCATTERING 5.x: the native node picks their matrix itself.
+    matrix = int(tuple(c.version) >= (4, 0, 0))
+    color = c.builder.node("sky", (model, disc, matrix), (vector,), (3,), data)[0]
     return {"Color": color}

@@ -217,14 +217,20 @@ float clamped_altitude(float altitude) { return std::clamp(altitude, 1.0f, 59999
 
 }  // namespace
 
-Rgb xyz_to_rec709(Vec3 c) {
-    const float r = 3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z;
-    const float g = -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z;
-    const float b = 0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z;
+Rgb xyz_to_rec709(Vec3 c, XyzMatrix m) {
+    // Blender 3.x: the inverse of srgb_to_xyz.spimtx; 4.x and later: the config's BT.709 matrix.
+    static constexpr float k3[9] = {3.2404542f, -1.5371385f, -0.4985314f, -0.9692660f, 1.8760108f,
+                                    0.0415560f, 0.0556434f,  -0.2040259f, 1.0572252f};
+    static constexpr float k4[9] = {3.2409699f, -1.5373832f, -0.4986108f, -0.9692436f, 1.8759675f,
+                                    0.0415551f, 0.0556301f,  -0.2039770f, 1.0569715f};
+    const float* k = m == XyzMatrix::Blender3 ? k3 : k4;
+    const float r = k[0] * c.x + k[1] * c.y + k[2] * c.z;
+    const float g = k[3] * c.x + k[4] * c.y + k[5] * c.z;
+    const float b = k[6] * c.x + k[7] * c.y + k[8] * c.z;
     return {std::max(r, 0.0f), std::max(g, 0.0f), std::max(b, 0.0f)};
 }
 
-Rgb preetham(const float* data, Vec3 dir) {
+Rgb preetham(const float* data, Vec3 dir, XyzMatrix m) {
     float theta = 0.0f, gamma = 0.0f;
     analytic_angles(data, dir, theta, gamma);
     const float* k = data + 5;
@@ -234,16 +240,16 @@ Rgb preetham(const float* data, Vec3 dir) {
     // xyY to XYZ, with Cycles' guards for y == 0 and Y == 0.
     const float X = y != 0.0f ? (x / y) * Y : 0.0f;
     const float Z = (y != 0.0f && Y != 0.0f) ? (1.0f - x - y) / y * Y : 0.0f;
-    return xyz_to_rec709({X, Y, Z});
+    return xyz_to_rec709({X, Y, Z}, m);
 }
 
-Rgb hosek_wilkie(const float* data, Vec3 dir) {
+Rgb hosek_wilkie(const float* data, Vec3 dir, XyzMatrix m) {
     float theta = 0.0f, gamma = 0.0f;
     analytic_angles(data, dir, theta, gamma);
     const float* k = data + 5;
     const Vec3 xyz(hosek_channel(k, theta, gamma) * data[2], hosek_channel(k + 9, theta, gamma) * data[3],
                    hosek_channel(k + 18, theta, gamma) * data[4]);
-    return xyz_to_rec709(xyz) * (kTwoPi / 683.0f);
+    return xyz_to_rec709(xyz, m) * (kTwoPi / 683.0f);
 }
 
 std::vector<float> nishita_sky_table(const NishitaParams& p) {
@@ -271,6 +277,51 @@ std::vector<float> nishita_sky_table(const NishitaParams& p) {
         }
     });
     return table;
+}
+
+std::vector<float> single_scattering_table(const NishitaParams& p) {
+    constexpr int w = kNishitaWidth, h = kSingleScatteringHeight, half_h = h / 2;
+    std::vector<float> table(static_cast<size_t>(w) * h * 3, 0.0f);
+    const Vec3 origin(0.0f, 0.0f, kEarthRadius + clamped_altitude(p.altitude));
+    const Vec3 sun = from_latitude_longitude(p.sun_elevation, 0.0f);
+    const Vec3 scale(p.air_density, p.dust_density, p.ozone_density);
+    const float longitude_step = kTwoPi / w;
+    const auto latitude_of = [](int y) {
+        const float t = static_cast<float>(y) / static_cast<float>(half_h) - 1.0f;
+        return kHalfPi * (t * t);
+    };
+    tbb::parallel_for(half_h, h, [&](int y) {
+        Spectrum s{};
+        const float latitude = latitude_of(y);
+        float* row = table.data() + static_cast<size_t>(y) * w * 3;
+        for (int x = 0; x < w / 2; ++x) {
+            const float longitude = longitude_step * static_cast<float>(x) - kPi;
+            single_scattering(from_latitude_longitude(latitude, longitude), sun, origin, scale, s);
+            const Vec3 xyz = spectrum_to_xyz(s);
+            for (int side : {x, w - 1 - x}) {
+                row[side * 3] = xyz.x;
+                row[side * 3 + 1] = xyz.y;
+                row[side * 3 + 2] = xyz.z;
+            }
+        }
+    });
+    const float* horizon = table.data() + static_cast<size_t>(half_h) * w * 3;
+    for (int y = 0; y < half_h; ++y) {
+        const float z = from_latitude_longitude(latitude_of(y), 0.0f).z;
+        float fade = 0.0f;
+        if (z < 0.4f) {
+            fade = 1.0f - z * 2.5f;
+            fade = fade * fade * fade;
+        }
+        float* row = table.data() + static_cast<size_t>(y) * w * 3;
+        for (int i = 0; i < w * 3; ++i) row[i] = horizon[i] * fade;
+    }
+    return table;
+}
+
+float earth_intersection_angle(float altitude) {
+    constexpr float kEarthRadiusKm = 6371.0f;
+    return kHalfPi - std::asin(kEarthRadiusKm / (kEarthRadiusKm + altitude / 1000.0f));
 }
 
 void nishita_sun_pixels(const NishitaParams& p, Vec3& bottom, Vec3& top) {

@@ -23,14 +23,19 @@ namespace stratum::sky {
 // Hosek-Wilkie's are X, Y, Z.
 inline constexpr int kAnalyticDataCount = 32;
 
+// Which XYZ to Rec.709 matrix (xyz_to_rec709 below).
+enum class XyzMatrix { Blender3, Blender4 };
+
 // Preetham's sky for direction `dir` (not normalised, as Cycles reads it), in linear Rec.709.
-Rgb preetham(const float* data, Vec3 dir);
+Rgb preetham(const float* data, Vec3 dir, XyzMatrix m);
 // Hosek-Wilkie's sky, scaled by 2 pi / 683 as Cycles scales it, in linear Rec.709.
-Rgb hosek_wilkie(const float* data, Vec3 dir);
+Rgb hosek_wilkie(const float* data, Vec3 dir, XyzMatrix m);
 
 // CIE XYZ (D65) to linear Rec.709, negative components clamped to 0 (Cycles' xyz_to_rgb_clamped
-// with Blender's default colour management).
-Rgb xyz_to_rec709(Vec3 xyz);
+// with Blender's default colour management). The matrix differs by generation: Blender 3.x's
+// config goes through its srgb_to_xyz.spimtx (the 4-digit sRGB primaries), 4.x and 5.x's through
+// "Linear CIE-XYZ D65" with the exact BT.709 matrix (2.4e-4 apart).
+Rgb xyz_to_rec709(Vec3 xyz, XyzMatrix m = XyzMatrix::Blender3);
 
 // Nishita's atmosphere, Blender 3.x. The parameters as the node holds them.
 struct NishitaParams {
@@ -47,6 +52,17 @@ inline constexpr int kNishitaHeight = 128;  // elevations 0 .. pi/2, denser towa
 // column x at longitude 2 pi x / width - pi from the sun, mirrored about the sun's meridian;
 // kNishitaWidth * kNishitaHeight * 3 floats, rows from the horizon up.
 std::vector<float> nishita_sky_table(const NishitaParams& p);
+
+// Blender 5.x's single scattering (SINGLE_SCATTERING, intern/sky sky_single_scattering.cpp): the
+// same atmosphere over the whole sphere, kNishitaWidth x kSingleScatteringHeight texels; rows
+// from the bottom, row y at |elevation| pi/2 (y/(height/2) - 1)^2, the upper half the sky and the
+// lower half the horizon row faded by (1 - 2.5 sin|elevation|)^3 (black from sin 0.4).
+inline constexpr int kSingleScatteringHeight = 256;
+std::vector<float> single_scattering_table(const NishitaParams& p);
+
+// Blender 5.x: the angle below the horizon at which a viewer at `altitude` metres sees the Earth's
+// limb, pi/2 - asin(R / (R + altitude)) with R = 6371 km.
+float earth_intersection_angle(float altitude);
 
 // The sun disc's XYZ radiance at its lowest and highest point (each clamped to the horizon):
 // the sun's irradiance over the disc's solid angle, attenuated by Rayleigh and Mie extinction

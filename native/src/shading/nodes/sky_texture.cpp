@@ -3,7 +3,9 @@
 // | node | modes                                             | inputs     | outputs    |
 // |------|---------------------------------------------------|------------|------------|
 // | sky  | 0 model (0 Preetham, 1 Hosek-Wilkie, 2 Nishita    | vector (3) | color (3)  |
-// |      | Blender 3.x), 1 sun disc (Nishita: 0 off, 1 on)   |            |            |
+// |      | Blender 3.x/4.x, 3 single scattering Blender 5.x), |            |            |
+// |      | 1 sun disc (2 and 3: 0 off, 1 on), 2 XYZ matrix   |            |            |
+// |      | of models 0 and 1 (0 Blender 3.x, 1 4.x and later) |            |            |
 //
 // Data: Preetham and Hosek-Wilkie, the 32 coefficients the host computes as Cycles'
 // SkyTextureNode::compile does (sun phi, sun theta, 3 zenith radiances, 3 x 9 configurations;
@@ -12,7 +14,10 @@
 // Nishita table (prepare) is the sky's XYZ at 512 x 128 texels and the sun's two pixels, looked
 // up as Cycles' kernel/svm/sky.h (3.4) does: bilinear with clamped edges, rows at sqrt(elevation),
 // the disc inside half the sun size with limb darkening 1 - 0.6 (1 - sqrt(1 - (angle/half)^2)),
-// the ground below the horizon faded from the horizon's colour to black at z = -0.4.
+// the ground below the horizon faded from the horizon's colour to black at z = -0.4. Model 3,
+// Blender 5.x's SINGLE_SCATTERING, the same atmosphere in a 512 x 256 table over the whole
+// sphere, the sun's angles wrapped as Cycles 5.0 wraps them, the disc added to the sky above the
+// Earth's limb (kernel/svm/sky.h at v5.0.0).
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -24,27 +29,29 @@ namespace stratum {
 
 namespace {
 
-enum SkyModel : int32_t { Preetham, HosekWilkie, Nishita, SkyModelCount };
+enum SkyModel : int32_t { Preetham, HosekWilkie, Nishita, SingleScattering, SkyModelCount };
 
 constexpr uint32_t kNishitaDataCount = 8;
 constexpr float kHalfPi = 1.57079632679489661923f;
 constexpr float kTwoPi = 6.28318530717958647692f;
-// The Nishita table: the sun's bottom and top XYZ, its elevation, the rotation as Cycles stores
+// The Nishita tables: the sun's bottom and top XYZ, its elevation, the rotation as Cycles stores
 // it (2 pi - rotation wrapped to [0, 2 pi)), the disc's angular diameter (-1 without a disc), the
-// intensity, then the sky texels.
-constexpr size_t kHeader = 10;
+// intensity, minus the Earth's intersection angle (5.x), then the sky texels.
+constexpr size_t kHeader = 11;
 
 std::string check_sky(const ShaderNode& n, const ShaderProgram& program) {
     std::string e = check_mode(n, 0, "model", SkyModelCount);
     if (e.empty()) e = check_mode(n, 1, "sun disc", 2);
+    if (e.empty()) e = check_mode(n, 2, "xyz matrix", 2);
     if (!e.empty()) return e;
-    const uint32_t want = n.modes[0] == Nishita ? kNishitaDataCount : sky::kAnalyticDataCount;
+    const bool scattering = n.modes[0] == Nishita || n.modes[0] == SingleScattering;
+    const uint32_t want = scattering ? kNishitaDataCount : sky::kAnalyticDataCount;
     if (n.data_count != want)
         return "data_count is " + std::to_string(n.data_count) + "; the model takes " + std::to_string(want);
     const float* d = program.data.data() + n.data_offset;
     for (uint32_t i = 0; i < want; ++i)
         if (!std::isfinite(d[i])) return "data[" + std::to_string(i) + "] is not finite";
-    if (n.modes[0] == Nishita) {
+    if (scattering) {
         // Blender's limits (the sun's angles are unbounded: the node wraps them).
         if (d[2] < 0.0f || d[2] > kHalfPi) return "data[2] (sun size) is outside [0, pi/2]";
         if (d[3] < 0.0f || d[3] > 1e6f) return "data[3] (sun intensity) is outside [0, 1e6]";
@@ -57,11 +64,25 @@ std::string check_sky(const ShaderNode& n, const ShaderProgram& program) {
     return "";
 }
 
+// Cycles 5.x's SkyTextureNode::simplify_settings: the elevation into [-pi/2, pi/2] (past a pole
+// the sun comes down on the other side), the rotation to 2 pi - rotation in [0, 2 pi).
+void wrap_sun(float& elevation, float& rotation) {
+    elevation = std::fmod(elevation, kTwoPi);
+    if (std::fabs(elevation) >= kPi) elevation -= std::copysign(2.0f, elevation) * kPi;
+    if (elevation >= kHalfPi || elevation <= -kHalfPi) {
+        elevation = std::copysign(kPi, elevation) - elevation;
+        rotation += kPi;
+    }
+}
+
 std::vector<float> prepare_sky(const ShaderNode& n, const std::vector<float>& data) {
-    if (n.modes[0] != Nishita) return {};
+    if (n.modes[0] != Nishita && n.modes[0] != SingleScattering) return {};
+    const bool v5 = n.modes[0] == SingleScattering;
     const float* d = data.data() + n.data_offset;
+    float elevation = d[0], rotation = d[1];
+    if (v5) wrap_sun(elevation, rotation);
     sky::NishitaParams p;
-    p.sun_elevation = d[0];
+    p.sun_elevation = elevation;
     p.sun_size = d[2];
     p.altitude = d[4];
     p.air_density = d[5];
@@ -69,7 +90,9 @@ std::vector<float> prepare_sky(const ShaderNode& n, const std::vector<float>& da
     p.ozone_density = d[7];
     Vec3 bottom, top;
     sky::nishita_sun_pixels(p, bottom, top);
-    float rotation = std::fmod(d[1], kTwoPi);
+    const float size = std::max(d[2], 0.0005f);
+    if (v5 && !(elevation + size / 2.0f > 0.0f)) bottom = top = Vec3();  // 5.x: a set sun is black
+    rotation = std::fmod(rotation, kTwoPi);
     if (rotation < 0.0f) rotation += kTwoPi;
     std::vector<float> table = {bottom.x,
                                 bottom.y,
@@ -77,19 +100,20 @@ std::vector<float> prepare_sky(const ShaderNode& n, const std::vector<float>& da
                                 top.x,
                                 top.y,
                                 top.z,
-                                d[0],
+                                elevation,
                                 kTwoPi - rotation,
-                                n.modes[1] ? std::max(d[2], 0.0005f) : -1.0f,
-                                d[3]};
-    const std::vector<float> sky_texels = sky::nishita_sky_table(p);
-    table.insert(table.end(), sky_texels.begin(), sky_texels.end());
+                                n.modes[1] ? size : -1.0f,
+                                d[3],
+                                v5 ? -sky::earth_intersection_angle(d[4]) : 0.0f};
+    const std::vector<float> texels = v5 ? sky::single_scattering_table(p) : sky::nishita_sky_table(p);
+    table.insert(table.end(), texels.begin(), texels.end());
     return table;
 }
 
 // Bilinear lookup at (u, v) in [0, 1]^2 with clamped edges, as Cycles' CPU image lookup.
-Vec3 lookup(const float* texels, float u, float v) {
-    constexpr int w = sky::kNishitaWidth, h = sky::kNishitaHeight;
-    const float fx = u * w - 0.5f, fy = v * h - 0.5f;
+Vec3 lookup(const float* texels, float u, float v, int h = sky::kNishitaHeight) {
+    constexpr int w = sky::kNishitaWidth;
+    const float fx = u * w - 0.5f, fy = v * static_cast<float>(h) - 0.5f;
     const float x0f = std::floor(fx), y0f = std::floor(fy);
     const float tx = fx - x0f, ty = fy - y0f;
     const int x0 = static_cast<int>(x0f), y0 = static_cast<int>(y0f);
@@ -137,21 +161,54 @@ Rgb nishita(const std::vector<float>& table, Vec3 dir) {
         const float f = 1.0f + dir.z * 2.5f;
         xyz = lookup(texels, u, -0.5f) * (f * f * f);
     }
-    return sky::xyz_to_rec709(xyz);
+    return sky::xyz_to_rec709(xyz, sky::XyzMatrix::Blender3);
+}
+
+// Blender 5.x (kernel/svm/sky.h): the sky over the whole sphere, the disc added to it above the
+// Earth's limb.
+Rgb single_scattering(const std::vector<float>& table, Vec3 dir) {
+    const Vec3 bottom(table[0], table[1], table[2]), top(table[3], table[4], table[5]);
+    const float elevation = table[6], rotation = table[7], diameter = table[8], intensity = table[9];
+    const float earth_angle = table[10];
+    const float theta = std::acos(std::clamp(dir.z, -1.0f, 1.0f));
+    const float phi = std::atan2(dir.y, dir.x);
+    const float st = std::sin(elevation - kHalfPi);
+    const Vec3 sun(st * std::cos(rotation - kHalfPi), st * std::sin(rotation - kHalfPi),
+                   std::cos(elevation - kHalfPi));
+    const float angle = angle_between(dir, sun);
+    const float half = diameter * 0.5f;
+    const float dir_elevation = kHalfPi - theta;
+    Vec3 xyz;
+    if (diameter >= 0.0f && angle < half && dir_elevation > earth_angle) {
+        const float t = (dir_elevation - elevation) / diameter + 0.5f;
+        const float r = angle / half;
+        const float limb = 1.0f - 0.6f * (1.0f - std::sqrt(1.0f - r * r));
+        xyz = (bottom + (top - bottom) * t) * intensity * limb;
+    }
+    float u = (-phi - kHalfPi + rotation) * (1.0f / kTwoPi);
+    u -= std::floor(u);
+    const float v =
+        std::copysign(std::sqrt(std::fabs(dir_elevation) * (2.0f / kPi)), dir_elevation) * 0.5f + 0.5f;
+    xyz += lookup(table.data() + kHeader, u, v, sky::kSingleScatteringHeight);
+    return sky::xyz_to_rec709(xyz, sky::XyzMatrix::Blender4);
 }
 
 void evaluate_sky(const ShaderNode& n, const ShaderEvalContext& context, ShaderRegisters& r) {
     const Vec3 dir = r.vec3(n.inputs[0]);
+    const auto matrix = n.modes[2] ? sky::XyzMatrix::Blender4 : sky::XyzMatrix::Blender3;
     Rgb c;
     switch (n.modes[0]) {
         case Preetham:
-            c = sky::preetham(context.data(n), dir);
+            c = sky::preetham(context.data(n), dir, matrix);
             break;
         case HosekWilkie:
-            c = sky::hosek_wilkie(context.data(n), dir);
+            c = sky::hosek_wilkie(context.data(n), dir, matrix);
+            break;
+        case Nishita:
+            c = nishita(context.table(n), dir);
             break;
         default:
-            c = nishita(context.table(n), dir);
+            c = single_scattering(context.table(n), dir);
             break;
     }
     r.set(n.outputs[0], c);
