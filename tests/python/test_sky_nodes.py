@@ -80,7 +80,7 @@ def test_nishita_passes_blender_values(version: tuple[int, int, int], sky_type: 
     assert data == pytest.approx([0.4, -1.0, 0.02, 0.5, 300.0, 1.5, 3.0, 2.0])
 
 
-@pytest.mark.parametrize("sky_type", ["HOSEK_WILKIE", "MULTIPLE_SCATTERING"])
+@pytest.mark.parametrize("sky_type", ["MULTIPLE_SCATTERING", "SOMETHING_NEW"])
 def test_unsupported_types_warn_through_the_compiler(sky_type: str) -> None:
     from stratum.shader_nodes import Unsupported
 
@@ -103,3 +103,38 @@ def test_xyz_matrix_follows_the_blender_generation(version: tuple[int, int, int]
                                                    matrix: int) -> None:
     c, _ = compile_sky(sky("PREETHAM"), version)
     assert tuple(c.builder.program.nodes[-1].modes)[2] == matrix
+
+
+def _evaluate(c: NodeCompiler, color: int, direction: tuple[float, float, float]) -> np.ndarray:
+    scene = native.Scene()
+    pid = scene.add_shader_program(c.builder.program)
+    inputs = np.zeros(native.SHADER_INPUT_REGISTERS, dtype=np.float32)
+    gen = native.SHADER_INPUTS["generated"][0]
+    inputs[gen:gen + 3] = direction
+    return scene.evaluate_program(pid, inputs, color, 3)
+
+
+@pytest.mark.parametrize(("version", "direction", "cycles"), [
+    (V3, (-0.68892938, -0.41288352, 0.5957377), (0.06552908, 0.09531364, 0.14335762)),
+    (V3, (0.91333187, -0.22882426, -0.33684468), (0.19828089, 0.22876978, 0.21615353)),
+    (V5, (-0.68892938, -0.41288352, 0.5957377), (0.06553943, 0.09531147, 0.14332327)),
+])
+def test_hosek_wilkie_matches_cycles(version: tuple[int, int, int],
+                                     direction: tuple[float, float, float],
+                                     cycles: tuple[float, float, float]) -> None:
+    # Cycles 3.4's and 5.0's pixels (scripts/sky_cycles_reference.py): the dataset cooked here.
+    node = sky("HOSEK_WILKIE", sun_direction=(-0.5, 0.2, 0.4), turbidity=4.0, ground_albedo=0.5)
+    c, color = compile_sky(node, version)
+    assert c.builder.program.nodes[-1].modes[0] == 1
+    assert _evaluate(c, color, direction) == pytest.approx(cycles, rel=1e-4)
+
+
+def test_hosek_wilkie_turbidity_ends() -> None:
+    from stratum.shader_nodes.sky_texture import hosek_wilkie_data
+
+    # Below 1 turbidity is clamped to 1 (Blender's range); at 10 the last block is taken alone,
+    # continuous with the interpolation just below it.
+    assert hosek_wilkie_data((0, 0.5, 0.5), 0.3, 0.2) == hosek_wilkie_data((0, 0.5, 0.5), 1.0, 0.2)
+    low, high = hosek_wilkie_data((0, 0.5, 0.5), 9.999, 0.2), hosek_wilkie_data((0, 0.5, 0.5),
+                                                                                 10.0, 0.2)
+    assert low == pytest.approx(high, rel=1e-2, abs=1e-3)

@@ -6,7 +6,8 @@
 | NISHITA (3.x, 4.x)              | 2            | elevation, rotation, size, intensity,        |
 |                                 |              | altitude, air, dust, ozone (table natively)  |
 | SINGLE_SCATTERING (5.x)         | 3            | the same 8 (aerosol density as dust)         |
-| HOSEK_WILKIE                    | -            | not supported yet (warned)                   |
+| HOSEK_WILKIE (3.x, 4.x, 5.x)    | 1            | 32 values cooked here from the published     |
+|                                 |              | dataset (hosek_wilkie_data.py), as Cycles    |
 | MULTIPLE_SCATTERING (5.x)       | -            | not supported yet (warned)                   |
 
 The Vector input unlinked reads Cycles' default, the Generated coordinate (for the world, the
@@ -18,6 +19,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from . import hosek_wilkie_data as hw_dataset
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
@@ -64,6 +66,55 @@ def preetham_data(sun_direction: Sequence[float], turbidity: float) -> list[floa
     return data
 
 
+def _bezier(points: Sequence[float], at: int, stride: int, t: float) -> float:
+    """The quintic Bezier of the 6 control points points[at + k * stride] at t."""
+    u = 1.0 - t
+    weights = (u ** 5, 5.0 * u ** 4 * t, 10.0 * u ** 3 * t ** 2, 10.0 * u ** 2 * t ** 3,
+               5.0 * u * t ** 4, t ** 5)
+    return sum(w * points[at + k * stride] for k, w in enumerate(weights))
+
+
+def _cook(dataset: Sequence[float], width: int, turbidity: float, albedo: float,
+          elevation: float) -> list[float]:
+    """Hosek and Wilkie's interpolation of `width` coefficients: a quintic Bezier over the cube
+    root of the elevation's fraction of pi/2, linear in albedo (0, 1) and in turbidity (1..10)."""
+    whole = int(turbidity)
+    rest = turbidity - whole
+    t = (elevation / (math.pi / 2.0)) ** (1.0 / 3.0)
+    block = 6 * width  # one turbidity's control points
+    out = [0.0] * width
+    terms = [(1.0 - albedo) * (1.0 - rest), albedo * (1.0 - rest)]
+    starts = [block * (whole - 1), block * 10 + block * (whole - 1)]
+    if whole != 10:
+        terms += [(1.0 - albedo) * rest, albedo * rest]
+        starts += [block * whole, block * 10 + block * whole]
+    for weight, start in zip(terms, starts, strict=True):
+        for i in range(width):
+            out[i] += weight * _bezier(dataset, start + i, width, t)
+    return out
+
+
+def hosek_wilkie_data(sun_direction: Sequence[float], turbidity: float,
+                      ground_albedo: float) -> list[float]:
+    """The 32 values of Cycles' sky_texture_precompute_hosek: the sun's phi and theta (theta
+    clamped to the horizon), the X, Y, Z radiances and 9 configuration values per channel, from
+    the XYZ dataset (in double precision, as Cycles cooks them). Turbidity is clamped to [1, 10]
+    (Blender's range; Cycles' [0, 10] reads before the dataset below 1)."""
+    x, y, z = (float(v) for v in sun_direction)
+    norm = math.sqrt(x * x + y * y + z * z)
+    if norm > 0.0:
+        x, y, z = x / norm, y / norm, z / norm
+    theta = min(max(math.acos(max(-1.0, min(1.0, z))), 0.0), math.pi / 2.0)
+    phi = math.atan2(x, y)
+    t = min(max(float(turbidity), 1.0), 10.0)
+    albedo = float(ground_albedo)
+    elevation = math.pi / 2.0 - theta
+    configs = [_cook(hw_dataset.CONFIGS[c], 9, t, albedo, elevation) for c in range(3)]
+    radiances = [_cook(hw_dataset.RADIANCES[c], 1, t, albedo, elevation)[0]
+                 for c in range(3)]
+    return [phi, theta, *radiances, *configs[0], *configs[1], *configs[2]]
+
+
 def nishita_data(node: Any) -> list[float]:
     """Elevation, rotation, size, intensity, altitude, air, dust and ozone, as Blender holds
     them (the native node applies Cycles' clamps and wraps)."""
@@ -89,6 +140,10 @@ def translate_sky(c: NodeCompiler, node: Any) -> dict[str, int]:
     sky_type = str(node.sky_type)
     if sky_type == "PREETHAM":
         model, data = PREETHAM, preetham_data(node.sun_direction, node.turbidity)
+        disc = 0
+    elif sky_type == "HOSEK_WILKIE":
+        model = HOSEK_WILKIE
+        data = hosek_wilkie_data(node.sun_direction, node.turbidity, node.ground_albedo)
         disc = 0
     elif sky_type in ("NISHITA", "SINGLE_SCATTERING"):
         model = NISHITA if sky_type == "NISHITA" else SINGLE_SCATTERING
