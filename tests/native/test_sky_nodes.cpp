@@ -164,6 +164,21 @@ TEST(SkyNodes, SingleScatteringMatchesCycles50) {
     }
 }
 
+TEST(SkyNodes, MultipleScatteringMatchesCycles50) {
+    // Blender 5.0's MULTIPLE_SCATTERING (its default), the same settings: Cycles 5.0's pixels of
+    // the sky, below the horizon and the disc. Measured worst difference over 2048 pixels of three
+    // settings: 6.3e-6.
+    SkyProgram p;
+    ASSERT_EQ(p.add(4, 1, nishita(0.5235988f, -0.6981317f, 0.6981317f, 0.7f, 1000.0f, 1, 1, 1)), STRATUM_OK);
+    const double cases[][6] = {{-0.688929379, -0.41288352, 0.595737696, 1.17866731, 2.48518729, 5.14511442},
+                               {0.913331866, -0.228824258, -0.336844683, 0.53450048, 0.93976295, 1.74664295},
+                               {-0.539353549, 0.595142245, 0.595737696, 330.998413, 273.566345, 204.485947}};
+    for (const auto& c : cases) {
+        const auto got = p.at(c[0], c[1], c[2]);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
+    }
+}
+
 TEST(SkyNodes, NishitaIsMirroredAboutTheSunAndFadesBelowTheHorizon) {
     const float rotation = 0.7f;
     SkyProgram p;
@@ -223,6 +238,7 @@ TEST(SkyNodes, SunDiscLimbDarkeningAndSolidAngle) {
 
 TEST(SkyNodes, ChecksRejectBadModesAndData) {
     SkyProgram p;
+    EXPECT_NE(p.add(5, 0, std::vector<float>(32, 0.0f)), STRATUM_OK);
     EXPECT_NE(p.add(4, 0, std::vector<float>(32, 0.0f)), STRATUM_OK);
     EXPECT_NE(p.add(3, 0, std::vector<float>(32, 0.0f)), STRATUM_OK);
     EXPECT_NE(p.add(0, 2, std::vector<float>(32, 0.0f)), STRATUM_OK);

@@ -8,7 +8,7 @@
 | SINGLE_SCATTERING (5.x)         | 3            | the same 8 (aerosol density as dust)         |
 | HOSEK_WILKIE (3.x, 4.x, 5.x)    | 1            | 32 values cooked here from the published     |
 |                                 |              | dataset (hosek_wilkie_data.py), as Cycles    |
-| MULTIPLE_SCATTERING (5.x)       | -            | not supported yet (warned)                   |
+| MULTIPLE_SCATTERING (5.x)       | 4            | the same 8                                   |
 
 The Vector input unlinked reads Cycles' default, the Generated coordinate (for the world, the
 ray's direction). A Texture Mapping other than the identity is warned about and ignored."""
@@ -23,7 +23,9 @@ from . import hosek_wilkie_data as hw_dataset
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
-PREETHAM, HOSEK_WILKIE, NISHITA, SINGLE_SCATTERING = 0, 1, 2, 3
+PREETHAM, HOSEK_WILKIE, NISHITA, SINGLE_SCATTERING, MULTIPLE_SCATTERING = 0, 1, 2, 3, 4
+SCATTERING_MODELS = {"NISHITA": NISHITA, "SINGLE_SCATTERING": SINGLE_SCATTERING,
+                     "MULTIPLE_SCATTERING": MULTIPLE_SCATTERING}
 
 
 def _perez(k: Sequence[float], theta: float, gamma: float) -> float:
@@ -145,8 +147,8 @@ def translate_sky(c: NodeCompiler, node: Any) -> dict[str, int]:
         model = HOSEK_WILKIE
         data = hosek_wilkie_data(node.sun_direction, node.turbidity, node.ground_albedo)
         disc = 0
-    elif sky_type in ("NISHITA", "SINGLE_SCATTERING"):
-        model = NISHITA if sky_type == "NISHITA" else SINGLE_SCATTERING
+    elif sky_type in SCATTERING_MODELS:
+        model = SCATTERING_MODELS[sky_type]
         data = nishita_data(node)
         disc = int(bool(node.sun_disc))
     else:

@@ -60,6 +60,12 @@ std::vector<float> nishita_sky_table(const NishitaParams& p);
 inline constexpr int kSingleScatteringHeight = 256;
 std::vector<float> single_scattering_table(const NishitaParams& p);
 
+// Blender 5.x's MULTIPLE_SCATTERING (sky_multiple_scattering.cpp): the same table layout as
+// single_scattering_table but every row computed (rows at elevation copysign(l^2, l) pi/2,
+// l = 2 (y + 0.5)/height - 1; columns at azimuth 2 pi (x + 0.5)/width), and the sun's pixels.
+std::vector<float> multiple_scattering_table(const NishitaParams& p);
+void multiple_scattering_sun_pixels(const NishitaParams& p, Vec3& bottom, Vec3& top);
+
 // Blender 5.x: the angle below the horizon at which a viewer at `altitude` metres sees the Earth's
 // limb, pi/2 - asin(R / (R + altitude)) with R = 6371 km.
 float earth_intersection_angle(float altitude);

@@ -6,6 +6,7 @@
 // |      | Blender 3.x/4.x, 3 single scattering Blender 5.x), |            |            |
 // |      | 1 sun disc (2 and 3: 0 off, 1 on), 2 XYZ matrix   |            |            |
 // |      | of models 0 and 1 (0 Blender 3.x, 1 4.x and later) |            |            |
+// |      | (model 4: multiple scattering, Blender 5.x)        |            |            |
 //
 // Data: Preetham and Hosek-Wilkie, the 32 coefficients the host computes as Cycles'
 // SkyTextureNode::compile does (sun phi, sun theta, 3 zenith radiances, 3 x 9 configurations;
@@ -17,7 +18,8 @@
 // the ground below the horizon faded from the horizon's colour to black at z = -0.4. Model 3,
 // Blender 5.x's SINGLE_SCATTERING, the same atmosphere in a 512 x 256 table over the whole
 // sphere, the sun's angles wrapped as Cycles 5.0 wraps them, the disc added to the sky above the
-// Earth's limb (kernel/svm/sky.h at v5.0.0).
+// Earth's limb (kernel/svm/sky.h at v5.0.0). Model 4, 5.x's MULTIPLE_SCATTERING, looked up the
+// same way (shading/sky_multiple_scattering.cpp builds its table).
 #include <algorithm>
 #include <cmath>
 #include <string>
@@ -29,7 +31,14 @@ namespace stratum {
 
 namespace {
 
-enum SkyModel : int32_t { Preetham, HosekWilkie, Nishita, SingleScattering, SkyModelCount };
+enum SkyModel : int32_t {
+    Preetham,
+    HosekWilkie,
+    Nishita,
+    SingleScattering,
+    MultipleScattering,
+    SkyModelCount
+};
 
 constexpr uint32_t kNishitaDataCount = 8;
 constexpr float kHalfPi = 1.57079632679489661923f;
@@ -44,7 +53,7 @@ std::string check_sky(const ShaderNode& n, const ShaderProgram& program) {
     if (e.empty()) e = check_mode(n, 1, "sun disc", 2);
     if (e.empty()) e = check_mode(n, 2, "xyz matrix", 2);
     if (!e.empty()) return e;
-    const bool scattering = n.modes[0] == Nishita || n.modes[0] == SingleScattering;
+    const bool scattering = n.modes[0] >= Nishita;
     const uint32_t want = scattering ? kNishitaDataCount : sky::kAnalyticDataCount;
     if (n.data_count != want)
         return "data_count is " + std::to_string(n.data_count) + "; the model takes " + std::to_string(want);
@@ -76,8 +85,9 @@ void wrap_sun(float& elevation, float& rotation) {
 }
 
 std::vector<float> prepare_sky(const ShaderNode& n, const std::vector<float>& data) {
-    if (n.modes[0] != Nishita && n.modes[0] != SingleScattering) return {};
-    const bool v5 = n.modes[0] == SingleScattering;
+    if (n.modes[0] < Nishita) return {};
+    const bool v5 = n.modes[0] >= SingleScattering;
+    const bool multiple = n.modes[0] == MultipleScattering;
     const float* d = data.data() + n.data_offset;
     float elevation = d[0], rotation = d[1];
     if (v5) wrap_sun(elevation, rotation);
@@ -89,9 +99,13 @@ std::vector<float> prepare_sky(const ShaderNode& n, const std::vector<float>& da
     p.dust_density = d[6];
     p.ozone_density = d[7];
     Vec3 bottom, top;
-    sky::nishita_sun_pixels(p, bottom, top);
+    if (multiple)
+        sky::multiple_scattering_sun_pixels(p, bottom, top);
+    else
+        sky::nishita_sun_pixels(p, bottom, top);
     const float size = std::max(d[2], 0.0005f);
-    if (v5 && !(elevation + size / 2.0f > 0.0f)) bottom = top = Vec3();  // 5.x: a set sun is black
+    // 5.x single scattering: a set sun is black (multiple scattering keeps the pixels).
+    if (n.modes[0] == SingleScattering && !(elevation + size / 2.0f > 0.0f)) bottom = top = Vec3();
     rotation = std::fmod(rotation, kTwoPi);
     if (rotation < 0.0f) rotation += kTwoPi;
     std::vector<float> table = {bottom.x,
@@ -105,7 +119,9 @@ std::vector<float> prepare_sky(const ShaderNode& n, const std::vector<float>& da
                                 n.modes[1] ? size : -1.0f,
                                 d[3],
                                 v5 ? -sky::earth_intersection_angle(d[4]) : 0.0f};
-    const std::vector<float> texels = v5 ? sky::single_scattering_table(p) : sky::nishita_sky_table(p);
+    const std::vector<float> texels =
+        multiple ? sky::multiple_scattering_table(p)
+                 : (v5 ? sky::single_scattering_table(p) : sky::nishita_sky_table(p));
     table.insert(table.end(), texels.begin(), texels.end());
     return table;
 }
