@@ -12,8 +12,8 @@
 #include <vector>
 
 #include "api/shader_program_validation.h"
+#include "render_scene/world_baking.h"
 #include "scene_handle.h"
-#include "shading/world_baking.h"
 
 namespace {
 
