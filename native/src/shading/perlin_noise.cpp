@@ -3,10 +3,12 @@
 // same order with a + t (b - a) or fused multiply-adds, a few ulp apart).
 #include "shading/perlin_noise.h"
 
+#include <bit>
 #include <cmath>
 #include <limits>
 
 #include "shading/cycles_hash.h"
+#include "shading/cycles_hash_lanes.h"
 
 namespace stratum::perlin {
 
@@ -14,7 +16,6 @@ namespace {
 
 using cycles_hash::hash_uint;
 using cycles_hash::hash_uint2;
-using cycles_hash::hash_uint3;
 using cycles_hash::hash_uint4;
 
 float fade(float t) { return t * t * t * (t * (t * 6.0f - 15.0f) + 10.0f); }
@@ -33,18 +34,26 @@ float grad2(uint32_t hash, float x, float y) {
     const float v = 2.0f * (h < 4 ? y : x);
     return flip(u, h & 1u) + flip(v, h & 2u);
 }
-float grad3(uint32_t hash, float x, float y, float z) {
-    const uint32_t h = hash & 15u;
-    const float u = h < 8 ? x : y;
-    const float v = h < 4 ? y : ((h == 12 || h == 14) ? x : z);
-    return flip(u, h & 1u) + flip(v, h & 2u);
-}
 float grad4(uint32_t hash, float x, float y, float z, float w) {
     const uint32_t h = hash & 31u;
     const float u = h < 24 ? x : y;
     const float v = h < 16 ? y : z;
     const float s = h < 8 ? z : w;
     return flip(u, h & 1u) + flip(v, h & 2u) + flip(s, h & 4u);
+}
+
+// The 3D gradient with selects and sign flips on the bits, which the compiler runs four lanes
+// at a time (a flip of the sign bit is the negation).
+float grad3(uint32_t hash, float x, float y, float z) {
+    const uint32_t h = hash & 15u;
+    const uint32_t bx = std::bit_cast<uint32_t>(x), by = std::bit_cast<uint32_t>(y);
+    const uint32_t bz = std::bit_cast<uint32_t>(z);
+    // u = h < 8 ? x : y; v = h < 4 ? y : (h is 12 or 14 ? x : z), as all-ones or all-zero masks.
+    const uint32_t below8 = 0u - static_cast<uint32_t>(h < 8u), below4 = 0u - static_cast<uint32_t>(h < 4u);
+    const uint32_t is12or14 = 0u - static_cast<uint32_t>((h | 2u) == 14u);
+    const uint32_t u = (bx & below8) | (by & ~below8);
+    const uint32_t v = (by & below4) | (~below4 & ((bx & is12or14) | (bz & ~is12or14)));
+    return std::bit_cast<float>(u ^ ((h & 1u) << 31)) + std::bit_cast<float>(v ^ ((h & 2u) << 30));
 }
 
 // Corners v0 (0,0), v1 (1,0), v2 (0,1), v3 (1,1); x then y.
@@ -100,12 +109,19 @@ float perlin_2d(float x, float y) {
 float perlin_3d(float x, float y, float z) {
     uint32_t X, Y, Z;
     const float fx = cell(x, X), fy = cell(y, Y), fz = cell(z, Z);
-    float v[8];
+    // The corners' hashes first, all eight at once (cycles_hash_lanes.h), then their gradients.
+    uint32_t kx[8], ky[8], kz[8], hash[8];
     for (uint32_t corner = 0; corner < 8; ++corner) {
-        const uint32_t dx = corner & 1u, dy = (corner >> 1) & 1u, dz = (corner >> 2) & 1u;
-        v[corner] = grad3(hash_uint3(X + dx, Y + dy, Z + dz), fx - static_cast<float>(dx),
-                          fy - static_cast<float>(dy), fz - static_cast<float>(dz));
+        kx[corner] = X + (corner & 1u);
+        ky[corner] = Y + ((corner >> 1) & 1u);
+        kz[corner] = Z + ((corner >> 2) & 1u);
     }
+    cycles_hash::hash_uint3_lanes<8>(kx, ky, kz, hash);
+    constexpr float kLow[8] = {0, 1, 0, 1, 0, 1, 0, 1}, kMid[8] = {0, 0, 1, 1, 0, 0, 1, 1};
+    constexpr float kHigh[8] = {0, 0, 0, 0, 1, 1, 1, 1};
+    float v[8];
+    for (int corner = 0; corner < 8; ++corner)
+        v[corner] = grad3(hash[corner], fx - kLow[corner], fy - kMid[corner], fz - kHigh[corner]);
     return trilinear(v, fade(fx), fade(fy), fade(fz));
 }
 

@@ -7,6 +7,7 @@
 
 #include <cfloat>
 
+#include "shading/cycles_hash_lanes.h"
 #include "shading/voronoi_math.h"
 
 namespace stratum::voronoi {
@@ -32,6 +33,49 @@ Vec<N> feature_point(const Cell<N>& cell, const std::array<int32_t, N>& o, float
     return to_float<N>(o) + cell_jitter<N>(cell, o) * randomness;
 }
 
+// The feature points of the 3^N cells around `cell` (offsets in [-1, 1]^N), in for_each_offset's
+// order: each search over them reads this table instead of hashing a cell again. In 3D with
+// lookup3 (Blender 3.x-4.5) the 27 cells are hashed together (cycles_hash_lanes.h), to the same
+// bits as cell_jitter's.
+template <int N>
+inline constexpr int kNeighbours = N == 1   ? 3
+                                   : N == 2 ? 9
+                                   : N == 3 ? 27
+                                            : 81;
+
+template <int N>
+std::array<Vec<N>, kNeighbours<N>> neighbour_points(const Cell<N>& cell, float randomness) {
+    std::array<Vec<N>, kNeighbours<N>> points;
+    if constexpr (N == 3) {
+        if (!cell.integer_hash) {
+            constexpr int kCount = kNeighbours<3>;
+            uint32_t kx[kCount], ky[kCount], kz[kCount], hx[kCount], hy[kCount], hz[kCount];
+            int k = 0;
+            for_each_offset<3>(1, [&](const std::array<int32_t, 3>& o) {
+                kx[k] = cycles_hash::bits(cell.position[0] + static_cast<float>(o[0]));
+                ky[k] = cycles_hash::bits(cell.position[1] + static_cast<float>(o[1]));
+                kz[k] = cycles_hash::bits(cell.position[2] + static_cast<float>(o[2]));
+                ++k;
+            });
+            // hash_float3_to_float3: (hash(x, y, z), hash(x, y, z, 1), hash(x, y, z, 2)).
+            cycles_hash::hash_uint3_lanes<kCount>(kx, ky, kz, hx);
+            cycles_hash::hash_uint4_lanes<kCount>(kx, ky, kz, cycles_hash::bits(1.0f), hy);
+            cycles_hash::hash_uint4_lanes<kCount>(kx, ky, kz, cycles_hash::bits(2.0f), hz);
+            k = 0;
+            for_each_offset<3>(1, [&](const std::array<int32_t, 3>& o) {
+                const Vec<3> jitter{
+                    {cycles_hash::to_unit(hx[k]), cycles_hash::to_unit(hy[k]), cycles_hash::to_unit(hz[k])}};
+                points[k++] = to_float<3>(o) + jitter * randomness;
+            });
+            return points;
+        }
+    }
+    int k = 0;
+    for_each_offset<N>(
+        1, [&](const std::array<int32_t, N>& o) { points[k++] = feature_point<N>(cell, o, randomness); });
+    return points;
+}
+
 template <int N>
 Octave<N> f1(const Vec<N>& coord, const Params& p) {
     const Vec<N> cell_position = floor<N>(coord);
@@ -41,8 +85,10 @@ Octave<N> f1(const Vec<N>& coord, const Params& p) {
     float best = start_distance(p);
     std::array<int32_t, N> target{};
     Vec<N> target_point{};
+    const auto points = neighbour_points<N>(cell, p.randomness);
+    int k = 0;
     for_each_offset<N>(1, [&](const std::array<int32_t, N>& o) {
-        const Vec<N> point = feature_point<N>(cell, o, p.randomness);
+        const Vec<N>& point = points[k++];
         const float d =
             bound ? distance_bound<N>(point, local, p.metric) : distance<N>(point, local, p.metric);
         if (d < best) {
@@ -98,8 +144,10 @@ Octave<N> f2(const Vec<N>& coord, const Params& p) {
     float d1 = start_distance(p), d2 = d1;
     std::array<int32_t, N> offset1{}, offset2{};
     Vec<N> point1{}, point2{};
+    const auto points = neighbour_points<N>(cell, p.randomness);
+    int k = 0;
     for_each_offset<N>(1, [&](const std::array<int32_t, N>& o) {
-        const Vec<N> point = feature_point<N>(cell, o, p.randomness);
+        const Vec<N>& point = points[k++];
         const float d = distance<N>(point, local, p.metric);
         if (d < d1) {
             d2 = d1, offset2 = offset1, point2 = point1;
@@ -129,24 +177,25 @@ float distance_to_edge(const Vec<N>& coord, const Params& p) {
     } else {
         Vec<N> to_closest{};
         float best = start_distance(p);
-        for_each_offset<N>(1, [&](const std::array<int32_t, N>& o) {
-            const Vec<N> to_point = feature_point<N>(cell, o, p.randomness) - local;
+        const auto points = neighbour_points<N>(cell, p.randomness);
+        for (const Vec<N>& point : points) {
+            const Vec<N> to_point = point - local;
             const float d = dot<N>(to_point, to_point);
             if (d < best) {
                 best = d;
                 to_closest = to_point;
             }
-        });
+        }
         best = start_distance(p);
-        for_each_offset<N>(1, [&](const std::array<int32_t, N>& o) {
-            const Vec<N> to_point = feature_point<N>(cell, o, p.randomness) - local;
+        for (const Vec<N>& point : points) {
+            const Vec<N> to_point = point - local;
             const Vec<N> across = to_point - to_closest;
             if (dot<N>(across, across) > 0.0001f) {
                 // Distance from the point to the bisector of the two feature points.
                 const float d = dot<N>(divide<N>(to_closest + to_point, 2.0f), normalize<N>(across));
                 best = cmin(best, d);
             }
-        });
+        }
         return best;
     }
 }
