@@ -118,6 +118,7 @@ bench: build microbench
 	$(BLENDER_BG) --python scripts/bench_memory.py
 	$(BLENDER_BG) --python scripts/bench_progress.py
 	$(PY) scripts/bench_textures.py
+	$(BLENDER_BG) --python scripts/bench_shader_nodes.py
 	$(PY) scripts/bench_distributed.py
 	$(BLENDER_BG) --python scripts/bench_viewport.py
 	xvfb-run -a -s "-screen 0 1280x800x24" $(BLENDER) scenes/cornell_box.blend --factory-startup -noaudio --window-geometry 0 0 800 600 --python scripts/bench_viewport_ui.py -- out/bench_viewport_ui && test -s out/bench_viewport_ui.txt

@@ -1,7 +1,7 @@
 """Every figure of issue 15 in one table: target, measured, met or not, gathered from the JSON
 the benchmark sections wrote into out/bench/ (bench.py: render, export; bench_samplers.py;
-bench_quality.py; bench_adaptive.py; bench_memory.py; bench_distributed.py). The last step of
-`make bench`.
+bench_quality.py; bench_adaptive.py; bench_memory.py; bench_distributed.py; and issue 18's
+bench_shader_nodes.py). The last step of `make bench`.
 
     .venv/bin/python scripts/bench_summary.py [--results out/bench] [--out out/bench_summary.txt]
 
@@ -154,10 +154,29 @@ def memory_rows(s: Section | None) -> list[Row]:
     return rows
 
 
+def shader_node_rows(s: Section | None) -> list[Row]:
+    """Issue 18: a 20-node procedural material's cost per shading point <= 1.5x Cycles'
+    (bench_shader_nodes.py); both renderers' absolute costs (ns) alongside."""
+    s = s or {}
+    cost = s.get("cost_ns", {})
+    check = s.get("agreement") or {}
+    best = s.get("best", {})
+    return [Row("18 node cost per point Stratum/Cycles, 20 nodes", "<= 1.50x", s.get("ratio"),
+                limit=1.5),
+            Row("   node cost per point, Cycles", "", cost.get("cycles"), unit="ns"),
+            Row("   node cost per point, Stratum", "", cost.get("stratum"), unit="ns"),
+            Row("   T_C (constant material), Cycles", "", best.get("cycles", {}).get("C"), unit="s"),
+            Row("   T_C (constant material), Stratum", "", best.get("stratum", {}).get("C"),
+                unit="s"),
+            Row("   20-node material's channel means agree (2 %)", "",
+                None if "agree" not in check else float(check["agree"]), unit="yes/no")]
+
+
 BUILDERS: tuple[tuple[str, Callable[[Section | None], list[Row]]], ...] = (
     ("render", render_rows), ("samplers", sampler_rows), ("render", embree_rows),
     ("samplers", triangle_rows), ("quality", quality_rows), ("adaptive", adaptive_rows),
-    ("export", export_rows), ("distributed", distributed_rows), ("memory", memory_rows))
+    ("export", export_rows), ("distributed", distributed_rows), ("memory", memory_rows),
+    ("shader_nodes", shader_node_rows))
 
 SETTINGS = ("res", "samples", "rounds", "seeds", "reference_samples", "repeats", "threads",
             "blender")
@@ -177,7 +196,7 @@ def summary(sections: dict[str, Section]) -> str:
     names = dict.fromkeys(name for name, _ in BUILDERS)
     notes += [section_note(name, sections.get(name)) for name in names]
     notes += [("Rows without a target are reported for context; the digit is the target's "
-               "number in issue 15.")]
+               "number in issue 15, or the issue's (16, 18).")]
     return format_table(rows, "Issue 15: every figure of `make bench`", notes)
 
 

@@ -96,3 +96,16 @@ def test_summary_finds_the_best_sampler_and_judges_each_target() -> None:
     assert "export: not run (no export.json)" in text
     # Met: path tracing, best/Cycles, sobol/best (1.00), zsobol/best, peak RSS.
     assert "Targets: 5 met, 2 not met, " in text
+
+
+def test_summary_judges_the_node_cost_of_issue_18() -> None:
+    section = {"ratio": 1.6, "cost_ns": {"cycles": 1000.0, "stratum": 1600.0},
+               "best": {"cycles": {"P": 3.0, "C": 0.5}, "stratum": {"P": 4.0, "C": 0.6}},
+               "agreement": {"agree": True}}
+    text = bench_summary.summary({"shader_nodes": section})
+    lines = {line.strip().split("  ")[0]: line for line in text.splitlines()}
+    assert lines["18 node cost per point Stratum/Cycles, 20 nodes"].endswith("1.60x  NOT met")
+    assert lines["node cost per point, Stratum"].endswith("1.6e+03 ns")
+    assert lines["T_C (constant material), Cycles"].endswith("0.5 s")
+    assert lines["20-node material's channel means agree (2 %)"].endswith("yes")
+    assert "Targets: 0 met, 1 not met, " in text
