@@ -43,6 +43,14 @@ inline constexpr int kNeighbours = N == 1   ? 3
                                    : N == 3 ? 27
                                             : 81;
 
+// The offset of the k-th of those cells.
+template <int N>
+std::array<int32_t, N> neighbour_offset(int k) {
+    std::array<int32_t, N> o;
+    for (int i = 0; i < N; ++i, k /= 3) o[i] = k % 3 - 1;
+    return o;
+}
+
 template <int N>
 std::array<Vec<N>, kNeighbours<N>> neighbour_points(const Cell<N>& cell, float randomness) {
     std::array<Vec<N>, kNeighbours<N>> points;
@@ -50,23 +58,27 @@ std::array<Vec<N>, kNeighbours<N>> neighbour_points(const Cell<N>& cell, float r
         if (!cell.integer_hash) {
             constexpr int kCount = kNeighbours<3>;
             uint32_t kx[kCount], ky[kCount], kz[kCount], hx[kCount], hy[kCount], hz[kCount];
-            int k = 0;
-            for_each_offset<3>(1, [&](const std::array<int32_t, 3>& o) {
-                kx[k] = cycles_hash::bits(cell.position[0] + static_cast<float>(o[0]));
-                ky[k] = cycles_hash::bits(cell.position[1] + static_cast<float>(o[1]));
-                kz[k] = cycles_hash::bits(cell.position[2] + static_cast<float>(o[2]));
-                ++k;
-            });
+            // Plain loops over the offsets (x fastest): for_each_offset's array, written a lane at
+            // a time and read whole, stalls the store forwarding here.
+            float ox[kCount], oy[kCount], oz[kCount];
+            for (int k = 0; k < kCount; ++k) {
+                ox[k] = static_cast<float>(k % 3 - 1);
+                oy[k] = static_cast<float>(k / 3 % 3 - 1);
+                oz[k] = static_cast<float>(k / 9 - 1);
+                kx[k] = cycles_hash::bits(cell.position[0] + ox[k]);
+                ky[k] = cycles_hash::bits(cell.position[1] + oy[k]);
+                kz[k] = cycles_hash::bits(cell.position[2] + oz[k]);
+            }
             // hash_float3_to_float3: (hash(x, y, z), hash(x, y, z, 1), hash(x, y, z, 2)).
             cycles_hash::hash_uint3_lanes<kCount>(kx, ky, kz, hx);
             cycles_hash::hash_uint4_lanes<kCount>(kx, ky, kz, cycles_hash::bits(1.0f), hy);
             cycles_hash::hash_uint4_lanes<kCount>(kx, ky, kz, cycles_hash::bits(2.0f), hz);
-            k = 0;
-            for_each_offset<3>(1, [&](const std::array<int32_t, 3>& o) {
-                const Vec<3> jitter{
-                    {cycles_hash::to_unit(hx[k]), cycles_hash::to_unit(hy[k]), cycles_hash::to_unit(hz[k])}};
-                points[k++] = to_float<3>(o) + jitter * randomness;
-            });
+            // to_float(o) + jitter * randomness, as feature_point.
+            for (int k = 0; k < kCount; ++k) {
+                points[k][0] = ox[k] + cycles_hash::to_unit(hx[k]) * randomness;
+                points[k][1] = oy[k] + cycles_hash::to_unit(hy[k]) * randomness;
+                points[k][2] = oz[k] + cycles_hash::to_unit(hz[k]) * randomness;
+            }
             return points;
         }
     }
@@ -83,23 +95,21 @@ Octave<N> f1(const Vec<N>& coord, const Params& p) {
     const Cell<N> cell(cell_position, p.metric.generation);
     const bool bound = N >= 2 && p.metric.generation >= Blender45;
     float best = start_distance(p);
-    std::array<int32_t, N> target{};
-    Vec<N> target_point{};
+    // The nearest cell by its index in the table; none (all distances NaN): offset 0, point 0.
+    int target = -1;
     const auto points = neighbour_points<N>(cell, p.randomness);
-    int k = 0;
-    for_each_offset<N>(1, [&](const std::array<int32_t, N>& o) {
-        const Vec<N>& point = points[k++];
+    for (int k = 0; k < kNeighbours<N>; ++k) {
         const float d =
-            bound ? distance_bound<N>(point, local, p.metric) : distance<N>(point, local, p.metric);
+            bound ? distance_bound<N>(points[k], local, p.metric) : distance<N>(points[k], local, p.metric);
         if (d < best) {
-            target = o;
+            target = k;
             best = d;
-            target_point = point;
         }
-    });
+    }
+    const Vec<N> target_point = target < 0 ? Vec<N>{} : points[target];
     Octave<N> out;
     out.distance = bound ? distance<N>(target_point, local, p.metric) : best;
-    out.color = cell_color<N>(cell, target);
+    out.color = cell_color<N>(cell, target < 0 ? std::array<int32_t, N>{} : neighbour_offset<N>(target));
     out.position = target_point + cell_position;
     return out;
 }
