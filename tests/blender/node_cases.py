@@ -12,7 +12,7 @@ of the core, so a case tests its own node, not another family's):
 | gen/obj/uv | Texture Coordinate Generated / Object / UV (the plane's UVs are an affine map)   |
 | p<S>       | a point varying in all three axes: (S x + .13, S y - .29, S (x - y) / 2 + .41)   |
 | q4         | that point with S = 4, floored per axis (constant over 4 x 4 pixel cells)       |
-| f:lo:hi    | lo + (hi - lo) (.75 x + .25 y)        g:lo:hi  the same with x and y swapped     |
+| f:lo:hi    | lo + (hi - lo) (.7313 x + .2687 y)    g:lo:hi  the same with x and y swapped |
 | c:lo:hi    | colour (lo + d x, lo + d y, hi - d (x + y) / 2), d = hi - lo                      |
 | n          | unit normal (a, b, sqrt(1 - a^2 - b^2)), a = .6 (x - .5), b = .6 (y - .5)       |
 
@@ -132,8 +132,8 @@ class Graph:
             lo, hi = (float(v) for v in spec[2:].split(":"))
             a, b = (x, y) if spec[0] == "f" else (y, x)
             d = hi - lo
-            return self.math("MULTIPLY_ADD", b, 0.25 * d, self.math("MULTIPLY_ADD", a, 0.75 * d,
-                                                                    lo))
+            return self.math("MULTIPLY_ADD", b, 0.2687 * d,
+                             self.math("MULTIPLY_ADD", a, 0.7313 * d, lo))
         if spec.startswith("c:"):
             lo, hi = (float(v) for v in spec[2:].split(":"))
             d = hi - lo
@@ -292,6 +292,9 @@ VMATH_OPS = ("ADD", "SUBTRACT", "MULTIPLY", "DIVIDE", "MULTIPLY_ADD", "CROSS_PRO
 BLENDS = ("MIX", "DARKEN", "MULTIPLY", "BURN", "LIGHTEN", "SCREEN", "DODGE", "ADD", "OVERLAY",
           "SOFT_LIGHT", "LINEAR_LIGHT", "DIFFERENCE", "SUBTRACT", "DIVIDE", "HUE", "SATURATION",
           "COLOR", "VALUE")
+# Math ops with a pole or a log singularity at a first operand of 0 (+ a non-integer power of
+# a negative base): compared on positive first operands, and on negative ones separately.
+POSITIVE_ONLY = ("POWER", "LOGARITHM", "INVERSE_SQRT")
 DIMS = ("1D", "2D", "3D", "4D")
 FRACTALS = ("MULTIFRACTAL", "RIDGED_MULTIFRACTAL", "HYBRID_MULTIFRACTAL", "FBM", "HETERO_TERRAIN")
 METRICS = ("EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINKOWSKI")
@@ -455,10 +458,24 @@ def _describe() -> list[Case]:
              {"Color": "c:-0.2:1.2", "Bright": 0.1, "Contrast": 0.4}))
     # Converters.
     for op in (*MATH_OPS, "FLOORED_MODULO"):
-        lo, hi = (-1.2, 1.2) if op in ("ARCSINE", "ARCCOSINE") else (-2.0, 3.0)
+        # The second operand of a division-like op stays away from 0 (and a logarithm's base
+        # from 1; WRAP's range, max - min, from 0), a logarithm's argument from 0 and tangent's
+        # within +-pi/2: a pole inside a pixel would differ by the sample position alone.
+        # Non-positive arguments of POSITIVE_ONLY have their own cases.
+        a = {"ARCSINE": "f:-1.2:1.2", "ARCCOSINE": "f:-1.2:1.2", "TANGENT": "f:-1.4:1.4",
+             **dict.fromkeys(POSITIVE_ONLY, "f:0.2:3")}.get(op, "f:-2:3")
+        b = {"DIVIDE": "g:0.35:1.45", "MODULO": "g:0.35:1.45", "FLOORED_MODULO": "g:0.35:1.45",
+             "WRAP": "g:0.35:1.45", "SNAP": "g:0.35:1.45", "PINGPONG": "g:0.35:1.45",
+             "LOGARITHM": "g:1.3:3.1"}.get(op, "g:-1.5:2.5")
         add(Case(f"math-{op}", "ShaderNodeMath", {"operation": op},
-                 {"Value": f"f:{lo}:{hi}", "Value_001": "g:-1.5:2.5", "Value_002": 0.6},
+                 {"Value": a, "Value_001": b, "Value_002": -0.6 if op == "WRAP" else 0.6},
                  since=V41 if op == "FLOORED_MODULO" else None))
+    for op, b in (*((op, 2.0) for op in POSITIVE_ONLY), ("POWER", 3.0)):
+        add(Case(f"math-{op}-negative-{b}", "ShaderNodeMath", {"operation": op},
+                 {"Value": "f:-2:-0.2", "Value_001": b}))
+    for op in ("DIVIDE", "MODULO", "LOGARITHM"):  # Cycles' safe_* at an exact 0 operand
+        add(Case(f"math-{op}-by-zero", "ShaderNodeMath", {"operation": op},
+                 {"Value": "f:-2:3", "Value_001": 0.0}))
     add(Case("math-ADD-clamped", "ShaderNodeMath", {"operation": "ADD", "use_clamp": True},
              {"Value": "f:-2:3", "Value_001": "g:-1.5:2.5"}))
     for op in (*VMATH_OPS, "POWER", "SIGN"):

@@ -37,6 +37,15 @@ Tolerance (per pixel and channel; C = Cycles, S = Stratum):
   cell edges fall between pixel centres where they can (White Noise reads cell indices).
 * FLOOR = 1e-6 absolute: a tile whose Cycles values are all 0 has scale 0; a Stratum value of a
   few float ulps at 1 is not a model difference (8-bit display levels are 4e-3).
+* Edges: a discontinuity (a checker edge, a Voronoi cell border, a threshold of Math) passing
+  between the two renderers' samples, i.e. within w = 0.01 px of a pixel centre, is not covered
+  by the slope term. A discontinuity placed at random crosses ~16 pixels of a tile, each at risk
+  with probability <= w / 0.5 px = 2%, so a tile may have such a pixel now and then. It is
+  accepted when Stratum's value lies within Cycles' range over the pixel's 3 x 3 neighbourhood
+  (+- tolerance), for at most MAX_EDGE_PIXELS = 3 pixels per tile (1.2%): a discontinuity in the
+  wrong place fails every pixel along it. Inputs are chosen so that most discontinuities fall
+  between pixel centres (White Noise reads cell indices; tiles are four triangles fanned around
+  an inner vertex whose edges stay >= 0.097 px from every pixel centre).
 
 The export must give no warning for a supported case (warnings name the material, which is the
 case's name), and a warning for the unsupported ones (Case.warns). Empty output: a plane lit by
@@ -71,6 +80,10 @@ TILES = 8  # tiles per image side
 RES = T * TILES
 FILTER_WIDTH = 0.01
 FLOOR = 1e-6
+MAX_EDGE_PIXELS = 3  # per tile; see the module docstring
+# The fan's inner vertex (object space): chosen by search so that every pixel centre is at least
+# 0.097 px from the four triangle edges.
+FAN_CENTRE = (5.34 / T - 0.5, 0.0)
 CASES = cases(tuple(bpy.app.version))
 BY_NAME = {c.name: c for c in CASES}
 IMAGES = [CASES[i:i + TILES * TILES] for i in range(0, len(CASES), TILES * TILES)]
@@ -84,14 +97,17 @@ class TileResult:
 
 
 def _plane(name: str, col: int, row: int) -> bpy.types.Object:
-    """A 1 x 1 plane centred on tile (col, row); UVs an affine map other than Generated."""
+    """A 1 x 1 plane centred on tile (col, row): four triangles fanned around FAN_CENTRE, so no
+    triangle edge passes within 0.09 px of a pixel centre (a corner-to-corner diagonal would run
+    through 16 of them, where Parametric jumps); UVs an affine map other than Generated."""
     mesh = bpy.data.meshes.new(name)
     h = 0.5
-    mesh.from_pydata([(-h, -h, 0), (h, -h, 0), (h, h, 0), (-h, h, 0)], [], [(0, 1, 2, 3)])
+    verts = [(-h, -h, 0.0), (h, -h, 0.0), (h, h, 0.0), (-h, h, 0.0), (*FAN_CENTRE, 0.0)]
+    mesh.from_pydata(verts, [], [(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)])
     uv = mesh.uv_layers.new(name="UVMap")
-    for loop, (u, v) in zip(mesh.loops, ((0.2, 0.1), (0.2, 1.6), (-0.8, 1.6), (-0.8, 0.1)),
-                            strict=True):
-        uv.data[loop.index].uv = (u, v)
+    for loop in mesh.loops:
+        x, y, _ = verts[loop.vertex_index]
+        uv.data[loop.index].uv = (0.2 - (y + h), 0.1 + 1.5 * (x + h))
     mesh.update()
     ob = bpy.data.objects.new(name, mesh)
     ob.location = (col - TILES / 2 + 0.5, row - TILES / 2 + 0.5, 0.0)
@@ -190,6 +206,32 @@ def tolerance(c: np.ndarray, rel: float) -> np.ndarray:
             + FLOOR)
 
 
+def _pixel_problems(case: Case, c: np.ndarray, s: np.ndarray) -> list[str]:
+    """Why Stratum's tile s is not Cycles' tile c within the tolerance ([] if it is)."""
+    tol = tolerance(c, case.rel)
+    err = np.where(np.isfinite(s), np.abs(s - c), np.inf)
+    outside = err > tol
+    if not outside.any():
+        return []
+    # Edge pixels: outside, but within Cycles' range over the 3 x 3 neighbourhood (a
+    # discontinuity between the two renderers' sample positions).
+    pad = np.pad(c, ((1, 1), (1, 1), (0, 0)), mode="edge")
+    shifted = [pad[dy:dy + T, dx:dx + T] for dy in range(3) for dx in range(3)]
+    lo, hi = np.min(shifted, axis=0), np.max(shifted, axis=0)
+    in_range = (s >= lo - tol) & (s <= hi + tol)
+    edge = (outside.any(axis=-1)) & (~outside | in_range).all(axis=-1)
+    hard = outside & ~edge[..., None]
+    if not hard.any() and int(edge.sum()) <= MAX_EDGE_PIXELS:
+        return []
+    excess = np.where(hard, err / tol, 0.0) if hard.any() else err / tol
+    y, x, ch = np.unravel_index(int(np.argmax(excess)), excess.shape)
+    return [(f"{int(outside.sum())} of {outside.size} values outside the tolerance ("
+            f"{int(edge.sum())} edge pixels, at most {MAX_EDGE_PIXELS} allowed); worst pixel "
+            f"(x={x}, y={y}) {'RGB'[ch]}: cycles {c[y, x, ch]:.6g}, stratum {s[y, x, ch]:.6g}, "
+            f"tolerance {tol[y, x, ch]:.3g}; tile mean cycles {c.mean():.4g}, stratum "
+            f"{s.mean():.4g}")]
+
+
 def _verdict(case: Case, r: TileResult) -> str:
     """'' when the case passes, else why (node, mode, worst pixel)."""
     problems = []
@@ -198,18 +240,7 @@ def _verdict(case: Case, r: TileResult) -> str:
     if not case.warns and r.warnings:
         problems.append("export warnings: " + "; ".join(r.warnings))
     if case.compare:
-        c, s = r.cycles, r.stratum
-        tol = tolerance(c, case.rel)
-        err = np.where(np.isfinite(s), np.abs(s - c), np.inf)
-        excess = err / tol
-        if not (excess <= 1.0).all():
-            y, x, ch = np.unravel_index(int(np.argmax(excess)), excess.shape)
-            bad = int((excess > 1.0).sum())
-            problems.append(
-                f"{bad} of {excess.size} values outside the tolerance; worst pixel "
-                f"(x={x}, y={y}) {'RGB'[ch]}: cycles {c[y, x, ch]:.6g}, stratum "
-                f"{s[y, x, ch]:.6g}, tolerance {tol[y, x, ch]:.3g}; tile mean cycles "
-                f"{c.mean():.4g}, stratum {s.mean():.4g}")
+        problems += _pixel_problems(case, r.cycles, r.stratum)
     if not problems:
         return "ok"
     return f"{case.node or 'graph'} [{case.mode()}]: " + " | ".join(problems)
