@@ -15,7 +15,10 @@ Writes into the given folder (the images the scenes reference go to <folder>/tex
   shutter, object motion blur);
 * instancing.blend: 3200 instances of one mesh: vertex instancing (a 40 x 40 vertex grid
   instancing a child monkey) inside a collection that is excluded from the view layer and
-  placed twice by collection-instance empties.
+  placed twice by collection-instance empties;
+* procedural.blend: six spheres and a cube on a brick ground whose materials are procedural
+  (noise -> color ramp, voronoi cells, checker, a distorted wave, a bump from noise, two BSDFs
+  mixed by noise, roughness from a gradient), lit by an area lamp and a sun.
 
 Everything is made with bpy.data, bmesh and numpy (no UI operators, no geometry nodes, no
 particles): the files open in Blender 3.4 and 5.0. The render settings stored in the files are
@@ -580,6 +583,128 @@ def build_instancing(folder):
     save(folder, "instancing.blend")
 
 
+# ---- procedural.blend -----------------------------------------------------------------------------
+
+
+def _texture(nodes, kind, **inputs):
+    node = nodes.new(kind)
+    for key, value in inputs.items():
+        node.inputs[key].default_value = value
+    return node
+
+
+def _noise(nodes, scale, detail):
+    return _texture(nodes, "ShaderNodeTexNoise", Scale=scale, Detail=detail, Roughness=0.55)
+
+
+def procedural_materials():
+    """The procedural materials of procedural.blend, by object name: every texture feeds a
+    Principled BSDF input (or a Bump, or a Mix Shader's factor) through the nodes real files
+    use."""
+    mats = {}
+    # Noise -> Color Ramp -> Base Color.
+    mat, bsdf = principled("noise_ramp", (0.8, 0.8, 0.8), roughness=0.45)
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    noise = _noise(nodes, 4.0, 4.0)
+    ramp = nodes.new("ShaderNodeValToRGB")
+    ramp.color_ramp.elements[0].position, ramp.color_ramp.elements[0].color = (
+        0.35, (0.9, 0.45, 0.08, 1.0))
+    ramp.color_ramp.elements[1].position, ramp.color_ramp.elements[1].color = (
+        0.65, (0.08, 0.25, 0.7, 1.0))
+    links.new(noise.outputs["Fac"], ramp.inputs["Fac"])
+    links.new(ramp.outputs["Color"], bsdf.inputs["Base Color"])
+    mats["noise_ramp"] = mat
+    # Voronoi cells: each cell's random colour.
+    mat, bsdf = principled("voronoi_cells", (0.8, 0.8, 0.8), roughness=0.5)
+    voronoi = _texture(mat.node_tree.nodes, "ShaderNodeTexVoronoi", Scale=6.0)
+    mat.node_tree.links.new(voronoi.outputs["Color"], bsdf.inputs["Base Color"])
+    mats["voronoi_cells"] = mat
+    # Checker on the cube.
+    mat, bsdf = principled("checker", (0.8, 0.8, 0.8), roughness=0.5)
+    checker = _texture(mat.node_tree.nodes, "ShaderNodeTexChecker", Scale=4.0,
+                       Color1=(0.85, 0.85, 0.8, 1.0), Color2=(0.1, 0.35, 0.12, 1.0))
+    mat.node_tree.links.new(checker.outputs["Color"], bsdf.inputs["Base Color"])
+    mats["checker_cube"] = mat
+    # A wave with distortion, through a Mix (Color) of two colours.
+    mat, bsdf = principled("wave_distorted", (0.8, 0.8, 0.8), roughness=0.4)
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    wave = _texture(nodes, "ShaderNodeTexWave", Scale=3.0, Distortion=6.0, Detail=2.0)
+    mix = nodes.new("ShaderNodeMixRGB")
+    mix.inputs["Color1"].default_value = (0.75, 0.12, 0.1, 1.0)
+    mix.inputs["Color2"].default_value = (0.95, 0.85, 0.6, 1.0)
+    links.new(wave.outputs["Fac"], mix.inputs["Fac"])
+    links.new(mix.outputs["Color"], bsdf.inputs["Base Color"])
+    mats["wave_distorted"] = mat
+    # A bump from noise.
+    mat, bsdf = principled("bump_noise", (0.7, 0.7, 0.72), roughness=0.35)
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    noise = _noise(nodes, 8.0, 2.0)
+    bump = _texture(nodes, "ShaderNodeBump", Strength=0.6, Distance=0.1)
+    links.new(noise.outputs["Fac"], bump.inputs["Height"])
+    links.new(bump.outputs["Normal"], bsdf.inputs["Normal"])
+    mats["bump_noise"] = mat
+    # Two BSDFs mixed by a noise factor.
+    mat, nodes, links, out = node_material("mix_by_noise")
+    dif = nodes.new("ShaderNodeBsdfDiffuse")
+    dif.inputs["Color"].default_value = (0.8, 0.25, 0.1, 1.0)
+    gloss = glossy_node(nodes, (0.9, 0.9, 0.9), 0.3)
+    noise = _noise(nodes, 5.0, 2.0)
+    shader_mix = nodes.new("ShaderNodeMixShader")
+    links.new(noise.outputs["Fac"], shader_mix.inputs["Fac"])
+    links.new(dif.outputs["BSDF"], shader_mix.inputs[1])
+    links.new(gloss.outputs["BSDF"], shader_mix.inputs[2])
+    links.new(shader_mix.outputs["Shader"], out.inputs["Surface"])
+    mats["mix_by_noise"] = mat
+    # Roughness from a gradient (0.3 .. 0.8 across the object) on a metal.
+    mat, bsdf = principled("gradient_roughness", (0.95, 0.7, 0.4), 0.5, 1.0)
+    nodes, links = mat.node_tree.nodes, mat.node_tree.links
+    gradient = nodes.new("ShaderNodeTexGradient")
+    scale = nodes.new("ShaderNodeMath")
+    scale.operation = "MULTIPLY_ADD"
+    scale.inputs[1].default_value = 0.5
+    scale.inputs[2].default_value = 0.3
+    links.new(gradient.outputs["Fac"], scale.inputs[0])
+    links.new(scale.outputs["Value"], bsdf.inputs["Roughness"])
+    mats["gradient_roughness"] = mat
+    # The ground: bricks.
+    mat, bsdf = principled("brick_ground", (0.8, 0.8, 0.8), roughness=0.8)
+    brick = _texture(mat.node_tree.nodes, "ShaderNodeTexBrick", Scale=6.0,
+                     Color1=(0.55, 0.2, 0.12, 1.0), Color2=(0.4, 0.3, 0.25, 1.0),
+                     Mortar=(0.75, 0.75, 0.7, 1.0))
+    mat.node_tree.links.new(brick.outputs["Color"], bsdf.inputs["Base Color"])
+    mats["ground"] = mat
+    return mats
+
+
+def build_procedural(folder):
+    """procedural.blend: six spheres and a cube on a brick ground, each material procedural
+    (procedural_materials), lit by an area lamp and a sun; black world."""
+    scene = reset("procedural")
+    mats = procedural_materials()
+    spheres = ("noise_ramp", "voronoi_cells", "wave_distorted", "bump_noise", "mix_by_noise",
+               "gradient_roughness")
+    spots = ((-1.5, 1.4), (0.0, 1.4), (1.5, 1.4), (-1.5, 0.0), (1.5, 0.0), (0.0, -1.4))
+    for name, (x, y) in zip(spheres, spots):
+        mesh_object(name, sphere_mesh(name, 0.6), mats[name], (x, y, 0.6))
+    # UV maps on every mesh, as real files have them (the spheres' come from sphere_mesh).
+    cube = mesh_from_bmesh("checker_cube",
+                           lambda bm: bmesh.ops.create_cube(bm, size=1.0, calc_uvs=True),
+                           uvs=True)
+    mesh_object("checker_cube", cube, mats["checker_cube"], (0.0, 0.0, 0.5))
+    ground = mesh_from_bmesh("ground",
+                             lambda bm: bmesh.ops.create_grid(bm, x_segments=1, y_segments=1,
+                                                              size=6.0, calc_uvs=True),
+                             uvs=True)
+    mesh_object("ground", ground, mats["ground"], (0.0, 0.0, 0.0))
+    scene.camera = camera("camera", (0.0, -5.0, 4.6), (0.0, 0.15, 0.3), lens=40.0)
+    light("key", "AREA", (-2.5, -2.5, 4.0), 300.0, (1.0, 0.95, 0.9), target=(0.0, 0.0, 0.0),
+          shape="SQUARE", size=3.0)
+    sun = light("sun", "SUN", (0.0, 0.0, 5.0), 2.5, (1.0, 0.97, 0.9), angle=math.radians(5.0))
+    sun.rotation_euler = (math.radians(40.0), 0.0, math.radians(-35.0))
+    uniform_world("black", (0.0, 0.0, 0.0), 1.0)
+    save(folder, "procedural.blend")
+
+
 # ---- main ----------------------------------------------------------------------------------------
 
 
@@ -599,6 +724,7 @@ def main():
     build_world(folder, textures)
     build_camera(folder)
     build_instancing(folder)
+    build_procedural(folder)
 
 
 main()

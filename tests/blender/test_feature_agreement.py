@@ -5,7 +5,8 @@ tests/blender/run_in_blender.py -- tests/blender/test_feature_agreement.py`) and
 5.0 wheel (`.venv/bin/python -m pytest tests/blender/test_feature_agreement.py`).
 
 Cases (scenes/features/make_features.py describes the scenes): materials, lights, world, the
-three scenes of camera.blend (dof, ortho, motion) and instancing. Each is rendered at RES x RES
+three scenes of camera.blend (dof, ortho, motion), instancing and procedural (issue 18's
+procedural materials). Each is rendered at RES x RES
 by Cycles and by Stratum with the shared peer settings of agreement.py (CPU, same
 samples, MAX_BOUNCES for every bounce kind, Blackman-Harris 1.5 px, no denoising, adaptive
 sampling, clamping or glossy blur), seeds 1 and 2, SPP[case] samples per seed. Asserted:
@@ -87,6 +88,7 @@ CASES = {
     "camera_ortho": ("camera.blend", "ortho", 256),
     "camera_motion": ("camera.blend", "motion", 256),
     "instancing": ("instancing.blend", None, 256),
+    "procedural": ("procedural.blend", None, 1024),
 }
 
 
