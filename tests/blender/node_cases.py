@@ -5,19 +5,28 @@ A case is one node (bl_idname) in one mode (its enum/bool properties), its input
 constants or as *sources* (below), and the output that drives the tile's Emission: a float
 output drives Strength (Color white), a colour or vector output drives Color (Strength 1).
 Sources are built from Texture Coordinate, Separate/Combine XYZ and Math nodes only (the nodes
-of the core, so a case tests its own node, not another family's):
+of the core, so a case tests its own node, not another family's), all from the pixel-snapped
+Generated coordinates
 
-| source     | value over the tile (x, y = Generated X, Y in [0, 1])                             |
+    x, y = (floor(T X) + 0.5) / T, (floor(T Y) + 0.5) / T      (X, Y: Generated, T = 16)
+
+which are the coordinates of the pixel's centre whatever the sample's offset within the pixel:
+both renderers then evaluate the node at bit-identical inputs (every step is exact in float:
+T and 1/T are powers of two), so a case compares the node's values, not the sample positions.
+
+| source     | value over the tile                                                               |
 |------------|-----------------------------------------------------------------------------------|
-| gen/obj/uv | Texture Coordinate Generated / Object / UV (the plane's UVs are an affine map)   |
 | p<S>       | a point varying in all three axes: (S x + .13, S y - .29, S (x - y) / 2 + .41)   |
-| q4         | that point with S = 4, floored per axis (constant over 4 x 4 pixel cells)       |
-| f:lo:hi    | lo + (hi - lo) (.7313 x + .2687 y)    g:lo:hi  the same with x and y swapped |
+| o          | the object coordinates of the pixel centre: (x - .5, y - .5, 0)                   |
+| q4         | (floor(4 x), floor(4 y), .25): integer cells of 4 x 4 pixels                      |
+| f:lo:hi    | lo + (hi - lo) (.7313 x + .2687 y)    g:lo:hi  the same with x and y swapped      |
 | c:lo:hi    | colour (lo + d x, lo + d y, hi - d (x + y) / 2), d = hi - lo                      |
 | n          | unit normal (a, b, sqrt(1 - a^2 - b^2)), a = .6 (x - .5), b = .6 (y - .5)       |
 
-q4 exists for White Noise (a hash of the coordinates' bits): a coordinate that moves by the
-renderers' ±0.005 px of sample jitter would change the hash, so the noise reads cell indices.
+q4 is White Noise's input (a hash of the coordinates' bits): integers are the same bits even if
+one renderer fused a multiply-add that the other rounded twice. Cases of the nodes that read
+the shading point themselves (Texture Coordinate, Geometry, Object Info: RAW_NODES) are not
+snapped (Case.snapped is False) and compared with the sample-position term of the tolerance.
 """
 
 from __future__ import annotations
@@ -33,6 +42,8 @@ V35 = (3, 5, 0)
 V40 = (4, 0, 0)  # the legacy Separate/Combine RGB/HSV nodes are gone in 4.x/5.0 (tested: 5.0)
 
 Spec = float | tuple | str
+RAW_NODES = ("ShaderNodeTexCoord", "ShaderNodeNewGeometry", "ShaderNodeObjectInfo")
+T = 16  # pixels per tile side (test_node_agreement.T)
 
 
 @dataclass(frozen=True)
@@ -49,6 +60,11 @@ class Case:
     compare: bool = True  # compared with Cycles pixel by pixel
     setup: Callable[[Any], None] | None = None  # sets ramps, curves...
     graph: Callable[[Graph], Any] | None = None  # builds the whole graph; returns the output
+
+    @property
+    def snapped(self) -> bool:
+        """Whether the node reads only pixel-snapped sources (module docstring)."""
+        return self.node not in RAW_NODES
 
     def mode(self) -> str:
         return " ".join(f"{k}={v}" for k, v in self.props.items()) or "-"
@@ -91,10 +107,13 @@ class Graph:
         return socket(self._texco.outputs, out)
 
     def xy(self) -> tuple[Any, Any]:
+        """The pixel-snapped Generated X and Y (module docstring)."""
         if self._xy is None:
             sep = self.new("ShaderNodeSeparateXYZ")
             self.link(self.texco("Generated"), sep.inputs[0])
-            self._xy = (sep.outputs[0], sep.outputs[1])
+            self._xy = tuple(
+                self.math("MULTIPLY_ADD", self.math("FLOOR", self.math("MULTIPLY", a, float(T))),
+                          1.0 / T, 0.5 / T) for a in (sep.outputs[0], sep.outputs[1]))
         return self._xy
 
     def math(self, op: str, *args: Any) -> Any:
@@ -117,8 +136,8 @@ class Graph:
 
     def source(self, spec: str) -> Any:
         x, y = self.xy()
-        if spec in ("gen", "obj", "uv"):
-            return self.texco({"gen": "Generated", "obj": "Object", "uv": "UV"}[spec])
+        if spec == "o":
+            return self.combine(self.math("ADD", x, -0.5), self.math("ADD", y, -0.5), 0.0)
         if spec.startswith("p"):
             s = float(spec[1:])
             return self.combine(self.math("MULTIPLY_ADD", x, s, 0.13),
@@ -397,9 +416,9 @@ def _describe() -> list[Case]:
     for gtype in ("LINEAR", "QUADRATIC", "EASING", "DIAGONAL", "SPHERICAL", "QUADRATIC_SPHERE",
                   "RADIAL"):
         add(Case(f"gradient-{gtype}", "ShaderNodeTexGradient", {"gradient_type": gtype},
-                 {"Vector": "obj"}, out="Fac"))
+                 {"Vector": "o"}, out="Fac"))
     add(Case("gradient-color", "ShaderNodeTexGradient", {"gradient_type": "RADIAL"},
-             {"Vector": "obj"}, out="Color"))
+             {"Vector": "o"}, out="Color"))
     for depth in range(11):
         add(Case(f"magic-{depth}", "ShaderNodeTexMagic", {"turbulence_depth": depth},
                  {"Vector": "p1", "Scale": 2.0, "Distortion": 1.5}, out="Color"))
@@ -460,8 +479,9 @@ def _describe() -> list[Case]:
     for op in (*MATH_OPS, "FLOORED_MODULO"):
         # The second operand of a division-like op stays away from 0 (and a logarithm's base
         # from 1; WRAP's range, max - min, from 0), a logarithm's argument from 0 and tangent's
-        # within +-pi/2: a pole inside a pixel would differ by the sample position alone.
-        # Non-positive arguments of POSITIVE_ONLY have their own cases.
+        # within +-pi/2: near a pole a 1-ulp difference of the input (a multiply-add fused by
+        # one renderer and not the other) is amplified without bound. Non-positive arguments of
+        # POSITIVE_ONLY have their own cases.
         a = {"ARCSINE": "f:-1.2:1.2", "ARCCOSINE": "f:-1.2:1.2", "TANGENT": "f:-1.4:1.4",
              **dict.fromkeys(POSITIVE_ONLY, "f:0.2:3")}.get(op, "f:-2:3")
         b = {"DIVIDE": "g:0.35:1.45", "MODULO": "g:0.35:1.45", "FLOORED_MODULO": "g:0.35:1.45",
