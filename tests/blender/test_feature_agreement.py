@@ -88,7 +88,7 @@ CASES = {
     "camera_ortho": ("camera.blend", "ortho", 256),
     "camera_motion": ("camera.blend", "motion", 256),
     "instancing": ("instancing.blend", None, 256),
-    "procedural": ("procedural.blend", None, 1024),
+    "procedural": ("procedural.blend", None, 512),
 }
 
 
