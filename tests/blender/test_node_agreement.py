@@ -185,7 +185,8 @@ def results(library) -> dict[str, TileResult]:
             sl = (slice(row * T, (row + 1) * T), slice(col * T, (col + 1) * T))
             mine = [w for w in warnings if f"Material '{case.name}'" in w]
             out[case.name] = TileResult(cyc[sl], strat[sl], mine)
-            lines.append(f"image {k} tile ({col},{row}) {case.name}: {_verdict(case, out[case.name])}")
+            verdict = _verdict(case, out[case.name])
+            lines.append(f"image {k} tile ({col},{row}) {case.name}: {verdict}")
     NODE_OUT.mkdir(parents=True, exist_ok=True)
     (NODE_OUT / "report.txt").write_text("\n".join(lines) + "\n")
     return out
@@ -218,7 +219,7 @@ def _pixel_problems(case: Case, c: np.ndarray, s: np.ndarray) -> list[str]:
 
 
 def _verdict(case: Case, r: TileResult) -> str:
-    """'' when the case passes, else why (node, mode, worst pixel)."""
+    """'ok' when the case passes, else why (node, mode, worst pixel)."""
     problems = []
     if case.warns and not r.warnings:
         problems.append("no warning for an unsupported mode")
