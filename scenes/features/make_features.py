@@ -583,7 +583,7 @@ def build_instancing(folder):
     save(folder, "instancing.blend")
 
 
-# ---- procedural.blend -----------------------------------------------------------------------------
+# ---- procedural.blend ----------------------------------------------------------------------------
 
 
 def _texture(nodes, kind, **inputs):
