@@ -517,6 +517,13 @@ def _describe() -> list[Case]:
                           ("To_Max_FLOAT3" if v else "To Max"): (2.0, 1.0, 3.0) if v else 2.0,
                           ("Steps_FLOAT3" if v else "Steps"): (4.0, 3.0, 5.0) if v else 4.0},
                          out=out))
+    for rtype in ("AXIS_ANGLE", "X_AXIS", "Y_AXIS", "Z_AXIS", "EULER_XYZ"):
+        for invert in (False, True) if rtype in ("AXIS_ANGLE", "EULER_XYZ") else (False,):
+            add(Case(f"vectorrotate-{rtype}-inv{int(invert)}", "ShaderNodeVectorRotate",
+                     {"rotation_type": rtype, "invert": invert},
+                     {"Vector": "p1", "Center": (0.2, -0.1, 0.3), "Axis": (0.3, 0.5, 0.8),
+                      "Angle": "f:-2:3", "Rotation": (0.4, -0.7, 1.1)}))
+    add(Case("rgbtobw", "ShaderNodeRGBToBW", {}, {"Color": "c:-0.2:1.2"}))
     for ctype in ("MINMAX", "RANGE"):
         add(Case(f"clamp-{ctype}", "ShaderNodeClamp", {"clamp_type": ctype},
                  {"Value": "f:-1:2", "Min": 0.8, "Max": 0.2}, out="Result"))
