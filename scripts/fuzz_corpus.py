@@ -19,6 +19,7 @@ from fuzz_encoding import OPS, axis_scale, matrix, rotate, scale, translate, uni
 from fuzz_ops import (
     background,
     bind,
+    bind_program,
     camera,
     closure_material,
     environment,
@@ -35,6 +36,7 @@ from fuzz_ops import (
     raw_mesh,
     render,
     save_load,
+    shader_program,
     special_path_texture,
     throughput,
     vertex_normals,
@@ -207,6 +209,17 @@ def seeds() -> dict[str, bytes]:
         + bytes([OPS["sampling"], 3, 0, 10, 0])
         + bytes([OPS["models"], 0, 16 + 3])
         + bytes([OPS["models"], 2, 16 + 1])
+    )
+    # A program driving the cube's base colour: sin(generated x * 6) in all three channels,
+    # evaluated on drawn inputs, and the same program as the world.
+    s["shader-program"] = (
+        box_scene()
+        + shader_program([(0, [2, 0], [15, 84], [86]), (0, [4, 0], [86, 86], [87]),
+                          (35, [2], [87], [88])], 12, registers={84: 6.0}, inputs={15: 0.25})
+        + bind_program(0, 0, 0, 88, background=(0, 88, 8, 4))
+        + render()
+        + save_load(1)
+        + render()
     )
     return s
 

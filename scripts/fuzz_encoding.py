@@ -72,6 +72,8 @@ OPS = {
 }
 OPS["instances"] = 254  # operations added later take the top byte values (native/fuzz/program.cpp)
 OPS["vertex_normals"] = 253
+OPS["shader_program"] = 252
+OPS["bind_program"] = 251
 
 
 def special(name: str) -> bytes:

@@ -177,6 +177,43 @@ def bind(material_id: int, param: int, texture_id: int, channel: int = -1, scale
     )
 
 
+SHADER_INPUTS = 80  # STRATUM_SHADER_INPUT_REGISTERS
+
+
+def shader_program(nodes: list[tuple[int, list[int], list[int], list[int]]], extra: int,
+                   registers: dict[int, float] | None = None,
+                   inputs: dict[int, float] | None = None) -> bytes:
+    """op_add_shader_program (native/fuzz/program_ops.cpp): SHADER_INPUTS + extra registers
+    (every 7th from SHADER_INPUTS drawn: `registers` gives them, else 0), no data, nodes as
+    (type, modes, input registers, output registers), then the evaluation's inputs (`inputs`,
+    else 0)."""
+    count = SHADER_INPUTS + extra
+    out = bytes([OPS["shader_program"], len(nodes), extra])
+    for i in range(SHADER_INPUTS, count):
+        if i % 7 == 0:
+            out += signed((registers or {}).get(i, 0.0))
+    out += bytes([0])  # no data
+    for type_, modes, ins, outs in nodes:
+        out += bytes([type_]) + bytes(m + 1 for m in (modes + [0] * 6)[:6])
+        out += bytes(r % (count + 1) for r in (ins + [0] * 12)[:12])
+        out += bytes((r - SHADER_INPUTS) % (extra + 1) for r in (outs + [SHADER_INPUTS] * 6)[:6])
+        out += bytes([0, 0])  # data offset 0, count 0
+    for i in range(SHADER_INPUTS):
+        out += signed((inputs or {}).get(i, 0.0))
+    return out
+
+
+def bind_program(material_id: int, param: int, program_id: int, register: int,
+                 background: tuple[int, int, int, int] | None = None) -> bytes:
+    """op_bind_program: a binding, then optionally the world's program (program, register,
+    width, height)."""
+    out = bytes([OPS["bind_program"], material_id, 0, param, program_id, register % 129])
+    if background is None:
+        return out + bytes([0])
+    program, reg, width, height = background
+    return out + bytes([1, program, reg % 129, width, height])
+
+
 INT_SETTINGS = ["width", "height", "samples", "max_bounces", "seed", "threads", "crop_x", "crop_y"]
 INT_SETTINGS += ["crop_width", "crop_height", "film_transparent", "rr_min_depth"]
 FLOAT_SETTINGS = ["filter_width", "ao_distance", "control_variate"]

@@ -65,6 +65,11 @@ class RecordingScene:
         self.textures: list[Any] = []
         self.bindings: list[Any] = []
         self.instance_descs: dict[int, Any] = {}
+        self.programs: list[Any] = []
+        self.program_bindings: list[Any] = []
+        self.background_program: Any = None
+        self.object_info: Any = None
+        self.texture_spaces: dict[int, Any] = {}
 
     def add_material(self, material: Any) -> int:
         self.materials.append(material)
@@ -133,6 +138,29 @@ class RecordingScene:
         self.instance_descs[len(self.instances)] = instance
         self.instances.append((instance.mesh_id,
                                np.array(instance.transform, dtype=np.float32).reshape(4, 4)))
+
+    # Issue-18 entry points: node programs, their bindings, the world's program, Object Info
+    # and texture spaces.
+    def add_shader_program(self, program: Any) -> int:
+        self.programs.append(program)
+        return len(self.programs) - 1
+
+    def set_shader_program(self, program_id: int, program: Any) -> None:
+        self.programs[program_id] = program
+
+    def bind_program(self, binding: Any) -> None:
+        self.program_bindings.append(binding)
+
+    def set_background_program(self, program_id: int, register: int, width: int = 1024,
+                               height: int = 512) -> None:
+        self.background_program = (program_id, register, width, height)
+
+    def set_instance_object_info(self, first: int, random: Any, color: Any = None) -> None:
+        self.object_info = (first, None if random is None else np.array(random),
+                            None if color is None else np.array(color))
+
+    def set_mesh_texture_space(self, mesh_id: int, location: Any, size: Any) -> None:
+        self.texture_spaces[mesh_id] = (tuple(location), tuple(size))
 
 
 CUBE_VERTS = [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),

@@ -224,10 +224,11 @@ def test_unsupported_node_one_warning_naming_material_and_node(scene_builder: An
                                                                recording_scene: Any) -> None:
     b = scene_builder()
     b.camera()
+    # The Attribute node reads mesh attributes, which Stratum's meshes do not carry yet.
     mat, nt, surface = _material("Noisy")
     bsdf = nt.nodes.new("ShaderNodeBsdfPrincipled")
     bsdf.inputs["Roughness"].default_value = 0.3
-    noise = nt.nodes.new("ShaderNodeTexNoise")
+    noise = nt.nodes.new("ShaderNodeAttribute")
     nt.links.new(noise.outputs["Fac"], bsdf.inputs["Roughness"])
     nt.links.new(noise.outputs["Color"], bsdf.inputs["Base Color"])
     nt.links.new(bsdf.outputs[0], surface)

@@ -89,6 +89,7 @@ CASES = {
     "camera_motion": ("camera.blend", "motion", 256),
     "instancing": ("instancing.blend", None, 256),
     "procedural": ("procedural.blend", None, 512),
+    "sky": ("sky.blend", None, 512),
 }
 
 

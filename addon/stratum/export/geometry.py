@@ -48,8 +48,10 @@ def add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     uv_map = next((materials.uv_maps.get(int(i), "") for i in slot_ids
                    if materials.uv_maps.get(int(i))), "")
     textured = bool(materials.textured.intersection(int(i) for i in slot_ids))
+    programmed = bool(materials.programmed.intersection(int(i) for i in slot_ids))
     normal_mapped = bool(materials.normal_mapped.intersection(int(i) for i in slot_ids))
-    arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids), read_uvs=textured,
+    arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids),
+                                read_uvs=textured or programmed,
                                 read_tangents=normal_mapped)
     if arrays is None or len(arrays.triangles) == 0:
         # A vertex/face instancer's own mesh often has no faces on purpose; a mesh without

@@ -192,6 +192,7 @@ class MaterialTable:
         self.textured: set[int] = set()  # material ids with texture bindings
         self.normal_mapped: set[int] = set()  # material ids with a Normal Map binding
         self.programs: dict[int, int] = {}  # material id -> its native program id
+        self.programmed: set[int] = set()  # material ids with a node program
 
     def _texture_warning(self, node: Any, message: str) -> None:
         self._summary.warn(f"Material '{self._material_name}': {message}")
@@ -290,9 +291,12 @@ class MaterialTable:
         self._summary.materials += 1
         self.sent[mat_id] = sent_material(converted)
         self.uv_maps[mat_id] = converted.uv_map
-        if any(c.bindings for c in closures) or converted.program is not None:
-            # A node program may read the UV input: the mesh then carries its UVs.
+        if any(c.bindings for c in closures):
             self.textured.add(mat_id)
+        if converted.program is not None:
+            # A node program may read the UV input: the mesh then carries its UVs (a mesh without
+            # any reads (0, 0), as Cycles reads a missing UV attribute, without a warning).
+            self.programmed.add(mat_id)
         if any(b.param == native.PARAM_NORMAL for c in closures for b in c.bindings):
             self.normal_mapped.add(mat_id)
         return mat_id

@@ -63,7 +63,13 @@ from .common import (
     instance_matrices,
     named_edit,
 )
-from .instances import InstanceFlags, Placement, original_pointer, renderable
+from .instances import (
+    InstanceFlags,
+    Placement,
+    object_random_id,
+    original_pointer,
+    renderable,
+)
 from .lights import convert_light
 from .materials import MaterialTable
 from .motion import instance_key, shutter_settings, shutter_transforms
@@ -235,7 +241,8 @@ class SceneSync:
             elif template is not None:
                 moved = motion.get(instance_key(instance, ob)) if motion else None
                 placed.append((index, *template, moved))
-                object_info[index] = (instance.random_id, tuple(ob.color))
+                random_id = instance.random_id if is_instance else object_random_id(ob.name)
+                object_info[index] = (random_id, tuple(ob.color))
         unsupported.report(summary)
         matrices = instance_matrices(depsgraph, index + 1)
         place(placed, renderable(placed, matrices, summary), matrices, scene, summary, exported)
