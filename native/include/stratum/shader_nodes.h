@@ -138,12 +138,12 @@ STRATUM_API StratumStatus stratum_scene_set_shader_program(StratumScene* scene, 
                                                            const StratumShaderProgramDesc* program);
 
 /* Closure parameters a program can drive, with the registers each reads. Values are limited as
- * Cycles limits the sockets: colours >= 0 (emission may be negative, as in Cycles), roughness, metallic, transmission and
- * coat roughness to [0,1], specular and coat >= 0, IOR >= 1e-5, coat tint to [0,1]; a NaN reads
- * 0. WEIGHT multiplies the closure's weight by an RGB value >= 0 (the host computes Mix Shader
- * factors, saturated as Cycles saturates them). NORMAL is a world-space normal (the output of a
- * Bump or Normal Map node; normalised, and one that is zero or not finite keeps the smooth
- * normal); it is the shading point's normal for all closures. */
+ * Cycles limits the sockets: colours >= 0 (emission may be negative, as in Cycles), roughness, metallic,
+ * transmission and coat roughness to [0,1], specular and coat >= 0, IOR >= 1e-5, coat tint to [0,1]; a NaN
+ * reads 0. WEIGHT multiplies the closure's weight by an RGB value >= 0 (the host computes Mix Shader factors,
+ * saturated as Cycles saturates them). NORMAL is a world-space normal (the output of a Bump or Normal Map
+ * node; normalised, and one that is zero or not finite keeps the smooth normal); it is the shading point's
+ * normal for all closures. */
 typedef enum StratumProgramParam {
     STRATUM_PROGRAM_BASE_COLOR = 0,      /* 3 */
     STRATUM_PROGRAM_ROUGHNESS = 1,       /* 1 */

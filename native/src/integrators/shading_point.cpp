@@ -22,8 +22,8 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
     // Node programs after the images: a program's Normal output replaces a normal map's, as a
     // node wired to the BSDF's Normal replaces what Cycles' default would be.
     if (scene.programs().any(hit.material_id)) {
-        scene.programs().apply(hit, scene.program_inputs(hit, wo_world, sp.backfacing), sp.closures.closures(),
-                               sp.closures.count(), &sp.ns);
+        scene.programs().apply(hit, scene.program_inputs(hit, wo_world, sp.backfacing),
+                               sp.closures.closures(), sp.closures.count(), &sp.ns);
         changed = true;
     }
     // Both normals turn to the viewer's side together (Cycles: SD_BACKFACING negates Ng and N).

@@ -46,7 +46,6 @@
 
 namespace stratum {
 
-
 // The bindings of a scene, grouped by material for the per-hit lookup; shares the scene's
 // texture pixels.
 class TextureBindings {

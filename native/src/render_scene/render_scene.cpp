@@ -361,7 +361,8 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->object_pass_index = g.pass_index;
     hit->material_pass_index = materials_[hit->material_id].pass_index;
     hit->t = h.t;
-    hit->object_position = mesh.positions[tri[0]] * b0 + mesh.positions[tri[1]] * h.b1 + mesh.positions[tri[2]] * h.b2;
+    hit->object_position =
+        mesh.positions[tri[0]] * b0 + mesh.positions[tri[1]] * h.b1 + mesh.positions[tri[2]] * h.b2;
     hit->barycentric = {h.b1, h.b2};
     hit->placement = h.instance;
     return true;
@@ -387,8 +388,16 @@ ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool b
         const auto fix = [](float v) { return v == 0.0f ? 1.0f : std::max(v, 1e-5f); };
         size = Vec3(fix(size.x), fix(size.y), fix(size.z));
     }
-    return {wo,      backfacing, g.object_to_world.translation(), loc, size, g.random, g.color, g.alpha,
-            world_to_camera_ ? &*world_to_camera_ : nullptr, &g.object_to_world};
+    return {wo,
+            backfacing,
+            g.object_to_world.translation(),
+            loc,
+            size,
+            g.random,
+            g.color,
+            g.alpha,
+            world_to_camera_ ? &*world_to_camera_ : nullptr,
+            &g.object_to_world};
 }
 
 }  // namespace stratum

@@ -161,7 +161,7 @@ private:
         bool holdout;
         uint32_t pass_index;
         std::vector<uint32_t> emissive_light;  // per triangle, kNoLight if not emissive; empty if none
-        float random;                           // Object Info: Random, colour and alpha
+        float random;                          // Object Info: Random, colour and alpha
         Rgb color;
         float alpha;  // per triangle, kNoLight if not emissive; empty if none
     };
@@ -184,7 +184,7 @@ private:
     bool has_transparent_closures_ = false;
     TextureBindings textures_;
     MaterialPrograms programs_;
-    std::optional<Transform> world_to_camera_;  // camera coordinates of the programs' inputs
+    std::optional<Transform> world_to_camera_;   // camera coordinates of the programs' inputs
     std::vector<InstanceData> instances_;        // per traced placement
     std::vector<InstancePlacement> placements_;  // per traced placement, as given to Embree
     std::vector<uint32_t> placement_of_;         // per scene instance: its placement, or kNoLight

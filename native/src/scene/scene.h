@@ -13,8 +13,8 @@
 #include "scene/camera.h"
 #include "scene/material.h"
 #include "scene/visibility.h"
-#include "texture/texture.h"
 #include "shading/program_binding.h"
+#include "texture/texture.h"
 #include "texture/texture_binding.h"
 
 namespace stratum {
