@@ -2,6 +2,8 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "api/abi_guard.h"
 #include "api/scene_handle.h"
@@ -80,6 +82,22 @@ static_assert(stratum::node_type::kNormal == STRATUM_NODE_NORMAL);
 static_assert(stratum::node_type::kCopy == STRATUM_NODE_COPY);
 static_assert(stratum::node_type::kTypeCount == STRATUM_NODE_TYPE_COUNT);
 
+namespace {
+
+// Program `program_id` of the scene and the scene's textures (shared, so that the program runs
+// outside the scene's lock); throws naming a program id the scene does not have.
+std::pair<std::shared_ptr<const stratum::ShaderProgram>, std::vector<std::shared_ptr<const stratum::Texture>>>
+program_and_textures(const StratumScene& scene, uint32_t program_id) {
+    return scene.live->read([&](const stratum::Scene& s) {
+        stratum::require(program_id < s.programs.size(), "program_id " + std::to_string(program_id) +
+                                                             " is not a program (the scene has " +
+                                                             std::to_string(s.programs.size()) + ")");
+        return std::make_pair(s.programs[program_id], s.textures);
+    });
+}
+
+}  // namespace
+
 extern "C" {
 
 StratumStatus stratum_scene_add_shader_program(StratumScene* scene, const StratumShaderProgramDesc* program,
@@ -144,16 +162,7 @@ StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t
                 "background width " + std::to_string(width) + " is outside [4, 16384]");
         require(height >= 2 && height <= 8192,
                 "background height " + std::to_string(height) + " is outside [2, 8192]");
-        std::shared_ptr<const stratum::ShaderProgram> program;
-        std::vector<std::shared_ptr<const stratum::Texture>> textures;
-        scene->live->read([&](const stratum::Scene& s) {
-            require(program_id < s.programs.size(), "program_id " + std::to_string(program_id) +
-                                                        " is not a program (the scene has " +
-                                                        std::to_string(s.programs.size()) + ")");
-            program = s.programs[program_id];
-            textures = s.textures;
-            return 0;
-        });
+        const auto [program, textures] = program_and_textures(*scene, program_id);
         require(static_cast<uint64_t>(register_index) + 3 <= program->registers.size(),
                 "background register " + std::to_string(register_index) + " (3 wide) is outside program " +
                     std::to_string(program_id) + "'s " + std::to_string(program->registers.size()) +
@@ -200,16 +209,7 @@ StratumStatus stratum_scene_evaluate_program(const StratumScene* scene, uint32_t
     using namespace stratum::abi;
     return guarded("stratum_scene_evaluate_program", [&] {
         require(scene && inputs && (out || count == 0), "scene, inputs or out is NULL");
-        std::shared_ptr<const stratum::ShaderProgram> program;
-        std::vector<std::shared_ptr<const stratum::Texture>> textures;
-        scene->live->read([&](const stratum::Scene& s) {
-            require(program_id < s.programs.size(), "program_id " + std::to_string(program_id) +
-                                                        " is not a program (the scene has " +
-                                                        std::to_string(s.programs.size()) + ")");
-            program = s.programs[program_id];
-            textures = s.textures;
-            return 0;
-        });
+        const auto [program, textures] = program_and_textures(*scene, program_id);
         require(static_cast<uint64_t>(first) + count <= program->registers.size(),
                 "registers [" + std::to_string(first) + ", +" + std::to_string(count) +
                     ") are outside program " + std::to_string(program_id) + "'s " +
