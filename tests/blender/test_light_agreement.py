@@ -58,9 +58,10 @@ HEIGHT = 2.0
 SPOT_SIZE = math.radians(60.0)
 SPOT_BLEND = 0.5
 SPOT_OUT = OUT.parent / (OUT.name + "-spot")
+SPOT_NODES_OUT = OUT.parent / (OUT.name + "-spot-nodes")
 
 
-def _spot_scene() -> bpy.types.Scene:
+def _spot_scene(with_nodes: bool = False) -> bpy.types.Scene:
     scene = new_scene(RES)
     world = bpy.data.worlds.new("black")
     world.use_nodes = True
@@ -75,11 +76,29 @@ def _spot_scene() -> bpy.types.Scene:
     spot.spot_size = SPOT_SIZE
     spot.spot_blend = SPOT_BLEND
     spot.shadow_soft_size = 0.0
+    if with_nodes:
+        _light_nodes(spot)
     light = bpy.data.objects.new("spot", spot)
     light.location = (0.0, 0.0, HEIGHT)  # no rotation: points down local -Z
     scene.collection.objects.link(light)
     add_camera(scene, 36.0 * 5.0 / 3.2, (0.0, 0.0, 5.0))  # 3.2 m wide at the plane, 5 m below
     return scene
+
+
+def _light_nodes(spot: bpy.types.Light) -> None:
+    """The light's node tree: Emission Color from a Blackbody at 3000 K, Strength 1.25 x 2 from a
+    Math node (issue 18: Cycles multiplies the lamp by them)."""
+    spot.use_nodes = True
+    nt = spot.node_tree
+    emission = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeEmission")
+    blackbody = nt.nodes.new("ShaderNodeBlackbody")
+    blackbody.inputs["Temperature"].default_value = 3000.0
+    times = nt.nodes.new("ShaderNodeMath")
+    times.operation = "MULTIPLY"
+    times.inputs[0].default_value = 1.25
+    times.inputs[1].default_value = 2.0
+    nt.links.new(blackbody.outputs[0], emission.inputs["Color"])
+    nt.links.new(times.outputs[0], emission.inputs["Strength"])
 
 
 # Direct light only (max_bounces 0), with the shared peer settings of the Cornell-box test.
@@ -115,3 +134,32 @@ def test_spot_light_agrees_with_cycles(cycles_spot: Renders, stratum_spot: Rende
     lit = cb >= LIT_FRACTION * cb.max()
     assert lit.sum() >= 3 * 12, f"too few lit blocks: {lit.sum() // 3}"
     assert_agreement(c, s, lit, "spot light", SPOT_OUT)
+
+
+@pytest.fixture(scope="module")
+def cycles_spot_nodes() -> Renders:
+    return render_two_seeds("cycles", _configure_cycles, SPOT_NODES_OUT,
+                            functools.partial(_spot_scene, True), res=RES, block=BLOCK)
+
+
+@pytest.fixture(scope="module")
+def stratum_spot_nodes(library) -> Renders:
+    reason = stratum_available()
+    if reason:
+        pytest.skip(reason)
+    return render_two_seeds("stratum", _configure_stratum, SPOT_NODES_OUT,
+                            functools.partial(_spot_scene, True), res=RES, block=BLOCK)
+
+
+def test_light_node_tree_scales_the_light_as_in_cycles(cycles_spot: Renders, cycles_spot_nodes: Renders,
+                                                       stratum_spot_nodes: Renders) -> None:
+    """A lamp's node tree (Blackbody colour, Strength from a Math node) multiplies what it emits in
+    Cycles; Stratum folds it into the lamp's colour. The node tree must change Cycles' image (so
+    the comparison is not of two unlit-by-nodes renders) and Stratum must agree with it."""
+    plain = cycles_spot.mean.mean(axis=(0, 1))
+    lit = cycles_spot_nodes.mean.mean(axis=(0, 1))
+    assert lit[0] > 1.5 * plain[0] and lit[2] < lit[0], f"nodes did not change Cycles: {plain} {lit}"
+    cb = cycles_spot_nodes.block_mean()
+    lit_blocks = cb >= LIT_FRACTION * cb.max()
+    assert_agreement(cycles_spot_nodes, stratum_spot_nodes, lit_blocks, "spot light with nodes",
+                     SPOT_NODES_OUT)

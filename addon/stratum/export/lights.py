@@ -27,6 +27,7 @@ from .. import native
 from ..fallbacks import FLT_MAX, NON_NEGATIVE, clamp_rgb
 from ..placement import first_non_finite
 from .common import ExportError, ExportSummary, matrix_to_array, rgb
+from .light_nodes import node_emission
 
 # Object > Visibility > Ray Visibility (Object properties in Blender 3.0+, lights too).
 _RAY_VISIBILITY = (
@@ -82,6 +83,10 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
     color, problem = clamp_rgb(rgb(light.color), NON_NEGATIVE)
     if problem is not None:
         summary.warn(f"Light '{ob.name}': 'color' {problem}")
+    factor = node_emission(ob, summary)
+    if factor is not None:
+        color = (min(color[0] * factor[0], FLT_MAX), min(color[1] * factor[1], FLT_MAX),
+                 min(color[2] * factor[2], FLT_MAX))
     transform = matrix_to_array(matrix_world)
     bad = first_non_finite(transform)
     if bad is not None:  # as for objects (an area light's would read as "no area" below)
