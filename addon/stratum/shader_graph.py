@@ -90,7 +90,8 @@ class Flattener(ClosureNodes):
     """Walks one material's surface tree. `warn(node, message)` is called at most once per
     node and subject (a socket, or the node itself; the caller prefixes the material name)."""
 
-    def __init__(self, version: tuple[int, int, int], warn: Callable[[Any, str], None]) -> None:
+    def __init__(self, version: tuple[int, int, int], warn: Callable[[Any, str], None],
+                 attribute_slot: Callable[[str], int | None] | None = None) -> None:
         self.version = version
         self._warn = warn
         self._warned: set[tuple[str, str]] = set()
@@ -98,7 +99,8 @@ class Flattener(ClosureNodes):
         self._bound: set[tuple[str, str]] = set()  # (node, socket) driven by a texture
         self.closures: list[Closure] = []
         # The material's node program: every linked input that is not a plain image binding.
-        self.nodes = NodeCompiler(version, lambda node, message: self.warn(node, message))
+        self.nodes = NodeCompiler(version, lambda node, message: self.warn(node, message),
+                                  attribute_slot=attribute_slot)
 
     # ---- warnings and socket reading ------------------------------------------------------
 
@@ -415,11 +417,12 @@ class FlatSurface:
 
 
 def flatten_surface(surface: Any, version: tuple[int, int, int],
-                    warn: Callable[[Any, str], None]) -> FlatSurface:
+                    warn: Callable[[Any, str], None],
+                    attribute_slot: Callable[[str], int | None] | None = None) -> FlatSurface:
     """The closures of the tree linked to `surface` (a Material Output's Surface input).
     Textures reading different UV maps: one warning, the first map wins (the native mesh
     carries one UV set)."""
-    flattener = Flattener(version, warn)
+    flattener = Flattener(version, warn, attribute_slot)
     flattener.walk(surface, (1.0, 1.0, 1.0))
     uv_maps = [b.image.uv_map for c in flattener.closures for b in c.bindings]
     uv_map = uv_maps[0] if uv_maps else ""

@@ -70,6 +70,7 @@ class RecordingScene:
         self.background_program: Any = None
         self.object_info: Any = None
         self.texture_spaces: dict[int, Any] = {}
+        self.mesh_attributes: dict[tuple[int, int], Any] = {}
 
     def add_material(self, material: Any) -> int:
         self.materials.append(material)
@@ -158,6 +159,9 @@ class RecordingScene:
     def set_instance_object_info(self, first: int, random: Any, color: Any = None) -> None:
         self.object_info = (first, None if random is None else np.array(random),
                             None if color is None else np.array(color))
+
+    def set_mesh_attribute(self, mesh_id: int, slot: int, vector: bool, rgba: Any) -> None:
+        self.mesh_attributes[(mesh_id, slot)] = (vector, np.array(rgba))
 
     def set_mesh_texture_space(self, mesh_id: int, location: Any, size: Any) -> None:
         self.texture_spaces[mesh_id] = (tuple(location), tuple(size))

@@ -52,7 +52,8 @@ def add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     normal_mapped = bool(materials.normal_mapped.intersection(int(i) for i in slot_ids))
     arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids),
                                 read_uvs=textured or programmed,
-                                read_tangents=normal_mapped)
+                                read_tangents=normal_mapped,
+                                attributes=dict(materials.attributes.names) if programmed else None)
     if arrays is None or len(arrays.triangles) == 0:
         # A vertex/face instancer's own mesh often has no faces on purpose; a mesh without
         # vertices is empty (e.g. geometry nodes turned it into points, reported as such).
@@ -73,6 +74,8 @@ def add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
         mesh_id = scene.add_mesh(arrays.positions, arrays.triangles, mat_ids,
                                  arrays.corner_normals, uvs, arrays.vertex_normals,
                                  arrays.corner_tangents)
+        for slot, (vector, rgba) in arrays.attributes.items():
+            scene.set_mesh_attribute(mesh_id, slot, vector, rgba)
         texture_space = manual_texture_space(ob)
         if texture_space is not None:
             scene.set_mesh_texture_space(mesh_id, *texture_space)

@@ -54,7 +54,23 @@ def _single(material: native.Material) -> list[Closure]:
     return [Closure((1.0, 1.0, 1.0), material)]
 
 
-def convert_material(material: Any | None) -> ConvertedMaterial:
+class AttributeSlots:
+    """The mesh-attribute slots of an export: each distinct attribute name the materials' nodes
+    read gets the next of native.ATTRIBUTE_SLOTS (in order of first use); meshes then carry the
+    attributes of every named slot."""
+
+    def __init__(self) -> None:
+        self.names: dict[str, int] = {}
+
+    def slot(self, name: str) -> int | None:
+        found = self.names.get(name)
+        if found is None and len(self.names) < native.ATTRIBUTE_SLOTS:
+            found = self.names[name] = len(self.names)
+        return found
+
+
+def convert_material(material: Any | None,
+                     attributes: AttributeSlots | None = None) -> ConvertedMaterial:
     """Closures of a Blender material (None: the default grey diffuse)."""
     if material is None:
         return ConvertedMaterial(_single(native.Material(model=native.closure_model("diffuse"),
@@ -90,7 +106,8 @@ def convert_material(material: Any | None) -> ConvertedMaterial:
     def warn(node: Any, message: str) -> None:
         warnings.append(f"Material '{material.name}': {message}")
 
-    flat = flatten_surface(surface, tuple(bpy.app.version), warn)
+    flat = flatten_surface(surface, tuple(bpy.app.version), warn,
+                           attributes.slot if attributes is not None else None)
     if has_volume:
         warnings.append(volume_warning)
     closures = flat.closures
@@ -193,6 +210,7 @@ class MaterialTable:
         self.normal_mapped: set[int] = set()  # material ids with a Normal Map binding
         self.programs: dict[int, int] = {}  # material id -> its native program id
         self.programmed: set[int] = set()  # material ids with a node program
+        self.attributes = AttributeSlots()
 
     def _texture_warning(self, node: Any, message: str) -> None:
         self._summary.warn(f"Material '{self._material_name}': {message}")
@@ -212,7 +230,7 @@ class MaterialTable:
         found = self.ids.get(key)
         if found is not None:
             return found
-        mat_id = self._add(material.name, _converted(material, self._summary))
+        mat_id = self._add(material.name, _converted(material, self._summary, self.attributes))
         self.ids[key] = mat_id
         return mat_id
 
@@ -221,7 +239,7 @@ class MaterialTable:
         """The live edit that makes native material `mat_id` the evaluated Blender `material`
         as it is now, or None when that is what it is already. FullExportNeeded when its
         textures or their UV layer changed."""
-        converted = _converted(material, summary)
+        converted = _converted(material, summary, self.attributes)
         now = sent_material(converted)
         before = self.sent[mat_id]
         if now.textures != before.textures or now.uv_map != before.uv_map:
@@ -311,10 +329,11 @@ def resolve_images(program: native.ShaderProgram, texture_ids: list[int]) -> nat
     return native.ShaderProgram(nodes, list(program.registers), list(program.data))
 
 
-def _converted(material: Any, summary: ExportSummary) -> ConvertedMaterial:
+def _converted(material: Any, summary: ExportSummary,
+               attributes: AttributeSlots) -> ConvertedMaterial:
     """The closures of a Blender material with this Blender's bump shadowing; its warnings go
     to `summary`."""
-    converted = with_bump_shadowing(convert_material(material),
+    converted = with_bump_shadowing(convert_material(material, attributes),
                                     bump_shadowing_model(material, tuple(bpy.app.version)))
     converted.pass_index = int(getattr(material, "pass_index", 0))
     for warning in converted.warnings:

@@ -2,12 +2,13 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from ..mikktspace import mikktspace_tangents, tangent_space_normals
+from ..shader_nodes.input_nodes import RENDER_COLOR
 from .common import ExportError
 from .vertex_normals import angle_weighted_vertex_normals
 
@@ -25,6 +26,9 @@ class MeshArrays:
     missing_uv: str = ""  # the UV map asked for, when the mesh has no layer of that name
     vertex_normals: np.ndarray | None = None  # (N, 3) float32, instead of corner_normals
     corner_tangents: np.ndarray | None = None  # (T, 3, 4) float32: MikkTSpace tangent, sign
+    # Per attribute slot the node programs read: (whether its Fac is the mean of RGB, (T, 3, 4)
+    # float32 RGBA per corner); a slot whose attribute the mesh lacks is absent.
+    attributes: dict[int, tuple[bool, np.ndarray]] = field(default_factory=dict)
 
 
 def _get(collection: Any, attr: str, count: int, width: int, dtype: Any) -> np.ndarray:
@@ -131,7 +135,8 @@ def _corner_uvs(layer: Any, n_loops: int) -> np.ndarray:
 
 def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
                 material_slots: int = 2, read_uvs: bool = True,
-                read_tangents: bool = False) -> MeshArrays:
+                read_tangents: bool = False,
+                attributes: dict[str, int] | None = None) -> MeshArrays:
     """Triangulated arrays of an evaluated mesh (UVs from layer `uv_map`, "" = the active
     render layer); ExportError naming the object on bad data. With `material_slots` <= 1 every
     triangle maps to the one slot (slot indices are clamped), so material indices are not read
@@ -202,8 +207,66 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
             tangents = mikktspace_tangents(
                 positions, triangles,
                 tangent_space_normals(positions, triangles, normals, vertex_normals), uvs)
+    read = {}
+    for key, slot in (attributes or {}).items():
+        found = corner_attribute(mesh, key, triangles, loops, polygons) if n_tri else None
+        if found is not None:
+            read[slot] = found
     return MeshArrays(positions, triangles, material_index, normals, uvs,
-                      uv_map if missing else "", vertex_normals, tangents)
+                      uv_map if missing else "", vertex_normals, tangents, read)
+
+
+# Attribute data types: (RNA field, components, whether Fac is the mean of RGB).
+ATTRIBUTE_FIELDS = {
+    "FLOAT": ("value", 1, False), "INT": ("value", 1, False), "BOOLEAN": ("value", 1, False),
+    "INT8": ("value", 1, False), "FLOAT2": ("vector", 2, False),
+    "FLOAT_VECTOR": ("vector", 3, True),
+    "FLOAT_COLOR": ("color", 4, True), "BYTE_COLOR": ("color", 4, True),
+}
+
+
+def corner_attribute(mesh: Any, key: str, triangles: np.ndarray, loops: Any,
+                     polygons: Any) -> tuple[bool, np.ndarray] | None:
+    """Attribute `key` of the mesh per triangle corner as RGBA ((T, 3, 4) float32), as Cycles
+    reads it for the Attribute and Color Attribute nodes: a scalar repeated in RGB, a 2-vector
+    (x, y, 0), alpha 1 unless it is a colour (scene linear, Blender's `color`); point, corner and
+    face domains; None when the mesh has no such attribute (the node then reads Cycles' missing
+    attribute). A UV map's name reads its UVs (Blender 3.4 keeps UV maps apart from attributes)."""
+    if key == RENDER_COLOR:
+        colors = getattr(mesh, "color_attributes", None)
+        index = getattr(colors, "render_color_index", -1) if colors is not None else -1
+        attribute = colors[index] if colors is not None and 0 <= index < len(colors) else None
+    else:
+        attribute = mesh.attributes.get(key) if key else None
+    n_tri = len(triangles)
+    if attribute is None:
+        layer = mesh.uv_layers.get(key) if key else None
+        if layer is None:
+            return None
+        uv = _get(layer.data, "uv", len(mesh.loops), 2, np.float32)[loops()]
+        rgba = np.concatenate([uv, np.zeros((n_tri, 3, 1), np.float32),
+                               np.ones((n_tri, 3, 1), np.float32)], axis=2)
+        return False, np.ascontiguousarray(rgba)
+    spec = ATTRIBUTE_FIELDS.get(attribute.data_type)
+    if spec is None or attribute.domain not in ("POINT", "CORNER", "FACE"):
+        return None
+    name, width, vector = spec
+    values = _get(attribute.data, name, len(attribute.data), width, np.float32).reshape(-1, width)
+    if attribute.domain == "POINT":
+        corners = values[triangles]
+    elif attribute.domain == "CORNER":
+        corners = values[loops()]
+    else:
+        corners = np.repeat(values[polygons()][:, None, :], 3, axis=1)
+    rgba = np.ones((n_tri, 3, 4), np.float32)
+    if width == 1:
+        rgba[:, :, :3] = corners
+    elif width == 2:
+        rgba[:, :, :2] = corners
+        rgba[:, :, 2] = 0.0
+    else:
+        rgba[:, :, :width] = corners
+    return vector, np.nan_to_num(rgba, nan=0.0, posinf=0.0, neginf=0.0)
 
 
 def _readable_mesh_data(ob_eval: Any) -> Any | None:
@@ -224,7 +287,8 @@ def _readable_mesh_data(ob_eval: Any) -> Any | None:
 
 def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "",
                        material_slots: int = 2, read_uvs: bool = True,
-                       read_tangents: bool = False) -> MeshArrays | None:
+                       read_tangents: bool = False,
+                       attributes: dict[str, int] | None = None) -> MeshArrays | None:
     """Evaluated, triangulated geometry of an object (None if it has no surface);
     `material_slots` as in mesh_arrays."""
     # Depsgraph instances are evaluated already (and temporary: evaluated_get would find the
@@ -233,7 +297,8 @@ def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "",
     ob_eval = ob if evaluated else ob.evaluated_get(depsgraph)
     shared = _readable_mesh_data(ob_eval)
     if shared is not None:
-        return mesh_arrays(shared, ob.name, uv_map, material_slots, read_uvs, read_tangents)
+        return mesh_arrays(shared, ob.name, uv_map, material_slots, read_uvs, read_tangents,
+                           attributes)
     try:
         mesh = ob_eval.to_mesh()
     except RuntimeError as exc:
@@ -241,7 +306,8 @@ def object_mesh_arrays(ob: Any, depsgraph: Any, uv_map: str = "",
     if mesh is None:
         return None
     try:
-        return mesh_arrays(mesh, ob.name, uv_map, material_slots, read_uvs, read_tangents)
+        return mesh_arrays(mesh, ob.name, uv_map, material_slots, read_uvs, read_tangents,
+                           attributes)
     finally:
         ob_eval.to_mesh_clear()
 

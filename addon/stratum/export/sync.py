@@ -241,7 +241,9 @@ class SceneSync:
             elif template is not None:
                 moved = motion.get(instance_key(instance, ob)) if motion else None
                 placed.append((index, *template, moved))
-                random_id = instance.random_id if is_instance else object_random_id(ob.name)
+                # DepsgraphObjectInstance.random_id is a signed int; Cycles reads it unsigned.
+                random_id = (instance.random_id & 0xFFFFFFFF) if is_instance else \
+                    object_random_id(ob.name)
                 object_info[index] = (random_id, tuple(ob.color))
         unsupported.report(summary)
         matrices = instance_matrices(depsgraph, index + 1)

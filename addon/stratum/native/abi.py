@@ -72,8 +72,11 @@ SHADER_INPUTS = {
     "object_normal": (45, 3), "dpdx": (48, 3), "dpdy": (51, 3), "dgenerated_dx": (54, 3),
     "dgenerated_dy": (57, 3), "dobject_dx": (60, 3), "dobject_dy": (63, 3), "duv_dx": (66, 3),
     "duv_dy": (69, 3), "reflection": (72, 3), "uv_tangent": (75, 3),
+    # mesh attribute slot k: colour (3) at 80 + 5k, alpha at + 3, Fac at + 4
+    "attribute0": (80, 5), "attribute1": (85, 5), "attribute2": (90, 5), "attribute3": (95, 5),
 }
-SHADER_INPUT_REGISTERS = 80
+SHADER_INPUT_REGISTERS = 100
+ATTRIBUTE_SLOTS = 4
 # StratumShaderNodeType, by the names docs/shader_nodes.md uses.
 NODE_TYPES = {name: i for i, name in enumerate((
     "math", "vector_math", "mix", "map_range", "clamp", "invert", "gamma", "bright_contrast", "hsv",
@@ -415,6 +418,8 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
         "stratum_scene_set_mesh_texture_space": (c_int32, [p_void, c_uint32, p_float, p_float]),
         "stratum_scene_set_instance_object_info": (c_int32, [p_void, c_uint32, c_uint32, p_float,
                                                              p_float]),
+        "stratum_scene_set_mesh_attribute": (c_int32, [p_void, c_uint32, c_uint32, c_int32,
+                                                       p_float, c_uint32]),
         # settings and passes
         "stratum_setting_count": (c_int32, []),
         "stratum_setting_info": (c_int32, [c_int32, ctypes.POINTER(_SettingInfo)]),

@@ -153,3 +153,13 @@ def set_instance_object_info(lib: Any, handle: Any, first: int, random: Any, col
     _check(lib, lib.stratum_scene_set_instance_object_info(
         handle, _uint32(first, "first"), _uint32(count or 0, "count"), *pointers),
         "stratum_scene_set_instance_object_info")
+
+
+def set_mesh_attribute(lib: Any, handle: Any, mesh_id: int, slot: int, vector: bool,
+                       corner_rgba: Any) -> None:
+    rgba = np.ascontiguousarray(np.asarray(corner_rgba, dtype=np.float32).reshape(-1))
+    if rgba.size % 12:
+        raise ValueError("mesh attribute: expected 12 floats (3 corners x RGBA) per triangle")
+    _check(lib, lib.stratum_scene_set_mesh_attribute(
+        handle, _uint32(mesh_id, "mesh_id"), _uint32(slot, "slot"), 1 if vector else 0,
+        _float_ptr(rgba), rgba.size // 12), "stratum_scene_set_mesh_attribute")

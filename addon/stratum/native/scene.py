@@ -366,6 +366,12 @@ class Scene(_Handle):
         first .. first + n - 1; None leaves that part."""
         programs.set_instance_object_info(self._lib, self.handle, first, random, color)
 
+    def set_mesh_attribute(self, mesh_id: int, slot: int, vector: bool,
+                           corner_rgba: np.ndarray) -> None:
+        """A mesh attribute in slot 0..3: (triangles, 3, 4) RGBA per corner; `vector` when its
+        Fac is the mean of RGB (a 3-vector or colour), else the first component."""
+        programs.set_mesh_attribute(self._lib, self.handle, mesh_id, slot, vector, corner_rgba)
+
     def set_mesh_texture_space(self, mesh_id: int, location: Sequence[float],
                                size: Sequence[float]) -> None:
         programs.set_mesh_texture_space(self._lib, self.handle, mesh_id, location, size)

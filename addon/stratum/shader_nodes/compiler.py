@@ -57,9 +57,13 @@ class NodeCompiler:
     is called once per node and subject."""
 
     def __init__(self, version: tuple[int, int, int], warn: Callable[[Any, str], None],
-                 builder: ProgramBuilder | None = None) -> None:
+                 builder: ProgramBuilder | None = None,
+                 attribute_slot: Callable[[str], int | None] | None = None) -> None:
         self.version = tuple(version)
         self.builder = builder or ProgramBuilder()
+        # The mesh-attribute slot of an attribute name (the exporter's table; None: no meshes,
+        # as for the world, or a fifth name).
+        self._attribute_slot = attribute_slot
         self._warn = warn
         self._warned: set[tuple[str, ...]] = set()
         self._memo: dict[tuple[Any, ...], dict[str, int]] = {}
@@ -125,6 +129,16 @@ class NodeCompiler:
     def geometry(self, name: str) -> int:
         """Register of a renderer input (native.SHADER_INPUTS), or its Bump-offset stand-in."""
         return self.overrides.get(name, self.builder.input(name))
+
+    def attribute(self, key: str) -> int:
+        """The first register of the mesh-attribute slot holding `key` (colour, alpha at + 3,
+        Fac at + 4); Unsupported when this graph has no meshes or the slots are full."""
+        if self._attribute_slot is None:
+            raise Unsupported("attributes are read from meshes only")
+        slot = self._attribute_slot(key)
+        if slot is None:
+            raise Unsupported("more than 4 distinct attributes in the scene's materials")
+        return self.geometry(f"attribute{slot}")
 
     def linked(self, socket: Any) -> bool:
         return self._source(socket) is not None

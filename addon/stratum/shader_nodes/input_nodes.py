@@ -9,6 +9,8 @@ Info, UV Map, Value, RGB, Separate XYZ and Combine XYZ.
 |                         | Backfacing (Pointiness, Random Per Island: not supported)             |
 | ShaderNodeObjectInfo    | Location, Color, Alpha, Object Index, Material Index, Random          |
 | ShaderNodeUVMap         | UV (the mesh's one UV set; another map's name is warned about)        |
+| ShaderNodeAttribute,    | Color, Vector, Fac, Alpha of a mesh attribute (Geometry type) by name, |
+| ShaderNodeVertexColor   | through one of 4 attribute slots (empty name: the render colour)       |
 
 Texture Coordinate's Object output of another object (its Object field set) and From Instancer
 are not supported: one warning, and the node's own object is used."""
@@ -17,7 +19,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .compiler import NodeCompiler
+from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
 
@@ -55,6 +57,31 @@ def uv_map(c: NodeCompiler, node: Any) -> dict[str, int]:
         c.warn(node, f"UV Map '{node.name}': the mesh's active render UV map is used (Stratum "
                      f"carries one UV set), not '{node.uv_map}'", "uv_map")
     return {"UV": c.geometry("uv")}
+
+
+# The key the exporter gives Color Attribute's empty name: the mesh's render colour attribute.
+RENDER_COLOR = "\0render_color"
+
+
+def _attribute_outputs(c: NodeCompiler, key: str, outputs: tuple[str, ...]) -> dict[str, int]:
+    base = c.attribute(key)
+    registers = {"Color": base, "Vector": base, "Alpha": base + 3, "Fac": base + 4}
+    return {name: registers[name] for name in outputs}
+
+
+@translator("ShaderNodeAttribute")
+def attribute(c: NodeCompiler, node: Any) -> dict[str, int]:
+    kind = str(getattr(node, "attribute_type", "GEOMETRY"))
+    if kind != "GEOMETRY":
+        raise Unsupported(f"Attribute '{node.name}': type {kind} is not supported (only "
+                          "Geometry attributes)")
+    return _attribute_outputs(c, str(node.attribute_name), ("Color", "Vector", "Fac", "Alpha"))
+
+
+@translator("ShaderNodeVertexColor")
+def color_attribute(c: NodeCompiler, node: Any) -> dict[str, int]:
+    name = str(getattr(node, "layer_name", ""))
+    return _attribute_outputs(c, name or RENDER_COLOR, ("Color", "Alpha"))
 
 
 @translator("ShaderNodeValue")

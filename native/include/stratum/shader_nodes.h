@@ -61,7 +61,14 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_DUV_DY = 69,
     STRATUM_INPUT_REFLECTION = 72, /* 3: the view mirrored about the normal, 2 dot(N, I) N - I */
     STRATUM_INPUT_UV_TANGENT = 75, /* 3: the UV map's dpdu in the shading plane, unit (0 without UVs) */
-    STRATUM_SHADER_INPUT_REGISTERS = 80
+    /* The mesh's attributes in slots 0..3 (stratum_scene_set_mesh_attribute), 5 registers each:
+     * colour (3), alpha, and the float Cycles' Attribute node gives (Fac). A slot the mesh lacks
+     * reads colour 0, alpha 1, Fac 0, as Cycles reads a missing attribute. */
+    STRATUM_INPUT_ATTRIBUTE_0 = 80,
+    STRATUM_INPUT_ATTRIBUTE_1 = 85,
+    STRATUM_INPUT_ATTRIBUTE_2 = 90,
+    STRATUM_INPUT_ATTRIBUTE_3 = 95,
+    STRATUM_SHADER_INPUT_REGISTERS = 100
 } StratumShaderInput;
 
 /* Node types. Register use per node: docs/shader_nodes.md. */
@@ -184,6 +191,21 @@ STRATUM_API StratumStatus stratum_scene_bind_program(StratumScene* scene,
 STRATUM_API StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t program_id,
                                                                uint32_t register_index, uint32_t width,
                                                                uint32_t height);
+
+/* Attribute slots a mesh can carry, and how an attribute's Fac is made (Cycles' Attribute node:
+ * a float or 2-vector attribute gives its first component, a 3-vector or colour the mean). */
+#define STRATUM_ATTRIBUTE_SLOTS 4u
+typedef enum StratumAttributeKind {
+    STRATUM_ATTRIBUTE_SCALAR = 0, /* float, int, boolean, 2-vector: Fac = first component */
+    STRATUM_ATTRIBUTE_VECTOR = 1  /* 3-vector, colour: Fac = mean of the three */
+} StratumAttributeKind;
+/* Gives mesh `mesh_id` an attribute in slot `slot`: corner_rgba holds 12 floats per triangle (3
+ * corners x RGBA, each finite; a scalar attribute repeated in RGB, alpha 1 unless it is a colour
+ * with alpha), interpolated over each triangle into the ATTRIBUTE_<slot> input registers.
+ * triangle_count must be the mesh's. Setting a slot again replaces it. */
+STRATUM_API StratumStatus stratum_scene_set_mesh_attribute(StratumScene* scene, uint32_t mesh_id,
+                                                           uint32_t slot, int32_t kind,
+                                                           const float* corner_rgba, uint32_t triangle_count);
 
 /* Evaluates program `program_id` with the given input registers (STRATUM_SHADER_INPUT_REGISTERS
  * floats) and copies `count` registers starting at `first` to `out`: for hosts' tests and

@@ -19,6 +19,15 @@ void save_programs(const Scene& scene, json& j) {
             {{"mesh", m}, {"location", {loc.x, loc.y, loc.z}}, {"size", {size.x, size.y, size.z}}});
     }
     if (!spaces.empty()) j["texture_spaces"] = spaces;
+    json attributes = json::array();
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        for (size_t slot = 0; slot < scene.meshes[m].attributes.size(); ++slot) {
+            const Mesh::CornerAttribute& a = scene.meshes[m].attributes[slot];
+            if (a.rgba.empty()) continue;
+            attributes.push_back({{"mesh", m}, {"slot", slot}, {"kind", a.kind}, {"rgba", a.rgba}});
+        }
+    }
+    if (!attributes.empty()) j["mesh_attributes"] = attributes;
     if (scene.programs.empty()) return;
     json programs = json::array(), bindings = json::array();
     for (const auto& p : scene.programs) {
@@ -54,6 +63,16 @@ StratumStatus load_programs(const json& j, StratumScene* scene) {
                 throw std::runtime_error("texture space needs 3 + 3 numbers");
             status = stratum_scene_set_mesh_texture_space(scene, field<uint32_t>(t, "mesh"), loc.data(),
                                                           size.data());
+            if (status != STRATUM_OK) return status;
+        }
+    }
+    if (j.contains("mesh_attributes")) {
+        for (const json& a : j.at("mesh_attributes")) {
+            const auto rgba = numbers<float>(a, "rgba");
+            if (rgba.size() % 12) throw std::runtime_error("mesh attribute needs 12 numbers per triangle");
+            status = stratum_scene_set_mesh_attribute(scene, field<uint32_t>(a, "mesh"),
+                                                      field<uint32_t>(a, "slot"), field<int32_t>(a, "kind"),
+                                                      rgba.data(), static_cast<uint32_t>(rgba.size() / 12));
             if (status != STRATUM_OK) return status;
         }
     }

@@ -43,6 +43,9 @@ static_assert(stratum::shader_input::kDuvDx == STRATUM_INPUT_DUV_DX);
 static_assert(stratum::shader_input::kDuvDy == STRATUM_INPUT_DUV_DY);
 static_assert(stratum::shader_input::kReflection == STRATUM_INPUT_REFLECTION);
 static_assert(stratum::shader_input::kUvTangent == STRATUM_INPUT_UV_TANGENT);
+static_assert(stratum::shader_input::kAttribute0 == STRATUM_INPUT_ATTRIBUTE_0);
+static_assert(stratum::shader_input::kAttribute3 == STRATUM_INPUT_ATTRIBUTE_3);
+static_assert(stratum::shader_input::kAttributeSlots == STRATUM_ATTRIBUTE_SLOTS);
 static_assert(stratum::shader_input::kCount == STRATUM_SHADER_INPUT_REGISTERS);
 static_assert(stratum::node_type::kMath == STRATUM_NODE_MATH);
 static_assert(stratum::node_type::kVectorMath == STRATUM_NODE_VECTOR_MATH);
@@ -198,6 +201,34 @@ StratumStatus stratum_scene_set_mesh_texture_space(StratumScene* scene, uint32_t
                                                    " is not a mesh (the scene has " +
                                                    std::to_string(s.meshes.size()) + ")");
             s.meshes[mesh_id].texture_space = std::array<stratum::Vec3, 2>{loc, half};
+        });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_mesh_attribute(StratumScene* scene, uint32_t mesh_id, uint32_t slot,
+                                               int32_t kind, const float* corner_rgba,
+                                               uint32_t triangle_count) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_set_mesh_attribute", [&] {
+        require(scene && corner_rgba, "scene or corner_rgba is NULL");
+        require(slot < STRATUM_ATTRIBUTE_SLOTS,
+                "attribute slot " + std::to_string(slot) + " is outside [0, 3]");
+        require(kind == STRATUM_ATTRIBUTE_SCALAR || kind == STRATUM_ATTRIBUTE_VECTOR,
+                "attribute kind " + std::to_string(kind) + " is not a StratumAttributeKind (0 or 1)");
+        const size_t count = static_cast<size_t>(triangle_count) * 12;
+        for (size_t i = 0; i < count; ++i)
+            require(std::isfinite(corner_rgba[i]), "attribute value " + std::to_string(i) + " = " +
+                                                       std::to_string(corner_rgba[i]) + " is not finite");
+        scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
+            require(mesh_id < s.meshes.size(), "mesh_id " + std::to_string(mesh_id) +
+                                                   " is not a mesh (the scene has " +
+                                                   std::to_string(s.meshes.size()) + ")");
+            stratum::Mesh& mesh = s.meshes[mesh_id];
+            require(triangle_count == mesh.triangles.size(),
+                    "attribute triangle_count " + std::to_string(triangle_count) + " is not mesh " +
+                        std::to_string(mesh_id) + "'s " + std::to_string(mesh.triangles.size()));
+            mesh.attributes[slot] = {std::vector<float>(corner_rgba, corner_rgba + count), kind};
         });
         return STRATUM_OK;
     });

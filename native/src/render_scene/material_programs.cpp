@@ -68,6 +68,23 @@ void write_offsets(const SurfaceHit& hit, const ProgramInputs& in, float side, f
     put(r, shader_input::kDuvDy, duv(dy));
 }
 
+// The mesh's attributes at the hit: corners interpolated with the barycentric weights; a slot the
+// mesh lacks reads colour 0, alpha 1, Fac 0 (Cycles' missing attribute).
+void write_attributes(const SurfaceHit& hit, const Mesh& mesh, float* r) {
+    const float b1 = hit.barycentric.x, b2 = hit.barycentric.y, b0 = 1.0f - b1 - b2;
+    for (uint32_t slot = 0; slot < shader_input::kAttributeSlots; ++slot) {
+        float* out = r + shader_input::kAttribute0 + slot * shader_input::kAttributeWidth;
+        const Mesh::CornerAttribute& a = mesh.attributes[slot];
+        if (a.rgba.empty()) {
+            out[3] = 1.0f;
+            continue;
+        }
+        const float* c = &a.rgba[static_cast<size_t>(hit.triangle) * 12];
+        for (int k = 0; k < 4; ++k) out[k] = c[k] * b0 + c[4 + k] * b1 + c[8 + k] * b2;
+        out[4] = a.kind == 0 ? out[0] : (out[0] + out[1] + out[2]) * (1.0f / 3.0f);
+    }
+}
+
 }  // namespace
 
 MaterialPrograms::MaterialPrograms(const Scene& scene)
@@ -127,6 +144,7 @@ void write_surface_inputs(const SurfaceHit& hit, const ProgramInputs& in, float*
     put(r, shader_input::kParametric,
         Vec3(1.0f - hit.barycentric.x - hit.barycentric.y, hit.barycentric.x, 0.0f));
     write_offsets(hit, in, side, r);
+    write_attributes(hit, *in.mesh, r);
 }
 
 void MaterialPrograms::apply(const SurfaceHit& hit, const ProgramInputs& inputs, WeightedClosure* closures,

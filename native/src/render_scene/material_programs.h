@@ -44,6 +44,7 @@ struct ProgramInputs {
     float object_alpha;
     const Transform* world_to_camera;  // null: camera coordinates 0
     const Transform* object_to_world;  // the instance's (at shutter open for a moving one)
+    const Mesh* mesh;                  // the hit's mesh (its attributes)
 };
 
 // The world-space step of the Bump node's finite differences at a point `ray_length` from the

@@ -365,6 +365,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
         mesh.positions[tri[0]] * b0 + mesh.positions[tri[1]] * h.b1 + mesh.positions[tri[2]] * h.b2;
     hit->barycentric = {h.b1, h.b2};
     hit->placement = h.instance;
+    hit->triangle = h.triangle;
     return true;
 }
 
@@ -397,7 +398,8 @@ ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool b
             g.color,
             g.alpha,
             world_to_camera_ ? &*world_to_camera_ : nullptr,
-            &g.object_to_world};
+            &g.object_to_world,
+            g.mesh};
 }
 
 }  // namespace stratum

@@ -43,6 +43,7 @@ struct SurfaceHit {
     Vec3 dpdv{};                        // with tangent_frame.dpdu: the UV map's derivatives (0 without UVs)
     Vec2 barycentric{0.0f, 0.0f};       // (b1, b2): weights of the triangle's second and third vertex
     uint32_t placement = 0;             // the traced placement (RenderScene::program_inputs)
+    uint32_t triangle = 0;              // the triangle of the placement's mesh
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;

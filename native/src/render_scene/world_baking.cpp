@@ -26,6 +26,9 @@ void write_world_inputs(Vec3 d, float* r) {
     put(shader_input::kObjectColor, Vec3(1.0f, 1.0f, 1.0f));
     r[shader_input::kObjectAlpha] = 1.0f;
     r[shader_input::kRayLength] = std::numeric_limits<float>::infinity();
+    // No mesh attributes in the world: Cycles' missing attribute (alpha 1).
+    for (uint32_t slot = 0; slot < shader_input::kAttributeSlots; ++slot)
+        r[shader_input::kAttribute0 + slot * shader_input::kAttributeWidth + 3] = 1.0f;
 }
 
 namespace {

@@ -33,6 +33,13 @@ struct Mesh {
     // Blender's texture space (generated coordinates): centre and half size per axis; unset, the
     // bounding box (Blender's automatic texture space), see texture_space().
     std::optional<std::array<Vec3, 2>> texture_space;
+    // Attributes the node programs read (stratum_scene_set_mesh_attribute): per slot, RGBA per
+    // triangle corner (empty: the mesh lacks it) and how its Fac is made.
+    struct CornerAttribute {
+        std::vector<float> rgba;
+        int32_t kind = 0;
+    };
+    std::array<CornerAttribute, 4> attributes;
     static constexpr float kHuge = std::numeric_limits<float>::infinity();
 };
 
