@@ -64,7 +64,7 @@ from .shader_closures import (
 )
 from .shader_flow import propagate
 from .shader_nodes import NodeCompiler
-from .shader_nodes.math_nodes import math_node
+from .shader_nodes.math_nodes import color_times, math_node
 
 IMAGE_NODE = "ShaderNodeTexImage"
 NORMAL_MAP_NODE = "ShaderNodeNormalMap"
@@ -231,9 +231,7 @@ class Flattener(ClosureNodes):
             self.nodes.builder.constant((1.0, 1.0, 1.0))
         k = self.nodes.value(strength, "float") if strength is not None else \
             self.nodes.builder.constant(1.0)
-        zero = self.nodes.builder.constant(0.0)
-        channels = [math_node(self.nodes, c + i, k, zero, "MULTIPLY") for i in range(3)]
-        bindings.append(ProgramInput("emission", self.nodes.builder.combine(*channels)))
+        bindings.append(ProgramInput("emission", color_times(self.nodes, c, k)))
         return True
 
     def unsupported_link(self, node: Any, name: str, bindings: list[Any] | None = None) -> None:

@@ -16,7 +16,7 @@ import numpy as np
 
 from .. import native
 from ..shader_nodes import NodeCompiler
-from ..shader_nodes.math_nodes import math_node
+from ..shader_nodes.math_nodes import color_times
 from .common import ExportSummary, active_output, linked_from
 
 Rgb = tuple[float, float, float]
@@ -48,9 +48,7 @@ def node_emission(ob: Any, summary: ExportSummary) -> Rgb | None:
     c = NodeCompiler(tuple(bpy.app.version), lambda _node, message: warnings.append(message))
     color = c.value(node.inputs["Color"], "color")
     strength = c.value(node.inputs["Strength"], "float")
-    zero = c.builder.constant(0.0)
-    channels = [math_node(c, color + k, strength, zero, "MULTIPLY") for k in range(3)]
-    register = c.builder.combine(*channels)
+    register = color_times(c, color, strength)
     for message in warnings:
         summary.warn(f"Light '{ob.name}': {message}")
     program = c.builder.program

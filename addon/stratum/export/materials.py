@@ -165,11 +165,8 @@ def sent_material(converted: ConvertedMaterial) -> SentMaterial:
     for index, closure in enumerate(converted.closures):
         for b in closure.bindings:
             node = b.image.node
-            image = node.image
-            original = getattr(image, "original", None) or image
-            textures.append((index, b.param, original.as_pointer() if image is not None else 0,
-                             str(node.interpolation), str(node.extension), b.channel, b.scale,
-                             b.offset))
+            textures.append((index, b.param, _image_pointer(node), str(node.interpolation),
+                             str(node.extension), b.channel, b.scale, b.offset))
     program_inputs = tuple((index, p.param, p.register)
                            for index, closure in enumerate(converted.closures)
                            for p in closure.programs)
@@ -180,6 +177,7 @@ def sent_material(converted: ConvertedMaterial) -> SentMaterial:
 
 
 def _image_pointer(node: Any) -> int:
+    """The original data-block pointer of an Image Texture node's image (0 without one)."""
     image = getattr(node, "image", None)
     original = getattr(image, "original", None) or image
     return original.as_pointer() if original is not None else 0

@@ -171,16 +171,14 @@ def convert_world_program(scene: Any, summary: ExportSummary) -> WorldProgram | 
     if background is None or not _uses_program(background):
         return None
     from ..shader_nodes import NodeCompiler
-    from ..shader_nodes.math_nodes import math_node
+    from ..shader_nodes.math_nodes import color_times
 
     world = scene.world
     compiler = NodeCompiler(tuple(bpy.app.version), lambda node, message: summary.warn(
         f"World '{world.name}': {message}"))
     color = compiler.value(background.inputs["Color"], "color")
     strength = compiler.value(background.inputs["Strength"], "float")
-    zero = compiler.builder.constant(0.0)
-    channels = [math_node(compiler, color + k, strength, zero, "MULTIPLY") for k in range(3)]
-    register = compiler.builder.combine(*channels)
+    register = color_times(compiler, color, strength)
     if compiler.images:
         summary.warn(f"World '{world.name}': image textures inside the world's nodes are not "
                      "supported; they read black")

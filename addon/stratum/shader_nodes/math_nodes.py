@@ -23,6 +23,14 @@ def math_node(c: NodeCompiler, a: int, b: int, d: int, operation: str, clamp: bo
                           (1,))[0]
 
 
+def color_times(c: NodeCompiler, color: int, factor: int) -> int:
+    """Register of a colour (three registers) times a float register, as an Emission's or a
+    Background's Color x Strength: one multiply per channel, gathered into one vector."""
+    zero = c.builder.constant(0.0)
+    return c.builder.combine(*(math_node(c, color + k, factor, zero, "MULTIPLY")
+                               for k in range(3)))
+
+
 @translator("ShaderNodeMath")
 def translate_math(c: NodeCompiler, node: Any) -> dict[str, int]:
     operation = str(node.operation)
