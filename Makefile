@@ -11,7 +11,7 @@ LIB        := addon/stratum/lib/libstratum.so
 
 .PHONY: all setup build test test-native test-python test-blender test-blender-3 test-blender-wheel \
         lint render bench sanitize format clean study test-corpus test-sessions test-ui corpus-asan \
-        settings-table
+        settings-table package test-package
 
 all: build
 
@@ -28,7 +28,7 @@ build: setup
 	$(PY) scripts/copy_oidn.py addon/stratum/lib
 
 # corpus-asan after sanitize, which builds the binary it replays with.
-test: build lint test-native test-python test-blender test-ui sanitize corpus-asan fuzz-smoke
+test: build lint test-native test-python test-blender test-package test-ui sanitize corpus-asan fuzz-smoke
 
 test-native: build
 	cd $(BUILD) && ctest --output-on-failure -j2
@@ -44,6 +44,17 @@ test-blender-3: build
 
 test-blender-wheel: build
 	$(PY) -m pytest tests/blender -q
+
+# The zip users install (docs/packaging.md): dist/stratum-<version>-linux-x64.zip, the add-on
+# with libstratum.so and every library it needs beyond the base system.
+package: build
+	$(PY) scripts/package.py --library $(BUILD)/libstratum.so --out dist
+
+# Builds the package twice (this version and the next, for the upgrade) from build/, installs it
+# into fresh user configurations of Blender 3.4 and of the bpy wheel, renders, upgrades,
+# uninstalls (tests/package). ~1 min.
+test-package: build
+	$(PY) -m pytest tests/package -q
 
 # Blender 3.4 with its UI on a virtual display (xvfb-run): the Rendered viewport as a user
 # drives it, and what must not crash it (tests/ui). ~5 min.
@@ -189,4 +200,4 @@ valgrind: build
 sanitize: valgrind
 
 clean:
-	rm -rf $(BUILD) $(BUILD)-asan $(BUILD).configure.log addon/stratum/lib out
+	rm -rf $(BUILD) $(BUILD)-asan $(BUILD).configure.log addon/stratum/lib out dist

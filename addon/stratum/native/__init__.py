@@ -94,9 +94,11 @@ from .inspection import (
 )
 from .library import (
     LibraryLoadError,
+    LibraryStatus,
     StratumError,
     default_library_path,
     library_available,
+    library_status,
     load_library,
     version,
 )
@@ -123,7 +125,8 @@ __all__ = [
     "BUMP_SHADOWING_CONTY", "BUMP_SHADOWING_CONTY_UNSMOOTHED", "BUMP_SHADOWING_NONE",
     "CAMERA_EQUIRECTANGULAR", "CAMERA_ORTHOGRAPHIC", "CAMERA_PERSPECTIVE", "CAMERA_TYPES",
     "Camera", "ERROR_INTERNAL", "ERROR_INVALID_ARGUMENT", "ERROR_INVALID_STATE", "ERROR_IO",
-    "DenoiserUnavailable", "ERROR_OUT_OF_MEMORY", "Instance", "LibraryLoadError", "Light",
+    "DenoiserUnavailable", "ERROR_OUT_OF_MEMORY", "Instance", "LibraryLoadError", "LibraryStatus",
+    "Light",
     "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "NODE_TYPES", "OK",
     "PARAM_BASE_COLOR", "PARAM_EMISSION", "PARAM_METALLIC", "PARAM_NORMAL", "PARAM_ROUGHNESS",
     "PARAM_SPECULAR", "PARAM_TRANSMISSION", "PARAM_WEIGHT", "PROGRAM_PARAMS", "Pass",
@@ -137,7 +140,8 @@ __all__ = [
     "VISIBLE_DIFFUSE", "VISIBLE_GLOSSY", "VISIBLE_SHADOW", "VISIBLE_TRANSMISSION",
     "bluenoise_texture", "bounce_dimension_stride", "camera_dimensions", "closure_model",
     "closure_models", "denoise", "light_type", "light_types", "load_denoiser",
-    "default_library_path", "dimension_name", "library_available", "load_library", "passes",
+    "default_library_path", "dimension_name", "library_available", "library_status",
+    "load_library", "passes",
     "registry", "sampler_points", "setting", "settings", "version", "vertex_normals",
     "warp_hemisphere",
 ]

@@ -3,6 +3,16 @@
 The library is loaded lazily (first use), from $STRATUM_LIBRARY or stratum/lib/libstratum.so,
 with RTLD_LOCAL | RTLD_DEEPBIND on Linux: Blender (and the bpy wheel) carry their own Embree,
 OIIO and TBB, and deep binding keeps our library bound to the copies it was linked with.
+
+In the packaged add-on (`make package`, docs/packaging.md) lib/ also holds every library
+libstratum.so needs, under private names, and libstratum_dependencies.so, which has no code and
+names libstratum.so's dependencies. That one is opened first, without deep binding, so that the
+dependencies bind malloc and free as the host process does: Blender links jemalloc, and a
+library opened with RTLD_DEEPBIND binds free() to libc's while libc's own allocations (strdup,
+getline) come from the host's malloc, which aborted Blender 3.4 in libselinux's constructor
+(measured). libstratum.so is opened next with RTLD_DEEPBIND, so its own references (Embree's C
+API, OIIO, OCIO, TBB) bind to the package's copies ahead of any the host exports.
+
 Every native call goes through `_check`, so a non-OK status becomes a `StratumError` carrying
 stratum_last_error()'s text.
 """
@@ -13,6 +23,7 @@ import ctypes
 import os
 import sys
 import threading
+from dataclasses import dataclass
 from pathlib import Path
 
 from .abi import (
@@ -52,8 +63,22 @@ class LibraryLoadError(StratumError):
 
 # ---- library loading ------------------------------------------------------------------------
 
+DEPENDENCIES = "libstratum_dependencies.so"
 _lib: ctypes.CDLL | None = None
+_lib_path: Path | None = None
+# The packaged dependencies, kept open while the library is.
+_dependencies: list[ctypes.CDLL] = []
 _lib_lock = threading.Lock()
+
+
+@dataclass(frozen=True)
+class LibraryStatus:
+    """What the add-on's preferences and `stratum --version` show: the library file, and its
+    version when it loads, else why it does not (the text of the LibraryLoadError)."""
+
+    path: Path
+    version: str | None
+    error: str | None
 
 
 def default_library_path() -> Path:
@@ -76,7 +101,7 @@ def _declare(lib: ctypes.CDLL) -> None:
 
 def load_library(path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
     """Loads (once) and returns the library; raises LibraryLoadError with the reason."""
-    global _lib
+    global _lib, _lib_path
     with _lib_lock:
         if _lib is not None:
             return _lib
@@ -90,12 +115,32 @@ def load_library(path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
         if sys.platform.startswith("linux"):
             mode = os.RTLD_LOCAL | os.RTLD_DEEPBIND
         try:
+            _dependencies.extend(_open_packaged_dependencies(lib_path))
             lib = ctypes.CDLL(str(lib_path), mode=mode)
         except OSError as exc:
             raise LibraryLoadError(f"cannot load Stratum native library {lib_path}: {exc}") from exc
         _declare(lib)
         _lib = lib
+        _lib_path = lib_path.resolve()
         return lib
+
+
+def _open_packaged_dependencies(lib_path: Path) -> list[ctypes.CDLL]:
+    """Opens a package's libstratum_dependencies.so (none in a checkout, where the system's
+    libraries are used as they are)."""
+    dependencies = lib_path.with_name(DEPENDENCIES)
+    if not dependencies.is_file():
+        return []
+    return [ctypes.CDLL(str(dependencies), mode=os.RTLD_LOCAL)]
+
+
+def library_status() -> LibraryStatus:
+    """Loads the library if it is not yet loaded; never raises."""
+    try:
+        found = version()
+    except StratumError as exc:
+        return LibraryStatus(default_library_path(), None, str(exc))
+    return LibraryStatus(_lib_path or default_library_path(), found, None)
 
 
 def library_available() -> bool:
