@@ -37,7 +37,8 @@ if [ ! -x .venv/bin/python ]; then
 fi
 stamp=.venv/.stratum-setup
 req=scripts/requirements.txt
-if [ ! -f "$stamp" ] || [ "$req" -nt "$stamp" ] || [ addon/pyproject.toml -nt "$stamp" ]; then
+if [ ! -f "$stamp" ] || [ "$req" -nt "$stamp" ] || [ addon/pyproject.toml -nt "$stamp" ] \
+   || [ addon/stratum/blender_manifest.toml -nt "$stamp" ]; then  # the manifest: the version
   .venv/bin/python -m pip install -q --upgrade pip
   .venv/bin/python -m pip install -q -r "$req"
   .venv/bin/python -m pip install -q -e addon

@@ -6,15 +6,21 @@ register()/unregister() import the Blender modules lazily.
 
 from __future__ import annotations
 
+from .version import __version__
+
+# Blender 3.x reads bl_info without running this file (ast.literal_eval), so it holds literals
+# only. Its "version" is written by `make package` from blender_manifest.toml, the one place the
+# version lives; Blender 4.2+ reads the manifest itself and ignores bl_info for an extension.
 bl_info = {
     "name": "Stratum",
     "author": "Stratum developers",
-    "version": (0, 1, 0),
     "blender": (3, 4, 0),
     "location": "Render Properties > Render Engine > Stratum",
     "description": "Path tracer with selectable sampling strategies",
     "category": "Render",
 }
+
+__all__ = ["__version__", "bl_info", "register", "unregister"]
 
 _registered = False
 

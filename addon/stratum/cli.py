@@ -24,6 +24,7 @@ from .blender_process import (
     overrides_from_options,
     script_command,
 )
+from .version import __version__
 
 # Runs inside Blender after blender_process's shared start (arguments, add-on, settings).
 _RENDER_SCRIPT = r"""
@@ -282,8 +283,29 @@ def _cmd_render(ns: argparse.Namespace) -> int:
     return 0
 
 
+def version_report() -> str:
+    """`stratum --version`: the add-on's version and the native library it loads (or why not)."""
+    status = native.library_status()
+    if status.version is None:
+        return f"stratum {__version__}\nnative library: not loaded: {status.error}"
+    return f"stratum {__version__}\nnative library {status.version}: {status.path}"
+
+
+class _VersionAction(argparse.Action):
+    """Prints version_report() and exits 0; the library is loaded only when asked."""
+
+    def __init__(self, option_strings: list[str], dest: str, **_: object) -> None:
+        super().__init__(option_strings, dest, nargs=0,
+                         help="print Stratum's version and its native library's, then exit")
+
+    def __call__(self, parser: argparse.ArgumentParser, *_: object) -> None:
+        print(version_report())
+        parser.exit()
+
+
 def build_parser() -> argparse.ArgumentParser:
     parser = argparse.ArgumentParser(prog="stratum", description=__doc__)
+    parser.add_argument("--version", action=_VersionAction)
     sub = parser.add_subparsers(dest="command", required=True)
 
     p = sub.add_parser("samplers", help="list the native samplers")

@@ -6,7 +6,8 @@ from typing import Any
 
 import bpy
 
-from . import properties
+from . import native, properties
+from .version import __version__
 
 ENGINE_ID = "STRATUM"
 
@@ -59,6 +60,25 @@ class STRATUM_RENDER_PT_library(StratumButtonsPanel, bpy.types.Panel):
         col = self.layout.column()
         col.label(text="The Stratum library could not be loaded:", icon="ERROR")
         col.label(text=properties.load_error)
+
+
+class StratumPreferences(bpy.types.AddonPreferences):
+    """Edit > Preferences > Add-ons (Extensions in 4.2+) > Stratum: the version, and which native
+    library the add-on loads or why it cannot, the first thing to read after an install."""
+
+    # The add-on's module: "stratum" as a legacy add-on, "bl_ext.<repository>.stratum" as an
+    # extension (Blender 4.2+); ui.py sits at the package's top, so its package is that module.
+    bl_idname = __package__
+
+    def draw(self, context: bpy.types.Context) -> None:
+        col = self.layout.column()
+        col.label(text=f"Stratum {__version__}")
+        status = native.library_status()
+        if status.version is None:
+            col.label(text="The native library could not be loaded:", icon="ERROR")
+            col.label(text=status.error or "")
+        else:
+            col.label(text=f"Native library {status.version}: {status.path}")
 
 
 # What a setting applies to, by integrator (names from the library's integrator registry).
@@ -375,6 +395,7 @@ def compatible_builtin_panels() -> list[type]:
 
 
 def register() -> None:
+    bpy.utils.register_class(StratumPreferences)
     for cls in classes:
         bpy.utils.register_class(cls)
     for panel in compatible_builtin_panels():
@@ -388,6 +409,6 @@ def unregister() -> None:
         panel = _patched.pop()
         if hasattr(panel, "COMPAT_ENGINES"):
             panel.COMPAT_ENGINES.discard(ENGINE_ID)
-    for cls in reversed(classes):
+    for cls in (*reversed(classes), StratumPreferences):
         if getattr(cls, "is_registered", True):
             bpy.utils.unregister_class(cls)

@@ -34,8 +34,8 @@ def run_scenario(script: str, blend: Path, name: str, timeout: float = 600.0,
     out.mkdir(parents=True)
     command = ["xvfb-run", "-a", "-s", f"-screen 0 {screen[0]}x{screen[1]}x24", BLENDER, str(blend),
                "--factory-startup", "-noaudio", "--python", str(UI / script), "--", str(out)]
-    environment = dict(os.environ, PYTHONPATH=os.pathsep.join([str(UI), str(REPO / "addon")]),
-                       **(env or {}))
+    environment = dict(os.environ, PYTHONPATH=os.pathsep.join([str(UI), str(REPO / "addon")]))
+    environment.update(env or {})
     log = out / "blender.log"
     with log.open("w") as stream:
         try:

@@ -72,7 +72,8 @@ extern "C" {
 
 const char* stratum_last_error(void) { return g_last_error.c_str(); }
 
-const char* stratum_version(void) { return "0.1.0"; }
+// STRATUM_VERSION_STRING: blender_manifest.toml's version, set by CMakeLists.txt.
+const char* stratum_version(void) { return STRATUM_VERSION_STRING; }
 
 StratumStatus stratum_scene_create(StratumScene** out_scene) {
     return guarded("stratum_scene_create", [&] {
