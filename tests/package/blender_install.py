@@ -8,6 +8,7 @@ first: nothing of the checkout is on sys.path or mapped while it runs, which it 
                                                 [--checkout DIR] [--addon-dir DIR]
 
 Phases:
+  load       install --zip, enable it and load the native library (for a trace of the loader)
   install    install --zip (Blender 3.x: Preferences > Add-ons > Install; 4.2+: Install from
              Disk into the user_default repository), enable, render --scene; then, when
              --upgrade-zip is given, install it over the first while the library is loaded,
@@ -177,6 +178,15 @@ def remove_legacy_addon() -> set[str]:
         return {"FINISHED"}
 
 
+def phase_load() -> None:
+    """Installs and enables --zip and loads the native library, nothing more (the test traces
+    the loader's symbol bindings, a large trace)."""
+    install(OPTIONS["--zip"])
+    module = addon_module()
+    result["library_version"] = sys.modules[module + ".native"].version()
+    result["library"] = str(sys.modules[module + ".native"].library_status().path)
+
+
 def phase_restart() -> None:
     out = Path(OPTIONS["--work"])
     if "--site" in OPTIONS:
@@ -218,8 +228,8 @@ def phase_checkout() -> None:
 
 def main() -> None:
     try:
-        {"install": phase_install, "restart": phase_restart, "removed": phase_removed,
-         "checkout": phase_checkout}[PHASE]()
+        {"install": phase_install, "load": phase_load, "restart": phase_restart,
+         "removed": phase_removed, "checkout": phase_checkout}[PHASE]()
         result["ok"] = True
     except Exception as exc:  # noqa: BLE001 - whatever failed, the test shows it
         import traceback

@@ -235,3 +235,45 @@ def test_install_render_upgrade_uninstall(kind: str, packages: dict[str, Path],
         reference = _run_phase(kind, "checkout", work, reference_env, "--addon-dir",
                                str(REPO / "addon"))
     assert installed["digest"] == reference["digest"], "the package renders unlike the checkout"
+
+
+def test_libstratum_binds_to_the_package_beside_blenders_own_copies(
+        packages: dict[str, Path], tmp_path: Path) -> None:
+    """Debian's Blender 3.4 has loaded Embree 3, OIIO 2.4, OCIO 2.1 and oneTBB under the very
+    symbol names libstratum.so uses. Under LD_DEBUG=bindings every reference of libstratum.so
+    must bind to the package, to the base system, or be one of its STB_GNU_UNIQUE symbols
+    (inline statics of libstdc++'s headers), which the loader gives one instance per process
+    whatever the scope: deep binding and the private names keep Blender's copies out."""
+    if shutil.which(BLENDER) is None:
+        pytest.fail(f"{BLENDER} not found (scripts/setup.sh installs Debian's Blender 3.4)")
+    work = tmp_path / "work"
+    work.mkdir()
+    shutil.copy(SCRIPT, work)
+    shutil.copy(SCENE, work)
+    traces = tmp_path / "ld"
+    traces.mkdir()
+    env = {**_environment(tmp_path / "home"), "LD_DEBUG": "bindings",
+           "LD_DEBUG_OUTPUT": str(traces / "ld")}
+    loaded = _run_phase("blender", "load", work, env, "--zip", str(packages[_version()]))
+    library = Path(loaded["library"])
+    symbols = subprocess.run(["nm", "-D", "--defined-only", str(library)], capture_output=True,
+                             text=True, check=True).stdout.splitlines()
+    unique = {line.split()[-1] for line in symbols if line.split()[1:2] == ["u"]}
+    prefix = f"binding file {library} [0] to "
+    targets: dict[str, int] = {}
+    elsewhere = []
+    for trace in traces.glob("ld.*"):
+        with trace.open(errors="replace") as stream:
+            for line in stream:
+                if prefix not in line:
+                    continue
+                target = line.split(prefix, 1)[1].split(" [", 1)[0]
+                symbol = line.rsplit("`", 1)[1].rstrip("'\n")
+                targets[Path(target).name] = targets.get(Path(target).name, 0) + 1
+                if Path(target).parent != library.parent and \
+                        Path(target).name not in BASE_SYSTEM and symbol not in unique:
+                    elsewhere.append((symbol, target))
+    print(f"libstratum.so's bindings by target: {sorted(targets.items())}")
+    assert not elsewhere, f"bound outside the package: {elsewhere[:20]}"
+    for stem in ("libembree3", "libOpenImageIO", "libOpenColorIO", "libtbb"):
+        assert any(PRIVATE.match(t) and PRIVATE.match(t)["stem"] == stem for t in targets), stem
