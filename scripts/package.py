@@ -10,8 +10,10 @@ One zip for both kinds of Blender (docs/packaging.md):
 What goes in: the add-on's Python modules (the CLI's own, `stratum compare` and the Dask
 runner, stay out: Blender never imports them, and a static check below proves the rest never
 does), the manifest, libstratum.so and Open Image Denoise (its CPU device) with every library
-they need beyond the base system, and libstratum_dependencies.so (native/packaging/), under private names (scripts/library_bundle.py). Nothing
-else: no tests, no build tree, no byte code.
+they need beyond the base system under private names (scripts/library_bundle.py),
+libstratum_dependencies.so (native/packaging/), and the licences of the bundled libraries
+(licenses/, scripts/third_party_notices.py). Nothing else: no tests, no build tree, no byte
+code.
 
     package.py [--library build/libstratum.so] [--oidn-dir addon/stratum/lib] [--out dist]
                [--version X.Y.Z]
@@ -39,6 +41,7 @@ from library_bundle import (
     foreign_dependencies,
     required_versions,
 )
+from third_party_notices import NoticeError, index, notices
 
 ROOT = Path(__file__).resolve().parent.parent
 ADDON = ROOT / "addon" / "stratum"
@@ -127,7 +130,7 @@ def oidn_files(directory: Path) -> list[Path]:
     return [f[0] for f in found]
 
 
-def write_zip(target: Path, entries: list[tuple[str, Path | str]]) -> None:
+def write_zip(target: Path, entries: list[tuple[str, Path | str | bytes]]) -> None:
     """Entries (name in the zip, file or text) with fixed times, so that the same inputs give
     the same zip; written beside `target` and renamed over it. Each directory has its entry,
     as zip tools write them: Blender 3.x's add-on installer removes an installed add-on before
@@ -171,7 +174,7 @@ def build_package(library: Path, oidn_dir: Path, out: Path, version: str | None,
         bundled = bundle(roots, lib_dir, patchelf)
         if problems := foreign_dependencies(lib_dir, [root.name for root in roots]):
             raise PackageError(f"the bundle is not self-contained: {problems}")
-        entries: list[tuple[str, Path | str]] = [(f"{MODULE}/blender_manifest.toml", manifest)]
+        entries: list[tuple[str, Path | str | bytes]] = [(f"{MODULE}/blender_manifest.toml", manifest)]
         for relative in sources:
             name = f"{MODULE}/{relative.as_posix()}"
             if relative == Path("__init__.py"):
@@ -179,6 +182,12 @@ def build_package(library: Path, oidn_dir: Path, out: Path, version: str | None,
             else:
                 entries.append((name, ADDON / relative))
         entries += [(f"{MODULE}/lib/{item.name}", lib_dir / item.name) for item in bundled]
+        own = {library.name, DEPENDENCIES}
+        origins, licence_files = notices([(item.name, item.source) for item in bundled
+                                          if item.name not in own])
+        entries += [(f"{MODULE}/licenses/{name}", content)
+                    for name, content in sorted(licence_files.items())]
+        entries.append((f"{MODULE}/licenses/THIRD_PARTY.txt", index(origins)))
         out.mkdir(parents=True, exist_ok=True)
         target = out / f"{MODULE}-{version}-{PLATFORM}.zip"
         write_zip(target, entries)
@@ -204,7 +213,7 @@ def main(argv: list[str] | None = None) -> int:
         return 2
     try:
         build_package(args.library, args.oidn_dir, args.out, args.version, args.patchelf)
-    except (PackageError, BundleError) as exc:
+    except (PackageError, BundleError, NoticeError) as exc:
         print(f"package: {exc}", file=sys.stderr)
         return 1
     return 0

@@ -123,6 +123,15 @@ def test_zip_holds_the_add_on_and_its_libraries_only(packages: dict[str, Path],
     reached |= _closure(lib_dir, next(lib_dir.glob("libOpenImageDenoise_device_cpu.so.*")).name)
     present = {p.name for p in lib_dir.iterdir()}
     assert present == reached, f"unreached: {present - reached}, missing: {reached - present}"
+    # Each third-party library's origin and licence files (scripts/third_party_notices.py).
+    licences = unpacked / "licenses"
+    listed = {}
+    for line in (licences / "THIRD_PARTY.txt").read_text().splitlines()[3:]:
+        listed[line.split()[0]] = re.search(r"\[(.*)\]$", line)[1].split(", ")
+    assert set(listed) == present - {"libstratum.so", "libstratum_dependencies.so"}
+    for library, files in listed.items():
+        for name in files:
+            assert (licences / name).stat().st_size > 0, (library, name)
 
 
 def test_ldd_finds_every_dependency_in_the_package(unpacked: Path) -> None:
