@@ -70,11 +70,12 @@ def install(zip_path: str) -> None:
     assert addon_module() is not None, f"{zip_path} installed but not enabled"
 
 
-def render_digest(scene_file: str, out: Path) -> str:
+def render_digest(scene_file: str, out: Path, denoise: bool = False) -> str:
     """Renders the scene at 32x32, 8 spp, to a float EXR; SHA-256 of its RGBA pixels."""
     bpy.ops.wm.open_mainfile(filepath=scene_file)
     scene = bpy.context.scene
     scene.render.engine = "STRATUM"
+    scene.stratum.use_denoising = denoise
     scene.render.resolution_x = scene.render.resolution_y = 32
     scene.render.resolution_percentage = 100
     scene.stratum.samples = 8
@@ -147,6 +148,13 @@ def phase_install() -> None:
     install(OPTIONS["--zip"])
     result["digest"] = render_digest(OPTIONS["--scene"], out / "install.exr")
     check_isolated()
+    # Open Image Denoise from the package: its library, core and CPU device (which the core
+    # opens by name from its own folder) and the oneTBB the device needs.
+    result["denoised_digest"] = render_digest(OPTIONS["--scene"], out / "denoised.exr", True)
+    oidn = sorted({Path(p).name for p, _ in mapped_files()
+                   if "OpenImageDenoise" in p and p.startswith(result["install_root"])})
+    assert len(oidn) == 3 and any("device_cpu" in name for name in oidn), oidn
+    result["denoiser"] = oidn
     if "--upgrade-zip" in OPTIONS:
         _, inode = loaded_library()
         install(OPTIONS["--upgrade-zip"])

@@ -215,6 +215,7 @@ def test_install_render_upgrade_uninstall(kind: str, packages: dict[str, Path],
     assert installed["version"] == _version() and installed["library_version"] == _version()
     assert installed["version_on_disk"] == _next_version(_version())
     assert installed["digest_after_upgrade"] == installed["digest"]
+    assert installed["denoised_digest"] != installed["digest"], "the denoiser changed nothing"
 
     lib_dir = str(Path(installed["library"]).parent)
     initialised = _trace_of_loading(traces, lib_dir)
