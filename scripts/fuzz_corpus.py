@@ -17,6 +17,7 @@ from pathlib import Path
 
 from fuzz_encoding import OPS, axis_scale, matrix, rotate, scale, translate, unit
 from fuzz_ops import (
+    SHADER_INPUTS,
     background,
     bind,
     bind_program,
@@ -211,12 +212,17 @@ def seeds() -> dict[str, bytes]:
         + bytes([OPS["models"], 2, 16 + 1])
     )
     # A program driving the cube's base colour: sin(generated x * 6) in all three channels,
-    # evaluated on drawn inputs, and the same program as the world.
+    # evaluated on drawn inputs, and the same program as the world. Its registers follow the
+    # inputs: the constant 6 where the fuzzer draws a value (every 7th register), then the
+    # three results.
+    six, product, sine, colour = (SHADER_INPUTS + k for k in (5, 6, 7, 8))
+    assert six % 7 == 0
     s["shader-program"] = (
         box_scene()
-        + shader_program([(0, [2, 0], [15, 84], [86]), (0, [4, 0], [86, 86], [87]),
-                          (35, [2], [87], [88])], 12, registers={84: 6.0}, inputs={15: 0.25})
-        + bind_program(0, 0, 0, 88, background=(0, 88, 8, 4))
+        + shader_program([(0, [2, 0], [15, six], [product]), (0, [4, 0], [product, product], [sine]),
+                          (35, [2], [sine], [colour])], 12, registers={six: 6.0},
+                         inputs={15: 0.25})
+        + bind_program(0, 0, 0, colour, background=(0, colour, 8, 4))
         + render()
         + save_load(1)
         + render()

@@ -8,6 +8,7 @@ one operation; the field values are encoded by scripts/fuzz_encoding.py.
 from __future__ import annotations
 
 from fuzz_encoding import OPS, mutations, positive, raw_string, signed, unit
+from stratum.native.abi import SHADER_INPUT_REGISTERS
 
 MATERIAL_FIELDS = {
     "base_r": (0, "unit"),
@@ -177,7 +178,8 @@ def bind(material_id: int, param: int, texture_id: int, channel: int = -1, scale
     )
 
 
-SHADER_INPUTS = 80  # STRATUM_SHADER_INPUT_REGISTERS
+# STRATUM_SHADER_INPUT_REGISTERS, as the binding reads it from the header's value.
+SHADER_INPUTS = SHADER_INPUT_REGISTERS
 
 
 def shader_program(nodes: list[tuple[int, list[int], list[int], list[int]]], extra: int,
