@@ -192,10 +192,7 @@ StratumStatus stratum_scene_set_mesh_texture_space(StratumScene* scene, uint32_t
                     "texture space size[" + std::to_string(k) + "] = " + std::to_string(size[k]) +
                         " is not a finite value within 1e12");
         }
-        // Blender's rule for a degenerate texture space (BKE_mesh_texspace_calc): 0 reads 1, a
-        // tiny positive size 1e-5.
-        const auto fix = [](float v) { return v == 0.0f ? 1.0f : (v > 0.0f && v < 1e-5f ? 1e-5f : v); };
-        half = stratum::Vec3(fix(half.x), fix(half.y), fix(half.z));
+        half = stratum::texture_space_half_size(half);
         scene->live->edit(stratum::LiveScene::Part::Structure, [&](stratum::Scene& s) {
             require(mesh_id < s.meshes.size(), "mesh_id " + std::to_string(mesh_id) +
                                                    " is not a mesh (the scene has " +

@@ -385,9 +385,7 @@ ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool b
         // Blender's automatic texture space: the bounding box, a flat axis read as size 1.
         const Bounds& b = mesh_bounds_[g.mesh_id];
         loc = (b.lo + b.hi) * 0.5f;
-        size = (b.hi - b.lo) * 0.5f;
-        const auto fix = [](float v) { return v == 0.0f ? 1.0f : std::max(v, 1e-5f); };
-        size = Vec3(fix(size.x), fix(size.y), fix(size.z));
+        size = texture_space_half_size((b.hi - b.lo) * 0.5f);
     }
     return {wo,
             backfacing,

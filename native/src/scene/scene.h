@@ -19,6 +19,13 @@
 
 namespace stratum {
 
+// Blender's rule for a degenerate texture space (BKE_mesh_texspace_calc): a half size of 0 reads
+// 1, a tiny positive one 1e-5; others, negative ones included (a user may set them), are kept.
+inline Vec3 texture_space_half_size(Vec3 half) {
+    const auto fix = [](float v) { return v == 0.0f ? 1.0f : (v > 0.0f && v < 1e-5f ? 1e-5f : v); };
+    return Vec3(fix(half.x), fix(half.y), fix(half.z));
+}
+
 struct Mesh {
     std::vector<Vec3> positions;
     std::vector<std::array<uint32_t, 3>> triangles;
@@ -31,7 +38,7 @@ struct Mesh {
     // Bounding box of `positions` (object space), for the ABI's bound on placed extents.
     Vec3 bounds_lo{kHuge, kHuge, kHuge}, bounds_hi{-kHuge, -kHuge, -kHuge};
     // Blender's texture space (generated coordinates): centre and half size per axis; unset, the
-    // bounding box (Blender's automatic texture space), see texture_space().
+    // bounding box (Blender's automatic texture space). Sizes pass texture_space_half_size().
     std::optional<std::array<Vec3, 2>> texture_space;
     // Attributes the node programs read (stratum_scene_set_mesh_attribute): per slot, RGBA per
     // triangle corner (empty: the mesh lacks it) and how its Fac is made.
