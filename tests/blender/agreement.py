@@ -98,6 +98,41 @@ def add_camera(scene: bpy.types.Scene, lens_mm: float, location: tuple[float, fl
     scene.camera = camera
 
 
+def add_top_ortho_camera(scene: bpy.types.Scene, scale: float = 2.0,
+                         height: float = 3.0) -> None:
+    """The scene's camera: orthographic, `scale` wide, at (0, 0, height) looking down -Z (the
+    node and bump tests' view of a quad in z = 0)."""
+    cam = bpy.data.cameras.new("cam")
+    cam.type = "ORTHO"
+    cam.ortho_scale = scale
+    camera = bpy.data.objects.new("cam", cam)
+    camera.location = (0.0, 0.0, height)
+    scene.collection.objects.link(camera)
+    scene.camera = camera
+
+
+def render_pixel_centres(scene: bpy.types.Scene, engine: str, path: Path, res: int,
+                         max_bounces: int | None = None) -> np.ndarray:
+    """One sample per pixel through a 0.01 px box filter, by Cycles (CPU, no denoising) or
+    Stratum: each pixel's value at its centre, so that the two compare exactly."""
+    scene.render.engine = engine
+    if engine == "CYCLES":
+        c = scene.cycles
+        c.device, c.samples, c.use_denoising = "CPU", 1, False
+        c.pixel_filter_type, c.filter_width = "BOX", 0.01
+        if max_bounces is not None:
+            c.max_bounces = max_bounces
+    else:
+        s = scene.stratum
+        s.samples, s.filter_type, s.filter_width = 1, "box", 0.01
+        if max_bounces is not None:
+            s.max_bounces = max_bounces
+    path.parent.mkdir(parents=True, exist_ok=True)
+    scene.render.filepath = str(path)
+    bpy.ops.render.render(write_still=True)
+    return load_exr(path, res)
+
+
 def open_scene() -> bpy.types.Scene:
     bpy.ops.wm.open_mainfile(filepath=str(SCENE), load_ui=False)
     scene = bpy.context.scene

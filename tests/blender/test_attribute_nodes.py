@@ -22,7 +22,13 @@ import bpy
 import numpy as np
 import pytest
 
-from agreement import OUT, load_exr, stratum_available
+from agreement import (
+    OUT,
+    add_top_ortho_camera,
+    new_scene,
+    render_pixel_centres,
+    stratum_available,
+)
 
 RES = 16
 CASES = {
@@ -60,8 +66,7 @@ def _quad() -> bpy.types.Mesh:
 
 
 def _scene(case: str) -> bpy.types.Scene:
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
+    scene = new_scene(RES)
     node_type, output, name = CASES[case]
     mat = bpy.data.materials.new(case)
     mat.use_nodes = True
@@ -80,37 +85,13 @@ def _scene(case: str) -> bpy.types.Scene:
     quad = bpy.data.objects.new("quad", _quad())
     quad.data.materials.append(mat)
     scene.collection.objects.link(quad)
-    cam = bpy.data.cameras.new("cam")
-    cam.type = "ORTHO"
-    cam.ortho_scale = 2.0
-    camera = bpy.data.objects.new("cam", cam)
-    camera.location = (0.0, 0.0, 3.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
-    r = scene.render
-    r.resolution_x = r.resolution_y = RES
-    r.resolution_percentage = 100
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    scene.view_settings.view_transform = "Standard"
+    add_top_ortho_camera(scene)
     return scene
 
 
 def _render(case: str, engine: str) -> np.ndarray:
-    scene = _scene(case)
-    scene.render.engine = engine
-    if engine == "CYCLES":
-        c = scene.cycles
-        c.device, c.samples, c.use_denoising = "CPU", 1, False
-        c.pixel_filter_type, c.filter_width = "BOX", 0.01
-    else:
-        s = scene.stratum
-        s.samples, s.filter_type, s.filter_width = 1, "box", 0.01
-    path = ATTR_OUT / f"{case}_{engine.lower()}.exr"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    scene.render.filepath = str(path)
-    bpy.ops.render.render(write_still=True)
-    return load_exr(path, RES)
+    return render_pixel_centres(_scene(case), engine, ATTR_OUT / f"{case}_{engine.lower()}.exr",
+                                RES)
 
 
 def _slope(img: np.ndarray) -> np.ndarray:

@@ -22,7 +22,13 @@ import bpy
 import numpy as np
 import pytest
 
-from agreement import OUT, load_exr, stratum_available
+from agreement import (
+    OUT,
+    add_top_ortho_camera,
+    new_scene,
+    render_pixel_centres,
+    stratum_available,
+)
 
 RES = 16
 # name: (x slope, y slope, distance, strength, invert)
@@ -37,8 +43,7 @@ BUMP_OUT = OUT.parent / (OUT.name + "-bump")
 
 def _scene(case: str) -> bpy.types.Scene:
     sx, sy, distance, strength, invert = CASES[case]
-    bpy.ops.wm.read_factory_settings(use_empty=True)
-    scene = bpy.context.scene
+    scene = new_scene(RES)
     # Black through its nodes too: Blender 5.0's new worlds are grey Background nodes.
     world = bpy.data.worlds.new("black")
     world.use_nodes = True
@@ -81,37 +86,13 @@ def _scene(case: str) -> bpy.types.Scene:
     sun_object = bpy.data.objects.new("sun", sun)
     sun_object.rotation_euler = (math.radians(25.0), math.radians(-35.0), 0.0)
     scene.collection.objects.link(sun_object)
-    cam = bpy.data.cameras.new("cam")
-    cam.type = "ORTHO"
-    cam.ortho_scale = 2.0
-    camera = bpy.data.objects.new("cam", cam)
-    camera.location = (0.0, 0.0, 3.0)
-    scene.collection.objects.link(camera)
-    scene.camera = camera
-    r = scene.render
-    r.resolution_x = r.resolution_y = RES
-    r.resolution_percentage = 100
-    r.image_settings.file_format = "OPEN_EXR"
-    r.image_settings.color_depth = "32"
-    scene.view_settings.view_transform = "Standard"
+    add_top_ortho_camera(scene)
     return scene
 
 
 def _render(case: str, engine: str) -> np.ndarray:
-    scene = _scene(case)
-    scene.render.engine = engine
-    if engine == "CYCLES":
-        c = scene.cycles
-        c.device, c.samples, c.use_denoising, c.max_bounces = "CPU", 1, False, 0
-        c.pixel_filter_type, c.filter_width = "BOX", 0.01
-    else:
-        s = scene.stratum
-        s.samples, s.filter_type, s.filter_width, s.max_bounces = 1, "box", 0.01, 0
-    path = BUMP_OUT / f"{case}_{engine.lower()}.exr"
-    path.parent.mkdir(parents=True, exist_ok=True)
-    scene.render.filepath = str(path)
-    bpy.ops.render.render(write_still=True)
-    return load_exr(path, RES)
+    return render_pixel_centres(_scene(case), engine, BUMP_OUT / f"{case}_{engine.lower()}.exr",
+                                RES, max_bounces=0)
 
 
 @pytest.mark.parametrize("case", list(CASES))
