@@ -135,3 +135,20 @@ def load_png(path: Path) -> np.ndarray:
         return pixels.reshape(height, width, 4)
     finally:
         bpy.data.images.remove(image)
+
+
+def recording(name: str, draw: Callable[..., None], s: Scenario) -> Callable[..., None]:
+    """`draw` (a panel's or preferences' draw) that also records, in s.results, that Blender
+    drew `name` ("drawn") and any exception it raised ("draw_errors"; Blender only prints
+    those)."""
+    def draw_and_record(panel: Any, context: Any) -> None:
+        try:
+            draw(panel, context)
+        except Exception:
+            s.results.setdefault("draw_errors", []).append(traceback.format_exc())
+            raise
+        drawn = s.results.setdefault("drawn", [])
+        if name not in drawn:
+            drawn.append(name)
+
+    return draw_and_record

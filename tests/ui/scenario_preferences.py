@@ -10,12 +10,11 @@ from __future__ import annotations
 
 import os
 import sys
-import traceback
 from collections.abc import Iterator
 from typing import Any
 
 import bpy
-from driver import Scenario, ScenarioFailed
+from driver import Scenario, ScenarioFailed, recording
 
 
 def steps(s: Scenario) -> Iterator[float]:
@@ -26,17 +25,13 @@ def steps(s: Scenario) -> Iterator[float]:
     s.results["module_file"] = sys.modules["stratum"].__file__
     draw = ui.StratumPreferences.draw
 
-    def draw_and_record(self: Any, context: Any) -> None:
-        try:
-            draw(self, context)
-        except Exception:  # Blender would only print it; the test reads it
-            s.results.setdefault("draw_errors", []).append(traceback.format_exc())
-            raise
+    def draw_and_note(self: Any, context: Any) -> None:
+        draw(self, context)
         status = ui.native.library_status()
-        s.results["drawn"] = {"version": ui.__version__, "library": str(status.path),
+        s.results["shown"] = {"version": ui.__version__, "library": str(status.path),
                               "library_version": status.version, "error": status.error}
 
-    ui.StratumPreferences.draw = draw_and_record
+    ui.StratumPreferences.draw = recording("StratumPreferences", draw_and_note, s)
     _, area, _ = s.view3d()
     area.type = "PREFERENCES"
     bpy.context.preferences.active_section = "ADDONS"
@@ -50,7 +45,7 @@ def steps(s: Scenario) -> Iterator[float]:
         bpy.ops.screen.screenshot_area(filepath=str(s.out / "preferences.png"))
     if not (s.out / "preferences.png").is_file():
         raise ScenarioFailed("no screenshot")
-    yield from s.wait_until(lambda: "drawn" in s.results, timeout=10.0,
+    yield from s.wait_until(lambda: "shown" in s.results, timeout=10.0,
                             what="the preferences drawn")
 
 

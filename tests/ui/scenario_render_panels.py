@@ -10,12 +10,11 @@ prints those); findings go to results.json (driver.py).
 
 from __future__ import annotations
 
-import traceback
-from collections.abc import Callable, Iterator
+from collections.abc import Iterator
 from typing import Any
 
 import bpy
-from driver import Scenario, ScenarioFailed, load_png
+from driver import Scenario, ScenarioFailed, load_png, recording
 
 # The panels a screenshot shows open; Film and Performance stay closed, as in Cycles.
 OPENED_PREFIXES = ("STRATUM_RENDER_PT_sampling", "STRATUM_RENDER_PT_light_paths")
@@ -41,20 +40,6 @@ def screenshot(s: Scenario, area: Any, name: str) -> list[float]:
     image = load_png(path)
     s.results.setdefault("shots", {})[name] = list(image.shape)
     return [float(v) for v in image[..., :3].reshape(-1, 3).mean(axis=0)]
-
-
-def recording(name: str, draw: Callable[..., None], s: Scenario) -> Callable[..., None]:
-    def draw_and_record(panel: Any, context: Any) -> None:
-        try:
-            draw(panel, context)
-        except Exception:  # Blender would only print it; the test reads it
-            s.results.setdefault("draw_errors", []).append(traceback.format_exc())
-            raise
-        drawn = s.results.setdefault("drawn", [])
-        if name not in drawn:
-            drawn.append(name)
-
-    return draw_and_record
 
 
 def steps(s: Scenario) -> Iterator[float]:

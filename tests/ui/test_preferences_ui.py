@@ -38,7 +38,8 @@ def test_blender_draws_the_preferences_of_the_installed_add_on(
     assert not preferences.get("draw_errors"), preferences["draw_errors"]
     scripts = Path(preferences["home"]) / "scripts"
     assert Path(preferences["module_file"]).is_relative_to(scripts)
-    drawn = preferences["drawn"]
+    assert preferences["drawn"] == ["StratumPreferences"]
+    drawn = preferences["shown"]
     assert drawn["version"] == VERSION and drawn["library_version"] == VERSION, drawn
     assert Path(drawn["library"]).is_relative_to(scripts / "addons" / "stratum" / "lib"), drawn
     assert (OUT / "preferences" / "preferences.png").stat().st_size > 0
