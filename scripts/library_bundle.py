@@ -59,19 +59,30 @@ class BundledLibrary:
     name: str  # its file name and soname in the package
 
 
-def resolve_dependencies(library: Path) -> dict[str, Path]:
-    """soname -> file for every library `library` pulls in, as the loader resolves them in an
-    empty environment (no LD_LIBRARY_PATH); BundleError naming a dependency not found."""
+def _ldd(library: Path) -> list[tuple[str, Path | None]]:
+    """(soname, file, or None when not found) for every library `library` pulls in, as the
+    loader resolves them in an empty environment (no LD_LIBRARY_PATH)."""
     out = subprocess.run(["ldd", str(library)], capture_output=True, text=True, env=_CLEAN_ENV,
                          check=False)
     if out.returncode != 0:
         raise BundleError(f"ldd {library} failed: {out.stderr.strip() or out.stdout.strip()}")
-    found: dict[str, Path] = {}
+    found: list[tuple[str, Path | None]] = []
     for line in out.stdout.splitlines():
         if missing := _LDD_MISSING.match(line):
-            raise BundleError(f"{library}: dependency {missing.group(1)} not found")
-        if resolved := _LDD_RESOLVED.match(line):
-            found[resolved.group(1)] = Path(os.path.realpath(resolved.group(2)))
+            found.append((missing.group(1), None))
+        elif resolved := _LDD_RESOLVED.match(line):
+            found.append((resolved.group(1), Path(resolved.group(2))))
+    return found
+
+
+def resolve_dependencies(library: Path) -> dict[str, Path]:
+    """soname -> file (symlinks resolved) for every library `library` pulls in; BundleError
+    naming a dependency not found."""
+    found: dict[str, Path] = {}
+    for soname, path in _ldd(library):
+        if path is None:
+            raise BundleError(f"{library}: dependency {soname} not found")
+        found[soname] = Path(os.path.realpath(path))
     return found
 
 
@@ -158,16 +169,12 @@ def foreign_dependencies(directory: Path, roots: list[str]) -> dict[str, list[st
     alone would not find its neighbours.)"""
     problems: dict[str, list[str]] = {}
     inside = directory.resolve()
-    for library in (directory / root for root in roots):
-        out = subprocess.run(["ldd", str(library)], capture_output=True, text=True,
-                             env=_CLEAN_ENV, check=False)
-        for line in out.stdout.splitlines():
-            if missing := _LDD_MISSING.match(line):
-                problems.setdefault(library.name, []).append(f"{missing.group(1)} not found")
-            elif resolved := _LDD_RESOLVED.match(line):
-                soname, path = resolved.group(1), Path(resolved.group(2))
-                if soname not in BASE_SYSTEM and path.resolve().parent != inside:
-                    problems.setdefault(library.name, []).append(f"{soname} => {path}")
+    for root in roots:
+        for soname, path in _ldd(directory / root):
+            if path is None:
+                problems.setdefault(root, []).append(f"{soname} not found")
+            elif soname not in BASE_SYSTEM and path.resolve().parent != inside:
+                problems.setdefault(root, []).append(f"{soname} => {path}")
     return problems
 
 

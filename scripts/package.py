@@ -41,6 +41,8 @@ from library_bundle import (
     foreign_dependencies,
     required_versions,
 )
+from stratum.native.library import DEPENDENCIES
+from stratum.version import VERSION_LINE, version_tuple
 from third_party_notices import NoticeError, index, notices
 
 ROOT = Path(__file__).resolve().parent.parent
@@ -52,9 +54,6 @@ PLATFORM = "linux-x64"
 CLI_ONLY = ("cli.py", "blender_process.py", "distributed.py", "compare")
 OIDN_FILES = ("libOpenImageDenoise.so.2", "libOpenImageDenoise_core.so.*",
               "libOpenImageDenoise_device_cpu.so.*")
-# Built beside libstratum.so; stratum/native/library.py opens it first (DEPENDENCIES there).
-DEPENDENCIES = "libstratum_dependencies.so"
-_MANIFEST_VERSION = re.compile(r'^version\s*=\s*"([^"]+)"\s*$', re.MULTILINE)
 _SEMVER = re.compile(r"^\d+\.\d+\.\d+(?:-[0-9A-Za-z.-]+)?(?:\+[0-9A-Za-z.-]+)?$")
 
 
@@ -96,7 +95,7 @@ def check_imports_inside(files: list[Path]) -> None:
 def stamped_init(version: str) -> str:
     """__init__.py with bl_info["version"] written from the manifest's version."""
     text = (ADDON / "__init__.py").read_text(encoding="utf-8")
-    numbers = tuple(int(p) for p in re.split(r"[-+]", version, maxsplit=1)[0].split("."))
+    numbers = version_tuple(version)
     opening = "bl_info = {\n"
     if text.count(opening) != 1 or '"version"' in text.split(opening, 1)[1].split("}", 1)[0]:
         raise PackageError("addon/stratum/__init__.py: expected one `bl_info = {` without a "
@@ -112,7 +111,7 @@ def stamped_init(version: str) -> str:
 def manifest_text(version: str | None) -> tuple[str, str]:
     """(manifest text, version), the version replaced when given."""
     text = (ADDON / "blender_manifest.toml").read_text(encoding="utf-8")
-    match = _MANIFEST_VERSION.search(text)
+    match = VERSION_LINE.search(text)
     if match is None:
         raise PackageError("addon/stratum/blender_manifest.toml has no version line")
     if version is None:

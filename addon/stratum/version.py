@@ -8,12 +8,13 @@ import re
 from pathlib import Path
 
 MANIFEST = Path(__file__).resolve().parent / "blender_manifest.toml"
-_VERSION_LINE = re.compile(r'^version\s*=\s*"([^"]+)"\s*$', re.MULTILINE)
+# The manifest's `version = "X.Y.Z"` line; group 1 is the version (make package rewrites it).
+VERSION_LINE = re.compile(r'^version\s*=\s*"([^"]+)"\s*$', re.MULTILINE)
 
 
 def read_manifest_version(manifest: Path = MANIFEST) -> str:
     """The `version` of a blender_manifest.toml; ValueError naming the file when it has none."""
-    match = _VERSION_LINE.search(manifest.read_text(encoding="utf-8"))
+    match = VERSION_LINE.search(manifest.read_text(encoding="utf-8"))
     if match is None:
         raise ValueError(f"{manifest}: no `version = \"...\"` line")
     return match.group(1)

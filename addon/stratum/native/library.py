@@ -66,8 +66,6 @@ class LibraryLoadError(StratumError):
 DEPENDENCIES = "libstratum_dependencies.so"
 _lib: ctypes.CDLL | None = None
 _lib_path: Path | None = None
-# The packaged dependencies, kept open while the library is.
-_dependencies: list[ctypes.CDLL] = []
 _lib_lock = threading.Lock()
 
 
@@ -115,7 +113,7 @@ def load_library(path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
         if sys.platform.startswith("linux"):
             mode = os.RTLD_LOCAL | os.RTLD_DEEPBIND
         try:
-            _dependencies.extend(_open_packaged_dependencies(lib_path))
+            _open_packaged_dependencies(lib_path)
             lib = ctypes.CDLL(str(lib_path), mode=mode)
         except OSError as exc:
             raise LibraryLoadError(f"cannot load Stratum native library {lib_path}: {exc}") from exc
@@ -125,13 +123,12 @@ def load_library(path: str | os.PathLike[str] | None = None) -> ctypes.CDLL:
         return lib
 
 
-def _open_packaged_dependencies(lib_path: Path) -> list[ctypes.CDLL]:
+def _open_packaged_dependencies(lib_path: Path) -> None:
     """Opens a package's libstratum_dependencies.so (none in a checkout, where the system's
-    libraries are used as they are)."""
+    libraries are used as they are). ctypes never closes a library, so no handle is kept."""
     dependencies = lib_path.with_name(DEPENDENCIES)
-    if not dependencies.is_file():
-        return []
-    return [ctypes.CDLL(str(dependencies), mode=os.RTLD_LOCAL)]
+    if dependencies.is_file():
+        ctypes.CDLL(str(dependencies), mode=os.RTLD_LOCAL)
 
 
 def library_status() -> LibraryStatus:
