@@ -82,12 +82,12 @@ corpus-asan: build
 	BLENDER=$(BLENDER) PYTHONPATH=tests/blender $(PY) -m corpus.replay $(CORPUS_NATIVE)
 
 lint: setup
-	$(VENV)/bin/ruff check addon tests scenes scripts
+	$(VENV)/bin/ruff check addon tests scenes scripts native/fuzz/tools
 	clang-format --dry-run -Werror $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
 
 format: setup
 	clang-format -i $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
-	$(VENV)/bin/ruff check --fix addon tests scenes scripts
+	$(VENV)/bin/ruff check --fix addon tests scenes scripts native/fuzz/tools
 
 # README.md's render-settings tables, written anew from the library's list of settings.
 settings-table: build
@@ -180,12 +180,12 @@ sanitize: build-sanitize
 
 # The fuzzer for FUZZ_SECONDS with FUZZ_JOBS workers, collecting every crash in out/fuzz/artifacts.
 fuzz: build-sanitize
-	$(SANITIZER_ENV) bash scripts/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
+	$(SANITIZER_ENV) bash native/fuzz/tools/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
 
 # The bounded run of `make test`: 60 s (it replays the corpus first; `make fuzz` is the long
 # run), stops at the first crash.
 fuzz-smoke: build-sanitize
-	$(SANITIZER_ENV) bash scripts/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz 60 0
+	$(SANITIZER_ENV) bash native/fuzz/tools/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz 60 0
 
 # Valgrind memcheck of the native determinism test (every sampler x integrator renders a box 3
 # times in one process, threads 1, 2 and 7): uninitialised reads, which ASan/UBSan do not

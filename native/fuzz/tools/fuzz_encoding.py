@@ -1,8 +1,8 @@
 """The value encodings of the ABI fuzzer's programs (native/fuzz/README.md), for the assembler
-scripts/fuzz_corpus.py: the operation codes, the special floats by name, a float field's
+fuzz_corpus.py: the operation codes, the special floats by name, a float field's
 one-byte scaled form (signed, positive, unit) or raw bits, descriptor mutation lists, small
 integers, transform matrices (presets and element changes) and raw strings. The operations
-built from them are in scripts/fuzz_ops.py.
+built from them are in fuzz_ops.py.
 """
 
 from __future__ import annotations

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Runs the ABI fuzzer (native/fuzz/README.md): scripts/fuzz.sh BINARY SECONDS JOBS
+# Runs the ABI fuzzer (native/fuzz/README.md): native/fuzz/tools/fuzz.sh BINARY SECONDS JOBS
 #   JOBS 0: one process with a fixed seed that stops at the first crash (`make test`);
 #   JOBS >= 1: JOBS worker processes for SECONDS in all, each started again after a crash, a
 #   hang or an out-of-memory, so that one known crash does not hide the others (`make fuzz`).
@@ -11,7 +11,7 @@
 # the corpus and restart the library each time, and ran 50-120 executions/s on the 2-core CI
 # machine where one plain process runs ~225/s (two share it at ~205/s).
 set -euo pipefail
-cd "$(dirname "$0")/.."
+cd "$(dirname "$0")/../../.."
 binary=$1 seconds=$2 jobs=$3
 out=out/fuzz
 mkdir -p "$out/corpus" "$out/artifacts"
@@ -70,7 +70,7 @@ if [ -n "$new" ] || [ "$status" -ne 0 ]; then
   echo "fuzz: the run found crashes, hangs or leaks (logs: ${logs[*]}):"
   for f in $new; do echo "  $f"; done
   echo "  replay one with its ABI calls: STRATUM_FUZZ_TRACE=1 $binary <file>"
-  echo "  group them by cause: python scripts/fuzz_triage.py $out/artifacts"
+  echo "  group them by cause: .venv/bin/python native/fuzz/tools/fuzz_triage.py $out/artifacts"
   exit 1
 fi
 echo "fuzz: no crash in $seconds s (log: $out/last-run.log)"

@@ -3,12 +3,13 @@
 The fuzzer (native/fuzz/) reads its input as a program over the C ABI; the encoding is in
 native/fuzz/README.md. This script is an assembler for that encoding: each seed is a readable
 list of operations, so the corpus is reviewable and can be regenerated after the encoding
-changes (`python scripts/fuzz_corpus.py`). Seeds go to native/fuzz/corpus/; programs that
-reproduce the crashes of issue 12 go to native/fuzz/regressions/ (replayed by ctest).
+changes (`.venv/bin/python native/fuzz/tools/fuzz_corpus.py`). Seeds go to native/fuzz/corpus/;
+programs that reproduce the crashes of issue 12 go to native/fuzz/regressions/ (replayed by
+ctest).
 
 This module holds the programs (the seeds and the known crashes) and writes them; the
-operations they are made of are encoded by scripts/fuzz_ops.py, the field values by
-scripts/fuzz_encoding.py.
+operations they are made of are encoded by fuzz_ops.py, the field values by fuzz_encoding.py
+(beside it: a script's folder is the first entry of sys.path, so they import by their names).
 """
 
 from __future__ import annotations
@@ -43,7 +44,7 @@ from fuzz_ops import (
     vertex_normals,
 )
 
-ROOT = Path(__file__).resolve().parent.parent
+FUZZ = Path(__file__).resolve().parents[1]  # native/fuzz
 
 
 def box_scene() -> bytes:
@@ -261,7 +262,7 @@ def known_crashes() -> dict[str, bytes]:
 
 def main() -> None:
     for folder, programs in (("corpus", seeds()), ("regressions", known_crashes())):
-        out = ROOT / "native" / "fuzz" / folder
+        out = FUZZ / folder
         out.mkdir(parents=True, exist_ok=True)
         for name, program in programs.items():
             (out / name).write_bytes(program)

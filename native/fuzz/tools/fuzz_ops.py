@@ -1,8 +1,8 @@
 """One encoder per operation of the ABI fuzzer's programs (native/fuzz/program.cpp; encoding in
-native/fuzz/README.md), for the assembler scripts/fuzz_corpus.py: materials and closures,
-lights, cameras, meshes, instances, vertex normals, background and environment, textures and
-their bindings, renders with their settings, throughput, save/load. Each returns the bytes of
-one operation; the field values are encoded by scripts/fuzz_encoding.py.
+native/fuzz/README.md), for the assembler fuzz_corpus.py: materials and closures, lights,
+cameras, meshes, instances, vertex normals, background and environment, textures and their
+bindings, renders with their settings, throughput, save/load. Each returns the bytes of one
+operation; the field values are encoded by fuzz_encoding.py.
 """
 
 from __future__ import annotations

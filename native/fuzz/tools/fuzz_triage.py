@@ -1,6 +1,7 @@
 """Groups the ABI fuzzer's crashing inputs by cause.
 
-    python scripts/fuzz_triage.py [ARTIFACT_DIR_OR_FILES...] [--binary build-asan/stratum_fuzz]
+    python native/fuzz/tools/fuzz_triage.py [ARTIFACT_DIR_OR_FILES...]
+        [--binary build-asan/stratum_fuzz]
 
 Each input is replayed with its ABI calls traced (STRATUM_FUZZ_TRACE=1); its cause is the
 first report found in the output (the harness's own finding, an Embree assertion, a UBSan or
@@ -19,7 +20,7 @@ import sys
 from collections import defaultdict
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parent.parent
+ROOT = Path(__file__).resolve().parents[3]  # the repository
 
 PATTERNS = [
     (re.compile(r"STRATUM FUZZ FINDING: (.*)"), "finding: {0}"),
