@@ -1,5 +1,5 @@
 // The Sky Texture node (shading/nodes/sky_texture.cpp) through the C ABI: Preetham at the zenith
-// against the model's closed form, values Cycles 3.4 rendered (scripts/sky_cycles_reference.py),
+// against the model's closed form, values Cycles 3.4 rendered (scripts/cycles_reference/sky.py),
 // the Nishita table's mirror symmetry and ground fade, the sun disc's limb darkening and its
 // radiance against the disc's solid angle, and the checks.
 #include <gtest/gtest.h>
