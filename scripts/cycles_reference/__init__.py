@@ -12,4 +12,9 @@ Blender version changes the model, and update the test with what it reports.
 | principled_v2.py | Principled v2's directional albedo     | test_bsdf.cpp                       |
 |                  | (Blender 5.0)                          | (V2DirectionalAlbedoMatchesCycles50)|
 
+The other one-off probes (Voronoi and White Noise, the vector and converter nodes, the pattern
+and Image nodes, the sky against Stratum, the sun disc's energy in a baked world) were removed:
+their figures stay in docs/shader_nodes.md and in git history, and what they measured is
+checked by tests/blender/test_node_agreement.py (every node against Cycles, per pixel, in each
+Blender) and by the sky tests above (BakedWorldKeepsTheSunDiscsIrradiance for the disc).
 """
