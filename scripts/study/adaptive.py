@@ -28,7 +28,8 @@ from typing import Any
 
 from scripts import REPO
 from scripts.bench.results import noise_mse_seconds
-from scripts.study.estimators import _means, equal_time, fmt
+from scripts.study.estimators import equal_time
+from scripts.study.results import fmt, series_means
 
 # The metric mse's threshold per scene file (the module doc); scripts/bench/adaptive.py uses it too.
 MSE_THRESHOLDS = {"cornell_box": 0.1, "wolf": 0.03}
@@ -77,7 +78,7 @@ def scene_table(results: dict[str, dict[str, Any]]) -> tuple[list[str], dict[str
     for sampler, res in results.items():
         spps = sorted(int(s) for s in res["spp"])
         top = spps[-1]
-        mse, seconds = _means(res, "mse"), _means(res, "trace_seconds")
+        mse, seconds = series_means(res, "mse"), series_means(res, "trace_seconds")
         for adaptive in (s for s in res["series"] if s != FIXED):
             # Equal time between fixed sampling and this adaptive series alone.
             pair = {**res, "series": [k for k in res["series"] if k in (FIXED, adaptive)]}

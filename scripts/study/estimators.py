@@ -32,6 +32,9 @@ import math
 from pathlib import Path
 from typing import Any
 
+from scripts.study.plotting import pyplot
+from scripts.study.results import fmt, series_means
+
 LADDER: tuple[tuple[str, str], ...] = (
     ("bsdf", "path:light_sampling=bsdf"),
     ("nee+tri-area", "path:light_sampling=nee,triangle_sampling=area"),
@@ -83,11 +86,6 @@ def plan_runs(quick: bool, run_type: Any) -> list[Any]:
 # ---- numbers ---------------------------------------------------------------------------------
 
 
-def _means(results: dict[str, Any], metric: str) -> dict[tuple[str, int], float]:
-    return {(row["series"], int(row["spp"])): float(row["mean"])
-            for row in results["summary"] if row["metric"] == metric}
-
-
 def median_errors(run_dir: Path, results: dict[str, Any]) -> dict[tuple[str, int], float]:
     """Per (series, spp): the mean over seeds of the median over pixels of the squared error
     (averaged over RGB). MSE is a mean, so a handful of fireflies can decide it; the median
@@ -108,8 +106,8 @@ def equal_time(results: dict[str, Any], errors: dict[tuple[str, int], float] | N
                ) -> tuple[float, dict[str, tuple[float, bool]]]:
     """(T, {series: (error at time T, extrapolated)}): see the module doc. errors: per
     (series, spp), default the mean MSE."""
-    mse = errors if errors is not None else _means(results, "mse")
-    seconds = _means(results, "trace_seconds")
+    mse = errors if errors is not None else series_means(results, "mse")
+    seconds = series_means(results, "trace_seconds")
     spps = sorted(int(s) for s in results["spp"])
     curves = {s: [(seconds[(s, n)], mse[(s, n)]) for n in spps] for s in results["series"]}
     # direct is left out of the budget: it is biased, and far cheaper than full transport.
@@ -127,12 +125,6 @@ def equal_time(results: dict[str, Any], errors: dict[tuple[str, int], float] | N
     return budget, out
 
 
-def fmt(x: float | None, digits: int = 3) -> str:
-    if x is None or not math.isfinite(x):
-        return "-"
-    return f"{x:.{digits}g}"
-
-
 def table(results: dict[str, Any], medians: dict[tuple[str, int], float]
           ) -> tuple[str, dict[str, Any]]:
     """Markdown: per series, MSE at every spp, ratio to mis-power at the largest spp, trace
@@ -140,7 +132,7 @@ def table(results: dict[str, Any], medians: dict[tuple[str, int], float]
     pixel error (median_errors) at the largest spp and its ratios at equal spp and time."""
     spps = sorted(int(s) for s in results["spp"])
     top = spps[-1]
-    mse, seconds = _means(results, "mse"), _means(results, "trace_seconds")
+    mse, seconds = series_means(results, "mse"), series_means(results, "trace_seconds")
     budget, at_budget = equal_time(results)
     _, med_budget = equal_time(results, medians)
     base = "mis-power" if "mis-power" in results["series"] else results["series"][0]
@@ -244,10 +236,7 @@ def write_page(out: Path, load: Any) -> tuple[str, dict[str, Any]]:
 
 def mse_figure(out: Path, load: Any) -> Path | None:
     """MSE vs spp (top) and vs path-tracing time (bottom), one column per scene."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+    plt = pyplot()
 
     runs = [(name, what, load(out, name)) for name, _, what in SCENES]
     runs = [(n, w, r) for n, w, r in runs if r is not None]
@@ -256,7 +245,7 @@ def mse_figure(out: Path, load: Any) -> Path | None:
     fig, axes = plt.subplots(2, len(runs), figsize=(4.6 * len(runs), 7.0), squeeze=False)
     colours = {label: plt.get_cmap("tab10")(k) for k, (label, _) in enumerate(LADDER)}
     for j, (name, what, res) in enumerate(runs):
-        mse, seconds = _means(res, "mse"), _means(res, "trace_seconds")
+        mse, seconds = series_means(res, "mse"), series_means(res, "trace_seconds")
         spps = sorted(int(s) for s in res["spp"])
         for s in res["series"]:
             ys = [mse[(s, n)] for n in spps]

@@ -10,38 +10,15 @@ from pathlib import Path
 from typing import Any
 
 from scripts.study import estimators
-from scripts.study.summary import (
-    AO_HEMISPHERES,
-    AO_SAMPLERS,
-    BASELINE,
-    fmt,
-    load_results,
-    mean_of,
-)
+from scripts.study.plotting import pyplot, srgb8
+from scripts.study.results import fmt, load_results, mean_of
+from scripts.study.summary import AO_HEMISPHERES, AO_SAMPLERS, BASELINE
 
 # Samplers shown in the image grids: the coursework's five, plus the two Sobol variants.
 GRID_SAMPLERS = ("lcg", "halton", "halton_rd", "halton_owen", "bluenoise", "sobol", "zsobol")
 # Magnified crops (x, y, w, h from the top left, as fractions of the image): floor regions as in
 # the coursework's figures (Cornell: lower left floor; Wolf: the floor in the wolf's shadow).
 CROPS = {"cornell": (0.06, 0.66, 0.31, 0.31), "wolf": (0.53, 0.62, 0.2, 0.27)}
-
-
-def pyplot() -> Any:
-    """matplotlib.pyplot on the file-only Agg backend (no display on the study's machines)."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return plt
-
-
-def srgb8(linear: Any) -> Any:
-    import numpy as np
-
-    x = np.clip(np.asarray(linear, dtype=np.float64), 0.0, 1.0)
-    s = np.where(x <= 0.0031308, 12.92 * x, 1.055 * np.power(x, 1.0 / 2.4) - 0.055)
-    return (s * 255.0 + 0.5).astype(np.uint8)
 
 
 def render_path(res: dict[str, Any], sampler: str, spp: int, seed: int = 0) -> str | None:

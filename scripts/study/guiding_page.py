@@ -10,7 +10,8 @@ import re
 from pathlib import Path
 from typing import Any
 
-from scripts.study.estimators import equal_time, fmt
+from scripts.study.estimators import equal_time
+from scripts.study.results import fmt
 
 BLOCK = 10  # px: the reference comparison's blocks (8 x 6 of them at 80x60)
 DARK = 0.016  # linear; tests/blender/test_feature_agreement.py's threshold

@@ -27,7 +27,8 @@ from typing import Any
 
 from scripts import REPO
 from scripts.bench.results import noise_mse_seconds
-from scripts.study.estimators import _means, equal_time, fmt
+from scripts.study.estimators import equal_time
+from scripts.study.results import fmt, series_means
 
 RUN = "lights_hall"
 SCENE = "scenes/many_lights_hall.blend"
@@ -64,7 +65,7 @@ def plan_runs(quick: bool, run_type: Any) -> list[Any]:
 
 def hall_table(res: dict[str, Any]) -> tuple[list[str], dict[str, Any]]:
     spps = sorted(int(s) for s in res["spp"])
-    mse, seconds = _means(res, "mse"), _means(res, "trace_seconds")
+    mse, seconds = series_means(res, "mse"), series_means(res, "trace_seconds")
     budget, at_budget = equal_time(res)
     base = at_budget[series(BASE)][0]
     lines = ["| selection | " + " | ".join(f"MSE {n} spp" for n in spps)

@@ -32,6 +32,7 @@ from pathlib import Path
 from typing import Any
 
 from scripts import REPO
+from scripts.study.plotting import pyplot
 
 SOLVERS = ("jacobi", "gauss_seidel", "shooting")
 TOLERANCE = 1e-7
@@ -134,8 +135,6 @@ def first_reaching(values: list[float], level: float) -> int | None:
 
 
 def figure(result: dict[str, Any], path: Path) -> None:
-    from scripts.study.figures import pyplot
-
     plt = pyplot()
     fig, axes = plt.subplots(1, 2, figsize=(10, 4))
     for solver, r in result["solvers"].items():

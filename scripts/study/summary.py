@@ -1,8 +1,8 @@
 """The summary of `make study` (run.py): reads every out/study/<run>/results.json and writes
 out/study/summary.md (MSE and FLIP ratios to `lcg`, the coursework's "Standard"; slopes;
-absolute errors with their 95 % intervals; the low-pass block MSE; the AO table; the estimator
-tables of estimators.py) and out/study/headline.json (the same numbers). The results accessors
-here (load_results, mean_of, fmt) serve figures.py as well.
+absolute errors with their 95 % intervals; the low-pass block MSE; the AO table; the pages of
+estimators.py, lights.py, adaptive.py, radiosity.py and guiding.py) and out/study/headline.json
+(the same numbers).
 """
 
 from __future__ import annotations
@@ -13,41 +13,11 @@ from pathlib import Path
 from typing import Any
 
 from scripts.study import adaptive, estimators, lights, radiosity
+from scripts.study.results import ci_of, fmt, load_results, mean_of
 
 BASELINE = "lcg"  # the coursework's "Standard" sampler
 AO_HEMISPHERES = ("uniform_angles", "uniform", "cosine")
 AO_SAMPLERS = ("random", "fibonacci", "fibonacci_static")
-
-
-def load_results(out: Path, name: str) -> dict[str, Any] | None:
-    path = out / name / "results.json"
-    return json.loads(path.read_text()) if path.is_file() else None
-
-
-def summary_row(results: dict[str, Any], sampler: str, spp: int,
-                metric: str) -> dict[str, Any] | None:
-    """The results.json summary row of metric over the seeds of (sampler, spp), if measured."""
-    for row in results["summary"]:
-        if row["sampler"] == sampler and row["spp"] == spp and row["metric"] == metric:
-            return row
-    return None
-
-
-def mean_of(results: dict[str, Any], sampler: str, spp: int, metric: str) -> float | None:
-    row = summary_row(results, sampler, spp, metric)
-    return float(row["mean"]) if row is not None else None
-
-
-def ci_of(results: dict[str, Any], sampler: str, spp: int,
-          metric: str) -> tuple[float, float] | None:
-    row = summary_row(results, sampler, spp, metric)
-    return (float(row["ci95_low"]), float(row["ci95_high"])) if row is not None else None
-
-
-def fmt(x: float | None, digits: int = 3) -> str:
-    if x is None or (isinstance(x, float) and not math.isfinite(x)):
-        return "-"
-    return f"{x:.{digits}g}"
 
 
 BLOCK = 4  # block size of the low-pass MSE
