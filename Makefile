@@ -6,6 +6,9 @@ VENV       := .venv
 PY         := $(VENV)/bin/python
 BLENDER    ?= blender
 BLENDER_BG := $(BLENDER) -b --factory-startup -noaudio
+# A module of scripts/ inside Blender: `$(BLENDER_RUN) scripts.bench.speed ARGS` (the launcher puts
+# this checkout on Blender's sys.path); the venv's Python runs them as `$(PY) -m scripts.<room>.<module>`.
+BLENDER_RUN := $(BLENDER_BG) --python scripts/run_in_blender.py --
 CMAKE_ARGS ?= -DCMAKE_BUILD_TYPE=Release -DSTRATUM_WERROR=ON
 LIB        := addon/stratum/lib/libstratum.so
 
@@ -25,7 +28,7 @@ build: setup
 	# Copy then rename: overwriting the file in place would crash a process that has it loaded.
 	cp -f $(BUILD)/libstratum.so $(LIB).tmp && mv -f $(LIB).tmp $(LIB)
 	# Open Image Denoise beside it (Blender 3.4's Python does not see the venv's pyoidn).
-	$(PY) scripts/copy_oidn.py addon/stratum/lib
+	$(PY) -m scripts.packaging.copy_oidn addon/stratum/lib
 
 # corpus-asan after sanitize, which builds the binary it replays with.
 test: build lint test-native test-python test-blender test-package test-ui sanitize corpus-asan fuzz-smoke
@@ -48,7 +51,7 @@ test-blender-wheel: build
 # The zip users install (docs/packaging.md): dist/stratum-<version>-linux-x64.zip, the add-on
 # with libstratum.so and every library it needs beyond the base system.
 package: build
-	$(PY) scripts/package.py --library $(BUILD)/libstratum.so --out dist
+	$(PY) -m scripts.packaging.package --library $(BUILD)/libstratum.so --out dist
 
 # Builds the package twice (this version and the next, for the upgrade) from build/, installs it
 # into fresh user configurations of Blender 3.4 and of the bpy wheel, renders, upgrades,
@@ -82,23 +85,23 @@ corpus-asan: build
 	BLENDER=$(BLENDER) PYTHONPATH=tests/blender $(PY) -m corpus.replay $(CORPUS_NATIVE)
 
 lint: setup
-	$(VENV)/bin/ruff check addon tests scenes scripts
+	$(VENV)/bin/ruff check addon tests scenes scripts native/fuzz/tools
 	clang-format --dry-run -Werror $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
 
 format: setup
 	clang-format -i $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
-	$(VENV)/bin/ruff check --fix addon tests scenes scripts
+	$(VENV)/bin/ruff check --fix addon tests scenes scripts native/fuzz/tools
 
 # README.md's render-settings tables, written anew from the library's list of settings.
 settings-table: build
-	$(PY) scripts/settings_table.py
+	$(PY) -m scripts.settings_table
 
 # Renders the bundled Cornell box with Stratum through Blender in background mode.
 render: build
 	bash scripts/install_addon.sh
 	mkdir -p out
 	$(BLENDER) -b scenes/cornell_box.blend --addons stratum -E STRATUM \
-		--python scripts/render_to_files.py -- out/cornell_box
+		--python scripts/run_in_blender.py -- scripts.render.render_to_files out/cornell_box
 	@echo "Stratum rendered the Cornell box: $(CURDIR)/out/cornell_box.png (display) and $(CURDIR)/out/cornell_box.exr (linear)"
 
 # The micro-benchmarks of native/bench (docs/performance.md, "Micro-benchmarks"): items/s of
@@ -108,7 +111,7 @@ render: build
 # Where the path tracer spends its time: perf over a captured Cornell box (docs/performance.md).
 .PHONY: profile
 profile: build
-	bash scripts/profile_render.sh max_bounces=8
+	bash scripts/render/profile_render.sh max_bounces=8
 
 microbench: build
 	mkdir -p out
@@ -116,38 +119,38 @@ microbench: build
 		|| (cat out/microbench.txt; false)
 	cat out/microbench.txt
 
-# Issue 15's sections write out/bench/*.json; bench_summary.py prints them as one table (also
-# out/bench_summary.txt) at the end.
+# Issue 15's sections (scripts/bench/) write out/bench/*.json; summary.py prints them as one table
+# (also out/bench_summary.txt) at the end.
 bench: build microbench
 	bash scripts/install_addon.sh
 	mkdir -p out
 	rm -rf out/bench
-	$(BLENDER_BG) --python scripts/bench.py
-	$(BLENDER_BG) --python scripts/bench_samplers.py
-	$(BLENDER_BG) --python scripts/bench_quality.py
-	$(BLENDER_BG) --python scripts/bench_adaptive.py
-	$(BLENDER_BG) --python scripts/bench_memory.py
-	$(BLENDER_BG) --python scripts/bench_progress.py
-	$(PY) scripts/bench_textures.py
-	$(BLENDER_BG) --python scripts/bench_shader_nodes.py
-	$(PY) scripts/bench_distributed.py
-	$(BLENDER_BG) --python scripts/bench_viewport.py
-	xvfb-run -a -s "-screen 0 1280x800x24" $(BLENDER) scenes/cornell_box.blend --factory-startup -noaudio --window-geometry 0 0 800 600 --python scripts/bench_viewport_ui.py -- out/bench_viewport_ui && test -s out/bench_viewport_ui.txt
-	$(PY) scripts/bench_summary.py
+	$(BLENDER_RUN) scripts.bench.speed
+	$(BLENDER_RUN) scripts.bench.samplers
+	$(BLENDER_RUN) scripts.bench.quality
+	$(BLENDER_RUN) scripts.bench.adaptive
+	$(BLENDER_RUN) scripts.bench.memory
+	$(BLENDER_RUN) scripts.bench.progress
+	$(PY) -m scripts.bench.textures
+	$(BLENDER_RUN) scripts.bench.shader_nodes
+	$(PY) -m scripts.bench.distributed_render
+	$(BLENDER_RUN) scripts.bench.viewport
+	xvfb-run -a -s "-screen 0 1280x800x24" $(BLENDER) scenes/cornell_box.blend --factory-startup -noaudio --window-geometry 0 0 800 600 --python scripts/run_in_blender.py -- scripts.bench.viewport_ui out/bench_viewport_ui && test -s out/bench_viewport_ui.txt
+	$(PY) -m scripts.bench.summary
 
 # The study: the sampler runs of issue 4 (Cornell box, Wolf, AO; 24.6 min measured on 2 shared
 # cores) and the estimator ladder of issue 6 (small-light, large-light and glossy Cornell boxes;
 # 30 min measured under load, 9.3 min on a quiet machine), `stratum compare` runs into
 # out/study/, then out/study/summary.md, out/study/estimators.md and figures; the radiosity
-# solvers of issue 17 (scripts/study_radiosity.py, seconds) into out/study/radiosity.md, and path
-# guiding against Cycles' (scripts/study_guiding.py, run by study.py: about 7 min) into
+# solvers of issue 17 (scripts/study/radiosity.py, seconds) into out/study/radiosity.md, and path
+# guiding against Cycles' (scripts/study/guiding.py, run by run.py: about 7 min) into
 # out/study/guiding.md. Not part of `make test`. Re-running renders only what is missing.
 study: build
-	$(PY) scripts/study_auto_lights.py --out out/study
-	$(PY) scripts/study_radiosity.py --out out/study
-	$(PY) scripts/bench_quality.py --scene many_lights_hall --sampler sobol --res 96 --samples 32 \
+	$(PY) -m scripts.study.auto_lights --out out/study
+	$(PY) -m scripts.study.radiosity --out out/study
+	$(PY) -m scripts.bench.quality --scene many_lights_hall --sampler sobol --res 96 --samples 32 \
 		--reference-samples 1024 --light-selection tree,tree:1,power,uniform,mixed --section quality_lights
-	$(PY) scripts/study.py --out out/study --jobs 2
+	$(PY) -m scripts.study.run --out out/study --jobs 2
 
 # One clang build with ASan, UBSan (findings abort) and libFuzzer coverage serves the sanitized
 # test suite and the ABI fuzzer (native/fuzz/README.md).
@@ -180,12 +183,12 @@ sanitize: build-sanitize
 
 # The fuzzer for FUZZ_SECONDS with FUZZ_JOBS workers, collecting every crash in out/fuzz/artifacts.
 fuzz: build-sanitize
-	$(SANITIZER_ENV) bash scripts/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
+	$(SANITIZER_ENV) bash native/fuzz/tools/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz $(FUZZ_SECONDS) $(FUZZ_JOBS)
 
 # The bounded run of `make test`: 60 s (it replays the corpus first; `make fuzz` is the long
 # run), stops at the first crash.
 fuzz-smoke: build-sanitize
-	$(SANITIZER_ENV) bash scripts/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz 60 0
+	$(SANITIZER_ENV) bash native/fuzz/tools/fuzz.sh $(FUZZ_BUILD)/stratum_fuzz 60 0
 
 # Valgrind memcheck of the native determinism test (every sampler x integrator renders a box 3
 # times in one process, threads 1, 2 and 7): uninitialised reads, which ASan/UBSan do not

@@ -3,8 +3,8 @@ and native.passes()) and from stratum/blender_settings.py (where each setting co
 Blender), between the lines <!-- settings:begin --> and <!-- settings:end -->, so that the
 README cannot drift from the library.
 
-    .venv/bin/python scripts/settings_table.py          # rewrites README.md
-    .venv/bin/python scripts/settings_table.py --check  # exit 1 when README.md differs
+    .venv/bin/python -m scripts.settings_table          # rewrites README.md
+    .venv/bin/python -m scripts.settings_table --check  # exit 1 when README.md differs
 
 tests/python/test_settings.py fails while README.md differs from what this writes.
 """
@@ -14,12 +14,10 @@ from __future__ import annotations
 import argparse
 import math
 import sys
-from pathlib import Path
-
-REPO = Path(__file__).resolve().parent.parent
-sys.path.insert(0, str(REPO / "addon"))  # this checkout's stratum and its library
 
 from stratum import blender_settings, native
+
+from scripts import REPO
 
 README = REPO / "README.md"
 BEGIN = "<!-- settings:begin -->"
@@ -116,8 +114,8 @@ def main(argv: list[str] | None = None) -> int:
     updated = with_tables(current)
     if args.check:
         if updated != current:
-            print("README.md's settings tables are out of date: run scripts/settings_table.py",
-                  file=sys.stderr)
+            print("README.md's settings tables are out of date: run "
+                  "`python -m scripts.settings_table`", file=sys.stderr)
             return 1
         return 0
     if updated != current:

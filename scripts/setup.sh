@@ -11,7 +11,7 @@ DEB_PACKAGES=(
   libembree-dev libopenimageio-dev libopencolorio-dev libtbb-dev
   nlohmann-json3-dev googletest libgtest-dev
   libbenchmark-dev  # make microbench: Google Benchmark (native/bench)
-  linux-perf  # make profile: scripts/profile_render.sh
+  linux-perf  # make profile: scripts/render/profile_render.sh
   python3-numpy python3-pytest python3-venv
   chromium chromium-driver
   valgrind  # make sanitize: memcheck of the native determinism tests

@@ -385,14 +385,14 @@ def test_feature_agrees_with_cycles(cycles_case: Renders, stratum_case: Renders,
             f"\n{report}")
 
 
-# ---- instancing at scale (functional; its speed is measured by scripts/bench.py) -------------
+# ---- instancing at scale (functional; its speed is measured by scripts/bench/speed.py) ---------
 
 TEN_THOUSAND = 10_000
 
 
 def build_instance_grid(count: int = TEN_THOUSAND) -> bpy.types.Scene:
     """count instances of one 8-vertex cube: a vertex-instancing parent with `count` vertices
-    on a square grid (shared with scripts/bench.py), a camera above it and a sun."""
+    on a square grid (shared with scripts/bench/speed.py), a camera above it and a sun."""
     import math
 
     bpy.ops.wm.read_factory_settings(use_empty=True)

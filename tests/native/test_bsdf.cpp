@@ -317,7 +317,7 @@ TEST(Bsdf, DirectionalAlbedoMatchesCycles) {
     }
 }
 
-// Cycles 5.0.1 (bpy wheel) renders of docs/cycles_probe/principled_v2_ab.py: a plane with the
+// Cycles 5.0.1 (bpy wheel) renders of scripts/cycles_reference/principled_v2.py: a plane with the
 // Principled BSDF (base 0.8, roughness 0.5) under a uniform white world of radiance 1, seen at
 // elevation 90, 30 and 10 degrees (theta_o = 0, 60, 80), max_bounces 0, 16 x 16 px x 512 spp:
 // pixel = directional albedo. Each value is the mean of seeds 1, 2, 3; their spread gives the

@@ -437,7 +437,7 @@ TEST(NoiseNodesMusgrave, ChecksItsModes) {
 
 // ---- against Cycles ------------------------------------------------------------------------------
 
-// Values Cycles rendered (scripts/noise_cycles_agreement.py: one pixel of each configuration, an
+// Values Cycles rendered (scripts/cycles_reference/noise.py: one pixel of each configuration, an
 // Emission plane at an exact point) in Blender 3.4.1 and 5.0. Over all 16 x 16 points of 28
 // configurations the worst difference was 3.2e-5 (distortion amplifies Cycles' fused
 // multiply-adds); 1e-4 bounds it with room to spare and stays 10x inside the 1e-3 target.

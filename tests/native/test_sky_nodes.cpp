@@ -1,5 +1,5 @@
 // The Sky Texture node (shading/nodes/sky_texture.cpp) through the C ABI: Preetham at the zenith
-// against the model's closed form, values Cycles 3.4 rendered (scripts/sky_cycles_reference.py),
+// against the model's closed form, values Cycles 3.4 rendered (scripts/cycles_reference/sky.py),
 // the Nishita table's mirror symmetry and ground fade, the sun disc's limb darkening and its
 // radiance against the disc's solid angle, and the checks.
 #include <gtest/gtest.h>
@@ -132,7 +132,7 @@ std::vector<float> nishita(float elevation, float rotation, float size, float in
 TEST(SkyNodes, NishitaMatchesCycles34) {
     // Cycles 3.4's pixels (altitude 1000 m, sun 30 degrees up, rotation -40 degrees, a 40-degree
     // disc at intensity 0.7): four of the sky and one of the disc. Measured worst difference over
-    // all 2048 pixels of three settings: 1e-5 (scripts/compare_sky.py).
+    // all 2048 pixels of three settings: 1e-5 (compare_sky.py, a probe removed in issue 33).
     SkyProgram p;
     ASSERT_EQ(p.add(2, 1, nishita(0.5235988f, -0.6981317f, 0.6981317f, 0.7f, 1000.0f, 1, 1, 1)), STRATUM_OK);
     const double cases[][6] = {{-0.688929379, -0.41288352, 0.595737696, 0.9589324, 1.5480665, 2.72938943},

@@ -20,18 +20,15 @@ import os
 import re
 import shutil
 import subprocess
-import sys
 import tomllib
 import zipfile
 from pathlib import Path
 
 import pytest
+from scripts.packaging.elf_names import needed
+from scripts.packaging.library_bundle import BASE_SYSTEM
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "scripts"))
-
-from elf_names import needed
-from library_bundle import BASE_SYSTEM
 
 PYTHON = REPO / ".venv" / "bin" / "python"
 SITE = next((REPO / ".venv" / "lib").glob("python3*/site-packages"))
@@ -58,7 +55,7 @@ def packages(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Path]:
     out = tmp_path_factory.mktemp("dist")
     built = {}
     for version in (_version(), _next_version(_version())):
-        args = [str(PYTHON), str(REPO / "scripts" / "package.py"), "--out", str(out / version)]
+        args = [str(PYTHON), "-m", "scripts.packaging.package", "--out", str(out / version)]
         if version != _version():
             args += ["--version", version]
         run = subprocess.run(args, capture_output=True, text=True, cwd=REPO, check=False)
@@ -123,7 +120,8 @@ def test_zip_holds_the_add_on_and_its_libraries_only(packages: dict[str, Path],
     reached |= _closure(lib_dir, next(lib_dir.glob("libOpenImageDenoise_device_cpu.so.*")).name)
     present = {p.name for p in lib_dir.iterdir()}
     assert present == reached, f"unreached: {present - reached}, missing: {reached - present}"
-    # Each third-party library's origin and licence files (scripts/third_party_notices.py).
+    # Each third-party library's origin and licence files
+    # (scripts/packaging/third_party_notices.py).
     licences = unpacked / "licenses"
     listed = {}
     for line in (licences / "THIRD_PARTY.txt").read_text().splitlines()[3:]:

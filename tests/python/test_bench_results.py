@@ -1,20 +1,15 @@
-"""The pure helpers of the benchmark scripts (scripts/bench_results.py, bench_summary.py): the
+"""The pure helpers of the benchmarks (scripts/bench/results.py, summary.py): the
 noise measure of the equal-time section, VmHWM parsing and the summary table. No timing."""
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 import pytest
-
-REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "scripts"))
-
-import bench_results
-import bench_summary
+from scripts.bench import results as bench_results
+from scripts.bench import summary as bench_summary
 
 
 def test_noise_mse_removes_the_reference_noise() -> None:

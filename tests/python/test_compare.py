@@ -721,14 +721,13 @@ def test_progress_bar_without_a_tty() -> None:
     assert "3/3 configurations" in lines[1] and "ETA 0:00" in lines[1]
 
 
-# ---- the estimator study (scripts/study.py, scripts/study_estimators.py) -------------------
+# ---- the estimator study (scripts/study/run.py, scripts/study/estimators.py) ------------------
 
 
 def _study_estimators() -> Any:
-    sys.path.insert(0, str(REPO / "scripts"))
-    import study_estimators
+    from scripts.study import estimators
 
-    return study_estimators
+    return estimators
 
 
 def _synthetic_results(costs: dict[str, tuple[float, float]]) -> dict[str, Any]:
@@ -773,14 +772,14 @@ def test_study_equal_time_interpolates_the_mse_time_curve() -> None:
 
 
 def test_study_quick_runs_the_estimator_ladder(native: Any, tmp_path: Path) -> None:
-    """`scripts/study.py --quick` on the estimator runs: the pipeline end to end through real
-    Blender at toy sizes (32x32, 1 and 4 spp, 2 seeds) into estimators.md."""
+    """`python -m scripts.study.run --quick` on the estimator runs: the pipeline end to end
+    through real Blender at toy sizes (32x32, 1 and 4 spp, 2 seeds) into estimators.md."""
     _need_blender(native)
     out = tmp_path / "study"
     started = time.perf_counter()
-    proc = subprocess.run([sys.executable, str(REPO / "scripts" / "study.py"), "--quick",
+    proc = subprocess.run([sys.executable, "-m", "scripts.study.run", "--quick",
                            "--only", "est_small,est_large,est_glossy", "--out", str(out)],
-                          check=False, capture_output=True, text=True, timeout=900)
+                          cwd=REPO, check=False, capture_output=True, text=True, timeout=900)
     print(f"study --quick (estimators): {time.perf_counter() - started:.0f} s")
     assert proc.returncode == 0, proc.stderr[-3000:]
     page = (out / "estimators.md").read_text()

@@ -1,6 +1,7 @@
-"""scripts/elf_names.py and library_bundle's names, which `make package` relies on: a rename is
-written over every string that names the library (DT_NEEDED, DT_SONAME, the version-needed
-records), the file keeps its size, and readelf and the loader read the new names."""
+"""scripts/packaging/elf_names.py and library_bundle's names, which `make package` relies on: a
+rename is written over every string that names the library (DT_NEEDED, DT_SONAME, the
+version-needed records), the file keeps its size, and readelf and the loader read the new
+names."""
 
 from __future__ import annotations
 
@@ -8,15 +9,11 @@ import hashlib
 import re
 import shutil
 import subprocess
-import sys
 from pathlib import Path
 
 import pytest
-
-sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "scripts"))
-
-from elf_names import ElfError, library_names, needed, rename_libraries
-from library_bundle import BundleError, private_name
+from scripts.packaging.elf_names import ElfError, library_names, needed, rename_libraries
+from scripts.packaging.library_bundle import BundleError, private_name
 
 # Debian's libtiff: it needs libjpeg.so.62 and has a version-needed record naming it (readelf
 # -V), which the rename must follow.

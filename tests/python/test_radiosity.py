@@ -1,20 +1,15 @@
 """The radiosity integrator through the Python API (issue 17): its solve's report in the
 progress and per iteration (stratum_renderer_read_radiosity_iterations), and the claim-12 study
-(scripts/study_radiosity.py) end to end on a coarse patching."""
+(scripts/study/radiosity.py) end to end on a coarse patching."""
 
 from __future__ import annotations
 
 import json
-import sys
 from pathlib import Path
 from typing import Any
 
 import numpy as np
-
-REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "scripts"))
-
-import study_radiosity
+from scripts.study import radiosity as study_radiosity
 
 
 def test_progress_and_iterations_report_the_solve(native: Any) -> None:

@@ -4,7 +4,6 @@ from in Blender (stratum/blender_settings.py) and the README's settings tables
 
 from __future__ import annotations
 
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -15,8 +14,7 @@ REPO = Path(__file__).resolve().parents[2]
 
 
 def _settings_table() -> Any:
-    sys.path.insert(0, str(REPO / "scripts"))
-    import settings_table
+    from scripts import settings_table
 
     return settings_table
 
@@ -61,7 +59,7 @@ def test_readme_tables_are_what_the_script_writes(native: Any) -> None:
     readme = (REPO / "README.md").read_text(encoding="utf-8")
     assert readme == _settings_table().with_tables(readme), (
         "README.md's settings tables differ from the library's settings: run "
-        "`.venv/bin/python scripts/settings_table.py`")
+        "`.venv/bin/python -m scripts.settings_table`")
 
 
 def test_the_tables_name_every_setting_choice_and_pass(native: Any) -> None:

@@ -56,7 +56,7 @@ def test_preetham_node_evaluates_at_the_zenith() -> None:
     inputs = np.zeros(native.SHADER_INPUT_REGISTERS, dtype=np.float32)
     gen = native.SHADER_INPUTS["generated"][0]
     inputs[gen:gen + 3] = (-0.5135234, -0.85666883, 0.0491154194)
-    # Cycles 3.4's pixel at that direction (scripts/sky_cycles_reference.py).
+    # Cycles 3.4's pixel at that direction (scripts/cycles_reference/sky.py).
     got = scene.evaluate_program(pid, inputs, color, 3)
     assert got == pytest.approx([0.48978439, 0.469021291, 0.537845731], rel=1e-4)
 
@@ -123,7 +123,7 @@ def _evaluate(c: NodeCompiler, color: int, direction: tuple[float, float, float]
 def test_hosek_wilkie_matches_cycles(version: tuple[int, int, int],
                                      direction: tuple[float, float, float],
                                      cycles: tuple[float, float, float]) -> None:
-    # Cycles 3.4's and 5.0's pixels (scripts/sky_cycles_reference.py): the dataset cooked here.
+    # Cycles 3.4's and 5.0's pixels (scripts/cycles_reference/sky.py): the dataset cooked here.
     node = sky("HOSEK_WILKIE", sun_direction=(-0.5, 0.2, 0.4), turbidity=4.0, ground_albedo=0.5)
     c, color = compile_sky(node, version)
     assert c.builder.program.nodes[-1].modes[0] == 1

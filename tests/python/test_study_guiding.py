@@ -1,6 +1,7 @@
-"""The path-guiding study (scripts/study_guiding.py, study_guiding_page.py): its pure parts on synthetic numbers (the
-guiding tree's memory, equal time, the page's ratios and verdicts, the reference comparison),
-and its --quick run end to end under the bpy wheel. No timing is asserted."""
+"""The path-guiding study (scripts/study/guiding.py, guiding_page.py): its pure parts on
+synthetic numbers (the guiding tree's memory, equal time, the page's ratios and verdicts, the
+reference comparison), and its --quick run end to end under the bpy wheel. No timing is
+asserted."""
 
 from __future__ import annotations
 
@@ -15,12 +16,10 @@ from typing import Any
 
 import numpy as np
 import pytest
+from scripts.study import guiding as study_guiding
+from scripts.study import guiding_page as study_guiding_page
 
 REPO = Path(__file__).resolve().parents[2]
-sys.path.insert(0, str(REPO / "scripts"))
-
-import study_guiding
-import study_guiding_page
 
 
 def test_memory_comes_from_the_progress_or_the_log_line() -> None:
@@ -139,13 +138,14 @@ def test_worst_block_compares_bright_blocks_only() -> None:
 
 @pytest.mark.skipif(importlib.util.find_spec("bpy") is None, reason="needs the bpy wheel")
 def test_quick_run_writes_the_page(tmp_path: Path) -> None:
-    """`study_guiding.py --quick` (32x24, 8 and 32 spp, one seed) end to end: every series has
-    a row; the Stratum and Cycles unguided series are measured; the guided Stratum series are
-    measured exactly when the library has use_guiding."""
+    """`python -m scripts.study.guiding --quick` (32x24, 8 and 32 spp, one seed) end to end:
+    every series has a row; the Stratum and Cycles unguided series are measured; the guided
+    Stratum series are measured exactly when the library has use_guiding."""
     out = tmp_path / "study"
-    proc = subprocess.run([sys.executable, str(REPO / "scripts" / "study_guiding.py"), "--quick",
-                           "--out", str(out)], check=False, capture_output=True, text=True,
-                          timeout=600, env={**os.environ, "PYTHONPATH": str(REPO / "addon")})
+    proc = subprocess.run([sys.executable, "-m", "scripts.study.guiding", "--quick",
+                           "--out", str(out)], cwd=REPO, check=False, capture_output=True,
+                          text=True, timeout=600,
+                          env={**os.environ, "PYTHONPATH": str(REPO / "addon")})
     assert proc.returncode == 0, proc.stderr[-3000:]
     text = (out / "guiding.md").read_text()
     data = json.loads((out / "guiding.json").read_text())

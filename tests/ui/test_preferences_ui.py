@@ -22,8 +22,9 @@ VERSION = tomllib.loads((REPO / "addon" / "stratum" / "blender_manifest.toml").r
 @pytest.fixture(scope="module")
 def preferences(tmp_path_factory: pytest.TempPathFactory) -> dict[str, Any]:
     home = tmp_path_factory.mktemp("blender-user")
-    built = subprocess.run([sys.executable, str(REPO / "scripts" / "package.py"), "--out",
-                            str(home / "dist")], capture_output=True, text=True, check=False)
+    built = subprocess.run([sys.executable, "-m", "scripts.packaging.package", "--out",
+                            str(home / "dist")], capture_output=True, text=True, cwd=REPO,
+                           check=False)
     assert built.returncode == 0, built.stderr
     package = home / "dist" / f"stratum-{VERSION}-linux-x64.zip"
     env = {"PYTHONPATH": str(REPO / "tests" / "ui"), "HOME": str(home),

@@ -10,7 +10,7 @@ entry as made by plan.batch_entry. For each entry the script sets scene.stratum 
 samples, seed, integrator, hemisphere, max_bounces, threads, and the estimator settings of
 estimators.SETTING_NAMES: light sampling and selection, Russian roulette, control variate,
 adaptive sampling) and the render resolution, renders with the STRATUM engine, saves the Render
-Result as a linear 32-bit float OpenEXR (as scripts/render_to_files.py does), then writes the
+Result as a linear 32-bit float OpenEXR (as scripts/render/render_to_files.py does), then writes the
 JSON sidecar (key, render time, EXR size and sha256). An estimator setting without a
 scene.stratum property (an add-on older than issue 6's Blender side) fails the configuration,
 naming the property: never a render with a silently different estimator.

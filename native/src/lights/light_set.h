@@ -19,7 +19,7 @@
 //   with another mode never pays for them.
 // * auto (the default): tree when the scene holds more than kAutoTreeLights = 3 light entries
 //   (lamps, suns, the environment, emissive triangles), else mixed. Measured at equal time
-//   (scripts/study_auto_lights.py, docs/study.md "Light selection"; MSE x seconds of tree over
+//   (scripts/study/auto_lights.py, docs/study.md "Light selection"; MSE x seconds of tree over
 //   mixed): 1 lamp 1.03-1.07 (the descent's cost, nothing to gain), 2 lamps 0.58 scattered but
 //   1.02 in a tight cluster, 4 lamps 0.14 scattered and 0.71 clustered, 8-64 lamps 0.11-0.73.
 // * tree with splitting (light_tree_splits = max_cut > 1, lights/light_tree.h): the tree's
