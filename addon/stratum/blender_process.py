@@ -47,9 +47,10 @@ code = 1
 try:
     import bpy
     import stratum
+    from stratum.engine_id import ENGINE_ID
     stratum.register()
     scene = bpy.context.scene
-    scene.render.engine = "STRATUM"
+    scene.render.engine = ENGINE_ID
     for name, value in args["overrides"].items():
         setattr(scene.stratum, name, value)
     if args.get("resolution"):

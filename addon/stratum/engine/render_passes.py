@@ -20,7 +20,7 @@ import bpy
 import numpy as np
 from bpy.props import BoolProperty, PointerProperty
 
-ENGINE_ID = "STRATUM"
+from ..engine_id import ENGINE_ID
 
 
 # Blender 5.0 renamed the passes it has toggles for: Cycles' list_render_passes yields "Emission"
