@@ -25,8 +25,8 @@ os.environ["PYTHONPATH"] = os.pathsep.join(
 sys.path.insert(0, str(REPO / "scripts"))
 
 from bench_results import write_section
-from stratum.blender_process import blender_executable
-from stratum.distributed import Frame, export_blend, render_on_cluster
+from stratum.cli.blender_process import blender_executable
+from stratum.cli.distributed import Frame, export_blend, render_on_cluster
 
 
 def timed_render(frame: Frame, workers: int, repeats: int) -> tuple[float, bytes]:
