@@ -19,8 +19,8 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "addon"))
 import stratum
 from stratum import native
 from stratum.engine.frame import renderer_settings
-from stratum.export import export_scene
 from stratum.export.render_geometry import use_render_geometry
+from stratum.export.sync import export_scene
 
 
 def main() -> int:

@@ -14,7 +14,7 @@ import bpy
 
 from .. import native
 from ..engine_id import ENGINE_ID
-from ..export import ExportCancelled, ExportError, ExportSummary
+from ..export.common import ExportCancelled, ExportError, ExportSummary
 from . import denoise, render_passes
 from .final_render import render_frame
 from .preview import render_preview

@@ -12,7 +12,7 @@ import bpy
 import numpy as np
 
 from .. import native, properties
-from ..export import export_scene
+from ..export.sync import export_scene
 from . import denoise
 from .frame import renderer_settings, result_size
 from .render_passes import ResultPasses

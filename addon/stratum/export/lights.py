@@ -25,7 +25,7 @@ import numpy as np
 
 from .. import native
 from ..fallbacks import FLT_MAX, NON_NEGATIVE, clamp_rgb
-from ..placement import first_non_finite
+from .placement import first_non_finite
 from .common import ExportError, ExportSummary, matrix_to_array, rgb
 from .light_nodes import node_emission
 

@@ -7,9 +7,9 @@ from typing import Any
 
 import numpy as np
 
-from ..mikktspace import mikktspace_tangents, tangent_space_normals
 from ..shader_nodes.input_nodes import RENDER_COLOR
 from .common import ExportError
+from .mikktspace import mikktspace_tangents, tangent_space_normals
 from .vertex_normals import angle_weighted_vertex_normals
 
 # Object types that to_mesh() can turn into triangles.
@@ -143,7 +143,7 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
     and come back as zeros. With `read_uvs` false no UVs are read (corner_uvs None): as Cycles
     exports a UV attribute only for shaders that ask for it, a mesh without textures skips the
     largest per-corner array. With `read_tangents` (a normal-mapped material) and a UV layer,
-    the layer's MikkTSpace tangents are computed too (stratum.mikktspace: on the triangles,
+    the layer's MikkTSpace tangents are computed too (mikktspace.py: on the triangles,
     as Cycles does, and the same bits on every export)."""
     mesh.calc_loop_triangles()
     n_vert = len(mesh.vertices)
