@@ -5,7 +5,7 @@
 
 Each case drives the world's Background colour with one node's output (a float as grey), renders
 2 x 2 pixels with Cycles (1 sample, Standard view, EXR) and compares pixel 0 with the same node
-compiled by stratum.shader_nodes and evaluated natively (addon/stratum/lib must hold the built
+compiled by stratum.shaders.nodes and evaluated natively (addon/stratum/lib must hold the built
 library). The node's first input is fed through x * Light Path's Is Camera Ray (1 for camera
 rays) so that neither Blender nor Cycles folds the node as a constant: the render kernel
 evaluates it, as it does in real materials. Stratum does not translate Light Path and uses the
@@ -25,7 +25,7 @@ import numpy as np
 
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "addon"))
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
+from stratum.shaders.nodes import NodeCompiler
 
 VERSION = tuple(bpy.app.version)
 OUT = os.path.join(tempfile.mkdtemp(), "node.exr")

@@ -17,8 +17,8 @@ from typing import Any
 
 import numpy as np
 from stratum import native
-from stratum.shader_nodes import NodeCompiler, Unsupported
-from stratum.shader_nodes.sky_texture import translate_sky
+from stratum.shaders.nodes import NodeCompiler, Unsupported
+from stratum.shaders.nodes.sky_texture import translate_sky
 
 DEFAULTS: dict[str, Any] = {
     "sun_direction": (0.0, 0.0, 1.0), "turbidity": 2.2, "ground_albedo": 0.3, "sun_disc": True,

@@ -24,7 +24,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "addon"))
 
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
+from stratum.shaders.nodes import NodeCompiler
 
 SIZE = 32
 TMP = tempfile.mkdtemp(prefix="voronoi_cmp_")

@@ -6,7 +6,7 @@ For each case (a node, its settings, the output shown) Cycles renders a 2 x 2 pl
 orthographic camera from above, its Emission colour driven by the node, 32 x 32 pixels, 1
 sample, filter width 0.01, float EXR; once in Blender 3.4 (the `blender` binary) and once in
 the bpy 5.0 wheel. The cases "generated" and "uv" render the coordinates themselves, so Stratum
-evaluates each case's program (compiled by stratum.shader_nodes from stand-in nodes with the
+evaluates each case's program (compiled by stratum.shaders.nodes from stand-in nodes with the
 same settings) at exactly the coordinates Cycles shaded. Prints the worst absolute and relative
 difference per case and Blender. The Cycles side runs this file inside Blender with --render-to."""
 
@@ -238,7 +238,7 @@ def stratum_values(case: dict[str, Any], version: tuple[int, int, int], coords: 
                    sockets: dict[str, Any], image_path: Path) -> Any:
     import numpy as np
     from stratum import native
-    from stratum.shader_nodes import NodeCompiler
+    from stratum.shaders.nodes import NodeCompiler
 
     warnings: list[str] = []
     c = NodeCompiler(version, lambda n, m: warnings.append(m))

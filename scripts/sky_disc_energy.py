@@ -17,8 +17,8 @@ from types import SimpleNamespace
 
 import numpy as np
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
-from stratum.shader_nodes.sky_texture import translate_sky
+from stratum.shaders.nodes import NodeCompiler
+from stratum.shaders.nodes.sky_texture import translate_sky
 
 
 def program(disc: bool, size: float, elevation: float, rotation: float) -> tuple[object, int]:

@@ -1,4 +1,4 @@
-"""The fallbacks for invalid Blender values (stratum.fallbacks), the degenerate-transform test
+"""The fallbacks for invalid Blender values (stratum.shaders.fallbacks), the degenerate-transform test
 (stratum.export.placement) and StratumError's split of the ABI function from the detail; no Blender
 needed."""
 
@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 from stratum import native
 from stratum.export import placement
-from stratum.fallbacks import (
+from stratum.shaders.fallbacks import (
     COAT_IOR,
     FLT_MAX,
     IOR,
