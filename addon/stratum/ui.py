@@ -7,9 +7,8 @@ from typing import Any
 import bpy
 
 from . import native, properties
+from .engine_id import ENGINE_ID
 from .version import __version__
-
-ENGINE_ID = "STRATUM"
 
 # Contexts whose built-in panels Stratum reuses.
 REUSED_CONTEXTS = {"material", "world", "data", "object"}

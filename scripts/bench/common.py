@@ -229,7 +229,7 @@ class StratumScene:
     def __init__(self, scene: bpy.types.Scene) -> None:
         from stratum import native
         from stratum.engine.frame import renderer_settings
-        from stratum.export import export_scene
+        from stratum.export.sync import export_scene
 
         self.settings = renderer_settings(scene)
         from stratum.export.render_geometry import use_render_geometry

@@ -15,8 +15,8 @@ import os
 import sys
 import time
 
-from stratum.blender_process import blender_executable
-from stratum.distributed import Frame, export_blend, render_on_cluster
+from stratum.cli.blender_process import blender_executable
+from stratum.cli.distributed import Frame, export_blend, render_on_cluster
 
 from scripts import REPO
 from scripts.bench.results import write_section

@@ -221,7 +221,7 @@ def bench_export_case(build: Callable[[], bpy.types.Scene], stratum_ok: bool,
         return out
     from stratum import native
     from stratum.engine.frame import renderer_settings
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     scene = build()
     scene.render.engine = "STRATUM"
@@ -253,7 +253,7 @@ def bench_live_edit(layout: str) -> dict[str, float]:
     the full BVH build time and the update time, both as progress().build_seconds reports."""
     from stratum import native
     from stratum.engine.frame import renderer_settings
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     scene = build_monkey_1m()
     scene.render.engine = "STRATUM"

@@ -106,7 +106,7 @@ def session_for(scene: Any, start_resolution: int) -> tuple[Any, Any]:
 def timed_edits(session: Any, edit: Callable[[int], None], steps: int) -> list[float]:
     """Each step: edit(step) in Blender, the depsgraph evaluated and its updates sent
     (view_update), the view handed over again (view_draw), then the first new frame."""
-    from stratum.export import collect_updates
+    from stratum.export.updates import collect_updates
 
     times = []
     updates: list[Any] = []

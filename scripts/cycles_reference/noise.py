@@ -12,7 +12,7 @@ Each configuration renders a 2 x 2 plane through an orthographic camera, one sam
 Emission driven by the texture. The texture's Vector is the object position snapped to the pixel
 (Vector Math Snap) plus an offset, so every sample of a pixel evaluates the texture at one known
 point; W, for 1D and 4D, is that point's X. The same node is then compiled by the add-on
-(stratum.shader_nodes) and evaluated at those points by the native library; the JSON holds each
+(stratum.shaders.nodes) and evaluated at those points by the native library; the JSON holds each
 configuration's worst absolute and relative differences and a few sample values."""
 
 from __future__ import annotations
@@ -26,7 +26,7 @@ from typing import Any
 import bpy
 import numpy as np
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
+from stratum.shaders.nodes import NodeCompiler
 
 N = 16  # pixels a side; a pixel is 2 / N units
 OFFSET = (3.17, -1.41, 0.73)

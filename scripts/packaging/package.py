@@ -51,7 +51,7 @@ MODULE = "stratum"
 PLATFORM = "linux-x64"
 # Run only from a shell or a Python of the project (stratum compare, its Blender batch script,
 # the Dask workers), never by Blender's add-on.
-CLI_ONLY = ("cli.py", "blender_process.py", "distributed.py", "compare")
+CLI_ONLY = ("cli", "compare")
 OIDN_FILES = ("libOpenImageDenoise.so.2", "libOpenImageDenoise_core.so.*",
               "libOpenImageDenoise_device_cpu.so.*")
 _SEMVER = re.compile(r"^\d+\.\d+\.\d+(?:-[0-9A-Za-z.-]+)?(?:\+[0-9A-Za-z.-]+)?$")

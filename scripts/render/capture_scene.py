@@ -17,8 +17,8 @@ import bpy
 import stratum
 from stratum import native
 from stratum.engine.frame import renderer_settings
-from stratum.export import export_scene
 from stratum.export.render_geometry import use_render_geometry
+from stratum.export.sync import export_scene
 
 
 def main() -> int:

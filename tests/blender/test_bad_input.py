@@ -18,9 +18,10 @@ import numpy as np
 import pytest
 from stratum import native
 from stratum.engine import StratumRenderEngine
-from stratum.export import ExportError, export_scene
 from stratum.export import camera as camera_export
+from stratum.export.common import ExportError
 from stratum.export.images import blender_ocio_config
+from stratum.export.sync import export_scene
 
 from conftest import engine_reports, render_still
 

@@ -10,7 +10,8 @@ import bpy
 import numpy as np
 import pytest
 from stratum import native
-from stratum.export import ExportError, export_scene
+from stratum.export.common import ExportError
+from stratum.export.sync import export_scene
 
 
 def test_orthographic_camera(scene_builder: Any, recording_scene: Any) -> None:

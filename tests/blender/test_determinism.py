@@ -342,7 +342,7 @@ def test_engine_renders_repeat_one_image(library: Any, tmp_path: Path, case: str
 
 @pytest.mark.parametrize("case", list(SCENE_FILES))
 def test_every_sampler_and_integrator_repeats_one_image(library: Any, case: str) -> None:
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     _bundled(case)
     samplers = [entry.name for entry in library.registry("sampler")]

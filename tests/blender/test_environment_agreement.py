@@ -141,7 +141,7 @@ def stratum_env(library, variant: str) -> Renders:
 
 @pytest.mark.parametrize("kind", VARIANTS)
 def test_environment_texture_is_exported_without_warnings(recording_scene, kind: str) -> None:
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     scene = _environment_scene(kind)
     summary = export_scene(bpy.context.evaluated_depsgraph_get(), recording_scene)
@@ -158,7 +158,7 @@ def test_environment_texture_is_exported_without_warnings(recording_scene, kind:
 
 
 def test_unsupported_environment_setups_warn_and_fall_back(recording_scene) -> None:
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     scene = _environment_scene("mapping")
     nodes = scene.world.node_tree.nodes

@@ -40,7 +40,7 @@ LIGHTINGS = ((8, 16), (0, 64))
 
 @pytest.fixture(scope="module")
 def cornell(library: Any) -> Any:
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     bpy.ops.wm.open_mainfile(filepath=str(SCENE), load_ui=False)
     scene = library.Scene()

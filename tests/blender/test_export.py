@@ -10,8 +10,9 @@ import bpy
 import numpy as np
 import pytest
 from stratum import native
-from stratum.export import ExportError, export_scene
+from stratum.export.common import ExportError
 from stratum.export.materials import convert_material
+from stratum.export.sync import export_scene
 
 
 def test_basic_scene(scene_builder: Any, recording_scene: Any) -> None:

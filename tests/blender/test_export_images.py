@@ -11,9 +11,9 @@ from typing import Any
 import bpy
 import numpy as np
 import pytest
-from stratum.export import export_scene
 from stratum.export.color_management import blender_pyopencolorio, native_converts
 from stratum.export.images import SCENE_LINEAR_BUILTIN, blender_ocio_config
+from stratum.export.sync import export_scene
 
 # Colour-space values saved to 8 bits: the file holds floor(v * 255 + 0.5) / 255.
 TEXELS = np.array([[0.5, 0.25, 0.1, 1.0], [0.9, 0.6, 0.3, 1.0]], dtype=np.float32)

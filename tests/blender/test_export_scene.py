@@ -15,8 +15,8 @@ import numpy as np
 import pytest
 from stratum import native
 from stratum.engine import StratumRenderEngine, frame
-from stratum.export import export_scene
 from stratum.export.images import blender_ocio_config
+from stratum.export.sync import export_scene
 
 V4 = bpy.app.version >= (4, 0, 0)
 

@@ -213,7 +213,7 @@ def _save_png(name: str, rgb: np.ndarray, *, linear_to_srgb: bool) -> None:
 def test_feature_scene_exports_without_warnings(library, case: str) -> None:
     """Every feature in the scene is one Stratum translates: a warning names what is not."""
     from stratum import native
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     _open_case(case)
     depsgraph = bpy.context.evaluated_depsgraph_get()
@@ -430,7 +430,7 @@ def build_instance_grid(count: int = TEN_THOUSAND) -> bpy.types.Scene:
 
 def test_ten_thousand_instances_export_as_one_mesh_and_render(library) -> None:
     from stratum import native
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     scene = build_instance_grid()
     depsgraph = bpy.context.evaluated_depsgraph_get()

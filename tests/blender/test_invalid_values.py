@@ -1,5 +1,5 @@
 """Invalid material, light and world values (issue 12, point 3): each is replaced by Cycles'
-own clamp (stratum.fallbacks; docs/invalid_values.md) with one WARNING naming the material /
+own clamp (stratum.shaders.fallbacks; docs/invalid_values.md) with one WARNING naming the material /
 light / world and the socket or field, and the render finishes with finite pixels.
 
 Every value set here is reachable from Blender's Python (and so from files): measured in 3.4.1
@@ -16,8 +16,8 @@ import bpy
 import numpy as np
 import pytest
 from stratum import native
-from stratum.export import export_scene
-from stratum.fallbacks import FLT_MAX
+from stratum.export.sync import export_scene
+from stratum.shaders.fallbacks import FLT_MAX
 
 from conftest import engine_reports, render_still
 

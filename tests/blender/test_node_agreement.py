@@ -144,7 +144,7 @@ def _build_image(chunk: list[Case]) -> bpy.types.Scene:
 
 def _export_warnings() -> list[str]:
     from stratum import native
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     depsgraph = bpy.context.evaluated_depsgraph_get()
     depsgraph.update()

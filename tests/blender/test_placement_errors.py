@@ -18,7 +18,8 @@ import bpy
 import numpy as np
 import pytest
 from stratum import native
-from stratum.export import ExportError, export_scene
+from stratum.export.common import ExportError
+from stratum.export.sync import export_scene
 
 from conftest import engine_reports, render_still
 

@@ -119,7 +119,7 @@ class FakeEngine:
 
 
 def _native_renderer(native: Any, b: Any, samples: int, size: int) -> Any:
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     with native.Scene() as scene:
         export_scene(b.depsgraph(), scene)

@@ -7,8 +7,8 @@ from __future__ import annotations
 
 from typing import Any
 
-from stratum.export import export_scene
 from stratum.export.render_geometry import use_render_geometry
+from stratum.export.sync import export_scene
 
 
 def test_export_takes_render_levels_modifiers_and_visibility(scene_builder: Any,

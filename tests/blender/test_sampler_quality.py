@@ -33,7 +33,7 @@ MAX_BOUNCES = 8
 
 @pytest.fixture(scope="module")
 def cornell(library: Any) -> Any:
-    from stratum.export import export_scene
+    from stratum.export.sync import export_scene
 
     bpy.ops.wm.open_mainfile(filepath=str(SCENE), load_ui=False)
     depsgraph = bpy.context.evaluated_depsgraph_get()

@@ -19,7 +19,8 @@ from typing import Any
 import bpy
 import numpy as np
 import pytest
-from stratum.export import IdUpdate, SceneSync, collect_updates
+from stratum.export.sync import SceneSync
+from stratum.export.updates import IdUpdate, collect_updates
 
 SETTINGS = {"width": 24, "height": 16, "samples": 8, "seed": 11, "threads": 2,
             "max_bounces": 3}

@@ -1,4 +1,4 @@
-"""The exporter's MikkTSpace tangents (stratum.mikktspace) against Blender's own MikkTSpace
+"""The exporter's MikkTSpace tangents (stratum.export.mikktspace) against Blender's own MikkTSpace
 (Mesh.calc_tangents) on the same triangles: the mesh is rebuilt from its loop triangles, so
 both see one input, as Cycles' MikkTSpace sees the triangulated mesh. Blender's last bits vary
 between calls (the reason the exporter computes its own); angles agree within 0.1 degree,
@@ -8,7 +8,7 @@ from __future__ import annotations
 
 import bpy
 import numpy as np
-from stratum.mikktspace import mikktspace_tangents, tangent_space_normals
+from stratum.export.mikktspace import mikktspace_tangents, tangent_space_normals
 
 
 def _read(collection, attr: str, count: int, width: int, dtype) -> np.ndarray:

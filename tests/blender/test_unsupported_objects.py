@@ -9,8 +9,8 @@ from typing import Any
 
 import bpy
 import pytest
-from stratum.export import export_scene
 from stratum.export.meshes import GEOMETRY_TYPES
+from stratum.export.sync import export_scene
 
 
 def _kind_warnings(summary: Any, words: str) -> list[str]:

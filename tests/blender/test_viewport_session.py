@@ -26,8 +26,9 @@ import numpy as np
 import pytest
 from stratum.engine.viewport import camera_from_matrices, settings_from_scene
 from stratum.engine.viewport_session import Frame, View, ViewportSession, ViewportSettings
-from stratum.export import IdUpdate, SceneSync, collect_updates
 from stratum.export.camera import convert_camera
+from stratum.export.sync import SceneSync
+from stratum.export.updates import IdUpdate, collect_updates
 
 REPO = Path(__file__).resolve().parents[2]
 CORNELL = REPO / "scenes" / "cornell_box.blend"

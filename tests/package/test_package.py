@@ -97,7 +97,7 @@ def test_zip_holds_the_add_on_and_its_libraries_only(packages: dict[str, Path],
     assert all(n.startswith("stratum/") for n in names), "one top-level folder, the module"
     assert "stratum/" in names, "the top-level folder's own entry (Blender 3.x's overwrite)"
     unwanted = [n for n in names if re.search(r"__pycache__|\.pyc$|(^|/)(tests?|build)/|\.o$", n)
-                or n.startswith(("stratum/compare/", "stratum/cli.py"))]
+                or n.startswith(("stratum/compare/", "stratum/cli/"))]
     assert not unwanted, unwanted
     manifest = tomllib.loads((unpacked / "blender_manifest.toml").read_text())
     assert manifest["id"] == "stratum" and manifest["version"] == _version()

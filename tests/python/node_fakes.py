@@ -1,5 +1,5 @@
 """Plain stand-ins for Blender shader nodes, sockets and links (the compiler reads nodes by duck
-typing): enough of bpy's node API for stratum.shader_nodes and stratum.shader_graph."""
+typing): enough of bpy's node API for stratum.shaders.nodes and stratum.shaders.surface."""
 
 from __future__ import annotations
 

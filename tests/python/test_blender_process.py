@@ -11,8 +11,9 @@ import sys
 from pathlib import Path
 
 import pytest
-from stratum import cli, distributed
-from stratum.blender_process import ADDON_PARENT, inline_script, script_command
+from stratum import cli
+from stratum.cli import distributed
+from stratum.cli.blender_process import ADDON_PARENT, inline_script, script_command
 
 # A stand-in for Blender's module: one scene with the attributes the shared start sets.
 FAKE_BPY = """

@@ -10,7 +10,8 @@ from typing import Any
 
 import numpy as np
 import pytest
-from stratum import blender_process, cli
+from stratum import cli
+from stratum.cli import blender_process
 
 
 def test_samplers_lists_the_registry(native: Any, capsys: pytest.CaptureFixture[str]) -> None:

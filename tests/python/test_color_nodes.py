@@ -1,4 +1,4 @@
-"""Translation of the colour nodes (stratum.shader_nodes.color_nodes, ramp_nodes) on plain
+"""Translation of the colour nodes (stratum.shaders.nodes.color_nodes, ramp_nodes) on plain
 stand-ins for Blender nodes, in Blender 3.4's and 5.0's socket layouts, run through the native
 library: each node's program evaluated and compared with values computed here."""
 
@@ -9,8 +9,8 @@ from typing import Any
 
 import numpy as np
 import pytest
-from stratum.shader_nodes import NodeCompiler
-from stratum.shader_nodes.ramp_nodes import table_size
+from stratum.shaders.nodes import NodeCompiler
+from stratum.shaders.nodes.ramp_nodes import table_size
 
 V34 = (3, 4, 1)
 V50 = (5, 0, 1)

@@ -17,7 +17,8 @@ from typing import Any
 
 import numpy as np
 import pytest
-from stratum import blender_process, cli
+from stratum import cli
+from stratum.cli import blender_process
 from stratum.compare import estimators, exr, metrics, plan
 
 REPO = Path(__file__).resolve().parents[2]

@@ -1,4 +1,4 @@
-"""One frame's samples over a Dask cluster (stratum.distributed): the merged image is
+"""One frame's samples over a Dask cluster (stratum.cli.distributed): the merged image is
 bit-identical to one render of all the samples, for every sampler."""
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ SIZE, SAMPLES = 32, 16
 
 
 def _frame(native: Any, sampler: str) -> Any:
-    from stratum.distributed import Frame
+    from stratum.cli.distributed import Frame
 
     scene = lit_quad_scene(native, light_radius=0.1, background=0.2)
     with tempfile.TemporaryDirectory() as tmp:
@@ -42,7 +42,7 @@ def _one_machine(native: Any, frame: Any) -> np.ndarray:
 
 
 def test_split_samples_covers_every_index_once_in_order() -> None:
-    from stratum.distributed import split_samples
+    from stratum.cli.distributed import split_samples
 
     assert split_samples(16, 2) == [(0, 8), (8, 8)]
     assert split_samples(10, 3) == [(0, 4), (4, 3), (7, 3)]
@@ -54,7 +54,7 @@ def test_split_samples_covers_every_index_once_in_order() -> None:
 def test_a_local_cluster_of_two_workers_renders_the_one_machine_image_bit_for_bit(
         native: Any) -> None:
     distributed = pytest.importorskip("distributed")
-    from stratum.distributed import render_on_cluster
+    from stratum.cli.distributed import render_on_cluster
 
     samplers = [e.name for e in native.registry("sampler")]
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False,
@@ -79,7 +79,7 @@ def test_a_local_cluster_of_two_workers_renders_the_one_machine_image_bit_for_bi
 def test_a_worker_failure_and_an_unreachable_scheduler_are_named(
         native: Any, monkeypatch: pytest.MonkeyPatch) -> None:
     distributed = pytest.importorskip("distributed")
-    from stratum.distributed import DistributedError, Frame, connect, render_on_cluster
+    from stratum.cli.distributed import DistributedError, Frame, connect, render_on_cluster
 
     with distributed.LocalCluster(n_workers=1, threads_per_worker=1, processes=False,
                                   dashboard_address=None) as cluster, \
@@ -90,7 +90,7 @@ def test_a_worker_failure_and_an_unreachable_scheduler_are_named(
         adaptive = Frame(b"", {"width": 8, "height": 8, "samples": 2, "use_adaptive_sampling": 1})
         with pytest.raises(DistributedError, match="use_adaptive_sampling=0"):
             render_on_cluster(client, adaptive)
-    monkeypatch.setattr("stratum.distributed.CONNECT_TIMEOUT", 2)
+    monkeypatch.setattr("stratum.cli.distributed.CONNECT_TIMEOUT", 2)
     with pytest.raises(DistributedError, match="cannot reach the Dask scheduler"):
         connect("tcp://127.0.0.1:9")
     with pytest.raises(DistributedError, match="local:N"):
@@ -103,8 +103,8 @@ def test_the_command_line_renders_a_blend_over_local_clusters_of_one_and_two_wor
     whole range, one machine) and two write the same pixels. An unreachable scheduler exits 1."""
     pytest.importorskip("distributed")
     openexr = pytest.importorskip("OpenEXR")
-    from stratum.blender_process import blender_executable
     from stratum.cli import main
+    from stratum.cli.blender_process import blender_executable
 
     if blender_executable() is None:
         pytest.skip("Blender not found")
@@ -119,6 +119,6 @@ def test_the_command_line_renders_a_blend_over_local_clusters_of_one_and_two_wor
         outputs.append({name: np.asarray(c.pixels).tobytes() for name, c in channels.items()})
     assert list(outputs[0]) == ["RGBA"]
     assert outputs[0] == outputs[1]
-    monkeypatch.setattr("stratum.distributed.CONNECT_TIMEOUT", 2)
+    monkeypatch.setattr("stratum.cli.distributed.CONNECT_TIMEOUT", 2)
     assert main(["render", str(blend), "-o", str(tmp_path / "x.exr"), "--scheduler",
                  "tcp://127.0.0.1:9"]) == 1

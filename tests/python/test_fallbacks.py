@@ -1,5 +1,5 @@
-"""The fallbacks for invalid Blender values (stratum.fallbacks), the degenerate-transform test
-(stratum.placement) and StratumError's split of the ABI function from the detail; no Blender
+"""The fallbacks for invalid Blender values (stratum.shaders.fallbacks), the degenerate-transform test
+(stratum.export.placement) and StratumError's split of the ABI function from the detail; no Blender
 needed."""
 
 from __future__ import annotations
@@ -8,8 +8,9 @@ import math
 
 import numpy as np
 import pytest
-from stratum import native, placement
-from stratum.fallbacks import (
+from stratum import native
+from stratum.export import placement
+from stratum.shaders.fallbacks import (
     COAT_IOR,
     FLT_MAX,
     IOR,

@@ -1,11 +1,11 @@
-"""stratum.mikktspace against closed forms: on a flat grid with affine UVs every MikkTSpace
+"""stratum.export.mikktspace against closed forms: on a flat grid with affine UVs every MikkTSpace
 tangent is the unit dP/du and the sign the UV orientation; zero-UV-area faces borrow their
 vertex's tangent; the same input gives the same bits."""
 
 from __future__ import annotations
 
 import numpy as np
-from stratum.mikktspace import mikktspace_tangents, tangent_space_normals
+from stratum.export.mikktspace import mikktspace_tangents, tangent_space_normals
 
 
 def _grid(n: int = 4) -> tuple[np.ndarray, np.ndarray]:

@@ -1,4 +1,4 @@
-"""Noise and Musgrave translators (stratum.shader_nodes.noise_textures) on stand-ins for both
+"""Noise and Musgrave translators (stratum.shaders.nodes.noise_textures) on stand-ins for both
 Blender generations' nodes: the native modes, which sockets feed which registers, warnings for
 what cannot be translated, and one evaluation through the native library."""
 
@@ -9,8 +9,8 @@ from typing import Any
 import numpy as np
 import pytest
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
-from stratum.shader_nodes.noise_textures import noise_generation
+from stratum.blender_versions import noise_generation
+from stratum.shaders.nodes import NodeCompiler
 
 NOISE = native.NODE_TYPES["noise"]
 MUSGRAVE = native.NODE_TYPES["musgrave"]

@@ -1,5 +1,5 @@
 """Pattern textures (Checker, Gradient, Brick, Magic) and the Image node in programs: their
-translation (stratum.shader_nodes.pattern_textures, image_node) in both Blender generations'
+translation (stratum.shaders.nodes.pattern_textures, image_node) in both Blender generations'
 sockets, warnings for what is not supported, and the native result of a translated node against
 the formula worked out here."""
 
@@ -12,7 +12,7 @@ from typing import Any
 import numpy as np
 import pytest
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
+from stratum.shaders.nodes import NodeCompiler
 
 V3 = (3, 4, 1)
 V5 = (5, 0, 1)

@@ -1,4 +1,4 @@
-"""The node compiler (stratum.shader_nodes) on stand-ins for Blender nodes: links through
+"""The node compiler (stratum.shaders.nodes) on stand-ins for Blender nodes: links through
 reroutes, muted nodes and groups, each node compiled once, the fallbacks with their warnings, and
 programs that run natively (the library evaluates what was compiled)."""
 
@@ -10,7 +10,7 @@ from typing import Any
 import numpy as np
 import pytest
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
+from stratum.shaders.nodes import NodeCompiler
 
 from node_fakes import Link, Node, Socket, Tree, link, math, separate_xyz, texture_coordinate
 

@@ -1,4 +1,4 @@
-"""Node-graph flattening (stratum.shader_graph) on plain stand-ins for Blender nodes: the
+"""Node-graph flattening (stratum.shaders.surface) on plain stand-ins for Blender nodes: the
 weights Cycles gives nested Mix/Add shaders, the Principled socket generations, textures."""
 
 from __future__ import annotations
@@ -7,7 +7,7 @@ from typing import Any
 
 import pytest
 from stratum import native
-from stratum.shader_graph import flatten_surface
+from stratum.shaders.surface import flatten_surface
 
 V3 = (3, 4, 1)
 V5 = (5, 0, 1)

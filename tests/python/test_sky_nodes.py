@@ -1,4 +1,4 @@
-"""Sky Texture translation (stratum.shader_nodes.sky_texture) on plain stand-ins for Blender
+"""Sky Texture translation (stratum.shaders.nodes.sky_texture) on plain stand-ins for Blender
 nodes: the native node and data per sky type, both Blender generations' property names, and the
 warnings for what is not supported."""
 
@@ -11,8 +11,8 @@ from typing import Any
 import numpy as np
 import pytest
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
-from stratum.shader_nodes.sky_texture import preetham_data, translate_sky
+from stratum.shaders.nodes import NodeCompiler
+from stratum.shaders.nodes.sky_texture import preetham_data, translate_sky
 
 V3 = (3, 4, 1)
 V5 = (5, 0, 1)
@@ -83,7 +83,7 @@ def test_nishita_passes_blender_values(version: tuple[int, int, int], sky_type: 
 
 @pytest.mark.parametrize("sky_type", ["SOMETHING_NEW"])
 def test_unsupported_types_warn_through_the_compiler(sky_type: str) -> None:
-    from stratum.shader_nodes import Unsupported
+    from stratum.shaders.nodes import Unsupported
 
     with pytest.raises(Unsupported, match=sky_type):
         compile_sky(sky(sky_type), V5)
@@ -131,7 +131,7 @@ def test_hosek_wilkie_matches_cycles(version: tuple[int, int, int],
 
 
 def test_hosek_wilkie_turbidity_ends() -> None:
-    from stratum.shader_nodes.sky_texture import hosek_wilkie_data
+    from stratum.shaders.nodes.sky_texture import hosek_wilkie_data
 
     # Below 1 turbidity is clamped to 1 (Blender's range); at 10 the last block is taken alone,
     # continuous with the interpolation just below it.

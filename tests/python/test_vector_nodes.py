@@ -1,4 +1,4 @@
-"""Vector and converter node translators (stratum.shader_nodes.vector_nodes and
+"""Vector and converter node translators (stratum.shaders.nodes.vector_nodes and
 surface_inputs) on plain stand-ins for Blender nodes, in both Blender generations' layouts: the
 native node, its modes and registers, warnings for what is unsupported, and a few results
 evaluated natively against values worked out by hand."""
@@ -11,9 +11,10 @@ from typing import Any
 import numpy as np
 import pytest
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
-from stratum.shader_nodes.surface_inputs import rec709_to_rgb, xyz_to_rgb
-from stratum.shader_nodes.vector_nodes import VECTOR_OPERATIONS, vector_math_revision
+from stratum.blender_versions import vector_math_revision
+from stratum.shaders.nodes import NodeCompiler
+from stratum.shaders.nodes.surface_inputs import rec709_to_rgb, xyz_to_rgb
+from stratum.shaders.nodes.vector_nodes import VECTOR_OPERATIONS
 
 V3 = (3, 4, 1)
 V43 = (4, 3, 0)

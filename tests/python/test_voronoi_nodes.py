@@ -1,4 +1,4 @@
-"""Voronoi and White Noise translation (stratum.shader_nodes.voronoi_textures) on plain stand-ins
+"""Voronoi and White Noise translation (stratum.shaders.nodes.voronoi_textures) on plain stand-ins
 for Blender nodes: the native node's modes and registers in Blender 3.4's and 5.0's socket
 layouts, the generation each version picks, the Generated default, 4.0-4.2's Lacunarity slot and
 the warnings; then the compiled programs evaluated by the native library."""
@@ -10,8 +10,8 @@ from typing import Any
 import numpy as np
 import pytest
 from stratum import native
-from stratum.shader_nodes import NodeCompiler
-from stratum.shader_nodes.voronoi_textures import generation
+from stratum.blender_versions import voronoi_generation
+from stratum.shaders.nodes import NodeCompiler
 
 V34 = (3, 4, 1)
 V40 = (4, 0, 2)
@@ -116,7 +116,7 @@ def register_value(c: NodeCompiler, register: int) -> float:
     ((3, 4, 1), 0), ((3, 6, 0), 0), ((4, 0, 2), 1), ((4, 2, 0), 1), ((4, 4, 0), 1),
     ((4, 5, 0), 2), ((5, 0, 1), 3), ((5, 1, 0), 3)])
 def test_generation_per_blender_version(version: tuple[int, int, int], expected: int) -> None:
-    assert generation(version) == expected
+    assert voronoi_generation(version) == expected
 
 
 def test_blender3_layout_modes_and_registers() -> None:
@@ -146,7 +146,7 @@ def test_blender4_layout_reads_the_fractal_sockets(version: tuple[int, int, int]
     node.input("Lacunarity").default_value = 3.0
     c, _, warnings = compile_node(node, version)
     n = the_node(c, "voronoi")
-    assert tuple(n.modes[:5]) == (1, 3, 2, generation(version), 1)
+    assert tuple(n.modes[:5]) == (1, 3, 2, voronoi_generation(version), 1)
     assert [register_value(c, r) for r in n.inputs[3:6]] == [2.5, 0.25, 3.0]
     assert warnings == []
 

@@ -154,6 +154,7 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
     bpy, scene = _setup_blender(payload)
     from stratum import native
     from stratum.engine import StratumRenderEngine
+    from stratum.engine_id import ENGINE_ID
 
     # Remember the native renderer's last progress report: its render_seconds is the path
     # tracing time without export and BVH build.
@@ -167,7 +168,7 @@ def _blender_render_fn(payload: dict[str, Any]) -> RenderFn:
 
     native.Renderer.progress = progress  # type: ignore[method-assign]
 
-    scene.render.engine = "STRATUM"
+    scene.render.engine = ENGINE_ID
     scene.render.use_compositing = False
     scene.render.use_sequencer = False
     settings = scene.render.image_settings

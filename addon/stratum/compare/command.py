@@ -9,7 +9,7 @@ import sys
 from pathlib import Path
 from typing import Any
 
-from ..blender_process import NOT_FOUND_MESSAGE, blender_executable
+from ..cli.blender_process import NOT_FOUND_MESSAGE, blender_executable
 from . import plan as planning
 from .options import Options, UsageError
 from .plan import Config, SceneSettings

@@ -31,7 +31,7 @@ from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 from typing import Any, TextIO
 
-from ..blender_process import (
+from ..cli.blender_process import (
     ADDON_PARENT,
     NOT_FOUND_MESSAGE,
     background_command,

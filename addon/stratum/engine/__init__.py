@@ -13,13 +13,12 @@ from typing import Any
 import bpy
 
 from .. import native
-from ..export import ExportCancelled, ExportError, ExportSummary
+from ..engine_id import ENGINE_ID
+from ..export.common import ExportCancelled, ExportError, ExportSummary
 from . import denoise, render_passes
 from .final_render import render_frame
 from .preview import render_preview
 from .viewport import free_viewport, view_draw, view_update, viewport_call
-
-ENGINE_ID = "STRATUM"
 
 
 class StratumRenderEngine(bpy.types.RenderEngine):

@@ -11,8 +11,8 @@ from typing import Any
 import bpy
 import numpy as np
 
-from .. import native, properties
-from ..export import export_scene
+from .. import blender_versions, native, properties
+from ..export.sync import export_scene
 from . import denoise
 from .frame import renderer_settings, result_size
 from .render_passes import ResultPasses
@@ -88,7 +88,7 @@ class PixelWriter:
 
     def __init__(self, width: int, height: int) -> None:
         self.buffer = np.zeros(width * height * 4, dtype=np.float32)
-        self._flat: bool = bpy.app.version >= (4, 1, 0)
+        self._flat: bool = blender_versions.flat_pass_pixels(bpy.app.version)
 
     def write(self, renderer: native.Renderer, render_pass: Any) -> None:
         renderer.read_pixels(self.buffer)

@@ -21,7 +21,8 @@ import traceback
 from typing import Any
 
 from .. import native, properties
-from ..export import ExportCancelled, ExportError, export_scene
+from ..export.common import ExportCancelled, ExportError
+from ..export.sync import export_scene
 from .final_render import render_progressively, stop_requested
 from .frame import renderer_settings, result_size
 

@@ -20,16 +20,8 @@ import bpy
 import numpy as np
 from bpy.props import BoolProperty, PointerProperty
 
-ENGINE_ID = "STRATUM"
-
-
-# Blender 5.0 renamed the passes it has toggles for: Cycles' list_render_passes yields "Emission"
-# in 5.0 where 3.4's yields "Emit" (intern/cycles/blender/addon/engine.py of each), and the
-# compositor's Render Layers sockets carry the new names. The library keeps the 3.x names.
-RENAMED_IN_5_0 = {"Emit": "Emission", "Env": "Environment", "AO": "Ambient Occlusion",
-                  "IndexOB": "Object Index", "IndexMA": "Material Index",
-                  "DiffCol": "Diffuse Color", "GlossCol": "Glossy Color",
-                  "TransCol": "Transmission Color"}
+from .. import blender_versions
+from ..engine_id import ENGINE_ID
 
 
 @dataclass(frozen=True)
@@ -48,9 +40,7 @@ class PassSpec:
     @property
     def result_name(self) -> str:
         """The render-result pass: Cycles' name in the running Blender."""
-        if bpy.app.version >= (5, 0, 0):
-            return RENAMED_IN_5_0.get(self.name, self.name)
-        return self.name
+        return blender_versions.render_pass_name(self.name, bpy.app.version)
 
 
 # Toggle (owner "view_layer" = Blender's, "stratum" = view_layer.stratum) -> passes it adds.
@@ -170,7 +160,8 @@ def write_rect(render_pass: Any, pixels: np.ndarray) -> None:
     to top, as Blender's): 3.x/4.0 take an (N, channels) array, 4.1+ a flat one."""
     flat = np.ascontiguousarray(pixels, dtype=np.float32).reshape(-1)
     shaped = flat.reshape(-1, pixels.shape[-1])
-    first, second = (flat, shaped) if bpy.app.version >= (4, 1, 0) else (shaped, flat)
+    first, second = (flat, shaped) if blender_versions.flat_pass_pixels(bpy.app.version) \
+        else (shaped, flat)
     try:
         render_pass.rect.foreach_set(first)
     except (TypeError, ValueError, RuntimeError):

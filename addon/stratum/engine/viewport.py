@@ -37,8 +37,8 @@ from typing import Any
 import numpy as np
 
 from .. import blender_settings, native, properties
-from ..export import ExportError
 from ..export.camera import convert_camera
+from ..export.common import ExportError
 from . import denoise
 from .frame import library_value, renderer_settings
 from .viewport_session import Denoiser, Rect, View, ViewportSession, ViewportSettings

@@ -46,7 +46,8 @@ from typing import Any
 import numpy as np
 
 from .. import native
-from ..export import ExportSummary, SceneSync
+from ..export.common import ExportSummary
+from ..export.sync import SceneSync
 from ..export.updates import IdUpdate
 
 Rect = tuple[int, int, int, int]  # x, y, width, height in pixels, bottom-left origin

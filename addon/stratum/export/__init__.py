@@ -1,42 +1,26 @@
-"""Scene export: evaluated depsgraph -> native.Scene, numpy arrays only.
+"""Scene export: the evaluated depsgraph -> numpy arrays -> a native scene (the Blender side).
 
-    summary = export_scene(depsgraph, native_scene, should_stop, frame_set)
+Imported module by module (this file imports nothing, so the pure modules below import without
+bpy, for their unit tests):
 
-exports a whole scene into a native scene the caller owns: SceneSync.full (sync.py), which
-also keeps a native scene in step with later changes of the depsgraph (SceneSync.update).
+    sync.py             export_scene (a whole scene, once) and SceneSync (a scene kept in step
+                        with the depsgraph's changes, for the viewport), which use:
+    updates.py          the depsgraph's updates, sorted into what changed
+    object_sync.py      live edits of objects and lights
+    placements.py       what full() places, row by row of the depsgraph's object instances
+    instances.py        depsgraph object instances: transforms, visibility, holdout
+    motion.py           transforms at shutter open and close (motion blur)
+    geometry.py         an object's evaluated geometry -> native meshes, per material slot
+    meshes.py           a mesh -> triangle, normal, UV, tangent and attribute arrays
+    vertex_normals.py   vertex normals that are the same on every export (Blender < 4.1)
+    mikktspace.py       MikkTSpace tangents on the exported triangles (pure numpy)
+    placement.py        which transforms can be rendered (finite, not degenerate; pure numpy)
+    render_geometry.py  the viewport depsgraph made to show the render's geometry (scripts)
+    unsupported.py      objects and features Stratum does not render, one warning per kind
+    materials.py        materials -> native closures (through stratum.shaders), MaterialTable
+    images.py           image textures -> native textures; color_management.py their colour
+    lights.py           lamps -> native lights; light_nodes.py their emission node trees
+    world.py            the world -> background colour, environment image or node program
+    camera.py           the scene camera -> native camera
+    common.py           errors, the export summary, matrices, node-tree helpers
 """
-
-from __future__ import annotations
-
-from collections.abc import Callable
-from typing import Any
-
-from .common import ExportCancelled, ExportError, ExportSummary
-from .materials import convert_material
-from .meshes import mesh_arrays
-from .sync import SceneSync, UpdateResult
-from .updates import IdUpdate, collect_updates
-
-__all__ = [
-    "ExportCancelled",
-    "ExportError",
-    "ExportSummary",
-    "IdUpdate",
-    "SceneSync",
-    "UpdateResult",
-    "collect_updates",
-    "convert_material",
-    "export_scene",
-    "mesh_arrays",
-]
-
-
-def export_scene(
-    depsgraph: Any,
-    scene: Any,
-    should_stop: Callable[[], bool] | None = None,
-    frame_set: Callable[[int, float], None] | None = None,
-) -> ExportSummary:
-    """Exports the evaluated scene of `depsgraph` into `scene` (a native.Scene, or a stand-in
-    with its methods): SceneSync.full, whose docstring says what is raised and reported."""
-    return SceneSync(lambda: scene).full(depsgraph, should_stop, frame_set)

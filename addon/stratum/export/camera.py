@@ -14,14 +14,15 @@ from typing import Any
 import bpy
 import numpy as np
 
-from .. import native
+from .. import blender_versions, native
 from .common import ExportError, matrix_to_array
 
 
 def _panorama(cam: Any, name: str) -> dict[str, Any]:
     """Equirectangular panorama ranges: Cycles 3.x keeps them in camera.cycles, 4.x+ on the
     camera itself. Other panorama types are an error naming the type."""
-    source = cam.cycles if bpy.app.version < (4, 0, 0) and hasattr(cam, "cycles") else cam
+    in_cycles = blender_versions.panorama_in_cycles_settings(bpy.app.version)
+    source = cam.cycles if in_cycles and hasattr(cam, "cycles") else cam
     kind = getattr(source, "panorama_type", "")
     if kind != "EQUIRECTANGULAR":
         raise ExportError(f"Camera '{name}': camera type PANO with panorama type {kind} is not "

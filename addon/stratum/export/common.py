@@ -9,7 +9,7 @@ from typing import Any
 import bpy
 import numpy as np
 
-from .. import native
+from .. import blender_versions, native
 
 
 class ExportError(RuntimeError):
@@ -70,7 +70,7 @@ def uses_nodes(idblock: Any) -> bool:
     use_nodes (node trees are always used), so it is only read before 5.0."""
     if getattr(idblock, "node_tree", None) is None:
         return False
-    if bpy.app.version >= (5, 0, 0):
+    if blender_versions.node_trees_always_used(bpy.app.version):
         return True
     return bool(getattr(idblock, "use_nodes", True))
 

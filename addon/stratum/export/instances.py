@@ -1,6 +1,6 @@
 """How a depsgraph object instance is placed: what it draws (its identity), which rays see it,
 whether it is held out (Object > Visibility in Cycles) and its pass index, and whether its
-transform can be rendered (stratum/placement.py)."""
+transform can be rendered (placement.py)."""
 
 from __future__ import annotations
 
@@ -10,9 +10,9 @@ from typing import Any, NamedTuple
 import numpy as np
 
 from .. import native
-from ..placement import degenerate, first_non_finite
 from .common import ExportError, ExportSummary
 from .lights import object_visibility
+from .placement import degenerate, first_non_finite
 
 
 class ObjectFlags(NamedTuple):
@@ -104,7 +104,7 @@ def warn_degenerate(name: str, summary: ExportSummary) -> None:
 def renderable(placed: list[Placement], matrices: np.ndarray,
                summary: ExportSummary) -> list[bool]:
     """Per placement, whether its transforms can be rendered. A NaN or infinite element is an
-    ExportError naming the object; a degenerate transform (stratum/placement.py) is skipped
+    ExportError naming the object; a degenerate transform (placement.py) is skipped
     with a warning naming the object."""
     if not placed:
         return []

@@ -15,8 +15,8 @@ import bpy
 import numpy as np
 
 from .. import native
-from ..shader_nodes import NodeCompiler
-from ..shader_nodes.math_nodes import color_times
+from ..shaders.nodes import NodeCompiler
+from ..shaders.nodes.math_nodes import color_times
 from .common import ExportSummary, active_output, linked_from
 
 Rgb = tuple[float, float, float]

@@ -23,11 +23,11 @@ from typing import Any
 import bpy
 import numpy as np
 
-from .. import native
-from ..fallbacks import FLT_MAX, NON_NEGATIVE, clamp_rgb
-from ..placement import first_non_finite
+from .. import blender_versions, native
+from ..shaders.fallbacks import FLT_MAX, NON_NEGATIVE, clamp_rgb
 from .common import ExportError, ExportSummary, matrix_to_array, rgb
 from .light_nodes import node_emission
+from .placement import first_non_finite
 
 # Object > Visibility > Ray Visibility (Object properties in Blender 3.0+, lights too).
 _RAY_VISIBILITY = (
@@ -60,7 +60,7 @@ def object_visibility(ob: Any) -> int:
 
 def cast_shadow(light: Any) -> bool:
     """Light > Cast Shadow: Cycles 3.x reads light.cycles.cast_shadow, 4.x+ light.use_shadow."""
-    if bpy.app.version < (4, 0, 0):
+    if blender_versions.cast_shadow_in_cycles_settings(bpy.app.version):
         cycles = getattr(light, "cycles", None)
         if cycles is not None and hasattr(cycles, "cast_shadow"):
             return bool(cycles.cast_shadow)
@@ -108,8 +108,7 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
                             radius=max(float(light.shadow_soft_size), 0.0), transform=transform,
                             visibility=visibility)
     if kind == "SPOT":
-        # Cycles 3.x multiplies the spot falloff by cos(angle to the axis), 4.x+ does not.
-        spot_type = native.light_type("spot_v1" if bpy.app.version < (4, 0, 0) else "spot")
+        spot_type = native.light_type(blender_versions.spot_light_model(bpy.app.version))
         return native.Light(type=spot_type, color=color, strength=power,
                             radius=max(float(light.shadow_soft_size), 0.0), transform=transform,
                             spot_size=float(light.spot_size), spot_blend=float(light.spot_blend),
@@ -132,8 +131,7 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
             summary.warn(f"Light '{ob.name}': area light of size {size_x:g} x {size_y:g} "
                          "(with the object's scale) has no area and emits nothing (skipped)")
             return None
-        if bpy.app.version < (4, 0, 0):
-            power *= math.pi / 4.0
+        power *= blender_versions.area_light_power_scale(bpy.app.version)
         return native.Light(type=light_type, color=color, strength=power,
                             size_x=size_x, size_y=size_y, transform=transform,
                             visibility=visibility,

@@ -1,6 +1,6 @@
 """Blender materials -> native materials (one id per distinct Blender material).
 
-The node walk is stratum.shader_graph (pure Python, unit-tested without Blender); this module
+The node walk is stratum.shaders.surface (pure Python, unit-tested without Blender); this module
 feeds it the active Material Output's Surface input, then sends the closures, the images and
 their bindings to the native scene. A material of one closure with weight 1 is added with
 stratum_scene_add_material, any other with stratum_scene_add_closure_material: the same thing
@@ -22,9 +22,10 @@ from typing import Any
 
 import bpy
 
-from .. import native
-from ..fallbacks import UNIT, clamp_rgb
-from ..shader_graph import DEFAULT_GREY, Closure, Rgb, flatten_surface
+from .. import blender_versions, native
+from ..shaders.fallbacks import UNIT, clamp_rgb
+from ..shaders.records import DEFAULT_GREY, Closure, Rgb
+from ..shaders.surface import flatten_surface
 from .common import (
     ExportError,
     ExportSummary,
@@ -126,9 +127,9 @@ def bump_shadowing_model(material: Any | None, version: tuple[int, ...]) -> int:
     keeps or drops the smoothing."""
     cycles = getattr(material, "cycles", None) if material is not None else None
     smoothed = bool(getattr(cycles, "use_bump_map_correction", True))
-    if version < (4, 2):
-        return native.BUMP_SHADOWING_CHIANG
-    if version < (4, 5):
+    if not blender_versions.has_bump_map_correction(version):
+        smoothed = True
+    if not blender_versions.conty_bump_shadowing(version):
         return native.BUMP_SHADOWING_CHIANG if smoothed else native.BUMP_SHADOWING_CHIANG_UNSMOOTHED
     return native.BUMP_SHADOWING_CONTY if smoothed else native.BUMP_SHADOWING_CONTY_UNSMOOTHED
 

@@ -7,9 +7,10 @@ from typing import Any
 
 import numpy as np
 
-from ..mikktspace import mikktspace_tangents, tangent_space_normals
-from ..shader_nodes.input_nodes import RENDER_COLOR
+from .. import blender_versions
+from ..shaders.nodes.input_nodes import RENDER_COLOR
 from .common import ExportError
+from .mikktspace import mikktspace_tangents, tangent_space_normals
 from .vertex_normals import angle_weighted_vertex_normals
 
 # Object types that to_mesh() can turn into triangles.
@@ -40,7 +41,7 @@ def _get(collection: Any, attr: str, count: int, width: int, dtype: Any) -> np.n
 
 def _corner_normals(mesh: Any, n_loops: int) -> np.ndarray:
     """Per-loop (corner) normals, (L, 3)."""
-    if hasattr(mesh, "corner_normals"):  # 4.1+
+    if blender_versions.has_corner_normals(mesh):
         return _get(mesh.corner_normals, "vector", n_loops, 3, np.float32)
     # Before 4.1: split normals honour use_auto_smooth (sharp edges) and smooth/flat faces.
     mesh.calc_normals_split()
@@ -51,7 +52,7 @@ def _vertex_normals(mesh: Any, positions: np.ndarray) -> np.ndarray | None:
     """Vertex normals (N, 3), the same floats on every export: Blender 4.1+'s own; before 4.1
     recomputed in a fixed order, because Blender's own vary in their last bits from one
     evaluation to the next (export/vertex_normals.py; None for non-finite face normals)."""
-    if hasattr(mesh, "corner_normals"):  # 4.1+
+    if blender_versions.has_corner_normals(mesh):
         return _get(mesh.vertex_normals, "vector", len(positions), 3, np.float32)
     n_poly = len(mesh.polygons)
     # uint32 for all three: RNA declares them unsigned, and foreach_get copies in bulk only
@@ -69,7 +70,7 @@ def _all_faces_flat(mesh: Any, smooth: np.ndarray) -> bool:
     normals apply: then each triangle is shaded with its own geometric normal, as Cycles does
     for triangles that are not smooth, and no corner normals need to be sent (a 1M-triangle
     flat mesh would send 36 MB of them)."""
-    if hasattr(mesh, "corner_normals"):  # 4.1+: custom normals apply whenever present
+    if blender_versions.has_corner_normals(mesh):  # custom normals apply whenever present
         if getattr(mesh, "has_custom_normals", False):
             return False
     elif mesh.use_auto_smooth:  # before 4.1 custom normals and sharp edges need auto smooth
@@ -82,7 +83,7 @@ def _smooth_vertex_normals(mesh: Any, smooth: np.ndarray,
     """Per-vertex normals (N, 3) when they are the whole story: every face smooth and no split
     normals (4.1+: normals_domain 'POINT'; before: no auto smooth). Cycles takes such a mesh's
     normals per vertex too; a third of the floats of per-corner normals is the win."""
-    if hasattr(mesh, "normals_domain"):  # 4.1+
+    if blender_versions.has_normals_domain(mesh):
         if mesh.normals_domain != "POINT":
             return None
     elif mesh.use_auto_smooth or not smooth.all():
@@ -102,7 +103,7 @@ def _unsplit_normals(mesh: Any, triangles: np.ndarray, polygons: Any,
     from the vertex normals (_vertex_normals) and polygon_normals, which skips computing and
     reading 3 normals per loop (a third of a 1M-triangle export). `polygons()` gives the
     triangles' polygon indices, fetched only when some face is flat."""
-    if hasattr(mesh, "corner_normals") or mesh.use_auto_smooth:
+    if blender_versions.has_corner_normals(mesh) or mesh.use_auto_smooth:
         return None
     tri_poly = polygons()
     face_normals = _get(mesh.polygon_normals, "vector", len(smooth), 3, np.float32)
@@ -128,7 +129,7 @@ def _uv_layer(mesh: Any, name: str) -> tuple[Any | None, bool]:
 
 
 def _corner_uvs(layer: Any, n_loops: int) -> np.ndarray:
-    if hasattr(layer, "uv"):  # 3.5+
+    if blender_versions.uv_layer_has_uv_vectors(layer):
         return _get(layer.uv, "vector", n_loops, 2, np.float32)
     return _get(layer.data, "uv", n_loops, 2, np.float32)
 
@@ -143,7 +144,7 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
     and come back as zeros. With `read_uvs` false no UVs are read (corner_uvs None): as Cycles
     exports a UV attribute only for shaders that ask for it, a mesh without textures skips the
     largest per-corner array. With `read_tangents` (a normal-mapped material) and a UV layer,
-    the layer's MikkTSpace tangents are computed too (stratum.mikktspace: on the triangles,
+    the layer's MikkTSpace tangents are computed too (mikktspace.py: on the triangles,
     as Cycles does, and the same bits on every export)."""
     mesh.calc_loop_triangles()
     n_vert = len(mesh.vertices)
@@ -280,7 +281,7 @@ def _readable_mesh_data(ob_eval: Any) -> Any | None:
     data = ob_eval.data
     if data is None or data.is_editmode:
         return None
-    if not hasattr(data, "corner_normals") and data.use_auto_smooth:
+    if not blender_versions.has_corner_normals(data) and data.use_auto_smooth:
         return None
     return data
 

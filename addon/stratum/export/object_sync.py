@@ -19,7 +19,6 @@ from typing import Any
 import numpy as np
 
 from .. import native
-from ..placement import degenerate
 from .common import (
     ExportSummary,
     FullExportNeeded,
@@ -37,6 +36,7 @@ from .instances import (
     warn_degenerate,
 )
 from .lights import convert_light
+from .placement import degenerate
 from .updates import Changes
 
 # Per depsgraph row: what it draws (instances.identity) and the original pointer of its

@@ -1,5 +1,7 @@
 """SceneSync: one exporter for a whole scene and for what changed since (Cycles' BlenderSync).
 
+    summary = export_scene(depsgraph, native_scene)   # once, into a scene the caller owns
+
     sync = SceneSync()                   # owns the native scenes it fills
     summary = sync.full(depsgraph)       # the whole scene, into a new native scene
     renderer = native.Renderer(sync.scene)
@@ -17,7 +19,7 @@ Visibility in Cycles) and, with motion blur, the transforms at shutter open and 
 Collections excluded from the view layer or disabled for render never reach
 depsgraph.object_instances, so nothing else is needed for them. Objects Stratum does not render
 are reported once per kind (unsupported.py); transforms are checked before they reach the
-native scene (stratum/placement.py).
+native scene (placement.py).
 
 update() sends what differs from what was sent as live edits (stratum.h "live edits"), which a
 renderer made from the scene applies at its next start with the image a fresh full export of
@@ -305,6 +307,18 @@ class SceneSync:
         if bl_scene.camera is None and not self._require_camera:
             return None
         return convert_camera(bl_scene, depsgraph)
+
+
+def export_scene(
+    depsgraph: Any,
+    scene: Any,
+    should_stop: Callable[[], bool] | None = None,
+    frame_set: Callable[[int, float], None] | None = None,
+) -> ExportSummary:
+    """Exports the evaluated scene of `depsgraph` into `scene` (a native.Scene, or a stand-in
+    with its methods), which the caller owns: SceneSync.full, whose docstring says what is
+    raised and reported."""
+    return SceneSync(lambda: scene).full(depsgraph, should_stop, frame_set)
 
 
 def _evaluated_scene(depsgraph: Any) -> Any:

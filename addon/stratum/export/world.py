@@ -25,7 +25,7 @@ from typing import Any
 import bpy
 import numpy as np
 
-from ..fallbacks import NON_NEGATIVE, Rgb, clamp, clamp_rgb, finite_product
+from ..shaders.fallbacks import NON_NEGATIVE, Rgb, clamp, clamp_rgb, finite_product
 from .common import (
     ExportSummary,
     active_output,
@@ -170,8 +170,8 @@ def convert_world_program(scene: Any, summary: ExportSummary) -> WorldProgram | 
     background = _background_node(scene)
     if background is None or not _uses_program(background):
         return None
-    from ..shader_nodes import NodeCompiler
-    from ..shader_nodes.math_nodes import color_times
+    from ..shaders.nodes import NodeCompiler
+    from ..shaders.nodes.math_nodes import color_times
 
     world = scene.world
     compiler = NodeCompiler(tuple(bpy.app.version), lambda node, message: summary.warn(

@@ -1,7 +1,7 @@
 """Shader node programs as the C ABI takes them (stratum/shader_nodes.h): the marshalling of
 `ShaderProgram` and the entry points, used by `Scene`'s program methods.
 
-A program is straight-line nodes over float registers; `stratum.shader_nodes` compiles Blender
+A program is straight-line nodes over float registers; `stratum.shaders.nodes` compiles Blender
 node graphs into one. This module only moves it across the ABI."""
 
 from __future__ import annotations

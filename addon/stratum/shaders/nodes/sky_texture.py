@@ -19,6 +19,7 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
+from ... import blender_versions
 from . import hosek_wilkie_data as hw_dataset
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
@@ -159,6 +160,6 @@ def translate_sky(c: NodeCompiler, node: Any) -> dict[str, int]:
     # XYZ to Rec.709 as the version's colour management defines it (3.x: the sRGB matrix of its
     # srgb_to_xyz.spimtx; 4.x and later: the exact BT.709 one). Nishita is a 3.x/4.x type and
     # SINGLE_SCATTERING 5.x: the native node picks their matrix itself.
-    matrix = int(tuple(c.version) >= (4, 0, 0))
+    matrix = int(blender_versions.color_config_4x(c.version))
     color = c.builder.node("sky", (model, disc, matrix), (vector,), (3,), data)[0]
     return {"Color": color}

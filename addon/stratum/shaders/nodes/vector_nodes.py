@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
@@ -45,14 +46,6 @@ def _pick(node: Any, prop: str, names: tuple[str, ...], default: str) -> int:
     return names.index(value)
 
 
-def vector_math_revision(version: tuple[int, ...]) -> int:
-    """0: Blender 3.x-4.2, 1: 4.3-4.5 (safe-normalised Reflect/Refract), 2: 5.0+ (SSE modulo
-    and floored wrap)."""
-    if tuple(version[:2]) < (4, 3):
-        return 0
-    return 1 if tuple(version[:2]) < (5, 0) else 2
-
-
 @translator("ShaderNodeVectorMath")
 def vector_math(c: NodeCompiler, node: Any) -> dict[str, int]:
     op = _pick(node, "operation", VECTOR_OPERATIONS, "ADD")
@@ -60,7 +53,7 @@ def vector_math(c: NodeCompiler, node: Any) -> dict[str, int]:
     b = c.input(node, "Vector_001", "vector")
     d = c.input(node, "Vector_002", "vector")
     scale = c.input(node, "Scale", "float")
-    vec, val = c.builder.node("vector_math", (op, vector_math_revision(c.version)),
+    vec, val = c.builder.node("vector_math", (op, blender_versions.vector_math_revision(c.version)),
                               (a, b, d, scale), (3, 1))
     return {"Vector": vec, "Value": val}
 
@@ -127,7 +120,7 @@ def vector_transform(c: NodeCompiler, node: Any) -> dict[str, int]:
         raise Unsupported(f"Vector Transform '{node.name}': {SPACES[source]} to {SPACES[target]} "
                           "needs the object's or camera's transform, which Stratum's node "
                           "programs do not carry")
-    revision = 0 if tuple(c.version[:2]) < (4, 0) else 1
+    revision = blender_versions.vector_transform_revision(c.version)
     vec = c.input(node, "Vector", "vector")
     return {"Vector": c.builder.node("vector_transform", (kind, source, target, revision), (vec,),
                                      (3,))[0]}

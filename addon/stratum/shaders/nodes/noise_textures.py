@@ -15,6 +15,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported, identifier
 from .registry import translator
 
@@ -22,15 +23,6 @@ DIMENSIONS = ("1D", "2D", "3D", "4D")
 # Cycles' NodeNoiseType / NodeMusgraveType order (svm/types.h).
 FRACTAL_TYPES = ("MULTIFRACTAL", "FBM", "HYBRID_MULTIFRACTAL", "RIDGED_MULTIFRACTAL",
                  "HETERO_TERRAIN")
-
-
-def noise_generation(version: tuple[int, ...]) -> int:
-    """The native noise node's generation (mode 3) for a Blender version."""
-    if version < (4, 0):
-        return 0
-    if version < (4, 1):
-        return 1
-    return 2 if version < (4, 2) else 3
 
 
 def _dimensions(node: Any, attribute: str) -> int:
@@ -86,7 +78,7 @@ def _output_read(node: Any, key: str) -> bool:
 @translator("ShaderNodeTexNoise")
 def noise_texture(c: NodeCompiler, node: Any) -> dict[str, int]:
     dims = _dimensions(node, "noise_dimensions")
-    generation = noise_generation(c.version)
+    generation = blender_versions.noise_generation(c.version)
     kind = _fractal_type(node, "noise_type") if generation >= 2 else FRACTAL_TYPES.index("FBM")
     normalize = bool(getattr(node, "normalize", True)) if generation >= 1 else True
     _warn_texture_mapping(c, node)

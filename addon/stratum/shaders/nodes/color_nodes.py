@@ -23,6 +23,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
@@ -109,8 +110,7 @@ def bright_contrast(c: NodeCompiler, node: Any) -> dict[str, int]:
 def hue_saturation(c: NodeCompiler, node: Any) -> dict[str, int]:
     inputs = [c.input(node, k, "float") for k in ("Hue", "Saturation", "Value", "Fac")]
     inputs.append(c.input(node, "Color", "color"))
-    # Cycles wraps the shifted hue with fmodf up to Blender 4.2 and fractf from 4.3.
-    wrap = 1 if c.version < (4, 3, 0) else 0
+    wrap = int(blender_versions.hue_wraps_with_fmod(c.version))
     return {"Color": c.builder.node("hsv", (wrap,), inputs, (3,))[0]}
 
 

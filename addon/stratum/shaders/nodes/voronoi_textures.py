@@ -20,23 +20,13 @@ from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
 DIMENSIONS = ("1D", "2D", "3D", "4D")
 FEATURES = ("F1", "F2", "SMOOTH_F1", "DISTANCE_TO_EDGE", "N_SPHERE_RADIUS")
 METRICS = ("EUCLIDEAN", "MANHATTAN", "CHEBYCHEV", "MINKOWSKI")
-
-
-def generation(version: tuple[int, ...]) -> int:
-    """The native Voronoi node's generation mode for a Blender version."""
-    if version < (4, 0):
-        return 0
-    if version < (4, 5):
-        return 1
-    if version < (5, 0):
-        return 2
-    return 3
 
 
 def _enum(node: Any, attribute: str, values: tuple[str, ...], default: str, what: str) -> int:
@@ -58,13 +48,14 @@ def voronoi_texture(c: NodeCompiler, node: Any) -> dict[str, int]:
     dimensions = _enum(node, "voronoi_dimensions", DIMENSIONS, "3D", "Voronoi Texture")
     feature = _enum(node, "feature", FEATURES, "F1", "Voronoi Texture")
     metric = _enum(node, "distance", METRICS, "EUCLIDEAN", "Voronoi Texture")
-    gen = generation(c.version)
+    gen = blender_versions.voronoi_generation(c.version)
     vector = c.vector_or(node, "Vector", "generated")
     w = c.input(node, "W", "float")
     scale = c.input(node, "Scale", "float")
     smoothness = c.input(node, "Smoothness", "float")
     lacunarity = _float_or(c, node, "Lacunarity", 2.0)
-    if gen == 1 and c.version < (4, 3) and c.has_input(node, "Lacunarity"):
+    if (blender_versions.voronoi_lacunarity_from_smoothness(c.version)
+            and c.has_input(node, "Lacunarity")):
         # Cycles 4.0-4.2 loads Lacunarity from Smoothness's stack slot: a linked Smoothness
         # feeds it, and otherwise the unlinked Lacunarity value is used even when linked.
         smooth_socket = c.socket(node, "Smoothness")

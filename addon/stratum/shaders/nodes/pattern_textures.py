@@ -11,7 +11,7 @@ sockets in Blender 3.4 and 4.x/5.x (5.x names the Fac output "Factor"; its ident
 |                       |          | offset, squash                                     |
 | ShaderNodeTexMagic    | magic    | turbulence_depth                                   |
 | ShaderNodeTexWave     | wave     | wave_type, bands_direction, rings_direction,       |
-|                       |          | wave_profile, noise generation (wave_generation)   |
+|                       |          | wave_profile, noise generation (its distortion)    |
 
 An unlinked Vector is the "generated" renderer input, as Cycles. A node whose hidden texture
 mapping (node.texture_mapping, Cycles' TextureMapping) is not the identity gives a warning: it
@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
@@ -85,7 +86,7 @@ def _frequency(node: Any, name: str) -> int:
 @translator("ShaderNodeTexBrick")
 def brick(c: NodeCompiler, node: Any) -> dict[str, int]:
     # Blender 3.5 clamped the mortar's smoothstep (they differ for a negative Mortar Smooth).
-    generation = 0 if c.version < (3, 5, 0) else 1
+    generation = blender_versions.brick_generation(c.version)
     modes = (_frequency(node, "offset_frequency"), _frequency(node, "squash_frequency"),
              generation)
     inputs = (vector(c, node), c.input(node, "Color1", "color"), c.input(node, "Color2", "color"),
@@ -114,15 +115,6 @@ RINGS_DIRECTIONS = ("X", "Y", "Z", "SPHERICAL")
 WAVE_PROFILES = ("SIN", "SAW", "TRI")
 
 
-def wave_generation(version: tuple[int, ...]) -> int:
-    """The distortion's fBM: 0 Blender 3.x, 1 4.0, 2 4.1, 3 4.2+ (wave_texture.cpp)."""
-    if version < (4, 0, 0):
-        return 0
-    if version < (4, 1, 0):
-        return 1
-    return 2 if version < (4, 2, 0) else 3
-
-
 def _choice(node: Any, prop: str, choices: tuple[str, ...]) -> int:
     value = str(getattr(node, prop, choices[0]))
     if value not in choices:
@@ -135,7 +127,8 @@ def wave(c: NodeCompiler, node: Any) -> dict[str, int]:
     modes = (_choice(node, "wave_type", WAVE_TYPES),
              _choice(node, "bands_direction", BANDS_DIRECTIONS),
              _choice(node, "rings_direction", RINGS_DIRECTIONS),
-             _choice(node, "wave_profile", WAVE_PROFILES), wave_generation(c.version))
+             _choice(node, "wave_profile", WAVE_PROFILES),
+             blender_versions.noise_generation(c.version))
     inputs = (vector(c, node), *(c.input(node, k, "float") for k in (
         "Scale", "Distortion", "Detail", "Detail Scale", "Detail Roughness", "Phase Offset")))
     return color_fac(c.builder.node("wave", modes, inputs, (3, 1)))

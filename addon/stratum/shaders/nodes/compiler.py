@@ -10,7 +10,7 @@ graph once; links are followed through reroutes, muted nodes (their internal lin
 bypasses them) and node groups, which are flattened: a Group node's output is its tree's Group
 Output input, and a Group Input output is the Group node's input, one scope out.
 
-A node without a translator (stratum.shader_nodes.registry), a cycle, or a link that cannot be
+A node without a translator (stratum.shaders.nodes.registry), a cycle, or a link that cannot be
 followed gives one warning naming the node, and the consuming socket's own value: the documented
 fallback (docs/shader_nodes.md)."""
 
@@ -19,6 +19,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from typing import Any
 
+from ... import blender_versions
 from .builder import FLOAT, VECTOR, ProgramBuilder
 
 FLOAT_TYPES = frozenset({"VALUE", "INT", "BOOLEAN"})
@@ -74,13 +75,13 @@ class NodeCompiler:
         self.overrides: dict[str, int] = {}
         self._override_key: tuple[Any, ...] = ()
         # Image Texture nodes the program reads, in IMAGE node mode-0 order (the exporter maps
-        # them to texture ids: shader_nodes.resolve_images).
+        # them to texture ids: export/materials.py resolve_images).
         self.images: list[Any] = []
 
     @property
     def modern_luminance(self) -> bool:
         """Whether this Blender's colour configuration has 4.x's luminance weights."""
-        return self.version >= (4, 0, 0)
+        return blender_versions.color_config_4x(self.version)
 
     # ---- warnings ---------------------------------------------------------------------------
 

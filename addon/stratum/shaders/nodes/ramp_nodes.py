@@ -20,6 +20,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
@@ -28,7 +29,7 @@ TABLE_SIZE = 256  # Cycles' RAMP_TABLE_SIZE
 
 def table_size(version: tuple[int, ...]) -> int:
     """Entries Cycles bakes: RAMP_TABLE_SIZE before Blender 4.1, one more from 4.1."""
-    return TABLE_SIZE + 1 if tuple(version) >= (4, 1, 0) else TABLE_SIZE
+    return TABLE_SIZE + 1 if blender_versions.ramp_table_has_end_entry(version) else TABLE_SIZE
 CURVE_RGB, CURVE_VECTOR, CURVE_FLOAT = range(3)
 
 

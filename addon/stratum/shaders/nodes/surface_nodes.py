@@ -10,12 +10,13 @@
 |                      |            | OBJECT and the BLENDER_* spaces: not supported             |
 
 An Image Texture linked straight to a Normal Map in tangent space never reaches here: the
-material keeps its image binding with MikkTSpace tangents (shader_graph)."""
+material keeps its image binding with MikkTSpace tangents (stratum.shaders.inputs)."""
 
 from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported
 from .math_nodes import math_node
 from .registry import translator
@@ -66,7 +67,7 @@ def normal_map(c: NodeCompiler, node: Any) -> dict[str, int]:
         raise Unsupported(f"Normal Map '{node.name}': space {space} is not supported")
     color = c.input(node, "Color", "color")
     strength = c.input(node, "Strength", "float")
-    modern = int(c.version >= (4, 0, 0))
+    modern = int(blender_versions.normal_map_scales_strength(c.version))
     normal = c.builder.node("normal_map", (0 if space == "TANGENT" else 1, modern), (
         color, strength, c.geometry("normal"), c.geometry("uv_tangent")), (3,))[0]
     return {"Normal": normal}

@@ -1,10 +1,12 @@
 """Finding Blender and the command line that runs it in the background.
 
-Shared by `stratum render` (cli.py, and distributed.py for --scheduler) and `stratum compare`
-(compare/runner.py), so all find the same Blender ($STRATUM_BLENDER or `blender`) and register the
-add-on from the same checkout (ADDON_PARENT), and none has to import another to do so.
+Shared by `stratum render` (cli/__init__.py, and distributed.py for --scheduler) and `stratum
+compare` (compare/runner.py), so all find the same Blender ($STRATUM_BLENDER or `blender`) and
+register the add-on from the same checkout (ADDON_PARENT), and none has to import another to
+do so.
 `script_command` is the whole command for a script passed inline (`--python-expr`): the scripts
-of cli.py and distributed.py share its start (arguments, add-on, scene settings) and its end.
+of cli/__init__.py and distributed.py share its start (arguments, add-on, scene settings) and
+its end.
 """
 
 from __future__ import annotations
@@ -17,7 +19,7 @@ from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
-ADDON_PARENT = Path(__file__).resolve().parent.parent  # the folder that holds stratum/
+ADDON_PARENT = Path(__file__).resolve().parents[2]  # the folder that holds stratum/
 NOT_FOUND_MESSAGE = "Blender not found (set STRATUM_BLENDER)"
 
 
@@ -47,9 +49,10 @@ code = 1
 try:
     import bpy
     import stratum
+    from stratum.engine_id import ENGINE_ID
     stratum.register()
     scene = bpy.context.scene
-    scene.render.engine = "STRATUM"
+    scene.render.engine = ENGINE_ID
     for name, value in args["overrides"].items():
         setattr(scene.stratum, name, value)
     if args.get("resolution"):

@@ -6,6 +6,11 @@ with a small script that registers the add-on from this checkout and renders one
 `points` calls the native library directly (matplotlib only for --plot); `compare` renders
 many configurations (estimators x samplers x spp x seeds) through Blender and compares them
 (stratum.compare; Dask, OpenEXR and FLIP are imported only when it runs).
+
+The package is what runs outside Blender and is not in the user's zip (scripts/package.py):
+this module (the parser and the subcommands; `main` is the console entry point and
+`python -m stratum.cli`), blender_process.py (finding and running Blender) and distributed.py
+(`render --scheduler`, over Dask).
 """
 
 from __future__ import annotations
@@ -17,14 +22,14 @@ from pathlib import Path
 
 import numpy as np
 
-from . import native
+from .. import native
+from ..version import __version__
 from .blender_process import (
     NOT_FOUND_MESSAGE,
     blender_executable,
     overrides_from_options,
     script_command,
 )
-from .version import __version__
 
 # Runs inside Blender after blender_process's shared start (arguments, add-on, settings).
 _RENDER_SCRIPT = r"""
@@ -364,13 +369,13 @@ def build_parser() -> argparse.ArgumentParser:
 
 
 def _compare_arguments(p: argparse.ArgumentParser) -> None:
-    from .compare import add_arguments  # light: no numpy-heavy, dask or FLIP imports
+    from ..compare import add_arguments  # light: no numpy-heavy, dask or FLIP imports
 
     add_arguments(p)
 
 
 def _cmd_compare(ns: argparse.Namespace) -> int:
-    from .compare import run_compare
+    from ..compare import run_compare
 
     return run_compare(ns)
 
@@ -379,6 +384,3 @@ def main(argv: list[str] | None = None) -> int:
     ns = build_parser().parse_args(argv)
     return int(ns.func(ns))
 
-
-if __name__ == "__main__":
-    sys.exit(main())

@@ -24,7 +24,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
-from . import native
+from .. import native
 from .blender_process import overrides_from_options, script_command
 
 # Seconds a client waits for the scheduler before reporting it unreachable.
@@ -168,7 +168,7 @@ def render_on_cluster(client: Any, frame: Frame) -> tuple[native.Renderer, list[
 _EXPORT_SCRIPT = r"""
 from stratum import native
 from stratum.engine.frame import renderer_settings
-from stratum.export import export_scene
+from stratum.export.sync import export_scene
 from stratum.export.render_geometry import use_render_geometry
 use_render_geometry(scene)
 depsgraph = bpy.context.evaluated_depsgraph_get()

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler
 from .registry import translator
 
@@ -46,7 +47,9 @@ def _product(m: Matrix, n: Matrix) -> Matrix:
 
 def xyz_to_rgb(version: tuple[int, ...]) -> Matrix:
     """The XYZ -> working RGB matrix Cycles uses in Blender `version`."""
-    return _inverse(SRGB_TO_XYZ_3X) if tuple(version[:1]) < (4,) else XYZ_TO_REC709_4X
+    if blender_versions.color_config_4x(version):
+        return XYZ_TO_REC709_4X
+    return _inverse(SRGB_TO_XYZ_3X)
 
 
 IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))

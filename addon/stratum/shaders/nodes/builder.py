@@ -9,7 +9,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 
-from .. import native
+from ... import native
 
 FLOAT = 1
 VECTOR = 3
