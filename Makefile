@@ -83,10 +83,10 @@ corpus-asan: build
 
 lint: setup
 	$(VENV)/bin/ruff check addon tests scenes scripts
-	clang-format --dry-run -Werror $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
+	clang-format --dry-run -Werror $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp' 'tests/native/*.h')
 
 format: setup
-	clang-format -i $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp')
+	clang-format -i $$(git ls-files 'native/*.cpp' 'native/*.h' 'tests/native/*.cpp' 'tests/native/*.h')
 	$(VENV)/bin/ruff check --fix addon tests scenes scripts
 
 # README.md's render-settings tables, written anew from the library's list of settings.

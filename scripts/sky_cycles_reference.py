@@ -1,5 +1,5 @@
 """Renders Sky Texture worlds in Cycles (run inside Blender) and writes, per case, each pixel's
-direction and colour to a JSON file: the reference of tests/native/test_sky_nodes.cpp and of
+direction and colour to a JSON file: the reference of tests/native/shading/test_sky_nodes.cpp and of
 scripts/compare_sky.py.
 
     blender -b --factory-startup -noaudio --python scripts/sky_cycles_reference.py -- out.json
