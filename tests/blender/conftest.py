@@ -29,6 +29,22 @@ if str(ADDON_DIR) not in sys.path:
 
 bpy = pytest.importorskip("bpy")
 
+# The Blender part of `make check` (`pytest -m smoke`, in the bpy wheel), a few of this folder's
+# minutes: the add-on registers, renders, its images equal the recorded hashes, and the Cornell
+# box agrees with Cycles.
+SMOKE = {"test_registration.py", "test_render.py", "test_image_hashes.py",
+         "test_cycles_agreement.py"}
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    config.addinivalue_line("markers", "smoke: the Blender tests of make check (SMOKE)")
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        if item.path.name in SMOKE:
+            item.add_marker(pytest.mark.smoke)
+
 
 @pytest.fixture(scope="session")
 def stratum_addon() -> Iterator[Any]:
