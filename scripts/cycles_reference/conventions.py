@@ -1,7 +1,7 @@
 """Measure Cycles' material and light conventions on tiny synthetic scenes.
 
 Measured: the image means of docs/cycles_models.md's "Measured" table (Blender 3.4.1 and 5.0.1);
-held by tests/native/test_bsdf.cpp (Bsdf.DirectionalAlbedoMatchesCycles) for the BSDF rows.
+held by tests/native/bsdf/test_bsdf.cpp (Bsdf.DirectionalAlbedoMatchesCycles) for the BSDF rows.
 
     blender -b --factory-startup -noaudio --python scripts/run_in_blender.py -- \
         scripts.cycles_reference.conventions CASE...                       # Blender 3.4

@@ -2,7 +2,7 @@
 this script (3.4 or 5.0).
 
 Measured: Cycles' Noise and Musgrave values (worst difference 3.2e-5, docs/shader_nodes.md);
-held by tests/native/test_noise_nodes.cpp (NoiseNodesCycles.*) as reference values.
+held by tests/native/shading/test_noise_nodes.cpp (NoiseNodesCycles.*) as reference values.
 
     blender -b --factory-startup -noaudio --python scripts/run_in_blender.py -- \
         scripts.cycles_reference.noise OUT.json

@@ -1,7 +1,7 @@
 """Cycles vs Stratum on one controlled Principled scene (the bpy 5.0 wheel).
 
 Measured: Cycles 5.0.1's directional albedo of the Principled BSDF (v2, GGX and Multiscatter
-GGX, docs/cycles_models.md); held by tests/native/test_bsdf.cpp
+GGX, docs/cycles_models.md); held by tests/native/bsdf/test_bsdf.cpp
 (Principled.V2DirectionalAlbedoMatchesCycles50).
 
 A 20 m plane with one Principled BSDF under a long-lens camera at elevation VIEW (degrees

@@ -2,7 +2,7 @@
 direction and colour to a JSON file.
 
 Measured: Cycles' sky per pixel direction, every sky type of Blender 3.4 and 5.0; held by
-tests/native/test_sky_nodes.cpp (SkyNodes.*MatchesCycles34, *MatchesCycles50) and
+tests/native/shading/test_sky_nodes.cpp (SkyNodes.*MatchesCycles34, *MatchesCycles50) and
 tests/python/test_sky_nodes.py (the Preetham zenith, Hosek-Wilkie) as reference pixels.
 
     blender -b --factory-startup -noaudio --python scripts/run_in_blender.py -- \

@@ -10,7 +10,7 @@ out/study/figures/radiosity.png (written from it). run.py's summary reads the pa
 | gauss_seidel | one sweep in place (one thread)                                  |
 | shooting     | K shots, brightest unshot power first (one thread)               |
 
-The box is the one tests/native/radiosity_scenes.h builds (Lambert walls of the Cornell
+The box is the one tests/native/helpers/radiosity_scenes.h builds (Lambert walls of the Cornell
 reflectances, two white blocks, an emissive 0.5 x 0.5 quad in the ceiling), built here through
 the library's Python API: no Blender involved. Each solver runs one 8 x 8 render of one sample
 (the solve is all the work) at a tolerance far below the default, so that the curves show the

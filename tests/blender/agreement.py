@@ -16,6 +16,8 @@ from pathlib import Path
 import bpy
 import numpy as np
 
+from exr_file import read_image
+
 REPO = Path(__file__).resolve().parents[2]
 SCENE = REPO / "scenes" / "cornell_box.blend"
 # One folder per Blender, so a 3.4 run and a 5.0 run do not overwrite each other's images.
@@ -196,16 +198,11 @@ def render_exr(scene: bpy.types.Scene, path: Path, res: int = RES) -> tuple[np.n
 
 
 def load_exr(path: Path, res: int = RES) -> np.ndarray:
-    image = bpy.data.images.load(str(path), check_existing=False)
-    try:
-        w, h = image.size
-        assert (w, h) == (res, res), f"{path}: size {w}x{h}, expected {res}x{res}"
-        buf = np.empty(w * h * image.channels, dtype=np.float32)
-        image.pixels.foreach_get(buf)
-        rgba = buf.reshape(h, w, image.channels)
-    finally:
-        bpy.data.images.remove(image)
-    return rgba[..., :3].astype(np.float64)  # rows bottom to top, as Blender stores them
+    """The EXR's RGB as float64 (res, res, 3), rows bottom to top as Blender stores them."""
+    rgba = read_image(path)
+    h, w = rgba.shape[:2]
+    assert (w, h) == (res, res), f"{path}: size {w}x{h}, expected {res}x{res}"
+    return rgba[..., :3].astype(np.float64)
 
 
 class Renders:

@@ -15,6 +15,8 @@ from typing import Any
 import numpy as np
 import pytest
 
+from exr_file import read_image
+
 REPO = Path(__file__).resolve().parents[2]
 # Run by their own targets, not by the general runs of this folder: the hostile-scene corpus
 # starts Blender in subprocesses from the venv (make test-corpus), the long-session tests want a
@@ -26,6 +28,22 @@ if str(ADDON_DIR) not in sys.path:
     sys.path.insert(0, str(ADDON_DIR))
 
 bpy = pytest.importorskip("bpy")
+
+# The Blender part of `make check` (`pytest -m smoke`, in the bpy wheel), a few of this folder's
+# minutes: the add-on registers, renders, its images equal the recorded hashes, and the Cornell
+# box agrees with Cycles.
+SMOKE = {"test_registration.py", "test_render.py", "test_image_hashes.py",
+         "test_cycles_agreement.py"}
+
+
+def pytest_configure(config: pytest.Config) -> None:
+    config.addinivalue_line("markers", "smoke: the Blender tests of make check (SMOKE)")
+
+
+def pytest_collection_modifyitems(items: list[pytest.Item]) -> None:
+    for item in items:
+        if item.path.name in SMOKE:
+            item.add_marker(pytest.mark.smoke)
 
 
 @pytest.fixture(scope="session")
@@ -258,19 +276,6 @@ def recording_scene() -> RecordingScene:
     return RecordingScene()
 
 
-def read_image_pixels(path: Path) -> np.ndarray:
-    """RGBA float pixels (h, w, 4) of an image file, through Blender's image loader."""
-    image = bpy.data.images.load(str(path), check_existing=False)
-    try:
-        w, h = image.size
-        buf = np.empty(w * h * image.channels, dtype=np.float32)
-        image.pixels.foreach_get(buf)
-        return buf.reshape(h, w, image.channels)
-    finally:
-        bpy.data.images.remove(image)
-
-
-
 def engine_reports(level: str) -> list[str]:
     """The messages the Stratum engine reported at `level` ("ERROR", "WARNING", ...) during the
     last render."""
@@ -290,4 +295,4 @@ def render_still(scene: Any, path: Path) -> np.ndarray | None:
         bpy.ops.render.render(write_still=True)
     except RuntimeError:
         pass
-    return read_image_pixels(path) if path.is_file() else None
+    return read_image(path) if path.is_file() else None

@@ -54,6 +54,7 @@ from agreement import (
     OUT,
     configure_cycles,
     configure_stratum,
+    load_exr,
     open_scene,
     per_channel,
     stratum_available,
@@ -100,14 +101,7 @@ def _render(renderer: str, camera: str, seed: int) -> np.ndarray:
     scene.render.filepath = str(path)
     bpy.ops.render.render(write_still=True)
     assert path.is_file(), f"render did not write {path}"
-    image = bpy.data.images.load(str(path), check_existing=False)
-    try:
-        assert tuple(image.size) == (RES, RES), f"{path}: size {tuple(image.size)}"
-        buf = np.empty(RES * RES * image.channels, dtype=np.float32)
-        image.pixels.foreach_get(buf)
-    finally:
-        bpy.data.images.remove(image)
-    return buf.reshape(RES, RES, -1)[..., :3].astype(np.float64)
+    return load_exr(path, RES)
 
 
 class TwoSeeds:

@@ -33,7 +33,7 @@ import numpy as np
 import pytest
 
 from conftest import engine_reports
-from exr_layers import read_pass
+from exr_file import read_pass
 
 REPO = Path(__file__).resolve().parents[2]
 CORNELL = REPO / "scenes" / "cornell_box.blend"

@@ -31,7 +31,8 @@ import bpy
 import numpy as np
 import pytest
 
-from conftest import REPO, engine_reports, read_image_pixels
+from conftest import REPO, engine_reports
+from exr_file import read_image
 
 REPEATS = 10
 THREADS = (1, 2, 7)
@@ -318,7 +319,7 @@ def _engine_render(scene: Any, path: Path) -> np.ndarray:
     bpy.ops.render.render(write_still=True)
     reports = engine_reports("ERROR") + engine_reports("WARNING")
     assert not reports, reports
-    return read_image_pixels(path)
+    return read_image(path)
 
 
 BUILT_SCENES = {"reporters_box": _reporters_box, "normal_mapped_sphere": _normal_mapped_sphere}

@@ -11,7 +11,8 @@ import numpy as np
 import pytest
 from stratum.engine import StratumRenderEngine
 
-from conftest import engine_reports, read_image_pixels
+from conftest import engine_reports
+from exr_file import read_image
 
 
 def _render(scene: Any, path: Path) -> np.ndarray:
@@ -22,7 +23,7 @@ def _render(scene: Any, path: Path) -> np.ndarray:
     bpy.ops.render.render(write_still=True)
     errors = engine_reports("ERROR")
     assert not errors, errors
-    return read_image_pixels(path)
+    return read_image(path)
 
 
 @pytest.mark.parametrize("crop", [True, False])

@@ -39,8 +39,9 @@ def _table_path(bpy: Any) -> Path:
 
 
 def _render_digest(bpy: Any, path: Path) -> str:
-    """Renders the open scene to a 32-bit EXR and returns the SHA-256 of its RGBA pixels."""
-    import numpy as np
+    """Renders the open scene to a 32-bit EXR and returns the SHA-256 of its RGBA pixels (as
+    Blender's Image.pixels holds them: rows bottom first)."""
+    from exr_file import read_image
 
     scene = bpy.context.scene
     settings = scene.render.image_settings
@@ -51,14 +52,7 @@ def _render_digest(bpy: Any, path: Path) -> str:
     scene.render.use_file_extension = False
     path.unlink(missing_ok=True)
     bpy.ops.render.render(write_still=True)
-    image = bpy.data.images.load(str(path), check_existing=False)
-    try:
-        w, h = image.size
-        pixels = np.empty(w * h * image.channels, dtype=np.float32)
-        image.pixels.foreach_get(pixels)
-    finally:
-        bpy.data.images.remove(image)
-    return hashlib.sha256(pixels.tobytes()).hexdigest()
+    return hashlib.sha256(read_image(path).tobytes()).hexdigest()
 
 
 def _open(bpy: Any, blend: Path, size: int, samples: int) -> Any:
@@ -122,7 +116,8 @@ def test_images_equal_the_recorded_table(stratum_addon: Any, library: Any) -> No
 
 
 def _write_table() -> int:
-    sys.path.insert(0, str(REPO / "addon"))
+    # Run as a script, Blender puts neither the add-on nor this folder (exr_file) on the path.
+    sys.path[:0] = [str(REPO / "addon"), str(Path(__file__).resolve().parent)]
     import bpy
     import stratum
 

@@ -31,7 +31,8 @@ import bpy
 import numpy as np
 
 from agreement import configure_cycles, configure_stratum, open_scene
-from test_render_passes import read_exr_channels, result_name, set_multilayer_exr
+from exr_file import read_channels
+from multilayer_passes import result_name, set_multilayer_exr
 
 RES = 48
 SAMPLES = 4
@@ -59,7 +60,7 @@ def render_passes(renderer: str, path: Path, colours: bool = False) -> dict[str,
     scene.render.filepath = str(path)
     scene.render.use_file_extension = False
     bpy.ops.render.render(write_still=True)
-    channels = read_exr_channels(path)
+    channels = read_channels(path)
     name = layer.name
     out = {}
     for pass_name, letters in {**PASSES, **(COLOUR_PASSES if colours else {})}.items():

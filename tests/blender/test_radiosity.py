@@ -12,7 +12,8 @@ import bpy
 import numpy as np
 import pytest
 
-from conftest import REPO, engine_reports, read_image_pixels
+from conftest import REPO, engine_reports
+from exr_file import read_image
 
 CORNELL = REPO / "scenes" / "cornell_box.blend"
 
@@ -54,7 +55,7 @@ def test_cornell_box_renders_with_radiosity(library: Any, stratum_addon: Any,
     scene.render.use_file_extension = False
     bpy.ops.render.render(write_still=True)
     assert not engine_reports("ERROR"), engine_reports("ERROR")
-    pixels = read_image_pixels(tmp_path / "radiosity.exr")
+    pixels = read_image(tmp_path / "radiosity.exr")
     assert pixels.shape[:2] == (16, 16)
     assert np.isfinite(pixels).all()
     assert pixels[..., :3].mean() > 0.0

@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 from stratum.engine import StratumRenderEngine, final_render
 
-from conftest import REPO, engine_reports, read_image_pixels
+from conftest import REPO, engine_reports
+from exr_file import read_image
 
 CORNELL = REPO / "scenes" / "cornell_box.blend"
 
@@ -26,7 +27,7 @@ def _render_to_exr(scene: Any, path: Path) -> np.ndarray:
     errors = engine_reports("ERROR")
     assert not errors, errors
     assert path.is_file(), f"render did not write {path}"
-    return read_image_pixels(path)
+    return read_image(path)
 
 
 def test_render_small_scene(library: Any, scene_builder: Any, tmp_path: Path) -> None:

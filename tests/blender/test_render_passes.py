@@ -12,8 +12,6 @@ of a known colour, covering the left half of the frame; the right half sees the 
 from __future__ import annotations
 
 import math
-import subprocess
-import sys
 from pathlib import Path
 from typing import Any
 
@@ -21,7 +19,9 @@ import bpy
 import numpy as np
 import pytest
 
-from conftest import REPO, engine_reports
+from conftest import engine_reports
+from exr_file import read_channels
+from multilayer_passes import result_name, set_multilayer_exr
 
 SIZE = 16
 DISTANCE = 3.0
@@ -31,30 +31,6 @@ WORLD = (0.3, 0.6, 0.9)
 SAMPLES = 8
 OBJECT_INDEX = 6  # Object > Relations > Pass Index of the plane
 MATERIAL_INDEX = 9  # Material > Settings > Pass Index of its material
-
-READ_EXR = """
-import sys
-import numpy as np
-import OpenEXR
-with OpenEXR.File(sys.argv[1], separate_channels=True) as f:
-    np.savez(sys.argv[2], **{name: np.asarray(ch.pixels, dtype=np.float32)
-                             for name, ch in f.channels().items()})
-"""
-
-
-def read_exr_channels(path: Path) -> dict[str, np.ndarray]:
-    """Every channel of an EXR by name, (height, width) rows top to bottom, through the
-    OpenEXR module: here when importable (the bpy wheel's venv), else in the venv's Python."""
-    out = path.with_suffix(".npz")
-    try:
-        import OpenEXR  # noqa: F401
-        python = sys.executable
-    except ImportError:
-        python = str(REPO / ".venv" / "bin" / "python")
-    subprocess.run([python, "-c", READ_EXR, str(path), str(out)], check=True, timeout=120)
-    with np.load(out) as data:
-        return {name: data[name] for name in data.files}
-
 
 def tilted_plane_scene(builder: Any) -> Any:
     scene = builder.scene
@@ -108,30 +84,9 @@ def tilted_plane_scene(builder: Any) -> Any:
     return scene
 
 
-def result_name(native_name: str) -> str:
-    """The render-result pass of a native pass in this Blender (5.0 renamed some; that the
-    names are Cycles' is tested against Cycles itself below)."""
-    from stratum.engine import render_passes
-
-    return next(spec.result_name for _, _, specs in render_passes.TOGGLES for spec in specs
-                if spec.name == native_name)
-
-
 def plane_depth(u: np.ndarray) -> np.ndarray:
     """Depth along the view axis where the ray through film point (u, ·, −1) meets the plane."""
     return DISTANCE * math.cos(TILT) / (math.cos(TILT) - u * math.sin(TILT))
-
-
-def set_multilayer_exr(settings: Any) -> None:
-    """A 32-bit multilayer EXR of every pass. Blender 5.0 makes multilayer a media type, and
-    writes the passes besides Combined only with "Interleave" on (use_exr_interleave; off in a
-    new 5.0 scene, on in files from earlier versions), for Cycles as for Stratum."""
-    if hasattr(settings, "media_type"):
-        settings.media_type = "MULTI_LAYER_IMAGE"
-    settings.file_format = "OPEN_EXR_MULTILAYER"
-    settings.color_depth = "32"
-    if hasattr(settings, "use_exr_interleave"):
-        settings.use_exr_interleave = True
 
 
 def render_passes_f12(scene: Any, path: Path, monkeypatch: pytest.MonkeyPatch
@@ -160,7 +115,7 @@ def render_passes_f12(scene: Any, path: Path, monkeypatch: pytest.MonkeyPatch
     scene.render.use_file_extension = False
     bpy.ops.render.render(write_still=True)
     assert not engine_reports("ERROR"), engine_reports("ERROR")
-    return read_exr_channels(path), in_result
+    return read_channels(path), in_result
 
 
 def test_f12_writes_the_passes_with_their_closed_form_values(library: Any, scene_builder: Any,

@@ -4,7 +4,7 @@ also during its last pass (half of a render's samples), through the engine's own
 
 The renderer is scripted (ScriptedRenderer) and the loop's clock stands in for real time, so
 what the loop does at each step does not depend on this machine's speed: each wait() is one
-tile of a pass ending and 0.4 s passing. tests/native/test_render_progress.cpp shows that the
+tile of a pass ending and 0.4 s passing. tests/native/render/test_render_progress.cpp shows that the
 native renderer does report tiles within a pass.
 """
 

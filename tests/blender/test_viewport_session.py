@@ -25,7 +25,13 @@ import bpy
 import numpy as np
 import pytest
 from stratum.engine.viewport import camera_from_matrices, settings_from_scene
-from stratum.engine.viewport_session import Frame, View, ViewportSession, ViewportSettings
+from stratum.engine.viewport_session import (
+    Frame,
+    View,
+    ViewportSession,
+    ViewportSettings,
+    resample,
+)
 from stratum.export.camera import convert_camera
 from stratum.export.sync import SceneSync
 from stratum.export.updates import IdUpdate, collect_updates
@@ -504,17 +510,15 @@ def test_a_start_pass_resampled_to_the_view_pixels() -> None:
     """What shows through where the view's own resolution has no sample yet: the start pass
     frame (pixel size 4 over a 40 x 30 view: 10 x 8 pixels drawn over the whole view, 3.75
     view pixels high each) picked by nearest neighbour at each view pixel's centre."""
-    from stratum.engine.viewport_session import _resample
-
     small = np.arange(8 * 10 * 4, dtype=np.float32).reshape(8, 10, 4)
     frame = Frame(small, (0.0, 0.0, 40.0, 30.0), None, 1, False, 1, 1)
-    out = _resample(frame, (0, 0, 40, 30))
+    out = resample(frame, (0, 0, 40, 30))
     assert out.shape == (30, 40, 4)
     np.testing.assert_array_equal(out[0, 0], small[0, 0])
     np.testing.assert_array_equal(out[29, 39], small[7, 9])  # y 29.5 / 3.75 -> 7
     np.testing.assert_array_equal(out[5, 13], small[1, 3])  # y 5.5 / 3.75 -> 1, x 13.5 / 4 -> 3
     # A border: the part of the frame under view pixels x 8..17, y 4..11.
-    np.testing.assert_array_equal(_resample(frame, (8, 4, 10, 8)), out[4:12, 8:18])
+    np.testing.assert_array_equal(resample(frame, (8, 4, 10, 8)), out[4:12, 8:18])
 
 
 def test_use_preview_denoising_denoises_the_converged_frame(library: Any, cornell: Any) -> None:

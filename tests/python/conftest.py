@@ -8,6 +8,11 @@ import numpy as np
 import pytest
 
 
+def pytest_configure(config: pytest.Config) -> None:
+    config.addinivalue_line(
+        "markers", "long: an end-to-end run of a minute or more; make check leaves it out")
+
+
 @pytest.fixture(scope="session")
 def native() -> Any:
     """stratum.native with the library loaded; skips until libstratum.so is built."""

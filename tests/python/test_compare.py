@@ -659,6 +659,7 @@ def test_dask_cluster_gives_the_results_of_a_local_run(native: Any, tmp_path: Pa
           f"{time.perf_counter() - local_done:.1f} s")
 
 
+@pytest.mark.long
 def test_acceptance_cornell_64(native: Any, tmp_path: Path) -> None:
     """Acceptance 2: the documented command, all samplers, through real Blender, including the
     report. Needs stratum/compare/report.py (the report engineer's part of issue 4)."""
@@ -772,6 +773,7 @@ def test_study_equal_time_interpolates_the_mse_time_curve() -> None:
     assert any("not measured" in line for line in lines)  # est_large was not given
 
 
+@pytest.mark.long
 def test_study_quick_runs_the_estimator_ladder(native: Any, tmp_path: Path) -> None:
     """`python -m scripts.study.run --quick` on the estimator runs: the pipeline end to end
     through real Blender at toy sizes (32x32, 1 and 4 spp, 2 seeds) into estimators.md."""

@@ -11,6 +11,8 @@ from pathlib import Path
 
 REPO = Path(__file__).resolve().parents[2]
 SOURCES = REPO / "native" / "src"
+NATIVE_TESTS = REPO / "tests" / "native"
+TEST_HELPERS = "helpers"  # tests/native/helpers: the headers the native tests share
 ARCHITECTURE = REPO / "docs" / "architecture.md"
 
 # Lowest first; folders on one line are peers (neither includes the other).
@@ -73,3 +75,20 @@ def test_the_architecture_page_draws_these_layers() -> None:
     text = ARCHITECTURE.read_text()
     expected = " → ".join(", ".join(peers) for peers in LAYERS)
     assert expected in text, f"docs/architecture.md does not show the layer order: {expected}"
+
+
+def test_native_tests_are_filed_under_the_layers() -> None:
+    """tests/native mirrors native/src: each test file sits in the folder of the layer whose
+    code it tests (tests/native/<layer>/test_*.cpp), the headers they share in helpers/."""
+    layers = set(_layer_of())
+    misplaced = []
+    for path in sorted(NATIVE_TESTS.rglob("*")):
+        if path.is_dir():
+            continue
+        parts = path.relative_to(NATIVE_TESTS).parts
+        folder = parts[0] if len(parts) == 2 else None
+        if path.suffix == ".cpp" and folder not in layers:
+            misplaced.append(f"{path.relative_to(REPO)}: not in a folder named after a layer")
+        elif path.suffix == ".h" and folder != TEST_HELPERS:
+            misplaced.append(f"{path.relative_to(REPO)}: a shared header outside {TEST_HELPERS}/")
+    assert not misplaced, "native tests out of place:\n" + "\n".join(misplaced)

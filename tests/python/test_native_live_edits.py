@@ -1,6 +1,6 @@
 """The live-edit bindings (Scene.set_instance, set_material, set_closure_material, set_light):
 an edit reaches a renderer made before it at its next start, with the image of a scene built
-with the edit from the start (tests/native/test_live_scene.cpp holds the native side to that,
+with the edit from the start (tests/native/scene/test_live_scene.cpp holds the native side to that,
 bit for bit); bad edits are refused by name."""
 
 from __future__ import annotations

@@ -273,8 +273,9 @@ def error_spectra(res: Results, fig_dir: Path) -> str:
         "over the full image (also when the metrics use a crop). "
         "Power = |DFT(error − mean)|² / pixels, averaged over rings of |f| (cycles per pixel). "
         "Low-frequency ratio = mean power within 0 &lt; |f| ≤ 1/8 (the disc |k| ≤ W/8, DC "
-        "excluded) over the mean power at every f ≠ 0, as in tests/native/test_bluenoise.cpp "
-        "and the zsobol test: white noise ≈ 1. Blue-noise strategies push the error to high "
+        "excluded) over the mean power at every f ≠ 0, as in "
+        "tests/native/sampling/test_bluenoise.cpp and the zsobol test: white noise ≈ 1. "
+        "Blue-noise strategies push the error to high "
         "frequencies (ratio well below 1), which the eye and FLIP forgive more than the same "
         "MSE spread as white noise. The reference's own noise adds a white floor.")
     text = (img_tag(res.out_dir, path, "radially averaged error spectra")

@@ -1,7 +1,7 @@
 """Power spectra of images for the `stratum compare` report (numpy only, no matplotlib).
 
-Conventions (the same as tests/native/test_bluenoise.cpp and the zsobol error-spectrum test in
-tests/native/test_sobol_samplers.cpp):
+Conventions (the same as tests/native/sampling/test_bluenoise.cpp and the zsobol error-spectrum
+test in tests/native/sampling/test_sobol_samplers.cpp):
 
 * the image's mean is removed and the DC term excluded;
 * power = |DFT|² / (H·W), so for white noise of variance σ² every frequency has expected

@@ -349,7 +349,7 @@ class ViewportSession:
             # A pixel all zero (RGBA) has no sample yet, or is transparent black: there the
             # start pass shows through until the pass ends.
             pixels = np.where(np.any(pixels != 0.0, axis=2, keepdims=True), pixels,
-                              _resample(shown, (x, y, w, h)))
+                              resample(shown, (x, y, w, h)))
         divider = split * sx if len(self._lanes) > 1 else None
         self._serial += 1
         self._frame = Frame(pixels, (x * sx, y * sy, w * sx, h * sy), divider, samples,
@@ -408,7 +408,7 @@ def running_sessions() -> int:
     return sum(not session._freed for session in list(_sessions))
 
 
-def _resample(frame: Frame, rect: Rect) -> np.ndarray:
+def resample(frame: Frame, rect: Rect) -> np.ndarray:
     """The frame's pixels, nearest neighbour, at the view pixels of `rect`."""
     fx, fy, fw, fh = frame.rect
     rows, columns = frame.pixels.shape[:2]

@@ -52,7 +52,7 @@
 // their errors blue noise. A pixel that stops while its neighbours go on leaves its error without
 // the neighbours' to cancel against, and the error turns white where counts mix. So for them
 // pixels stop in aligned kScreenBlock × kScreenBlock blocks: a block stops when all of its pixels
-// may. Measured on zsobol's spectrum test (tests/native/test_adaptive_sampling.cpp): with single
+// may. Measured on zsobol's spectrum test (tests/native/render/test_adaptive_sampling.cpp): with single
 // pixels the low-frequency ratio rose from 0.14 (fixed counts) to 0.51 and 0.76 as 12% and 21%
 // of the pixels stopped at 4 of 32 samples; with 4 × 4 blocks it is 0.34 and 0.59 (blue noise
 // weakened, not lost), and 0.80 when 30% stop at 4 (mean 11 samples).

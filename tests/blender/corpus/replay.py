@@ -24,6 +24,8 @@ from pathlib import Path
 
 import numpy as np
 
+from exr_file import read_channels
+
 from . import all_cases, runner
 
 SANITIZER = re.compile(r"(AddressSanitizer|LeakSanitizer|UndefinedBehaviorSanitizer"
@@ -57,15 +59,6 @@ def setting_args(settings: dict[str, int | float | str]) -> list[str]:
             for name, value in settings.items()]
 
 
-def read_exr(path: Path) -> np.ndarray:
-    """Every channel of an EXR, stacked (H, W, C), through the OpenEXR module."""
-    import OpenEXR
-
-    with OpenEXR.File(str(path), separate_channels=True) as f:
-        planes = [np.asarray(ch.pixels, dtype=np.float32) for ch in f.channels().values()]
-    return np.stack(planes, axis=-1)
-
-
 def replay(native: Path, scene: Path, out: Path) -> Replay:
     case = scene.stem
     settings_file = scene.with_suffix(".settings.json")
@@ -93,7 +86,7 @@ def replay(native: Path, scene: Path, out: Path) -> Replay:
         refused = "stratum-native:" in proc.stderr
         return Replay(case, "refused" if refused else f"exit {proc.returncode}",
                       proc.stderr.strip()[-300:])
-    pixels = read_exr(image)
+    pixels = np.stack(list(read_channels(image).values()), axis=-1)
     bad = int(np.count_nonzero(~np.isfinite(pixels)))
     if bad:
         return Replay(case, "non-finite", f"{bad} non-finite pixel values")

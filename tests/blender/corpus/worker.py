@@ -38,6 +38,7 @@ import numpy as np
 from corpus import all_cases
 from corpus.case import BLENDER_ERROR, Case, Render, judge
 from corpus.stage import Stage
+from exr_file import read_image
 
 
 class Capture:
@@ -100,14 +101,7 @@ def render(scene: Any, path: Path) -> Render:
     if operator_error and not any(m in operator_error for m in engine_errors):
         result.reports.append((BLENDER_ERROR, operator_error))
     if path.is_file():
-        image = bpy.data.images.load(str(path), check_existing=False)
-        try:
-            w, h = image.size
-            buf = np.empty(w * h * image.channels, dtype=np.float32)
-            image.pixels.foreach_get(buf)
-            result.pixels = buf.reshape(h, w, image.channels)
-        finally:
-            bpy.data.images.remove(image)
+        result.pixels = read_image(path)
     return result
 
 
