@@ -11,6 +11,7 @@
 #include "api/scene_handle.h"
 #include "api/validation.h"
 #include "render/image_output.h"
+#include "render/progress_counters.h"
 #include "render/renderer.h"
 #include "render/setting_registry.h"
 #include "stratum/stratum.h"
@@ -124,17 +125,27 @@ StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgres
                                p.render_seconds,
                                p.fraction_done,
                                static_cast<int32_t>(p.samples_in_progress),
-                               p.samples_average,
-                               p.light_tree_seconds,
-                               p.light_tree_bytes,
-                               p.radiosity_patches,
-                               p.radiosity_bytes,
-                               p.radiosity_seconds,
-                               p.radiosity_iterations,
-                               p.guiding_nodes,
-                               p.guiding_bytes};
+                               p.samples_average};
         // A failure inside the render thread is reported by the next progress call.
         return p.error.empty() ? STRATUM_OK : fail(STRATUM_ERROR_INTERNAL, "render failed: " + p.error);
+    });
+}
+
+int32_t stratum_progress_counter_count(void) {
+    return static_cast<int32_t>(stratum::kProgressCounterNames.size());
+}
+
+StratumStatus stratum_renderer_progress_counter(const StratumRenderer* r, int32_t index, const char** name,
+                                                double* value) {
+    return guarded("stratum_renderer_progress_counter", [&] {
+        require(r != nullptr, "renderer is NULL");
+        const int32_t count = stratum_progress_counter_count();
+        require(index >= 0 && index < count, "progress counter index " + std::to_string(index) +
+                                                 " out of range [0, " + std::to_string(count) + ")");
+        const auto i = static_cast<size_t>(index);
+        if (name) *name = stratum::kProgressCounterNames[i];
+        if (value) *value = r->renderer.progress().counters.values[i];
+        return STRATUM_OK;
     });
 }
 

@@ -1,6 +1,6 @@
 // What a render reports (render/renderer.h): its progress, read from any thread while it runs,
-// with what its features report (the light tree, the radiosity solve, path guiding's tree), and
-// its notices: what it cannot show and why.
+// with the counters its features fill in (render/progress_counters.h: the light tree, the
+// radiosity solve, path guiding's tree), and its notices: what it cannot show and why.
 #include <cmath>
 #include <string>
 
@@ -14,10 +14,11 @@ void Renderer::report_radiosity() {
     if (!radiosity) return;
     {
         std::lock_guard lock(state_mutex_);
-        radiosity_patches_ = static_cast<double>(radiosity->patches);
-        radiosity_bytes_ = radiosity->peak_bytes;
-        radiosity_seconds_ = radiosity->form_factor_seconds + radiosity->solve_seconds;
-        radiosity_iterations_ = static_cast<double>(radiosity->iterations.size());
+        counters_[ProgressCounter::RadiosityPatches] = static_cast<double>(radiosity->patches);
+        counters_[ProgressCounter::RadiosityBytes] = radiosity->peak_bytes;
+        counters_[ProgressCounter::RadiositySeconds] =
+            radiosity->form_factor_seconds + radiosity->solve_seconds;
+        counters_[ProgressCounter::RadiosityIterations] = static_cast<double>(radiosity->iterations.size());
         radiosity_history_ = radiosity->iterations;
     }
     if (radiosity->converged || radiosity->iterations.empty()) return;
@@ -40,8 +41,8 @@ void Renderer::report_radiosity() {
 void Renderer::report_guiding() {
     if (const GuidingReport* guiding = integrator_->guiding_report()) {
         std::lock_guard lock(state_mutex_);
-        guiding_nodes_ = static_cast<double>(guiding->nodes);
-        guiding_bytes_ = static_cast<double>(guiding->bytes);
+        counters_[ProgressCounter::GuidingNodes] = static_cast<double>(guiding->nodes);
+        counters_[ProgressCounter::GuidingBytes] = static_cast<double>(guiding->bytes);
     }
 }
 
@@ -52,8 +53,8 @@ void Renderer::report_light_tree(LightSelection selection) {
     const auto tree = lights.tree_report();
     if (tree && lights.resolve(selection) == LightSelection::Tree) {
         std::lock_guard lock(state_mutex_);
-        light_tree_seconds_ = tree->seconds;
-        light_tree_bytes_ = static_cast<double>(tree->bytes);
+        counters_[ProgressCounter::LightTreeSeconds] = tree->seconds;
+        counters_[ProgressCounter::LightTreeBytes] = static_cast<double>(tree->bytes);
     }
 }
 
@@ -107,14 +108,7 @@ RenderProgress Renderer::progress() const {
     p.samples_total = samples_total_.load();
     p.rays = static_cast<double>(rays_.load());
     p.build_seconds = build_seconds_;
-    p.light_tree_seconds = light_tree_seconds_;
-    p.light_tree_bytes = light_tree_bytes_;
-    p.radiosity_patches = radiosity_patches_;
-    p.radiosity_bytes = radiosity_bytes_;
-    p.guiding_nodes = guiding_nodes_;
-    p.guiding_bytes = guiding_bytes_;
-    p.radiosity_seconds = radiosity_seconds_;
-    p.radiosity_iterations = radiosity_iterations_;
+    p.counters = counters_;
     p.render_seconds = rendering_ ? seconds_since(render_start_) : render_seconds_;
     const double pixel_samples_total = work_per_sample_ * p.samples_total;
     p.fraction_done = pixel_samples_total > 0 ? pixel_samples_done / pixel_samples_total : 0.0;

@@ -132,9 +132,7 @@ void Renderer::reset_progress(uint32_t samples) {
     pixel_samples_done_.store(0);
     std::lock_guard lock(state_mutex_);
     render_seconds_ = 0;
-    light_tree_seconds_ = light_tree_bytes_ = 0;
-    radiosity_patches_ = radiosity_bytes_ = radiosity_seconds_ = radiosity_iterations_ = 0;
-    guiding_nodes_ = guiding_bytes_ = 0;
+    counters_ = {};
     radiosity_history_.clear();
     cancelled_ = false;
     error_.clear();

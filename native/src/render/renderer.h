@@ -31,6 +31,7 @@
 #include "film/film.h"
 #include "integrators/integrator.h"
 #include "render/adaptive_sampling.h"
+#include "render/progress_counters.h"
 #include "render/render_settings.h"
 #include "render_scene/render_scene.h"
 #include "scene/live_scene.h"
@@ -50,14 +51,8 @@ struct RenderProgress {
     uint32_t update_serial = 0;
     double rays = 0, build_seconds = 0, render_seconds = 0;
     double fraction_done = 0;
-    // The light tree this render chooses lights by (0 when it uses none): its build time, with
-    // the lights' bounds, and the bytes it holds (LightSet::tree_report).
-    double light_tree_seconds = 0, light_tree_bytes = 0;
-    // The radiosity integrator's solve (0 for the other integrators): patches K, the most bytes
-    // it held at once, seconds (form factors and solver) and solver iterations.
-    double radiosity_patches = 0, radiosity_bytes = 0, radiosity_seconds = 0, radiosity_iterations = 0;
-    // Path guiding's tree (0 without guiding): its nodes and bytes after the last training pass.
-    double guiding_nodes = 0, guiding_bytes = 0;
+    // What the render's features report (light tree, radiosity, guiding), by name.
+    ProgressCounters counters;
     std::string error;  // a failure inside the render thread
 };
 
@@ -146,9 +141,9 @@ private:
 
     // What the render reports (render/render_reports.cpp):
     void add_notice(const std::string& notice);
-    // The radiosity solve into the progress, and a notice when it did not converge.
+    // The radiosity solve into the counters, and a notice when it did not converge.
     void report_radiosity();
-    // The integrator's guiding report (if it guides) into the progress.
+    // The integrator's guiding report (if it guides) into the counters.
     void report_guiding();
     // The light tree, if this render chooses lights by it (`selection`) and it is built.
     void report_light_tree(LightSelection selection);
@@ -184,9 +179,7 @@ private:
     mutable std::mutex state_mutex_;
     std::condition_variable done_cv_;
     double build_seconds_ = 0, render_seconds_ = 0;
-    double light_tree_seconds_ = 0, light_tree_bytes_ = 0;
-    double radiosity_patches_ = 0, radiosity_bytes_ = 0, radiosity_seconds_ = 0, radiosity_iterations_ = 0;
-    double guiding_nodes_ = 0, guiding_bytes_ = 0;
+    ProgressCounters counters_;
     std::vector<IterationReport> radiosity_history_;
     Clock::time_point render_start_;
     bool rendering_ = false;  // path tracing (not BVH build) in progress
