@@ -136,7 +136,30 @@ void cancel_and_expect_end(ProgramState& s) {
     if (!done) finding("a render is still running " + std::to_string(kCancelLimitMs) + " ms after cancel");
 }
 
-// After the render has ended: progress says so, and the pixels are finite with alpha in [0, 1].
+// Every progress counter, and one index on each side of the list: a counter is a finite,
+// non-negative number (seconds, bytes or a count) with a name; an index outside is refused.
+// Reads no input, so that the corpus's programs keep their meaning.
+void check_progress_counters(const ProgramState& s) {
+    const int32_t count = stratum_progress_counter_count();
+    for (int32_t i = -1; i <= count; ++i) {
+        const char* name = nullptr;
+        double value = 0.0;
+        const StratumStatus status = checked(
+            "stratum_renderer_progress_counter",
+            [&] { return stratum_renderer_progress_counter(s.renderer, i, &name, &value); },
+            [&] { return "renderer, " + std::to_string(i) + ", &name, &value"; });
+        const bool inside = i >= 0 && i < count;
+        if ((status == STRATUM_OK) != inside)
+            finding("stratum_renderer_progress_counter(" + std::to_string(i) + ") returned " +
+                    std::to_string(status) + " for a list of " + std::to_string(count));
+        if (inside && (name == nullptr || !std::isfinite(value) || value < 0.0))
+            finding("progress counter " + std::to_string(i) + " (" + (name ? name : "no name") +
+                    ") = " + std::to_string(value));
+    }
+}
+
+// After the render has ended: progress says so, the progress counters are numbers, and the
+// pixels are finite with alpha in [0, 1].
 void check_finished(ByteReader& in, ProgramState& s) {
     StratumProgress p{};
     const StratumStatus status = checked(
@@ -148,6 +171,7 @@ void check_finished(ByteReader& in, ProgramState& s) {
                 std::to_string(p.samples_total));
     if (!(p.fraction_done >= 0.0 && p.fraction_done <= 1.0 + 1e-9))
         finding("stratum_renderer_progress: fraction_done = " + std::to_string(p.fraction_done));
+    check_progress_counters(s);
     const char* notices = nullptr;
     if (checked(
             "stratum_renderer_notices", [&] { return stratum_renderer_notices(s.renderer, &notices); },
@@ -208,11 +232,12 @@ void start_and_finish(ByteReader& in, ProgramState& s) {
             break;
         }
         case 3: {
-            // Progress and pixels read while the render runs.
+            // Progress, its counters and pixels read while the render runs.
             StratumProgress p{};
             checked(
                 "stratum_renderer_progress", [&] { return stratum_renderer_progress(s.renderer, &p); },
                 [] { return "renderer, &progress"; });
+            check_progress_counters(s);
             const uint32_t w = s.crop_width ? s.crop_width : s.width,
                            h = s.crop_width ? s.crop_height : s.height;
             std::vector<float> rgba(static_cast<size_t>(w) * h * 4);

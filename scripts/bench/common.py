@@ -270,7 +270,8 @@ class StratumScene:
             out: dict[str, Any] = {
                 "build": p.build_seconds, "trace": p.render_seconds, "wall": wall,
                 "rays": p.rays, "samples_done": p.samples_done,
-                "light_tree_seconds": p.light_tree_seconds, "light_tree_bytes": p.light_tree_bytes,
+                "light_tree_seconds": p.counter("light_tree.seconds"),
+                "light_tree_bytes": p.counter("light_tree.bytes"),
                 "samples_per_s": (width * height * p.samples_done / p.render_seconds
                                   if p.render_seconds > 0 else 0.0)}
             if pixels:

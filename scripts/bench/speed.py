@@ -30,8 +30,8 @@ Then the export section (acceptance 3 of issue 5), each scene built in this scri
 * instances_10k: 10 000 instances of one 12-triangle cube (vertex instancing) plus the child
   object itself, a camera and a sun;
 * emissive_100k: a grid of 100 352 emissive triangles (every one a light), a camera and a sun:
-  Stratum's light tree build (seconds, MB: progress().light_tree_seconds / _bytes) is printed
-  and recorded beside its BVH build.
+  Stratum's light tree build (seconds, MB: the progress counters light_tree.seconds /
+  light_tree.bytes) is printed and recorded beside its BVH build.
 
 For each, Stratum's export (depsgraph -> native scene, timed around export_scene) and BVH build
 (progress().build_seconds of a 1-sample 32 x 32 render) against Cycles' synchronisation of the
@@ -240,7 +240,8 @@ def bench_export_case(build: Callable[[], bpy.types.Scene], stratum_ok: bool,
                 pass
             p = renderer.progress()
     out.update({"export": t_export, "build": p.build_seconds,
-                "light_tree": p.light_tree_seconds, "light_tree_bytes": p.light_tree_bytes,
+                "light_tree": p.counter("light_tree.seconds"),
+                "light_tree_bytes": p.counter("light_tree.bytes"),
                 "triangles": summary.triangles, "instances": summary.instances,
                 "instanced_triangles": summary.instanced_triangles})
     return out

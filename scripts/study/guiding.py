@@ -36,7 +36,7 @@ Cycles' MSE against Stratum's reference is given too. Time: Stratum's path-traci
 so its time is (total(N) - total(1)) N / (N - 1), as in bench.quality. Equal time: each
 series' mean noise MSE against its mean time, interpolated in log-log at the largest time
 every series reached (estimators.equal_time; * = extrapolated). Memory: the guiding
-tree's nodes and bytes from the render's progress (guiding_nodes, guiding_bytes) or its log
+tree's nodes and bytes from the render's progress (guiding.nodes, guiding.bytes) or its log
 line "guiding tree: N nodes, X MiB", when the library reports them.
 
 Targets (issue 17, claim 10): Stratum guided mis <= 0.5x Stratum mis and <= Cycles guided, in

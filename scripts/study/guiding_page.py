@@ -19,10 +19,10 @@ MEMORY_LINE = re.compile(r"guiding tree:\s*([\d,]+)\s*nodes,\s*([\d.]+)\s*MiB")
 
 
 def guiding_memory(progress: Any, log: str) -> dict[str, float] | None:
-    """{nodes, mib} of the guiding tree: from the progress' guiding_nodes / guiding_bytes when
-    the library has them and they are non-zero, else from the last "guiding tree: N nodes, X
-    MiB" line of the render's log; None when neither reports it."""
-    nodes, size = getattr(progress, "guiding_nodes", 0.0), getattr(progress, "guiding_bytes", 0.0)
+    """{nodes, mib} of the guiding tree: from the progress counters guiding.nodes /
+    guiding.bytes when the library reports them (non-zero), else from the last "guiding tree: N
+    nodes, X MiB" line of the render's log; None when neither reports it."""
+    nodes, size = progress.counter("guiding.nodes"), progress.counter("guiding.bytes")
     if nodes and size:
         return {"nodes": float(nodes), "mib": float(size) / 2**20}
     found = MEMORY_LINE.findall(log)

@@ -115,9 +115,9 @@ def measure(out: Path, quick: bool) -> dict[str, Any]:
                     pass
                 p = r.progress()
                 history = r.radiosity_iterations()
-            result["patches"] = p.radiosity_patches
+            result["patches"] = p.counter("radiosity.patches")
             result["solvers"][solver] = {
-                "bytes": p.radiosity_bytes, "seconds": p.radiosity_seconds,
+                "bytes": p.counter("radiosity.bytes"), "seconds": p.counter("radiosity.seconds"),
                 "delta_e": history[:, 0].tolist(), "relative": history[:, 1].tolist(),
                 "residual": history[:, 2].tolist(), "solver_seconds": history[:, 3].tolist()}
             print(f"study.radiosity: {solver}: {len(history)} iterations, "

@@ -47,6 +47,7 @@ def test_stats_line_shows_the_light_tree(stratum_addon: Any) -> None:
         "fraction_done": 0.25, "samples_in_progress": 8, "samples_average": 4.0}
     without = format_stats(native.Progress(**fields), 2.0)
     assert "Light tree" not in without
-    with_tree = format_stats(native.Progress(**fields, light_tree_seconds=0.0123,
-                                             light_tree_bytes=172_000.0), 2.0)
+    with_tree = format_stats(native.Progress(**fields, counters={"light_tree.seconds": 0.0123,
+                                                                 "light_tree.bytes": 172_000.0}),
+                             2.0)
     assert with_tree == without + " | Light tree 12 ms, 0.17 MB"

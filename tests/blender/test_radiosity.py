@@ -28,9 +28,9 @@ def test_stats_line_shows_the_radiosity_solve(stratum_addon: Any) -> None:
         "fraction_done": 0.25, "samples_in_progress": 8, "samples_average": 4.0}
     without = format_stats(native.Progress(**fields), 2.0)
     assert "Radiosity" not in without
-    solved = format_stats(native.Progress(**fields, radiosity_patches=17496.0,
-                                          radiosity_bytes=36.2e6, radiosity_seconds=1.234,
-                                          radiosity_iterations=9.0), 2.0)
+    solved = format_stats(native.Progress(**fields, counters={
+        "radiosity.patches": 17496.0, "radiosity.bytes": 36.2e6, "radiosity.seconds": 1.234,
+        "radiosity.iterations": 9.0}), 2.0)
     assert solved == without + " | Radiosity 17496 patches, 36.2 MB, 1.23 s, 9 iterations"
 
 

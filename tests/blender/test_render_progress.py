@@ -164,3 +164,20 @@ def test_counter_shows_samples_per_pixel_to_a_tenth_rounded_down(
         samples_in_progress=64, samples_average=average)
     assert format_stats(progress, 1.0).startswith(f"Sample {shown}/64 | "), \
         format_stats(progress, 1.0)
+
+
+def test_stats_line_shows_the_guiding_tree(stratum_addon: Any) -> None:
+    """Path guiding's tree, from its progress counters, as the light tree's
+    (test_many_lights_hall.py) and the radiosity solve's (test_radiosity.py)."""
+    from stratum import native
+    from stratum.engine.final_render import format_stats
+
+    fields: dict[str, Any] = {
+        "done": False, "cancelled": False, "samples_done": 4, "samples_total": 16,
+        "update_serial": 1, "rays": 1e6, "build_seconds": 0.1, "render_seconds": 1.0,
+        "fraction_done": 0.25, "samples_in_progress": 8, "samples_average": 4.0}
+    without = format_stats(native.Progress(**fields), 2.0)
+    assert "Guiding" not in without
+    guided = format_stats(native.Progress(**fields, counters={"guiding.nodes": 5377.0,
+                                                              "guiding.bytes": 1.25e6}), 2.0)
+    assert guided == without + " | Guiding 5377 nodes, 1.25 MB"

@@ -60,11 +60,11 @@ def test_progress_reports_the_tree_it_built(native: Any, lamps: int, settings: d
     finally:
         scene.close()
     if not uses_tree:
-        assert (p.light_tree_seconds, p.light_tree_bytes) == (0.0, 0.0)
+        assert (p.counters["light_tree.seconds"], p.counters["light_tree.bytes"]) == (0.0, 0.0)
         return
-    assert BYTES_PER_LAMP[0] * lamps < p.light_tree_bytes < BYTES_PER_LAMP[1] * lamps
+    assert BYTES_PER_LAMP[0] * lamps < p.counters["light_tree.bytes"] < BYTES_PER_LAMP[1] * lamps
     # Built within the render (the build is part of its path-tracing time).
-    assert 0.0 <= p.light_tree_seconds <= p.render_seconds
+    assert 0.0 <= p.counters["light_tree.seconds"] <= p.render_seconds
 
 
 def test_auto_is_the_default_and_last_choice(native: Any) -> None:

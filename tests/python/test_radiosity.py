@@ -26,9 +26,9 @@ def test_progress_and_iterations_report_the_solve(native: Any) -> None:
                 history = r.radiosity_iterations()
                 pixels = r.read_pixels()
             # The box's 26 quads (52 triangles), each split in n² patches of two sides.
-            assert p.radiosity_patches > 2 * 52
-            assert p.radiosity_bytes > 0 and p.radiosity_seconds > 0
-            assert history.shape == (p.radiosity_iterations, 4)
+            assert p.counters["radiosity.patches"] > 2 * 52
+            assert p.counters["radiosity.bytes"] > 0 and p.counters["radiosity.seconds"] > 0
+            assert history.shape == (p.counters["radiosity.iterations"], 4)
             delta_e, relative, residual, seconds = history.T
             assert np.all(delta_e >= 0)
             assert relative[-1] <= 1e-5 < relative[0], solver
@@ -40,7 +40,7 @@ def test_progress_and_iterations_report_the_solve(native: Any) -> None:
             while not r.wait(1000):
                 pass
             assert r.radiosity_iterations().shape == (0, 4)
-            assert r.progress().radiosity_patches == 0
+            assert r.progress().counters["radiosity.patches"] == 0
     finally:
         scene.close()
 

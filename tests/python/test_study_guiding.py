@@ -11,26 +11,32 @@ import os
 import subprocess
 import sys
 from pathlib import Path
-from types import SimpleNamespace
 from typing import Any
 
 import numpy as np
 import pytest
 from scripts.study import guiding as study_guiding
 from scripts.study import guiding_page as study_guiding_page
+from stratum.native import Progress
 
 REPO = Path(__file__).resolve().parents[2]
 
 
+def _progress(**counters: float) -> Progress:
+    return Progress(done=True, cancelled=False, samples_done=1, samples_total=1, update_serial=1,
+                    rays=0.0, build_seconds=0.0, render_seconds=0.0, fraction_done=1.0,
+                    samples_in_progress=1, samples_average=1.0, counters=counters)
+
+
 def test_memory_comes_from_the_progress_or_the_log_line() -> None:
-    progress = SimpleNamespace(guiding_nodes=1234.0, guiding_bytes=3 * 2**20)
+    progress = _progress(**{"guiding.nodes": 1234.0, "guiding.bytes": 3 * 2**20})
     assert study_guiding_page.guiding_memory(progress, "") == {"nodes": 1234.0, "mib": 3.0}
-    # A library without the progress fields (or with them still zero): the last log line.
+    # A library without the guiding counters (or with them still zero): the last log line.
     log = ("guiding tree: 10 nodes, 0.01 MiB after pass 1\n"
            "guiding tree: 1,024 nodes, 0.75 MiB after pass 2\n")
-    for p in (SimpleNamespace(), SimpleNamespace(guiding_nodes=0.0, guiding_bytes=0.0)):
+    for p in (_progress(), _progress(**{"guiding.nodes": 0.0, "guiding.bytes": 0.0})):
         assert study_guiding_page.guiding_memory(p, log) == {"nodes": 1024.0, "mib": 0.75}
-    assert study_guiding_page.guiding_memory(SimpleNamespace(), "Fra:1 nothing") is None
+    assert study_guiding_page.guiding_memory(_progress(), "Fra:1 nothing") is None
 
 
 def _record(costs: dict[str, tuple[float, float] | None]) -> dict[str, Any]:

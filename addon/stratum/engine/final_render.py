@@ -67,18 +67,19 @@ def format_stats(progress: native.Progress, elapsed: float) -> str:
     samples = f"{tenths // 10}" if tenths % 10 == 0 else f"{tenths / 10:.1f}"
     stats = f"Sample {samples}/{progress.samples_total} | {elapsed:.1f}s | {rays} rays/s"
     # The light tree's cost, once built (issue 16: "build time and memory reported").
-    if progress.light_tree_bytes > 0:
-        stats += (f" | Light tree {progress.light_tree_seconds * 1e3:.0f} ms, "
-                  f"{progress.light_tree_bytes / 1e6:.2f} MB")
+    if progress.counter("light_tree.bytes") > 0:
+        stats += (f" | Light tree {progress.counter('light_tree.seconds') * 1e3:.0f} ms, "
+                  f"{progress.counter('light_tree.bytes') / 1e6:.2f} MB")
     # The radiosity solve's size and cost (issue 17: K and the memory used).
-    if progress.radiosity_patches > 0:
-        stats += (f" | Radiosity {progress.radiosity_patches:.0f} patches, "
-                  f"{progress.radiosity_bytes / 1e6:.1f} MB, {progress.radiosity_seconds:.2f} s, "
-                  f"{progress.radiosity_iterations:.0f} iterations")
+    if progress.counter("radiosity.patches") > 0:
+        stats += (f" | Radiosity {progress.counter('radiosity.patches'):.0f} patches, "
+                  f"{progress.counter('radiosity.bytes') / 1e6:.1f} MB, "
+                  f"{progress.counter('radiosity.seconds'):.2f} s, "
+                  f"{progress.counter('radiosity.iterations'):.0f} iterations")
     # Path guiding's tree (issue 17: "report memory use and its growth").
-    if progress.guiding_nodes > 0:
-        stats += (f" | Guiding {progress.guiding_nodes:.0f} nodes, "
-                  f"{progress.guiding_bytes / 1e6:.2f} MB")
+    if progress.counter("guiding.nodes") > 0:
+        stats += (f" | Guiding {progress.counter('guiding.nodes'):.0f} nodes, "
+                  f"{progress.counter('guiding.bytes') / 1e6:.2f} MB")
     return stats
 
 

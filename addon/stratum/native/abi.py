@@ -315,14 +315,6 @@ class _Progress(ctypes.Structure):
         ("fraction_done", ctypes.c_double),
         ("samples_in_progress", ctypes.c_int32),
         ("samples_average", ctypes.c_double),
-        ("light_tree_seconds", ctypes.c_double),
-        ("light_tree_bytes", ctypes.c_double),
-        ("radiosity_patches", ctypes.c_double),
-        ("radiosity_bytes", ctypes.c_double),
-        ("radiosity_seconds", ctypes.c_double),
-        ("radiosity_iterations", ctypes.c_double),
-        ("guiding_nodes", ctypes.c_double),
-        ("guiding_bytes", ctypes.c_double),
     ]
 
 
@@ -390,6 +382,9 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
         "stratum_renderer_cancel": (c_int32, [p_void]),
         "stratum_renderer_wait": (c_int32, [p_void, c_int32, p_i32]),
         "stratum_renderer_progress": (c_int32, [p_void, ctypes.POINTER(_Progress)]),
+        "stratum_progress_counter_count": (c_int32, []),
+        "stratum_renderer_progress_counter": (c_int32, [p_void, c_int32, pp_char,
+                                                        ctypes.POINTER(ctypes.c_double)]),
         "stratum_renderer_read_radiosity_iterations": (c_int32, [p_void,
                                                                  ctypes.POINTER(ctypes.c_double),
                                                                  ctypes.c_size_t]),

@@ -5,7 +5,8 @@ from __future__ import annotations
 
 import ctypes
 import os
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -31,19 +32,14 @@ class Progress:
     # mean over the image from the work finished, moving as tiles finish (stratum.h).
     samples_in_progress: int
     samples_average: float
-    # The light tree the render chooses lights by (0, 0 when it uses none): build seconds and
-    # bytes held (stratum/render.h).
-    light_tree_seconds: float = 0.0
-    light_tree_bytes: float = 0.0
-    # The radiosity integrator's solve (all 0 for the others): patches K, the most bytes it held,
-    # seconds (form factors and solver) and solver iterations (stratum/render.h).
-    radiosity_patches: float = 0.0
-    radiosity_bytes: float = 0.0
-    radiosity_seconds: float = 0.0
-    radiosity_iterations: float = 0.0
-    # Path guiding's tree (0, 0 without guiding): nodes and bytes after the last training pass.
-    guiding_nodes: float = 0.0
-    guiding_bytes: float = 0.0
+    # What the render's features report, by name ("light_tree.seconds", "radiosity.patches",
+    # "guiding.nodes", ...: stratum/render.h lists them); 0.0 for a feature the render does not use.
+    counters: Mapping[str, float] = field(default_factory=dict)
+
+    def counter(self, name: str) -> float:
+        """The counter `name`; 0.0 when the progress holds none of that name (a Progress made
+        without counters)."""
+        return self.counters.get(name, 0.0)
 
 
 class Renderer(_Handle):
@@ -148,21 +144,25 @@ class Renderer(_Handle):
             fraction_done=float(p.fraction_done),
             samples_in_progress=int(p.samples_in_progress),
             samples_average=float(p.samples_average),
-            light_tree_seconds=float(p.light_tree_seconds),
-            light_tree_bytes=float(p.light_tree_bytes),
-            radiosity_patches=float(p.radiosity_patches),
-            radiosity_bytes=float(p.radiosity_bytes),
-            radiosity_seconds=float(p.radiosity_seconds),
-            radiosity_iterations=float(p.radiosity_iterations),
-            guiding_nodes=float(p.guiding_nodes),
-            guiding_bytes=float(p.guiding_bytes),
+            counters=self._counters(),
         )
+
+    def _counters(self) -> dict[str, float]:
+        counters: dict[str, float] = {}
+        name = ctypes.c_char_p()
+        value = ctypes.c_double()
+        for index in range(self._lib.stratum_progress_counter_count()):
+            status = self._lib.stratum_renderer_progress_counter(
+                self.handle, index, ctypes.byref(name), ctypes.byref(value))
+            _check(self._lib, status, "stratum_renderer_progress_counter")
+            counters[(name.value or b"").decode()] = float(value.value)
+        return counters
 
     def radiosity_iterations(self) -> np.ndarray:
         """The radiosity solve of the last render, one row per solver iteration: the textbook's
         Delta E, Delta E over the mean radiance, the residual (radiance) and the solver's seconds
         so far (stratum/render.h); no rows for the other integrators."""
-        rows = int(self.progress().radiosity_iterations)
+        rows = int(self.progress().counter("radiosity.iterations"))
         out = np.empty((rows, 4), dtype=np.float64)
         _check(self._lib,
                self._lib.stratum_renderer_read_radiosity_iterations(

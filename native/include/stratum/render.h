@@ -74,28 +74,32 @@ typedef struct StratumProgress {
     /* Samples per pixel on average, from the work finished: samples_done plus the finished part
      * of the pass in progress; it moves as tiles finish (Cycles' "Sample N/M" counts the same). */
     double samples_average;
-    /* The light tree the render chooses lights by (light_selection "tree", or "auto" in a scene
-     * of many lights), built before its first sample: the build's seconds (within
-     * render_seconds) and the bytes it holds; both 0 when the render uses no tree. */
-    double light_tree_seconds;
-    double light_tree_bytes;
-    /* The radiosity integrator's solve, before its first sample (0 for other integrators):
-     * patches K, the most bytes the solve held at once (patches, form factors, vectors), its
-     * seconds (form factors and solver, within render_seconds) and the solver's iterations. */
-    double radiosity_patches;
-    double radiosity_bytes;
-    double radiosity_seconds;
-    double radiosity_iterations;
-    /* Path guiding's tree (use_guiding; 0 otherwise): its nodes and bytes after the last
-     * training pass, updated after each pass, so their growth per pass can be followed. */
-    double guiding_nodes;
-    double guiding_bytes;
 } StratumProgress;
 
 STRATUM_API StratumStatus stratum_renderer_progress(const StratumRenderer* r, StratumProgress* out);
 
-/* The radiosity integrator's solver iterations of the last render, radiosity_iterations of them
- * (StratumProgress): 4 doubles each, in order the textbook's stopping estimate Delta E, Delta E
+/* Counters of what the render's features report beyond StratumProgress, each a static name
+ * "feature.quantity" and a value of the render in progress (or the last one), 0 when the render
+ * does not use the feature. Every renderer has the same counters, index 0 <= index <
+ * stratum_progress_counter_count(), in an order that only grows at the end; hosts find them by
+ * name. A value is read when asked for (after the render has ended, all are of the finished
+ * render):
+ *   light_tree.seconds, light_tree.bytes: the light tree the render chooses lights by
+ *     (light_selection "tree", or "auto" in a scene of many lights), built before its first
+ *     sample: the build's seconds (within render_seconds) and the bytes it holds;
+ *   radiosity.patches, radiosity.bytes, radiosity.seconds, radiosity.iterations: the radiosity
+ *     integrator's solve, before its first sample: patches K, the most bytes the solve held at
+ *     once (patches, form factors, vectors), its seconds (form factors and solver, within
+ *     render_seconds) and the solver's iterations;
+ *   guiding.nodes, guiding.bytes: path guiding's tree (use_guiding): its nodes and bytes after
+ *     the last training pass, updated after each pass, so their growth per pass can be followed.
+ * name or value may be NULL. */
+STRATUM_API int32_t stratum_progress_counter_count(void);
+STRATUM_API StratumStatus stratum_renderer_progress_counter(const StratumRenderer* r, int32_t index,
+                                                            const char** name, double* value);
+
+/* The radiosity integrator's solver iterations of the last render, as many as its counter
+ * radiosity.iterations: 4 doubles each, in order the textbook's stopping estimate Delta E, Delta E
  * over the mean radiance (what radiosity_tolerance bounds), the residual (both in radiance) and
  * the solver's seconds so far. `count` is the number of doubles the buffer holds: 4 x the
  * iterations. */

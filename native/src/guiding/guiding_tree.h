@@ -131,6 +131,9 @@ private:
     static constexpr size_t kSpatialCounters =
         2 * kSpatialHistogramSide * kSpatialHistogramSide * kSpatialHistogramSide;
     static constexpr size_t kDirectionalCounters = 2 * kHistogramSide * kHistogramSide;
+    // Fixed-point luminance units of the counters (2^31 records of kMaxRecordLuminance fit in
+    // 63 bits).
+    static constexpr double kUnitsPerLuminance = 65536.0;
     struct Box {
         double lo[3], hi[3];
     };
@@ -150,7 +153,23 @@ private:
     static BinCounts bin_counts(const Histogram& h, const BinRange& r);
 
     uint32_t descend_spatial(const double coords[3], Box* box) const;
-    uint32_t descend_directional(uint32_t root, double s, double t, double st_box[4]) const;
+    // The directional leaf one descent from a region's root reaches: its (s, t) cell
+    // [cell[0], cell[1]) × [cell[2], cell[3]) and the product of the branch probabilities taken.
+    struct DirectionalLeaf {
+        uint32_t node;
+        double cell[4];
+        double probability;
+        // p′ in the leaf as a solid-angle density: probability / cell area / 4π.
+        double solid_angle_pdf() const;
+    };
+    // The one descent of a region's directional tree, which sample() (warping its numbers),
+    // pdf() and record() (following a direction) all walk: at each node go_lower(axis, p_lower,
+    // mid) chooses the lower child (probability p_lower, the children's integrals' share; its
+    // cell ends at mid along axis) or the upper.
+    template <typename GoLower>
+    DirectionalLeaf descend_directional(uint32_t root, GoLower&& go_lower) const;
+    // The leaf whose cell holds (s, t) = st.
+    DirectionalLeaf locate_directional(uint32_t root, Vec2 st) const;
     std::atomic<uint64_t>* counters_of_spatial(uint32_t node) const;
     std::atomic<uint64_t>* counters_of_directional(uint32_t node) const;
     // Splits `node` while its records pass the threshold, by the split rule, from the pass's

@@ -31,6 +31,7 @@
 #include "film/film.h"
 #include "integrators/integrator.h"
 #include "render/adaptive_sampling.h"
+#include "render/progress_counters.h"
 #include "render/render_settings.h"
 #include "render_scene/render_scene.h"
 #include "scene/live_scene.h"
@@ -50,14 +51,8 @@ struct RenderProgress {
     uint32_t update_serial = 0;
     double rays = 0, build_seconds = 0, render_seconds = 0;
     double fraction_done = 0;
-    // The light tree this render chooses lights by (0 when it uses none): its build time, with
-    // the lights' bounds, and the bytes it holds (LightSet::tree_report).
-    double light_tree_seconds = 0, light_tree_bytes = 0;
-    // The radiosity integrator's solve (0 for the other integrators): patches K, the most bytes
-    // it held at once, seconds (form factors and solver) and solver iterations.
-    double radiosity_patches = 0, radiosity_bytes = 0, radiosity_seconds = 0, radiosity_iterations = 0;
-    // Path guiding's tree (0 without guiding): its nodes and bytes after the last training pass.
-    double guiding_nodes = 0, guiding_bytes = 0;
+    // What the render's features report (light tree, radiosity, guiding), by name.
+    ProgressCounters counters;
     std::string error;  // a failure inside the render thread
 };
 
@@ -102,19 +97,59 @@ public:
     std::string add_sums(std::unique_ptr<Film> sums);
 
 private:
-    void run();
+    using Clock = std::chrono::steady_clock;
+    static double seconds_since(Clock::time_point t0);
+
+    // start(): adaptive sampling as the settings ask and the integrator and sampler allow
+    // (notices say why it is off or weaker), or an error message when it cannot render the
+    // sample indices [first_sample, last_sample).
+    std::string resolve_adaptive(uint64_t light_paths, uint32_t first_sample, uint32_t last_sample,
+                                 AdaptiveSampling* out);
+    // start(): the film of `region`, or an error message when it would not fit in memory.
+    std::string make_film(const PixelRegion& region, uint64_t light_paths, bool adaptive);
+    // start(): the progress of a render of `samples` sample indices that has not begun.
+    void reset_progress(uint32_t samples);
     void join();
-    void add_notice(const std::string& notice);
-    // Copies the integrator's guiding report (if it guides) into the progress.
-    void report_guiding();
-    // Adds the notices of the samples dropped (dropped_samples_) or clamped (clamped_samples_) and
-    // the rays dropped by this render.
-    void report_dropped(uint64_t refused_rays);
+
+    // The render thread, in its steps (render/renderer.cpp):
+    void run();
+    // Applies the edits since the last render to the render scene, or builds it anew. Returns
+    // whether the scene the last integrator prepared for is still there (only the camera, or
+    // nothing, changed): then that integrator's preparation may stand (Integrator::adopt).
+    bool bring_scene_up_to_date(const RenderSettings& s, tbb::task_arena& arena);
+    // Adopts what the last integrator prepared, or prepares the integrator (radiosity's solve,
+    // the light tree), and reports what it built.
+    void prepare_integrator(const RenderSettings& s, bool scene_kept, tbb::task_arena& arena);
+    // Every pass of the render's sample indices, until they are done or the render is cancelled
+    // (render/render_passes.cpp).
+    void render_passes(const RenderSettings& s, const Camera& camera, tbb::task_arena& arena);
+    // Sample indices [first_sample_ + done, first_sample_ + next) of every pixel, their light
+    // paths, and what follows a pass: the integrator's learning, the error estimate and
+    // adaptive sampling's decisions at powers of two, publishing.
+    void render_pass(const RenderSettings& s, const Camera& camera, uint32_t done, uint32_t next,
+                     tbb::task_arena& arena);
+    // At a pass end that is a power of two (`next` samples): the film's error estimate (with the
+    // sampler's gain) and adaptive sampling's stops.
+    void check_convergence(const RenderSettings& s, uint32_t next);
     // Camera samples [begin, end) of every pixel of the region into the film.
     void trace_camera_samples(const Camera& camera, uint32_t begin, uint32_t end, tbb::task_arena& arena);
     // The light paths of sample indices [begin, end), splatted into the film deterministically;
     // returns early on cancel.
     void trace_light_paths(const Camera& camera, uint32_t begin, uint32_t end, tbb::task_arena& arena);
+    // Ends the render: done, cancelled or failed with `error`.
+    void finish(const std::string& error);
+
+    // What the render reports (render/render_reports.cpp):
+    void add_notice(const std::string& notice);
+    // The radiosity solve into the counters, and a notice when it did not converge.
+    void report_radiosity();
+    // The integrator's guiding report (if it guides) into the counters.
+    void report_guiding();
+    // The light tree, if this render chooses lights by it (`selection`) and it is built.
+    void report_light_tree(LightSelection selection);
+    // Adds the notices of the samples dropped (dropped_samples_) or clamped (clamped_samples_) and
+    // the rays dropped by this render.
+    void report_dropped(uint64_t refused_rays);
 
     std::shared_ptr<const LiveScene> live_;
     Scene scene_;           // the renderer's copy, brought up to date by start()
@@ -144,11 +179,9 @@ private:
     mutable std::mutex state_mutex_;
     std::condition_variable done_cv_;
     double build_seconds_ = 0, render_seconds_ = 0;
-    double light_tree_seconds_ = 0, light_tree_bytes_ = 0;
-    double radiosity_patches_ = 0, radiosity_bytes_ = 0, radiosity_seconds_ = 0, radiosity_iterations_ = 0;
-    double guiding_nodes_ = 0, guiding_bytes_ = 0;
+    ProgressCounters counters_;
     std::vector<IterationReport> radiosity_history_;
-    std::chrono::steady_clock::time_point render_start_;
+    Clock::time_point render_start_;
     bool rendering_ = false;  // path tracing (not BVH build) in progress
     bool cancelled_ = false;
     std::string error_;

@@ -1,8 +1,9 @@
 // The one list of render settings: each setting's name (as the host sets it), label,
-// description, kind, range or choices, and how it is read from and written to RenderSettings.
-// The ABI serves it (stratum_setting_*), and the add-on's properties, `stratum compare`'s
-// choices and help, and the README's settings table are generated from it; a value is parsed
-// and checked once, when it is set.
+// description, kind, range or choices, and how it is read from and written to RenderSettings
+// (the table: render/setting_registry.cpp). The ABI serves it (stratum_setting_*), and the
+// add-on's properties, `stratum compare`'s choices and help, and the README's settings table are
+// generated from it; a value is parsed and checked once, when it is set
+// (render/setting_values.cpp).
 //
 // | kind   | value                                   | checked                                  |
 // |--------|-----------------------------------------|------------------------------------------|

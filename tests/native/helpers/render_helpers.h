@@ -8,6 +8,7 @@
 #include <cmath>
 #include <concepts>
 #include <initializer_list>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -84,8 +85,9 @@ inline bool add_square_instance(StratumScene* scene, float z, float half, uint32
 struct RenderOutput {
     std::vector<float> rgba;
     StratumProgress progress{};
-    std::string notices;  // stratum_renderer_notices when the render has ended
-    std::string error;    // stratum_last_error() of the first failed call; "" on success
+    std::map<std::string, double> counters;  // progress_counters() when the render has ended
+    std::string notices;                     // stratum_renderer_notices when the render has ended
+    std::string error;                       // stratum_last_error() of the first failed call; "" on success
 };
 
 // A camera at `position` looking down −Z with a 90° horizontal field of view.
@@ -152,6 +154,17 @@ inline std::string apply_settings(StratumRenderer* r, const Settings& settings) 
     return "";
 }
 
+// The renderer's progress counters by name ("guiding.nodes": stratum_renderer_progress_counter).
+inline std::map<std::string, double> progress_counters(const StratumRenderer* r) {
+    std::map<std::string, double> counters;
+    for (int32_t i = 0; i < stratum_progress_counter_count(); ++i) {
+        const char* name = nullptr;
+        double value = 0.0;
+        if (stratum_renderer_progress_counter(r, i, &name, &value) == STRATUM_OK) counters[name] = value;
+    }
+    return counters;
+}
+
 // Starts `r` and waits until its render has ended; false when it does not start.
 inline bool render_to_end(StratumRenderer* r) {
     if (stratum_renderer_start(r) != STRATUM_OK) return false;
@@ -184,6 +197,7 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
         const char* notices = nullptr;
         if (stratum_renderer_notices(r, &notices) == STRATUM_OK && notices) out.notices = notices;
         stratum_renderer_progress(r, &out.progress);
+        out.counters = progress_counters(r);
         out.rgba.resize(static_cast<size_t>(width * height * 4));
         stratum_renderer_read_pixels(r, out.rgba.data(), out.rgba.size());
     } else {

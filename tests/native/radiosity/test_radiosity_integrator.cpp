@@ -21,6 +21,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <map>
 #include <string>
 
 #include "radiosity/radiosity_system.h"
@@ -63,12 +64,13 @@ BlockMeans block_means(const std::vector<float>& a, const std::vector<float>& b,
     return out;
 }
 
-// Two renders of `settings` with seeds 1 and 2, as block means, and the first one's progress.
+// Two renders of `settings` with seeds 1 and 2, as block means, and the first one's progress
+// counters.
 BlockMeans render_blocks(StratumScene* scene, Settings settings, int size, std::string* error,
-                         StratumProgress* progress = nullptr) {
+                         std::map<std::string, double>* counters = nullptr) {
     settings.emplace_back("seed", 1u);
     const RenderOutput a = render(scene, settings);
-    if (progress) *progress = a.progress;
+    if (counters) *counters = a.counters;
     settings.back() = Setting("seed", 2u);
     const RenderOutput b = render(scene, settings);
     *error = a.error + b.error;
@@ -133,14 +135,14 @@ TEST(RadiosityIntegrator, CornellBoxBlocksMatchThePathTracerAsPatchesShrink) {
         "(RMS sigma) |\n|---|---|---|---|---|---|---|---|\n";
     double finest_worst = 0.0;
     for (const float size : sizes) {
-        StratumProgress progress{};
+        std::map<std::string, double> counters;
         const Settings settings = {{"width", kSize},
                                    {"height", kSize},
                                    {"samples", 2048},
                                    {"integrator", "radiosity"},
                                    {"radiosity_patch_size", static_cast<double>(size)},
                                    {"radiosity_rays", 1024}};
-        const BlockMeans rad = render_blocks(scene, settings, kSize, &error, &progress);
+        const BlockMeans rad = render_blocks(scene, settings, kSize, &error, &counters);
         ASSERT_TRUE(error.empty()) << error;
         double worst = 0.0, sum2 = 0.0, noise2 = 0.0;
         for (int b = 0; b < 16; ++b) {
@@ -163,9 +165,9 @@ TEST(RadiosityIntegrator, CornellBoxBlocksMatchThePathTracerAsPatchesShrink) {
         char line[256];
         std::snprintf(line, sizeof line,
                       "| %.3f | %.0f | %.2f | %.3f | %.0f | %.2f %% | %.2f %% | %.2f %% |\n", size,
-                      progress.radiosity_patches, progress.radiosity_bytes / 1e6, progress.radiosity_seconds,
-                      progress.radiosity_iterations, 100.0 * worst, 100.0 * rms_errors.back(),
-                      100.0 * rms_noise.back());
+                      counters.at("radiosity.patches"), counters.at("radiosity.bytes") / 1e6,
+                      counters.at("radiosity.seconds"), counters.at("radiosity.iterations"), 100.0 * worst,
+                      100.0 * rms_errors.back(), 100.0 * rms_noise.back());
         table += line;
     }
     std::printf("Cornell box, radiosity vs path tracing (32 x 32, 4 x 4 blocks, 3 channels):\n%s",
@@ -204,10 +206,10 @@ TEST(RadiosityIntegrator, ReportsPatchesMemoryAndTimeInProgress) {
     const RenderOutput out =
         render(scene, {{"width", 8}, {"height", 8}, {"samples", 1}, {"integrator", "radiosity"}});
     ASSERT_TRUE(out.error.empty()) << out.error;
-    EXPECT_GT(out.progress.radiosity_patches, 1000.0);  // automatic size: diagonal / 32
-    EXPECT_GT(out.progress.radiosity_bytes, out.progress.radiosity_patches * 16.0);
-    EXPECT_GT(out.progress.radiosity_seconds, 0.0);
-    EXPECT_GE(out.progress.radiosity_iterations, 1.0);
+    EXPECT_GT(out.counters.at("radiosity.patches"), 1000.0);  // automatic size: diagonal / 32
+    EXPECT_GT(out.counters.at("radiosity.bytes"), out.counters.at("radiosity.patches") * 16.0);
+    EXPECT_GT(out.counters.at("radiosity.seconds"), 0.0);
+    EXPECT_GE(out.counters.at("radiosity.iterations"), 1.0);
     EXPECT_EQ(out.notices, "");
     // The solver's iterations, 4 numbers each: the last one's relative ΔE is under the
     // tolerance (1e-3 by default) and the seconds grow.
@@ -220,9 +222,7 @@ TEST(RadiosityIntegrator, ReportsPatchesMemoryAndTimeInProgress) {
                                  {"radiosity_patch_size", 0.5}}),
               "");
     ASSERT_TRUE(render_to_end(r));
-    StratumProgress p{};
-    ASSERT_EQ(stratum_renderer_progress(r, &p), STRATUM_OK);
-    const size_t iterations = static_cast<size_t>(p.radiosity_iterations);
+    const size_t iterations = static_cast<size_t>(progress_counters(r).at("radiosity.iterations"));
     ASSERT_GE(iterations, 1u);
     std::vector<double> history(4 * iterations);
     EXPECT_NE(stratum_renderer_read_radiosity_iterations(r, history.data(), history.size() - 1), STRATUM_OK);
@@ -232,7 +232,7 @@ TEST(RadiosityIntegrator, ReportsPatchesMemoryAndTimeInProgress) {
     for (size_t k = 1; k < iterations; ++k) EXPECT_GE(history[4 * k + 3], history[4 * (k - 1) + 3]);
     stratum_renderer_destroy(r);
     const RenderOutput path = render(scene, {{"width", 8}, {"height", 8}, {"samples", 1}});
-    EXPECT_EQ(path.progress.radiosity_patches, 0.0);
+    EXPECT_EQ(path.counters.at("radiosity.patches"), 0.0);
     stratum_scene_destroy(scene);
 }
 
@@ -368,8 +368,9 @@ TEST(RadiosityIntegrator, KeepsItsSolveWhileOnlyTheCameraMoves) {
         StratumProgress p{};
         EXPECT_TRUE(render_to_end(r));
         EXPECT_EQ(stratum_renderer_progress(r, &p), STRATUM_OK) << stratum_last_error();
-        EXPECT_GT(p.radiosity_patches, 0.0);
-        return p.radiosity_seconds;
+        const std::map<std::string, double> counters = progress_counters(r);
+        EXPECT_GT(counters.at("radiosity.patches"), 0.0);
+        return counters.at("radiosity.seconds");
     };
     const double first = solve_seconds();
     const StratumCameraDesc moved = camera_at(0.2f, 0.1f, 2.5f);

@@ -231,12 +231,12 @@ TEST(Determinism, PathGuidingRepeatsOneImageForAnyThreadCount) {
             ASSERT_TRUE(out.error.empty()) << sampler << ": " << out.error;
             if (i == 0) {
                 first = out.rgba;
-                first_nodes = out.progress.guiding_nodes;
+                first_nodes = out.counters.at("guiding.nodes");
                 EXPECT_GT(first_nodes, 2.0) << sampler << ": the tree did not split";
-                EXPECT_GT(out.progress.guiding_bytes, 0.0);
+                EXPECT_GT(out.counters.at("guiding.bytes"), 0.0);
                 continue;
             }
-            EXPECT_EQ(out.progress.guiding_nodes, first_nodes) << sampler;
+            EXPECT_EQ(out.counters.at("guiding.nodes"), first_nodes) << sampler;
             size_t differing = 0;
             for (size_t k = 0; k < first.size(); ++k) differing += out.rgba[k] != first[k];
             EXPECT_EQ(differing, 0u) << sampler << ": render " << i << " with " << threads << " threads";
