@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Idempotent machine setup: Debian packages (apt-get) and the project's .venv (PyPI).
+# Idempotent machine setup: Debian packages (apt-get), the project's .venv (PyPI) and the LTS
+# bpy wheels' venvs (scripts/setup_wheels.sh).
 # Safe to run repeatedly; does nothing when everything is already present.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -44,3 +45,5 @@ if [ ! -f "$stamp" ] || [ "$req" -nt "$stamp" ] || [ addon/pyproject.toml -nt "$
   .venv/bin/python -m pip install -q -e addon
   touch "$stamp"
 fi
+
+bash scripts/setup_wheels.sh

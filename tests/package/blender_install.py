@@ -14,8 +14,9 @@ Phases:
              --upgrade-zip is given, install it over the first while the library is loaded,
              check the loaded file was replaced rather than overwritten, render again; save
              the preferences
-  restart    a new session: the add-on is enabled from the saved preferences; render, then
-             uninstall through Blender while it is loaded; save the preferences
+  restart    a new session: the add-on is enabled from the saved preferences (the bpy 4.2
+             wheel: by its module name, READS_PREFERENCES); render, then uninstall through
+             Blender while it is loaded; save the preferences
   removed    a new session: no Stratum anywhere
   checkout   the reference: the checkout's add-on (--addon-dir) renders --scene
 The result (digests of the renders' float pixels, versions, paths) goes to RESULT.json.
@@ -43,6 +44,12 @@ import numpy as np
 
 EXTENSIONS = bpy.app.version >= (4, 2, 0)
 REPOSITORY = "user_default"
+# The bpy module starts with factory preferences (Blender's startup reads the user's), so a new
+# session reads them itself; but bpy 4.2.23's module crashes in wm.read_userpref (a segfault in
+# UI_icons_reload_internal_textures, which makes GPU textures in a module that has no GPU
+# context; no add-on involved: it crashes from an empty configuration too). 4.5 and 5.0 read
+# them. In 4.2 the restart enables the installed extension by its module name instead.
+READS_PREFERENCES = "--site" in OPTIONS and bpy.app.version >= (4, 5, 0)
 result: dict[str, Any] = {"blender": list(bpy.app.version), "phase": PHASE}
 
 
@@ -115,11 +122,14 @@ def check_isolated() -> None:
     checkout."""
     checkout = Path(OPTIONS["--checkout"]).resolve()
 
+    # Under a bpy wheel, the venv that holds it (.venv, .venv-bpy-<line>: --site is its
+    # lib/python3.x/site-packages) is part of the Blender, not of Stratum.
+    wheel_venv = Path(OPTIONS["--site"]).resolve().parents[2] if "--site" in OPTIONS else None
+
     def of_checkout(path: str) -> bool:
-        # The checkout's .venv hosts the bpy wheel's Python: part of the Blender, not of Stratum.
         resolved = Path(path.removesuffix(" (deleted)")).resolve()
         return resolved.is_relative_to(checkout) and \
-            not resolved.is_relative_to(checkout / ".venv")
+            not (wheel_venv is not None and resolved.is_relative_to(wheel_venv))
 
     module = addon_module()
     assert module is not None
@@ -197,9 +207,10 @@ def phase_load() -> None:
 
 def phase_restart() -> None:
     out = Path(OPTIONS["--work"])
-    if "--site" in OPTIONS:
-        # The bpy module starts with factory preferences; Blender's startup reads the user's.
+    if READS_PREFERENCES:
         bpy.ops.wm.read_userpref()
+    elif "--site" in OPTIONS:
+        bpy.ops.preferences.addon_enable(module=f"bl_ext.{REPOSITORY}.stratum")
     result["enabled_at_start"] = addon_module()
     assert result["enabled_at_start"] is not None, "not enabled from the saved preferences"
     result["digest"] = render_digest(OPTIONS["--scene"], out / "restart.exr")
@@ -218,7 +229,7 @@ def phase_restart() -> None:
 
 
 def phase_removed() -> None:
-    if "--site" in OPTIONS:
+    if READS_PREFERENCES:
         bpy.ops.wm.read_userpref()
     assert addon_module() is None
     assert not (install_root() / "stratum").exists()

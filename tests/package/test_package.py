@@ -1,6 +1,7 @@
 """The installable package (issue 19): `make package`'s zip installs into a fresh Blender user
-configuration, in Blender 3.4 (legacy add-on) and under the bpy 5.0 wheel (extension), renders
-the Cornell box from the install alone, upgrades while loaded, and uninstalls cleanly.
+configuration, in Blender 3.4 (legacy add-on) and under the bpy wheels of 5.0 (the main venv)
+and of the 4.2 and 4.5 LTS lines (their venvs, scripts/setup_wheels.sh) as an extension,
+renders the Cornell box from the install alone, upgrades while loaded, and uninstalls cleanly.
 
 Built here, twice: the manifest's version and the next patch version (the upgrade). Each
 Blender runs blender_install.py, copied out of the checkout, in four processes: install (+
@@ -32,6 +33,12 @@ REPO = Path(__file__).resolve().parents[2]
 
 PYTHON = REPO / ".venv" / "bin" / "python"
 SITE = next((REPO / ".venv" / "lib").glob("python3*/site-packages"))
+# Each wheel kind's venv: the main one (bpy 5.0) and one per LTS line that
+# scripts/setup_wheels.sh makes from scripts/requirements-bpy-<line>.txt.
+WHEEL_VENVS = {"wheel": REPO / ".venv"} | {
+    f"wheel-{path.stem.removeprefix('requirements-bpy-')}":
+        REPO / f".venv-bpy-{path.stem.removeprefix('requirements-bpy-')}"
+    for path in sorted((REPO / "scripts").glob("requirements-bpy-*.txt"))}
 BLENDER = os.environ.get("BLENDER", "blender")
 SCRIPT = Path(__file__).resolve().parent / "blender_install.py"
 SCENE = REPO / "scenes" / "cornell_box.blend"
@@ -159,6 +166,14 @@ def _environment(home: Path) -> dict[str, str]:
     return env
 
 
+def _wheel_python(kind: str) -> tuple[Path, Path]:
+    """The Python and the site-packages of a wheel kind's venv."""
+    venv = WHEEL_VENVS[kind]
+    if not (venv / "bin" / "python").is_file():
+        pytest.fail(f"no {venv.name}: scripts/setup.sh creates it (scripts/setup_wheels.sh)")
+    return venv / "bin" / "python", next((venv / "lib").glob("python3*/site-packages"))
+
+
 def _run_phase(kind: str, phase: str, work: Path, env: dict[str, str], *options: str) -> dict:
     result = work / f"{phase}.json"
     if kind == "blender":
@@ -166,8 +181,9 @@ def _run_phase(kind: str, phase: str, work: Path, env: dict[str, str], *options:
     else:
         # -I -S: no PYTHON* variables, no user site, and site-packages' .pth files unread (the
         # checkout's editable install of `stratum` is one); the script appends site-packages.
-        command = [str(PYTHON), "-I", "-S", str(work / SCRIPT.name), "--"]
-        options = (*options, "--site", str(SITE))
+        python, site = _wheel_python(kind)
+        command = [str(python), "-I", "-S", str(work / SCRIPT.name), "--"]
+        options = (*options, "--site", str(site))
     command += [phase, str(result), "--scene", str(work / SCENE.name), "--work", str(work),
                 "--checkout", str(REPO), *options]
     run = subprocess.run(command, capture_output=True, text=True, cwd=work, env=env,
@@ -194,7 +210,7 @@ def _trace_of_loading(trace_dir: Path, lib_dir: str) -> list[str]:
     raise AssertionError(f"no trace in {trace_dir} shows {lib_dir}/libstratum.so loading")
 
 
-@pytest.mark.parametrize("kind", ["blender", "wheel"])
+@pytest.mark.parametrize("kind", ["blender", *WHEEL_VENVS])
 def test_install_render_upgrade_uninstall(kind: str, packages: dict[str, Path],
                                           unpacked: Path, tmp_path: Path) -> None:
     if kind == "blender" and shutil.which(BLENDER) is None:
@@ -231,9 +247,9 @@ def test_install_render_upgrade_uninstall(kind: str, packages: dict[str, Path],
     _run_phase(kind, "removed", work, env)
 
     reference_env = {**env, "PATH": os.environ.get("PATH", "/usr/bin:/bin")}
-    if kind == "wheel":
+    if kind != "blender":
         checkout = subprocess.run(
-            [str(PYTHON), str(work / SCRIPT.name), "--", "checkout", str(work / "ref.json"),
+            [str(_wheel_python(kind)[0]), str(work / SCRIPT.name), "--", "checkout", str(work / "ref.json"),
              "--scene", str(work / SCENE.name), "--work", str(work), "--addon-dir",
              str(REPO / "addon")], capture_output=True, text=True, env=reference_env, cwd=work,
             check=False)
