@@ -27,10 +27,11 @@ STATUS_NAMES: dict[int, str] = {
     ERROR_IO: "I/O error",
 }
 
-# StratumModelKind: the listings of stratum_model_entry (light types, closure models), which name
-# every StratumLightType and StratumMaterialModel value (models.py).
+# StratumModelKind: the listings of stratum_model_entry (light types, closure models, shader node
+# types), which name every StratumLightType, StratumMaterialModel and node type value (models.py).
 MODEL_LIGHT = 0
 MODEL_CLOSURE = 1
+MODEL_SHADER_NODE = 2
 
 
 # StratumSettingKind: how a render setting is set (stratum_renderer_set_int / _float / _string).
@@ -77,13 +78,6 @@ SHADER_INPUTS = {
 }
 SHADER_INPUT_REGISTERS = 100
 ATTRIBUTE_SLOTS = 4
-# StratumShaderNodeType, by the names docs/shader_nodes.md uses.
-NODE_TYPES = {name: i for i, name in enumerate((
-    "math", "vector_math", "mix", "map_range", "clamp", "invert", "gamma", "bright_contrast", "hsv",
-    "separate_color", "combine_color", "rgb_to_bw", "color_ramp", "curves", "mapping",
-    "vector_rotate", "fresnel", "layer_weight", "image", "noise", "voronoi", "wave", "checker",
-    "brick", "gradient", "magic", "white_noise", "musgrave", "sky", "bump", "normal_map",
-    "blackbody", "wavelength", "vector_transform", "normal", "copy"))}
 
 VISIBLE_CAMERA = 1
 VISIBLE_DIFFUSE = 2

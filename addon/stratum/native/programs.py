@@ -25,8 +25,8 @@ from .marshalling import _float_ptr, _uint32
 
 @dataclass(frozen=True)
 class ShaderNode:
-    """One node: its type (abi.NODE_TYPES), up to 6 modes, the registers of up to 12 inputs and
-    6 outputs, and its range of the program's data."""
+    """One node: its type (models.node_type(name)), up to 6 modes, the registers of up to 12
+    inputs and 6 outputs, and its range of the program's data."""
 
     type: int
     modes: tuple[int, ...] = ()

@@ -11,7 +11,10 @@
  *
  * Outputs drive closure parameters (stratum_scene_bind_program) or the world's radiance
  * (stratum_scene_set_background_program). The node types and their modes follow Blender's
- * nodes, socket for socket: docs/shader_nodes.md lists each node's registers and modes. */
+ * nodes, socket for socket: docs/shader_nodes.md lists each node's registers and modes. Node
+ * types have no enumerators here: hosts look each value up by its name in the library's listing
+ * (stratum_model_entry with STRATUM_MODEL_SHADER_NODE), so a node added to the library needs no
+ * change in this header or in a host that does not use it. */
 #ifndef STRATUM_SHADER_NODES_H
 #define STRATUM_SHADER_NODES_H
 
@@ -71,53 +74,12 @@ typedef enum StratumShaderInput {
     STRATUM_SHADER_INPUT_REGISTERS = 100
 } StratumShaderInput;
 
-/* Node types. Register use per node: docs/shader_nodes.md. */
-typedef enum StratumShaderNodeType {
-    STRATUM_NODE_MATH = 0,
-    STRATUM_NODE_VECTOR_MATH = 1,
-    STRATUM_NODE_MIX = 2,
-    STRATUM_NODE_MAP_RANGE = 3,
-    STRATUM_NODE_CLAMP = 4,
-    STRATUM_NODE_INVERT = 5,
-    STRATUM_NODE_GAMMA = 6,
-    STRATUM_NODE_BRIGHT_CONTRAST = 7,
-    STRATUM_NODE_HSV = 8,
-    STRATUM_NODE_SEPARATE_COLOR = 9,
-    STRATUM_NODE_COMBINE_COLOR = 10,
-    STRATUM_NODE_RGB_TO_BW = 11,
-    STRATUM_NODE_COLOR_RAMP = 12,
-    STRATUM_NODE_CURVES = 13,
-    STRATUM_NODE_MAPPING = 14,
-    STRATUM_NODE_VECTOR_ROTATE = 15,
-    STRATUM_NODE_FRESNEL = 16,
-    STRATUM_NODE_LAYER_WEIGHT = 17,
-    STRATUM_NODE_IMAGE = 18,
-    STRATUM_NODE_NOISE = 19,
-    STRATUM_NODE_VORONOI = 20,
-    STRATUM_NODE_WAVE = 21,
-    STRATUM_NODE_CHECKER = 22,
-    STRATUM_NODE_BRICK = 23,
-    STRATUM_NODE_GRADIENT = 24,
-    STRATUM_NODE_MAGIC = 25,
-    STRATUM_NODE_WHITE_NOISE = 26,
-    STRATUM_NODE_MUSGRAVE = 27,
-    STRATUM_NODE_SKY = 28,
-    STRATUM_NODE_BUMP = 29,
-    STRATUM_NODE_NORMAL_MAP = 30,
-    STRATUM_NODE_BLACKBODY = 31,
-    STRATUM_NODE_WAVELENGTH = 32,
-    STRATUM_NODE_VECTOR_TRANSFORM = 33,
-    STRATUM_NODE_NORMAL = 34,
-    STRATUM_NODE_COPY = 35, /* copies `modes[0]` (1 to 3) registers: a reroute of a value */
-    STRATUM_NODE_TYPE_COUNT = 36
-} StratumShaderNodeType;
-
 /* One node: `type`, its enumerations in `modes` (what each means: docs/shader_nodes.md), the
  * register of each input and output (the first of three for a vector or colour; unused slots are
  * ignored), and a range of the program's constant `data` (a Color Ramp's stops, a curve's table,
  * the Sky's parameters). */
 typedef struct StratumShaderNode {
-    int32_t type;
+    int32_t type; /* a value stratum_model_entry(STRATUM_MODEL_SHADER_NODE, ...) lists, by name */
     int32_t modes[6];
     uint32_t inputs[12];
     uint32_t outputs[6];

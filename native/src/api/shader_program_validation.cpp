@@ -6,7 +6,6 @@
 
 #include "api/validation.h"
 #include "shading/node_registry.h"
-#include "shading/program_layout.h"
 
 namespace stratum {
 
@@ -34,6 +33,11 @@ void check_registers(const char* kind, const uint32_t* regs, const uint8_t* widt
 
 std::shared_ptr<const ShaderProgram> validate_shader_program(const StratumShaderProgramDesc& d,
                                                              size_t texture_count) {
+    // A library whose node files filed conflicting entries runs no program: which of two nodes
+    // claiming one value a program meant cannot be known (shading/node_registry.h).
+    const std::string registry_problem = node_registry_problem();
+    require(registry_problem.empty(),
+            "the library's shader node registry is inconsistent: " + registry_problem);
     require(d.node_count <= kMaxNodes,
             "program node_count " + std::to_string(d.node_count) + " exceeds 65536");
     require(d.node_count == 0 || d.nodes != nullptr,
@@ -86,9 +90,10 @@ std::shared_ptr<const ShaderProgram> validate_shader_program(const StratumShader
                     std::to_string(d.data_count) + " data values");
         const std::string problem = entry->check(n, *program);
         require(problem.empty(), where + ": " + problem);
-        if (s.type == node_type::kImage) {
-            require(n.modes[0] >= 0 && static_cast<size_t>(n.modes[0]) < texture_count,
-                    where + ": texture " + std::to_string(n.modes[0]) + " is not a texture (the scene has " +
+        if (entry->texture_mode >= 0) {
+            const int32_t texture = n.modes[static_cast<size_t>(entry->texture_mode)];
+            require(texture >= 0 && static_cast<size_t>(texture) < texture_count,
+                    where + ": texture " + std::to_string(texture) + " is not a texture (the scene has " +
                         std::to_string(texture_count) + ")");
         }
         if (entry->prepare) {
