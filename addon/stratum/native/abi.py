@@ -72,11 +72,12 @@ SHADER_INPUTS = {
     "object_color": (35, 3), "object_alpha": (38, 1), "tangent": (39, 3), "parametric": (42, 3),
     "object_normal": (45, 3), "dpdx": (48, 3), "dpdy": (51, 3), "dgenerated_dx": (54, 3),
     "dgenerated_dy": (57, 3), "dobject_dx": (60, 3), "dobject_dy": (63, 3), "duv_dx": (66, 3),
-    "duv_dy": (69, 3), "reflection": (72, 3), "uv_tangent": (75, 3),
+    "duv_dy": (69, 3), "reflection": (72, 3), "uv_tangent": (75, 3), "pixel_footprint": (78, 1),
     # mesh attribute slot k: colour (3) at 80 + 5k, alpha at + 3, Fac at + 4
     "attribute0": (80, 5), "attribute1": (85, 5), "attribute2": (90, 5), "attribute3": (95, 5),
+    "triangle": (100, 9), "mikktspace_tangent": (109, 3), "normal_transform": (112, 9),
 }
-SHADER_INPUT_REGISTERS = 100
+SHADER_INPUT_REGISTERS = 128
 ATTRIBUTE_SLOTS = 4
 
 VISIBLE_CAMERA = 1

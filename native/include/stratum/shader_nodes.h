@@ -42,7 +42,10 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_OBJECT_LOCATION = 27, /* 3: the object's origin in world space */
     STRATUM_INPUT_BACKFACING = 30,      /* 1: 1 on the back (winding) face, else 0 */
     STRATUM_INPUT_OBJECT_RANDOM = 31,   /* 1: Object Info's Random, [0,1] */
-    STRATUM_INPUT_RAY_LENGTH = 32,      /* 1: distance the ray travelled to the point */
+    STRATUM_INPUT_RAY_LENGTH = 32,      /* 1: distance the ray travelled to the point from where the
+                                           path last scattered (or the camera), transparent
+                                           surfaces passed on the way counted (Cycles'
+                                           sd->ray_length) */
     STRATUM_INPUT_OBJECT_INDEX = 33,    /* 1: the object's pass index */
     STRATUM_INPUT_MATERIAL_INDEX = 34,  /* 1: the material's pass index */
     STRATUM_INPUT_OBJECT_COLOR = 35,    /* 3: the object's colour (Object Info's Color) */
@@ -64,6 +67,12 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_DUV_DY = 69,
     STRATUM_INPUT_REFLECTION = 72, /* 3: the view mirrored about the normal, 2 dot(N, I) N - I */
     STRATUM_INPUT_UV_TANGENT = 75, /* 3: the UV map's dpdu in the shading plane, unit (0 without UVs) */
+    /* 1: the ray's footprint at the point, as Cycles' compact ray differential sd->dP: a camera
+     * ray's spread between neighbouring pixels (half the sum of the differences of the pixel's
+     * direction and origin to those of the next pixel right and the next up) times the distance
+     * travelled, kept along the path (Cycles keeps a camera ray's spread through bounces); 0 on
+     * light paths and in the world. */
+    STRATUM_INPUT_PIXEL_FOOTPRINT = 78,
     /* The mesh's attributes in slots 0..3 (stratum_scene_set_mesh_attribute), 5 registers each:
      * colour (3), alpha, and the float Cycles' Attribute node gives (Fac). A slot the mesh lacks
      * reads colour 0, alpha 1, Fac 0, as Cycles reads a missing attribute. */
@@ -71,7 +80,19 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_ATTRIBUTE_1 = 85,
     STRATUM_INPUT_ATTRIBUTE_2 = 90,
     STRATUM_INPUT_ATTRIBUTE_3 = 95,
-    STRATUM_SHADER_INPUT_REGISTERS = 100
+    /* 9: the hit triangle's three vertices in world space (at the ray's time for a moving
+     * object); 0 in the world. */
+    STRATUM_INPUT_TRIANGLE = 100,
+    /* 3: the mesh's MikkTSpace tangent (stratum_scene_add_mesh's corner tangents) interpolated
+     * over the triangle and taken to world space as a normal is (Cycles' UV tangent attribute
+     * after object_normal_transform), not normalised nor projected; 0 when the mesh has none. */
+    STRATUM_INPUT_MIKKTSPACE_TANGENT = 109,
+    /* 9: where the object's normal transform (the inverse transpose of its linear part, up to a
+     * positive scale, as Cycles' object_normal_transform before it normalises) takes its X, Y
+     * and Z axes: n = x X + y Y + z Z for an object-space (x, y, z). The identity in the world. */
+    STRATUM_INPUT_NORMAL_TRANSFORM = 112,
+    /* 121 to 127 are free for inputs to come. */
+    STRATUM_SHADER_INPUT_REGISTERS = 128
 } StratumShaderInput;
 
 /* One node: `type`, its enumerations in `modes` (what each means: docs/shader_nodes.md), the

@@ -43,8 +43,12 @@ static_assert(stratum::shader_input::kDuvDx == STRATUM_INPUT_DUV_DX);
 static_assert(stratum::shader_input::kDuvDy == STRATUM_INPUT_DUV_DY);
 static_assert(stratum::shader_input::kReflection == STRATUM_INPUT_REFLECTION);
 static_assert(stratum::shader_input::kUvTangent == STRATUM_INPUT_UV_TANGENT);
+static_assert(stratum::shader_input::kPixelFootprint == STRATUM_INPUT_PIXEL_FOOTPRINT);
 static_assert(stratum::shader_input::kAttribute0 == STRATUM_INPUT_ATTRIBUTE_0);
 static_assert(stratum::shader_input::kAttribute3 == STRATUM_INPUT_ATTRIBUTE_3);
+static_assert(stratum::shader_input::kTriangle == STRATUM_INPUT_TRIANGLE);
+static_assert(stratum::shader_input::kMikktspaceTangent == STRATUM_INPUT_MIKKTSPACE_TANGENT);
+static_assert(stratum::shader_input::kNormalTransform == STRATUM_INPUT_NORMAL_TRANSFORM);
 static_assert(stratum::shader_input::kAttributeSlots == STRATUM_ATTRIBUTE_SLOTS);
 static_assert(stratum::shader_input::kCount == STRATUM_SHADER_INPUT_REGISTERS);
 

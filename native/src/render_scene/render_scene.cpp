@@ -366,6 +366,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->barycentric = {h.b1, h.b2};
     hit->placement = h.instance;
     hit->triangle = h.triangle;
+    hit->vertices = {p0, p1, p2};
     return true;
 }
 
@@ -374,7 +375,8 @@ void RenderScene::set_camera(const Scene& scene) {
     if (scene.camera) world_to_camera_ = scene.camera->camera_to_world.inverse();
 }
 
-ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing) const {
+ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing,
+                                          RayReach reach) const {
     const InstanceData& g = instances_[hit.placement];
     const Mesh& mesh = *g.mesh;
     Vec3 loc, size;
@@ -397,7 +399,8 @@ ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool b
             g.alpha,
             world_to_camera_ ? &*world_to_camera_ : nullptr,
             &g.object_to_world,
-            g.mesh};
+            g.mesh,
+            reach};
 }
 
 }  // namespace stratum

@@ -39,13 +39,17 @@ inline constexpr uint32_t kDuvDx = 66;
 inline constexpr uint32_t kDuvDy = 69;
 inline constexpr uint32_t kReflection = 72;
 inline constexpr uint32_t kUvTangent = 75;
+inline constexpr uint32_t kPixelFootprint = 78;
 inline constexpr uint32_t kAttribute0 = 80;
 inline constexpr uint32_t kAttribute1 = 85;
 inline constexpr uint32_t kAttribute2 = 90;
 inline constexpr uint32_t kAttribute3 = 95;
+inline constexpr uint32_t kTriangle = 100;
+inline constexpr uint32_t kMikktspaceTangent = 109;
+inline constexpr uint32_t kNormalTransform = 112;
 inline constexpr uint32_t kAttributeSlots = 4;
 inline constexpr uint32_t kAttributeWidth = 5;
-inline constexpr uint32_t kCount = 100;
+inline constexpr uint32_t kCount = 128;
 }  // namespace shader_input
 
 }  // namespace stratum
