@@ -134,4 +134,20 @@ void op_bind_program(ByteReader& in, ProgramState& s) {
     }
 }
 
+// A lamp's program: a drawn light (one past the last is invalid), then a flag for
+// STRATUM_NO_PROGRAM (which removes it) or a drawn program (one past the last is invalid), and a
+// register.
+void op_set_light_program(ByteReader& in, ProgramState& s) {
+    const uint32_t light = in.id(s.lights);
+    const uint32_t program = in.flag() ? STRATUM_NO_PROGRAM : in.id(s.programs);
+    const uint32_t reg = in.id(kInputs + 48);
+    checked(
+        "stratum_scene_set_light_program",
+        [&] { return stratum_scene_set_light_program(s.scene, light, program, reg); },
+        [&] {
+            return "scene, " + std::to_string(light) + ", " + std::to_string(program) + ", " +
+                   std::to_string(reg);
+        });
+}
+
 }  // namespace stratum::fuzz

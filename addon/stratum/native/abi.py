@@ -78,6 +78,8 @@ SHADER_INPUTS = {
     "triangle": (100, 9), "mikktspace_tangent": (109, 3), "normal_transform": (112, 9),
 }
 SHADER_INPUT_REGISTERS = 128
+# stratum_scene_set_light_program's program id that removes a lamp's program.
+NO_PROGRAM = 0xFFFFFFFF
 ATTRIBUTE_SLOTS = 4
 
 VISIBLE_CAMERA = 1
@@ -408,6 +410,7 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
         "stratum_scene_bind_program": (c_int32, [p_void, ctypes.POINTER(_ProgramBinding)]),
         "stratum_scene_set_background_program": (c_int32, [p_void, c_uint32, c_uint32, c_uint32,
                                                            c_uint32]),
+        "stratum_scene_set_light_program": (c_int32, [p_void, c_uint32, c_uint32, c_uint32]),
         "stratum_scene_evaluate_program": (c_int32, [p_void, c_uint32, p_float, c_uint32,
                                                      c_uint32, p_float]),
         "stratum_scene_set_mesh_texture_space": (c_int32, [p_void, c_uint32, p_float, p_float]),

@@ -115,6 +115,13 @@ def set_background_program(lib: Any, handle: Any, program_id: int, register_inde
         _uint32(width, "width"), _uint32(height, "height")), "stratum_scene_set_background_program")
 
 
+def set_light_program(lib: Any, handle: Any, light_id: int, program_id: int,
+                      register_index: int) -> None:
+    _check(lib, lib.stratum_scene_set_light_program(
+        handle, _uint32(light_id, "light_id"), _uint32(program_id, "program_id"),
+        _uint32(register_index, "register_index")), "stratum_scene_set_light_program")
+
+
 def evaluate_program(lib: Any, handle: Any, program_id: int, inputs: np.ndarray, first: int,
                      count: int) -> np.ndarray:
     regs = np.zeros(SHADER_INPUT_REGISTERS, dtype=np.float32)

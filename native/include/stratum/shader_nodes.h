@@ -175,6 +175,20 @@ STRATUM_API StratumStatus stratum_scene_set_background_program(StratumScene* sce
                                                                uint32_t register_index, uint32_t width,
                                                                uint32_t height);
 
+/* Scales the emission of light `light_id` (in the order lights were added) by the RGB of register
+ * `register_index` of program `program_id`, as Cycles shades a lamp with its node tree (Light >
+ * Nodes: the Emission's Color x Strength). The program runs wherever the lamp's emission is used:
+ * for a point it lights and for a ray that meets it, with RAY_LENGTH the distance between that
+ * point (or the ray's origin) and the point on the lamp, FLT_MAX for a sun (Cycles' ls->t); light
+ * tracing applies it where a particle first lands. Its other inputs are those of no object (0,
+ * attributes' alpha 1, NORMAL_TRANSFORM the identity): a program that reads any other renderer
+ * input is refused. Each channel is at least 0 (a NaN reads 0). The lamp's power, by which lights
+ * are chosen, stays its own. program_id STRATUM_NO_PROGRAM removes the lamp's program; a later
+ * call replaces it. */
+#define STRATUM_NO_PROGRAM 0xFFFFFFFFu
+STRATUM_API StratumStatus stratum_scene_set_light_program(StratumScene* scene, uint32_t light_id,
+                                                          uint32_t program_id, uint32_t register_index);
+
 /* Attribute slots a mesh can carry, and how an attribute's Fac is made (Cycles' Attribute node:
  * a float or 2-vector attribute gives its first component, a 3-vector or colour the mean). */
 #define STRATUM_ATTRIBUTE_SLOTS 4u

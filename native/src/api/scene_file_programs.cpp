@@ -51,7 +51,11 @@ void save_programs(const Scene& scene, json& j) {
                             {"program", b.program_id},
                             {"register", b.register_index}});
     }
+    json lights = json::array();
+    for (const LightProgram& l : scene.light_programs)
+        lights.push_back({{"light", l.light_id}, {"program", l.program_id}, {"register", l.register_index}});
     j["programs"] = {{"programs", programs}, {"bindings", bindings}};
+    if (!lights.empty()) j["programs"]["lights"] = lights;
 }
 
 namespace {
@@ -122,6 +126,14 @@ StratumStatus load_programs(const json& j, StratumScene* scene, int version) {
                                       field<int32_t>(b, "param"), field<uint32_t>(b, "program"),
                                       moved(field<uint32_t>(b, "register"), version)};
         if ((status = stratum_scene_bind_program(scene, &d)) != STRATUM_OK) return status;
+    }
+    if (j.at("programs").contains("lights")) {
+        for (const json& l : j.at("programs").at("lights")) {
+            status = stratum_scene_set_light_program(scene, field<uint32_t>(l, "light"),
+                                                     field<uint32_t>(l, "program"),
+                                                     moved(field<uint32_t>(l, "register"), version));
+            if (status != STRATUM_OK) return status;
+        }
     }
     return STRATUM_OK;
 }

@@ -1,5 +1,6 @@
-// The shader programs, their bindings and the meshes' texture spaces in a captured scene file
-// (api/scene_file.h): saved from the Scene, loaded through the public entry points.
+// The shader programs, their bindings (closure parameters, lamps) and the meshes' texture spaces
+// in a captured scene file (api/scene_file.h): saved from the Scene, loaded through the public
+// entry points.
 #pragma once
 
 #include <nlohmann/json.hpp>

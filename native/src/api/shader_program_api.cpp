@@ -1,4 +1,5 @@
 // The shader-program entry points (stratum/shader_nodes.h).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -141,6 +142,33 @@ StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t
         stratum::Environment e = stratum::bake_environment(*program, textures, register_index, width, height);
         scene->live->edit(stratum::LiveScene::Part::World,
                           [&](stratum::Scene& s) { s.environment = std::move(e); });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_light_program(StratumScene* scene, uint32_t light_id, uint32_t program_id,
+                                              uint32_t register_index) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_set_light_program", [&] {
+        require(scene, "scene is NULL");
+        scene->live->edit(stratum::LiveScene::Part::Lights, [&](stratum::Scene& s) {
+            auto& programs = s.light_programs;
+            const auto same_light = [&](const stratum::LightProgram& p) { return p.light_id == light_id; };
+            if (program_id == STRATUM_NO_PROGRAM) {
+                require(light_id < s.lights.size(), "light_id " + std::to_string(light_id) +
+                                                        " is not a light (the scene has " +
+                                                        std::to_string(s.lights.size()) + ")");
+                std::erase_if(programs, same_light);
+                return;
+            }
+            const stratum::LightProgram p =
+                stratum::validate_light_program(light_id, program_id, register_index, s);
+            const auto existing = std::find_if(programs.begin(), programs.end(), same_light);
+            if (existing != programs.end())
+                *existing = p;
+            else
+                programs.push_back(p);
+        });
         return STRATUM_OK;
     });
 }

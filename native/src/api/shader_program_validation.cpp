@@ -129,4 +129,32 @@ ProgramBinding validate_program_binding(const StratumProgramBinding& b, const Sc
     return {b.material_id, b.closure_index, param, b.program_id, b.register_index};
 }
 
+LightProgram validate_light_program(uint32_t light_id, uint32_t program_id, uint32_t register_index,
+                                    const Scene& scene) {
+    require(light_id < scene.lights.size(), "light_id " + std::to_string(light_id) +
+                                                " is not a light (the scene has " +
+                                                std::to_string(scene.lights.size()) + ")");
+    require(program_id < scene.programs.size(), "program_id " + std::to_string(program_id) +
+                                                    " is not a program (the scene has " +
+                                                    std::to_string(scene.programs.size()) + ")");
+    const ShaderProgram& program = *scene.programs[program_id];
+    require(static_cast<uint64_t>(register_index) + 3 <= program.registers.size(),
+            "light program register " + std::to_string(register_index) + " (3 wide) is outside program " +
+                std::to_string(program_id) + "'s " + std::to_string(program.registers.size()) + " registers");
+    for (size_t i = 0; i < program.nodes.size(); ++i) {
+        const ShaderNode& n = program.nodes[i];
+        const NodeEntry& entry = *node_entry(n.type);
+        for (size_t k = 0; k < n.inputs.size(); ++k) {
+            if (entry.input_widths[k] == 0 || n.inputs[k] >= kShaderInputRegisters) continue;
+            const bool ray_length = entry.input_widths[k] == 1 && n.inputs[k] == shader_input::kRayLength;
+            require(ray_length, "program " + std::to_string(program_id) + " node " + std::to_string(i) +
+                                    " (" + entry.name + ") reads renderer input register " +
+                                    std::to_string(n.inputs[k]) +
+                                    "; a light's program may read only RAY_LENGTH (" +
+                                    std::to_string(shader_input::kRayLength) + ")");
+        }
+    }
+    return {light_id, program_id, register_index};
+}
+
 }  // namespace stratum

@@ -163,6 +163,8 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
             const float d2 = dot(d, d);
             throughput *= d2 / (d2 + e.soft_radius * e.soft_radius);
         }
+        // A lamp's program (its node tree) at the distance the particle travelled from the lamp.
+        if (first_hit && e.program) throughput *= e.program->scale(length(hit.position - e.position));
         first_hit = false;
         const Vec3 arrival = -dir;  // toward the light
         const ShadingPoint sp = build_closures(scene, hit, arrival, track.at(hit.t));

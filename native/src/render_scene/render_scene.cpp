@@ -190,7 +190,16 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
                             object);
         }
     }
+    const uint32_t first_lamp = static_cast<uint32_t>(lights_.size());
     for (const LightParams& l : scene.lights) lights_.add(make_light(l), light_object++, l.visibility);
+    for (const LightProgram& p : scene.light_programs) {
+        const uint32_t index = first_lamp + p.light_id;
+        // A light that gives no bounds lies at infinity (lights/light.h).
+        const bool at_infinity = !lights_.light(index).bounds();
+        lights_.set_program(
+            index, std::make_shared<const LampProgram>(scene.programs[p.program_id], p.register_index,
+                                                       scene.textures, at_infinity));
+    }
     if (scene.environment) {
         const Environment& e = *scene.environment;
         std::vector<float> rgb(e.rgb.size());
