@@ -124,7 +124,9 @@ void op_sampling(ByteReader& in, ProgramState&) {
 }
 
 void op_models(ByteReader& in, ProgramState&) {
-    const int32_t kind = draw_enum(in, STRATUM_MODEL_CLOSURE + 2);
+    // Kinds 0..2 (the last, shader nodes, was the invalid one before nodes were listed: committed
+    // inputs keep their draws), and from selector 240 on -2..13.
+    const int32_t kind = draw_enum(in, STRATUM_MODEL_SHADER_NODE + 1);
     const int32_t count = stratum_model_count(kind);
     const auto index = static_cast<int32_t>(in.i64());
     const char* name = nullptr;

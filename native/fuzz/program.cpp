@@ -63,7 +63,8 @@ void run_program(ByteReader& in) {
     constexpr size_t kCount = sizeof kOperations / sizeof kOperations[0];
     // Operations added later take the top byte values, which the modulo gave to the first
     // operations: every committed input that does not use them replays as it was written.
-    constexpr uint8_t kAddInstances = 254, kVertexNormals = 253, kAddShaderProgram = 252, kBindProgram = 251;
+    constexpr uint8_t kAddInstances = 254, kVertexNormals = 253, kAddShaderProgram = 252, kBindProgram = 251,
+                      kSetLightProgram = 249;
     ProgramState state;
     state.new_scene();
     for (unsigned i = 0; i < kMaxOperations && !in.exhausted(); ++i) {
@@ -76,6 +77,8 @@ void run_program(ByteReader& in) {
             op_add_shader_program(in, state);
         else if (opcode == kBindProgram)
             op_bind_program(in, state);
+        else if (opcode == kSetLightProgram)
+            op_set_light_program(in, state);
         else
             kOperations[opcode % kCount](in, state);
     }

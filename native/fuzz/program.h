@@ -72,5 +72,6 @@ void op_add_instances(ByteReader& in, ProgramState& s);
 void op_vertex_normals(ByteReader& in, ProgramState& s);
 void op_add_shader_program(ByteReader& in, ProgramState& s);  // program_ops.cpp
 void op_bind_program(ByteReader& in, ProgramState& s);
+void op_set_light_program(ByteReader& in, ProgramState& s);
 
 }  // namespace stratum::fuzz

@@ -35,11 +35,27 @@ std::string describe_program(const StratumShaderProgramDesc& d) {
     return s;
 }
 
+// A node type from the library's listing (stratum_model_entry): index u8 % (count + 2) names a
+// listed type, and the two past the listing are the two values after the largest listed one
+// (unknown types). While the listed values are 0..count - 1, index and value coincide, so
+// committed inputs keep the types they were written with.
+int32_t node_type(ByteReader& in) {
+    const int32_t count = stratum_model_count(STRATUM_MODEL_SHADER_NODE);
+    const int32_t index = static_cast<int32_t>(in.u8() % static_cast<uint32_t>(count + 2));
+    int32_t value = -1;
+    if (index < count) {
+        stratum_model_entry(STRATUM_MODEL_SHADER_NODE, index, nullptr, &value);
+        return value;
+    }
+    stratum_model_entry(STRATUM_MODEL_SHADER_NODE, count - 1, nullptr, &value);
+    return value + 1 + (index - count);
+}
+
 }  // namespace
 
 // A program of u8 % 8 nodes over kInputs + u8 % 48 registers (selector 255: any count), each
-// node a type (u8 % (count + 2): two past the last are invalid), six modes (u8 % 8 - 1), twelve
-// inputs and six outputs (ids among the registers), and a range of the u8 % 300 data values.
+// node a type (node_type), six modes (u8 % 8 - 1), twelve inputs and six outputs (ids among the
+// registers), and a range of the u8 % 300 data values.
 void op_add_shader_program(ByteReader& in, ProgramState& s) {
     const uint32_t node_count = in.u8() % 8u;
     const uint8_t size = in.u8();
@@ -52,7 +68,7 @@ void op_add_shader_program(ByteReader& in, ProgramState& s) {
         data[i] = (i % 5 == 0) ? in.f32(FloatKind::Unit) : static_cast<float>(i) / 300.0f;
     std::vector<StratumShaderNode> nodes(node_count);
     for (StratumShaderNode& n : nodes) {
-        n.type = static_cast<int32_t>(in.u8() % (STRATUM_NODE_TYPE_COUNT + 2));
+        n.type = node_type(in);
         for (int32_t& m : n.modes) m = static_cast<int32_t>(in.u8() % 8) - 1;
         for (uint32_t& r : n.inputs) r = in.id(register_count);
         for (uint32_t& r : n.outputs)
@@ -116,6 +132,22 @@ void op_bind_program(ByteReader& in, ProgramState& s) {
                        std::to_string(width) + ", " + std::to_string(height);
             });
     }
+}
+
+// A lamp's program: a drawn light (one past the last is invalid), then a flag for
+// STRATUM_NO_PROGRAM (which removes it) or a drawn program (one past the last is invalid), and a
+// register.
+void op_set_light_program(ByteReader& in, ProgramState& s) {
+    const uint32_t light = in.id(s.lights);
+    const uint32_t program = in.flag() ? STRATUM_NO_PROGRAM : in.id(s.programs);
+    const uint32_t reg = in.id(kInputs + 48);
+    checked(
+        "stratum_scene_set_light_program",
+        [&] { return stratum_scene_set_light_program(s.scene, light, program, reg); },
+        [&] {
+            return "scene, " + std::to_string(light) + ", " + std::to_string(program) + ", " +
+                   std::to_string(reg);
+        });
 }
 
 }  // namespace stratum::fuzz

@@ -272,7 +272,7 @@ def test_separate_and_combine_color(native: Any, mode: str,
     assert warnings == []
     assert got == pytest.approx([0.8, 0.4, 0.2], abs=1e-5)
     # RGB needs no conversion node.
-    assert any(n.type == native.NODE_TYPES["combine_color"] for n in program.nodes) == (
+    assert any(n.type == native.node_type("combine_color") for n in program.nodes) == (
         mode != "RGB")
 
 

@@ -12,8 +12,6 @@ from stratum import native
 from stratum.blender_versions import noise_generation
 from stratum.shaders.nodes import NodeCompiler
 
-NOISE = native.NODE_TYPES["noise"]
-MUSGRAVE = native.NODE_TYPES["musgrave"]
 GENERATED = native.SHADER_INPUTS["generated"][0]
 
 
@@ -96,7 +94,7 @@ def test_blender_3_noise_reads_its_sockets_and_defaults_the_new_ones() -> None:
     node.inputs[3].default_value = 4.5  # Detail
     c, _, warnings = read(node, "Fac", (3, 4, 1))
     assert not warnings
-    n = only_node(c, NOISE)
+    n = only_node(c, native.node_type("noise"))
     assert n.modes == (3, 1, 1, 0, 0)  # 4D, fBM, normalised, Blender 3, no colour
     regs = c.builder.program.registers
     assert n.inputs[0] == GENERATED  # an unlinked Vector is the Generated coordinate
@@ -109,7 +107,7 @@ def test_blender_5_noise_types_and_normalize() -> None:
     node.inputs[6].default_value = 0.75  # Offset
     c, _, warnings = read(node, "Color", (5, 0, 0))
     assert not warnings
-    n = only_node(c, NOISE)
+    n = only_node(c, native.node_type("noise"))
     assert n.modes == (1, 4, 0, 3, 1)  # 2D, hetero terrain, not normalised, 4.2+, colour read
     assert c.builder.program.registers[n.inputs[6]] == 0.75
     # W is not read in 2D (a constant 0 stands in).
@@ -123,13 +121,13 @@ def test_musgrave_types_map_to_cycles_order(kind: str) -> None:
     c, _, warnings = read(musgrave_node(musgrave_dimensions="1D", musgrave_type=kind), "Fac",
                           (3, 4, 1))
     assert not warnings
-    assert only_node(c, MUSGRAVE).modes == (0, order.index(kind))
+    assert only_node(c, native.node_type("musgrave")).modes == (0, order.index(kind))
 
 
 def test_unknown_modes_warn_and_use_the_socket_value() -> None:
     c, _, warnings = read(noise_node((5, 0, 0), noise_dimensions="5D"), "Fac", (5, 0, 0))
     assert len(warnings) == 1 and "dimensions 5D" in warnings[0]
-    assert not [n for n in c.builder.program.nodes if n.type == NOISE]
+    assert not [n for n in c.builder.program.nodes if n.type == native.node_type("noise")]
     c, _, warnings = read(musgrave_node(musgrave_type="SPIKY"), "Fac", (3, 4, 1))
     assert len(warnings) == 1 and "SPIKY" in warnings[0]
 
@@ -140,7 +138,7 @@ def test_linked_w_feeds_1d_noise() -> None:
     node.inputs[1].links = [Link(value, value.outputs[0])]
     c, _, warnings = read(node, "Fac", (4, 0, 0))
     assert not warnings
-    n = only_node(c, NOISE)
+    n = only_node(c, native.node_type("noise"))
     assert c.builder.program.registers[n.inputs[1]] == 0.25
     assert n.modes[3] == 1
 

@@ -133,7 +133,7 @@ def test_checker_reads_generated_and_its_sockets(version: tuple[int, int, int]) 
     c, fac, warnings = compile_output(checker_node(version), "Fac", "float", version)
     node = last_node(c)
     assert warnings == []
-    assert node.type == native.NODE_TYPES["checker"]
+    assert node.type == native.node_type("checker")
     assert node.inputs[0] == native.SHADER_INPUTS["generated"][0]
     assert fac == node.outputs[1]
     # Generated (0.3, 0.1, 0.1) x 5 = (1.5, 0.5, 0.5): x odd, y even, z even: fac 1.
@@ -177,7 +177,7 @@ def test_brick_modes_data_and_generation(version: tuple[int, int, int], generati
                                     version)
     node = last_node(c)
     assert warnings == []
-    assert node.type == native.NODE_TYPES["brick"]
+    assert node.type == native.node_type("brick")
     assert tuple(node.modes[:3]) == (3, 4, generation)
     data = c.builder.program.data[node.data_offset:node.data_offset + node.data_count]
     assert data == pytest.approx([0.25, 1.5])
@@ -254,7 +254,7 @@ def test_image_node_indexes_images_and_reads_uv(version: tuple[int, int, int]) -
     c.value(tb, "color")
     c.value(ta, "color")  # memoised: no second node, no second entry
     assert c.images == [a, b]
-    nodes = [n for n in c.builder.program.nodes if n.type == native.NODE_TYPES["image"]]
+    nodes = [n for n in c.builder.program.nodes if n.type == native.node_type("image")]
     assert [n.modes[0] for n in nodes] == [0, 1]
     assert all(n.inputs[0] == native.SHADER_INPUTS["uv"][0] for n in nodes)
     assert warnings == []

@@ -341,7 +341,7 @@ def test_image_on_emission_or_transmission_goes_through_the_node_program() -> No
     assert closure.material.emission == (0.0, 0.0, 0.0)
     assert [n.name for n in flat.program_images] == ["Clear", "Glow"]
     assert flat.program is not None
-    image_nodes = [n for n in flat.program.nodes if n.type == native.NODE_TYPES["image"]]
+    image_nodes = [n for n in flat.program.nodes if n.type == native.node_type("image")]
     assert sorted(n.modes[0] for n in image_nodes) == [0, 1]
 
 

@@ -49,7 +49,7 @@ def test_preetham_data_is_cycles_packing() -> None:
 def test_preetham_node_evaluates_at_the_zenith() -> None:
     c, color = compile_sky(sky("PREETHAM", sun_direction=(0.3, 0.4, 0.6), turbidity=3.0))
     node = c.builder.program.nodes[-1]
-    assert node.type == native.NODE_TYPES["sky"] and tuple(node.modes)[:2] == (0, 0)
+    assert node.type == native.node_type("sky") and tuple(node.modes)[:2] == (0, 0)
     assert node.inputs[0] == native.SHADER_INPUTS["generated"][0]
     scene = native.Scene()
     pid = scene.add_shader_program(c.builder.program)

@@ -103,7 +103,7 @@ def compile_node(node: Node, version: tuple[int, int, int]) -> tuple[NodeCompile
 
 
 def the_node(c: NodeCompiler, kind: str) -> Any:
-    nodes = [n for n in c.builder.program.nodes if n.type == native.NODE_TYPES[kind]]
+    nodes = [n for n in c.builder.program.nodes if n.type == native.node_type(kind)]
     assert len(nodes) == 1
     return nodes[0]
 

@@ -322,7 +322,7 @@ class MaterialTable:
 def resolve_images(program: native.ShaderProgram, texture_ids: list[int]) -> native.ShaderProgram:
     """The program with each IMAGE node's mode 0 (an index into the compiler's image list)
     replaced by the native texture id of that image."""
-    image_type = native.NODE_TYPES["image"]
+    image_type = native.node_type("image")
     nodes = [replace(n, modes=(texture_ids[n.modes[0]], *n.modes[1:]))
              if n.type == image_type else n for n in program.nodes]
     return native.ShaderProgram(nodes, list(program.registers), list(program.data))

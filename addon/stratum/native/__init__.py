@@ -2,7 +2,7 @@
 
 This package is the ONLY code that knows the C ABI (and the only one that imports ctypes).
 Everything above it (export, engine, cli) talks to `Scene`, `Renderer`, `settings()`,
-`registry()`, `light_type()` and `closure_model()`. Every native call goes through
+`registry()`, `light_type()`, `closure_model()` and `node_type()`. Every native call goes through
 library._check, so a non-OK status becomes a `StratumError` carrying stratum_last_error()'s
 text; nothing here can abort the host process on bad input, because the library validates every
 value.
@@ -10,7 +10,7 @@ value.
 Its modules, by job: abi (status codes, enums, C structs and function signatures mirroring
 the header), library (loading libstratum.so, errors, version), settings (the render settings
 with their choices, the registries among them, and the passes, as the library lists them),
-models (light types and closure models by name, as the library lists them),
+models (light types, closure models and shader node types by name, as the library lists them),
 marshalling (Python values as C arguments), descriptions (the dataclasses a Scene is made
 of), scene (`Scene`), renderer (`Renderer`, `Progress`), inspection (sampler points, hemisphere
 warps, the blue-noise texture and the dimension layout, without a scene), geometry (vertex
@@ -41,7 +41,6 @@ from .abi import (
     ERROR_OUT_OF_MEMORY,
     MICROFACET_GGX,
     MICROFACET_MULTISCATTER_GGX,
-    NODE_TYPES,
     OK,
     PARAM_BASE_COLOR,
     PARAM_EMISSION,
@@ -102,7 +101,7 @@ from .library import (
     load_library,
     version,
 )
-from .models import closure_model, closure_models, light_type, light_types
+from .models import closure_model, closure_models, light_type, light_types, node_type, node_types
 from .oidn import DenoiserUnavailable, denoise
 from .oidn import load_library as load_denoiser
 from .programs import ProgramBinding, ShaderNode, ShaderProgram
@@ -127,7 +126,7 @@ __all__ = [
     "Camera", "ERROR_INTERNAL", "ERROR_INVALID_ARGUMENT", "ERROR_INVALID_STATE", "ERROR_IO",
     "DenoiserUnavailable", "ERROR_OUT_OF_MEMORY", "Instance", "LibraryLoadError", "LibraryStatus",
     "Light",
-    "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "NODE_TYPES", "OK",
+    "MICROFACET_GGX", "MICROFACET_MULTISCATTER_GGX", "Material", "OK",
     "PARAM_BASE_COLOR", "PARAM_EMISSION", "PARAM_METALLIC", "PARAM_NORMAL", "PARAM_ROUGHNESS",
     "PARAM_SPECULAR", "PARAM_TRANSMISSION", "PARAM_WEIGHT", "PROGRAM_PARAMS", "Pass",
     "ProgramBinding", "Progress", "SHADER_INPUTS", "SHADER_INPUT_REGISTERS", "ShaderNode",
@@ -139,7 +138,8 @@ __all__ = [
     "Texture", "TextureBinding", "TextureInfo", "VISIBLE_ALL", "VISIBLE_CAMERA",
     "VISIBLE_DIFFUSE", "VISIBLE_GLOSSY", "VISIBLE_SHADOW", "VISIBLE_TRANSMISSION",
     "bluenoise_texture", "bounce_dimension_stride", "camera_dimensions", "closure_model",
-    "closure_models", "denoise", "light_type", "light_types", "load_denoiser",
+    "closure_models", "denoise", "light_type", "light_types", "load_denoiser", "node_type",
+    "node_types",
     "default_library_path", "dimension_name", "library_available", "library_status",
     "load_library", "passes",
     "registry", "sampler_points", "setting", "settings", "version", "vertex_normals",

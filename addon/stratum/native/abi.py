@@ -27,10 +27,11 @@ STATUS_NAMES: dict[int, str] = {
     ERROR_IO: "I/O error",
 }
 
-# StratumModelKind: the listings of stratum_model_entry (light types, closure models), which name
-# every StratumLightType and StratumMaterialModel value (models.py).
+# StratumModelKind: the listings of stratum_model_entry (light types, closure models, shader node
+# types), which name every StratumLightType, StratumMaterialModel and node type value (models.py).
 MODEL_LIGHT = 0
 MODEL_CLOSURE = 1
+MODEL_SHADER_NODE = 2
 
 
 # StratumSettingKind: how a render setting is set (stratum_renderer_set_int / _float / _string).
@@ -71,19 +72,15 @@ SHADER_INPUTS = {
     "object_color": (35, 3), "object_alpha": (38, 1), "tangent": (39, 3), "parametric": (42, 3),
     "object_normal": (45, 3), "dpdx": (48, 3), "dpdy": (51, 3), "dgenerated_dx": (54, 3),
     "dgenerated_dy": (57, 3), "dobject_dx": (60, 3), "dobject_dy": (63, 3), "duv_dx": (66, 3),
-    "duv_dy": (69, 3), "reflection": (72, 3), "uv_tangent": (75, 3),
+    "duv_dy": (69, 3), "reflection": (72, 3), "uv_tangent": (75, 3), "pixel_footprint": (78, 1),
     # mesh attribute slot k: colour (3) at 80 + 5k, alpha at + 3, Fac at + 4
     "attribute0": (80, 5), "attribute1": (85, 5), "attribute2": (90, 5), "attribute3": (95, 5),
+    "triangle": (100, 9), "mikktspace_tangent": (109, 3), "normal_transform": (112, 9),
 }
-SHADER_INPUT_REGISTERS = 100
+SHADER_INPUT_REGISTERS = 128
+# stratum_scene_set_light_program's program id that removes a lamp's program.
+NO_PROGRAM = 0xFFFFFFFF
 ATTRIBUTE_SLOTS = 4
-# StratumShaderNodeType, by the names docs/shader_nodes.md uses.
-NODE_TYPES = {name: i for i, name in enumerate((
-    "math", "vector_math", "mix", "map_range", "clamp", "invert", "gamma", "bright_contrast", "hsv",
-    "separate_color", "combine_color", "rgb_to_bw", "color_ramp", "curves", "mapping",
-    "vector_rotate", "fresnel", "layer_weight", "image", "noise", "voronoi", "wave", "checker",
-    "brick", "gradient", "magic", "white_noise", "musgrave", "sky", "bump", "normal_map",
-    "blackbody", "wavelength", "vector_transform", "normal", "copy"))}
 
 VISIBLE_CAMERA = 1
 VISIBLE_DIFFUSE = 2
@@ -408,6 +405,7 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
         "stratum_scene_bind_program": (c_int32, [p_void, ctypes.POINTER(_ProgramBinding)]),
         "stratum_scene_set_background_program": (c_int32, [p_void, c_uint32, c_uint32, c_uint32,
                                                            c_uint32]),
+        "stratum_scene_set_light_program": (c_int32, [p_void, c_uint32, c_uint32, c_uint32]),
         "stratum_scene_evaluate_program": (c_int32, [p_void, c_uint32, p_float, c_uint32,
                                                      c_uint32, p_float]),
         "stratum_scene_set_mesh_texture_space": (c_int32, [p_void, c_uint32, p_float, p_float]),

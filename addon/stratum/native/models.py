@@ -1,7 +1,8 @@
-"""The light types and closure models the library registers, by name: `light_type("spot")` is
-the StratumLightType value STRATUM_LIGHT_SPOT, `closure_model("glass")` the StratumMaterialModel
-value STRATUM_MATERIAL_GLASS. The add-on mirrors none of these numbers, so a model added to the
-library (its registry line carries its name) needs no change here.
+"""The light types, closure models and shader node types the library registers, by name:
+`light_type("spot")` is the StratumLightType value STRATUM_LIGHT_SPOT, `closure_model("glass")`
+the StratumMaterialModel value STRATUM_MATERIAL_GLASS, `node_type("vector_math")` the
+StratumShaderNode type of Vector Math. The add-on mirrors none of these numbers, so a model or
+node added to the library (its registry entry carries its name) needs no change here.
 
 The lists are static in the library: read once (on first use) and kept.
 """
@@ -11,7 +12,7 @@ from __future__ import annotations
 import ctypes
 import functools
 
-from .abi import MODEL_CLOSURE, MODEL_LIGHT
+from .abi import MODEL_CLOSURE, MODEL_LIGHT, MODEL_SHADER_NODE
 from .library import _check, load_library
 
 
@@ -53,3 +54,14 @@ def closure_model(name: str) -> int:
     """The StratumMaterialModel value of closure model `name` (ValueError naming the known
     ones)."""
     return _value(MODEL_CLOSURE, "closure model", name)
+
+
+def node_types() -> dict[str, int]:
+    """Every shader node type: name ("vector_math", as docs/shader_nodes.md names it) → its
+    StratumShaderNode type, in value order."""
+    return dict(_models(MODEL_SHADER_NODE))
+
+
+def node_type(name: str) -> int:
+    """The StratumShaderNode type of node `name` (ValueError naming the known ones)."""
+    return _value(MODEL_SHADER_NODE, "shader node type", name)

@@ -25,8 +25,8 @@ from .marshalling import _float_ptr, _uint32
 
 @dataclass(frozen=True)
 class ShaderNode:
-    """One node: its type (abi.NODE_TYPES), up to 6 modes, the registers of up to 12 inputs and
-    6 outputs, and its range of the program's data."""
+    """One node: its type (models.node_type(name)), up to 6 modes, the registers of up to 12
+    inputs and 6 outputs, and its range of the program's data."""
 
     type: int
     modes: tuple[int, ...] = ()
@@ -113,6 +113,13 @@ def set_background_program(lib: Any, handle: Any, program_id: int, register_inde
     _check(lib, lib.stratum_scene_set_background_program(
         handle, _uint32(program_id, "program_id"), _uint32(register_index, "register_index"),
         _uint32(width, "width"), _uint32(height, "height")), "stratum_scene_set_background_program")
+
+
+def set_light_program(lib: Any, handle: Any, light_id: int, program_id: int,
+                      register_index: int) -> None:
+    _check(lib, lib.stratum_scene_set_light_program(
+        handle, _uint32(light_id, "light_id"), _uint32(program_id, "program_id"),
+        _uint32(register_index, "register_index")), "stratum_scene_set_light_program")
 
 
 def evaluate_program(lib: Any, handle: Any, program_id: int, inputs: np.ndarray, first: int,

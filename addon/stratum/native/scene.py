@@ -14,6 +14,7 @@ import numpy as np
 from . import programs
 from .abi import (
     CAMERA_TYPES,
+    NO_PROGRAM,
     SENSOR_FITS,
     _CameraDesc,
     _ClosureDesc,
@@ -355,6 +356,16 @@ class Scene(_Handle):
                                height: int = 512) -> None:
         programs.set_background_program(self._lib, self.handle, program_id, register_index,
                                         width, height)
+
+    def set_light_program(self, light_id: int, program_id: int | None,
+                          register_index: int = 0) -> None:
+        """Scales light `light_id`'s emission by the RGB of `register_index` of program
+        `program_id`, evaluated at each distance to the lamp (RAY_LENGTH: a Light Falloff in the
+        lamp's node tree); None removes it. A program reading any other renderer input is
+        refused."""
+        programs.set_light_program(self._lib, self.handle, light_id,
+                                   NO_PROGRAM if program_id is None else program_id,
+                                   register_index)
 
     def evaluate_program(self, program_id: int, inputs: np.ndarray, first: int,
                          count: int) -> np.ndarray:

@@ -30,18 +30,21 @@ typedef enum StratumStatus {
 STRATUM_API const char* stratum_last_error(void);
 STRATUM_API const char* stratum_version(void);
 
-/* ---- models (light types, closure models) ------------------------------------------------ */
+/* ---- models (light types, closure models, shader node types) ------------------------------ */
 
 typedef enum StratumModelKind {
-    STRATUM_MODEL_LIGHT = 0,  /* StratumLightType */
-    STRATUM_MODEL_CLOSURE = 1 /* StratumMaterialModel */
+    STRATUM_MODEL_LIGHT = 0,      /* StratumLightType */
+    STRATUM_MODEL_CLOSURE = 1,    /* StratumMaterialModel */
+    STRATUM_MODEL_SHADER_NODE = 2 /* StratumShaderNode::type (stratum/shader_nodes.h) */
 } StratumModelKind;
 
 /* Number of models of a kind, or -1 for an unknown kind. */
 STRATUM_API int32_t stratum_model_count(int32_t kind);
-/* Model `index` of a kind, in value order: its name (the enumerator's, in lower case, without
- * its prefix: "spot_v1" for STRATUM_LIGHT_SPOT_V1; static) and its value. Hosts may look values
- * up by name here instead of mirroring the enumerations. */
+/* Model `index` of a kind, in value order: its name (static) and its value. A light type's or a
+ * closure model's name is its enumerator's, in lower case, without its prefix ("spot_v1" for
+ * STRATUM_LIGHT_SPOT_V1); a shader node type's is docs/shader_nodes.md's ("vector_math"), and
+ * the header has no enumerator for it. Hosts look values up by name here instead of mirroring
+ * them. */
 STRATUM_API StratumStatus stratum_model_entry(int32_t kind, int32_t index, const char** name, int32_t* value);
 
 /* ---- render settings ---------------------------------------------------------------------- */

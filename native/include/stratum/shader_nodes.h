@@ -11,7 +11,10 @@
  *
  * Outputs drive closure parameters (stratum_scene_bind_program) or the world's radiance
  * (stratum_scene_set_background_program). The node types and their modes follow Blender's
- * nodes, socket for socket: docs/shader_nodes.md lists each node's registers and modes. */
+ * nodes, socket for socket: docs/shader_nodes.md lists each node's registers and modes. Node
+ * types have no enumerators here: hosts look each value up by its name in the library's listing
+ * (stratum_model_entry with STRATUM_MODEL_SHADER_NODE), so a node added to the library needs no
+ * change in this header or in a host that does not use it. */
 #ifndef STRATUM_SHADER_NODES_H
 #define STRATUM_SHADER_NODES_H
 
@@ -39,7 +42,10 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_OBJECT_LOCATION = 27, /* 3: the object's origin in world space */
     STRATUM_INPUT_BACKFACING = 30,      /* 1: 1 on the back (winding) face, else 0 */
     STRATUM_INPUT_OBJECT_RANDOM = 31,   /* 1: Object Info's Random, [0,1] */
-    STRATUM_INPUT_RAY_LENGTH = 32,      /* 1: distance the ray travelled to the point */
+    STRATUM_INPUT_RAY_LENGTH = 32,      /* 1: distance the ray travelled to the point from where the
+                                           path last scattered (or the camera), transparent
+                                           surfaces passed on the way counted (Cycles'
+                                           sd->ray_length) */
     STRATUM_INPUT_OBJECT_INDEX = 33,    /* 1: the object's pass index */
     STRATUM_INPUT_MATERIAL_INDEX = 34,  /* 1: the material's pass index */
     STRATUM_INPUT_OBJECT_COLOR = 35,    /* 3: the object's colour (Object Info's Color) */
@@ -61,6 +67,12 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_DUV_DY = 69,
     STRATUM_INPUT_REFLECTION = 72, /* 3: the view mirrored about the normal, 2 dot(N, I) N - I */
     STRATUM_INPUT_UV_TANGENT = 75, /* 3: the UV map's dpdu in the shading plane, unit (0 without UVs) */
+    /* 1: the ray's footprint at the point, as Cycles' compact ray differential sd->dP: a camera
+     * ray's spread between neighbouring pixels (half the sum of the differences of the pixel's
+     * direction and origin to those of the next pixel right and the next up) times the distance
+     * travelled, kept along the path (Cycles keeps a camera ray's spread through bounces); 0 on
+     * light paths and in the world. */
+    STRATUM_INPUT_PIXEL_FOOTPRINT = 78,
     /* The mesh's attributes in slots 0..3 (stratum_scene_set_mesh_attribute), 5 registers each:
      * colour (3), alpha, and the float Cycles' Attribute node gives (Fac). A slot the mesh lacks
      * reads colour 0, alpha 1, Fac 0, as Cycles reads a missing attribute. */
@@ -68,56 +80,27 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_ATTRIBUTE_1 = 85,
     STRATUM_INPUT_ATTRIBUTE_2 = 90,
     STRATUM_INPUT_ATTRIBUTE_3 = 95,
-    STRATUM_SHADER_INPUT_REGISTERS = 100
+    /* 9: the hit triangle's three vertices in world space (at the ray's time for a moving
+     * object); 0 in the world. */
+    STRATUM_INPUT_TRIANGLE = 100,
+    /* 3: the mesh's MikkTSpace tangent (stratum_scene_add_mesh's corner tangents) interpolated
+     * over the triangle and taken to world space as a normal is (Cycles' UV tangent attribute
+     * after object_normal_transform), not normalised nor projected; 0 when the mesh has none. */
+    STRATUM_INPUT_MIKKTSPACE_TANGENT = 109,
+    /* 9: where the object's normal transform (the inverse transpose of its linear part, up to a
+     * positive scale, as Cycles' object_normal_transform before it normalises) takes its X, Y
+     * and Z axes: n = x X + y Y + z Z for an object-space (x, y, z). The identity in the world. */
+    STRATUM_INPUT_NORMAL_TRANSFORM = 112,
+    /* 121 to 127 are free for inputs to come. */
+    STRATUM_SHADER_INPUT_REGISTERS = 128
 } StratumShaderInput;
-
-/* Node types. Register use per node: docs/shader_nodes.md. */
-typedef enum StratumShaderNodeType {
-    STRATUM_NODE_MATH = 0,
-    STRATUM_NODE_VECTOR_MATH = 1,
-    STRATUM_NODE_MIX = 2,
-    STRATUM_NODE_MAP_RANGE = 3,
-    STRATUM_NODE_CLAMP = 4,
-    STRATUM_NODE_INVERT = 5,
-    STRATUM_NODE_GAMMA = 6,
-    STRATUM_NODE_BRIGHT_CONTRAST = 7,
-    STRATUM_NODE_HSV = 8,
-    STRATUM_NODE_SEPARATE_COLOR = 9,
-    STRATUM_NODE_COMBINE_COLOR = 10,
-    STRATUM_NODE_RGB_TO_BW = 11,
-    STRATUM_NODE_COLOR_RAMP = 12,
-    STRATUM_NODE_CURVES = 13,
-    STRATUM_NODE_MAPPING = 14,
-    STRATUM_NODE_VECTOR_ROTATE = 15,
-    STRATUM_NODE_FRESNEL = 16,
-    STRATUM_NODE_LAYER_WEIGHT = 17,
-    STRATUM_NODE_IMAGE = 18,
-    STRATUM_NODE_NOISE = 19,
-    STRATUM_NODE_VORONOI = 20,
-    STRATUM_NODE_WAVE = 21,
-    STRATUM_NODE_CHECKER = 22,
-    STRATUM_NODE_BRICK = 23,
-    STRATUM_NODE_GRADIENT = 24,
-    STRATUM_NODE_MAGIC = 25,
-    STRATUM_NODE_WHITE_NOISE = 26,
-    STRATUM_NODE_MUSGRAVE = 27,
-    STRATUM_NODE_SKY = 28,
-    STRATUM_NODE_BUMP = 29,
-    STRATUM_NODE_NORMAL_MAP = 30,
-    STRATUM_NODE_BLACKBODY = 31,
-    STRATUM_NODE_WAVELENGTH = 32,
-    STRATUM_NODE_VECTOR_TRANSFORM = 33,
-    STRATUM_NODE_NORMAL = 34,
-    STRATUM_NODE_COPY = 35, /* copies `modes[0]` (1 to 3) registers: a reroute of a value */
-    STRATUM_NODE_TYPE_COUNT = 36
-} StratumShaderNodeType;
 
 /* One node: `type`, its enumerations in `modes` (what each means: docs/shader_nodes.md), the
  * register of each input and output (the first of three for a vector or colour; unused slots are
  * ignored), and a range of the program's constant `data` (a Color Ramp's stops, a curve's table,
  * the Sky's parameters). */
 typedef struct StratumShaderNode {
-    int32_t type;
+    int32_t type; /* a value stratum_model_entry(STRATUM_MODEL_SHADER_NODE, ...) lists, by name */
     int32_t modes[6];
     uint32_t inputs[12];
     uint32_t outputs[6];
@@ -191,6 +174,20 @@ STRATUM_API StratumStatus stratum_scene_bind_program(StratumScene* scene,
 STRATUM_API StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t program_id,
                                                                uint32_t register_index, uint32_t width,
                                                                uint32_t height);
+
+/* Scales the emission of light `light_id` (in the order lights were added) by the RGB of register
+ * `register_index` of program `program_id`, as Cycles shades a lamp with its node tree (Light >
+ * Nodes: the Emission's Color x Strength). The program runs wherever the lamp's emission is used:
+ * for a point it lights and for a ray that meets it, with RAY_LENGTH the distance between that
+ * point (or the ray's origin) and the point on the lamp, FLT_MAX for a sun (Cycles' ls->t); light
+ * tracing applies it where a particle first lands. Its other inputs are those of no object (0,
+ * attributes' alpha 1, NORMAL_TRANSFORM the identity): a program that reads any other renderer
+ * input is refused. Each channel is at least 0 (a NaN reads 0). The lamp's power, by which lights
+ * are chosen, stays its own. program_id STRATUM_NO_PROGRAM removes the lamp's program; a later
+ * call replaces it. */
+#define STRATUM_NO_PROGRAM 0xFFFFFFFFu
+STRATUM_API StratumStatus stratum_scene_set_light_program(StratumScene* scene, uint32_t light_id,
+                                                          uint32_t program_id, uint32_t register_index);
 
 /* Attribute slots a mesh can carry, and how an attribute's Fac is made (Cycles' Attribute node:
  * a float or 2-vector attribute gives its first component, a 3-vector or colour the mean). */

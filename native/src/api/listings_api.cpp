@@ -1,6 +1,7 @@
 // C entry points that list what the library knows, for every host to build its menus, help,
-// tables and exports from: light types and closure models by name, render settings with their
-// choices, passes. Every input is validated and every exception stops here (api/abi_guard.h).
+// tables and exports from: light types, closure models and shader node types by name, render
+// settings with their choices, passes. Every input is validated and every exception stops here
+// (api/abi_guard.h).
 #include <string>
 #include <utility>
 #include <vector>
@@ -10,6 +11,7 @@
 #include "film/passes.h"
 #include "lights/light_registry.h"
 #include "render/setting_registry.h"
+#include "shading/node_registry.h"
 #include "stratum/stratum.h"
 
 namespace {
@@ -27,6 +29,8 @@ int32_t stratum_model_count(int32_t kind) {
             return stratum::light_models().count();
         case STRATUM_MODEL_CLOSURE:
             return stratum::closure_models().count();
+        case STRATUM_MODEL_SHADER_NODE:
+            return stratum::node_registry().count();
         default:
             return -1;
     }
@@ -36,12 +40,16 @@ StratumStatus stratum_model_entry(int32_t kind, int32_t index, const char** name
     return guarded("stratum_model_entry", [&] {
         const int32_t count = stratum_model_count(kind);
         require(count >= 0, "unknown model kind " + std::to_string(kind) +
-                                " (STRATUM_MODEL_LIGHT or STRATUM_MODEL_CLOSURE)");
+                                " (STRATUM_MODEL_LIGHT, STRATUM_MODEL_CLOSURE or STRATUM_MODEL_SHADER_NODE)");
         require(index >= 0 && index < count,
                 "model index " + std::to_string(index) + " out of range [0, " + std::to_string(count) + ")");
         const auto [entry_value, entry_name] = [&] {
             if (kind == STRATUM_MODEL_LIGHT) {
                 const auto* e = stratum::light_models().entry(index);
+                return std::pair{e->value, e->name};
+            }
+            if (kind == STRATUM_MODEL_SHADER_NODE) {
+                const stratum::NodeEntry* e = stratum::node_registry().listed(index);
                 return std::pair{e->value, e->name};
             }
             const auto* e = stratum::closure_models().entry(index);

@@ -21,7 +21,9 @@ using scene_file::numbers;
 using scene_file::read_numbers;
 
 constexpr const char* kFormat = "stratum-scene";
-constexpr int kVersion = 1;
+// Version 2: the renderer's inputs take 128 registers of a program (100 before; version 1 files
+// still load, api/scene_file_programs.h).
+constexpr int kVersion = 2;
 
 json rgb(Rgb c) { return json::array({c.r, c.g, c.b}); }
 json matrix(const Transform& t) {
@@ -232,8 +234,10 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
         return status;
     };
     try {
-        if (j.value("format", "") != kFormat || !j.contains("version") || j.at("version") != kVersion) {
-            *error = std::string("not a ") + kFormat + " version " + std::to_string(kVersion) + " file";
+        const int version =
+            j.contains("version") && j.at("version").is_number_integer() ? j.at("version").get<int>() : 0;
+        if (j.value("format", "") != kFormat || version < 1 || version > kVersion) {
+            *error = std::string("not a ") + kFormat + " file of version 1 to " + std::to_string(kVersion);
             return STRATUM_ERROR_IO;
         }
         StratumStatus status = STRATUM_OK;
@@ -411,7 +415,7 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
                     return entry_point_failed(status);
             }
         }
-        if ((status = load_programs(j, scene)) != STRATUM_OK) return entry_point_failed(status);
+        if ((status = load_programs(j, scene, version)) != STRATUM_OK) return entry_point_failed(status);
         return STRATUM_OK;
     } catch (const std::exception& e) {
         *error = std::string("malformed scene: ") + e.what();

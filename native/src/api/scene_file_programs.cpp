@@ -51,10 +51,27 @@ void save_programs(const Scene& scene, json& j) {
                             {"program", b.program_id},
                             {"register", b.register_index}});
     }
+    json lights = json::array();
+    for (const LightProgram& l : scene.light_programs)
+        lights.push_back({{"light", l.light_id}, {"program", l.program_id}, {"register", l.register_index}});
     j["programs"] = {{"programs", programs}, {"bindings", bindings}};
+    if (!lights.empty()) j["programs"]["lights"] = lights;
 }
 
-StratumStatus load_programs(const json& j, StratumScene* scene) {
+namespace {
+
+// The input registers of version 1 files (STRATUM_SHADER_INPUT_REGISTERS was 100 then).
+constexpr uint32_t kVersion1Inputs = 100;
+
+// A register number of a version `version` file, as today's layout numbers it.
+uint32_t moved(uint32_t reg, int version) {
+    if (version != 1 || reg < kVersion1Inputs) return reg;
+    return reg - kVersion1Inputs + STRATUM_SHADER_INPUT_REGISTERS;
+}
+
+}  // namespace
+
+StratumStatus load_programs(const json& j, StratumScene* scene, int version) {
     StratumStatus status = STRATUM_OK;
     if (j.contains("texture_spaces")) {
         for (const json& t : j.at("texture_spaces")) {
@@ -88,13 +105,16 @@ StratumStatus load_programs(const json& j, StratumScene* scene) {
             const auto next_uint = [&] { return scene_file::number<uint32_t>(row.at(k++), "program node"); };
             n.type = next_int();
             for (int32_t& v : n.modes) v = next_int();
-            for (uint32_t& v : n.inputs) v = next_uint();
-            for (uint32_t& v : n.outputs) v = next_uint();
+            for (uint32_t& v : n.inputs) v = moved(next_uint(), version);
+            for (uint32_t& v : n.outputs) v = moved(next_uint(), version);
             n.data_offset = next_uint();
             n.data_count = next_uint();
             nodes.push_back(n);
         }
-        const auto registers = numbers<float>(p, "registers");
+        auto registers = numbers<float>(p, "registers");
+        if (version == 1 && registers.size() >= kVersion1Inputs)
+            registers.insert(registers.begin() + kVersion1Inputs,
+                             STRATUM_SHADER_INPUT_REGISTERS - kVersion1Inputs, 0.0f);
         const auto data = numbers<float>(p, "data");
         const StratumShaderProgramDesc d{nodes.data(),     static_cast<uint32_t>(nodes.size()),
                                          registers.data(), static_cast<uint32_t>(registers.size()),
@@ -104,8 +124,16 @@ StratumStatus load_programs(const json& j, StratumScene* scene) {
     for (const json& b : j.at("programs").at("bindings")) {
         const StratumProgramBinding d{field<uint32_t>(b, "material"), field<uint32_t>(b, "closure"),
                                       field<int32_t>(b, "param"), field<uint32_t>(b, "program"),
-                                      field<uint32_t>(b, "register")};
+                                      moved(field<uint32_t>(b, "register"), version)};
         if ((status = stratum_scene_bind_program(scene, &d)) != STRATUM_OK) return status;
+    }
+    if (j.at("programs").contains("lights")) {
+        for (const json& l : j.at("programs").at("lights")) {
+            status = stratum_scene_set_light_program(scene, field<uint32_t>(l, "light"),
+                                                     field<uint32_t>(l, "program"),
+                                                     moved(field<uint32_t>(l, "register"), version));
+            if (status != STRATUM_OK) return status;
+        }
     }
     return STRATUM_OK;
 }

@@ -1,5 +1,6 @@
-// The shader programs, their bindings and the meshes' texture spaces in a captured scene file
-// (api/scene_file.h): saved from the Scene, loaded through the public entry points.
+// The shader programs, their bindings (closure parameters, lamps) and the meshes' texture spaces
+// in a captured scene file (api/scene_file.h): saved from the Scene, loaded through the public
+// entry points.
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -10,7 +11,10 @@
 namespace stratum {
 
 void save_programs(const Scene& scene, nlohmann::json& file);
-// After the file's materials, meshes and textures are loaded.
-StratumStatus load_programs(const nlohmann::json& file, StratumScene* scene);
+// After the file's materials, meshes and textures are loaded. `version` is the file's: a
+// version 1 file was written when the renderer's inputs took the first 100 registers, so its
+// programs' own registers (and every register number at or above 100) move up to follow the
+// 128 of today.
+StratumStatus load_programs(const nlohmann::json& file, StratumScene* scene, int version);
 
 }  // namespace stratum

@@ -1,4 +1,5 @@
 // The shader-program entry points (stratum/shader_nodes.h).
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -43,47 +44,14 @@ static_assert(stratum::shader_input::kDuvDx == STRATUM_INPUT_DUV_DX);
 static_assert(stratum::shader_input::kDuvDy == STRATUM_INPUT_DUV_DY);
 static_assert(stratum::shader_input::kReflection == STRATUM_INPUT_REFLECTION);
 static_assert(stratum::shader_input::kUvTangent == STRATUM_INPUT_UV_TANGENT);
+static_assert(stratum::shader_input::kPixelFootprint == STRATUM_INPUT_PIXEL_FOOTPRINT);
 static_assert(stratum::shader_input::kAttribute0 == STRATUM_INPUT_ATTRIBUTE_0);
 static_assert(stratum::shader_input::kAttribute3 == STRATUM_INPUT_ATTRIBUTE_3);
+static_assert(stratum::shader_input::kTriangle == STRATUM_INPUT_TRIANGLE);
+static_assert(stratum::shader_input::kMikktspaceTangent == STRATUM_INPUT_MIKKTSPACE_TANGENT);
+static_assert(stratum::shader_input::kNormalTransform == STRATUM_INPUT_NORMAL_TRANSFORM);
 static_assert(stratum::shader_input::kAttributeSlots == STRATUM_ATTRIBUTE_SLOTS);
 static_assert(stratum::shader_input::kCount == STRATUM_SHADER_INPUT_REGISTERS);
-static_assert(stratum::node_type::kMath == STRATUM_NODE_MATH);
-static_assert(stratum::node_type::kVectorMath == STRATUM_NODE_VECTOR_MATH);
-static_assert(stratum::node_type::kMix == STRATUM_NODE_MIX);
-static_assert(stratum::node_type::kMapRange == STRATUM_NODE_MAP_RANGE);
-static_assert(stratum::node_type::kClamp == STRATUM_NODE_CLAMP);
-static_assert(stratum::node_type::kInvert == STRATUM_NODE_INVERT);
-static_assert(stratum::node_type::kGamma == STRATUM_NODE_GAMMA);
-static_assert(stratum::node_type::kBrightContrast == STRATUM_NODE_BRIGHT_CONTRAST);
-static_assert(stratum::node_type::kHsv == STRATUM_NODE_HSV);
-static_assert(stratum::node_type::kSeparateColor == STRATUM_NODE_SEPARATE_COLOR);
-static_assert(stratum::node_type::kCombineColor == STRATUM_NODE_COMBINE_COLOR);
-static_assert(stratum::node_type::kRgbToBw == STRATUM_NODE_RGB_TO_BW);
-static_assert(stratum::node_type::kColorRamp == STRATUM_NODE_COLOR_RAMP);
-static_assert(stratum::node_type::kCurves == STRATUM_NODE_CURVES);
-static_assert(stratum::node_type::kMapping == STRATUM_NODE_MAPPING);
-static_assert(stratum::node_type::kVectorRotate == STRATUM_NODE_VECTOR_ROTATE);
-static_assert(stratum::node_type::kFresnel == STRATUM_NODE_FRESNEL);
-static_assert(stratum::node_type::kLayerWeight == STRATUM_NODE_LAYER_WEIGHT);
-static_assert(stratum::node_type::kImage == STRATUM_NODE_IMAGE);
-static_assert(stratum::node_type::kNoise == STRATUM_NODE_NOISE);
-static_assert(stratum::node_type::kVoronoi == STRATUM_NODE_VORONOI);
-static_assert(stratum::node_type::kWave == STRATUM_NODE_WAVE);
-static_assert(stratum::node_type::kChecker == STRATUM_NODE_CHECKER);
-static_assert(stratum::node_type::kBrick == STRATUM_NODE_BRICK);
-static_assert(stratum::node_type::kGradient == STRATUM_NODE_GRADIENT);
-static_assert(stratum::node_type::kMagic == STRATUM_NODE_MAGIC);
-static_assert(stratum::node_type::kWhiteNoise == STRATUM_NODE_WHITE_NOISE);
-static_assert(stratum::node_type::kMusgrave == STRATUM_NODE_MUSGRAVE);
-static_assert(stratum::node_type::kSky == STRATUM_NODE_SKY);
-static_assert(stratum::node_type::kBump == STRATUM_NODE_BUMP);
-static_assert(stratum::node_type::kNormalMap == STRATUM_NODE_NORMAL_MAP);
-static_assert(stratum::node_type::kBlackbody == STRATUM_NODE_BLACKBODY);
-static_assert(stratum::node_type::kWavelength == STRATUM_NODE_WAVELENGTH);
-static_assert(stratum::node_type::kVectorTransform == STRATUM_NODE_VECTOR_TRANSFORM);
-static_assert(stratum::node_type::kNormal == STRATUM_NODE_NORMAL);
-static_assert(stratum::node_type::kCopy == STRATUM_NODE_COPY);
-static_assert(stratum::node_type::kTypeCount == STRATUM_NODE_TYPE_COUNT);
 
 namespace {
 
@@ -174,6 +142,33 @@ StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t
         stratum::Environment e = stratum::bake_environment(*program, textures, register_index, width, height);
         scene->live->edit(stratum::LiveScene::Part::World,
                           [&](stratum::Scene& s) { s.environment = std::move(e); });
+        return STRATUM_OK;
+    });
+}
+
+StratumStatus stratum_scene_set_light_program(StratumScene* scene, uint32_t light_id, uint32_t program_id,
+                                              uint32_t register_index) {
+    using namespace stratum::abi;
+    return guarded("stratum_scene_set_light_program", [&] {
+        require(scene, "scene is NULL");
+        scene->live->edit(stratum::LiveScene::Part::Lights, [&](stratum::Scene& s) {
+            auto& programs = s.light_programs;
+            const auto same_light = [&](const stratum::LightProgram& p) { return p.light_id == light_id; };
+            if (program_id == STRATUM_NO_PROGRAM) {
+                require(light_id < s.lights.size(), "light_id " + std::to_string(light_id) +
+                                                        " is not a light (the scene has " +
+                                                        std::to_string(s.lights.size()) + ")");
+                std::erase_if(programs, same_light);
+                return;
+            }
+            const stratum::LightProgram p =
+                stratum::validate_light_program(light_id, program_id, register_index, s);
+            const auto existing = std::find_if(programs.begin(), programs.end(), same_light);
+            if (existing != programs.end())
+                *existing = p;
+            else
+                programs.push_back(p);
+        });
         return STRATUM_OK;
     });
 }

@@ -6,7 +6,6 @@
 
 #include "api/validation.h"
 #include "shading/node_registry.h"
-#include "shading/program_layout.h"
 
 namespace stratum {
 
@@ -34,6 +33,11 @@ void check_registers(const char* kind, const uint32_t* regs, const uint8_t* widt
 
 std::shared_ptr<const ShaderProgram> validate_shader_program(const StratumShaderProgramDesc& d,
                                                              size_t texture_count) {
+    // A library whose node files filed conflicting entries runs no program: which of two nodes
+    // claiming one value a program meant cannot be known (shading/node_registry.h).
+    const std::string registry_problem = node_registry_problem();
+    require(registry_problem.empty(),
+            "the library's shader node registry is inconsistent: " + registry_problem);
     require(d.node_count <= kMaxNodes,
             "program node_count " + std::to_string(d.node_count) + " exceeds 65536");
     require(d.node_count == 0 || d.nodes != nullptr,
@@ -86,9 +90,10 @@ std::shared_ptr<const ShaderProgram> validate_shader_program(const StratumShader
                     std::to_string(d.data_count) + " data values");
         const std::string problem = entry->check(n, *program);
         require(problem.empty(), where + ": " + problem);
-        if (s.type == node_type::kImage) {
-            require(n.modes[0] >= 0 && static_cast<size_t>(n.modes[0]) < texture_count,
-                    where + ": texture " + std::to_string(n.modes[0]) + " is not a texture (the scene has " +
+        if (entry->texture_mode >= 0) {
+            const int32_t texture = n.modes[static_cast<size_t>(entry->texture_mode)];
+            require(texture >= 0 && static_cast<size_t>(texture) < texture_count,
+                    where + ": texture " + std::to_string(texture) + " is not a texture (the scene has " +
                         std::to_string(texture_count) + ")");
         }
         if (entry->prepare) {
@@ -122,6 +127,34 @@ ProgramBinding validate_program_binding(const StratumProgramBinding& b, const Sc
                 " wide) is outside program " + std::to_string(b.program_id) + "'s " + std::to_string(count) +
                 " registers");
     return {b.material_id, b.closure_index, param, b.program_id, b.register_index};
+}
+
+LightProgram validate_light_program(uint32_t light_id, uint32_t program_id, uint32_t register_index,
+                                    const Scene& scene) {
+    require(light_id < scene.lights.size(), "light_id " + std::to_string(light_id) +
+                                                " is not a light (the scene has " +
+                                                std::to_string(scene.lights.size()) + ")");
+    require(program_id < scene.programs.size(), "program_id " + std::to_string(program_id) +
+                                                    " is not a program (the scene has " +
+                                                    std::to_string(scene.programs.size()) + ")");
+    const ShaderProgram& program = *scene.programs[program_id];
+    require(static_cast<uint64_t>(register_index) + 3 <= program.registers.size(),
+            "light program register " + std::to_string(register_index) + " (3 wide) is outside program " +
+                std::to_string(program_id) + "'s " + std::to_string(program.registers.size()) + " registers");
+    for (size_t i = 0; i < program.nodes.size(); ++i) {
+        const ShaderNode& n = program.nodes[i];
+        const NodeEntry& entry = *node_entry(n.type);
+        for (size_t k = 0; k < n.inputs.size(); ++k) {
+            if (entry.input_widths[k] == 0 || n.inputs[k] >= kShaderInputRegisters) continue;
+            const bool ray_length = entry.input_widths[k] == 1 && n.inputs[k] == shader_input::kRayLength;
+            require(ray_length, "program " + std::to_string(program_id) + " node " + std::to_string(i) +
+                                    " (" + entry.name + ") reads renderer input register " +
+                                    std::to_string(n.inputs[k]) +
+                                    "; a light's program may read only RAY_LENGTH (" +
+                                    std::to_string(shader_input::kRayLength) + ")");
+        }
+    }
+    return {light_id, program_id, register_index};
 }
 
 }  // namespace stratum

@@ -78,6 +78,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
     const RayQuery query{camera_ray.time, kVisibleCamera};
     const LightSet& lights = scene.lights();
     CameraPathPasses data(passes, settings_.mist);
+    RayTrack track = RayTrack::camera(camera_ray);
     for (uint32_t passed = 0;; ++passed) {
         SurfaceHit hit;
         ++rays;
@@ -95,7 +96,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
             }
             break;
         }
-        const ShadingPoint sp = build_closures(scene, hit, -dir);
+        const ShadingPoint sp = build_closures(scene, hit, -dir, track.at(hit.t));
         const ClosureSet& closures = sp.closures;
         data.surface(hit, sp.ns, -dir, closures, beta, true);
         const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
@@ -106,6 +107,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         const Rgb pass = closures.transparency();
         if (pass.is_black() || passed >= settings_.transparent_max_bounces) break;
         beta *= pass;
+        track.pass_through(hit.t);
         origin = offset_ray_origin(hit.position, -sp.ng);
         t_min = 0.0f;
         t_max = kInfinity;
@@ -148,6 +150,7 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
     Vec3 dir = e.direction;
     const uint32_t first_kinds = lit_kinds(e.visibility);
     uint32_t depth = 0, transparent = 0;  // scattering vertices so far; pass-throughs so far
+    RayTrack track;                       // ray lengths; no footprint (light paths have no pixel)
     bool first_hit = true;
     const uint32_t max_passes = settings_.transparent_max_bounces;
 
@@ -160,9 +163,11 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
             const float d2 = dot(d, d);
             throughput *= d2 / (d2 + e.soft_radius * e.soft_radius);
         }
+        // A lamp's program (its node tree) at the distance the particle travelled from the lamp.
+        if (first_hit && e.program) throughput *= e.program->scale(length(hit.position - e.position));
         first_hit = false;
         const Vec3 arrival = -dir;  // toward the light
-        const ShadingPoint sp = build_closures(scene, hit, arrival);
+        const ShadingPoint sp = build_closures(scene, hit, arrival, track.at(hit.t));
         const ClosureSet& closures = sp.closures;
         const Frame frame = Frame::from_normal(sp.ns);
         const Vec3 wo = frame.to_local(arrival);
@@ -209,7 +214,9 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
         if (bs.kind == ScatterKind::Transparent) {
             if (++transparent > max_passes) break;
             throughput *= bs.weight;
+            track.pass_through(hit.t);
         } else {
+            track.scatter(hit.t);
             // A scattering past the cap would lead to a vertex that may not connect; the light
             // lights only the kinds its visibility allows at the first vertex.
             if (depth >= settings_.max_bounces) break;

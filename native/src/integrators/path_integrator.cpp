@@ -71,6 +71,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     float transparency = 0.0f;  // Cycles' "transparent" film value: alpha = 1 - transparency
     Vec3 origin = camera_ray.origin, dir = camera_ray.direction;
     float t_min = camera_ray.t_min, t_max = camera_ray.t_max;
+    RayTrack track = RayTrack::camera(camera_ray);  // what the hits' programs see of the ray
     float scatter_pdf = 0.0f;  // solid-angle pdf of the last scattering; 0 for camera and delta rays
     Vec3 scatter_origin, scatter_normal;  // the last scattering vertex and its shading normal
     RayQuery query{camera_ray.time, kVisibleCamera};
@@ -134,7 +135,8 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             break;
         }
         const Vec3 wo_world = -dir;
-        const ShadingPoint sp = build_closures(scene, hit, wo_world);
+        const RayReach reach = track.at(hit.t);
+        const ShadingPoint sp = build_closures(scene, hit, wo_world, reach);
         const ClosureSet& closures = sp.closures;
         data.surface(hit, sp.ns, wo_world, closures, beta, camera_visible_path);
         if (camera_visible_path && data.wants_ao())
@@ -165,6 +167,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             const Rgb pass = closures.transparency();
             if (pass.is_black() || ++transparent_bounce > settings_.transparent_max_bounces) break;
             beta *= pass;
+            track.pass_through(hit.t);
             origin = offset_ray_origin(hit.position, -sp.ng);
             t_min = 0.0f;
             t_max = kInfinity;
@@ -211,8 +214,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     if (ls.visibility & kVisibleShadow) {
                         const uint32_t left =
                             max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
-                        transmittance = shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
-                                                             {query.time, kVisibleShadow}, left, rays);
+                        transmittance =
+                            shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
+                                                 {query.time, kVisibleShadow}, left, rays, reach.footprint);
                     }
                     if (!transmittance.is_black()) {
                         const float w =
@@ -265,7 +269,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         if (bs.kind == ScatterKind::Transparent) {
             // Pass-through: not a bounce; the MIS pdf and origin of the last real scatter stay.
             if (++transparent_bounce > settings_.transparent_max_bounces) break;
+            track.pass_through(hit.t);
         } else {
+            track.scatter(hit.t);
             camera_visible_path = false;
             scatter_pdf = bs.delta ? 0.0f : bs.pdf;
             scatter_origin = hit.position;

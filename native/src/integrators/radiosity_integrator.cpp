@@ -77,7 +77,7 @@ RadianceSample RadiosityIntegrator::estimate(const RenderScene& scene, const Sam
         return {L + background};
     }
     const Vec3 wo = -camera_ray.direction;
-    const ShadingPoint sp = build_closures(scene, hit, wo);
+    const ShadingPoint sp = build_closures(scene, hit, wo, RayTrack::camera(camera_ray).at(hit.t));
     data.surface(hit, sp.ns, wo, sp.closures, Rgb(1.0f), true);
     if (hit.holdout) {
         data.finish();

@@ -5,7 +5,7 @@
 
 namespace stratum {
 
-ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world) {
+ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world, RayReach reach) {
     ShadingPoint sp{scene.closure_set(hit.material_id), hit.geometric_normal, hit.shading_normal, false};
     Vec3 smooth = hit.shading_normal;
     // The set was finalized from the material as stored (RenderScene::closure_set); only a changed parameter
@@ -22,7 +22,7 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
     // Node programs after the images: a program's Normal output replaces a normal map's, as a
     // node wired to the BSDF's Normal replaces what Cycles' default would be.
     if (scene.programs().any(hit.material_id)) {
-        scene.programs().apply(hit, scene.program_inputs(hit, wo_world, sp.backfacing),
+        scene.programs().apply(hit, scene.program_inputs(hit, wo_world, sp.backfacing, reach),
                                sp.closures.closures(), sp.closures.count(), &sp.ns);
         changed = true;
     }

@@ -22,7 +22,29 @@ struct ShadingPoint {
     bool backfacing;
 };
 
-// wo_world: unit direction from the hit toward the ray's origin.
-ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world);
+// wo_world: unit direction from the hit toward the ray's origin; `reach`, what the hit's node
+// programs see of the ray (RayTrack::at on camera paths).
+ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world, RayReach reach);
+
+// A path's ray as Cycles tracks it for sd->ray_length and sd->dP: the distance travelled since the
+// path last scattered when the ray starts (transparent surfaces passed through count, as Cycles
+// continues the same ray past them), and the compact differential at the ray's origin and its
+// spread per unit distance (a camera ray's, which Cycles keeps through every bounce).
+struct RayTrack {
+    float travelled = 0.0f, dp = 0.0f, dd = 0.0f;
+
+    static RayTrack camera(const CameraRay& ray) { return {0.0f, ray.dp, ray.dd}; }
+    // What the programs of a hit t along the ray see.
+    RayReach at(float t) const { return {travelled + t, dp + t * dd}; }
+    // The next ray starts at the hit t along this one: past a transparent surface, or scattered.
+    void pass_through(float t) {
+        travelled += t;
+        dp += t * dd;
+    }
+    void scatter(float t) {
+        travelled = 0.0f;
+        dp += t * dd;
+    }
+};
 
 }  // namespace stratum

@@ -8,6 +8,8 @@
 // | origin, dir    | shadow ray, origin already offset off the shaded surface               |
 // | t_max          | distance to the light point (infinity for distant lights)              |
 // | max_surfaces   | transparent surfaces that may be crossed (transparent_max_bounces left)|
+// | footprint      | the shaded point's footprint (Cycles gives a shadow ray sd->dP and no  |
+// |                | spread): what the crossed surfaces' programs see as PIXEL_FOOTPRINT    |
 #pragma once
 
 #include <cstdint>
@@ -18,6 +20,6 @@ namespace stratum {
 
 // Returns the transmittance (0 when blocked); `rays` counts the rays traced.
 Rgb shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float t_max, const RayQuery& query,
-                         uint32_t max_surfaces, uint64_t& rays);
+                         uint32_t max_surfaces, uint64_t& rays, float footprint = 0.0f);
 
 }  // namespace stratum

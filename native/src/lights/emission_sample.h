@@ -11,12 +11,15 @@
 // |             | (point, 6.4), E/p_A (parallel, 6.5); LightSet divides by the choice p_j      |
 // | soft_radius | Cycles' facing-disk radius r of a point / spot lamp (0 otherwise): the first |
 // |             | hit at distance d takes d²/(d² + r²)                                        |
+// | program     | the lamp's program, or null: the first hit at distance d takes its scale(d) |
 #pragma once
 
 #include "core/math.h"
 #include "scene/visibility.h"
 
 namespace stratum {
+
+class LampProgram;
 
 struct EmissionSample {
     Vec3 position;
@@ -26,6 +29,7 @@ struct EmissionSample {
     float soft_radius = 0.0f;
     // StratumVisibility bits of the light (set by LightSet::sample_emission).
     uint32_t visibility = kVisibleAll;
+    const LampProgram* program = nullptr;
 };
 
 }  // namespace stratum

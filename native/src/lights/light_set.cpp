@@ -16,7 +16,12 @@ uint32_t LightSet::add(std::unique_ptr<const Light> light, uint32_t object, uint
     lights_.push_back(std::move(light));
     object_.push_back(object);
     visibility_.push_back(visibility);
+    programs_.push_back(nullptr);
     return index;
+}
+
+void LightSet::set_program(uint32_t index, std::shared_ptr<const LampProgram> program) {
+    programs_[index] = std::move(program);
 }
 
 uint32_t LightSet::add_environment(EnvironmentLight environment, uint32_t object) {
@@ -179,6 +184,7 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
     if (!lights_[index]->sample(p, n, u, triangle, out)) return false;
     out->pdf *= choice;
     out->visibility = visibility_[index];
+    if (programs_[index]) out->radiance = out->radiance * programs_[index]->scale(out->distance);
     return true;
 }
 
@@ -219,6 +225,7 @@ uint32_t LightSet::sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSampl
         if (!lights_[index]->sample(p, n, u_point, triangle, &ls)) continue;
         ls.pdf *= share * pmf;
         ls.visibility = visibility_[index];
+        if (programs_[index]) ls.radiance = ls.radiance * programs_[index]->scale(ls.distance);
         ++count;
     }
     return count;
@@ -261,6 +268,7 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
                    ? probability(nearest_lamp, choice_point, choice_normal, selection, max_cut) * nearest_pdf
                    : 0.0f;
     if (t_out) *t_out = nearest;
+    if (found && programs_[nearest_lamp]) radiance = radiance * programs_[nearest_lamp]->scale(nearest);
     return radiance;
 }
 
@@ -282,6 +290,7 @@ bool LightSet::sample_emission(float u_choice, Vec2 u_position, Vec2 u_direction
     if (out->weight.is_black()) return false;
     out->weight = out->weight * (1.0f / choice);
     out->visibility = visibility_[index];
+    out->program = programs_[index].get();
     return true;
 }
 

@@ -49,6 +49,7 @@
 #include "lights/emissive_triangle.h"
 #include "lights/environment_light.h"
 #include "lights/lamp_bvh.h"
+#include "lights/lamp_program.h"
 #include "lights/light.h"
 #include "lights/light_selection.h"
 #include "lights/light_tree.h"
@@ -72,6 +73,11 @@ public:
     }
     // The environment (at most one): a light like the others, which background() also looks up.
     uint32_t add_environment(EnvironmentLight environment, uint32_t object);
+    // Scales light `index`'s emission by `program` (a lamp's node tree, lights/lamp_program.h)
+    // wherever sample(), sample_cut(), lamp_radiance() and sample_emission() give it. power()
+    // stays the light's own: a program moves no choice among lights (never biased, at worst
+    // noisier where it brightens a lamp).
+    void set_program(uint32_t index, std::shared_ptr<const LampProgram> program);
     // scene_radius: radius of a sphere bounding the scene, to give the sun and the environment a
     // power.
     void finalize(float scene_radius);
@@ -158,8 +164,9 @@ public:
 
 private:
     std::vector<std::unique_ptr<const Light>> lights_;
-    std::vector<uint32_t> object_;          // object of each light
-    std::vector<uint32_t> visibility_;      // StratumVisibility bits of each light
+    std::vector<uint32_t> object_;                              // object of each light
+    std::vector<uint32_t> visibility_;                          // StratumVisibility bits of each light
+    std::vector<std::shared_ptr<const LampProgram>> programs_;  // of each light, or null
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)
     LampBvh lamp_bvh_;                      // over hittable_lamps_ (its items number them)
     std::vector<double> power_;             // Φ_j, set by finalize()

@@ -123,7 +123,8 @@ void write_surface_inputs(const SurfaceHit& hit, const ProgramInputs& in, float*
     put(r, shader_input::kObjectLocation, in.object_location);
     r[shader_input::kBackfacing] = in.backfacing ? 1.0f : 0.0f;
     r[shader_input::kObjectRandom] = in.object_random;
-    r[shader_input::kRayLength] = hit.t;
+    r[shader_input::kRayLength] = in.reach.length;
+    r[shader_input::kPixelFootprint] = in.reach.footprint;
     r[shader_input::kObjectIndex] = static_cast<float>(hit.object_pass_index);
     r[shader_input::kMaterialIndex] = static_cast<float>(hit.material_pass_index);
     put(r, shader_input::kObjectColor, Vec3(in.object_color.r, in.object_color.g, in.object_color.b));
@@ -145,6 +146,12 @@ void write_surface_inputs(const SurfaceHit& hit, const ProgramInputs& in, float*
         Vec3(1.0f - hit.barycentric.x - hit.barycentric.y, hit.barycentric.x, 0.0f));
     write_offsets(hit, in, side, r);
     write_attributes(hit, *in.mesh, r);
+    for (uint32_t k = 0; k < 3; ++k) put(r, shader_input::kTriangle + 3 * k, hit.vertices[k]);
+    if (hit.tangent_frame.mikktspace) put(r, shader_input::kMikktspaceTangent, hit.tangent_frame.tangent);
+    const Transform& m = *in.object_to_world;
+    put(r, shader_input::kNormalTransform, m.normal(Vec3(1.0f, 0.0f, 0.0f)));
+    put(r, shader_input::kNormalTransform + 3, m.normal(Vec3(0.0f, 1.0f, 0.0f)));
+    put(r, shader_input::kNormalTransform + 6, m.normal(Vec3(0.0f, 0.0f, 1.0f)));
 }
 
 void MaterialPrograms::apply(const SurfaceHit& hit, const ProgramInputs& inputs, WeightedClosure* closures,

@@ -32,6 +32,13 @@ namespace stratum {
 
 struct SurfaceHit;
 
+// What the programs see of the ray that reached a surface point, besides the hit: Cycles'
+// sd->ray_length and sd->dP (StratumShaderInput's RAY_LENGTH and PIXEL_FOOTPRINT).
+struct RayReach {
+    float length = 0.0f;     // from where the path last scattered, transparent surfaces counted
+    float footprint = 0.0f;  // the compact ray differential at the point; 0 off camera paths
+};
+
 // What a shading point's program inputs are made from, besides the hit.
 struct ProgramInputs {
     Vec3 wo;                 // unit, from the hit toward the ray's origin
@@ -45,6 +52,7 @@ struct ProgramInputs {
     const Transform* world_to_camera;  // null: camera coordinates 0
     const Transform* object_to_world;  // the instance's (at shutter open for a moving one)
     const Mesh* mesh;                  // the hit's mesh (its attributes)
+    RayReach reach;
 };
 
 // The world-space step of the Bump node's finite differences at a point `ray_length` from the

@@ -190,7 +190,16 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
                             object);
         }
     }
+    const uint32_t first_lamp = static_cast<uint32_t>(lights_.size());
     for (const LightParams& l : scene.lights) lights_.add(make_light(l), light_object++, l.visibility);
+    for (const LightProgram& p : scene.light_programs) {
+        const uint32_t index = first_lamp + p.light_id;
+        // A light that gives no bounds lies at infinity (lights/light.h).
+        const bool at_infinity = !lights_.light(index).bounds();
+        lights_.set_program(
+            index, std::make_shared<const LampProgram>(scene.programs[p.program_id], p.register_index,
+                                                       scene.textures, at_infinity));
+    }
     if (scene.environment) {
         const Environment& e = *scene.environment;
         std::vector<float> rgb(e.rgb.size());
@@ -366,6 +375,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->barycentric = {h.b1, h.b2};
     hit->placement = h.instance;
     hit->triangle = h.triangle;
+    hit->vertices = {p0, p1, p2};
     return true;
 }
 
@@ -374,7 +384,8 @@ void RenderScene::set_camera(const Scene& scene) {
     if (scene.camera) world_to_camera_ = scene.camera->camera_to_world.inverse();
 }
 
-ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing) const {
+ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing,
+                                          RayReach reach) const {
     const InstanceData& g = instances_[hit.placement];
     const Mesh& mesh = *g.mesh;
     Vec3 loc, size;
@@ -397,7 +408,8 @@ ProgramInputs RenderScene::program_inputs(const SurfaceHit& hit, Vec3 wo, bool b
             g.alpha,
             world_to_camera_ ? &*world_to_camera_ : nullptr,
             &g.object_to_world,
-            g.mesh};
+            g.mesh,
+            reach};
 }
 
 }  // namespace stratum

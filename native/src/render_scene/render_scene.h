@@ -5,6 +5,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <atomic>
 #include <cstdint>
 #include <memory>
@@ -44,6 +45,7 @@ struct SurfaceHit {
     Vec2 barycentric{0.0f, 0.0f};       // (b1, b2): weights of the triangle's second and third vertex
     uint32_t placement = 0;             // the traced placement (RenderScene::program_inputs)
     uint32_t triangle = 0;              // the triangle of the placement's mesh
+    std::array<Vec3, 3> vertices{};     // the triangle's corners in world space (at the ray's time)
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;
@@ -138,7 +140,7 @@ public:
     // Shader-node programs bound to material parameters (applied per shading point, after the
     // textures), and what their inputs are made of at a hit.
     const MaterialPrograms& programs() const { return programs_; }
-    ProgramInputs program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing) const;
+    ProgramInputs program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing, RayReach reach) const;
     // True if some instance moves over the shutter (the renderer then samples ray times).
     bool has_motion() const { return has_motion_; }
     // A sphere bounding the scene's geometry (radius >= 1), over which the light tracer emits

@@ -9,7 +9,7 @@
 namespace stratum {
 
 void write_world_inputs(Vec3 d, float* r) {
-    std::fill(r, r + kShaderInputRegisters, 0.0f);
+    write_objectless_inputs(r);
     const auto put = [&](uint32_t at, Vec3 v) {
         r[at] = v.x;
         r[at + 1] = v.y;
@@ -26,9 +26,6 @@ void write_world_inputs(Vec3 d, float* r) {
     put(shader_input::kObjectColor, Vec3(1.0f, 1.0f, 1.0f));
     r[shader_input::kObjectAlpha] = 1.0f;
     r[shader_input::kRayLength] = std::numeric_limits<float>::infinity();
-    // No mesh attributes in the world: Cycles' missing attribute (alpha 1).
-    for (uint32_t slot = 0; slot < shader_input::kAttributeSlots; ++slot)
-        r[shader_input::kAttribute0 + slot * shader_input::kAttributeWidth + 3] = 1.0f;
 }
 
 namespace {

@@ -77,7 +77,7 @@ Camera::Camera(const CameraParams& params, uint32_t width, uint32_t height)
     top_ = half_h + dy;
 }
 
-CameraRay Camera::generate_equirectangular_ray(float fx, float fy, Vec2 lens) const {
+CameraRay Camera::equirectangular_ray(float fx, float fy, Vec2 lens, bool through_lens) const {
     const float u = fx * inv_width_, v = fy * inv_height_;
     const float phi = (params_.longitude_min - params_.longitude_max) * u - params_.longitude_min;
     const float theta = (params_.latitude_min - params_.latitude_max) * v - params_.latitude_min + 0.5f * kPi;
@@ -85,7 +85,7 @@ CameraRay Camera::generate_equirectangular_ray(float fx, float fy, Vec2 lens) co
     // Cycles' panorama space.
     Vec3 d(sin_theta * std::cos(phi), sin_theta * std::sin(phi), std::cos(theta));
     Vec3 origin(0.0f, 0.0f, 0.0f);
-    if (params_.aperture_radius > 0.0f) {
+    if (through_lens) {
         const Vec2 a = sample_aperture(lens, params_.aperture_blades, params_.aperture_rotation);
         const Vec3 focus = d * params_.focus_distance;
         const Vec3 U = normalize(Vec3(1.0f, 0.0f, 0.0f) - d * d.x);
@@ -99,15 +99,15 @@ CameraRay Camera::generate_equirectangular_ray(float fx, float fy, Vec2 lens) co
     return {params_.camera_to_world.point(to_camera(origin)), dir, params_.clip_start, params_.clip_end};
 }
 
-CameraRay Camera::generate_ray(float fx, float fy, Vec2 lens) const {
-    if (params_.type == CameraType::Equirectangular) return generate_equirectangular_ray(fx, fy, lens);
+CameraRay Camera::ray(float fx, float fy, Vec2 lens, bool through_lens) const {
+    if (params_.type == CameraType::Equirectangular) return equirectangular_ray(fx, fy, lens, through_lens);
     const float px = left_ + (right_ - left_) * fx * inv_width_;
     const float py = bottom_ + (top_ - bottom_) * fy * inv_height_;
     // Local space: the pinhole ray goes from `origin` to `target`, one unit deeper.
     Vec3 origin(0.0f, 0.0f, 0.0f), target(px, py, -1.0f);
     if (params_.type == CameraType::Orthographic) origin = Vec3(px, py, 0.0f);
     float depth = 1.0f;
-    if (params_.aperture_radius > 0.0f) {
+    if (through_lens) {
         // Thin lens: aim at the pinhole ray's point at depth focus_distance from a lens point.
         depth = params_.focus_distance;
         target = origin + (target - origin) * depth;
@@ -120,6 +120,19 @@ CameraRay Camera::generate_ray(float fx, float fy, Vec2 lens) const {
     const Vec3 dir = normalize(params_.camera_to_world.vector(local));
     return {params_.camera_to_world.point(origin), dir, params_.clip_start / inv_len,
             params_.clip_end / inv_len};
+}
+
+CameraRay Camera::generate_ray(float fx, float fy, Vec2 lens) const {
+    const bool aperture = params_.aperture_radius > 0.0f;
+    CameraRay r = ray(fx, fy, lens, aperture);
+    // Cycles' compact ray differentials (kernel/camera/camera.h): the pinhole rays of this film
+    // position and of the next pixel right and up, whatever the lens (Cycles leaves depth of
+    // field out of them); their origins' and directions' differences, each the mean of the two.
+    const CameraRay centre = aperture ? ray(fx, fy, lens, false) : r;
+    const CameraRay right = ray(fx + 1.0f, fy, lens, false), up = ray(fx, fy + 1.0f, lens, false);
+    r.dp = 0.5f * (length(right.origin - centre.origin) + length(up.origin - centre.origin));
+    r.dd = 0.5f * (length(right.direction - centre.direction) + length(up.direction - centre.direction));
+    return r;
 }
 
 bool Camera::connect(Vec3 x, Vec2 lens, CameraConnection* out) const {

@@ -70,6 +70,9 @@ struct CameraRay {
     // Shutter time in [0,1] the ray samples (motion blur). The renderer sets it: drawn from the
     // sampler at kDimTime when the scene has motion, 0.5 otherwise.
     float time = 0.5f;
+    // Cycles' compact ray differentials: the spread of the ray's origin (`dp`) and direction
+    // (`dd`) to the next pixel's, so that dp + t dd is the footprint t along the ray (sd->dP).
+    float dp = 0.0f, dd = 0.0f;
 };
 
 // A scene point seen from a point of the lens (light tracing's camera connection, textbook
@@ -103,7 +106,8 @@ public:
     Camera(const CameraParams& params, uint32_t width, uint32_t height);
     // Ray through the film position (fx, fy) in pixels: (0,0) is the bottom-left corner of the
     // image, (width, height) the top-right, as Blender's render result rows run bottom to top.
-    // `lens` in [0,1)^2 picks the point on the aperture (ignored for a pinhole).
+    // `lens` in [0,1)^2 picks the point on the aperture (ignored for a pinhole). The ray carries
+    // Cycles' differentials (CameraRay::dp, dd).
     CameraRay generate_ray(float fx, float fy, Vec2 lens = {0.5f, 0.5f}) const;
     bool has_aperture() const { return params_.aperture_radius > 0.0f; }
     // Perspective cameras (pinhole or thin lens): connects the world point x to the lens point
@@ -128,7 +132,10 @@ public:
     float top() const { return top_; }
 
 private:
-    CameraRay generate_equirectangular_ray(float fx, float fy, Vec2 lens) const;
+    // The ray through (fx, fy), through the lens point `lens` picks or (through_lens false) the
+    // pinhole, without differentials.
+    CameraRay ray(float fx, float fy, Vec2 lens, bool through_lens) const;
+    CameraRay equirectangular_ray(float fx, float fy, Vec2 lens, bool through_lens) const;
 
     CameraParams params_;
     float inv_width_, inv_height_;

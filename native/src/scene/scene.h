@@ -122,6 +122,8 @@ struct Scene {
     // most one binding per (material, closure, parameter).
     std::vector<std::shared_ptr<const ShaderProgram>> programs;
     std::vector<ProgramBinding> program_bindings;
+    // The lamps (of `lights`) whose emission a program scales, at most one program each.
+    std::vector<LightProgram> light_programs;
 };
 
 }  // namespace stratum

@@ -1,62 +1,73 @@
 #include "shading/node_registry.h"
 
-#include <vector>
-
-#include "shading/nodes/node_families.h"
+#include <cstring>
 
 namespace stratum {
 
 namespace {
 
-std::vector<NodeEntry> build_table() {
-    std::vector<NodeEntry> table(node_type::kTypeCount, NodeEntry{});
-    const auto put = [&](int32_t type, NodeEntry entry) { table[type] = entry; };
-    put(node_type::kMath, math_node_entry());
-    put(node_type::kCopy, copy_node_entry());
-    put(node_type::kBump, bump_node_entry());
-    put(node_type::kNormalMap, normal_map_node_entry());
-    put(node_type::kMix, mix_node_entry());
-    put(node_type::kInvert, invert_node_entry());
-    put(node_type::kGamma, gamma_node_entry());
-    put(node_type::kBrightContrast, bright_contrast_node_entry());
-    put(node_type::kHsv, hsv_node_entry());
-    put(node_type::kRgbToBw, rgb_to_bw_node_entry());
-    put(node_type::kSeparateColor, separate_color_node_entry());
-    put(node_type::kCombineColor, combine_color_node_entry());
-    put(node_type::kColorRamp, color_ramp_node_entry());
-    put(node_type::kCurves, curves_node_entry());
-    put(node_type::kNoise, noise_node_entry());
-    put(node_type::kMusgrave, musgrave_node_entry());
-    put(node_type::kVoronoi, voronoi_node_entry());
-    put(node_type::kWhiteNoise, white_noise_node_entry());
-    put(node_type::kVectorMath, vector_math_node_entry());
-    put(node_type::kMapRange, map_range_node_entry());
-    put(node_type::kClamp, clamp_node_entry());
-    put(node_type::kMapping, mapping_node_entry());
-    put(node_type::kVectorRotate, vector_rotate_node_entry());
-    put(node_type::kVectorTransform, vector_transform_node_entry());
-    put(node_type::kFresnel, fresnel_node_entry());
-    put(node_type::kLayerWeight, layer_weight_node_entry());
-    put(node_type::kNormal, normal_node_entry());
-    put(node_type::kBlackbody, blackbody_node_entry());
-    put(node_type::kWavelength, wavelength_node_entry());
-    put(node_type::kChecker, checker_node_entry());
-    put(node_type::kGradient, gradient_node_entry());
-    put(node_type::kBrick, brick_node_entry());
-    put(node_type::kMagic, magic_node_entry());
-    put(node_type::kImage, image_node_entry());
-    put(node_type::kWave, wave_node_entry());
-    put(node_type::kSky, sky_node_entry());
-    return table;
+// Constant-initialised: node files fill them during dynamic initialisation, in whatever order the
+// objects' initialisers run, so they must hold their initial state before any of them does.
+constinit NodeRegistry g_registry;
+// The first registration that was not filed, or null.
+constinit const NodeEntry* g_refused = nullptr;
+
+std::string describe(const NodeEntry& e) {
+    return std::string("shader node '") + (e.name ? e.name : "") + "' (value " + std::to_string(e.value) +
+           ")";
 }
 
 }  // namespace
 
-const NodeEntry* node_entry(int32_t type) {
-    static const std::vector<NodeEntry> table = build_table();
-    if (type < 0 || type >= static_cast<int32_t>(table.size()) || table[type].evaluate == nullptr)
-        return nullptr;
-    return &table[type];
+std::string NodeRegistry::conflict(const NodeEntry& entry) const {
+    if (entry.value < 0 || entry.value >= kValueLimit)
+        return describe(entry) + ": the value is outside [0, " + std::to_string(kValueLimit) + ")";
+    if (entry.name == nullptr || entry.name[0] == '\0') return describe(entry) + ": it has no name";
+    if (entry.evaluate == nullptr || entry.check == nullptr)
+        return describe(entry) + ": it has no check or no evaluation";
+    if (const NodeEntry* taken = find(entry.value))
+        return describe(entry) + ": value " + std::to_string(entry.value) + " is filed already, by '" +
+               taken->name + "'";
+    for (const NodeEntry* e : by_value_) {
+        if (e && std::strcmp(e->name, entry.name) == 0)
+            return describe(entry) + ": the name is filed already, with value " + std::to_string(e->value);
+    }
+    return "";
+}
+
+std::string NodeRegistry::file(const NodeEntry& entry) {
+    std::string problem = conflict(entry);
+    if (problem.empty()) {
+        by_value_[static_cast<uint32_t>(entry.value)] = &entry;
+        ++count_;
+    }
+    return problem;
+}
+
+const NodeEntry* NodeRegistry::listed(int32_t index) const {
+    for (const NodeEntry* e : by_value_) {
+        if (e && index-- == 0) return e;
+    }
+    return nullptr;
+}
+
+NodeRegistration::NodeRegistration(const NodeEntry& entry) noexcept : entry_(entry) {
+    // Filing allocates only the message of a refused entry; should even that fail, the entry is
+    // still marked refused, and node_registry_problem() builds the message again when asked.
+    try {
+        if (!g_registry.file(entry_).empty() && g_refused == nullptr) g_refused = &entry_;
+    } catch (...) {
+        if (g_refused == nullptr) g_refused = &entry_;
+    }
+}
+
+const NodeRegistry& node_registry() { return g_registry; }
+
+std::string node_registry_problem() {
+    if (g_refused == nullptr) return "";
+    // The registry does not change after static initialisation: the conflict reads as it did.
+    const std::string problem = g_registry.conflict(*g_refused);
+    return problem.empty() ? describe(*g_refused) + ": it was not filed" : problem;
 }
 
 std::string check_mode(const ShaderNode& node, int index, const char* what, int32_t count) {

@@ -1,6 +1,6 @@
-// A closure parameter driven by a shader node program (stratum_scene_bind_program), as stored in
-// the Scene. Kept apart from the code that applies it (render_scene/material_programs.h) so that
-// scene/scene.h depends on data only.
+// A closure parameter driven by a shader node program (stratum_scene_bind_program), and a lamp's
+// emission scaled by one (stratum_scene_set_light_program), as stored in the Scene. Kept apart from the code
+// that applies it (render_scene/material_programs.h) so that scene/scene.h depends on data only.
 #pragma once
 
 #include <cstdint>
@@ -44,6 +44,14 @@ struct ProgramBinding {
     uint32_t material_id = 0;
     uint32_t closure_index = 0;
     ProgramParam param = ProgramParam::BaseColor;
+    uint32_t program_id = 0;
+    uint32_t register_index = 0;
+};
+
+// A lamp whose emission a program scales (stratum_scene_set_light_program): the RGB of registers
+// register_index .. + 2 of program_id (lights/lamp_program.h).
+struct LightProgram {
+    uint32_t light_id = 0;
     uint32_t program_id = 0;
     uint32_t register_index = 0;
 };

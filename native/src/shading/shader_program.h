@@ -79,6 +79,11 @@ private:
     float* values_;
 };
 
+// Writes the inputs of a point on no object (the world, a lamp) into the first
+// kShaderInputRegisters registers: 0, except each mesh attribute's alpha, 1 (Cycles' missing
+// attribute), and the identity normal transform (Cycles leaves a vector as it is without one).
+void write_objectless_inputs(float* registers);
+
 // Runs every node of `program` in order on `registers` (whose inputs the caller has written).
 void evaluate(const ShaderProgram& program, const ShaderEvalContext& context, ShaderRegisters& registers);
 

@@ -12,9 +12,12 @@
 #include <string>
 #include <vector>
 
+#include "node_types.h"
 #include "scene_handle.h"
 
 namespace {
+
+using stratum_test::node_type;
 
 using stratum_test::SceneHandle;
 
@@ -79,7 +82,7 @@ enum { kFloat = 0, kVector = 1, kNonUniform = 2, kColor = 3 };
 std::vector<float> mix_color(int blend, float t, std::array<float, 3> a, std::array<float, 3> b,
                              bool clamp_factor = true, bool clamp_result = false) {
     OneNode p;
-    p.node.type = STRATUM_NODE_MIX;
+    p.node.type = node_type("mix");
     p.node.modes[0] = kColor;
     p.node.modes[1] = blend;
     p.node.modes[2] = clamp_factor;
@@ -182,7 +185,7 @@ TEST(ColorNodes, MixClampFactorAndResult) {
 TEST(ColorNodes, MixFloatAndVectors) {
     for (const int clamp : {0, 1}) {
         OneNode p;
-        p.node.type = STRATUM_NODE_MIX;
+        p.node.type = node_type("mix");
         p.node.modes[0] = kFloat;
         p.node.modes[2] = clamp;
         p.node.inputs[0] = p.value({1.25f});
@@ -193,7 +196,7 @@ TEST(ColorNodes, MixFloatAndVectors) {
     }
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_MIX;
+        p.node.type = node_type("mix");
         p.node.modes[0] = kVector;
         p.node.modes[2] = 0;
         p.node.inputs[0] = p.value({-0.5f});
@@ -204,7 +207,7 @@ TEST(ColorNodes, MixFloatAndVectors) {
     }
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_MIX;
+        p.node.type = node_type("mix");
         p.node.modes[0] = kNonUniform;
         p.node.modes[2] = 1;  // each factor clamped
         p.node.inputs[0] = p.value({0.25f, -1.0f, 2.0f});
@@ -220,7 +223,7 @@ TEST(ColorNodes, MixFloatAndVectors) {
 TEST(ColorNodes, InvertGammaBrightContrast) {
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_INVERT;
+        p.node.type = node_type("invert");
         p.node.inputs[0] = p.value({0.25f});
         p.node.inputs[1] = p.value({0.2f, 1.0f, 2.0f});
         p.node.outputs[0] = p.output(3);
@@ -229,7 +232,7 @@ TEST(ColorNodes, InvertGammaBrightContrast) {
     }
     for (const float gamma : {2.2f, 0.0f}) {
         OneNode p;
-        p.node.type = STRATUM_NODE_GAMMA;
+        p.node.type = node_type("gamma");
         p.node.inputs[0] = p.value({0.5f, -0.5f, 0.0f});
         p.node.inputs[1] = p.value({gamma});
         p.node.outputs[0] = p.output(3);
@@ -240,7 +243,7 @@ TEST(ColorNodes, InvertGammaBrightContrast) {
     }
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_BRIGHT_CONTRAST;
+        p.node.type = node_type("bright_contrast");
         p.node.inputs[0] = p.value({0.5f, 0.1f, 0.9f});
         p.node.inputs[1] = p.value({0.1f});
         p.node.inputs[2] = p.value({1.0f});
@@ -252,7 +255,7 @@ TEST(ColorNodes, InvertGammaBrightContrast) {
 
 std::vector<float> hsv(float hue, float sat, float val, float fac, std::array<float, 3> c, int wrap) {
     OneNode p;
-    p.node.type = STRATUM_NODE_HSV;
+    p.node.type = node_type("hsv");
     p.node.modes[0] = wrap;
     p.node.inputs[0] = p.value({hue});
     p.node.inputs[1] = p.value({sat});
@@ -283,7 +286,7 @@ TEST(ColorNodes, HueSaturationValue) {
 
 TEST(ColorNodes, RgbToBw) {
     OneNode p;
-    p.node.type = STRATUM_NODE_RGB_TO_BW;
+    p.node.type = node_type("rgb_to_bw");
     p.node.inputs[0] = p.value({1.0f, 0.5f, 0.25f});
     p.node.outputs[0] = p.output(1);
     EXPECT_NEAR(p.run(p.node.outputs[0], 1)[0], 0.2126729 + 0.5 * 0.7151522 + 0.25 * 0.0721750, 1e-6);
@@ -295,7 +298,7 @@ std::vector<float> convert(int type, int model, std::array<float, 3> v) {
     OneNode p;
     p.node.type = type;
     p.node.modes[0] = model;
-    if (type == STRATUM_NODE_SEPARATE_COLOR) {
+    if (type == node_type("separate_color")) {
         p.node.inputs[0] = p.value({v[0], v[1], v[2]});
     } else {
         // Scattered input registers: Combine reads three floats.
@@ -308,7 +311,7 @@ std::vector<float> convert(int type, int model, std::array<float, 3> v) {
 }
 
 TEST(ColorNodes, SeparateAndCombine) {
-    const int sep = STRATUM_NODE_SEPARATE_COLOR, comb = STRATUM_NODE_COMBINE_COLOR;
+    const int sep = node_type("separate_color"), comb = node_type("combine_color");
     expect_near3(convert(sep, 0, {0.8f, 0.4f, 0.2f}), {0.8, 0.4, 0.2});
     expect_near3(convert(sep, 1, {0.8f, 0.4f, 0.2f}), {1.0 / 18.0, 0.75, 0.8});
     expect_near3(convert(sep, 2, {0.8f, 0.4f, 0.2f}), {1.0 / 18.0, 0.6, 0.5});
@@ -331,7 +334,7 @@ TEST(ColorNodes, SeparateAndCombine) {
 
 std::vector<float> ramp(float fac, int interpolate) {
     OneNode p;
-    p.node.type = STRATUM_NODE_COLOR_RAMP;
+    p.node.type = node_type("color_ramp");
     p.node.modes[0] = interpolate;
     p.data = {0, 0, 0, 1, 1, 0.5f, 0, 0.5f, 0, 1, 1, 0};  // 3 entries (r, g, b, a)
     // The factor comes from an input register: a constant cannot be NaN.
@@ -369,7 +372,7 @@ TEST(ColorNodes, ColorRampLookup) {
 // g = 2x (-2, 0, 2), b = 0.5 constant.
 std::vector<float> curves(int kind, int extrapolate, float fac, std::array<float, 3> v) {
     OneNode p;
-    p.node.type = STRATUM_NODE_CURVES;
+    p.node.type = node_type("curves");
     p.node.modes[0] = kind;
     p.node.modes[1] = extrapolate;
     if (kind == 2)
@@ -407,7 +410,7 @@ TEST(ColorNodes, CurvesLookupAndExtrapolation) {
 TEST(ColorNodes, BadModesAndDataAreRejectedByName) {
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_MIX;
+        p.node.type = node_type("mix");
         p.node.modes[0] = kColor;
         p.node.modes[1] = 19;
         p.node.outputs[0] = p.output(3);
@@ -416,7 +419,7 @@ TEST(ColorNodes, BadModesAndDataAreRejectedByName) {
     {
         // A colour mix whose result register is the last one (not 3 wide).
         OneNode p;
-        p.node.type = STRATUM_NODE_MIX;
+        p.node.type = node_type("mix");
         p.node.modes[0] = kColor;
         p.node.inputs[1] = p.node.inputs[2] = p.value({0, 0, 0});
         p.node.outputs[0] = p.output(1);
@@ -424,7 +427,7 @@ TEST(ColorNodes, BadModesAndDataAreRejectedByName) {
     }
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_HSV;
+        p.node.type = node_type("hsv");
         p.node.modes[0] = 2;
         p.node.inputs[4] = p.value({0, 0, 0});
         p.node.outputs[0] = p.output(3);
@@ -432,7 +435,7 @@ TEST(ColorNodes, BadModesAndDataAreRejectedByName) {
     }
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_SEPARATE_COLOR;
+        p.node.type = node_type("separate_color");
         p.node.modes[0] = -1;
         p.node.inputs[0] = p.value({0, 0, 0});
         p.node.outputs[0] = p.output(3);
@@ -440,7 +443,7 @@ TEST(ColorNodes, BadModesAndDataAreRejectedByName) {
     }
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_COLOR_RAMP;
+        p.node.type = node_type("color_ramp");
         p.data = {1, 2, 3};
         p.node.outputs[0] = p.output(3);
         p.node.outputs[1] = p.output(1);
@@ -448,7 +451,7 @@ TEST(ColorNodes, BadModesAndDataAreRejectedByName) {
     }
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_CURVES;
+        p.node.type = node_type("curves");
         p.node.modes[0] = 0;
         p.data = {0, 1, 0, 0, 0};  // one entry: extrapolation needs two
         p.node.inputs[1] = p.value({0, 0, 0});
@@ -457,7 +460,7 @@ TEST(ColorNodes, BadModesAndDataAreRejectedByName) {
     }
     {
         OneNode p;
-        p.node.type = STRATUM_NODE_CURVES;
+        p.node.type = node_type("curves");
         p.node.modes[0] = 3;
         p.node.outputs[0] = p.output(1);
         EXPECT_NE(p.rejected().find("(curves): mode 0 (kind) is 3"), std::string::npos);

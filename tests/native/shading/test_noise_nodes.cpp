@@ -14,12 +14,15 @@
 #include <utility>
 #include <vector>
 
+#include "node_types.h"
 #include "scene_handle.h"
 #include "shading/cycles_hash.h"
 #include "shading/fractal_noise.h"
 #include "shading/perlin_noise.h"
 
 namespace {
+
+using stratum_test::node_type;
 
 using stratum::perlin::Precision;
 namespace perlin = stratum::perlin;
@@ -78,7 +81,7 @@ Result run(const StratumShaderNode& node, const std::vector<float>& registers, s
 Result noise_texture(const NoiseSetup& s, std::array<float, 3> point, bool color = true,
                      bool hostile = false) {
     StratumShaderNode node{};
-    node.type = STRATUM_NODE_NOISE;
+    node.type = node_type("noise");
     const int32_t modes[6] = {s.dimensions - 1, s.type, s.normalize, s.generation, color ? 1 : 0, 0};
     std::copy(modes, modes + 6, node.modes);
     node.inputs[0] = STRATUM_INPUT_GENERATED;
@@ -104,7 +107,7 @@ struct MusgraveSetup {
 
 Result musgrave_texture(const MusgraveSetup& s, std::array<float, 3> point) {
     StratumShaderNode node{};
-    node.type = STRATUM_NODE_MUSGRAVE;
+    node.type = node_type("musgrave");
     node.modes[0] = s.dimensions - 1;
     node.modes[1] = s.type;
     node.inputs[0] = STRATUM_INPUT_GENERATED;

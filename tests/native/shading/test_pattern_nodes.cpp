@@ -11,9 +11,12 @@
 #include <string>
 #include <vector>
 
+#include "node_types.h"
 #include "scene_handle.h"
 
 namespace {
+
+using stratum_test::node_type;
 
 using stratum_test::SceneHandle;
 
@@ -85,7 +88,7 @@ std::vector<float> v1(double x) { return {static_cast<float>(x)}; }
 // ---- Checker --------------------------------------------------------------------------------
 
 std::vector<float> checker(std::vector<float> p, float scale) {
-    OneNode n(STRATUM_NODE_CHECKER, {}, {p, v3(0.8, 0.7, 0.6), v3(0.1, 0.2, 0.3), v1(scale)}, {3, 1});
+    OneNode n(node_type("checker"), {}, {p, v3(0.8, 0.7, 0.6), v3(0.1, 0.2, 0.3), v1(scale)}, {3, 1});
     return n.run();
 }
 
@@ -116,7 +119,7 @@ std::vector<float> geometry_input(float x, float y, float z) {
 
 TEST(PatternNodes, CheckerNeverFailsOnBadValues) {
     const float nan = std::nanf(""), inf = INFINITY;
-    OneNode n(STRATUM_NODE_CHECKER, {}, {v3(0, 0, 0), v3(0.8, 0.7, 0.6), v3(0.1, 0.2, 0.3), v1(1.0)}, {3, 1});
+    OneNode n(node_type("checker"), {}, {v3(0, 0, 0), v3(0.8, 0.7, 0.6), v3(0.1, 0.2, 0.3), v1(1.0)}, {3, 1});
     n.node.inputs[0] = STRATUM_INPUT_GENERATED;
     // NaN and huge coordinates read as INT_MIN: even, like 0: cell (0, 0, 0) gives fac 0.
     EXPECT_EQ(n.run(geometry_input(nan, 1e30f, -inf))[3], 0.0f);
@@ -162,7 +165,7 @@ TEST(PatternNodes, GradientEveryType) {
     // By hand at (0.25, 0.5, 0.1): linear 0.25, quadratic 0.0625, easing 0.15625, diagonal 0.375.
     const std::array<float, 4> by_hand = {0.25f, 0.0625f, 0.15625f, 0.375f};
     for (int type = 0; type < 4; ++type) {
-        OneNode n(STRATUM_NODE_GRADIENT, {type}, {v3(0.25, 0.5, 0.1)}, {3, 1});
+        OneNode n(node_type("gradient"), {type}, {v3(0.25, 0.5, 0.1)}, {3, 1});
         const std::vector<float> out = n.run();
         EXPECT_FLOAT_EQ(out[3], by_hand[type]) << type;
         EXPECT_EQ(out[0], out[3]);
@@ -173,13 +176,13 @@ TEST(PatternNodes, GradientEveryType) {
                                                        {0.1, -0.05, -0.2}, {0.6, 0.8, 0.0}};
     for (int type = 0; type < 7; ++type) {
         for (const auto& p : points) {
-            OneNode n(STRATUM_NODE_GRADIENT, {type}, {v3(p[0], p[1], p[2])}, {3, 1});
+            OneNode n(node_type("gradient"), {type}, {v3(p[0], p[1], p[2])}, {3, 1});
             EXPECT_NEAR(n.run()[3], gradient_reference(type, p[0], p[1], p[2]), 2e-6)
                 << "type " << type << " at " << p[0] << ", " << p[1] << ", " << p[2];
         }
     }
     // A unit vector is exactly 0 for the spherical types (the 0.999999 bias).
-    OneNode n(STRATUM_NODE_GRADIENT, {6}, {v3(0.6, 0.8, 0.0)}, {3, 1});
+    OneNode n(node_type("gradient"), {6}, {v3(0.6, 0.8, 0.0)}, {3, 1});
     EXPECT_EQ(n.run()[3], 0.0f);
 }
 
@@ -225,7 +228,7 @@ std::array<float, 3> magic_reference(float px, float py, float pz, float scale, 
 
 TEST(PatternNodes, MagicByHandAtDepthZero) {
     // sin(3), cos(-1), -cos(0) halved: (0.5 - 0.0705600, 0.5 - 0.2701512, 1).
-    OneNode n(STRATUM_NODE_MAGIC, {0}, {v3(0.1, 0.2, 0.3), v1(1.0), v1(1.0)}, {3, 1});
+    OneNode n(node_type("magic"), {0}, {v3(0.1, 0.2, 0.3), v1(1.0), v1(1.0)}, {3, 1});
     const std::vector<float> out = n.run();
     EXPECT_NEAR(out[0], 0.4294400, 1e-6);
     EXPECT_NEAR(out[1], 0.2298488, 1e-6);
@@ -240,7 +243,7 @@ TEST(PatternNodes, MagicEveryDepth) {
                                                      {20.0f, 3.0f, -7.0f, 1.0f, 3.0f}};
     for (int depth = 0; depth <= 10; ++depth) {
         for (const auto& c : cases) {
-            OneNode n(STRATUM_NODE_MAGIC, {depth}, {v3(c[0], c[1], c[2]), v1(c[3]), v1(c[4])}, {3, 1});
+            OneNode n(node_type("magic"), {depth}, {v3(c[0], c[1], c[2]), v1(c[3]), v1(c[4])}, {3, 1});
             const std::vector<float> out = n.run();
             const auto want = magic_reference(c[0], c[1], c[2], c[3], depth, c[4]);
             for (int k = 0; k < 3; ++k)
@@ -250,7 +253,7 @@ TEST(PatternNodes, MagicEveryDepth) {
         }
     }
     // No distortion: the colour is not divided (1/2 - (x, y, z) with x, y, z scaled to 0 past depth 0).
-    OneNode n(STRATUM_NODE_MAGIC, {2}, {v3(0.1, 0.2, 0.3), v1(5.0), v1(0.0)}, {3, 1});
+    OneNode n(node_type("magic"), {2}, {v3(0.1, 0.2, 0.3), v1(5.0), v1(0.0)}, {3, 1});
     const std::vector<float> out = n.run();
     EXPECT_FLOAT_EQ(out[0], 0.5f - static_cast<float>(std::cos(0.0) * 0.0));
     EXPECT_FLOAT_EQ(out[1], 0.5f);
@@ -280,7 +283,7 @@ const std::vector<float> kColor1 = {0.8f, 0.2f, 0.1f}, kColor2 = {0.2f, 0.6f, 0.
                          kMortar = {0.05f, 0.1f, 0.15f};
 
 std::vector<float> brick(const BrickCase& b, int smoothing) {
-    OneNode n(STRATUM_NODE_BRICK, {b.offset_frequency, b.squash_frequency, smoothing},
+    OneNode n(node_type("brick"), {b.offset_frequency, b.squash_frequency, smoothing},
               {v3(b.co[0], b.co[1], b.co[2]), kColor1, kColor2, kMortar, v1(b.scale), v1(b.mortar_size),
                v1(b.mortar_smooth), v1(b.bias), v1(b.width), v1(b.row_height)},
               {3, 1}, {static_cast<float>(b.offset_amount), static_cast<float>(b.squash_amount)});
@@ -359,7 +362,7 @@ TEST(PatternNodes, BrickNeverFailsOnBadValues) {
     EXPECT_EQ(brick(huge, 0).size(), 4u);
     // NaN coordinates (from the renderer's inputs): row and brick INT_MIN, no crash, and the
     // mortar NaN as Cycles' (the distance comparisons fail, the smoothstep of NaN is NaN).
-    OneNode n(STRATUM_NODE_BRICK, {2, 2, 1},
+    OneNode n(node_type("brick"), {2, 2, 1},
               {v3(0, 0, 0), kColor1, kColor2, kMortar, v1(1), v1(0.02), v1(0.1), v1(0), v1(0.5), v1(0.25)},
               {3, 1}, {0.5f, 1.0f});
     n.node.inputs[0] = STRATUM_INPUT_GENERATED;
@@ -386,7 +389,7 @@ uint32_t add_texture(StratumScene* scene, const char* space, int32_t interpolati
 
 std::vector<float> image(int32_t interpolation, const char* space, int alpha_mode, double u, float a0 = 0.5f,
                          float a1 = 0.25f) {
-    OneNode n(STRATUM_NODE_IMAGE, {0, alpha_mode}, {v3(u, 0.5, 0.7)}, {3, 1});
+    OneNode n(node_type("image"), {0, alpha_mode}, {v3(u, 0.5, 0.7)}, {3, 1});
     EXPECT_EQ(add_texture(n.handle.scene, space, interpolation, a0, a1), 0u);
     return n.run();
 }
@@ -443,7 +446,7 @@ TEST(PatternNodes, ImageSrgbAssociatesBeforeDecoding) {
 
 std::vector<float> wave(std::array<int32_t, 5> modes, std::vector<float> p, float scale, float distortion,
                         float detail, float detail_scale, float roughness, float phase) {
-    OneNode n(STRATUM_NODE_WAVE, {modes[0], modes[1], modes[2], modes[3], modes[4]},
+    OneNode n(node_type("wave"), {modes[0], modes[1], modes[2], modes[3], modes[4]},
               {p, v1(scale), v1(distortion), v1(detail), v1(detail_scale), v1(roughness), v1(phase)}, {3, 1});
     return n.run();
 }
@@ -516,7 +519,7 @@ TEST(PatternNodes, WaveDistortionNoiseByGeneration) {
 
 TEST(PatternNodes, ChecksNameNodeAndField) {
     {
-        OneNode n(STRATUM_NODE_GRADIENT, {7}, {v3(0, 0, 0)}, {3, 1});
+        OneNode n(node_type("gradient"), {7}, {v3(0, 0, 0)}, {3, 1});
         const std::string e = n.error();
         EXPECT_NE(e.find("gradient"), std::string::npos) << e;
         EXPECT_NE(e.find("type"), std::string::npos) << e;
@@ -528,14 +531,14 @@ TEST(PatternNodes, ChecksNameNodeAndField) {
         {{0, 0, 0, 3, 0}, "profile"},
         {{0, 0, 0, 0, 4}, "noise generation"}};
     for (const auto& [m, field] : bad_wave) {
-        OneNode n(STRATUM_NODE_WAVE, {m[0], m[1], m[2], m[3], m[4]},
+        OneNode n(node_type("wave"), {m[0], m[1], m[2], m[3], m[4]},
                   {v3(0, 0, 0), v1(1), v1(0), v1(2), v1(1), v1(0.5), v1(0)}, {3, 1});
         const std::string e = n.error();
         EXPECT_NE(e.find("wave"), std::string::npos) << e;
         EXPECT_NE(e.find(field), std::string::npos) << e;
     }
     {
-        OneNode n(STRATUM_NODE_MAGIC, {11}, {v3(0, 0, 0), v1(1), v1(1)}, {3, 1});
+        OneNode n(node_type("magic"), {11}, {v3(0, 0, 0), v1(1), v1(1)}, {3, 1});
         const std::string e = n.error();
         EXPECT_NE(e.find("magic"), std::string::npos) << e;
         EXPECT_NE(e.find("turbulence depth"), std::string::npos) << e;
@@ -545,28 +548,28 @@ TEST(PatternNodes, ChecksNameNodeAndField) {
     const std::vector<std::pair<std::vector<int32_t>, const char*>> bad = {
         {{-1, 2, 0}, "offset frequency"}, {{2, 256, 0}, "squash frequency"}, {{2, 2, 2}, "smoothing"}};
     for (const auto& [modes, field] : bad) {
-        OneNode n(STRATUM_NODE_BRICK, modes, brick_inputs, {3, 1}, {0.5f, 1.0f});
+        OneNode n(node_type("brick"), modes, brick_inputs, {3, 1}, {0.5f, 1.0f});
         const std::string e = n.error();
         EXPECT_NE(e.find("brick"), std::string::npos) << e;
         EXPECT_NE(e.find(field), std::string::npos) << e;
     }
     {
-        OneNode n(STRATUM_NODE_BRICK, {2, 2, 0}, brick_inputs, {3, 1}, {0.5f});
+        OneNode n(node_type("brick"), {2, 2, 0}, brick_inputs, {3, 1}, {0.5f});
         EXPECT_NE(n.error().find("data_count"), std::string::npos);
     }
     {
-        OneNode n(STRATUM_NODE_IMAGE, {0, 3}, {v3(0, 0, 0)}, {3, 1});
+        OneNode n(node_type("image"), {0, 3}, {v3(0, 0, 0)}, {3, 1});
         add_texture(n.handle.scene, "Non-Color", 0, 1.0f, 1.0f);
         EXPECT_NE(n.error().find("alpha"), std::string::npos);
     }
     {
-        OneNode n(STRATUM_NODE_IMAGE, {1, 0}, {v3(0, 0, 0)}, {3, 1});
+        OneNode n(node_type("image"), {1, 0}, {v3(0, 0, 0)}, {3, 1});
         add_texture(n.handle.scene, "Non-Color", 0, 1.0f, 1.0f);
         EXPECT_NE(n.error().find("texture 1"), std::string::npos);
     }
     {
         // A vector input two registers short of the end.
-        OneNode n(STRATUM_NODE_CHECKER, {}, {v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 0), v1(1)}, {3, 1});
+        OneNode n(node_type("checker"), {}, {v3(0, 0, 0), v3(0, 0, 0), v3(0, 0, 0), v1(1)}, {3, 1});
         n.node.inputs[2] = static_cast<uint32_t>(n.registers.size() - 2);
         EXPECT_NE(n.error().find("checker"), std::string::npos);
     }

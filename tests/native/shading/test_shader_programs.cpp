@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "node_types.h"
 #include "render_helpers.h"
 #include "scene_handle.h"
 
@@ -20,13 +21,15 @@ using namespace stratum_test;
 
 namespace {
 
+using stratum_test::node_type;
+
 constexpr uint32_t kInputs = STRATUM_SHADER_INPUT_REGISTERS;
 // Native math operations used below (Cycles' NodeMathType order).
 constexpr int32_t kAdd = 0, kMultiply = 2, kSine = 4;
 
 StratumShaderNode math(int32_t op, uint32_t a, uint32_t b, uint32_t out, int32_t clamp = 0) {
     StratumShaderNode n{};
-    n.type = STRATUM_NODE_MATH;
+    n.type = node_type("math");
     n.modes[0] = op;
     n.modes[1] = clamp;
     n.inputs[0] = a;

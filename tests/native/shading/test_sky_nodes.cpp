@@ -12,10 +12,13 @@
 #include <vector>
 
 #include "api/shader_program_validation.h"
+#include "node_types.h"
 #include "render_scene/world_baking.h"
 #include "scene_handle.h"
 
 namespace {
+
+using stratum_test::node_type;
 
 constexpr double kPi = 3.14159265358979323846;
 
@@ -24,7 +27,7 @@ struct SkyProgram : stratum_test::SceneHandle {
     // A program of one sky node reading POSITION, its colour at register 80.
     StratumStatus add(int32_t model, int32_t disc, const std::vector<float>& data) {
         StratumShaderNode node{};
-        node.type = STRATUM_NODE_SKY;
+        node.type = node_type("sky");
         node.modes[0] = model;
         node.modes[1] = disc;
         node.inputs[0] = STRATUM_INPUT_POSITION;
@@ -262,7 +265,7 @@ TEST(SkyNodes, BakedWorldKeepsTheSunDiscsIrradiance) {
     const float elevation = 0.5f, rotation = 0.3f, size = 0.009512f;
     const std::vector<float> data = nishita(elevation, rotation, size, 1, 0, 0, 0, 0);
     StratumShaderNode node{};
-    node.type = STRATUM_NODE_SKY;
+    node.type = node_type("sky");
     node.modes[0] = 2;
     node.modes[1] = 1;
     node.inputs[0] = STRATUM_INPUT_POSITION;

@@ -10,9 +10,12 @@
 #include <string>
 #include <vector>
 
+#include "node_types.h"
 #include "scene_handle.h"
 
 namespace {
+
+using stratum_test::node_type;
 
 using Values = std::vector<float>;
 constexpr float kPiF = 3.14159265358979323846f;
@@ -123,7 +126,7 @@ enum Op {
 // Vector and value outputs of a vector math node.
 Values vmath(int op, Values a, Values b = {0, 0, 0}, Values c = {0, 0, 0}, float scale = 1.0f,
              int revision = 2) {
-    OneNode n{STRATUM_NODE_VECTOR_MATH, {op, revision}, {a, b, c, {scale}}, {3, 1}, {}};
+    OneNode n{node_type("vector_math"), {op, revision}, {a, b, c, {scale}}, {3, 1}, {}};
     return n.run();
 }
 
@@ -212,7 +215,7 @@ TEST(VectorNodes, VectorMathRevisionsDiffer) {
 
 float map_float(int interpolation, bool clamp, float v, float fmin, float fmax, float tmin, float tmax,
                 float steps = 4) {
-    OneNode n{STRATUM_NODE_MAP_RANGE,
+    OneNode n{node_type("map_range"),
               {0, interpolation, clamp ? 1 : 0},
               {{v}, {fmin}, {fmax}, {tmin}, {tmax}, {steps}},
               {1},
@@ -242,7 +245,7 @@ TEST(VectorNodes, MapRangeFloat) {
 
 TEST(VectorNodes, MapRangeVector) {
     const auto run = [](int interpolation, bool clamp, Values v) {
-        OneNode n{STRATUM_NODE_MAP_RANGE,
+        OneNode n{node_type("map_range"),
                   {1, interpolation, clamp ? 1 : 0},
                   {v, {0, 0, 1}, {1, 2, 1}, {10, 0, 5}, {20, -4, 6}, {4, 4, 4}},
                   {3},
@@ -260,7 +263,7 @@ TEST(VectorNodes, MapRangeVector) {
 
 TEST(VectorNodes, Clamp) {
     const auto run = [](int type, float v, float lo, float hi) {
-        return OneNode{STRATUM_NODE_CLAMP, {type}, {{v}, {lo}, {hi}}, {1}, {}}.run()[0];
+        return OneNode{node_type("clamp"), {type}, {{v}, {lo}, {hi}}, {1}, {}}.run()[0];
     };
     EXPECT_EQ(run(0, 2, 0, 1), 1.0f);
     EXPECT_EQ(run(0, -2, 0, 1), 0.0f);
@@ -273,7 +276,7 @@ TEST(VectorNodes, Clamp) {
 // ---- Mapping, Vector Rotate, Vector Transform -------------------------------------------------
 
 Values mapping(int type, Values v, Values loc, Values rot, Values scale) {
-    return OneNode{STRATUM_NODE_MAPPING, {type}, {v, loc, rot, scale}, {3}, {}}.run();
+    return OneNode{node_type("mapping"), {type}, {v, loc, rot, scale}, {3}, {}}.run();
 }
 
 TEST(VectorNodes, MappingTypes) {
@@ -301,7 +304,7 @@ TEST(VectorNodes, MappingEulerOrderIsXThenYThenZ) {
 
 Values rotate(int type, bool invert, Values v, Values center, Values axis, float angle, Values euler) {
     return OneNode{
-        STRATUM_NODE_VECTOR_ROTATE, {type, invert ? 1 : 0}, {v, center, axis, {angle}, euler}, {3}, {}}
+        node_type("vector_rotate"), {type, invert ? 1 : 0}, {v, center, axis, {angle}, euler}, {3}, {}}
         .run();
 }
 
@@ -324,7 +327,7 @@ TEST(VectorNodes, VectorRotate) {
 
 TEST(VectorNodes, VectorTransformBetweenEqualSpaces) {
     const auto run = [](int type, int space, int revision) {
-        return OneNode{STRATUM_NODE_VECTOR_TRANSFORM, {type, space, space, revision}, {{0, 0, 2}}, {3}, {}}
+        return OneNode{node_type("vector_transform"), {type, space, space, revision}, {{0, 0, 2}}, {3}, {}}
             .run();
     };
     for (int space = 0; space < 3; ++space) {
@@ -334,7 +337,7 @@ TEST(VectorNodes, VectorTransformBetweenEqualSpaces) {
         expect_near(run(2, space, 1), {0, 0, 2});
     }
     const std::string e =
-        OneNode{STRATUM_NODE_VECTOR_TRANSFORM, {0, 0, 1, 1}, {{0, 0, 2}}, {3}, {}}.rejection();
+        OneNode{node_type("vector_transform"), {0, 0, 1, 1}, {{0, 0, 2}}, {3}, {}}.rejection();
     EXPECT_NE(e.find("vector_transform"), std::string::npos) << e;
     EXPECT_NE(e.find("mode 1 (from)"), std::string::npos) << e;
 }
@@ -352,7 +355,7 @@ float fresnel_closed_form(float cos_i, float eta) {
 }
 
 float fresnel(float ior, Values normal, Values incoming, float backfacing) {
-    return OneNode{STRATUM_NODE_FRESNEL, {}, {{ior}, normal, incoming, {backfacing}}, {1}, {}}.run()[0];
+    return OneNode{node_type("fresnel"), {}, {{ior}, normal, incoming, {backfacing}}, {1}, {}}.run()[0];
 }
 
 TEST(VectorNodes, Fresnel) {
@@ -371,7 +374,7 @@ TEST(VectorNodes, Fresnel) {
 TEST(VectorNodes, LayerWeight) {
     const auto run = [](float blend, Values incoming, float backfacing) {
         return OneNode{
-            STRATUM_NODE_LAYER_WEIGHT, {}, {{blend}, {0, 0, 1}, incoming, {backfacing}}, {1, 1}, {}}
+            node_type("layer_weight"), {}, {{blend}, {0, 0, 1}, incoming, {backfacing}}, {1, 1}, {}}
             .run();
     };
     const float c = 0.5f, s = std::sqrt(0.75f);
@@ -387,7 +390,7 @@ TEST(VectorNodes, LayerWeight) {
 }
 
 TEST(VectorNodes, NormalNode) {
-    const Values out = OneNode{STRATUM_NODE_NORMAL, {}, {{0, 3, 3}, {0, 0, 2}}, {3, 1}, {}}.run();
+    const Values out = OneNode{node_type("normal"), {}, {{0, 3, 3}, {0, 0, 2}}, {3, 1}, {}}.run();
     expect_near(out, {0, 0, 1, 1 / std::sqrt(2.0f)});
 }
 
@@ -396,11 +399,11 @@ TEST(VectorNodes, NormalNode) {
 const Values kIdentity = {1, 0, 0, 0, 1, 0, 0, 0, 1};
 
 Values blackbody(float t, Values m = kIdentity) {
-    return OneNode{STRATUM_NODE_BLACKBODY, {}, {{t}}, {3}, m}.run();
+    return OneNode{node_type("blackbody"), {}, {{t}}, {3}, m}.run();
 }
 
 Values wavelength(float nm, Values m = kIdentity) {
-    return OneNode{STRATUM_NODE_WAVELENGTH, {}, {{nm}}, {3}, m}.run();
+    return OneNode{node_type("wavelength"), {}, {{nm}}, {3}, m}.run();
 }
 
 TEST(VectorNodes, Blackbody) {
@@ -433,7 +436,7 @@ TEST(VectorNodes, Wavelength) {
     expect_near(wavelength(382.5f), {0.0018f * k, 0.00005f * k, 0.0085f * k});
     expect_near(wavelength(780), {0, 0, 0});
     expect_near(wavelength(300), {0, 0, 0});
-    OneNode nan_input{STRATUM_NODE_WAVELENGTH, {}, {{0}}, {3}, kIdentity};
+    OneNode nan_input{node_type("wavelength"), {}, {{0}}, {3}, kIdentity};
     nan_input.first_from_renderer = true;
     nan_input.renderer_value = std::nanf("");
     expect_near(nan_input.run(), {0, 0, 0});
@@ -447,29 +450,29 @@ TEST(VectorNodes, ChecksNameNodeAndField) {
         const std::string e = n.rejection();
         EXPECT_NE(e.find(field), std::string::npos) << e;
     };
-    rejected({STRATUM_NODE_VECTOR_MATH, {29, 0}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1}}, {3, 1}, {}},
+    rejected({node_type("vector_math"), {29, 0}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1}}, {3, 1}, {}},
              "operation");
-    rejected({STRATUM_NODE_VECTOR_MATH, {0, 3}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1}}, {3, 1}, {}},
+    rejected({node_type("vector_math"), {0, 3}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1}}, {3, 1}, {}},
              "revision");
-    rejected({STRATUM_NODE_MAP_RANGE, {2, 0, 0}, {{0}, {0}, {1}, {0}, {1}, {4}}, {1}, {}}, "data type");
-    rejected({STRATUM_NODE_MAP_RANGE, {0, 4, 0}, {{0}, {0}, {1}, {0}, {1}, {4}}, {1}, {}}, "interpolation");
-    rejected({STRATUM_NODE_MAP_RANGE, {0, 0, 2}, {{0}, {0}, {1}, {0}, {1}, {4}}, {1}, {}}, "clamp");
+    rejected({node_type("map_range"), {2, 0, 0}, {{0}, {0}, {1}, {0}, {1}, {4}}, {1}, {}}, "data type");
+    rejected({node_type("map_range"), {0, 4, 0}, {{0}, {0}, {1}, {0}, {1}, {4}}, {1}, {}}, "interpolation");
+    rejected({node_type("map_range"), {0, 0, 2}, {{0}, {0}, {1}, {0}, {1}, {4}}, {1}, {}}, "clamp");
     // The vector form needs 3-wide registers: a float output at the end of the file is not.
-    rejected({STRATUM_NODE_MAP_RANGE,
+    rejected({node_type("map_range"),
               {1, 0, 0},
               {{0, 0, 0}, {0, 0, 0}, {1, 1, 1}, {0, 0, 0}, {1, 1, 1}, {4, 4, 4}},
               {1},
               {}},
              "3 wide");
-    rejected({STRATUM_NODE_CLAMP, {-1}, {{0}, {0}, {1}}, {1}, {}}, "type");
-    rejected({STRATUM_NODE_MAPPING, {4}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 1, 1}}, {3}, {}}, "type");
-    rejected({STRATUM_NODE_VECTOR_ROTATE, {5, 0}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}, {0}, {0, 0, 0}}, {3}, {}},
+    rejected({node_type("clamp"), {-1}, {{0}, {0}, {1}}, {1}, {}}, "type");
+    rejected({node_type("mapping"), {4}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {1, 1, 1}}, {3}, {}}, "type");
+    rejected({node_type("vector_rotate"), {5, 0}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}, {0}, {0, 0, 0}}, {3}, {}},
              "type");
-    rejected({STRATUM_NODE_VECTOR_ROTATE, {0, 2}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}, {0}, {0, 0, 0}}, {3}, {}},
+    rejected({node_type("vector_rotate"), {0, 2}, {{0, 0, 0}, {0, 0, 0}, {0, 0, 1}, {0}, {0, 0, 0}}, {3}, {}},
              "invert");
-    rejected({STRATUM_NODE_VECTOR_TRANSFORM, {3, 0, 0, 0}, {{0, 0, 0}}, {3}, {}}, "type");
-    rejected({STRATUM_NODE_BLACKBODY, {}, {{1000}}, {3}, {1, 0, 0}}, "data count");
-    rejected({STRATUM_NODE_WAVELENGTH, {}, {{500}}, {3}, {}}, "data count");
+    rejected({node_type("vector_transform"), {3, 0, 0, 0}, {{0, 0, 0}}, {3}, {}}, "type");
+    rejected({node_type("blackbody"), {}, {{1000}}, {3}, {1, 0, 0}}, "data count");
+    rejected({node_type("wavelength"), {}, {{500}}, {3}, {}}, "data count");
 }
 
 }  // namespace

@@ -13,10 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "node_types.h"
 #include "scene_handle.h"
 #include "shading/cycles_hash.h"
 
 namespace {
+
+using stratum_test::node_type;
 
 enum Feature { F1, F2, SmoothF1, Edge, Radius };
 enum Metric { Euclidean, Manhattan, Chebychev, Minkowski };
@@ -74,7 +77,7 @@ private:
 
 StratumShaderNode voronoi_node(const VoronoiSetup& s) {
     StratumShaderNode n{};
-    n.type = STRATUM_NODE_VORONOI;
+    n.type = node_type("voronoi");
     const int modes[] = {s.dimensions - 1, s.feature, s.metric, s.generation, s.normalize};
     for (int i = 0; i < 5; ++i) n.modes[i] = modes[i];
     n.inputs[0] = STRATUM_INPUT_GENERATED;
@@ -365,7 +368,7 @@ TEST(WhiteNoiseNodes, IsTheHashOfThePoint) {
         for (const auto& p : points(10)) {
             const float w = p[0] * 3.0f + 0.5f;
             StratumShaderNode n{};
-            n.type = STRATUM_NODE_WHITE_NOISE;
+            n.type = node_type("white_noise");
             n.modes[0] = dims - 1;
             n.inputs[0] = STRATUM_INPUT_GENERATED, n.inputs[1] = kIn;
             n.outputs[0] = kIn + 1, n.outputs[1] = kIn + 2;
@@ -401,7 +404,7 @@ TEST(VoronoiNodes, BadModesAreRejectedByName) {
             EXPECT_NE(program.error().find(fields[mode]), std::string::npos) << program.error();
         }
     StratumShaderNode n{};
-    n.type = STRATUM_NODE_WHITE_NOISE;
+    n.type = node_type("white_noise");
     n.modes[0] = 4;
     n.inputs[1] = kIn, n.outputs[0] = kIn + 1, n.outputs[1] = kIn + 2;
     NodeProgram program(n, {0.0f}, 4);

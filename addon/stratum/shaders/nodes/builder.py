@@ -49,7 +49,7 @@ class ProgramBuilder:
 
     def node(self, kind: str, modes: Sequence[int] = (), inputs: Sequence[int] = (),
              outputs: Sequence[int] = (), data: Sequence[float] = ()) -> list[int]:
-        """Appends a node of type `kind` (native.NODE_TYPES) and returns the registers of its
+        """Appends a node of type `kind` (native.node_type) and returns the registers of its
         outputs, one per width in `outputs` (1 float, 3 vector/colour)."""
         if len(modes) > 6 or len(inputs) > 12 or len(outputs) > 6:
             raise ValueError(f"node {kind}: at most 6 modes, 12 inputs and 6 outputs")
@@ -58,7 +58,7 @@ class ProgramBuilder:
         clean = [float(v) if math.isfinite(float(v)) else 0.0 for v in data]
         self.program.data.extend(clean)
         self.program.nodes.append(native.ShaderNode(
-            type=native.NODE_TYPES[kind], modes=tuple(int(m) for m in modes),
+            type=native.node_type(kind), modes=tuple(int(m) for m in modes),
             inputs=tuple(int(i) for i in inputs), outputs=tuple(out), data_offset=offset,
             data_count=len(clean)))
         return out
@@ -70,7 +70,7 @@ class ProgramBuilder:
         clean = [float(v) if math.isfinite(float(v)) else 0.0 for v in data]
         self.program.data.extend(clean)
         self.program.nodes.append(native.ShaderNode(
-            type=native.NODE_TYPES[kind], modes=tuple(int(m) for m in modes),
+            type=native.node_type(kind), modes=tuple(int(m) for m in modes),
             inputs=tuple(int(i) for i in inputs), outputs=tuple(int(o) for o in outputs),
             data_offset=offset, data_count=len(clean)))
 

@@ -15,7 +15,7 @@
 // derives them from the OpenColorIO config: the compiler passes those of the Blender version).
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -126,12 +126,18 @@ void evaluate_wavelength(const ShaderNode& n, const ShaderEvalContext& context, 
 
 }  // namespace
 
-NodeEntry blackbody_node_entry() {
-    return {"blackbody", {1}, {3}, check_matrix, nullptr, evaluate_blackbody};
-}
+const NodeRegistration kBlackbodyNode{{.value = 31,
+                                       .name = "blackbody",
+                                       .input_widths = {1},
+                                       .output_widths = {3},
+                                       .check = check_matrix,
+                                       .evaluate = evaluate_blackbody}};
 
-NodeEntry wavelength_node_entry() {
-    return {"wavelength", {1}, {3}, check_matrix, nullptr, evaluate_wavelength};
-}
+const NodeRegistration kWavelengthNode{{.value = 32,
+                                        .name = "wavelength",
+                                        .input_widths = {1},
+                                        .output_widths = {3},
+                                        .check = check_matrix,
+                                        .evaluate = evaluate_wavelength}};
 
 }  // namespace stratum

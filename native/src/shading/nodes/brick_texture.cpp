@@ -21,7 +21,7 @@
 #include <cmath>
 #include <cstdint>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 #include "shading/pattern_math.h"
 
 namespace stratum {
@@ -102,8 +102,11 @@ void evaluate_brick(const ShaderNode& n, const ShaderEvalContext& context, Shade
 
 }  // namespace
 
-NodeEntry brick_node_entry() {
-    return {"brick", {3, 3, 3, 3, 1, 1, 1, 1, 1, 1}, {3, 1}, check_brick, nullptr, evaluate_brick};
-}
+const NodeRegistration kBrickNode{{.value = 23,
+                                   .name = "brick",
+                                   .input_widths = {3, 3, 3, 3, 1, 1, 1, 1, 1, 1},
+                                   .output_widths = {3, 1},
+                                   .check = check_brick,
+                                   .evaluate = evaluate_brick}};
 
 }  // namespace stratum

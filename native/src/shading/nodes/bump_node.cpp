@@ -24,7 +24,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -99,12 +99,18 @@ void evaluate_normal_map(const ShaderNode& n, const ShaderEvalContext&, ShaderRe
 
 }  // namespace
 
-NodeEntry bump_node_entry() {
-    return {"bump", {1, 1, 1, 1, 1, 3, 3, 3}, {3}, check_bump, nullptr, evaluate_bump};
-}
+const NodeRegistration kBumpNode{{.value = 29,
+                                  .name = "bump",
+                                  .input_widths = {1, 1, 1, 1, 1, 3, 3, 3},
+                                  .output_widths = {3},
+                                  .check = check_bump,
+                                  .evaluate = evaluate_bump}};
 
-NodeEntry normal_map_node_entry() {
-    return {"normal_map", {3, 1, 3, 3}, {3}, check_normal_map, nullptr, evaluate_normal_map};
-}
+const NodeRegistration kNormalMapNode{{.value = 30,
+                                       .name = "normal_map",
+                                       .input_widths = {3, 1, 3, 3},
+                                       .output_widths = {3},
+                                       .check = check_normal_map,
+                                       .evaluate = evaluate_normal_map}};
 
 }  // namespace stratum

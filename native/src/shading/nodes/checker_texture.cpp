@@ -10,7 +10,7 @@
 // is 1, else color2.
 #include <cstdlib>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 #include "shading/pattern_math.h"
 
 namespace stratum {
@@ -35,8 +35,11 @@ void evaluate_checker(const ShaderNode& n, const ShaderEvalContext&, ShaderRegis
 
 }  // namespace
 
-NodeEntry checker_node_entry() {
-    return {"checker", {3, 3, 3, 1}, {3, 1}, check_checker, nullptr, evaluate_checker};
-}
+const NodeRegistration kCheckerNode{{.value = 22,
+                                     .name = "checker",
+                                     .input_widths = {3, 3, 3, 1},
+                                     .output_widths = {3, 1},
+                                     .check = check_checker,
+                                     .evaluate = evaluate_checker}};
 
 }  // namespace stratum

@@ -19,7 +19,7 @@
 #include <cmath>
 
 #include "shading/color_math.h"
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -82,14 +82,35 @@ std::string check_rgb_to_bw(const ShaderNode& n, const ShaderProgram&) {
 
 }  // namespace
 
-NodeEntry invert_node_entry() { return {"invert", {1, 3}, {3}, no_modes, nullptr, evaluate_invert}; }
-NodeEntry gamma_node_entry() { return {"gamma", {3, 1}, {3}, no_modes, nullptr, evaluate_gamma}; }
-NodeEntry bright_contrast_node_entry() {
-    return {"bright_contrast", {3, 1, 1}, {3}, no_modes, nullptr, evaluate_bright_contrast};
-}
-NodeEntry hsv_node_entry() { return {"hsv", {1, 1, 1, 1, 3}, {3}, check_hsv, nullptr, evaluate_hsv}; }
-NodeEntry rgb_to_bw_node_entry() {
-    return {"rgb_to_bw", {3}, {1}, check_rgb_to_bw, nullptr, evaluate_rgb_to_bw};
-}
+const NodeRegistration kInvertNode{{.value = 5,
+                                    .name = "invert",
+                                    .input_widths = {1, 3},
+                                    .output_widths = {3},
+                                    .check = no_modes,
+                                    .evaluate = evaluate_invert}};
+const NodeRegistration kGammaNode{{.value = 6,
+                                   .name = "gamma",
+                                   .input_widths = {3, 1},
+                                   .output_widths = {3},
+                                   .check = no_modes,
+                                   .evaluate = evaluate_gamma}};
+const NodeRegistration kBrightContrastNode{{.value = 7,
+                                            .name = "bright_contrast",
+                                            .input_widths = {3, 1, 1},
+                                            .output_widths = {3},
+                                            .check = no_modes,
+                                            .evaluate = evaluate_bright_contrast}};
+const NodeRegistration kHsvNode{{.value = 8,
+                                 .name = "hsv",
+                                 .input_widths = {1, 1, 1, 1, 3},
+                                 .output_widths = {3},
+                                 .check = check_hsv,
+                                 .evaluate = evaluate_hsv}};
+const NodeRegistration kRgbToBwNode{{.value = 11,
+                                     .name = "rgb_to_bw",
+                                     .input_widths = {3},
+                                     .output_widths = {1},
+                                     .check = check_rgb_to_bw,
+                                     .evaluate = evaluate_rgb_to_bw}};
 
 }  // namespace stratum

@@ -13,7 +13,7 @@
 //
 // The conversions are shading/color_math.h's; components are not clamped (Cycles' are not).
 #include "shading/color_math.h"
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -57,11 +57,17 @@ void evaluate_combine(const ShaderNode& n, const ShaderEvalContext&, ShaderRegis
 
 }  // namespace
 
-NodeEntry separate_color_node_entry() {
-    return {"separate_color", {3}, {3}, check_model, nullptr, evaluate_separate};
-}
-NodeEntry combine_color_node_entry() {
-    return {"combine_color", {1, 1, 1}, {3}, check_model, nullptr, evaluate_combine};
-}
+const NodeRegistration kSeparateColorNode{{.value = 9,
+                                           .name = "separate_color",
+                                           .input_widths = {3},
+                                           .output_widths = {3},
+                                           .check = check_model,
+                                           .evaluate = evaluate_separate}};
+const NodeRegistration kCombineColorNode{{.value = 10,
+                                          .name = "combine_color",
+                                          .input_widths = {1, 1, 1},
+                                          .output_widths = {3},
+                                          .check = check_model,
+                                          .evaluate = evaluate_combine}};
 
 }  // namespace stratum

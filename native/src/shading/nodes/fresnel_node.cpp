@@ -17,7 +17,7 @@
 // Cycles does), its Dot that direction against the normalised input.
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -70,12 +70,25 @@ void evaluate_normal(const ShaderNode& n, const ShaderEvalContext&, ShaderRegist
 
 }  // namespace
 
-NodeEntry fresnel_node_entry() { return {"fresnel", {1, 3, 3, 1}, {1}, no_modes, nullptr, evaluate_fresnel}; }
+const NodeRegistration kFresnelNode{{.value = 16,
+                                     .name = "fresnel",
+                                     .input_widths = {1, 3, 3, 1},
+                                     .output_widths = {1},
+                                     .check = no_modes,
+                                     .evaluate = evaluate_fresnel}};
 
-NodeEntry layer_weight_node_entry() {
-    return {"layer_weight", {1, 3, 3, 1}, {1, 1}, no_modes, nullptr, evaluate_layer_weight};
-}
+const NodeRegistration kLayerWeightNode{{.value = 17,
+                                         .name = "layer_weight",
+                                         .input_widths = {1, 3, 3, 1},
+                                         .output_widths = {1, 1},
+                                         .check = no_modes,
+                                         .evaluate = evaluate_layer_weight}};
 
-NodeEntry normal_node_entry() { return {"normal", {3, 3}, {3, 1}, no_modes, nullptr, evaluate_normal}; }
+const NodeRegistration kNormalNode{{.value = 34,
+                                    .name = "normal",
+                                    .input_widths = {3, 3},
+                                    .output_widths = {3, 1},
+                                    .check = no_modes,
+                                    .evaluate = evaluate_normal}};
 
 }  // namespace stratum

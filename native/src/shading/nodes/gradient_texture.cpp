@@ -13,7 +13,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 #include "shading/pattern_math.h"
 
 namespace stratum {
@@ -68,8 +68,11 @@ void evaluate_gradient(const ShaderNode& n, const ShaderEvalContext&, ShaderRegi
 
 }  // namespace
 
-NodeEntry gradient_node_entry() {
-    return {"gradient", {3}, {3, 1}, check_gradient, nullptr, evaluate_gradient};
-}
+const NodeRegistration kGradientNode{{.value = 24,
+                                      .name = "gradient",
+                                      .input_widths = {3},
+                                      .output_widths = {3, 1},
+                                      .check = check_gradient,
+                                      .evaluate = evaluate_gradient}};
 
 }  // namespace stratum

@@ -14,7 +14,7 @@
 // only when the node's Alpha output is linked. The host picks the mode as Cycles does: 0 for
 // Non-Color data and the Channel Packed and None alpha modes (stored as read), else 2 when Alpha
 // is linked, else 1. Alpha is the interpolated alpha in every mode.
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 #include "texture/texture.h"
 
 namespace stratum {
@@ -51,6 +51,12 @@ void evaluate_image(const ShaderNode& n, const ShaderEvalContext& context, Shade
 
 }  // namespace
 
-NodeEntry image_node_entry() { return {"image", {3}, {3, 1}, check_image, nullptr, evaluate_image}; }
+const NodeRegistration kImageNode{{.value = 18,
+                                   .name = "image",
+                                   .input_widths = {3},
+                                   .output_widths = {3, 1},
+                                   .check = check_image,
+                                   .evaluate = evaluate_image,
+                                   .texture_mode = 0}};
 
 }  // namespace stratum

@@ -11,7 +11,7 @@
 // the colour's mean. Blender limits the depth to 0..10.
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -84,6 +84,11 @@ void evaluate_magic(const ShaderNode& n, const ShaderEvalContext&, ShaderRegiste
 
 }  // namespace
 
-NodeEntry magic_node_entry() { return {"magic", {3, 1, 1}, {3, 1}, check_magic, nullptr, evaluate_magic}; }
+const NodeRegistration kMagicNode{{.value = 25,
+                                   .name = "magic",
+                                   .input_widths = {3, 1, 1},
+                                   .output_widths = {3, 1},
+                                   .check = check_magic,
+                                   .evaluate = evaluate_magic}};
 
 }  // namespace stratum

@@ -1,11 +1,11 @@
 // Map Range (Blender's ShaderNodeMapRange) and Clamp (ShaderNodeClamp).
 //
-// | node      | modes                                            | inputs                         | outputs |
-// |-----------|--------------------------------------------------|--------------------------------|----------|
-// | map_range | 0 data type (0 float, 1 vector), 1 interpolation | value, from min, from max,     | result |
-// |           | (LINEAR, STEPPED, SMOOTHSTEP, SMOOTHERSTEP),     | to min, to max, steps          | | | | 2
-// clamp (0/1)                                    | (each 1 wide, or 3 for vector) | (1 or 3) | | clamp     |
-// 0 type (MINMAX, RANGE)                           | value, min, max                | result   |
+// | node      | modes                              | inputs                         | outputs  |
+// |-----------|------------------------------------|--------------------------------|----------|
+// | map_range | 0 data type (0 float, 1 vector),   | value, from min, from max,     | result   |
+// |           | 1 interpolation (LINEAR, STEPPED,  | to min, to max, steps          | (1 or 3) |
+// |           | SMOOTHSTEP, SMOOTHERSTEP), 2 clamp | (each 1 wide, or 3 for vector) |          |
+// | clamp     | 0 type (MINMAX, RANGE)             | value, min, max                | result   |
 //
 // Cycles' svm_node_map_range and svm_node_vector_map_range (kernel/svm/map_range.h) and
 // svm_node_clamp (kernel/svm/clamp.h), unchanged from 3.4 to 5.0. The float node maps nothing
@@ -14,7 +14,7 @@
 // component, and clamps only LINEAR and STEPPED results.
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -144,10 +144,18 @@ void evaluate_clamp(const ShaderNode& n, const ShaderEvalContext&, ShaderRegiste
 }  // namespace
 
 // The widths are those of the float node; check_map_range checks the vector node's.
-NodeEntry map_range_node_entry() {
-    return {"map_range", {1, 1, 1, 1, 1, 1}, {1}, check_map_range, nullptr, evaluate_map_range};
-}
+const NodeRegistration kMapRangeNode{{.value = 3,
+                                      .name = "map_range",
+                                      .input_widths = {1, 1, 1, 1, 1, 1},
+                                      .output_widths = {1},
+                                      .check = check_map_range,
+                                      .evaluate = evaluate_map_range}};
 
-NodeEntry clamp_node_entry() { return {"clamp", {1, 1, 1}, {1}, check_clamp, nullptr, evaluate_clamp}; }
+const NodeRegistration kClampNode{{.value = 4,
+                                   .name = "clamp",
+                                   .input_widths = {1, 1, 1},
+                                   .output_widths = {1},
+                                   .check = check_clamp,
+                                   .evaluate = evaluate_clamp}};
 
 }  // namespace stratum

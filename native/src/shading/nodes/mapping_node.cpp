@@ -1,15 +1,14 @@
 // Mapping (Blender's ShaderNodeMapping), Vector Rotate (ShaderNodeVectorRotate) and Vector
 // Transform (ShaderNodeVectorTransform) between equal spaces.
 //
-// | node             | modes                                         | inputs                        |
-// outputs  |
-// |------------------|-----------------------------------------------|-------------------------------|----------|
-// | mapping          | 0 type (POINT, TEXTURE, VECTOR, NORMAL)       | vector 3, location 3,         | vector
-// 3 | |                  |                                               | rotation 3, scale 3           | |
-// | vector_rotate    | 0 type (AXIS_ANGLE, X_AXIS, Y_AXIS, Z_AXIS,   | vector 3, center 3, axis 3,   | vector
-// 3 | |                  | EULER_XYZ), 1 invert                          | angle 1, rotation 3           | |
-// | vector_transform | 0 type (VECTOR, POINT, NORMAL), 1 from,       | vector 3                      | vector
-// 3 | |                  | 2 to (WORLD, OBJECT, CAMERA), 3 revision      |                               | |
+// | node             | modes                                    | inputs                      | outputs  |
+// |------------------|------------------------------------------|-----------------------------|----------|
+// | mapping          | 0 type (POINT, TEXTURE, VECTOR, NORMAL)  | vector 3, location 3,       | vector 3 |
+// |                  |                                          | rotation 3, scale 3         |          |
+// | vector_rotate    | 0 type (AXIS_ANGLE, X_AXIS, Y_AXIS,      | vector 3, center 3, axis 3, | vector 3 |
+// |                  | Z_AXIS, EULER_XYZ), 1 invert             | angle 1, rotation 3         |          |
+// | vector_transform | 0 type (VECTOR, POINT, NORMAL), 1 from,  | vector 3                    | vector 3 |
+// |                  | 2 to (WORLD, OBJECT, CAMERA), 3 revision |                             |          |
 //
 // Mapping is svm_mapping (kernel/svm/mapping_util.h), Vector Rotate svm_node_vector_rotate
 // (kernel/svm/vector_rotate.h), both unchanged from 3.4 to 5.0. The rotation is Cycles'
@@ -20,7 +19,7 @@
 // (revision 0) normalises a NORMAL (revision 1: 4.0 and later leave it).
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -145,16 +144,25 @@ void evaluate_vector_transform(const ShaderNode& n, const ShaderEvalContext&, Sh
 
 }  // namespace
 
-NodeEntry mapping_node_entry() {
-    return {"mapping", {3, 3, 3, 3}, {3}, check_mapping, nullptr, evaluate_mapping};
-}
+const NodeRegistration kMappingNode{{.value = 14,
+                                     .name = "mapping",
+                                     .input_widths = {3, 3, 3, 3},
+                                     .output_widths = {3},
+                                     .check = check_mapping,
+                                     .evaluate = evaluate_mapping}};
 
-NodeEntry vector_rotate_node_entry() {
-    return {"vector_rotate", {3, 3, 3, 1, 3}, {3}, check_vector_rotate, nullptr, evaluate_vector_rotate};
-}
+const NodeRegistration kVectorRotateNode{{.value = 15,
+                                          .name = "vector_rotate",
+                                          .input_widths = {3, 3, 3, 1, 3},
+                                          .output_widths = {3},
+                                          .check = check_vector_rotate,
+                                          .evaluate = evaluate_vector_rotate}};
 
-NodeEntry vector_transform_node_entry() {
-    return {"vector_transform", {3}, {3}, check_vector_transform, nullptr, evaluate_vector_transform};
-}
+const NodeRegistration kVectorTransformNode{{.value = 33,
+                                             .name = "vector_transform",
+                                             .input_widths = {3},
+                                             .output_widths = {3},
+                                             .check = check_vector_transform,
+                                             .evaluate = evaluate_vector_transform}};
 
 }  // namespace stratum

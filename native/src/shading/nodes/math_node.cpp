@@ -15,7 +15,7 @@
 #include <cmath>
 #include <limits>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -245,9 +245,19 @@ void evaluate_copy(const ShaderNode& n, const ShaderEvalContext&, ShaderRegister
 
 }  // namespace
 
-NodeEntry math_node_entry() { return {"math", {1, 1, 1}, {1}, check_math, nullptr, evaluate_math}; }
+const NodeRegistration kMathNode{{.value = 0,
+                                  .name = "math",
+                                  .input_widths = {1, 1, 1},
+                                  .output_widths = {1},
+                                  .check = check_math,
+                                  .evaluate = evaluate_math}};
 
 // The widths depend on the kind: 1 here, and check_copy checks the vector ones.
-NodeEntry copy_node_entry() { return {"copy", {1}, {1}, check_copy, nullptr, evaluate_copy}; }
+const NodeRegistration kCopyNode{{.value = 35,
+                                  .name = "copy",
+                                  .input_widths = {1},
+                                  .output_widths = {1},
+                                  .check = check_copy,
+                                  .evaluate = evaluate_copy}};
 
 }  // namespace stratum

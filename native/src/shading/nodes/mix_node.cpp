@@ -16,7 +16,7 @@
 #include <tuple>
 
 #include "shading/color_math.h"
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -192,6 +192,11 @@ void evaluate_mix(const ShaderNode& n, const ShaderEvalContext&, ShaderRegisters
 
 }  // namespace
 
-NodeEntry mix_node_entry() { return {"mix", {1, 1, 1}, {1}, check_mix, nullptr, evaluate_mix}; }
+const NodeRegistration kMixNode{{.value = 2,
+                                 .name = "mix",
+                                 .input_widths = {1, 1, 1},
+                                 .output_widths = {1},
+                                 .check = check_mix,
+                                 .evaluate = evaluate_mix}};
 
 }  // namespace stratum

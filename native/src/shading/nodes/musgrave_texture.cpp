@@ -15,7 +15,7 @@
 #include <cmath>
 
 #include "shading/fractal_noise.h"
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -88,8 +88,11 @@ void evaluate_musgrave(const ShaderNode& n, const ShaderEvalContext&, ShaderRegi
 
 }  // namespace
 
-NodeEntry musgrave_node_entry() {
-    return {"musgrave", {3, 1, 1, 1, 1, 1, 1, 1}, {1}, check_musgrave, nullptr, evaluate_musgrave};
-}
+const NodeRegistration kMusgraveNode{{.value = 27,
+                                      .name = "musgrave",
+                                      .input_widths = {3, 1, 1, 1, 1, 1, 1, 1},
+                                      .output_widths = {1},
+                                      .check = check_musgrave,
+                                      .evaluate = evaluate_musgrave}};
 
 }  // namespace stratum

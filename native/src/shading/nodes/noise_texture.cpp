@@ -24,7 +24,7 @@
 
 #include "shading/cycles_hash.h"
 #include "shading/fractal_noise.h"
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -169,8 +169,11 @@ void evaluate_noise(const ShaderNode& n, const ShaderEvalContext&, ShaderRegiste
 
 }  // namespace
 
-NodeEntry noise_node_entry() {
-    return {"noise", {3, 1, 1, 1, 1, 1, 1, 1, 1}, {1, 3}, check_noise, nullptr, evaluate_noise};
-}
+const NodeRegistration kNoiseNode{{.value = 19,
+                                   .name = "noise",
+                                   .input_widths = {3, 1, 1, 1, 1, 1, 1, 1, 1},
+                                   .output_widths = {1, 3},
+                                   .check = check_noise,
+                                   .evaluate = evaluate_noise}};
 
 }  // namespace stratum

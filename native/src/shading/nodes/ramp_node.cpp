@@ -20,7 +20,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -107,9 +107,19 @@ void evaluate_curves(const ShaderNode& n, const ShaderEvalContext& context, Shad
 
 }  // namespace
 
-NodeEntry color_ramp_node_entry() { return {"color_ramp", {1}, {3, 1}, check_ramp, nullptr, evaluate_ramp}; }
+const NodeRegistration kColorRampNode{{.value = 12,
+                                       .name = "color_ramp",
+                                       .input_widths = {1},
+                                       .output_widths = {3, 1},
+                                       .check = check_ramp,
+                                       .evaluate = evaluate_ramp}};
 
 // The value widths depend on the kind: 1 here, and check_curves checks the vector ones.
-NodeEntry curves_node_entry() { return {"curves", {1, 1}, {1}, check_curves, nullptr, evaluate_curves}; }
+const NodeRegistration kCurvesNode{{.value = 13,
+                                    .name = "curves",
+                                    .input_widths = {1, 1},
+                                    .output_widths = {1},
+                                    .check = check_curves,
+                                    .evaluate = evaluate_curves}};
 
 }  // namespace stratum

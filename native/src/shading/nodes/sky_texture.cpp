@@ -24,7 +24,7 @@
 #include <cmath>
 #include <string>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 #include "shading/sky_models.h"
 
 namespace stratum {
@@ -232,6 +232,12 @@ void evaluate_sky(const ShaderNode& n, const ShaderEvalContext& context, ShaderR
 
 }  // namespace
 
-NodeEntry sky_node_entry() { return {"sky", {3}, {3}, check_sky, prepare_sky, evaluate_sky}; }
+const NodeRegistration kSkyNode{{.value = 28,
+                                 .name = "sky",
+                                 .input_widths = {3},
+                                 .output_widths = {3},
+                                 .check = check_sky,
+                                 .prepare = prepare_sky,
+                                 .evaluate = evaluate_sky}};
 
 }  // namespace stratum

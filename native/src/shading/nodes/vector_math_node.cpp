@@ -1,9 +1,8 @@
 // Vector Math node (Blender's ShaderNodeVectorMath).
 //
-// | node        | modes                                        | inputs                   | outputs |
-// |-------------|----------------------------------------------|--------------------------|------------------|
-// | vector_math | 0 operation (VectorOperation), 1 revision    | a 3, b 3, c 3, scale 1   | vector 3, value
-// 1|
+// | node        | modes                                     | inputs                 | outputs           |
+// |-------------|-------------------------------------------|------------------------|-------------------|
+// | vector_math | 0 operation (VectorOperation), 1 revision | a 3, b 3, c 3, scale 1 | vector 3, value 1 |
 //
 // Operations are numbered as Cycles' NodeVectorMathType (kernel/svm/types.h): ADD 0 ... REFLECT 6
 // ... SCALE 10 ... MULTIPLY_ADD 26, POWER 27, SIGN 28 (the last two new in Blender 5.0). The
@@ -21,7 +20,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -206,8 +205,11 @@ void evaluate_vector_math(const ShaderNode& n, const ShaderEvalContext&, ShaderR
 
 }  // namespace
 
-NodeEntry vector_math_node_entry() {
-    return {"vector_math", {3, 3, 3, 1}, {3, 1}, check_vector_math, nullptr, evaluate_vector_math};
-}
+const NodeRegistration kVectorMathNode{{.value = 1,
+                                        .name = "vector_math",
+                                        .input_widths = {3, 3, 3, 1},
+                                        .output_widths = {3, 1},
+                                        .check = check_vector_math,
+                                        .evaluate = evaluate_vector_math}};
 
 }  // namespace stratum

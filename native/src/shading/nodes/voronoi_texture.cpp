@@ -20,7 +20,7 @@
 // Detail, roughness and lacunarity are read in 4.0+ only; Exponent by Minkowski only.
 #include <cmath>
 
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 #include "shading/voronoi_features.h"
 
 namespace stratum {
@@ -258,9 +258,11 @@ void evaluate_voronoi(const ShaderNode& n, const ShaderEvalContext&, ShaderRegis
 
 }  // namespace
 
-NodeEntry voronoi_node_entry() {
-    return {"voronoi",       {3, 1, 1, 1, 1, 1, 1, 1, 1}, {1, 3, 3, 1, 1}, check_voronoi, nullptr,
-            evaluate_voronoi};
-}
+const NodeRegistration kVoronoiNode{{.value = 20,
+                                     .name = "voronoi",
+                                     .input_widths = {3, 1, 1, 1, 1, 1, 1, 1, 1},
+                                     .output_widths = {1, 3, 3, 1, 1},
+                                     .check = check_voronoi,
+                                     .evaluate = evaluate_voronoi}};
 
 }  // namespace stratum

@@ -1,12 +1,13 @@
 // Wave Texture (Blender's ShaderNodeTexWave), as Cycles' svm/wave.h, with its distortion's fBM in
 // each generation (shading/fractal_noise.h).
 //
-// | node | modes                                         | inputs                                 | outputs |
-// |------|-----------------------------------------------|----------------------------------------|-----------|
-// | wave | 0 type (0 bands, 1 rings); 1 bands direction  | 0 vector (3), 1 scale, 2 distortion,   | 0 color |
-// |      | (X, Y, Z, diagonal); 2 rings direction (X, Y, | 3 detail, 4 detail scale, 5 detail     | (3), | |
-// | Z, spherical); 3 profile (sine, saw, tri);    | roughness, 6 phase offset              | 1 fac     | | |
-// 4 noise generation (below)                    |                                        |           |
+// | node | modes                                   | inputs                             | outputs   |
+// |------|-----------------------------------------|------------------------------------|-----------|
+// | wave | 0 type (0 bands, 1 rings);              | 0 vector (3), 1 scale,             | 0 color 3 |
+// |      | 1 bands direction (X, Y, Z, diagonal);  | 2 distortion, 3 detail,            | 1 fac     |
+// |      | 2 rings direction (X, Y, Z, spherical); | 4 detail scale, 5 detail roughness |           |
+// |      | 3 profile (sine, saw, tri);             | 6 phase offset                     |           |
+// |      | 4 noise generation (below)              |                                    |           |
 //
 // On p = (vector x scale + 1e-6) x 0.999999: bands n = 20 x (x, y or z), or 10 x (x + y + z)
 // diagonally; rings n = 20 |p| with the direction's axis zeroed (spherical: none). Then n +=
@@ -22,7 +23,7 @@
 #include <cmath>
 
 #include "shading/fractal_noise.h"
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -103,8 +104,11 @@ void evaluate_wave(const ShaderNode& n, const ShaderEvalContext&, ShaderRegister
 
 }  // namespace
 
-NodeEntry wave_node_entry() {
-    return {"wave", {3, 1, 1, 1, 1, 1, 1}, {3, 1}, check_wave, nullptr, evaluate_wave};
-}
+const NodeRegistration kWaveNode{{.value = 21,
+                                  .name = "wave",
+                                  .input_widths = {3, 1, 1, 1, 1, 1, 1},
+                                  .output_widths = {3, 1},
+                                  .check = check_wave,
+                                  .evaluate = evaluate_wave}};
 
 }  // namespace stratum

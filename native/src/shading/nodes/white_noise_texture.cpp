@@ -9,7 +9,7 @@
 // 1D hashes w; 2D (x, y); 3D (x, y, z); 4D (x, y, z, w). Value is hash_floatN_to_float, Color
 // hash_floatN_to_float3.
 #include "shading/cycles_hash.h"
-#include "shading/nodes/node_families.h"
+#include "shading/node_registry.h"
 
 namespace stratum {
 
@@ -49,8 +49,11 @@ void evaluate_white_noise(const ShaderNode& n, const ShaderEvalContext&, ShaderR
 
 }  // namespace
 
-NodeEntry white_noise_node_entry() {
-    return {"white_noise", {3, 1}, {1, 3}, check_white_noise, nullptr, evaluate_white_noise};
-}
+const NodeRegistration kWhiteNoiseNode{{.value = 26,
+                                        .name = "white_noise",
+                                        .input_widths = {3, 1},
+                                        .output_widths = {1, 3},
+                                        .check = check_white_noise,
+                                        .evaluate = evaluate_white_noise}};
 
 }  // namespace stratum
