@@ -207,6 +207,33 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
     return out;
 }
 
+// How render_pixel_centres views the scene: from (0, 0, 3) down −Z, with a 90° field of view or
+// orthographically across [−1, 1]².
+enum class CentreView { kPerspective, kOrthographic };
+
+// Binds register `first` (and the two after it) of program 0 to material 0's emission, sets the
+// camera of `view` and renders size × size pixels with one sample each at the pixel's centre (a
+// box filter 0.01 pixels wide): a program's value where its inputs are known in closed form.
+inline RenderOutput render_pixel_centres(StratumScene* scene, uint32_t first, int size, CentreView view) {
+    RenderOutput out;
+    const StratumProgramBinding binding{0, 0, STRATUM_PROGRAM_EMISSION, 0, first};
+    StratumCameraDesc camera = camera_at(0.0f, 0.0f, 3.0f);
+    if (view == CentreView::kOrthographic) {
+        camera.type = STRATUM_CAMERA_ORTHOGRAPHIC;
+        camera.ortho_scale = 2.0f;
+    }
+    if (stratum_scene_bind_program(scene, &binding) != STRATUM_OK ||
+        stratum_scene_set_camera(scene, &camera) != STRATUM_OK) {
+        out.error = stratum_last_error();
+        return out;
+    }
+    return render(scene, Settings{{"width", size},
+                                  {"height", size},
+                                  {"samples", 1},
+                                  {"filter_type", "box"},
+                                  {"filter_width", 0.01}});
+}
+
 // render(scene, settings) with the integer settings {name, value} followed by ("sampler", sampler).
 inline RenderOutput render(StratumScene* scene, std::initializer_list<std::pair<const char*, int64_t>> ints,
                            const char* sampler = "random") {

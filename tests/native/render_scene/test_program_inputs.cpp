@@ -153,17 +153,9 @@ TEST(ProgramInputs, RayLengthAndFootprintFollowTheCameraRayPastTransparentSurfac
     const StratumShaderProgramDesc desc{copies,  2, registers.data(), static_cast<uint32_t>(registers.size()),
                                         nullptr, 0};
     ASSERT_EQ(stratum_scene_add_shader_program(h.scene, &desc, nullptr), STRATUM_OK) << stratum_last_error();
-    const StratumProgramBinding b{0, 0, STRATUM_PROGRAM_EMISSION, 0, kInputs};
-    ASSERT_EQ(stratum_scene_bind_program(h.scene, &b), STRATUM_OK) << stratum_last_error();
-    const StratumCameraDesc cam = stratum_test::camera_at(0.0f, 0.0f, 3.0f);
-    ASSERT_EQ(stratum_scene_set_camera(h.scene, &cam), STRATUM_OK);
     constexpr int kSize = 8;
     const stratum_test::RenderOutput out =
-        stratum_test::render(h.scene, stratum_test::Settings{{"width", kSize},
-                                                             {"height", kSize},
-                                                             {"samples", 1},
-                                                             {"filter_type", "box"},
-                                                             {"filter_width", 0.01}});
+        stratum_test::render_pixel_centres(h.scene, kInputs, kSize, stratum_test::CentreView::kPerspective);
     ASSERT_TRUE(out.error.empty()) << out.error;
     for (int y = 0; y < kSize; ++y) {
         for (int x = 0; x < kSize; ++x) {
@@ -196,16 +188,8 @@ TEST(ProgramInputs, AnOrthographicFootprintIsAPixelsWidth) {
     const StratumShaderProgramDesc desc{&copy,   1, registers.data(), static_cast<uint32_t>(registers.size()),
                                         nullptr, 0};
     ASSERT_EQ(stratum_scene_add_shader_program(h.scene, &desc, nullptr), STRATUM_OK) << stratum_last_error();
-    const StratumProgramBinding b{0, 0, STRATUM_PROGRAM_EMISSION, 0, kInputs};
-    ASSERT_EQ(stratum_scene_bind_program(h.scene, &b), STRATUM_OK) << stratum_last_error();
-    StratumCameraDesc cam = stratum_test::camera_at(0.0f, 0.0f, 3.0f);
-    cam.type = STRATUM_CAMERA_ORTHOGRAPHIC;
-    cam.ortho_scale = 2.0f;
-    ASSERT_EQ(stratum_scene_set_camera(h.scene, &cam), STRATUM_OK);
-    const stratum_test::RenderOutput out = stratum_test::render(
-        h.scene,
-        stratum_test::Settings{
-            {"width", 8}, {"height", 8}, {"samples", 1}, {"filter_type", "box"}, {"filter_width", 0.01}});
+    const stratum_test::RenderOutput out =
+        stratum_test::render_pixel_centres(h.scene, kInputs, 8, stratum_test::CentreView::kOrthographic);
     ASSERT_TRUE(out.error.empty()) << out.error;
     for (size_t p = 0; p < 64; ++p) EXPECT_NEAR(out.rgba[p * 4], 2.0f / 8.0f, 1e-6f) << p;
 }

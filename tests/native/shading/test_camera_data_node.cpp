@@ -75,17 +75,9 @@ TEST(CameraDataNode, ReadsTheRenderersCameraSpaceAtEachPixel) {
     ASSERT_EQ(stratum_scene_add_material(h.scene, &m, nullptr), STRATUM_OK);
     ASSERT_TRUE(stratum_test::add_square_instance(h.scene, 0.0f, 10.0f, 0));
     ASSERT_EQ(add_camera_data(h.scene), STRATUM_OK) << stratum_last_error();
-    const StratumProgramBinding b{0, 0, STRATUM_PROGRAM_EMISSION, 0, kInputs + 2};
-    ASSERT_EQ(stratum_scene_bind_program(h.scene, &b), STRATUM_OK) << stratum_last_error();
-    const StratumCameraDesc cam = stratum_test::camera_at(0.0f, 0.0f, 3.0f);
-    ASSERT_EQ(stratum_scene_set_camera(h.scene, &cam), STRATUM_OK);
     constexpr int kSize = 8;
-    const stratum_test::RenderOutput out =
-        stratum_test::render(h.scene, stratum_test::Settings{{"width", kSize},
-                                                             {"height", kSize},
-                                                             {"samples", 1},
-                                                             {"filter_type", "box"},
-                                                             {"filter_width", 0.01}});
+    const stratum_test::RenderOutput out = stratum_test::render_pixel_centres(
+        h.scene, kInputs + 2, kSize, stratum_test::CentreView::kPerspective);
     ASSERT_TRUE(out.error.empty()) << out.error;
     for (int y = 0; y < kSize; ++y) {
         for (int x = 0; x < kSize; ++x) {

@@ -175,18 +175,9 @@ TEST(ShaderPrograms, DriveTheEmissionSeenByTheCamera) {
         math(kMultiply, STRATUM_INPUT_GENERATED, kInputs, kInputs + 1),
         math(kSine, kInputs + 1, kInputs + 1, kInputs + 2)};
     ASSERT_EQ(add(h.scene, nodes, regs), STRATUM_OK) << stratum_last_error();
-    const StratumProgramBinding b{0, 0, STRATUM_PROGRAM_EMISSION, 0, kInputs + 2};
-    ASSERT_EQ(stratum_scene_bind_program(h.scene, &b), STRATUM_OK) << stratum_last_error();
-    StratumCameraDesc cam = camera_at(0.0f, 0.0f, 3.0f);
-    cam.type = STRATUM_CAMERA_ORTHOGRAPHIC;
-    cam.ortho_scale = 2.0f;
-    ASSERT_EQ(stratum_scene_set_camera(h.scene, &cam), STRATUM_OK);
     constexpr int kSize = 16;
-    const RenderOutput out = render(h.scene, Settings{{"width", kSize},
-                                                      {"height", kSize},
-                                                      {"samples", 1},
-                                                      {"filter_type", "box"},
-                                                      {"filter_width", 0.01}});
+    const stratum_test::RenderOutput out = stratum_test::render_pixel_centres(
+        h.scene, kInputs + 2, kSize, stratum_test::CentreView::kOrthographic);
     ASSERT_TRUE(out.error.empty()) << out.error;
     for (int y = 0; y < kSize; ++y) {
         for (int x = 0; x < kSize; ++x) {

@@ -141,16 +141,8 @@ std::vector<float> render_square(float half, const float (&matrix)[16], const fl
                                         registers.data(), static_cast<uint32_t>(registers.size()),
                                         nullptr,          0};
     EXPECT_EQ(stratum_scene_add_shader_program(h.scene, &desc, nullptr), STRATUM_OK) << stratum_last_error();
-    const StratumProgramBinding b{0, 0, STRATUM_PROGRAM_EMISSION, 0, kInputs};
-    EXPECT_EQ(stratum_scene_bind_program(h.scene, &b), STRATUM_OK) << stratum_last_error();
-    StratumCameraDesc cam = stratum_test::camera_at(0.0f, 0.0f, 3.0f);
-    cam.type = STRATUM_CAMERA_ORTHOGRAPHIC;
-    cam.ortho_scale = 2.0f;
-    EXPECT_EQ(stratum_scene_set_camera(h.scene, &cam), STRATUM_OK);
-    const stratum_test::RenderOutput out = stratum_test::render(
-        h.scene,
-        stratum_test::Settings{
-            {"width", 16}, {"height", 16}, {"samples", 1}, {"filter_type", "box"}, {"filter_width", 0.01}});
+    const stratum_test::RenderOutput out =
+        stratum_test::render_pixel_centres(h.scene, kInputs, 16, stratum_test::CentreView::kOrthographic);
     EXPECT_TRUE(out.error.empty()) << out.error;
     return out.rgba;
 }
