@@ -60,13 +60,15 @@ test-blender-wheel: build
 
 # The smoke matrix of the LTS lines (issue 33): the bpy 4.2 and 4.5 wheels, one venv per
 # scripts/requirements-bpy-<line>.txt (scripts/setup_wheels.sh, run by scripts/setup.sh): the
-# Cornell box and every feature scene against that version's Cycles, and that version's
-# image-hash table. Through run_in_blender.py, which leaves with os._exit: the 4.5 wheel's
-# process can hang at exit in bpy's own delayed-close thread. A failing line does not stop the
-# other.
+# Cornell box and every feature scene against that version's Cycles, every shader node, the Bump
+# node's shadowing and the lights per pixel against it (docs/blender_versions.md: about 13 s of
+# the three per line), and that version's image-hash table. Through run_in_blender.py, which
+# leaves with os._exit: the 4.5 wheel's process can hang at exit in bpy's own delayed-close
+# thread. A failing line does not stop the other.
 WHEEL_LINES := $(patsubst scripts/requirements-bpy-%.txt,%,$(wildcard scripts/requirements-bpy-*.txt))
 WHEEL_TESTS := tests/blender/test_cycles_agreement.py tests/blender/test_feature_agreement.py \
-               tests/blender/test_image_hashes.py
+               tests/blender/test_node_agreement.py tests/blender/test_bump_agreement.py \
+               tests/blender/test_light_agreement.py tests/blender/test_image_hashes.py
 test-wheels: build
 	status=0; for line in $(WHEEL_LINES); do \
 		echo "== bpy $$line wheel"; \

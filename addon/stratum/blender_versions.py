@@ -174,10 +174,18 @@ def normal_map_scales_strength(version: Version) -> bool:
     return _since(version, 4, 0)
 
 
-def color_config_4x(version: Version) -> bool:
-    """4.0's colour configuration: luminance weights (colour to float, RGB to BW) and XYZ to
-    Rec.709 as its Linear CIE-XYZ D65 defines them (3.x: its srgb_to_xyz.spimtx)."""
-    return _since(version, 4, 0)
+def color_config(version: Version) -> int:
+    """Blender's colour configuration (datafiles/colormanagement/config.ocio), from which Cycles
+    derives, when it starts, its luminance weights (colour to float, RGB to BW) and its XYZ to
+    scene-linear matrix (Blackbody, Wavelength, Sky Texture), by one rule in every version
+    (ShaderManager::init_xyz_transforms: the aces_interchange space through OpenColorIO's
+    built-in ACES AP0 -> XYZ D65). 0: Blender 3.x (Linear through srgb_to_xyz.spimtx); 1: 4.0 to
+    4.5 (OCIO profile 2: Linear Rec.709 from Linear CIE-XYZ D65 by a 16-digit BT.709 matrix);
+    2: 5.0 and later (profile 2.4: the 7-digit BT.709 matrix). The native luminance weights and
+    sky matrix take this number (shading/node_registry.h, sky_models.h)."""
+    if not _since(version, 4, 0):
+        return 0
+    return 2 if _since(version, 5, 0) else 1
 
 
 # ---- Cycles' evaluation per release: shader nodes (native program node modes) -------------------

@@ -1,13 +1,15 @@
 """Renders Sky Texture worlds in Cycles (run inside Blender) and writes, per case, each pixel's
 direction and colour to a JSON file.
 
-Measured: Cycles' sky per pixel direction, every sky type of Blender 3.4 and 5.0; held by
-tests/native/shading/test_sky_nodes.cpp (SkyNodes.*MatchesCycles34, *MatchesCycles50) and
-tests/python/test_sky_nodes.py (the Preetham zenith, Hosek-Wilkie) as reference pixels.
+Measured: Cycles' sky per pixel direction, every sky type of Blender 3.4, 4.5 and 5.0 (4.2's
+pixels equal 4.5's); held by tests/native/shading/test_sky_nodes.cpp (SkyNodes.*MatchesCycles34,
+*MatchesCycles45*, *MatchesCycles50) and tests/python/test_sky_nodes.py (the Preetham zenith,
+Hosek-Wilkie) as reference pixels.
 
     blender -b --factory-startup -noaudio --python scripts/run_in_blender.py -- \
         scripts.cycles_reference.sky out.json                       # Blender 3.4
     .venv/bin/python -m scripts.cycles_reference.sky out.json       # the bpy wheel (5.0)
+    .venv-bpy-4.5/bin/python -m scripts.cycles_reference.sky out.json  # an LTS wheel (4.5)
 
 The camera is an equirectangular panorama (64 x 32, 1 sample, filter width 0.01: pixel
 centres). The pixel directions are rendered too (a world of Generated * 0.5 + 0.5), so no

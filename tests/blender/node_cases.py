@@ -1,5 +1,5 @@
-"""The node configurations of test_node_agreement.py: one description for Blender 3.4 and 4.x/5.0
-(`cases(version)` keeps the ones the running Blender has), and the graphs that feed each one.
+"""The node configurations of test_node_agreement.py: one description for every Blender
+(`cases()` keeps the ones the running Blender offers), and the graphs that feed each one.
 
 A case is one node (bl_idname) in one mode (its enum/bool properties), its inputs given as
 constants or as *sources* (below), and the output that drives the tile's Emission: a float
@@ -27,6 +27,11 @@ q4 is White Noise's input (a hash of the coordinates' bits): integers are the sa
 one renderer fused a multiply-add that the other rounded twice. Cases of the nodes that read
 the shading point themselves (Texture Coordinate, Geometry, Object Info: RAW_NODES) are not
 snapped (Case.snapped is False) and compared with the sample-position term of the tolerance.
+
+Which cases a Blender has is asked of that Blender, not of its version number (offered()): its
+node type, and every enum value the case sets (an operation, a blend type) among the
+property's items. A case of a node's older form (Noise before its noise_type) names the
+property whose absence it is about (Case.without).
 """
 
 from __future__ import annotations
@@ -36,10 +41,6 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import bpy
-
-V41 = (4, 1, 0)  # Noise types, Voronoi fractal detail, Musgrave removed; Mix EXCLUSION (3.5)
-V35 = (3, 5, 0)
-V40 = (4, 0, 0)  # the legacy Separate/Combine RGB/HSV nodes are gone in 4.x/5.0 (tested: 5.0)
 
 Spec = float | tuple | str
 RAW_NODES = ("ShaderNodeTexCoord", "ShaderNodeNewGeometry", "ShaderNodeObjectInfo")
@@ -53,8 +54,7 @@ class Case:
     props: dict[str, Any] = field(default_factory=dict)
     inputs: dict[str, Spec] = field(default_factory=dict)  # by socket identifier
     out: str = ""  # output identifier ('' = the first)
-    since: tuple[int, int, int] | None = None  # first Blender that has it
-    before: tuple[int, int, int] | None = None  # first Blender that no longer has it
+    without: str = ""  # a property of the node whose absence the case is about (module doc)
     rel: float = 1e-3  # relative tolerance (Cycles' float approximations would raise it)
     warns: bool = False  # an unsupported mode: the export must warn about this material
     compare: bool = True  # compared with Cycles pixel by pixel
@@ -349,7 +349,7 @@ def _describe() -> list[Case]:
             common = {"Vector": "p1", "W": "f:0.2:1.7", "Scale": 2.5, "Detail": detail,
                       "Roughness": 0.6, "Distortion": 0.4 if detail else 0.0}
             add(Case(f"noise34-{dims}-{name}", "ShaderNodeTexNoise",
-                     {"noise_dimensions": dims}, common, before=V41))
+                     {"noise_dimensions": dims}, common, without="noise_type"))
             for ntype in FRACTALS:
                 if name == "plain" and ntype != "FBM":
                     continue
@@ -358,20 +358,18 @@ def _describe() -> list[Case]:
                              "ShaderNodeTexNoise",
                              {"noise_dimensions": dims, "noise_type": ntype,
                               "normalize": normalize},
-                             {**common, "Lacunarity": 2.2, "Offset": 0.3, "Gain": 1.2},
-                             since=V41))
+                             {**common, "Lacunarity": 2.2, "Offset": 0.3, "Gain": 1.2}))
         for mtype in FRACTALS:
             add(Case(f"musgrave-{mtype}-{dims}", "ShaderNodeTexMusgrave",
                      {"musgrave_dimensions": dims, "musgrave_type": mtype},
                      {"Vector": "p1", "W": "f:0.2:1.7", "Scale": 2.5, "Detail": 3.5,
-                      "Dimension": 1.3, "Lacunarity": 2.2, "Offset": 0.6, "Gain": 1.1},
-                     before=V41))
+                      "Dimension": 1.3, "Lacunarity": 2.2, "Offset": 0.6, "Gain": 1.1}))
     add(Case("noise34-3D-color", "ShaderNodeTexNoise", {"noise_dimensions": "3D"},
              {"Vector": "p1", "Scale": 2.5, "Detail": 2.0, "Distortion": 0.3}, out="Color",
-             before=V41))
-    add(Case("noise-FBM-3D-color", "ShaderNodeTexNoise", {"noise_dimensions": "3D"},
-             {"Vector": "p1", "Scale": 2.5, "Detail": 2.0, "Distortion": 0.3}, out="Color",
-             since=V41))
+             without="noise_type"))
+    add(Case("noise-FBM-3D-color", "ShaderNodeTexNoise",
+             {"noise_dimensions": "3D", "noise_type": "FBM"},
+             {"Vector": "p1", "Scale": 2.5, "Detail": 2.0, "Distortion": 0.3}, out="Color"))
     vor = {"Vector": "p1", "W": "f:0.2:1.7", "Scale": 3.0, "Smoothness": 0.6, "Exponent": 1.5,
            "Randomness": 0.8}
     for dims in DIMS:
@@ -391,7 +389,7 @@ def _describe() -> list[Case]:
         for normalize in (True, False):
             add(Case(f"voronoi-detail-{feature}-n{int(normalize)}", "ShaderNodeTexVoronoi",
                      {"voronoi_dimensions": "3D", "feature": feature, "normalize": normalize},
-                     {**vor, "Detail": 2.5, "Roughness": 0.6, "Lacunarity": 2.2}, since=V41))
+                     {**vor, "Detail": 2.5, "Roughness": 0.6, "Lacunarity": 2.2}))
     for wtype, dirs in (("BANDS", ("X", "Y", "Z", "DIAGONAL")),
                         ("RINGS", ("X", "Y", "Z", "SPHERICAL"))):
         for direction in dirs:
@@ -442,12 +440,11 @@ def _describe() -> list[Case]:
         add(Case(f"rgbcurves-{extend}", "ShaderNodeRGBCurve", {},
                  {"Fac": 0.8, "Color": "c:-0.2:1.2"}, setup=_curves(extend)))
     for blend in (*BLENDS, "EXCLUSION"):
-        since = V35 if blend == "EXCLUSION" else None
         add(Case(f"mix-RGBA-{blend}", "ShaderNodeMix", {"data_type": "RGBA", "blend_type": blend},
                  {"Factor_Float": "g:0:1", "A_Color": "c:0:1", "B_Color": (0.8, 0.3, 0.55)},
-                 out="Result_Color", since=since))
+                 out="Result_Color"))
         add(Case(f"mixrgb-{blend}", "ShaderNodeMixRGB", {"blend_type": blend},
-                 {"Fac": "g:0:1", "Color1": "c:0:1", "Color2": (0.8, 0.3, 0.55)}, since=since))
+                 {"Fac": "g:0:1", "Color1": "c:0:1", "Color2": (0.8, 0.3, 0.55)}))
     for blend in ("MIX", "MULTIPLY", "DODGE", "LINEAR_LIGHT"):
         add(Case(f"mix-RGBA-{blend}-clamped", "ShaderNodeMix",
                  {"data_type": "RGBA", "blend_type": blend, "clamp_result": True,
@@ -488,8 +485,7 @@ def _describe() -> list[Case]:
              "WRAP": "g:0.35:1.45", "SNAP": "g:0.35:1.45", "PINGPONG": "g:0.35:1.45",
              "LOGARITHM": "g:1.3:3.1"}.get(op, "g:-1.5:2.5")
         add(Case(f"math-{op}", "ShaderNodeMath", {"operation": op},
-                 {"Value": a, "Value_001": b, "Value_002": -0.6 if op == "WRAP" else 0.6},
-                 since=V41 if op == "FLOORED_MODULO" else None))
+                 {"Value": a, "Value_001": b, "Value_002": -0.6 if op == "WRAP" else 0.6}))
     for op, b in (*((op, 2.0) for op in POSITIVE_ONLY), ("POWER", 3.0)):
         add(Case(f"math-{op}-negative-{b}", "ShaderNodeMath", {"operation": op},
                  {"Value": "f:-2:-0.2", "Value_001": b}))
@@ -502,7 +498,7 @@ def _describe() -> list[Case]:
         out = "Value" if op in ("DOT_PRODUCT", "DISTANCE", "LENGTH") else "Vector"
         add(Case(f"vmath-{op}", "ShaderNodeVectorMath", {"operation": op},
                  {"Vector": "p1", "Vector_001": "c:-1:1.5", "Vector_002": (0.3, -0.6, 0.9),
-                  "Scale": 1.7}, out=out, since=V41 if op in ("POWER", "SIGN") else None))
+                  "Scale": 1.7}, out=out))
     for dtype, value, out in (("FLOAT", "Value", "Result"), ("FLOAT_VECTOR", "Vector", "Vector")):
         for interp in ("LINEAR", "STEPPED", "SMOOTHSTEP", "SMOOTHERSTEP"):
             for clamp in (True, False) if interp == "LINEAR" else (True,):
@@ -529,14 +525,14 @@ def _describe() -> list[Case]:
                  {"Value": "f:-1:2", "Min": 0.8, "Max": 0.2}, out="Result"))
     for out in ("R", "G", "B"):
         add(Case(f"separatergb-{out}", "ShaderNodeSeparateRGB", {}, {"Image": "c:-0.2:1.2"},
-                 out=out, before=V40))
+                 out=out))
     for out in ("H", "S", "V"):
         add(Case(f"separatehsv-{out}", "ShaderNodeSeparateHSV", {}, {"Color": "c:0:1"},
-                 out=out, before=V40))
+                 out=out))
     add(Case("combinergb", "ShaderNodeCombineRGB", {},
-             {"R": "f:-0.2:1.2", "G": "g:0:1", "B": 0.4}, before=V40))
+             {"R": "f:-0.2:1.2", "G": "g:0:1", "B": 0.4}))
     add(Case("combinehsv", "ShaderNodeCombineHSV", {},
-             {"H": "f:0:1", "S": "g:0:1", "V": 0.8}, before=V40))
+             {"H": "f:0:1", "S": "g:0:1", "V": 0.8}))
     for mode in ("RGB", "HSV", "HSL"):
         for out in ("Red", "Green", "Blue"):
             add(Case(f"separatecolor-{mode}-{out}", "ShaderNodeSeparateColor", {"mode": mode},
@@ -564,11 +560,29 @@ def _describe() -> list[Case]:
 EMPTY_OUTPUT = "empty-output"  # the tile lit by a point lamp
 
 
-def cases(version: tuple[int, ...]) -> list[Case]:
-    """The cases the Blender of `version` has."""
-    v = tuple(version[:3])
-    chosen = [k for k in _describe() if (k.since is None or v >= k.since)
-              and (k.before is None or v < k.before)]
+def offered(case: Case) -> bool:
+    """Whether the running Blender offers the case (module docstring): its node type, each
+    enum value it sets among the property's items, and not the property it is `without`."""
+    if not case.node:
+        return True
+    node_type = getattr(bpy.types, case.node, None)
+    if node_type is None:
+        return False
+    properties = node_type.bl_rna.properties
+    if case.without and case.without in properties:
+        return False
+    for key, value in case.props.items():
+        prop = properties.get(key)
+        if prop is None:
+            return False
+        if prop.type == "ENUM" and value not in {e.identifier for e in prop.enum_items}:
+            return False
+    return True
+
+
+def cases() -> list[Case]:
+    """The cases the running Blender offers."""
+    chosen = [k for k in _describe() if offered(k)]
     names = [k.name for k in chosen]
     assert len(set(names)) == len(names), "case names must be unique"
     return chosen

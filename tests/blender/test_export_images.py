@@ -1,16 +1,19 @@
 """Image colour spaces the native OpenColorIO (Debian's 2.1.2) cannot convert because it cannot
-read Blender 4.x/5.x's config: converted by the exporter with Blender's own PyOpenColorIO, to
-the values PyOpenColorIO gives; sRGB images and everything in Blender 3.4 stay on the native
-path (file or packed bytes read by the native side, converted there)."""
+read the Blender's config (a profile newer than its own: 5.0's 2.4; 3.4's and 4.2/4.5's profile
+2 it reads): converted by the exporter with Blender's own PyOpenColorIO, to the values
+PyOpenColorIO gives; sRGB images, and every image of a config the native side reads, stay on the
+native path (file or packed bytes read by the native side, converted there)."""
 
 from __future__ import annotations
 
+import re
 from pathlib import Path
 from typing import Any
 
 import bpy
 import numpy as np
 import pytest
+from stratum import native
 from stratum.export.color_management import blender_pyopencolorio, native_converts
 from stratum.export.images import SCENE_LINEAR_BUILTIN, blender_ocio_config
 from stratum.export.sync import export_scene
@@ -79,23 +82,55 @@ def _srgb_to_linear(v: np.ndarray) -> np.ndarray:
 
 
 def _requires_blender_ocio() -> None:
-    if blender_pyopencolorio() is None:
-        pytest.skip("this Blender ships no PyOpenColorIO (Debian's 3.4: its config is read "
-                    "natively)")
-    if native_converts(blender_ocio_config(), "ACEScg"):
+    """Skips where the native side reads the Blender's config (Filmic Log is in every config
+    and not built in): the exporter converts nothing there (3.4, 4.2, 4.5)."""
+    if native_converts(blender_ocio_config(), "Filmic Log"):
         pytest.skip("the native OpenColorIO reads this Blender's config itself")
+    assert blender_pyopencolorio() is not None, "a config the native side cannot read, and no " \
+        "PyOpenColorIO to convert with"
 
 
-def test_native_side_converts_builtin_names_but_not_acescg_of_a_newer_config(
-        library: Any) -> None:
+def _config_profile(config: str) -> tuple[int, int]:
+    """The config's ocio_profile_version as (major, minor): "2" is (2, 0)."""
+    found = re.search(r"^ocio_profile_version:\s*(\d+)(?:\.(\d+))?", Path(config).read_text(),
+                      re.MULTILINE)
+    assert found, f"no ocio_profile_version in {config}"
+    return int(found[1]), int(found[2] or 0)
+
+
+def _native_ocio_version(tmp_path: Path) -> tuple[int, int]:
+    """The native library's OpenColorIO (major, minor), as it names itself when it refuses a
+    config of a profile no OpenColorIO reads."""
+    future = tmp_path / "future.ocio"
+    future.write_text("ocio_profile_version: 99\n")
+    probe = native.Texture(pixels=np.full((1, 1, 4), 0.5, dtype=np.float32),
+                           color_space="no such space", ocio_config=str(future))
+    with native.Scene() as scratch, pytest.raises(native.StratumError) as refused:
+        scratch.add_texture(probe)
+    found = re.search(r"OpenColorIO (\d+)\.(\d+)", str(refused.value))
+    assert found, str(refused.value)
+    return int(found[1]), int(found[2])
+
+
+def _native_reads(config: str, tmp_path: Path) -> bool:
+    """Whether the native OpenColorIO reads the config: OpenColorIO reads the profiles up to its
+    own version."""
+    return _config_profile(config) <= _native_ocio_version(tmp_path)
+
+
+def test_native_side_converts_builtin_names_and_the_spaces_of_a_config_it_reads(
+        library: Any, tmp_path: Path) -> None:
     config = blender_ocio_config()
     assert native_converts(config, "sRGB")
     assert native_converts(config, "Non-Color")
-    if bpy.app.version >= (4, 0, 0):
-        # 4.x/5.x's config is OCIO profile 2.4 (5.0) or 2.3 (4.x), beyond the native 2.1.
-        assert not native_converts(config, "ACEScg")
-    else:
-        assert native_converts(config, "Filmic Log")  # 3.4's config is read natively
+    # Filmic Log is in every config Stratum meets (3.4 to 5.0), ACEScg from 4.0 on: not built
+    # in, so the native side converts them exactly when it reads the config (5.0's profile 2.4
+    # is beyond Debian's OpenColorIO 2.1; 3.4's and 4.2/4.5's profile 2 is not).
+    reads = _native_reads(config, tmp_path)
+    assert native_converts(config, "Filmic Log") == reads
+    if "ACEScg" in {s.identifier for s in bpy.types.ColorManagedInputColorspaceSettings
+                    .bl_rna.properties["name"].enum_items}:
+        assert native_converts(config, "ACEScg") == reads
 
 
 def test_acescg_byte_image_is_converted_with_blenders_opencolorio(
@@ -178,9 +213,10 @@ def test_srgb_and_non_color_images_stay_on_the_native_path(
     assert by_path["Data.png"].color_space == "Non-Color" and by_path["Data.png"].pixels is None
 
 
-def test_filmic_log_is_native_in_3_4_and_converted_here_in_newer_blenders(
+def test_filmic_log_is_native_where_the_config_is_read_and_converted_here_elsewhere(
         library: Any, scene_builder: Any, recording_scene: Any, tmp_path: Path) -> None:
-    """Filmic Log is in 3.4's and 5.0's configs; only 3.4's can the native side read."""
+    """Filmic Log is in every config from 3.4 to 5.0; the native side converts it where it
+    reads the config (3.4, 4.2, 4.5), the exporter with PyOpenColorIO elsewhere (5.0)."""
     b = scene_builder()
     b.camera()
     image = _saved_image(tmp_path, "Log")
@@ -189,11 +225,12 @@ def test_filmic_log_is_native_in_3_4_and_converted_here_in_newer_blenders(
     summary = export_scene(b.depsgraph(), recording_scene)
     assert summary.warnings == []
     (texture,) = recording_scene.textures
-    if blender_pyopencolorio() is None:
-        assert bpy.app.version < (4, 0, 0)
+    if _native_reads(blender_ocio_config(), tmp_path):
         assert texture.path == str(tmp_path / "Log.png") and texture.pixels is None
         assert texture.color_space == "Filmic Log"
         return
+    assert blender_pyopencolorio() is not None, "a config the native side cannot read, and no " \
+        "PyOpenColorIO to convert with"
     assert texture.path is None and texture.color_space == SCENE_LINEAR_BUILTIN
     expected = _pyopencolorio_to_scene_linear(_file_values(image), "Filmic Log")
     np.testing.assert_allclose(texture.pixels.reshape(-1, 4), expected, rtol=0, atol=1e-6)

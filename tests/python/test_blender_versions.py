@@ -78,7 +78,6 @@ def test_bpy_app_version_is_only_handed_on() -> None:
     (bv.cast_shadow_in_cycles_settings, True, False),
     (bv.principled_v2, False, True),
     (bv.normal_map_scales_strength, False, True),
-    (bv.color_config_4x, False, True),
     (bv.spot_light_model, "spot_v1", "spot"),
     (bv.vector_transform_revision, 0, 1),
 ])
@@ -101,6 +100,11 @@ def test_what_changed_later(question, release: tuple[int, int]) -> None:
     major, minor = release
     assert not question((major, minor - 1, 9))
     assert question((major, minor, 0))
+
+
+def test_colour_configurations_of_3x_4x_and_5_0() -> None:
+    assert [bv.color_config(v) for v in ((3, 6, 9), (4, 0, 0), (4, 5, 9), (5, 0, 0))] == \
+        [0, 1, 1, 2]
 
 
 def test_brick_hue_and_voronoi_lacunarity_boundaries() -> None:

@@ -13,6 +13,8 @@ from stratum.shaders.nodes import NodeCompiler
 from stratum.shaders.nodes.ramp_nodes import table_size
 
 V34 = (3, 4, 1)
+V42 = (4, 2, 23)
+V45 = (4, 5, 15)
 V50 = (5, 0, 1)
 
 
@@ -246,11 +248,49 @@ def test_invert_gamma_bright_contrast_rgb_to_bw(native: Any,
         [0.6, 0.0, 1.4], abs=1e-6)
     node = Node("ShaderNodeRGBToBW", [Socket("Color", "RGBA", rgba(1.0, 0.5, 0.25))],
                 [Socket("Val")])
-    # The colour configuration's luminance weights: 3.x's Rec.709, 4.x/5.x's (measured in 5.0).
-    weights = (0.2126729, 0.7151522, 0.0721750) if version < (4, 0, 0) else \
-        (0.2126390, 0.7151687, 0.0721923)
+    weights = LUMINANCE[version]
     assert evaluate(native, node, "Val", "float", version)[0] == pytest.approx(
         weights[0] + 0.5 * weights[1] + 0.25 * weights[2], abs=1e-6)
+
+
+# Cycles' luminance weights (rgb_to_y): RGB to BW of unit red, green and blue rendered by Cycles
+# 3.4, 4.2, 4.5 and 5.0 (docs/blender_versions.md). 3.x's and 5.0's differ from 4.x's by 1e-6 and
+# 3.4e-5 (red): a colour whose weighted channels nearly cancel shows it.
+LUMINANCE = {V34: (0.212672979, 0.715152621, 0.0721754432),
+             V42: (0.212674037, 0.715151608, 0.0721754208),
+             V45: (0.212674037, 0.715151608, 0.0721754208),
+             V50: (0.212639123, 0.715169132, 0.0721927583)}
+
+
+@pytest.mark.parametrize("version", list(LUMINANCE))
+def test_luminance_weights_of_each_blender(native: Any, version: tuple[int, int, int]) -> None:
+    for k, weight in enumerate(LUMINANCE[version]):
+        unit = rgba(*(1.0 if i == k else 0.0 for i in range(3)))
+        bw = Node("ShaderNodeRGBToBW", [Socket("Color", "RGBA", unit)], [Socket("Val")])
+        rgb = Node("ShaderNodeRGB", [], [Socket("Color", "RGBA", unit)])
+        # RGB to BW, a colour output read as a float (the compiler's conversion node) and an
+        # unlinked colour socket read as a float (folded into a constant), as in Cycles.
+        c = NodeCompiler(version, lambda _n, _m: None)
+        constant = c.constant_of(Socket("Color", "RGBA", unit), "float")
+        with native.Scene() as scene:
+            pid = scene.add_shader_program(c.builder.program)
+            folded = scene.evaluate_program(pid, np.zeros(native.SHADER_INPUT_REGISTERS),
+                                            constant, 1)[0]
+        for got in (evaluate(native, bw, "Val", "float", version)[0][0],
+                    evaluate(native, rgb, "Color", "float", version)[0][0], folded):
+            assert got == pytest.approx(weight, rel=1e-7), (k, got)
+    # Where the weighted channels nearly cancel, each Blender's own weights are needed: the
+    # other configurations' are 2e-6 (3.x against 4.x) to 7e-5 (5.0) off here, the float
+    # rounding of this sum a few 1e-8.
+    colour = rgba(1.0, -1.0, 6.96)
+    node = Node("ShaderNodeRGBToBW", [Socket("Color", "RGBA", colour)], [Socket("Val")])
+    got = evaluate(native, node, "Val", "float", version)[0][0]
+    for other, weights in LUMINANCE.items():
+        want = sum(w * v for w, v in zip(weights, colour[:3], strict=True))
+        if weights == LUMINANCE[version]:
+            assert got == pytest.approx(want, abs=1e-7)
+        else:
+            assert abs(got - want) > 1e-6, other
 
 
 # ---- Separate / Combine ----------------------------------------------------------------------

@@ -15,6 +15,7 @@ from stratum.shaders.nodes import NodeCompiler
 from stratum.shaders.nodes.sky_texture import preetham_data, translate_sky
 
 V3 = (3, 4, 1)
+V4 = (4, 5, 15)
 V5 = (5, 0, 1)
 
 
@@ -99,10 +100,16 @@ def test_texture_mapping_other_than_identity_is_warned() -> None:
     assert any("Texture Mapping" in w for w in warnings)
 
 
-@pytest.mark.parametrize(("version", "matrix"), [(V3, 0), ((4, 2, 0), 1), (V5, 1)])
-def test_xyz_matrix_follows_the_blender_generation(version: tuple[int, int, int],
-                                                   matrix: int) -> None:
-    c, _ = compile_sky(sky("PREETHAM"), version)
+@pytest.mark.parametrize(("version", "sky_type", "matrix"), [
+    (V3, "PREETHAM", 0), (V3, "NISHITA", 0), (V4, "PREETHAM", 1), (V4, "NISHITA", 1),
+    (V5, "PREETHAM", 2), (V5, "MULTIPLE_SCATTERING", 2)])
+def test_xyz_matrix_is_the_colour_configuration_s(version: tuple[int, int, int], sky_type: str,
+                                                  matrix: int) -> None:
+    node = sky(sky_type)
+    if version >= (5, 0, 0):
+        node.aerosol_density = node.dust_density
+        del node.dust_density
+    c, _ = compile_sky(node, version)
     assert tuple(c.builder.program.nodes[-1].modes)[2] == matrix
 
 
@@ -118,12 +125,15 @@ def _evaluate(c: NodeCompiler, color: int, direction: tuple[float, float, float]
 @pytest.mark.parametrize(("version", "direction", "cycles"), [
     (V3, (-0.68892938, -0.41288352, 0.5957377), (0.06552908, 0.09531364, 0.14335762)),
     (V3, (0.91333187, -0.22882426, -0.33684468), (0.19828089, 0.22876978, 0.21615353)),
+    (V4, (-0.68892938, -0.41288352, 0.5957377), (0.06552866, 0.09531379, 0.14335771)),
+    (V4, (0.91333187, -0.22882426, -0.33684468), (0.19827975, 0.22877017, 0.21615361)),
     (V5, (-0.68892938, -0.41288352, 0.5957377), (0.06553943, 0.09531147, 0.14332327)),
 ])
 def test_hosek_wilkie_matches_cycles(version: tuple[int, int, int],
                                      direction: tuple[float, float, float],
                                      cycles: tuple[float, float, float]) -> None:
-    # Cycles 3.4's and 5.0's pixels (scripts/cycles_reference/sky.py): the dataset cooked here.
+    # Cycles 3.4's, 4.5's and 5.0's pixels (scripts/cycles_reference/sky.py): the dataset cooked
+    # here, through each version's XYZ matrix (4.5's and 5.0's are 2.4e-4 apart).
     node = sky("HOSEK_WILKIE", sun_direction=(-0.5, 0.2, 0.4), turbidity=4.0, ground_albedo=0.5)
     c, color = compile_sky(node, version)
     assert c.builder.program.nodes[-1].modes[0] == 1

@@ -304,18 +304,26 @@ def test_layer_weight_outputs() -> None:
 # ---- Blackbody, Wavelength -----------------------------------------------------------------------
 
 def test_colour_matrices_per_generation() -> None:
-    # Both configs' XYZ -> RGB is within 0.001 of Cycles' built-in XYZ -> Rec.709, so Cycles
+    # Every config's XYZ -> RGB is within 0.001 of Cycles' built-in XYZ -> Rec.709, so Cycles
     # takes its scene linear as Rec.709 and passes Blackbody's Rec.709 through unchanged.
-    for version in (V3, V5):
+    for version in (V3, V43, V5):
         assert rec709_to_rgb(version) == ((1, 0, 0), (0, 1, 0), (0, 0, 1))
-    assert not np.allclose(np.array(xyz_to_rgb(V3)), np.array(xyz_to_rgb(V5)), atol=1e-6, rtol=0)
-    assert np.allclose(np.array(xyz_to_rgb(V3)), np.array(xyz_to_rgb(V5)), atol=1e-3)
+    m3, m4, m5 = (np.array(xyz_to_rgb(v)) for v in (V3, V43, V5))
+    assert not np.allclose(m3, m5, atol=1e-6, rtol=0)
+    assert np.allclose(m3, m5, atol=1e-3)
+    # 4.0-4.5's config matrix: 2e-5 from 3.x's, 5e-4 from 5.0's.
+    assert np.abs(m4 - m3).max() < 2e-5
+    assert np.abs(m4 - m5).max() > 5e-4
+    # Its inverse's middle row is the luminance Cycles 4.2 and 4.5 render (RGB to BW of unit
+    # colours: 0.212674037, 0.715151608, 0.0721754208) within Cycles' ACES round trip, < 6e-7.
+    assert np.linalg.inv(m4)[1] == pytest.approx([0.212674037, 0.715151608, 0.0721754208],
+                                                 abs=6e-7)
     # XYZ of D65 white (0.95047, 1, 1.08883) maps to RGB (1, 1, 1).
     white = np.array(xyz_to_rgb(V5)) @ np.array([0.95047, 1.0, 1.08883])
     assert white == pytest.approx([1, 1, 1], abs=2e-3)
 
 
-@pytest.mark.parametrize("version", [V3, V5])
+@pytest.mark.parametrize("version", [V3, V43, V5])
 def test_blackbody_and_wavelength(version: tuple[int, int, int]) -> None:
     node = Node("ShaderNodeBlackbody", "Blackbody", [val("Temperature", 12000.0)],
                 [Socket("Color", "RGBA")])
@@ -328,3 +336,22 @@ def test_blackbody_and_wavelength(version: tuple[int, int, int]) -> None:
     xyz = np.array([0.5121, 1.0, 0.0057])
     want = np.maximum(np.array(xyz_to_rgb(version)) @ xyz, 0) / 2.52
     assert evaluate(c, r, 3) == pytest.approx(want, rel=1e-5, abs=1e-7)
+
+
+@pytest.mark.parametrize(("version", "cycles"), [
+    (V3, ((0.0, 0.37348932, 0.0258514564), (0.980824411, 0.0612067766, 0.0))),
+    ((4, 5, 15), ((0.0, 0.373489887, 0.0258514546), (0.980818927, 0.0612070113, 0.0))),
+    (V5, ((0.0, 0.373480737, 0.0258452371), (0.980980158, 0.0612054989, 0.0))),
+])
+def test_wavelength_matches_each_blenders_cycles(
+        version: tuple[int, int, int],
+        cycles: tuple[tuple[float, float, float], ...]) -> None:
+    # Cycles 3.4's, 4.5's (4.2's are the same) and 5.0's Wavelength at 510 and 600 nm (a world
+    # background rendered to a float EXR). Each goes through its own config's XYZ matrix: 4.5's
+    # pixels are 2.4e-4 from what 5.0's matrix gives, ours within 1.6e-5 of each (the
+    # colour-matching table's interpolation).
+    for nm, want in zip((510.0, 600.0), cycles, strict=True):
+        node = Node("ShaderNodeWavelength", "Wavelength", [val("Wavelength", nm)],
+                    [Socket("Color", "RGBA")])
+        c, r, _ = compile_output(node, "Color", "color", version)
+        assert evaluate(c, r, 3) == pytest.approx(want, rel=5e-5, abs=1e-7)

@@ -1,13 +1,13 @@
 """Image colour spaces the native library cannot convert, converted with Blender's own OpenColorIO.
 
-The native library links the system's OpenColorIO (Debian 12: 2.1.2), which reads Blender 3.4's
-config but refuses Blender 4.x/5.x's (`ocio_profile_version: 2.4`); for such a config it
-converts only its built-in names (sRGB, Linear, Linear Rec.709, Non-Color, Raw; see
-native/src/texture/color_conversion.h) and rejects the others (ACEScg, Linear Rec.2020,
-AgX Log, ...). Blender 4.x/5.x ship PyOpenColorIO built against their own OpenColorIO, which
-reads their config: with it the exporter converts such images itself, as Blender would, and
-hands the native side scene-linear pixels. Blender 3.4 (Debian) ships no PyOpenColorIO and
-needs none: its config is read natively.
+The native library links the system's OpenColorIO (Debian 12: 2.1.2), which reads the configs
+of Blender 3.x and 4.x (`ocio_profile_version: 2` in 3.4, 4.2 and 4.5) but refuses Blender
+5.0's (2.4); for such a config it converts only its built-in names (sRGB, Linear, Linear
+Rec.709, Non-Color, Raw; see native/src/texture/color_conversion.h) and rejects the others
+(ACEScg, Linear Rec.2020, AgX Log, ...). Blender 5.0 ships PyOpenColorIO built against its own
+OpenColorIO, which reads its config: with it the exporter converts such images itself, as
+Blender would, and hands the native side scene-linear pixels. Where the native side reads the
+config (Debian's 3.4, which ships no PyOpenColorIO, the 4.2 and 4.5 wheels) no image needs it.
 
 | question                                  | answered by                                       |
 |-------------------------------------------|---------------------------------------------------|

@@ -97,13 +97,19 @@ inline const NodeEntry* node_entry(int32_t type) { return node_registry().find(t
 // value 3 is filed already, by 'map_range'").
 std::string node_registry_problem();
 
-// Cycles' colour-to-float conversion (svm/convert.h rgb_to_gray): the luminance weights of the
-// colour configuration's scene-linear space. `weights` 0: Blender 3.x's config (Rec.709,
-// 0.2126729, 0.7151522, 0.0721750); 1: Blender 4.x/5.x's (0.2126390, 0.7151687, 0.0721923,
-// measured: Cycles 5.0 renders RGB to BW with exactly these).
+// Cycles' colour-to-float conversion (svm/convert.h rgb_to_gray): dot(c, rgb_to_y), the luminance
+// weights Cycles derives from Blender's colour configuration when it starts (the add-on's
+// blender_versions.color_config): 0 Blender 3.x, 1 4.0 to 4.5, 2 5.0 and later. Measured: Cycles
+// 3.4, 4.2, 4.5 and 5.0 render RGB to BW of unit red, green and blue as exactly these floats (4.2
+// and 4.5 alike); docs/blender_versions.md derives them from each configuration.
+inline constexpr int32_t kLuminanceWeightsCount = 3;
 inline float luminance(Rgb c, int32_t weights) {
-    if (weights == 1) return 0.2126390f * c.r + 0.7151687f * c.g + 0.0721923f * c.b;
-    return kLuminanceR * c.r + kLuminanceG * c.g + kLuminanceB * c.b;
+    static constexpr float kWeights[kLuminanceWeightsCount][3] = {
+        {0.212672979f, 0.715152621f, 0.0721754432f},
+        {0.212674037f, 0.715151608f, 0.0721754208f},
+        {0.212639123f, 0.715169132f, 0.0721927583f}};
+    const float* w = kWeights[weights];
+    return w[0] * c.r + w[1] * c.g + w[2] * c.b;
 }
 
 // "" when a mode lies in [0, count), else the message naming it.

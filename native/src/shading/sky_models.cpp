@@ -218,12 +218,16 @@ float clamped_altitude(float altitude) { return std::clamp(altitude, 1.0f, 59999
 }  // namespace
 
 Rgb xyz_to_rec709(Vec3 c, XyzMatrix m) {
-    // Blender 3.x: the inverse of srgb_to_xyz.spimtx; 4.x and later: the config's BT.709 matrix.
+    // Blender 3.x: the inverse of srgb_to_xyz.spimtx; 4.0 to 4.5 and 5.0: the config's
+    // Linear CIE-XYZ D65 -> Linear Rec.709 matrix.
     static constexpr float k3[9] = {3.2404542f, -1.5371385f, -0.4985314f, -0.9692660f, 1.8760108f,
                                     0.0415560f, 0.0556434f,  -0.2040259f, 1.0572252f};
-    static constexpr float k4[9] = {3.2409699f, -1.5373832f, -0.4986108f, -0.9692436f, 1.8759675f,
+    static constexpr float k4[9] = {3.2404373564920070f,  -1.5371305409000549f, -0.4985288240756933f,
+                                    -0.9692674982687597f, 1.8760136862977035f,  0.0415560804587997f,
+                                    0.0556434463874256f,  -0.2040259700872272f, 1.0572254813610864f};
+    static constexpr float k5[9] = {3.2409699f, -1.5373832f, -0.4986108f, -0.9692436f, 1.8759675f,
                                     0.0415551f, 0.0556301f,  -0.2039770f, 1.0569715f};
-    const float* k = m == XyzMatrix::Blender3 ? k3 : k4;
+    const float* k = m == XyzMatrix::Blender3 ? k3 : (m == XyzMatrix::Blender4 ? k4 : k5);
     const float r = k[0] * c.x + k[1] * c.y + k[2] * c.z;
     const float g = k[3] * c.x + k[4] * c.y + k[5] * c.z;
     const float b = k[6] * c.x + k[7] * c.y + k[8] * c.z;

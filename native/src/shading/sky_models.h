@@ -23,8 +23,9 @@ namespace stratum::sky {
 // Hosek-Wilkie's are X, Y, Z.
 inline constexpr int kAnalyticDataCount = 32;
 
-// Which XYZ to Rec.709 matrix (xyz_to_rec709 below).
-enum class XyzMatrix { Blender3, Blender4 };
+// Which XYZ to Rec.709 matrix (xyz_to_rec709 below): that of Blender's colour configuration
+// (the add-on's blender_versions.color_config), 3.x, 4.0 to 4.5, or 5.0 and later.
+enum class XyzMatrix { Blender3, Blender4, Blender5 };
 
 // Preetham's sky for direction `dir` (not normalised, as Cycles reads it), in linear Rec.709.
 Rgb preetham(const float* data, Vec3 dir, XyzMatrix m);
@@ -32,10 +33,11 @@ Rgb preetham(const float* data, Vec3 dir, XyzMatrix m);
 Rgb hosek_wilkie(const float* data, Vec3 dir, XyzMatrix m);
 
 // CIE XYZ (D65) to linear Rec.709, negative components clamped to 0 (Cycles' xyz_to_rgb_clamped
-// with Blender's default colour management). The matrix differs by generation: Blender 3.x's
-// config goes through its srgb_to_xyz.spimtx (the 4-digit sRGB primaries), 4.x and 5.x's through
-// "Linear CIE-XYZ D65" with the exact BT.709 matrix (2.4e-4 apart).
-Rgb xyz_to_rec709(Vec3 xyz, XyzMatrix m = XyzMatrix::Blender3);
+// with Blender's default colour management). The matrix is the configuration's: Blender 3.x's
+// goes through its srgb_to_xyz.spimtx (the 4-digit sRGB primaries), 4.0 to 4.5's from "Linear
+// CIE-XYZ D65" by a 16-digit BT.709 matrix (within 2e-5 of 3.x's), 5.0's by the 7-digit BT.709
+// matrix (2.4e-4 from both).
+Rgb xyz_to_rec709(Vec3 xyz, XyzMatrix m);
 
 // Nishita's atmosphere, Blender 3.x. The parameters as the node holds them.
 struct NishitaParams {

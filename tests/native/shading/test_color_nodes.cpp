@@ -284,12 +284,32 @@ TEST(ColorNodes, HueSaturationValue) {
                  {0.8, 0.2, 0.8 * (1 - 0.75 * (-8.0 / 3.0 - std::floor(-8.0 / 3.0)))}, 1e-5);
 }
 
-TEST(ColorNodes, RgbToBw) {
-    OneNode p;
-    p.node.type = node_type("rgb_to_bw");
-    p.node.inputs[0] = p.value({1.0f, 0.5f, 0.25f});
-    p.node.outputs[0] = p.output(1);
-    EXPECT_NEAR(p.run(p.node.outputs[0], 1)[0], 0.2126729 + 0.5 * 0.7151522 + 0.25 * 0.0721750, 1e-6);
+TEST(ColorNodes, RgbToBwHasTheLuminanceWeightsOfEachColourConfiguration) {
+    // Mode 0: Blender 3.x, 1: 4.0-4.5, 2: 5.0 and later; the weights Cycles 3.4, 4.2/4.5 and 5.0
+    // render for unit red, green and blue, exactly (node_registry.h).
+    const float weights[3][3] = {{0.212672979f, 0.715152621f, 0.0721754432f},
+                                 {0.212674037f, 0.715151608f, 0.0721754208f},
+                                 {0.212639123f, 0.715169132f, 0.0721927583f}};
+    for (int mode = 0; mode < 3; ++mode) {
+        for (int k = 0; k < 3; ++k) {
+            OneNode p;
+            p.node.type = node_type("rgb_to_bw");
+            p.node.modes[0] = mode;
+            p.node.inputs[0] = p.value({k == 0 ? 1.0f : 0.0f, k == 1 ? 1.0f : 0.0f, k == 2 ? 1.0f : 0.0f});
+            p.node.outputs[0] = p.output(1);
+            EXPECT_EQ(p.run(p.node.outputs[0], 1)[0], weights[mode][k]) << mode << " " << k;
+        }
+    }
+    OneNode bad;
+    bad.node.type = node_type("rgb_to_bw");
+    bad.node.modes[0] = 3;
+    bad.node.inputs[0] = bad.value({1.0f, 0.5f, 0.25f});
+    bad.node.outputs[0] = bad.output(1);
+    SceneHandle h;
+    uint32_t id = 0;
+    EXPECT_NE(bad.add(h, &id), STRATUM_OK);
+    EXPECT_NE(std::string(stratum_last_error()).find("luminance weights"), std::string::npos)
+        << stratum_last_error();
 }
 
 // ---- Separate / Combine ------------------------------------------------------------------------

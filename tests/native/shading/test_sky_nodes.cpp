@@ -1,7 +1,7 @@
 // The Sky Texture node (shading/nodes/sky_texture.cpp) through the C ABI: Preetham at the zenith
-// against the model's closed form, values Cycles 3.4 rendered (scripts/cycles_reference/sky.py),
-// the Nishita table's mirror symmetry and ground fade, the sun disc's limb darkening and its
-// radiance against the disc's solid angle, and the checks.
+// against the model's closed form, values Cycles 3.4, 4.5 and 5.0 rendered
+// (scripts/cycles_reference/sky.py), the Nishita table's mirror symmetry and ground fade, the sun
+// disc's limb darkening and its radiance against the disc's solid angle, and the checks.
 #include <gtest/gtest.h>
 #include <stratum/stratum.h>
 
@@ -24,12 +24,14 @@ constexpr double kPi = 3.14159265358979323846;
 
 struct SkyProgram : stratum_test::SceneHandle {
     uint32_t id = 0;
-    // A program of one sky node reading POSITION, its colour at register 80.
-    StratumStatus add(int32_t model, int32_t disc, const std::vector<float>& data) {
+    // A program of one sky node reading POSITION, its colour at register 80. `matrix`: the XYZ
+    // matrix of the colour configuration (0 Blender 3.x, 1 4.0-4.5, 2 5.0 and later).
+    StratumStatus add(int32_t model, int32_t disc, const std::vector<float>& data, int32_t matrix = 0) {
         StratumShaderNode node{};
         node.type = node_type("sky");
         node.modes[0] = model;
         node.modes[1] = disc;
+        node.modes[2] = matrix;
         node.inputs[0] = STRATUM_INPUT_POSITION;
         node.outputs[0] = STRATUM_SHADER_INPUT_REGISTERS;
         node.data_offset = 0;
@@ -126,6 +128,26 @@ TEST(SkyNodes, PreethamMatchesCycles34) {
     }
 }
 
+TEST(SkyNodes, PreethamMatchesCycles45WithTheColourConfigurationOf4x) {
+    // The same sky in Cycles 4.5 (4.2's pixels are the same): its XYZ -> Rec.709 is the 4.0-4.5
+    // config's 16-digit matrix (XYZ matrix 1). 5.0's 7-digit matrix (2) is 2.4e-4 off here.
+    const std::vector<float> data = {
+        0.6435011f, 0.6947383f, 0.4350246f, 0.2990316f, 0.3113828f, -0.9269f, -0.6387f, 5.257f,
+        -2.2153f,   0.1693f,    0,          0,          0,          0,        -0.3171f, -0.1987f,
+        0.2113f,    -1.0912f,   0.0353f,    0,          0,          0,        0,        -0.3109f,
+        -0.2758f,   0.1865f,    -1.786f,    0.0202f,    0,          0,        0,        0};
+    SkyProgram p;
+    ASSERT_EQ(p.add(0, 0, data, 1), STRATUM_OK);
+    const double cases[][6] = {
+        {-0.5135234, -0.85666883, 0.0491154194, 0.48978141, 0.469022125, 0.537846029},
+        {0.549056292, 0.497587681, -0.671523392, 0.527668953, 0.483850986, 0.554474473},
+        {0.913331866, -0.228824258, -0.336844683, 0.532535434, 0.486943007, 0.557364225}};
+    for (const auto& c : cases) {
+        const auto got = p.at(c[0], c[1], c[2]);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
+    }
+}
+
 // Nishita data: elevation, rotation, size, intensity, altitude, air, dust, ozone.
 std::vector<float> nishita(float elevation, float rotation, float size, float intensity, float altitude,
                            float air, float dust, float ozone) {
@@ -154,7 +176,8 @@ TEST(SkyNodes, SingleScatteringMatchesCycles50) {
     // Cycles 5.0's pixels of the sky, the ground fade (below the horizon, now part of the table)
     // and the disc. Measured worst difference over 2048 pixels of three settings: 6e-6.
     SkyProgram p;
-    ASSERT_EQ(p.add(3, 1, nishita(0.5235988f, -0.6981317f, 0.6981317f, 0.7f, 1000.0f, 1, 1, 1)), STRATUM_OK);
+    ASSERT_EQ(p.add(3, 1, nishita(0.5235988f, -0.6981317f, 0.6981317f, 0.7f, 1000.0f, 1, 1, 1), 2),
+              STRATUM_OK);
     const double cases[][6] = {
         {-0.688929379, -0.41288352, 0.595737696, 0.961367846, 1.55163121, 2.7341485},
         {0.0754529238, 0.50849402, 0.857753277, 1.00394952, 1.54751039, 2.72900486},
@@ -172,7 +195,8 @@ TEST(SkyNodes, MultipleScatteringMatchesCycles50) {
     // the sky, below the horizon and the disc. Measured worst difference over 2048 pixels of three
     // settings: 6.3e-6.
     SkyProgram p;
-    ASSERT_EQ(p.add(4, 1, nishita(0.5235988f, -0.6981317f, 0.6981317f, 0.7f, 1000.0f, 1, 1, 1)), STRATUM_OK);
+    ASSERT_EQ(p.add(4, 1, nishita(0.5235988f, -0.6981317f, 0.6981317f, 0.7f, 1000.0f, 1, 1, 1), 2),
+              STRATUM_OK);
     const double cases[][6] = {{-0.688929379, -0.41288352, 0.595737696, 1.17866731, 2.48518729, 5.14511442},
                                {0.913331866, -0.228824258, -0.336844683, 0.53450048, 0.93976295, 1.74664295},
                                {-0.539353549, 0.595142245, 0.595737696, 330.998413, 273.566345, 204.485947}};

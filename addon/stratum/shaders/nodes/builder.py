@@ -87,16 +87,16 @@ class ProgramBuilder:
     # ---- conversions between socket kinds (Cycles' svm/convert.h) ------------------------------
 
     def copy(self, kind: int, register: int, width: int) -> int:
-        """A COPY node: kind 0 float, 1 vector, 2 float->vector, 3 vector->float (mean),
-        4 colour->float (3.x luminance), 5 colour->float (4.x/5.x luminance)."""
+        """A COPY node: kind 0 float, 1 vector, 2 float->vector, 3 vector->float (mean)."""
         return self.node("copy", (kind,), (register,), (width,))[0]
 
     def to_float_from_vector(self, register: int) -> int:
         return self.copy(3, register, FLOAT)
 
-    def to_float_from_color(self, register: int, modern: bool) -> int:
-        """Luminance with Blender 3.x's (modern False) or 4.x/5.x's weights."""
-        return self.copy(5 if modern else 4, register, FLOAT)
+    def to_float_from_color(self, register: int, color_config: int) -> int:
+        """A COPY node of kind 4: the luminance with the weights of colour configuration
+        `color_config` (blender_versions.color_config)."""
+        return self.node("copy", (4, color_config), (register,), (FLOAT,))[0]
 
     def broadcast(self, register: int) -> int:
         return self.copy(2, register, VECTOR)

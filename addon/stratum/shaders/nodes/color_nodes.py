@@ -117,7 +117,7 @@ def hue_saturation(c: NodeCompiler, node: Any) -> dict[str, int]:
 @translator("ShaderNodeRGBToBW")
 def rgb_to_bw(c: NodeCompiler, node: Any) -> dict[str, int]:
     color = c.input(node, "Color", "color")
-    return {"Val": c.builder.node("rgb_to_bw", (int(c.modern_luminance),), (color,), (1,))[0]}
+    return {"Val": c.builder.node("rgb_to_bw", (c.color_config,), (color,), (1,))[0]}
 
 
 def separate(c: NodeCompiler, color: int, model: str) -> int:

@@ -23,10 +23,12 @@ from ... import blender_versions
 from .builder import FLOAT, VECTOR, ProgramBuilder
 
 FLOAT_TYPES = frozenset({"VALUE", "INT", "BOOLEAN"})
-# Cycles' colour-to-float conversion (svm/convert.h rgb_to_gray): the luminance weights of the
-# colour configuration, Blender 3.x's Rec.709 and 4.x/5.x's (measured in Cycles 5.0).
-LUMINANCE = (0.2126729, 0.7151522, 0.0721750)
-LUMINANCE_4 = (0.2126390, 0.7151687, 0.0721923)
+# Cycles' colour-to-float conversion (svm/convert.h rgb_to_gray): the luminance weights of each
+# colour configuration (blender_versions.color_config: 3.x, 4.0-4.5, 5.0+), as the native
+# luminance() has them (measured in Cycles 3.4, 4.2, 4.5 and 5.0: docs/blender_versions.md).
+LUMINANCE_WEIGHTS = ((0.212672979, 0.715152621, 0.0721754432),
+                     (0.212674037, 0.715151608, 0.0721754208),
+                     (0.212639123, 0.715169132, 0.0721927583))
 
 
 class Unsupported(Exception):
@@ -79,9 +81,9 @@ class NodeCompiler:
         self.images: list[Any] = []
 
     @property
-    def modern_luminance(self) -> bool:
-        """Whether this Blender's colour configuration has 4.x's luminance weights."""
-        return blender_versions.color_config_4x(self.version)
+    def color_config(self) -> int:
+        """This Blender's colour configuration: which luminance weights and XYZ matrix."""
+        return blender_versions.color_config(self.version)
 
     # ---- warnings ---------------------------------------------------------------------------
 
@@ -196,7 +198,7 @@ class NodeCompiler:
             return register
         if want == "float":
             if have == "color":
-                return self.builder.to_float_from_color(register, self.modern_luminance)
+                return self.builder.to_float_from_color(register, self.color_config)
             return self.builder.to_float_from_vector(register)
         if have == "float":
             return self.builder.broadcast(register)
@@ -215,7 +217,7 @@ class NodeCompiler:
             if have == "float":
                 return self.builder.constant(values[0])
             if have == "color":
-                weights = LUMINANCE_4 if self.modern_luminance else LUMINANCE
+                weights = LUMINANCE_WEIGHTS[self.color_config]
                 luminance = sum(w * v for w, v in zip(weights, values, strict=True))
                 return self.builder.constant(luminance)
             return self.builder.constant(sum(values) / 3.0)

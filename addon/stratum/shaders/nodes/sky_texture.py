@@ -157,9 +157,8 @@ def translate_sky(c: NodeCompiler, node: Any) -> dict[str, int]:
     if not _mapping_is_identity(node):
         c.warn(node, f"Sky Texture '{node.name}': its Texture Mapping is ignored", "mapping")
     vector = c.vector_or(node, "Vector", "generated")
-    # XYZ to Rec.709 as the version's colour management defines it (3.x: the sRGB matrix of its
-    # srgb_to_xyz.spimtx; 4.x and later: the exact BT.709 one). Nishita is a 3.x/4.x type and
-    # SINGLE_SCATTERING 5.x: the native node picks their matrix itself.
-    matrix = int(blender_versions.color_config_4x(c.version))
+    # XYZ to Rec.709 as the version's colour configuration defines it, for every model: Cycles
+    # converts each through its film's XYZ -> scene linear (xyz_to_rgb_clamped).
+    matrix = blender_versions.color_config(c.version)
     color = c.builder.node("sky", (model, disc, matrix), (vector,), (3,), data)[0]
     return {"Color": color}

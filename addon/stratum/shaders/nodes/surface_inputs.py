@@ -5,7 +5,10 @@ Fresnel and Layer Weight read the renderer's incoming direction and back-face fl
 node's Normal input when it is linked, else the shading normal, as Cycles does. Blackbody and
 Wavelength take Cycles' colour to the working space by the matrices Cycles derives from the
 Blender version's OpenColorIO config (ShaderManager::init_xyz_transforms): its XYZ from the
-config's aces_interchange role, Rec.709 through Cycles' built-in XYZ -> Rec.709 matrix."""
+config's aces_interchange role, Rec.709 through Cycles' built-in XYZ -> Rec.709 matrix. The
+config's own matrix stands for Cycles' XYZ -> scene linear: Cycles reaches it through OCIO's
+ACES AP0 -> XYZ D65 and back through its 6-digit copy of that matrix, which moves it by less
+than 7e-7 relative (docs/blender_versions.md)."""
 
 from __future__ import annotations
 
@@ -26,8 +29,12 @@ XYZ_TO_REC709_CYCLES: Matrix = ((3.2404542, -1.5371385, -0.4985314),
 SRGB_TO_XYZ_3X: Matrix = ((0.4124564, 0.3575761, 0.1804375),
                           (0.2126729, 0.7151522, 0.0721750),
                           (0.0193339, 0.1191920, 0.9503041))
-# Blender 4.x/5.x config: Linear Rec.709 from Linear CIE-XYZ D65.
-XYZ_TO_REC709_4X: Matrix = ((3.2409699, -1.5373832, -0.4986108),
+# Blender 4.0-4.5 config (OCIO profile 2): Linear Rec.709 from Linear CIE-XYZ D65.
+XYZ_TO_REC709_4X: Matrix = ((3.2404373564920070, -1.5371305409000549, -0.4985288240756933),
+                            (-0.9692674982687597, 1.8760136862977035, 0.0415560804587997),
+                            (0.0556434463874256, -0.2040259700872272, 1.0572254813610864))
+# Blender 5.0 config (OCIO profile 2.4): the same, with the 7-digit BT.709 matrix.
+XYZ_TO_REC709_5X: Matrix = ((3.2409699, -1.5373832, -0.4986108),
                             (-0.9692436, 1.8759675, 0.0415551),
                             (0.0556301, -0.2039770, 1.0569715))
 
@@ -47,9 +54,10 @@ def _product(m: Matrix, n: Matrix) -> Matrix:
 
 def xyz_to_rgb(version: tuple[int, ...]) -> Matrix:
     """The XYZ -> working RGB matrix Cycles uses in Blender `version`."""
-    if blender_versions.color_config_4x(version):
-        return XYZ_TO_REC709_4X
-    return _inverse(SRGB_TO_XYZ_3X)
+    config = blender_versions.color_config(version)
+    if config == 0:
+        return _inverse(SRGB_TO_XYZ_3X)
+    return XYZ_TO_REC709_4X if config == 1 else XYZ_TO_REC709_5X
 
 
 IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
@@ -57,8 +65,9 @@ IDENTITY: Matrix = ((1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (0.0, 0.0, 1.0))
 
 def rec709_to_rgb(version: tuple[int, ...]) -> Matrix:
     """Cycles' Rec.709 -> working RGB: the identity when its XYZ -> RGB is within 0.001 of the
-    built-in XYZ -> Rec.709 (the film's is_rec709, true for both Blender generations' default
-    configs), else XYZ -> RGB after the built-in Rec.709 -> XYZ."""
+    built-in XYZ -> Rec.709 (the film's is_rec709, true for every default config; 4.x's test
+    is 1e-4, which its config's matrix also meets, 1.7e-5 away), else XYZ -> RGB after the
+    built-in Rec.709 -> XYZ."""
     xyz = xyz_to_rgb(version)
     if all(abs(xyz[r][k] - XYZ_TO_REC709_CYCLES[r][k]) <= 0.001 for r in range(3)
            for k in range(3)):

@@ -9,12 +9,13 @@
 // | gamma           | -                         | color (3), gamma                      | color (3) |
 // | bright_contrast | -                         | color (3), bright, contrast           | color (3) |
 // | hsv             | 0 hue wrap (HueWrap)      | hue, saturation, value, fac, color (3)| color (3) |
-// | rgb_to_bw       | -                         | color (3)                             | val       |
+// | rgb_to_bw       | 0 luminance weights       | color (3)                             | val       |
 //
 // Hue/Saturation/Value shifts the hue by (hue - 0.5) and wraps it to [0, 1): Cycles 3.4 wraps with
 // fmodf, which leaves a negative sum negative (a Hue input below 0 - 0.5 - h), 4.0 and later with
-// fractf; the sum is the same otherwise. RGB to BW is the Rec.709 luminance, as the Math node's
-// colour input (math_node.cpp).
+// fractf; the sum is the same otherwise. RGB to BW is the luminance with the colour
+// configuration's weights (node_registry.h luminance()), as the Math node's colour input
+// (math_node.cpp).
 #include <algorithm>
 #include <cmath>
 
@@ -77,7 +78,7 @@ void evaluate_rgb_to_bw(const ShaderNode& n, const ShaderEvalContext&, ShaderReg
 }
 
 std::string check_rgb_to_bw(const ShaderNode& n, const ShaderProgram&) {
-    return check_mode(n, 0, "luminance weights", 2);
+    return check_mode(n, 0, "luminance weights", kLuminanceWeightsCount);
 }
 
 }  // namespace

@@ -3,14 +3,15 @@
 // | node | modes                                  | inputs        | outputs |
 // |------|----------------------------------------|---------------|---------|
 // | math | 0 operation (MathOperation), 1 clamp   | a, b, c       | value   |
-// | copy | 0 CopyKind                             | value (1 / 3) | value   |
+// | copy | 0 CopyKind, 1 luminance weights of     | value (1 / 3) | value   |
+// |      |   ColorToFloat (node_registry.h)       |               |         |
 //
 // Operations and their guards as Cycles' svm_math (kernel/svm/math_util.h, identical in 3.4 and
 // 5.0 except FLOORED_MODULO, new in 4.2, which 3.4 files cannot hold): a division by 0, a power of
 // a negative base to a fractional exponent, a logarithm of a non-positive value give 0; arcsine
 // and arccosine clamp their argument to [-1, 1]; clamp (the node's Clamp option) saturates the
-// result to [0, 1]. Colour to float is Cycles' rgb_to_gray (the Rec.709 luminance) and vector to
-// float the mean of the components (svm/convert.h).
+// result to [0, 1]. Colour to float is Cycles' rgb_to_gray (the luminance with the colour
+// configuration's weights) and vector to float the mean of the components (svm/convert.h).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -199,22 +200,15 @@ void evaluate_math(const ShaderNode& n, const ShaderEvalContext&, ShaderRegister
 }
 
 // Copy kinds: the compiler's value moves and socket conversions.
-// ColorToFloat uses Blender 3.x's luminance weights, ColorToFloat4 4.x/5.x's (node_registry.h).
-enum CopyKind : int32_t {
-    Float,
-    Vector,
-    FloatToVector,
-    VectorToFloat,
-    ColorToFloat,
-    ColorToFloat4,
-    CopyKindCount
-};
+// ColorToFloat is the luminance with mode 1's weights (node_registry.h luminance()).
+enum CopyKind : int32_t { Float, Vector, FloatToVector, VectorToFloat, ColorToFloat, CopyKindCount };
 
 std::string check_copy(const ShaderNode& n, const ShaderProgram& program) {
     std::string e = check_mode(n, 0, "kind", CopyKindCount);
+    if (e.empty() && n.modes[0] == ColorToFloat)
+        e = check_mode(n, 1, "luminance weights", kLuminanceWeightsCount);
     if (!e.empty()) return e;
-    const bool vector_in = n.modes[0] == Vector || n.modes[0] == VectorToFloat ||
-                           n.modes[0] == ColorToFloat || n.modes[0] == ColorToFloat4;
+    const bool vector_in = n.modes[0] == Vector || n.modes[0] == VectorToFloat || n.modes[0] == ColorToFloat;
     const bool vector_out = n.modes[0] == Vector || n.modes[0] == FloatToVector;
     const size_t count = program.registers.size();
     if (vector_in && static_cast<uint64_t>(n.inputs[0]) + 3 > count) return "input register is not 3 wide";
@@ -238,7 +232,7 @@ void evaluate_copy(const ShaderNode& n, const ShaderEvalContext&, ShaderRegister
             r[out] = (r[in] + r[in + 1] + r[in + 2]) * (1.0f / 3.0f);
             break;
         default:
-            r[out] = luminance(r.rgb(in), n.modes[0] == ColorToFloat4 ? 1 : 0);
+            r[out] = luminance(r.rgb(in), n.modes[1]);
             break;
     }
 }

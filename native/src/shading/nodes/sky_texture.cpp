@@ -5,7 +5,7 @@
 // | sky  | 0 model (0 Preetham, 1 Hosek-Wilkie, 2 Nishita    | vector (3) | color (3)  |
 // |      | Blender 3.x/4.x, 3 single scattering Blender 5.x), |            |            |
 // |      | 1 sun disc (2 and 3: 0 off, 1 on), 2 XYZ matrix   |            |            |
-// |      | of models 0 and 1 (0 Blender 3.x, 1 4.x and later) |            |            |
+// |      | (0 Blender 3.x, 1 4.0-4.5, 2 5.0 and later)       |            |            |
 // |      | (model 4: multiple scattering, Blender 5.x)        |            |            |
 //
 // Data: Preetham and Hosek-Wilkie, the 32 coefficients the host computes as Cycles'
@@ -51,7 +51,7 @@ constexpr size_t kHeader = 11;
 std::string check_sky(const ShaderNode& n, const ShaderProgram& program) {
     std::string e = check_mode(n, 0, "model", SkyModelCount);
     if (e.empty()) e = check_mode(n, 1, "sun disc", 2);
-    if (e.empty()) e = check_mode(n, 2, "xyz matrix", 2);
+    if (e.empty()) e = check_mode(n, 2, "xyz matrix", 3);
     if (!e.empty()) return e;
     const bool scattering = n.modes[0] >= Nishita;
     const uint32_t want = scattering ? kNishitaDataCount : sky::kAnalyticDataCount;
@@ -145,7 +145,7 @@ Vec3 lookup(const float* texels, float u, float v, int h = sky::kNishitaHeight) 
 
 float angle_between(Vec3 a, Vec3 b) { return 2.0f * std::atan2(length(a - b), length(a + b)); }
 
-Rgb nishita(const std::vector<float>& table, Vec3 dir) {
+Rgb nishita(const std::vector<float>& table, Vec3 dir, sky::XyzMatrix matrix) {
     const Vec3 bottom(table[0], table[1], table[2]), top(table[3], table[4], table[5]);
     const float elevation = table[6], rotation = table[7], diameter = table[8], intensity = table[9];
     const float* texels = table.data() + kHeader;
@@ -177,12 +177,12 @@ Rgb nishita(const std::vector<float>& table, Vec3 dir) {
         const float f = 1.0f + dir.z * 2.5f;
         xyz = lookup(texels, u, -0.5f) * (f * f * f);
     }
-    return sky::xyz_to_rec709(xyz, sky::XyzMatrix::Blender3);
+    return sky::xyz_to_rec709(xyz, matrix);
 }
 
 // Blender 5.x (kernel/svm/sky.h): the sky over the whole sphere, the disc added to it above the
 // Earth's limb.
-Rgb single_scattering(const std::vector<float>& table, Vec3 dir) {
+Rgb single_scattering(const std::vector<float>& table, Vec3 dir, sky::XyzMatrix matrix) {
     const Vec3 bottom(table[0], table[1], table[2]), top(table[3], table[4], table[5]);
     const float elevation = table[6], rotation = table[7], diameter = table[8], intensity = table[9];
     const float earth_angle = table[10];
@@ -206,12 +206,13 @@ Rgb single_scattering(const std::vector<float>& table, Vec3 dir) {
     const float v =
         std::copysign(std::sqrt(std::fabs(dir_elevation) * (2.0f / kPi)), dir_elevation) * 0.5f + 0.5f;
     xyz += lookup(table.data() + kHeader, u, v, sky::kSingleScatteringHeight);
-    return sky::xyz_to_rec709(xyz, sky::XyzMatrix::Blender4);
+    return sky::xyz_to_rec709(xyz, matrix);
 }
 
 void evaluate_sky(const ShaderNode& n, const ShaderEvalContext& context, ShaderRegisters& r) {
     const Vec3 dir = r.vec3(n.inputs[0]);
-    const auto matrix = n.modes[2] ? sky::XyzMatrix::Blender4 : sky::XyzMatrix::Blender3;
+    // Cycles converts every model through its film's XYZ -> scene linear (xyz_to_rgb_clamped).
+    const auto matrix = static_cast<sky::XyzMatrix>(n.modes[2]);
     Rgb c;
     switch (n.modes[0]) {
         case Preetham:
@@ -221,10 +222,10 @@ void evaluate_sky(const ShaderNode& n, const ShaderEvalContext& context, ShaderR
             c = sky::hosek_wilkie(context.data(n), dir, matrix);
             break;
         case Nishita:
-            c = nishita(context.table(n), dir);
+            c = nishita(context.table(n), dir, matrix);
             break;
         default:
-            c = single_scattering(context.table(n), dir);
+            c = single_scattering(context.table(n), dir, matrix);
             break;
     }
     r.set(n.outputs[0], c);
