@@ -59,9 +59,14 @@ class NodeCompiler:
 
     def __init__(self, version: tuple[int, int, int], warn: Callable[[Any, str], None],
                  builder: ProgramBuilder | None = None,
-                 attribute_slot: Callable[[str], int | None] | None = None) -> None:
+                 attribute_slot: Callable[[str], int | None] | None = None,
+                 world: bool = False) -> None:
         self.version = tuple(version)
         self.builder = builder or ProgramBuilder()
+        # Compiling a world's program: the renderer bakes it per direction, so its inputs are a
+        # direction's (no camera, no triangle: native shader_nodes.h), which some nodes need to
+        # know (Camera Data).
+        self.world = world
         # The mesh-attribute slot of an attribute name (the exporter's table; None: no meshes,
         # as for the world, or a fifth name).
         self._attribute_slot = attribute_slot
