@@ -342,7 +342,7 @@ def _describe() -> list[Case]:
                                                                  -1.75)))
     add(Case("rgb", "ShaderNodeRGB", setup=lambda n: setattr(n.outputs[0], "default_value",
                                                              (0.2, 0.45, 0.9, 1.0))))
-    add(Case("wireframe-unsupported", "ShaderNodeWireframe", warns=True, compare=False))
+    add(Case("ao-unsupported", "ShaderNodeAmbientOcclusion", warns=True, compare=False))
     # Textures.
     for dims in DIMS:
         for detail, name in ((0.0, "plain"), (3.5, "rich")):
