@@ -82,6 +82,10 @@ class NodeCompiler:
         # Image Texture nodes the program reads, in IMAGE node mode-0 order (the exporter maps
         # them to texture ids: export/materials.py resolve_images).
         self.images: list[Any] = []
+        # Per Tangent node in UV-map mode, the UV map it names ("" for the active render map):
+        # the exporter sends those materials' meshes with MikkTSpace tangents, of the one UV
+        # map a mesh carries (export/geometry.py warns when that is not the one named).
+        self.uv_tangent_maps: dict[str, str] = {}
 
     @property
     def modern_luminance(self) -> bool:
