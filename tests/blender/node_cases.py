@@ -25,8 +25,9 @@ T and 1/T are powers of two), so a case compares the node's values, not the samp
 
 q4 is White Noise's input (a hash of the coordinates' bits): integers are the same bits even if
 one renderer fused a multiply-add that the other rounded twice. Cases of the nodes that read
-the shading point themselves (Texture Coordinate, Geometry, Object Info: RAW_NODES) are not
-snapped (Case.snapped is False) and compared with the sample-position term of the tolerance.
+the shading point themselves (Texture Coordinate, Geometry, Object Info, Camera Data:
+RAW_NODES) are not snapped (Case.snapped is False) and compared with the sample-position term
+of the tolerance.
 """
 
 from __future__ import annotations
@@ -42,7 +43,8 @@ V35 = (3, 5, 0)
 V40 = (4, 0, 0)  # the legacy Separate/Combine RGB/HSV nodes are gone in 4.x/5.0 (tested: 5.0)
 
 Spec = float | tuple | str
-RAW_NODES = ("ShaderNodeTexCoord", "ShaderNodeNewGeometry", "ShaderNodeObjectInfo")
+RAW_NODES = ("ShaderNodeTexCoord", "ShaderNodeNewGeometry", "ShaderNodeObjectInfo",
+             "ShaderNodeCameraData")
 T = 16  # pixels per tile side (test_node_agreement.T)
 
 
@@ -558,6 +560,9 @@ def _describe() -> list[Case]:
     add(Case("reroutes", "", graph=_reroutes))
     add(Case("muted-math", "", graph=_muted))
     add(Case("empty-output", "", graph=_empty, warns=True))
+    # Camera, ray and geometry nodes (issue 33).
+    for out in ("View Vector", "View Z Depth", "View Distance"):
+        add(Case(f"cameradata-{out.replace(' ', '')}", "ShaderNodeCameraData", out=out))
     return c
 
 

@@ -1,5 +1,5 @@
 """Nodes that read the shading point or hold constants: Texture Coordinate, Geometry, Object
-Info, UV Map, Value, RGB, Separate XYZ and Combine XYZ.
+Info, UV Map, Attribute, Color Attribute, Camera Data, Value, RGB, Separate XYZ and Combine XYZ.
 
 | node (bl_idname)        | outputs -> renderer input (native.SHADER_INPUTS)                     |
 |-------------------------|-----------------------------------------------------------------------|
@@ -11,6 +11,8 @@ Info, UV Map, Value, RGB, Separate XYZ and Combine XYZ.
 | ShaderNodeUVMap         | UV (the mesh's one UV set; another map's name is warned about)        |
 | ShaderNodeAttribute,    | Color, Vector, Fac, Alpha of a mesh attribute (Geometry type) by name, |
 | ShaderNodeVertexColor   | through one of 4 attribute slots (empty name: the render colour)       |
+| ShaderNodeCameraData    | View Vector, View Z Depth, View Distance of the renderer's `camera`  |
+|                         | point (native camera_data); in a world: not supported (warned)        |
 
 Texture Coordinate's Object output of another object (its Object field set) and From Instancer
 are not supported: one warning, and the node's own object is used."""
@@ -82,6 +84,18 @@ def attribute(c: NodeCompiler, node: Any) -> dict[str, int]:
 def color_attribute(c: NodeCompiler, node: Any) -> dict[str, int]:
     name = str(getattr(node, "layer_name", ""))
     return _attribute_outputs(c, name or RENDER_COLOR, ("Color", "Alpha"))
+
+
+@translator("ShaderNodeCameraData")
+def camera_data(c: NodeCompiler, node: Any) -> dict[str, int]:
+    # Cycles reads sd->P unmoved inside a Bump's Height (its camera node has no bump offset),
+    # hence the renderer's own input rather than c.geometry's stand-in.
+    if c.world:
+        raise Unsupported(f"Camera Data '{node.name}' in a world is not supported (the world is "
+                          "baked per direction, without the camera)")
+    vector, depth, distance = c.builder.node("camera_data", (), (c.builder.input("camera"),),
+                                             (3, 1, 1))
+    return {"View Vector": vector, "View Z Depth": depth, "View Distance": distance}
 
 
 @translator("ShaderNodeValue")

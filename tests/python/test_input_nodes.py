@@ -1,0 +1,73 @@
+"""Translators of the nodes that read the shading point (stratum.shaders.nodes.input_nodes) on
+stand-ins for Blender nodes: the native node each becomes, the renderer inputs it reads, what it
+warns about, and values evaluated natively against values worked out by hand. Their agreement
+with Cycles is tests/blender/test_node_agreement.py's."""
+
+from __future__ import annotations
+
+from typing import Any
+
+import numpy as np
+import pytest
+from stratum import native
+from stratum.shaders.nodes import NodeCompiler
+
+from node_fakes import Node, Socket, link
+
+V3 = (3, 4, 1)
+V5 = (5, 0, 1)
+
+
+def compile_into(node: Node, output: str, target: Socket, version: tuple[int, int, int] = V5,
+                 **compiler: Any) -> tuple[NodeCompiler, int, list[str]]:
+    """`node`'s `output` compiled into the consuming socket `target` (a float socket is read as
+    a float, any other as a vector)."""
+    warnings: list[str] = []
+    c = NodeCompiler(version, lambda _node, message: warnings.append(message), **compiler)
+    link(node, output, target)
+    kind = "float" if target.type == "VALUE" else "vector"
+    return c, c.value(target, kind), warnings
+
+
+def evaluate(c: NodeCompiler, register: int, width: int, **inputs: Any) -> np.ndarray:
+    regs = np.zeros(native.SHADER_INPUT_REGISTERS, dtype=np.float32)
+    for name, value in inputs.items():
+        at, w = native.SHADER_INPUTS[name]
+        regs[at:at + w] = value
+    with native.Scene() as scene:
+        program_id = scene.add_shader_program(c.builder.program)
+        return scene.evaluate_program(program_id, regs, register, width)
+
+
+def only_node(c: NodeCompiler, kind: str) -> Any:
+    (found,) = [n for n in c.builder.program.nodes if n.type == native.node_type(kind)]
+    return found
+
+
+# ---- Camera Data ---------------------------------------------------------------------------------
+
+def camera_data() -> Node:
+    return Node("ShaderNodeCameraData", "Camera Data", (),
+                [Socket("View Vector", (0.0, 0.0, 0.0)), Socket("View Z Depth"),
+                 Socket("View Distance")])
+
+
+@pytest.mark.parametrize(("output", "width", "want"), [
+    ("View Vector", 3, [3 / 13, 4 / 13, 12 / 13]), ("View Z Depth", 1, [12.0]),
+    ("View Distance", 1, [13.0])])
+def test_camera_data_reads_the_point_in_camera_space(output: str, width: int,
+                                                     want: list[float]) -> None:
+    target = Socket("Target", 0.5) if width == 1 else Socket("Target", (0.0, 0.0, 0.0))
+    c, register, warnings = compile_into(camera_data(), output, target)
+    assert warnings == []
+    assert only_node(c, "camera_data").inputs == (native.SHADER_INPUTS["camera"][0],)
+    assert evaluate(c, register, width, camera=(3.0, 4.0, 12.0)) == pytest.approx(want, rel=1e-6)
+
+
+def test_camera_data_in_a_world_warns_and_uses_the_socket_value() -> None:
+    c, register, warnings = compile_into(camera_data(), "View Z Depth", Socket("Strength", 0.5),
+                                         world=True)
+    assert len(warnings) == 1
+    assert "Camera Data 'Camera Data' in a world is not supported" in warnings[0]
+    assert not c.builder.program.nodes
+    assert evaluate(c, register, 1) == pytest.approx([0.5])
