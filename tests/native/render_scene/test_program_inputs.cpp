@@ -130,7 +130,9 @@ double camera_spread(double u, double v) {
 
 // A camera 3 above an emitting plane, a fully transparent sheet 1 above it: the plane's program
 // emits (ray length, footprint, 0). The ray passes the sheet, so its length is the distance from
-// the camera (Cycles continues the same ray), and the footprint is the camera's spread times it.
+// where it left the camera (Cycles continues the same ray): from the near clip plane, 0.5 deep,
+// where Cycles starts a camera ray. The footprint is the camera's spread times the distance from
+// the camera (Cycles moves the ray's differential with its origin).
 TEST(ProgramInputs, RayLengthAndFootprintFollowTheCameraRayPastTransparentSurfaces) {
     stratum_test::SceneHandle h;
     StratumMaterialDesc emitter = stratum_test::diffuse_grey(0.0f);
@@ -155,7 +157,8 @@ TEST(ProgramInputs, RayLengthAndFootprintFollowTheCameraRayPastTransparentSurfac
     ASSERT_EQ(stratum_scene_add_shader_program(h.scene, &desc, nullptr), STRATUM_OK) << stratum_last_error();
     const StratumProgramBinding b{0, 0, STRATUM_PROGRAM_EMISSION, 0, kInputs};
     ASSERT_EQ(stratum_scene_bind_program(h.scene, &b), STRATUM_OK) << stratum_last_error();
-    const StratumCameraDesc cam = stratum_test::camera_at(0.0f, 0.0f, 3.0f);
+    StratumCameraDesc cam = stratum_test::camera_at(0.0f, 0.0f, 3.0f);
+    cam.clip_start = 0.5f;
     ASSERT_EQ(stratum_scene_set_camera(h.scene, &cam), STRATUM_OK);
     constexpr int kSize = 8;
     const stratum_test::RenderOutput out =
@@ -173,7 +176,7 @@ TEST(ProgramInputs, RayLengthAndFootprintFollowTheCameraRayPastTransparentSurfac
             // The sample lies within 0.005 px of the centre in x and y: l changes by at most
             // 0.75 per pixel in each, the footprint by at most 0.06 (summed over x and y,
             // evaluated over this image).
-            EXPECT_NEAR(px[0], l, 7.5e-3) << x << "," << y;
+            EXPECT_NEAR(px[0], l * (1.0 - 0.5 / 3.0), 7.5e-3) << x << "," << y;
             EXPECT_NEAR(px[1], l * camera_spread(u, v), 3e-4 + 1e-6) << x << "," << y;
         }
     }
