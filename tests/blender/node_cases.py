@@ -563,6 +563,12 @@ def _describe() -> list[Case]:
     # Camera, ray and geometry nodes (issue 33).
     for out in ("View Vector", "View Z Depth", "View Distance"):
         add(Case(f"cameradata-{out.replace(' ', '')}", "ShaderNodeCameraData", out=out))
+    # The ray length is the camera ray's, the same over every tile (orthographic view); the
+    # strength and smoothing vary.
+    for out in ("Quadratic", "Linear", "Constant"):
+        for smooth, name in ((0.0, "sharp"), ("g:5:40", "smooth")):
+            add(Case(f"lightfalloff-{out}-{name}", "ShaderNodeLightFalloff", {},
+                     {"Strength": "f:0.5:3", "Smooth": smooth}, out=out))
     return c
 
 
