@@ -25,8 +25,8 @@ T and 1/T are powers of two), so a case compares the node's values, not the samp
 
 q4 is White Noise's input (a hash of the coordinates' bits): integers are the same bits even if
 one renderer fused a multiply-add that the other rounded twice. Cases of the nodes that read
-the shading point themselves (Texture Coordinate, Geometry, Object Info, Camera Data:
-RAW_NODES) are not snapped (Case.snapped is False) and compared with the sample-position term
+the shading point themselves (Texture Coordinate, Geometry, Object Info, Camera Data,
+Wireframe: RAW_NODES) are not snapped (Case.snapped is False) and compared with the sample-position term
 of the tolerance.
 """
 
@@ -41,10 +41,11 @@ import bpy
 V41 = (4, 1, 0)  # Noise types, Voronoi fractal detail, Musgrave removed; Mix EXCLUSION (3.5)
 V35 = (3, 5, 0)
 V40 = (4, 0, 0)  # the legacy Separate/Combine RGB/HSV nodes are gone in 4.x/5.0 (tested: 5.0)
+V44 = (4, 4, 0)  # Wireframe inside a Bump evaluated at the offset points
 
 Spec = float | tuple | str
 RAW_NODES = ("ShaderNodeTexCoord", "ShaderNodeNewGeometry", "ShaderNodeObjectInfo",
-             "ShaderNodeCameraData")
+             "ShaderNodeCameraData", "ShaderNodeWireframe")
 T = 16  # pixels per tile side (test_node_agreement.T)
 
 
@@ -270,6 +271,15 @@ def _muted(g: Graph) -> Any:
 
 def _empty(g: Graph) -> None:
     return None
+
+
+def _wireframe_in_bump(g: Graph) -> Any:
+    """A Bump whose Height is a Wireframe's Fac; its normal drives the colour."""
+    wire = g.new("ShaderNodeWireframe")
+    wire.inputs[0].default_value = 0.1
+    bump = g.new("ShaderNodeBump")
+    g.link(wire.outputs[0], socket(bump.inputs, "Height"))
+    return bump.outputs[0]
 
 
 # ---- the description --------------------------------------------------------------------------
@@ -569,6 +579,17 @@ def _describe() -> list[Case]:
         for smooth, name in ((0.0, "sharp"), ("g:5:40", "smooth")):
             add(Case(f"lightfalloff-{out}-{name}", "ShaderNodeLightFalloff", {},
                      {"Strength": "f:0.5:3", "Smooth": smooth}, out=out))
+    # Half widths (Size / 2, in world units or times the pixel's 1/16) chosen by search so that
+    # no pixel centre lies within 0.089 px of a wire's border: the two renderers' samples, at
+    # most 0.01 px apart, fall on the same side of it.
+    for pixel_size, size in ((False, 0.1), (False, 0.275), (True, 2.8), (True, 1.2)):
+        add(Case(f"wireframe-{'pixel' if pixel_size else 'world'}-{size}", "ShaderNodeWireframe",
+                 {"use_pixel_size": pixel_size}, {"Size": size}, out="Fac"))
+    # Inside a Bump: a difference quotient before 4.4 (warned), the offset points from 4.4. The
+    # bumped normal of a step height is not compared (its offsets straddle a wire's border).
+    add(Case("wireframe-in-bump-quotient", "", graph=_wireframe_in_bump, warns=True,
+             compare=False, before=V44))
+    add(Case("wireframe-in-bump", "", graph=_wireframe_in_bump, compare=False, since=V44))
     return c
 
 

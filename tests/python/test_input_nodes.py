@@ -71,3 +71,49 @@ def test_camera_data_in_a_world_warns_and_uses_the_socket_value() -> None:
     assert "Camera Data 'Camera Data' in a world is not supported" in warnings[0]
     assert not c.builder.program.nodes
     assert evaluate(c, register, 1) == pytest.approx([0.5])
+
+
+# ---- Wireframe -----------------------------------------------------------------------------------
+
+def wireframe(size: float, pixel_size: bool) -> Node:
+    return Node("ShaderNodeWireframe", "Wireframe", [Socket("Size", size)],
+                [Socket("Fac", identifier="Fac")], use_pixel_size=pixel_size)
+
+
+TRIANGLE = (0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0)
+VIEW = {"true_normal": (0.0, 0.0, 1.0), "incoming": (0.0, 0.0, 1.0), "triangle": TRIANGLE}
+
+
+@pytest.mark.parametrize(("pixel_size", "size", "footprint"), [(False, 0.1, 0.0), (True, 1.0, 0.1)])
+def test_wireframe_is_one_within_half_the_size_of_an_edge(pixel_size: bool, size: float,
+                                                          footprint: float) -> None:
+    # Half the width is 0.05 either way (with Pixel Size: 1 pixel of footprint 0.1, halved).
+    c, register, warnings = compile_into(wireframe(size, pixel_size), "Fac", Socket("Strength"))
+    assert warnings == []
+    n = only_node(c, "wireframe")
+    assert n.modes[0] == int(pixel_size)
+    assert n.inputs[0] == native.SHADER_INPUTS["position"][0]
+    assert n.inputs[5:] == tuple(native.SHADER_INPUTS["triangle"][0] + k for k in (0, 3, 6))
+    near_an_edge = evaluate(c, register, 1, position=(0.3, 0.04, 0.0), pixel_footprint=footprint,
+                            **VIEW)
+    # 0.3 from two edges, 0.4 / sqrt(2) = 0.28 from the third.
+    inside = evaluate(c, register, 1, position=(0.3, 0.3, 0.0), pixel_footprint=footprint, **VIEW)
+    assert (near_an_edge[0], inside[0]) == (1.0, 0.0)
+    # The world has no triangle (every vertex 0): Cycles' 0 for no primitive.
+    assert evaluate(c, register, 1, position=(0.3, 0.04, 0.0), pixel_footprint=footprint) == [0.0]
+
+
+@pytest.mark.parametrize(("version", "warned"), [((4, 3, 0), True), ((4, 4, 0), False)])
+def test_wireframe_inside_a_bump_warns_before_4_4(version: tuple[int, int, int],
+                                                  warned: bool) -> None:
+    warnings: list[str] = []
+    c = NodeCompiler(version, lambda _node, message: warnings.append(message))
+    target = Socket("Height")
+    link(wireframe(0.1, False), "Fac", target)
+    moved = c.builder.constant((0.3, 0.04, 0.0))
+    register = c.at_offset({"position": moved}, "bump-x", lambda: c.value(target, "float"))
+    assert only_node(c, "wireframe").inputs[0] == moved
+    assert evaluate(c, register, 1, **VIEW) == [1.0]
+    assert bool(warnings) == warned
+    if warned:
+        assert "difference quotient" in warnings[0]

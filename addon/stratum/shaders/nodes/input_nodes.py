@@ -1,5 +1,6 @@
 """Nodes that read the shading point or hold constants: Texture Coordinate, Geometry, Object
-Info, UV Map, Attribute, Color Attribute, Camera Data, Value, RGB, Separate XYZ and Combine XYZ.
+Info, UV Map, Attribute, Color Attribute, Camera Data, Wireframe, Value, RGB, Separate XYZ and
+Combine XYZ.
 
 | node (bl_idname)        | outputs -> renderer input (native.SHADER_INPUTS)                     |
 |-------------------------|-----------------------------------------------------------------------|
@@ -13,6 +14,9 @@ Info, UV Map, Attribute, Color Attribute, Camera Data, Value, RGB, Separate XYZ 
 | ShaderNodeVertexColor   | through one of 4 attribute slots (empty name: the render colour)       |
 | ShaderNodeCameraData    | View Vector, View Z Depth, View Distance of the renderer's `camera`  |
 |                         | point (native camera_data); in a world: not supported (warned)        |
+| ShaderNodeWireframe     | Fac: 1 within Size / 2 of the hit triangle's edges (native wireframe: |
+|                         | `position`, `triangle`, and with Pixel Size `true_normal`,            |
+|                         | `incoming`, `pixel_footprint`); 0 in the world, as Cycles             |
 
 Texture Coordinate's Object output of another object (its Object field set) and From Instancer
 are not supported: one warning, and the node's own object is used."""
@@ -21,6 +25,7 @@ from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
@@ -96,6 +101,21 @@ def camera_data(c: NodeCompiler, node: Any) -> dict[str, int]:
     vector, depth, distance = c.builder.node("camera_data", (), (c.builder.input("camera"),),
                                              (3, 1, 1))
     return {"View Vector": vector, "View Z Depth": depth, "View Distance": distance}
+
+
+@translator("ShaderNodeWireframe")
+def wireframe(c: NodeCompiler, node: Any) -> dict[str, int]:
+    # Inside a Bump's Height the position is the offset point's (c.geometry), as Cycles 4.4+.
+    if "position" in c.overrides and not blender_versions.wireframe_at_bump_offsets(c.version):
+        c.warn(node, f"Wireframe '{node.name}' inside a Bump's Height: this Blender's Cycles "
+                     "adds a difference quotient at the point, which is not reproduced; "
+                     "evaluated at the offset points as Blender 4.4 and later", "bump")
+    size = c.input(node, "Size", "float")
+    triangle = c.builder.input("triangle")
+    fac = c.builder.node("wireframe", (int(bool(getattr(node, "use_pixel_size", False))),), (
+        c.geometry("position"), size, c.geometry("true_normal"), c.geometry("incoming"),
+        c.geometry("pixel_footprint"), triangle, triangle + 3, triangle + 6), (1,))[0]
+    return {"Fac": fac}
 
 
 @translator("ShaderNodeValue")
