@@ -26,7 +26,7 @@ T and 1/T are powers of two), so a case compares the node's values, not the samp
 q4 is White Noise's input (a hash of the coordinates' bits): integers are the same bits even if
 one renderer fused a multiply-add that the other rounded twice. Cases of the nodes that read
 the shading point themselves (Texture Coordinate, Geometry, Object Info, Camera Data,
-Wireframe: RAW_NODES) are not snapped (Case.snapped is False) and compared with the sample-position term
+Wireframe, Tangent: RAW_NODES) are not snapped (Case.snapped is False) and compared with the sample-position term
 of the tolerance.
 """
 
@@ -45,7 +45,7 @@ V44 = (4, 4, 0)  # Wireframe inside a Bump evaluated at the offset points
 
 Spec = float | tuple | str
 RAW_NODES = ("ShaderNodeTexCoord", "ShaderNodeNewGeometry", "ShaderNodeObjectInfo",
-             "ShaderNodeCameraData", "ShaderNodeWireframe")
+             "ShaderNodeCameraData", "ShaderNodeWireframe", "ShaderNodeTangent")
 T = 16  # pixels per tile side (test_node_agreement.T)
 
 
@@ -63,6 +63,7 @@ class Case:
     compare: bool = True  # compared with Cycles pixel by pixel
     setup: Callable[[Any], None] | None = None  # sets ramps, curves...
     graph: Callable[[Graph], Any] | None = None  # builds the whole graph; returns the output
+    shape: str = ""  # the tile's mesh: "" the flat fan, "tilted", "dome" (test_node_agreement)
 
     @property
     def snapped(self) -> bool:
@@ -590,6 +591,21 @@ def _describe() -> list[Case]:
     add(Case("wireframe-in-bump-quotient", "", graph=_wireframe_in_bump, warns=True,
              compare=False, before=V44))
     add(Case("wireframe-in-bump", "", graph=_wireframe_in_bump, compare=False, since=V44))
+    # Radial tangents on the tilted tile (a flat one's texture space has no depth, where the X
+    # and Y axes' tangents lie along the normal), and about Z on the flat fan; UV tangents on
+    # the dome, of the one map it has, named or not; another map named: Cycles reads a tangent
+    # attribute the mesh lacks (0), Stratum the carried map's, with a warning.
+    for axis in ("X", "Y", "Z"):
+        add(Case(f"tangent-radial-{axis}", "ShaderNodeTangent",
+                 {"direction_type": "RADIAL", "axis": axis}, shape="tilted"))
+    add(Case("tangent-radial-Z-flat", "ShaderNodeTangent", {"direction_type": "RADIAL",
+                                                            "axis": "Z"}))
+    for uv_map in ("", "UVMap"):
+        add(Case(f"tangent-uvmap-{uv_map or 'default'}", "ShaderNodeTangent",
+                 {"direction_type": "UV_MAP", "uv_map": uv_map}, shape="dome"))
+    add(Case("tangent-uvmap-other", "ShaderNodeTangent",
+             {"direction_type": "UV_MAP", "uv_map": "Other"}, shape="dome", warns=True,
+             compare=False))
     return c
 
 

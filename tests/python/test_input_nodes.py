@@ -117,3 +117,60 @@ def test_wireframe_inside_a_bump_warns_before_4_4(version: tuple[int, int, int],
     assert bool(warnings) == warned
     if warned:
         assert "difference quotient" in warnings[0]
+
+
+# ---- Tangent -------------------------------------------------------------------------------------
+
+def tangent(direction: str, axis: str = "Z", uv_map: str = "") -> Node:
+    return Node("ShaderNodeTangent", "Tangent", (), [Socket("Tangent", (0.0, 0.0, 0.0))],
+                direction_type=direction, axis=axis, uv_map=uv_map)
+
+
+IDENTITY = (1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0)
+
+
+@pytest.mark.parametrize("axis", ["X", "Y", "Z"])
+def test_tangent_radial_circles_the_axis_in_the_shading_plane(axis: str) -> None:
+    c, register, warnings = compile_into(tangent("RADIAL", axis), "Tangent",
+                                         Socket("Color", (0.0, 0.0, 0.0, 1.0)))
+    assert warnings == [] and c.uv_tangent_maps == {}
+    n = only_node(c, "tangent")
+    assert n.modes[:2] == (0, "XYZ".index(axis))
+    # g - 1/2 = (0.3, 0, 0.4): the radial tangents about X, Y and Z, then N x normalize(T x N)
+    # with N = +Z keeps their part in the XY plane, unit.
+    got = evaluate(c, register, 3, generated=(0.8, 0.5, 0.9), normal=(0.0, 0.0, 1.0),
+                   normal_transform=IDENTITY)
+    radial = {"X": (0.0, -0.4, 0.0), "Y": (-0.4, 0.0, 0.3), "Z": (0.0, 0.3, 0.0)}[axis]
+    flat = np.array([radial[0], radial[1], 0.0])
+    assert got == pytest.approx(flat / np.linalg.norm(flat), abs=1e-6)
+
+
+def test_tangent_radial_is_taken_to_world_space_as_a_normal() -> None:
+    c, register, _ = compile_into(tangent("RADIAL", "Z"), "Tangent",
+                                  Socket("Color", (0.0, 0.0, 0.0, 1.0)))
+    # Object X goes to world Y, object Y to world -X: the radial tangent (0, 0.3, 0) about Z
+    # becomes world (-0.3, 0, 0).
+    rotation = (0.0, 1.0, 0.0, -1.0, 0.0, 0.0, 0.0, 0.0, 1.0)
+    got = evaluate(c, register, 3, generated=(0.8, 0.5, 0.5), normal=(0.0, 0.0, 1.0),
+                   normal_transform=rotation)
+    assert got == pytest.approx([-1.0, 0.0, 0.0], abs=1e-6)
+
+
+@pytest.mark.parametrize("uv_map", ["", "UVMap"])
+def test_tangent_uv_map_reads_the_mikktspace_tangent_and_records_the_map(uv_map: str) -> None:
+    c, register, warnings = compile_into(tangent("UV_MAP", uv_map=uv_map), "Tangent",
+                                         Socket("Color", (0.0, 0.0, 0.0, 1.0)))
+    assert warnings == []
+    assert c.uv_tangent_maps == {"Tangent": uv_map}
+    assert only_node(c, "tangent").modes[0] == 1
+    got = evaluate(c, register, 3, normal=(0.0, 0.0, 1.0), mikktspace_tangent=(2.0, 0.0, 1.0))
+    assert got == pytest.approx([1.0, 0.0, 0.0], abs=1e-6)
+    # A mesh without corner tangents: 0, as Cycles' missing attribute.
+    assert evaluate(c, register, 3, normal=(0.0, 0.0, 1.0)) == pytest.approx([0.0] * 3)
+
+
+def test_tangent_of_an_unknown_direction_warns() -> None:
+    c, register, warnings = compile_into(tangent("SPIRAL"), "Tangent",
+                                         Socket("Color", (0.25, 0.5, 0.75, 1.0)))
+    assert len(warnings) == 1 and "direction SPIRAL" in warnings[0]
+    assert evaluate(c, register, 3) == pytest.approx([0.25, 0.5, 0.75])

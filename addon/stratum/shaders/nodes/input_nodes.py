@@ -1,6 +1,6 @@
 """Nodes that read the shading point or hold constants: Texture Coordinate, Geometry, Object
-Info, UV Map, Attribute, Color Attribute, Camera Data, Wireframe, Value, RGB, Separate XYZ and
-Combine XYZ.
+Info, UV Map, Attribute, Color Attribute, Camera Data, Wireframe, Tangent, Value, RGB, Separate
+XYZ and Combine XYZ.
 
 | node (bl_idname)        | outputs -> renderer input (native.SHADER_INPUTS)                     |
 |-------------------------|-----------------------------------------------------------------------|
@@ -17,6 +17,9 @@ Combine XYZ.
 | ShaderNodeWireframe     | Fac: 1 within Size / 2 of the hit triangle's edges (native wireframe: |
 |                         | `position`, `triangle`, and with Pixel Size `true_normal`,            |
 |                         | `incoming`, `pixel_footprint`); 0 in the world, as Cycles             |
+| ShaderNodeTangent       | Tangent (native tangent): radial about X, Y or Z from `generated`,    |
+|                         | through `normal_transform`; UV map: `mikktspace_tangent`, of the one  |
+|                         | UV map a mesh carries (another map named: export/geometry.py warns)  |
 
 Texture Coordinate's Object output of another object (its Object field set) and From Instancer
 are not supported: one warning, and the node's own object is used."""
@@ -116,6 +119,29 @@ def wireframe(c: NodeCompiler, node: Any) -> dict[str, int]:
         c.geometry("position"), size, c.geometry("true_normal"), c.geometry("incoming"),
         c.geometry("pixel_footprint"), triangle, triangle + 3, triangle + 6), (1,))[0]
     return {"Fac": fac}
+
+
+TANGENT_DIRECTIONS = ("RADIAL", "UV_MAP")  # native mode 0
+TANGENT_AXES = ("X", "Y", "Z")  # native mode 1
+
+
+@translator("ShaderNodeTangent")
+def tangent(c: NodeCompiler, node: Any) -> dict[str, int]:
+    direction = str(getattr(node, "direction_type", "RADIAL"))
+    axis = str(getattr(node, "axis", "Z"))
+    if direction not in TANGENT_DIRECTIONS or axis not in TANGENT_AXES:
+        raise Unsupported(f"Tangent '{node.name}': direction {direction}, axis {axis} is not "
+                          "supported")
+    if direction == "UV_MAP":
+        c.uv_tangent_maps[node.name] = str(getattr(node, "uv_map", ""))
+    # Cycles' svm_node_tangent reads the point unmoved inside a Bump's Height (it has no bump
+    # offset), hence the renderer's own inputs rather than c.geometry's stand-ins.
+    b = c.builder
+    transform = b.input("normal_transform")
+    out = b.node("tangent", (TANGENT_DIRECTIONS.index(direction), TANGENT_AXES.index(axis)), (
+        b.input("generated"), b.input("normal"), transform, transform + 3, transform + 6,
+        b.input("mikktspace_tangent")), (3,))[0]
+    return {"Tangent": out}
 
 
 @translator("ShaderNodeValue")
