@@ -64,6 +64,7 @@ class Case:
     setup: Callable[[Any], None] | None = None  # sets ramps, curves...
     graph: Callable[[Graph], Any] | None = None  # builds the whole graph; returns the output
     shape: str = ""  # the tile's mesh: "" the flat fan, "tilted", "dome" (test_node_agreement)
+    lit: bool = False  # a point lamp over the tile (for a graph that is not an Emission)
 
     @property
     def snapped(self) -> bool:
@@ -272,6 +273,30 @@ def _muted(g: Graph) -> Any:
 
 def _empty(g: Graph) -> None:
     return None
+
+
+def _script(g: Graph, output: str) -> Any:
+    """A Script node (as one whose OSL script declared an input In and an output of type
+    `output`, its sockets made as Blender's script update makes them)."""
+    script = g.new("ShaderNodeScript")
+    script.inputs.new("NodeSocketFloat", "In").default_value = 2.0
+    return script.outputs.new(output, "Out")
+
+
+def _script_value(g: Graph) -> Any:
+    """Script output 0.3 into a Math node's first input (its own value 0.6), plus 0.25."""
+    out = _script(g, "NodeSocketFloat")
+    out.default_value = 0.3
+    add = g.new("ShaderNodeMath", operation="ADD")
+    add.inputs[0].default_value = 0.6
+    add.inputs[1].default_value = 0.25
+    g.link(out, add.inputs[0])
+    return add.outputs[0]
+
+
+def _script_shader(g: Graph) -> None:
+    """A Script's closure output on the Material Output's Surface."""
+    g.link(_script(g, "NodeSocketShader"), g.nodes["Material Output"].inputs["Surface"])
 
 
 def _wireframe_in_bump(g: Graph) -> Any:
@@ -606,6 +631,11 @@ def _describe() -> list[Case]:
     add(Case("tangent-uvmap-other", "ShaderNodeTangent",
              {"direction_type": "UV_MAP", "uv_map": "Other"}, shape="dome", warns=True,
              compare=False))
+    # Script (OSL): Cycles without OSL (its default, and any GPU) makes no node of it, so what it
+    # feeds reads as unlinked: the Math node's own 0.6 (+ 0.25), and no surface at all (black,
+    # lit by a lamp so that a stand-in closure would show).
+    add(Case("script-value", "", graph=_script_value, warns=True))
+    add(Case("script-shader", "", graph=_script_shader, warns=True, lit=True))
     return c
 
 

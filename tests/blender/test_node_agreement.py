@@ -12,7 +12,7 @@ Blender generations, each case kept where its node and mode exist). Each case is
 output drives Strength, a colour or vector output Color). TILES x TILES tiles per image, each
 T x T pixels, seen by an orthographic camera looking straight down (ortho scale = TILES, so tile
 edges fall on pixel edges); world black; no lamp but a point lamp (radius 0, invisible) over
-the empty-output tile. Each image is rendered once by Cycles (CPU, 1 sample, BOX filter of
+the empty-output tile and over each tile of a lit case (Case.lit). Each image is rendered once by Cycles (CPU, 1 sample, BOX filter of
 width FILTER_WIDTH, no denoising, Standard view, 32-bit float EXR) and once by Stratum (1
 sample, filter_type box, filter_width FILTER_WIDTH), then compared tile by tile.
 
@@ -158,7 +158,7 @@ def _build_image(chunk: list[Case]) -> bpy.types.Scene:
         ob = _plane(f"tile_{case.name}", col, row, case.shape)
         ob.data.materials.append(build_material(case))
         scene.collection.objects.link(ob)
-        if case.name == EMPTY_OUTPUT:
+        if case.name == EMPTY_OUTPUT or case.lit:
             lamp = bpy.data.lights.new("lamp", "POINT")
             lamp.energy = 50.0
             lamp.shadow_soft_size = 0.0

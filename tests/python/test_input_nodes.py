@@ -174,3 +174,16 @@ def test_tangent_of_an_unknown_direction_warns() -> None:
                                          Socket("Color", (0.25, 0.5, 0.75, 1.0)))
     assert len(warnings) == 1 and "direction SPIRAL" in warnings[0]
     assert evaluate(c, register, 3) == pytest.approx([0.25, 0.5, 0.75])
+
+
+# ---- Script --------------------------------------------------------------------------------------
+
+def test_a_script_node_warns_and_its_consumer_reads_its_own_value() -> None:
+    """Cycles without OSL drops the node and its links: the consuming socket's own value, not
+    the Script output's default."""
+    script = Node("ShaderNodeScript", "Script", [Socket("In", 2.0)], [Socket("Fac", 0.3)])
+    c, register, warnings = compile_into(script, "Fac", Socket("Strength", 0.6))
+    assert len(warnings) == 1
+    assert warnings[0].startswith("Script 'Script': OSL scripts are not supported")
+    assert warnings[0].endswith("using the value of 'Strength'")
+    assert evaluate(c, register, 1) == pytest.approx([0.6])

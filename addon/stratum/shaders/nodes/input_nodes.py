@@ -20,9 +20,12 @@ XYZ and Combine XYZ.
 | ShaderNodeTangent       | Tangent (native tangent): radial about X, Y or Z from `generated`,    |
 |                         | through `normal_transform`; UV map: `mikktspace_tangent`, of the one  |
 |                         | UV map a mesh carries (another map named: export/geometry.py warns)  |
+| ShaderNodeScript        | not supported (OSL): SCRIPT_UNSUPPORTED, and the consuming socket's  |
+|                         | own value, as Cycles without OSL drops the node and its links         |
 
 Texture Coordinate's Object output of another object (its Object field set) and From Instancer
-are not supported: one warning, and the node's own object is used."""
+are not supported: one warning, and the node's own object is used. A Script node's closure
+output adds no closure (stratum.shaders.closures), again as Cycles without OSL."""
 
 from __future__ import annotations
 
@@ -142,6 +145,18 @@ def tangent(c: NodeCompiler, node: Any) -> dict[str, int]:
         b.input("generated"), b.input("normal"), transform, transform + 3, transform + 6,
         b.input("mikktspace_tangent")), (3,))[0]
     return {"Tangent": out}
+
+
+def script_unsupported(node: Any) -> str:
+    """The warning for a Script node: Cycles without Open Shading Language (its default, SVM,
+    and any GPU) makes no node of it, so what it feeds reads as unlinked."""
+    return (f"Script '{node.name}': OSL scripts are not supported (Stratum renders it as Cycles "
+            "does without Open Shading Language, as if it were not linked)")
+
+
+@translator("ShaderNodeScript")
+def script(c: NodeCompiler, node: Any) -> dict[str, int]:
+    raise Unsupported(script_unsupported(node))
 
 
 @translator("ShaderNodeValue")
