@@ -244,3 +244,16 @@ def vector_transform_revision(version: Version) -> int:
     """Vector Transform: 0 Blender 3.x (normalises a NORMAL), 1 4.0 and later (leave it;
     native shading/nodes/mapping_node.cpp)."""
     return 1 if _since(version, 4, 0) else 0
+
+
+def light_falloff_revision(version: Version) -> int:
+    """Light Falloff at Cycles' ray length FLT_MAX (the world, suns): 0 before 4.4 (the outputs
+    multiplied by it, Constant infinite), 1 from 4.4 (every output is the strength; native
+    shading/nodes/light_falloff_node.cpp)."""
+    return 1 if _since(version, 4, 4) else 0
+
+
+def wireframe_at_bump_offsets(version: Version) -> bool:
+    """Wireframe inside a Bump's Height: 4.4 and later evaluate it at the offset points (as
+    every other node); before, Cycles adds a difference quotient to its value at the point."""
+    return _since(version, 4, 4)

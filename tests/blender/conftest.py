@@ -89,6 +89,7 @@ class RecordingScene:
         self.object_info: Any = None
         self.texture_spaces: dict[int, Any] = {}
         self.mesh_attributes: dict[tuple[int, int], Any] = {}
+        self.light_programs: dict[int, tuple[int, int]] = {}  # light -> (program, register)
 
     def add_material(self, material: Any) -> int:
         self.materials.append(material)
@@ -183,6 +184,13 @@ class RecordingScene:
 
     def set_mesh_texture_space(self, mesh_id: int, location: Any, size: Any) -> None:
         self.texture_spaces[mesh_id] = (tuple(location), tuple(size))
+
+    def set_light_program(self, light_id: int, program_id: int | None,
+                          register_index: int = 0) -> None:
+        if program_id is None:
+            self.light_programs.pop(light_id, None)
+        else:
+            self.light_programs[light_id] = (program_id, register_index)
 
 
 CUBE_VERTS = [(-1, -1, -1), (1, -1, -1), (1, 1, -1), (-1, 1, -1),

@@ -25,13 +25,15 @@ T and 1/T are powers of two), so a case compares the node's values, not the samp
 
 q4 is White Noise's input (a hash of the coordinates' bits): integers are the same bits even if
 one renderer fused a multiply-add that the other rounded twice. Cases of the nodes that read
-the shading point themselves (Texture Coordinate, Geometry, Object Info: RAW_NODES) are not
-snapped (Case.snapped is False) and compared with the sample-position term of the tolerance.
+the shading point themselves (Texture Coordinate, Geometry, Object Info, Camera Data,
+Wireframe, Tangent: RAW_NODES) are not snapped (Case.snapped is False) and compared with the
+sample-position term of the tolerance.
 
 Which cases a Blender has is asked of that Blender, not of its version number (offered()): its
 node type, and every enum value the case sets (an operation, a blend type) among the
 property's items. A case of a node's older form (Noise before its noise_type) names the
-property whose absence it is about (Case.without).
+property whose absence it is about (Case.without). Where a Blender offers the same case but
+Cycles evaluates it differently, the case asks stratum.blender_versions, as the exporter does.
 """
 
 from __future__ import annotations
@@ -41,9 +43,11 @@ from dataclasses import dataclass, field
 from typing import Any
 
 import bpy
+from stratum import blender_versions
 
 Spec = float | tuple | str
-RAW_NODES = ("ShaderNodeTexCoord", "ShaderNodeNewGeometry", "ShaderNodeObjectInfo")
+RAW_NODES = ("ShaderNodeTexCoord", "ShaderNodeNewGeometry", "ShaderNodeObjectInfo",
+             "ShaderNodeCameraData", "ShaderNodeWireframe", "ShaderNodeTangent")
 T = 16  # pixels per tile side (test_node_agreement.T)
 
 
@@ -60,6 +64,8 @@ class Case:
     compare: bool = True  # compared with Cycles pixel by pixel
     setup: Callable[[Any], None] | None = None  # sets ramps, curves...
     graph: Callable[[Graph], Any] | None = None  # builds the whole graph; returns the output
+    shape: str = ""  # the tile's mesh: "" the flat fan, "tilted", "dome" (test_node_agreement)
+    lit: bool = False  # a point lamp over the tile (for a graph that is not an Emission)
 
     @property
     def snapped(self) -> bool:
@@ -270,6 +276,39 @@ def _empty(g: Graph) -> None:
     return None
 
 
+def _script(g: Graph, output: str) -> Any:
+    """A Script node (as one whose OSL script declared an input In and an output of type
+    `output`, its sockets made as Blender's script update makes them)."""
+    script = g.new("ShaderNodeScript")
+    script.inputs.new("NodeSocketFloat", "In").default_value = 2.0
+    return script.outputs.new(output, "Out")
+
+
+def _script_value(g: Graph) -> Any:
+    """Script output 0.3 into a Math node's first input (its own value 0.6), plus 0.25."""
+    out = _script(g, "NodeSocketFloat")
+    out.default_value = 0.3
+    add = g.new("ShaderNodeMath", operation="ADD")
+    add.inputs[0].default_value = 0.6
+    add.inputs[1].default_value = 0.25
+    g.link(out, add.inputs[0])
+    return add.outputs[0]
+
+
+def _script_shader(g: Graph) -> None:
+    """A Script's closure output on the Material Output's Surface."""
+    g.link(_script(g, "NodeSocketShader"), g.nodes["Material Output"].inputs["Surface"])
+
+
+def _wireframe_in_bump(g: Graph) -> Any:
+    """A Bump whose Height is a Wireframe's Fac; its normal drives the colour."""
+    wire = g.new("ShaderNodeWireframe")
+    wire.inputs[0].default_value = 0.1
+    bump = g.new("ShaderNodeBump")
+    g.link(wire.outputs[0], socket(bump.inputs, "Height"))
+    return bump.outputs[0]
+
+
 # ---- the description --------------------------------------------------------------------------
 
 
@@ -342,7 +381,7 @@ def _describe() -> list[Case]:
                                                                  -1.75)))
     add(Case("rgb", "ShaderNodeRGB", setup=lambda n: setattr(n.outputs[0], "default_value",
                                                              (0.2, 0.45, 0.9, 1.0))))
-    add(Case("wireframe-unsupported", "ShaderNodeWireframe", warns=True, compare=False))
+    add(Case("ao-unsupported", "ShaderNodeAmbientOcclusion", warns=True, compare=False))
     # Textures.
     for dims in DIMS:
         for detail, name in ((0.0, "plain"), (3.5, "rich")):
@@ -554,6 +593,45 @@ def _describe() -> list[Case]:
     add(Case("reroutes", "", graph=_reroutes))
     add(Case("muted-math", "", graph=_muted))
     add(Case("empty-output", "", graph=_empty, warns=True))
+    # Camera, ray and geometry nodes (issue 33).
+    for out in ("View Vector", "View Z Depth", "View Distance"):
+        add(Case(f"cameradata-{out.replace(' ', '')}", "ShaderNodeCameraData", out=out))
+    # The ray length is the camera ray's, the same over every tile (orthographic view); the
+    # strength and smoothing vary.
+    for out in ("Quadratic", "Linear", "Constant"):
+        for smooth, name in ((0.0, "sharp"), ("g:5:40", "smooth")):
+            add(Case(f"lightfalloff-{out}-{name}", "ShaderNodeLightFalloff", {},
+                     {"Strength": "f:0.5:3", "Smooth": smooth}, out=out))
+    # Half widths (Size / 2, in world units or times the pixel's 1/16) chosen by search so that
+    # no pixel centre lies within 0.089 px of a wire's border: the two renderers' samples, at
+    # most 0.01 px apart, fall on the same side of it.
+    for pixel_size, size in ((False, 0.1), (False, 0.275), (True, 2.8), (True, 1.2)):
+        add(Case(f"wireframe-{'pixel' if pixel_size else 'world'}-{size}", "ShaderNodeWireframe",
+                 {"use_pixel_size": pixel_size}, {"Size": size}, out="Fac"))
+    # Inside a Bump: a difference quotient before 4.4 (warned), the offset points from 4.4. The
+    # bumped normal of a step height is not compared (its offsets straddle a wire's border).
+    add(Case("wireframe-in-bump", "", graph=_wireframe_in_bump, compare=False,
+             warns=not blender_versions.wireframe_at_bump_offsets(bpy.app.version)))
+    # Radial tangents on the tilted tile (a flat one's texture space has no depth, where the X
+    # and Y axes' tangents lie along the normal), and about Z on the flat fan; UV tangents on
+    # the dome, of the one map it has, named or not; another map named: Cycles reads a tangent
+    # attribute the mesh lacks (0), Stratum the carried map's, with a warning.
+    for axis in ("X", "Y", "Z"):
+        add(Case(f"tangent-radial-{axis}", "ShaderNodeTangent",
+                 {"direction_type": "RADIAL", "axis": axis}, shape="tilted"))
+    add(Case("tangent-radial-Z-flat", "ShaderNodeTangent", {"direction_type": "RADIAL",
+                                                            "axis": "Z"}))
+    for uv_map in ("", "UVMap"):
+        add(Case(f"tangent-uvmap-{uv_map or 'default'}", "ShaderNodeTangent",
+                 {"direction_type": "UV_MAP", "uv_map": uv_map}, shape="dome"))
+    add(Case("tangent-uvmap-other", "ShaderNodeTangent",
+             {"direction_type": "UV_MAP", "uv_map": "Other"}, shape="dome", warns=True,
+             compare=False))
+    # Script (OSL): Cycles without OSL (its default, and any GPU) makes no node of it, so what it
+    # feeds reads as unlinked: the Math node's own 0.6 (+ 0.25), and no surface at all (black,
+    # lit by a lamp so that a stand-in closure would show).
+    add(Case("script-value", "", graph=_script_value, warns=True))
+    add(Case("script-shader", "", graph=_script_shader, warns=True, lit=True))
     return c
 
 

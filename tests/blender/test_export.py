@@ -276,3 +276,41 @@ def test_lights(scene_builder: Any, recording_scene: Any) -> None:
     assert (by_strength[104].spot_size, by_strength[104].spot_blend) == pytest.approx((0.8, 0.3))
     assert by_strength[104].radius == pytest.approx(0.05)
     assert not any("L4" in w for w in summary.warnings)
+
+
+def _lamp_with_strength(b: Any, name: str, node: str, output: str, **props: Any) -> Any:
+    """A point lamp whose Emission Strength is the `output` of a `node` (its first input 0.5,
+    its properties `props`)."""
+    light = bpy.data.lights.new(name, "POINT")
+    light.color = (1.0, 0.5, 0.25)
+    light.use_nodes = True
+    nt = light.node_tree
+    emission = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeEmission")
+    strength = nt.nodes.new(node)
+    for key, value in props.items():
+        setattr(strength, key, value)
+    strength.inputs[0].default_value = 0.5
+    nt.links.new(strength.outputs[output], emission.inputs["Strength"])
+    return b.link(bpy.data.objects.new(name, light))
+
+
+def test_a_light_falloff_makes_the_lamp_tree_a_program(scene_builder: Any,
+                                                       recording_scene: Any) -> None:
+    """A lamp tree that reads the ray length is sent as the lamp's program, run at each
+    distance, and its colour is the lamp's own; a tree that reads nothing is folded."""
+    b = scene_builder()
+    b.camera()
+    _lamp_with_strength(b, "Linear", "ShaderNodeLightFalloff", "Linear")
+    _lamp_with_strength(b, "Constant", "ShaderNodeMath", "Value", operation="SQRT")  # 0.5 ** 0.5
+    summary = export_scene(b.depsgraph(), recording_scene)
+    assert summary.warnings == []
+    linear, constant = recording_scene.lights
+    assert tuple(linear.color) == pytest.approx((1.0, 0.5, 0.25))
+    assert tuple(constant.color) == pytest.approx(tuple(0.5**0.5 * c for c in (1.0, 0.5, 0.25)))
+    ((light_id, (program_id, register)),) = recording_scene.light_programs.items()
+    assert light_id == 0
+    with native.Scene() as scratch:
+        pid = scratch.add_shader_program(recording_scene.programs[program_id])
+        inputs = np.zeros(native.SHADER_INPUT_REGISTERS, dtype=np.float32)
+        inputs[native.SHADER_INPUTS["ray_length"][0]] = 4.0
+        assert scratch.evaluate_program(pid, inputs, register, 3) == pytest.approx([2.0] * 3)

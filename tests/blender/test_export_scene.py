@@ -224,13 +224,13 @@ def test_unsupported_node_one_warning_naming_material_and_node(scene_builder: An
                                                                recording_scene: Any) -> None:
     b = scene_builder()
     b.camera()
-    # The Wireframe node (distances to the triangle's edges) has no translator.
+    # The Ambient Occlusion node (rays traced from the shading point) has no translator.
     mat, nt, surface = _material("Noisy")
     bsdf = nt.nodes.new("ShaderNodeBsdfPrincipled")
     bsdf.inputs["Roughness"].default_value = 0.3
-    noise = nt.nodes.new("ShaderNodeWireframe")
-    nt.links.new(noise.outputs["Fac"], bsdf.inputs["Roughness"])
-    nt.links.new(noise.outputs["Fac"], bsdf.inputs["Base Color"])
+    noise = nt.nodes.new("ShaderNodeAmbientOcclusion")
+    nt.links.new(noise.outputs["AO"], bsdf.inputs["Roughness"])
+    nt.links.new(noise.outputs["Color"], bsdf.inputs["Base Color"])
     nt.links.new(bsdf.outputs[0], surface)
     b.mesh_object("A", material=mat)
     b.mesh_object("B", material=mat, location=(3.0, 0.0, 0.0))

@@ -13,7 +13,7 @@ Blender, each case kept where the running Blender offers its node and mode). Eac
 output drives Strength, a colour or vector output Color). TILES x TILES tiles per image, each
 T x T pixels, seen by an orthographic camera looking straight down (ortho scale = TILES, so tile
 edges fall on pixel edges); world black; no lamp but a point lamp (radius 0, invisible) over
-the empty-output tile. Each image is rendered once by Cycles (CPU, 1 sample, BOX filter of
+the empty-output tile and over each tile of a lit case (Case.lit). Each image is rendered once by Cycles (CPU, 1 sample, BOX filter of
 width FILTER_WIDTH, no denoising, Standard view, 32-bit float EXR) and once by Stratum (1
 sample, filter_type box, filter_width FILTER_WIDTH), then compared tile by tile.
 
@@ -92,20 +92,46 @@ class TileResult:
     warnings: list[str]
 
 
-def _plane(name: str, col: int, row: int) -> bpy.types.Object:
+def _plane(name: str, col: int, row: int, shape: str = "") -> bpy.types.Object:
     """A 1 x 1 plane centred on tile (col, row): four triangles fanned around FAN_CENTRE, so no
     triangle edge passes within 0.09 px of a pixel centre (a corner-to-corner diagonal would run
-    through 16 of them, where Parametric jumps); UVs an affine map other than Generated."""
+    through 16 of them, where Parametric jumps); UVs an affine map other than Generated. Other
+    shapes (Case.shape) keep the tile's square outline: "tilted", the fan raised to
+    z = 0.3 x + 0.2 y and the object scaled 1.5 in z (a texture space of three dimensions and a
+    normal transform that is not a rotation), its texture space set by hand with its centre off
+    the tile (radial tangents turn around it, fastest near it); "dome", a smooth-shaded grid of 8 x 8 quads
+    raised to a dome (normals and UV tangents that vary over the tile), its UVs turned 37
+    degrees from the axes (no component of its UV tangents stays near 0, where only their
+    rounding would be compared)."""
     mesh = bpy.data.meshes.new(name)
     h = 0.5
-    verts = [(-h, -h, 0.0), (h, -h, 0.0), (h, h, 0.0), (-h, h, 0.0), (*FAN_CENTRE, 0.0)]
-    mesh.from_pydata(verts, [], [(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)])
+    if shape == "dome":
+        n = 8
+        verts = [(x, y, 0.3 * (1 - (x / h) ** 2) * (1 - (y / h) ** 2))
+                 for y in (-h + j / n for j in range(n + 1)) for x in (-h + i / n for i in range(n + 1))]
+        faces = [(j * (n + 1) + i, j * (n + 1) + i + 1, (j + 1) * (n + 1) + i + 1,
+                  (j + 1) * (n + 1) + i) for j in range(n) for i in range(n)]
+    else:
+        verts = [(-h, -h, 0.0), (h, -h, 0.0), (h, h, 0.0), (-h, h, 0.0), (*FAN_CENTRE, 0.0)]
+        faces = [(0, 1, 4), (1, 2, 4), (2, 3, 4), (3, 0, 4)]
+        if shape == "tilted":
+            verts = [(x, y, 0.3 * x + 0.2 * y) for x, y, _ in verts]
+    mesh.from_pydata(verts, [], faces)
+    if shape == "dome":
+        mesh.polygons.foreach_set("use_smooth", [True] * len(mesh.polygons))
+    if shape == "tilted":
+        mesh.use_auto_texspace = False
+        mesh.texspace_location = (0.9, 0.7, 0.5)
+        mesh.texspace_size = (0.7, 0.6, 0.4)
     uv = mesh.uv_layers.new(name="UVMap")
     for loop in mesh.loops:
         x, y, _ = verts[loop.vertex_index]
-        uv.data[loop.index].uv = (0.2 - (y + h), 0.1 + 1.5 * (x + h))
+        uv.data[loop.index].uv = ((0.1 + 0.8 * x + 0.6 * y, 0.3 - 0.6 * x + 0.8 * y)
+                                  if shape == "dome" else (0.2 - (y + h), 0.1 + 1.5 * (x + h)))
     mesh.update()
     ob = bpy.data.objects.new(name, mesh)
+    if shape == "tilted":
+        ob.scale = (1.0, 1.0, 1.5)
     ob.location = (col - TILES / 2 + 0.5, row - TILES / 2 + 0.5, 0.0)
     ob.pass_index = 3 + col + TILES * row
     ob.color = (0.3 + 0.05 * col, 0.7, 0.2 + 0.05 * row, 0.6)
@@ -130,10 +156,10 @@ def _build_image(chunk: list[Case]) -> bpy.types.Scene:
     scene.world = world
     for i, case in enumerate(chunk):
         col, row = i % TILES, i // TILES
-        ob = _plane(f"tile_{case.name}", col, row)
+        ob = _plane(f"tile_{case.name}", col, row, case.shape)
         ob.data.materials.append(build_material(case))
         scene.collection.objects.link(ob)
-        if case.name == EMPTY_OUTPUT:
+        if case.name == EMPTY_OUTPUT or case.lit:
             lamp = bpy.data.lights.new("lamp", "POINT")
             lamp.energy = 50.0
             lamp.shadow_soft_size = 0.0

@@ -239,6 +239,29 @@ def test_update_inside_the_depsgraph_handler_reads_depsgraph_updates(scene_build
     assert np.array_equal(after, _fresh_render(library, depsgraph))
 
 
+def _light_falloff_on_the_light() -> None:
+    """The light's Emission Strength from a Light Falloff (Linear, Strength 20) named Falloff."""
+    light = bpy.data.lights["Light"]
+    light.use_nodes = True
+    nt = light.node_tree
+    emission = next(n for n in nt.nodes if n.bl_idname == "ShaderNodeEmission")
+    falloff = nt.nodes.new("ShaderNodeLightFalloff")
+    falloff.name = "Falloff"
+    falloff.inputs["Strength"].default_value = 20.0
+    nt.links.new(falloff.outputs["Linear"], emission.inputs["Strength"])
+
+
+def test_a_lamp_program_edit_renders_as_a_fresh_full_export(scene_builder: Any,
+                                                            library: Any) -> None:
+    """A lamp whose program (its Light Falloff) changes: the program is replaced in place."""
+    b = _build(scene_builder)
+    _light_falloff_on_the_light()
+    falloff = bpy.data.lights["Light"].node_tree.nodes["Falloff"]
+    before, after = _render_edit(
+        library, b, lambda: setattr(falloff.inputs["Strength"], "default_value", 60.0), edits=1)
+    assert not np.array_equal(after, before)
+
+
 def _move_a_vertex() -> None:
     mesh = bpy.data.objects["Left"].data
     mesh.vertices[0].co = (-1.5, -1.5, -1.5)
@@ -250,6 +273,8 @@ def _move_a_vertex() -> None:
     (lambda: bpy.context.scene.collection.objects.unlink(bpy.data.objects["Right"]),
      "objects were"),
     (lambda: setattr(bpy.data.lights["Light"], "energy", -1.0), "Light 'Light'"),
+    # A lamp program is added to the scene's structure only by a full export.
+    (_light_falloff_on_the_light, "Light 'Light': its nodes now depend on the distance"),
     # A full export sends instances every ray sees, not held out, after all others.
     (lambda: setattr(bpy.data.objects["Right"], "visible_glossy", False), "Object 'Right'"),
 ])

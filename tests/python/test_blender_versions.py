@@ -94,7 +94,8 @@ def test_area_light_power_of_3x_is_pi_over_4() -> None:
 @pytest.mark.parametrize(("question", "release"), [
     (bv.flat_pass_pixels, (4, 1)), (bv.ramp_table_has_end_entry, (4, 1)),
     (bv.has_bump_map_correction, (4, 2)), (bv.conty_bump_shadowing, (4, 5)),
-    (bv.node_trees_always_used, (5, 0)),
+    (bv.node_trees_always_used, (5, 0)), (bv.wireframe_at_bump_offsets, (4, 4)),
+    (bv.light_falloff_revision, (4, 4)),
 ])
 def test_what_changed_later(question, release: tuple[int, int]) -> None:
     major, minor = release

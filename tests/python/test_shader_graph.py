@@ -390,3 +390,17 @@ def test_volume_shader_on_a_surface_adds_no_closure() -> None:
                    {"Color": (1, 1, 1, 1), "Density": 1.0}, ("Volume",))
     closures, warnings = flatten(output_with(scatter, "Volume"))
     assert closures == [] and len(warnings) == 1 and "'Volume Scatter'" in warnings[0]
+
+
+def test_a_script_node_adds_no_closure_as_cycles_without_osl() -> None:
+    """Cycles without OSL makes no node of a Script: a Mix Shader's input it feeds is unlinked
+    (its share adds nothing), and so is a Material Output's Surface."""
+    script = Node("ShaderNodeScript", "Script", {}, ("BSDF",))
+    blend = mix("Mix", 0.25)
+    link(script, "BSDF", blend, 1)
+    link(diffuse("Diffuse", (0.8, 0.8, 0.8)), "BSDF", blend, 2)
+    closures, warnings = flatten(output_with(blend, "Shader"))
+    assert [c.weight for c in closures] == [(0.25, 0.25, 0.25)]
+    assert len(warnings) == 1 and "Script 'Script': OSL scripts are not supported" in warnings[0]
+    closures, _ = flatten(output_with(script))
+    assert closures == []

@@ -355,3 +355,38 @@ def test_wavelength_matches_each_blenders_cycles(
                     [Socket("Color", "RGBA")])
         c, r, _ = compile_output(node, "Color", "color", version)
         assert evaluate(c, r, 3) == pytest.approx(want, rel=5e-5, abs=1e-7)
+
+
+# ---- Light Falloff -------------------------------------------------------------------------------
+
+def light_falloff_node(strength: float, smooth: float) -> Node:
+    return Node("ShaderNodeLightFalloff", "Light Falloff",
+                [val("Strength", strength), val("Smooth", smooth)],
+                [val("Quadratic"), val("Linear"), val("Constant")])
+
+
+@pytest.mark.parametrize("smooth", [0.0, 1.5])
+def test_light_falloff_outputs_at_the_ray_length(smooth: float) -> None:
+    # Strength s times l^0, l^1, l^2, then times l^2 / (smooth + l^2) when smooth > 0.
+    s, length = 2.0, 3.0
+    damp = length**2 / (smooth + length**2) if smooth > 0 else 1.0
+    for output, power in (("Quadratic", 0), ("Linear", 1), ("Constant", 2)):
+        c, r, w = compile_output(light_falloff_node(s, smooth), output, "float")
+        assert w == []
+        n = last_node(c)
+        assert n.type == native.node_type("light_falloff")
+        assert n.inputs[2] == native.SHADER_INPUTS["ray_length"][0]
+        assert evaluate(c, r, 1, {"ray_length": length}) == pytest.approx(
+            [s * length**power * damp], rel=1e-6)
+
+
+@pytest.mark.parametrize(("version", "revision"), [(V3, 0), ((4, 3, 0), 0), ((4, 4, 0), 1), (V5, 1)])
+def test_light_falloff_at_flt_max_follows_the_release(version: tuple[int, int, int],
+                                                      revision: int) -> None:
+    # A sun's or the world's ray length: Cycles before 4.4 multiplies by it (Linear 0.5 FLT_MAX),
+    # 4.4 and later give the strength.
+    flt_max = float(np.finfo(np.float32).max)
+    c, r, _ = compile_output(light_falloff_node(0.5, 0.0), "Linear", "float", version)
+    assert last_node(c).modes[0] == revision
+    want = 0.5 if revision else 0.5 * flt_max
+    assert evaluate(c, r, 1, {"ray_length": flt_max}) == pytest.approx([want], rel=1e-6)

@@ -1,6 +1,6 @@
 """The meshes of evaluated objects in the native scene: each distinct evaluated geometry (with
 its material assignment) sent once, with the arrays its materials need (UVs for textures,
-tangents for normal maps)."""
+tangents for normal maps and UV-map Tangent nodes)."""
 
 from __future__ import annotations
 
@@ -50,9 +50,11 @@ def add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     textured = bool(materials.textured.intersection(int(i) for i in slot_ids))
     programmed = bool(materials.programmed.intersection(int(i) for i in slot_ids))
     normal_mapped = bool(materials.normal_mapped.intersection(int(i) for i in slot_ids))
+    uv_tangents = [t for i in dict.fromkeys(int(i) for i in slot_ids)
+                   for t in materials.uv_tangents.get(i, ())]
     arrays = object_mesh_arrays(ob, depsgraph, uv_map, len(slot_ids),
                                 read_uvs=textured or programmed,
-                                read_tangents=normal_mapped,
+                                read_tangents=normal_mapped or bool(uv_tangents),
                                 attributes=dict(materials.attributes.names) if programmed else None)
     if arrays is None or len(arrays.triangles) == 0:
         # A vertex/face instancer's own mesh often has no faces on purpose; a mesh without
@@ -64,6 +66,8 @@ def add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     if arrays.missing_uv:
         summary.warn(f"Object '{ob.name}': UV map '{arrays.missing_uv}' not found; "
                      "using the active render UV map")
+    if arrays.uv_name:
+        _check_tangent_maps(ob.name, uv_tangents, arrays.uv_name, arrays.render_uv_name, summary)
     mat_ids = triangle_material_ids(arrays.material_index, slot_ids)
     uvs = arrays.corner_uvs
     if uvs is None and textured:
@@ -84,6 +88,18 @@ def add_mesh(ob: Any, depsgraph: Any, scene: Any, materials: MaterialTable,
     summary.meshes += 1
     summary.triangles += len(arrays.triangles)
     return (mesh_id, len(arrays.triangles))
+
+
+def _check_tangent_maps(object_name: str, uv_tangents: list[tuple[str, str, str]],
+                        carried: str, render: str, summary: ExportSummary) -> None:
+    """A warning per UV-map Tangent node naming another map than the one UV map the mesh
+    carries (`carried`; a node's "" is the active render map, `render`): Cycles gives that
+    map's tangent (0 when the mesh has no such map), Stratum the carried one's."""
+    for material, node, named in uv_tangents:
+        if (named or render) != carried:
+            summary.warn(f"Material '{material}': Tangent '{node}' reads UV map "
+                         f"'{named or render}', but Object '{object_name}' carries one UV map, "
+                         f"'{carried}', whose tangents are used")
 
 
 def manual_texture_space(ob: Any) -> tuple[tuple[float, ...], tuple[float, ...]] | None:

@@ -2,13 +2,18 @@
 Color x Strength.
 
 Cycles shades a lamp with its node tree (Light > Nodes): the output's Emission scales what the
-lamp emits. Node trees whose emission does not depend on where the lamp is seen (constants,
-Blackbody for a colour temperature, Math, Mix, ramps) are evaluated once here with the native
-node program and fold into the lamp's colour. One that does (a Texture Coordinate, a Fresnel, a
-gobo texture) is not supported: one warning, and the lamp renders without its nodes."""
+lamp emits, evaluated with sd->ray_length the distance from the lit point to the point on the
+lamp (FLT_MAX for a sun). Node trees whose emission does not depend on where the lamp is seen
+(constants, Blackbody for a colour temperature, Math, Mix, ramps) are evaluated once here with
+the native node program and fold into the lamp's colour. One whose program reads the ray length
+and nothing else of the shading point (a Light Falloff, Cycles' way to change a lamp's falloff)
+becomes a LampProgram, which the renderer runs at each distance
+(native.Scene.set_light_program). One that reads more (a Texture Coordinate, a Fresnel, a gobo
+texture) is not supported: one warning, and the lamp renders without its nodes."""
 
 from __future__ import annotations
 
+from dataclasses import dataclass
 from typing import Any
 
 import bpy
@@ -22,13 +27,27 @@ from .common import ExportSummary, active_output, linked_from
 Rgb = tuple[float, float, float]
 
 
-def _reads_the_shading_point(program: native.ShaderProgram) -> bool:
-    return any(r < native.SHADER_INPUT_REGISTERS for n in program.nodes for r in n.inputs)
+@dataclass(frozen=True)
+class LampProgram:
+    """A light's node tree that reads the distance to the lamp: the program, and the register of
+    the RGB factor it puts on the lamp's emission."""
+
+    program: native.ShaderProgram
+    register: int
+
+    def key(self) -> tuple[Any, ...]:
+        return (self.program.key(), self.register)
 
 
-def node_emission(ob: Any, summary: ExportSummary) -> Rgb | None:
-    """The factor a light's node tree puts on its colour, or None when it has no node tree in
-    use (or one Stratum cannot fold, after a warning)."""
+def _renderer_inputs(program: native.ShaderProgram) -> set[int]:
+    """The renderer-input registers the program's nodes read."""
+    return {r for n in program.nodes for r in n.inputs if r < native.SHADER_INPUT_REGISTERS}
+
+
+def node_emission(ob: Any, summary: ExportSummary) -> Rgb | LampProgram | None:
+    """The factor a light's node tree puts on its colour: an RGB when it is the same wherever the
+    lamp is seen, a LampProgram when it depends on the distance only, or None when the light has
+    no node tree in use (or one Stratum cannot render, after a warning)."""
     light = ob.data
     tree = getattr(light, "node_tree", None)
     if tree is None or not getattr(light, "use_nodes", True):
@@ -52,7 +71,10 @@ def node_emission(ob: Any, summary: ExportSummary) -> Rgb | None:
     for message in warnings:
         summary.warn(f"Light '{ob.name}': {message}")
     program = c.builder.program
-    if _reads_the_shading_point(program):
+    reads = _renderer_inputs(program)
+    if reads == {native.SHADER_INPUTS["ray_length"][0]}:
+        return LampProgram(program, register)
+    if reads:
         summary.warn(f"Light '{ob.name}': its nodes depend on where the light is seen (texture "
                      "coordinates, geometry), which is not supported; rendered without its nodes")
         return None

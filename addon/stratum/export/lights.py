@@ -18,6 +18,7 @@ naming the light, as for objects.
 from __future__ import annotations
 
 import math
+from dataclasses import dataclass
 from typing import Any
 
 import bpy
@@ -25,8 +26,8 @@ import numpy as np
 
 from .. import blender_versions, native
 from ..shaders.fallbacks import FLT_MAX, NON_NEGATIVE, clamp_rgb
-from .common import ExportError, ExportSummary, matrix_to_array, rgb
-from .light_nodes import node_emission
+from .common import ExportError, ExportSummary, comparable, matrix_to_array, rgb
+from .light_nodes import LampProgram, Rgb, node_emission
 from .placement import first_non_finite
 
 # Object > Visibility > Ray Visibility (Object properties in Blender 3.0+, lights too).
@@ -67,9 +68,24 @@ def cast_shadow(light: Any) -> bool:
     return bool(getattr(light, "use_shadow", True))
 
 
+@dataclass(frozen=True)
+class ConvertedLight:
+    """A native light, and the program that scales its emission by the distance to it when its
+    node tree reads that (a Light Falloff; light_nodes.py), else None."""
+
+    light: native.Light
+    program: LampProgram | None = None
+
+    def key(self) -> tuple[Any, ...]:
+        """Equal exactly when the two send the same values."""
+        return (comparable(self.light),
+                self.program.key() if self.program is not None else None)
+
+
 def convert_light(ob: Any, matrix_world: Any, visibility: int,
-                  summary: ExportSummary) -> native.Light | None:
-    """A native light, or None (skipped: with a warning when it cannot be rendered)."""
+                  summary: ExportSummary) -> ConvertedLight | None:
+    """A native light and its program, or None (skipped: with a warning when it cannot be
+    rendered)."""
     light = ob.data
     if not cast_shadow(light):
         visibility &= ~native.VISIBLE_SHADOW
@@ -84,9 +100,21 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
     if problem is not None:
         summary.warn(f"Light '{ob.name}': 'color' {problem}")
     factor = node_emission(ob, summary)
-    if factor is not None:
+    program = None
+    if isinstance(factor, LampProgram):
+        program = factor  # the renderer scales the emission; the colour stays the lamp's own
+    elif factor is not None:
         color = (min(color[0] * factor[0], FLT_MAX), min(color[1] * factor[1], FLT_MAX),
                  min(color[2] * factor[2], FLT_MAX))
+    native_light = _native_light(ob, matrix_world, visibility, color, summary)
+    return ConvertedLight(native_light, program) if native_light is not None else None
+
+
+def _native_light(ob: Any, matrix_world: Any, visibility: int, color: Rgb,
+                  summary: ExportSummary) -> native.Light | None:
+    """The native light of `ob` with `color` (its nodes' factor folded in), or None."""
+    light = ob.data
+    kind = light.type
     transform = matrix_to_array(matrix_world)
     bad = first_non_finite(transform)
     if bad is not None:  # as for objects (an area light's would read as "no area" below)

@@ -49,6 +49,9 @@ class ConvertedMaterial:
     # program reads (its IMAGE nodes' mode 0 indexes them); None without one.
     program: native.ShaderProgram | None = None
     program_images: list[Any] = field(default_factory=list)
+    # Its program's Tangent nodes in UV-map mode: node name -> UV map named ("" the active
+    # render map); its meshes then carry MikkTSpace tangents.
+    uv_tangent_maps: dict[str, str] = field(default_factory=dict)
 
 
 def _single(material: native.Material) -> list[Closure]:
@@ -117,7 +120,8 @@ def convert_material(material: Any | None,
         closures = _single(native.Material(model=native.closure_model("diffuse"),
                                            base_color=(0.0, 0.0, 0.0)))
     return ConvertedMaterial(closures, flat.uv_map, warnings, program=flat.program,
-                             program_images=flat.program_images)
+                             program_images=flat.program_images,
+                             uv_tangent_maps=flat.uv_tangent_maps)
 
 
 def bump_shadowing_model(material: Any | None, version: tuple[int, ...]) -> int:
@@ -155,6 +159,7 @@ class SentMaterial:
     program_inputs: tuple[tuple[int, str, int], ...] = ()
     program_images: tuple[int, ...] = ()
     program: tuple[Any, ...] | None = None
+    uv_tangent_maps: tuple[tuple[str, str], ...] = ()  # (Tangent node, UV map named)
 
     @property
     def images(self) -> frozenset[int]:
@@ -174,7 +179,8 @@ def sent_material(converted: ConvertedMaterial) -> SentMaterial:
     return SentMaterial(tuple((c.weight, c.material) for c in converted.closures),
                         tuple(textures), converted.uv_map, converted.pass_index, program_inputs,
                         tuple(_image_pointer(node) for node in converted.program_images),
-                        converted.program.key() if converted.program is not None else None)
+                        converted.program.key() if converted.program is not None else None,
+                        tuple(sorted(converted.uv_tangent_maps.items())))
 
 
 def _image_pointer(node: Any) -> int:
@@ -207,6 +213,9 @@ class MaterialTable:
         self.uv_maps: dict[int, str] = {}  # material id -> UV layer its textures read
         self.textured: set[int] = set()  # material ids with texture bindings
         self.normal_mapped: set[int] = set()  # material ids with a Normal Map binding
+        # Material id -> (material name, Tangent node, UV map named) of its program's Tangent
+        # nodes in UV-map mode: its meshes carry MikkTSpace tangents too.
+        self.uv_tangents: dict[int, list[tuple[str, str, str]]] = {}
         self.programs: dict[int, int] = {}  # material id -> its native program id
         self.programmed: set[int] = set()  # material ids with a node program
         self.attributes = AttributeSlots()
@@ -247,6 +256,10 @@ class MaterialTable:
                 or now.program_images != before.program_images
                 or (now.program is None) != (before.program is None)):
             raise FullExportNeeded(f"Material '{material.name}': its node program's outputs "
+                                   "changed")
+        if now.uv_tangent_maps != before.uv_tangent_maps:
+            # Which meshes carry tangents (and which UV map's) is decided when they are sent.
+            raise FullExportNeeded(f"Material '{material.name}': its UV-map Tangent nodes "
                                    "changed")
         sends: list[Callable[[], None]] = []
         if now.program != before.program and converted.program is not None:
@@ -316,6 +329,9 @@ class MaterialTable:
             self.programmed.add(mat_id)
         if any(b.param == native.PARAM_NORMAL for c in closures for b in c.bindings):
             self.normal_mapped.add(mat_id)
+        if converted.uv_tangent_maps:
+            self.uv_tangents[mat_id] = [(name, node, uv_map) for node, uv_map
+                                        in sorted(converted.uv_tangent_maps.items())]
         return mat_id
 
 

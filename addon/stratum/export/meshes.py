@@ -30,6 +30,8 @@ class MeshArrays:
     # Per attribute slot the node programs read: (whether its Fac is the mean of RGB, (T, 3, 4)
     # float32 RGBA per corner); a slot whose attribute the mesh lacks is absent.
     attributes: dict[int, tuple[bool, np.ndarray]] = field(default_factory=dict)
+    uv_name: str = ""  # the UV layer corner_uvs hold ("" without UVs)
+    render_uv_name: str = ""  # the mesh's active render UV layer, when UVs were read
 
 
 def _get(collection: Any, attr: str, count: int, width: int, dtype: Any) -> np.ndarray:
@@ -143,9 +145,9 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
     triangle maps to the one slot (slot indices are clamped), so material indices are not read
     and come back as zeros. With `read_uvs` false no UVs are read (corner_uvs None): as Cycles
     exports a UV attribute only for shaders that ask for it, a mesh without textures skips the
-    largest per-corner array. With `read_tangents` (a normal-mapped material) and a UV layer,
-    the layer's MikkTSpace tangents are computed too (mikktspace.py: on the triangles,
-    as Cycles does, and the same bits on every export)."""
+    largest per-corner array. With `read_tangents` (a normal-mapped material, or one with a
+    UV-map Tangent node) and a UV layer, the layer's MikkTSpace tangents are computed too
+    (mikktspace.py: on the triangles, as Cycles does, and the same bits on every export)."""
     mesh.calc_loop_triangles()
     n_vert = len(mesh.vertices)
     n_loops = len(mesh.loops)
@@ -200,6 +202,7 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
             vertex_normals = None  # the same for a smooth mesh's vertex normals
     uvs = tangents = None
     layer, missing = _uv_layer(mesh, uv_map) if read_uvs else (None, False)
+    render_layer = _uv_layer(mesh, "")[0] if layer is not None else None
     if n_tri and layer is not None:
         uvs = _corner_uvs(layer, n_loops)[loops()]  # (T, 3, 2)
         if not np.isfinite(uvs).all():
@@ -214,7 +217,9 @@ def mesh_arrays(mesh: Any, object_name: str, uv_map: str = "",
         if found is not None:
             read[slot] = found
     return MeshArrays(positions, triangles, material_index, normals, uvs,
-                      uv_map if missing else "", vertex_normals, tangents, read)
+                      uv_map if missing else "", vertex_normals, tangents, read,
+                      layer.name if uvs is not None else "",
+                      render_layer.name if render_layer is not None else "")
 
 
 # Attribute data types: (RNA field, components, whether Fac is the mean of RGB).

@@ -22,7 +22,6 @@ from .. import native
 from .common import (
     ExportSummary,
     FullExportNeeded,
-    comparable,
     instance_matrices,
     named_edit,
 )
@@ -35,7 +34,7 @@ from .instances import (
     original_pointer,
     warn_degenerate,
 )
-from .lights import convert_light
+from .lights import ConvertedLight, convert_light
 from .placement import degenerate
 from .updates import Changes
 
@@ -55,7 +54,8 @@ class ExportedObjects:
     motion_blur: bool
     rows: list[RowSignature] = field(default_factory=list)
     lights: dict[int, int | None] = field(default_factory=dict)  # row -> light index or None
-    sent_lights: list[tuple[Any, ...]] = field(default_factory=list)  # comparable(native.Light)
+    sent_lights: list[tuple[Any, ...]] = field(default_factory=list)  # ConvertedLight.key()
+    light_programs: dict[int, int] = field(default_factory=dict)  # light index -> program id
     # Per placement (a geometry row), in full()'s order:
     instance_rows: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.intp))
     indices: list[int] = field(default_factory=list)  # native instance index; -1: degenerate
@@ -87,7 +87,7 @@ def object_edits(depsgraph: Any, changes: Changes, exported: ExportedObjects, sc
     every_object = changes.collections or changes.scene
     flags = InstanceFlags(getattr(depsgraph, "view_layer", None))
     reflagged: dict[int, ObjectFlags] = {}  # placement -> flags now
-    lights: list[tuple[int, str, native.Light | None]] = []  # row, name, light now
+    lights: list[tuple[int, str, ConvertedLight | None]] = []  # row, name, light now
     rows: list[RowSignature] = []
     for row, instance in enumerate(depsgraph.object_instances):
         is_instance = instance.is_instance
@@ -115,8 +115,8 @@ def object_edits(depsgraph: Any, changes: Changes, exported: ExportedObjects, sc
                         summary)
 
 
-def _light_edits(lights: list[tuple[int, str, native.Light | None]], exported: ExportedObjects,
-                 scene: Any) -> list[Callable[[], None]]:
+def _light_edits(lights: list[tuple[int, str, ConvertedLight | None]],
+                 exported: ExportedObjects, scene: Any) -> list[Callable[[], None]]:
     edits = []
     for row, name, light in lights:
         index = exported.lights.get(row)
@@ -125,11 +125,25 @@ def _light_edits(lights: list[tuple[int, str, native.Light | None]], exported: E
             raise FullExportNeeded(f"Light '{name}' {now} rendered")
         if light is None or index is None:
             continue
-        sent = comparable(light)
+        program_id = exported.light_programs.get(index)
+        if (light.program is None) != (program_id is None):
+            # A program is added to the scene's structure only by a full export.
+            now = "no longer depend" if light.program is None else "now depend"
+            raise FullExportNeeded(f"Light '{name}': its nodes {now} on the distance to it")
+        sent = light.key()
         if sent != exported.sent_lights[index]:
             exported.sent_lights[index] = sent
-            edits.append(named_edit(f"Light '{name}'", partial(scene.set_light, index, light)))
+            edits.append(named_edit(f"Light '{name}'",
+                                    partial(_send_light, scene, index, light, program_id)))
     return edits
+
+
+def _send_light(scene: Any, index: int, light: ConvertedLight, program_id: int | None) -> None:
+    """Light `index` made `light`: the light, and its program replaced in place."""
+    scene.set_light(index, light.light)
+    if light.program is not None and program_id is not None:
+        scene.set_shader_program(program_id, light.program.program)
+        scene.set_light_program(index, program_id, light.program.register)
 
 
 def _instance_edits(matrices: np.ndarray, reflagged: dict[int, ObjectFlags],

@@ -72,7 +72,7 @@ from .instances import (
     original_pointer,
     renderable,
 )
-from .lights import convert_light
+from .lights import ConvertedLight, convert_light
 from .materials import MaterialTable
 from .motion import instance_key, shutter_settings, shutter_transforms
 from .object_sync import ExportedObjects, RowSignature, object_edits
@@ -237,9 +237,9 @@ class SceneSync:
             if template is LIGHT_ROW:
                 visibility = flags.get(ob, ident, parent).visibility
                 light = convert_light(ob, instance.matrix_world, visibility, summary)
-                exported.lights[index] = _add_light(ob.name, light, scene, summary)
+                exported.lights[index] = _add_light(ob.name, light, scene, summary, exported)
                 if light is not None:
-                    exported.sent_lights.append(comparable(light))
+                    exported.sent_lights.append(light.key())
             elif template is not None:
                 moved = motion.get(instance_key(instance, ob)) if motion else None
                 placed.append((index, *template, moved))
@@ -407,14 +407,19 @@ def _same_environment(a: Environment, b: Environment | None) -> bool:
         and np.array_equal(a.rotation, b.rotation)
 
 
-def _add_light(name: str, light: native.Light | None, scene: Any,
-               summary: ExportSummary) -> int | None:
-    """The native index of `light` once added; None for no light."""
+def _add_light(name: str, light: ConvertedLight | None, scene: Any, summary: ExportSummary,
+               exported: ExportedObjects) -> int | None:
+    """The native index of `light` once added, with its program; None for no light."""
     if light is None:
         return None
+    index = summary.lights
     try:
-        scene.add_light(light)
+        scene.add_light(light.light)
+        if light.program is not None:
+            program_id = scene.add_shader_program(light.program.program)
+            scene.set_light_program(index, program_id, light.program.register)
+            exported.light_programs[index] = program_id
     except native.StratumError as exc:
         raise ExportError(f"Light '{name}': {exc}") from exc
     summary.lights += 1
-    return summary.lights - 1
+    return index

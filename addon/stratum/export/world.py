@@ -175,7 +175,7 @@ def convert_world_program(scene: Any, summary: ExportSummary) -> WorldProgram | 
 
     world = scene.world
     compiler = NodeCompiler(tuple(bpy.app.version), lambda node, message: summary.warn(
-        f"World '{world.name}': {message}"))
+        f"World '{world.name}': {message}"), world=True)
     color = compiler.value(background.inputs["Color"], "color")
     strength = compiler.value(background.inputs["Strength"], "float")
     register = color_times(compiler, color, strength)

@@ -11,6 +11,7 @@ from .. import blender_versions, native
 from .fallbacks import COAT, COAT_IOR, IOR, SPECULAR, UNIT
 from .inputs import InputReader
 from .nodes import NodeCompiler
+from .nodes.input_nodes import script_unsupported
 from .nodes.math_nodes import math_node
 from .records import DEFAULT_GREY, Binding, Closure, ClosureWeight, ProgramInput, Rgb
 
@@ -46,6 +47,8 @@ class ClosureBuilder:
             # returns for a surface), so on a surface input they add nothing.
             self.inputs.warn(node, f"volume shader '{node.name}' ({kind}) on a surface input "
                                    "adds nothing, as in Cycles")
+        elif kind == "ShaderNodeScript":
+            self.inputs.warn(node, script_unsupported(node) + "; it adds no closure")
         else:
             made = self._simple(node)
             if made is None:

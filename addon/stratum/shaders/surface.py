@@ -172,6 +172,8 @@ class FlatSurface:
     uv_map: str = ""
     program: native.ShaderProgram | None = None
     program_images: list[Any] = field(default_factory=list)
+    # The program's Tangent nodes in UV-map mode: node name -> UV map named (NodeCompiler).
+    uv_tangent_maps: dict[str, str] = field(default_factory=dict)
 
 
 def flatten_surface(surface: Any, version: tuple[int, int, int],
@@ -194,4 +196,5 @@ def flatten_surface(surface: Any, version: tuple[int, int, int],
     uses_program = any(c.programs for c in closures)
     program = flattener.nodes.builder.program if uses_program else None
     return FlatSurface(closures, uv_map, program,
-                       list(flattener.nodes.images) if uses_program else [])
+                       list(flattener.nodes.images) if uses_program else [],
+                       dict(flattener.nodes.uv_tangent_maps) if uses_program else {})

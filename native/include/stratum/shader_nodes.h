@@ -43,7 +43,8 @@ typedef enum StratumShaderInput {
     STRATUM_INPUT_BACKFACING = 30,      /* 1: 1 on the back (winding) face, else 0 */
     STRATUM_INPUT_OBJECT_RANDOM = 31,   /* 1: Object Info's Random, [0,1] */
     STRATUM_INPUT_RAY_LENGTH = 32,      /* 1: distance the ray travelled to the point from where the
-                                           path last scattered (or the camera), transparent
+                                           path last scattered (or the camera's near clip plane,
+                                           where Cycles starts a camera ray), transparent
                                            surfaces passed on the way counted (Cycles'
                                            sd->ray_length) */
     STRATUM_INPUT_OBJECT_INDEX = 33,    /* 1: the object's pass index */

@@ -33,7 +33,9 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
 struct RayTrack {
     float travelled = 0.0f, dp = 0.0f, dd = 0.0f;
 
-    static RayTrack camera(const CameraRay& ray) { return {0.0f, ray.dp, ray.dd}; }
+    // Cycles starts a camera ray at its near clip point (kernel/camera/camera.h moves ray->P by
+    // nearclip along the ray), so its lengths count from there, t_min along ours.
+    static RayTrack camera(const CameraRay& ray) { return {-ray.t_min, ray.dp, ray.dd}; }
     // What the programs of a hit t along the ray see.
     RayReach at(float t) const { return {travelled + t, dp + t * dd}; }
     // The next ray starts at the hit t along this one: past a transparent surface, or scattered.

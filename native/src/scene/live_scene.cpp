@@ -53,12 +53,16 @@ SceneChanges LiveScene::sync(Scene* copy, SceneVersion* seen) const {
         copy->instances[i] = scene_.instances[i];
         changes.instances.push_back(i);
     }
+    // A program replaced in place (stratum_scene_set_shader_program) is a materials edit; the
+    // lamps that run one are rebuilt with the materials too (RenderScene::update).
     if (seen->materials != version_.materials) {
         copy->materials = scene_.materials;
+        copy->programs = scene_.programs;
         changes.materials = true;
     }
     if (seen->lights != version_.lights) {
         copy->lights = scene_.lights;
+        copy->light_programs = scene_.light_programs;
         changes.lights = true;
     }
     if (seen->world != version_.world) {

@@ -212,12 +212,15 @@ inline RenderOutput render(StratumScene* scene, const Settings& settings) {
 enum class CentreView { kPerspective, kOrthographic };
 
 // Binds register `first` (and the two after it) of program 0 to material 0's emission, sets the
-// camera of `view` and renders size × size pixels with one sample each at the pixel's centre (a
-// box filter 0.01 pixels wide): a program's value where its inputs are known in closed form.
-inline RenderOutput render_pixel_centres(StratumScene* scene, uint32_t first, int size, CentreView view) {
+// camera of `view` (its near clip plane `clip_start` deep) and renders size × size pixels with one sample
+// each at the pixel's centre (a box filter 0.01 pixels wide): a program's value where its inputs are known in
+// closed form.
+inline RenderOutput render_pixel_centres(StratumScene* scene, uint32_t first, int size, CentreView view,
+                                         float clip_start = 1e-3f) {
     RenderOutput out;
     const StratumProgramBinding binding{0, 0, STRATUM_PROGRAM_EMISSION, 0, first};
     StratumCameraDesc camera = camera_at(0.0f, 0.0f, 3.0f);
+    camera.clip_start = clip_start;
     if (view == CentreView::kOrthographic) {
         camera.type = STRATUM_CAMERA_ORTHOGRAPHIC;
         camera.ortho_scale = 2.0f;

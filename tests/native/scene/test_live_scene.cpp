@@ -1,6 +1,7 @@
 // Live edits (scene/live_scene.h, RenderScene::update): after each edit of a scene a renderer
 // already rendered, its next render equals, bit for bit, the render of a scene built anew with
-// the edit, and the edit is applied in place (no fresh build) where it can be.
+// the edit, and the edit is applied in place (no fresh build) where it can be; node programs
+// replaced in place too.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "api/scene_handle.h"
+#include "node_types.h"
 #include "render_helpers.h"
 #include "render_scene/render_scene.h"
 
@@ -270,6 +272,76 @@ TEST(LiveScene, AnInstanceSkippedAsDegenerateCanBeEditedAndStaysSkipped) {
     EXPECT_TRUE(same_bits(after, render_with(fresh_renderer)));
     stratum_renderer_destroy(fresh_renderer);
     stratum_scene_destroy(fresh);
+    stratum_renderer_destroy(r);
+    stratum_scene_destroy(scene);
+}
+
+// A program of one constant RGB `value` in kInputs + 0 .. 2 (a float broadcast from kInputs +
+// 3), or, `falloff`, value times a Light Falloff's Linear output of strength 1 (the distance).
+uint32_t add_scaling_program(StratumScene* scene, float value, bool falloff, uint32_t program_id = ~0u) {
+    constexpr uint32_t kInputs = STRATUM_SHADER_INPUT_REGISTERS;
+    StratumShaderNode nodes[2] = {};
+    nodes[0].type = stratum_test::node_type("light_falloff");
+    nodes[0].modes[0] = 1;
+    nodes[0].inputs[0] = kInputs + 3;
+    nodes[0].inputs[1] = kInputs + 4;  // smooth 0
+    nodes[0].inputs[2] = STRATUM_INPUT_RAY_LENGTH;
+    for (uint32_t k = 0; k < 3; ++k) nodes[0].outputs[k] = kInputs + 5 + k;
+    nodes[1].type = stratum_test::node_type("copy");
+    nodes[1].modes[0] = 2;  // float to vector
+    nodes[1].inputs[0] = falloff ? kInputs + 6 : kInputs + 3;
+    nodes[1].outputs[0] = kInputs;
+    std::vector<float> registers(kInputs + 8, 0.0f);
+    registers[kInputs + 3] = value;
+    const StratumShaderProgramDesc desc{nodes,   2, registers.data(), static_cast<uint32_t>(registers.size()),
+                                        nullptr, 0};
+    if (program_id != ~0u) {
+        EXPECT_EQ(stratum_scene_set_shader_program(scene, program_id, &desc), STRATUM_OK)
+            << stratum_last_error();
+        return program_id;
+    }
+    uint32_t id = 0;
+    EXPECT_EQ(stratum_scene_add_shader_program(scene, &desc, &id), STRATUM_OK) << stratum_last_error();
+    return id;
+}
+
+// The test scene with program 0 (emission `emission`) driving the emitter material's emission and
+// program 1 (`lamp` times the distance) scaling the point light.
+StratumScene* build_with_programs(const Values& v, float emission, float lamp) {
+    StratumScene* scene = build(v);
+    add_scaling_program(scene, emission, false);
+    add_scaling_program(scene, lamp, true);
+    const StratumProgramBinding b{2, 0, STRATUM_PROGRAM_EMISSION, 0, STRATUM_SHADER_INPUT_REGISTERS};
+    EXPECT_EQ(stratum_scene_bind_program(scene, &b), STRATUM_OK) << stratum_last_error();
+    EXPECT_EQ(stratum_scene_set_light_program(scene, 0, 1, STRATUM_SHADER_INPUT_REGISTERS), STRATUM_OK)
+        << stratum_last_error();
+    return scene;
+}
+
+// A program replaced in place, a material's or a lamp's, reaches a renderer that rendered the
+// scene before it: the next render is that of a scene built with the new program.
+TEST(LiveScene, AProgramReplacedInPlaceRendersAsAFreshBuild) {
+    Values v;
+    StratumScene* scene = build_with_programs(v, 3.0f, 0.5f);
+    StratumRenderer* r = make_renderer(scene);
+    const std::vector<float> before = render_with(r);
+    const auto fresh = [&](float emission, float lamp) {
+        StratumScene* s = build_with_programs(v, emission, lamp);
+        StratumRenderer* fr = make_renderer(s);
+        const std::vector<float> rgba = render_with(fr);
+        stratum_renderer_destroy(fr);
+        stratum_scene_destroy(s);
+        return rgba;
+    };
+    ASSERT_TRUE(same_bits(before, fresh(3.0f, 0.5f)));
+    add_scaling_program(scene, 1.0f, false, 0);
+    const std::vector<float> material_edited = render_with(r);
+    EXPECT_FALSE(same_bits(material_edited, before)) << "the material's program did not reach the renderer";
+    EXPECT_TRUE(same_bits(material_edited, fresh(1.0f, 0.5f)));
+    add_scaling_program(scene, 2.0f, true, 1);
+    const std::vector<float> lamp_edited = render_with(r);
+    EXPECT_FALSE(same_bits(lamp_edited, material_edited)) << "the lamp's program did not reach the renderer";
+    EXPECT_TRUE(same_bits(lamp_edited, fresh(1.0f, 2.0f)));
     stratum_renderer_destroy(r);
     stratum_scene_destroy(scene);
 }

@@ -61,9 +61,14 @@ class NodeCompiler:
 
     def __init__(self, version: tuple[int, int, int], warn: Callable[[Any, str], None],
                  builder: ProgramBuilder | None = None,
-                 attribute_slot: Callable[[str], int | None] | None = None) -> None:
+                 attribute_slot: Callable[[str], int | None] | None = None,
+                 world: bool = False) -> None:
         self.version = tuple(version)
         self.builder = builder or ProgramBuilder()
+        # Compiling a world's program: the renderer bakes it per direction, so its inputs are a
+        # direction's (no camera, no triangle: native shader_nodes.h), which some nodes need to
+        # know (Camera Data).
+        self.world = world
         # The mesh-attribute slot of an attribute name (the exporter's table; None: no meshes,
         # as for the world, or a fifth name).
         self._attribute_slot = attribute_slot
@@ -79,6 +84,10 @@ class NodeCompiler:
         # Image Texture nodes the program reads, in IMAGE node mode-0 order (the exporter maps
         # them to texture ids: export/materials.py resolve_images).
         self.images: list[Any] = []
+        # Per Tangent node in UV-map mode, the UV map it names ("" for the active render map):
+        # the exporter sends those materials' meshes with MikkTSpace tangents, of the one UV
+        # map a mesh carries (export/geometry.py warns when that is not the one named).
+        self.uv_tangent_maps: dict[str, str] = {}
 
     @property
     def color_config(self) -> int:

@@ -1,5 +1,6 @@
 """Nodes that read the shading point or hold constants: Texture Coordinate, Geometry, Object
-Info, UV Map, Value, RGB, Separate XYZ and Combine XYZ.
+Info, UV Map, Attribute, Color Attribute, Camera Data, Wireframe, Tangent, Value, RGB, Separate
+XYZ and Combine XYZ.
 
 | node (bl_idname)        | outputs -> renderer input (native.SHADER_INPUTS)                     |
 |-------------------------|-----------------------------------------------------------------------|
@@ -11,14 +12,26 @@ Info, UV Map, Value, RGB, Separate XYZ and Combine XYZ.
 | ShaderNodeUVMap         | UV (the mesh's one UV set; another map's name is warned about)        |
 | ShaderNodeAttribute,    | Color, Vector, Fac, Alpha of a mesh attribute (Geometry type) by name, |
 | ShaderNodeVertexColor   | through one of 4 attribute slots (empty name: the render colour)       |
+| ShaderNodeCameraData    | View Vector, View Z Depth, View Distance of the renderer's `camera`  |
+|                         | point (native camera_data); in a world: not supported (warned)        |
+| ShaderNodeWireframe     | Fac: 1 within Size / 2 of the hit triangle's edges (native wireframe: |
+|                         | `position`, `triangle`, and with Pixel Size `true_normal`,            |
+|                         | `incoming`, `pixel_footprint`); 0 in the world, as Cycles             |
+| ShaderNodeTangent       | Tangent (native tangent): radial about X, Y or Z from `generated`,    |
+|                         | through `normal_transform`; UV map: `mikktspace_tangent`, of the one  |
+|                         | UV map a mesh carries (another map named: export/geometry.py warns)  |
+| ShaderNodeScript        | not supported (OSL): SCRIPT_UNSUPPORTED, and the consuming socket's  |
+|                         | own value, as Cycles without OSL drops the node and its links         |
 
 Texture Coordinate's Object output of another object (its Object field set) and From Instancer
-are not supported: one warning, and the node's own object is used."""
+are not supported: one warning, and the node's own object is used. A Script node's closure
+output adds no closure (stratum.shaders.closures), again as Cycles without OSL."""
 
 from __future__ import annotations
 
 from typing import Any
 
+from ... import blender_versions
 from .compiler import NodeCompiler, Unsupported
 from .registry import translator
 
@@ -82,6 +95,68 @@ def attribute(c: NodeCompiler, node: Any) -> dict[str, int]:
 def color_attribute(c: NodeCompiler, node: Any) -> dict[str, int]:
     name = str(getattr(node, "layer_name", ""))
     return _attribute_outputs(c, name or RENDER_COLOR, ("Color", "Alpha"))
+
+
+@translator("ShaderNodeCameraData")
+def camera_data(c: NodeCompiler, node: Any) -> dict[str, int]:
+    # Cycles reads sd->P unmoved inside a Bump's Height (its camera node has no bump offset),
+    # hence the renderer's own input rather than c.geometry's stand-in.
+    if c.world:
+        raise Unsupported(f"Camera Data '{node.name}' in a world is not supported (the world is "
+                          "baked per direction, without the camera)")
+    vector, depth, distance = c.builder.node("camera_data", (), (c.builder.input("camera"),),
+                                             (3, 1, 1))
+    return {"View Vector": vector, "View Z Depth": depth, "View Distance": distance}
+
+
+@translator("ShaderNodeWireframe")
+def wireframe(c: NodeCompiler, node: Any) -> dict[str, int]:
+    # Inside a Bump's Height the position is the offset point's (c.geometry), as Cycles 4.4+.
+    if "position" in c.overrides and not blender_versions.wireframe_at_bump_offsets(c.version):
+        c.warn(node, f"Wireframe '{node.name}' inside a Bump's Height: this Blender's Cycles "
+                     "adds a difference quotient at the point, which is not reproduced; "
+                     "evaluated at the offset points as Blender 4.4 and later", "bump")
+    size = c.input(node, "Size", "float")
+    triangle = c.builder.input("triangle")
+    fac = c.builder.node("wireframe", (int(bool(getattr(node, "use_pixel_size", False))),), (
+        c.geometry("position"), size, c.geometry("true_normal"), c.geometry("incoming"),
+        c.geometry("pixel_footprint"), triangle, triangle + 3, triangle + 6), (1,))[0]
+    return {"Fac": fac}
+
+
+TANGENT_DIRECTIONS = ("RADIAL", "UV_MAP")  # native mode 0
+TANGENT_AXES = ("X", "Y", "Z")  # native mode 1
+
+
+@translator("ShaderNodeTangent")
+def tangent(c: NodeCompiler, node: Any) -> dict[str, int]:
+    direction = str(getattr(node, "direction_type", "RADIAL"))
+    axis = str(getattr(node, "axis", "Z"))
+    if direction not in TANGENT_DIRECTIONS or axis not in TANGENT_AXES:
+        raise Unsupported(f"Tangent '{node.name}': direction {direction}, axis {axis} is not "
+                          "supported")
+    if direction == "UV_MAP":
+        c.uv_tangent_maps[node.name] = str(getattr(node, "uv_map", ""))
+    # Cycles' svm_node_tangent reads the point unmoved inside a Bump's Height (it has no bump
+    # offset), hence the renderer's own inputs rather than c.geometry's stand-ins.
+    b = c.builder
+    transform = b.input("normal_transform")
+    out = b.node("tangent", (TANGENT_DIRECTIONS.index(direction), TANGENT_AXES.index(axis)), (
+        b.input("generated"), b.input("normal"), transform, transform + 3, transform + 6,
+        b.input("mikktspace_tangent")), (3,))[0]
+    return {"Tangent": out}
+
+
+def script_unsupported(node: Any) -> str:
+    """The warning for a Script node: Cycles without Open Shading Language (its default, SVM,
+    and any GPU) makes no node of it, so what it feeds reads as unlinked."""
+    return (f"Script '{node.name}': OSL scripts are not supported (Stratum renders it as Cycles "
+            "does without Open Shading Language, as if it were not linked)")
+
+
+@translator("ShaderNodeScript")
+def script(c: NodeCompiler, node: Any) -> dict[str, int]:
+    raise Unsupported(script_unsupported(node))
 
 
 @translator("ShaderNodeValue")

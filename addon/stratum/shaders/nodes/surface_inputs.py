@@ -1,8 +1,11 @@
 """Nodes that read the view at the shading point, and colour converters: Fresnel, Layer Weight,
-Blackbody and Wavelength (docs/shader_nodes.md).
+Light Falloff, Blackbody and Wavelength (docs/shader_nodes.md).
 
 Fresnel and Layer Weight read the renderer's incoming direction and back-face flag, and the
-node's Normal input when it is linked, else the shading normal, as Cycles does. Blackbody and
+node's Normal input when it is linked, else the shading normal, as Cycles does. Light Falloff
+reads the renderer's ray length: on a surface the distance the ray travelled, in a lamp's
+program the distance to the point on the lamp (export/light_nodes.py), FLT_MAX for the world
+and suns, where Cycles changed in 4.4 (blender_versions.light_falloff_revision). Blackbody and
 Wavelength take Cycles' colour to the working space by the matrices Cycles derives from the
 Blender version's OpenColorIO config (ShaderManager::init_xyz_transforms): its XYZ from the
 config's aces_interchange role, Rec.709 through Cycles' built-in XYZ -> Rec.709 matrix. The
@@ -100,6 +103,16 @@ def layer_weight(c: NodeCompiler, node: Any) -> dict[str, int]:
     fres, facing = c.builder.node("layer_weight", (), (blend, normal, incoming, backfacing),
                                   (1, 1))
     return {"Fresnel": fres, "Facing": facing}
+
+
+@translator("ShaderNodeLightFalloff")
+def light_falloff(c: NodeCompiler, node: Any) -> dict[str, int]:
+    strength = c.input(node, "Strength", "float")
+    smooth = c.input(node, "Smooth", "float")
+    revision = blender_versions.light_falloff_revision(c.version)
+    quadratic, linear, constant = c.builder.node(
+        "light_falloff", (revision,), (strength, smooth, c.geometry("ray_length")), (1, 1, 1))
+    return {"Quadratic": quadratic, "Linear": linear, "Constant": constant}
 
 
 @translator("ShaderNodeBlackbody")
