@@ -108,16 +108,18 @@ TEST(SkyNodes, PreethamZenithIsTheZenithLuminanceAndChromaticity) {
     }
 }
 
+// Sun (0.3, 0.4, 0.6) normalised, turbidity 3: the Preetham data Python computes
+// (stratum/shaders/nodes/sky_texture.py).
+const std::vector<float> kPreethamSun = {
+    0.6435011f, 0.6947383f, 0.4350246f, 0.2990316f, 0.3113828f, -0.9269f, -0.6387f, 5.257f,
+    -2.2153f,   0.1693f,    0,          0,          0,          0,        -0.3171f, -0.1987f,
+    0.2113f,    -1.0912f,   0.0353f,    0,          0,          0,        0,        -0.3109f,
+    -0.2758f,   0.1865f,    -1.786f,    0.0202f,    0,          0,        0,        0};
+
 TEST(SkyNodes, PreethamMatchesCycles34) {
-    // Sun (0.3, 0.4, 0.6) normalised, turbidity 3: the data Python computes
-    // (shader_nodes/sky_texture.py), and Cycles 3.4's pixels at those directions.
-    const std::vector<float> data = {
-        0.6435011f, 0.6947383f, 0.4350246f, 0.2990316f, 0.3113828f, -0.9269f, -0.6387f, 5.257f,
-        -2.2153f,   0.1693f,    0,          0,          0,          0,        -0.3171f, -0.1987f,
-        0.2113f,    -1.0912f,   0.0353f,    0,          0,          0,        0,        -0.3109f,
-        -0.2758f,   0.1865f,    -1.786f,    0.0202f,    0,          0,        0,        0};
+    // kPreethamSun, and Cycles 3.4's pixels at those directions.
     SkyProgram p;
-    ASSERT_EQ(p.add(0, 0, data), STRATUM_OK);
+    ASSERT_EQ(p.add(0, 0, kPreethamSun), STRATUM_OK);
     const double cases[][6] = {
         {-0.5135234, -0.85666883, 0.0491154194, 0.48978439, 0.469021291, 0.537845731},
         {0.549056292, 0.497587681, -0.671523392, 0.527671874, 0.483850211, 0.554474294},
@@ -131,13 +133,8 @@ TEST(SkyNodes, PreethamMatchesCycles34) {
 TEST(SkyNodes, PreethamMatchesCycles45WithTheColourConfigurationOf4x) {
     // The same sky in Cycles 4.5 (4.2's pixels are the same): its XYZ -> Rec.709 is the 4.0-4.5
     // config's 16-digit matrix (XYZ matrix 1). 5.0's 7-digit matrix (2) is 2.4e-4 off here.
-    const std::vector<float> data = {
-        0.6435011f, 0.6947383f, 0.4350246f, 0.2990316f, 0.3113828f, -0.9269f, -0.6387f, 5.257f,
-        -2.2153f,   0.1693f,    0,          0,          0,          0,        -0.3171f, -0.1987f,
-        0.2113f,    -1.0912f,   0.0353f,    0,          0,          0,        0,        -0.3109f,
-        -0.2758f,   0.1865f,    -1.786f,    0.0202f,    0,          0,        0,        0};
     SkyProgram p;
-    ASSERT_EQ(p.add(0, 0, data, 1), STRATUM_OK);
+    ASSERT_EQ(p.add(0, 0, kPreethamSun, 1), STRATUM_OK);
     const double cases[][6] = {
         {-0.5135234, -0.85666883, 0.0491154194, 0.48978141, 0.469022125, 0.537846029},
         {0.549056292, 0.497587681, -0.671523392, 0.527668953, 0.483850986, 0.554474473},
