@@ -12,7 +12,7 @@ BLENDER_RUN := $(BLENDER_BG) --python scripts/run_in_blender.py --
 CMAKE_ARGS ?= -DCMAKE_BUILD_TYPE=Release -DSTRATUM_WERROR=ON
 LIB        := addon/stratum/lib/libstratum.so
 
-.PHONY: all setup build check test test-native test-python test-blender test-blender-3 test-blender-wheel \
+.PHONY: all setup build check test test-native test-native-statistical test-python test-blender test-blender-3 test-blender-wheel \
         lint render bench sanitize format clean study test-corpus test-sessions test-ui corpus-asan \
         settings-table package test-package test-wheels
 
@@ -40,11 +40,19 @@ check: build lint
 	$(PY) -m pytest tests/blender -q -m smoke
 
 # corpus-asan after sanitize, which builds the binary it replays with.
-test: build lint test-native test-python test-blender test-wheels test-package test-ui sanitize corpus-asan \
+test: build lint test-native-statistical test-python test-blender test-wheels test-package test-ui sanitize corpus-asan \
       fuzz-smoke
 
 test-native: build
 	cd $(BUILD) && ctest --output-on-failure -j2
+
+# What make test runs of the C++ suite in this Release build: the statistical tests, labelled
+# `long` or left out of the sanitizer run (SANITIZE_SKIP). Every other native test runs in make
+# sanitize's build under ASan and UBSan, at -O2, which make test runs too; make check and make
+# test-native run them all in Release.
+test-native-statistical: build
+	cd $(BUILD) && ctest --output-on-failure -j2 -L long
+	cd $(BUILD) && ctest --output-on-failure -j2 -LE long -R '$(SANITIZE_SKIP)'
 
 test-python: build
 	$(PY) -m pytest tests/python -q

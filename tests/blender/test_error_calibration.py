@@ -1,7 +1,7 @@
 """The Stratum Error pass against the error it predicts (issue 16, acceptance 2): on the Cornell
 box, for random, sobol, zsobol and halton_owen, the predicted per-pixel error against the error
-measured over 32 seeds. Runs in Blender 3.4 and under the bpy wheel (the scene is exported once
-and rendered by stratum.native directly).
+measured over 32 seeds. Runs under the bpy 5.x wheel in make test, in any Blender by hand
+(conftest.ONE_BLENDER: the scene is exported once and rendered by stratum.native directly).
 
 Reasoning
 ---------

@@ -1,7 +1,7 @@
 """Issue 6, acceptance point 4: on the Cornell box every estimator agrees with Cycles.
 
-Runs under the bpy 5.0 wheel in make test (in Blender 3.4 by hand: the comment at
-ESTIMATOR_OUT), with the machinery and
+Runs under the bpy 5.0 wheel in make test (conftest.ONE_BLENDER: the estimators are the
+native library's; STRATUM_EVERY_BLENDER=1 runs it in 3.4 too), with the machinery and
 the tolerances of agreement.py (imported; test_cycles_agreement.py's docstring derives them):
 the Cornell box at 64 x 64, two seeds per renderer, image means within 2% and every 16 x 16
 block whose Cycles mean is >= 0.01 within 5%, per channel; and before that the noise gate, 4
@@ -92,7 +92,6 @@ The MIS rows are less noisy than with area sampling of the lamp (3.47% / 4.04% i
 from __future__ import annotations
 
 import functools
-import os
 import time
 from collections.abc import Callable
 from typing import Any
@@ -116,15 +115,6 @@ from agreement import (
     render_two_seeds,
     stratum_available,
 )
-
-# One Blender is enough: the estimators are the native library's, the same code in every
-# Blender, and what does differ between versions (the Cornell box's export, Cycles' models) is
-# compared in each by test_cycles_agreement.py with the default estimator. The bpy 5.0 wheel
-# runs this file; Blender 3.4's run skips it (make test must stay within 45 minutes: issue 33).
-# It still runs in any Blender by hand with STRATUM_ALL_ESTIMATOR_AGREEMENT=1.
-pytestmark = pytest.mark.skipif(
-    bpy.app.version[0] < 5 and not os.environ.get("STRATUM_ALL_ESTIMATOR_AGREEMENT"),
-    reason="the estimator agreement runs in the bpy 5.0 wheel (module comment)")
 
 ESTIMATOR_OUT = OUT / "estimators"
 CYCLES_SPP_PER_SEED = 1024

@@ -1,5 +1,6 @@
 """What the samplers do to a real image: the Cornell box at 16 spp, against a high-spp
-reference, per sampler. Runs in Blender 3.4 and under the bpy wheel (the scene is exported by
+reference, per sampler. Runs under the bpy 5.x wheel in make test, in any Blender by hand
+(conftest.ONE_BLENDER; the scene is exported by
 the add-on's exporter and rendered by stratum.native directly, without Blender's render
 pipeline, to keep the cost down).
 
