@@ -116,6 +116,16 @@ const std::vector<float> kPreethamSun = {
     0.2113f,    -1.0912f,   0.0353f,    0,          0,          0,        0,        -0.3109f,
     -0.2758f,   0.1865f,    -1.786f,    0.0202f,    0,          0,        0,        0};
 
+// Each case: a direction (x, y, z) and Cycles' RGB there, which the program gives within 1e-4
+// relative.
+template <size_t N>
+void expect_sky_pixels(const SkyProgram& p, const double (&cases)[N][6]) {
+    for (const auto& c : cases) {
+        const auto got = p.at(c[0], c[1], c[2]);
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
+    }
+}
+
 TEST(SkyNodes, PreethamMatchesCycles34) {
     // kPreethamSun, and Cycles 3.4's pixels at those directions.
     SkyProgram p;
@@ -124,10 +134,7 @@ TEST(SkyNodes, PreethamMatchesCycles34) {
         {-0.5135234, -0.85666883, 0.0491154194, 0.48978439, 0.469021291, 0.537845731},
         {0.549056292, 0.497587681, -0.671523392, 0.527671874, 0.483850211, 0.554474294},
         {0.913331866, -0.228824258, -0.336844683, 0.532538772, 0.486942261, 0.557364047}};
-    for (const auto& c : cases) {
-        const auto got = p.at(c[0], c[1], c[2]);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
-    }
+    expect_sky_pixels(p, cases);
 }
 
 TEST(SkyNodes, PreethamMatchesCycles45WithTheColourConfigurationOf4x) {
@@ -139,10 +146,7 @@ TEST(SkyNodes, PreethamMatchesCycles45WithTheColourConfigurationOf4x) {
         {-0.5135234, -0.85666883, 0.0491154194, 0.48978141, 0.469022125, 0.537846029},
         {0.549056292, 0.497587681, -0.671523392, 0.527668953, 0.483850986, 0.554474473},
         {0.913331866, -0.228824258, -0.336844683, 0.532535434, 0.486943007, 0.557364225}};
-    for (const auto& c : cases) {
-        const auto got = p.at(c[0], c[1], c[2]);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
-    }
+    expect_sky_pixels(p, cases);
 }
 
 // Nishita data: elevation, rotation, size, intensity, altitude, air, dust, ozone.
@@ -162,10 +166,7 @@ TEST(SkyNodes, NishitaMatchesCycles34) {
                                {0.23565042, -0.0590394139, 0.970042944, 0.560015321, 0.921980262, 1.70723093},
                                {-0.326833487, -0.913300633, 0.243026495, 1.92639804, 3.01294923, 4.60674906},
                                {-0.345204473, 0.576001406, 0.740983248, 199.735474, 164.289703, 128.994507}};
-    for (const auto& c : cases) {
-        const auto got = p.at(c[0], c[1], c[2]);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
-    }
+    expect_sky_pixels(p, cases);
 }
 
 TEST(SkyNodes, SingleScatteringMatchesCycles50) {
@@ -181,10 +182,7 @@ TEST(SkyNodes, SingleScatteringMatchesCycles50) {
         {0.913331866, -0.228824258, -0.336844683, 0.0196205303, 0.0188774206, 0.0140633993},
         {-0.894191086, 0.422973275, -0.146683037, 3.58560705, 2.76677537, 1.64253449},
         {-0.539353549, 0.595142245, 0.595737696, 321.634247, 254.848053, 185.904633}};
-    for (const auto& c : cases) {
-        const auto got = p.at(c[0], c[1], c[2]);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
-    }
+    expect_sky_pixels(p, cases);
 }
 
 TEST(SkyNodes, MultipleScatteringMatchesCycles50) {
@@ -197,10 +195,7 @@ TEST(SkyNodes, MultipleScatteringMatchesCycles50) {
     const double cases[][6] = {{-0.688929379, -0.41288352, 0.595737696, 1.17866731, 2.48518729, 5.14511442},
                                {0.913331866, -0.228824258, -0.336844683, 0.53450048, 0.93976295, 1.74664295},
                                {-0.539353549, 0.595142245, 0.595737696, 330.998413, 273.566345, 204.485947}};
-    for (const auto& c : cases) {
-        const auto got = p.at(c[0], c[1], c[2]);
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(got[k], c[3 + k], 1e-4 * c[3 + k]);
-    }
+    expect_sky_pixels(p, cases);
 }
 
 TEST(SkyNodes, NishitaIsMirroredAboutTheSunAndFadesBelowTheHorizon) {
