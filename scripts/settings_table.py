@@ -65,6 +65,9 @@ def _in_blender(setting: native.Setting) -> str:
             default = blender_settings.VIEWPORT_DEFAULTS[prop]
             shown = ("on" if default else "off") if isinstance(default, bool) else f"`{default}`"
             text += f"; the Rendered viewport's: `scene.stratum.{prop}` (default {shown})"
+        if name in blender_settings.CYCLES_LIGHT_PATHS:
+            text += (f", or Cycles' `scene.cycles.{blender_settings.CYCLES_LIGHT_PATHS[name]}` "
+                     "where the scene takes Cycles' Light Paths (below the table)")
         return text
     if name in blender_settings.FROM_BLENDER:
         return blender_settings.FROM_BLENDER[name]

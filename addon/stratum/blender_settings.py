@@ -22,6 +22,8 @@ PROPERTIES: tuple[str, ...] = (
     "samples", "use_adaptive_sampling", "adaptive_threshold", "adaptive_min_samples",
     "adaptive_metric", "sampler",
     "hemisphere", "seed", "integrator", "ao_distance", "max_bounces",
+    "diffuse_bounces", "glossy_bounces", "transmission_bounces", "transparent_max_bounces",
+    "clamp_direct", "clamp_indirect",
     "light_sampling", "mis_heuristic", "triangle_sampling", "light_selection",
     "light_tree_splits", "rr_mode",
     "rr_min_depth", "control_variate", "filter_type", "filter_width", "threads",
@@ -68,6 +70,43 @@ BLENDER_ONLY: dict[str, tuple[str, str, bool]] = {
         "Denoise the rendered viewport with Intel Open Image Denoise",
         False),
 }
+
+# Cycles' Light Paths settings, which a scene renders with instead of Stratum's own when its
+# `light_paths` property says so (light_paths_from_cycles): setting -> scene.cycles property.
+CYCLES_LIGHT_PATHS: dict[str, str] = {
+    "max_bounces": "max_bounces",
+    "diffuse_bounces": "diffuse_bounces",
+    "glossy_bounces": "glossy_bounces",
+    "transmission_bounces": "transmission_bounces",
+    "transparent_max_bounces": "transparent_max_bounces",
+    "clamp_direct": "sample_clamp_direct",
+    "clamp_indirect": "sample_clamp_indirect",
+}
+
+# scene.stratum.light_paths: where the Light Paths settings come from. Stratum's own default to
+# unbiased rendering (no per-kind limit below the total, no clamping); Cycles' defaults clamp
+# indirect light at 10 and stop diffuse and glossy paths after 4 bounces. A file whose Cycles
+# Light Paths were set (saved with a value, scene.cycles.is_property_set) was tuned for Cycles,
+# and Auto renders it with them; a new scene, or one never tuned, renders unbiased.
+LIGHT_PATHS_SOURCES: tuple[tuple[str, str, str], ...] = (
+    ("AUTO", "Auto", "Cycles' Light Paths settings when the file has set any of them (a scene "
+     "tuned for Cycles renders as in Cycles), else Stratum's own"),
+    ("STRATUM", "Stratum", "Stratum's own Light Paths settings (unbiased by default: no per-kind "
+     "limit, no clamping)"),
+    ("CYCLES", "Cycles", "Cycles' Light Paths settings of this scene (scene.cycles), with their "
+     "clamping and per-kind limits"),
+)
+LIGHT_PATHS_DEFAULT = "AUTO"
+
+
+def light_paths_from_cycles(source: str, cycles_available: bool, cycles_set: bool) -> bool:
+    """Whether a scene renders with Cycles' Light Paths settings: `source` is its light_paths
+    property, `cycles_available` whether it has Cycles' settings at all (the Cycles add-on is
+    enabled), `cycles_set` whether any of them was set in the file (LIGHT_PATHS_SOURCES)."""
+    if not cycles_available or source == "STRATUM":
+        return False
+    return source == "CYCLES" or cycles_set
+
 
 # The Blender defaults that differ from the library's on purpose. Blender stores a property
 # only once it is changed, so a saved .blend that never touched one of these renders with the

@@ -27,6 +27,8 @@ from bpy.props import BoolProperty, EnumProperty, FloatProperty, IntProperty, Po
 from . import native
 from .blender_settings import (
     BLENDER_ONLY,
+    LIGHT_PATHS_DEFAULT,
+    LIGHT_PATHS_SOURCES,
     PROPERTIES,
     UI_DEFAULTS,
     VIEWPORT_DEFAULTS,
@@ -164,6 +166,10 @@ def _make_property_group(settings: tuple[native.Setting, ...]) -> type:
                                update=_update_render_passes)
             for name, (label, description, default) in BLENDER_ONLY.items()})
         __annotations__.update(_viewport_properties(by_name))
+        __annotations__["light_paths"] = EnumProperty(
+            name="Settings", description="Where the Light Paths settings (bounces per kind, "
+            "clamping) come from", default=LIGHT_PATHS_DEFAULT,
+            items=[(*item, number) for number, item in enumerate(LIGHT_PATHS_SOURCES)])
 
     return StratumRenderSettings
 

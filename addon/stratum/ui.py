@@ -7,6 +7,7 @@ from typing import Any
 import bpy
 
 from . import native, properties
+from .engine.light_paths import light_path_holder
 from .engine_id import ENGINE_ID
 from .version import __version__
 
@@ -257,6 +258,7 @@ class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
         layout, settings = _settings_layout(self, context)
         col = layout.column()
         col.prop(settings, "integrator", text="Integrator")
+        col.prop(settings, "light_paths", text="Settings")
         sub = col.column()
         sub.active = settings.integrator == "ao"
         sub.prop(settings, "ao_distance", text="AO Distance")
@@ -266,7 +268,16 @@ class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
             sub.prop(settings, name, text=text)
 
 
+# Cycles' Max Bounces and Clamping subpanels: (setting, label).
+MAX_BOUNCES = (("max_bounces", "Total"), ("diffuse_bounces", "Diffuse"),
+               ("glossy_bounces", "Glossy"), ("transmission_bounces", "Transmission"))
+CLAMPING = (("clamp_direct", "Direct Light"), ("clamp_indirect", "Indirect Light"))
+
+
 class STRATUM_RENDER_PT_light_paths_max_bounces(StratumButtonsPanel, bpy.types.Panel):
+    """Cycles' Max Bounces: the total, per kind, and transparent pass-throughs (Stratum's own
+    or Cycles', as Light Paths > Settings says: engine/light_paths.py)."""
+
     bl_label = "Max Bounces"
     bl_parent_id = "STRATUM_RENDER_PT_light_paths"
 
@@ -274,7 +285,25 @@ class STRATUM_RENDER_PT_light_paths_max_bounces(StratumButtonsPanel, bpy.types.P
         layout, settings = _settings_layout(self, context)
         col = layout.column(align=True)
         col.active = settings.integrator not in NO_BOUNCE_LIMIT
-        col.prop(settings, "max_bounces", text="Total")
+        for name, text in MAX_BOUNCES:
+            col.prop(*light_path_holder(context.scene, name), text=text)
+        col = layout.column()
+        col.active = settings.integrator not in NO_LIGHT_PATHS | FINAL_GATHER
+        col.prop(*light_path_holder(context.scene, "transparent_max_bounces"), text="Transparent")
+
+
+class STRATUM_RENDER_PT_light_paths_clamping(StratumButtonsPanel, bpy.types.Panel):
+    """Cycles' Clamping of direct and indirect light: biased by design (its tooltips say so)."""
+
+    bl_label = "Clamping"
+    bl_parent_id = "STRATUM_RENDER_PT_light_paths"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
+        col = layout.column(align=True)
+        col.active = settings.integrator not in NO_LIGHT_PATHS | FINAL_GATHER
+        for name, text in CLAMPING:
+            col.prop(*light_path_holder(context.scene, name), text=text)
 
 
 class STRATUM_RENDER_PT_light_paths_roulette(StratumButtonsPanel, bpy.types.Panel):
@@ -364,6 +393,7 @@ classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_sampling_path_guiding,
     STRATUM_RENDER_PT_light_paths,
     STRATUM_RENDER_PT_light_paths_max_bounces,
+    STRATUM_RENDER_PT_light_paths_clamping,
     STRATUM_RENDER_PT_light_paths_roulette,
     STRATUM_RENDER_PT_light_paths_direct_light,
     STRATUM_RENDER_PT_light_paths_control_variate,

@@ -126,6 +126,7 @@ def render_pixel_centres(scene: bpy.types.Scene, engine: str, path: Path, res: i
             c.max_bounces = max_bounces
     else:
         s = scene.stratum
+        s.light_paths = "STRATUM"  # its own bounces (below), not those of a file tuned for Cycles
         s.samples, s.filter_type, s.filter_width = 1, "box", 0.01
         if max_bounces is not None:
             s.max_bounces = max_bounces
@@ -173,9 +174,11 @@ def configure_cycles(scene: bpy.types.Scene, seed: int, *, samples: int = SPP_PE
 
 def configure_stratum(scene: bpy.types.Scene, seed: int, *, samples: int = SPP_PER_SEED,
                       max_bounces: int = MAX_BOUNCES) -> None:
-    """Stratum with the same samples, bounces and pixel filter as configure_cycles."""
+    """Stratum with the same samples, bounces and pixel filter as configure_cycles: its own
+    Light Paths settings, unlimited per kind and unclamped as configure_cycles sets Cycles'."""
     scene.render.engine = "STRATUM"
     s = scene.stratum
+    s.light_paths = "STRATUM"
     s.samples = samples
     s.seed = seed
     s.max_bounces = max_bounces

@@ -26,6 +26,7 @@ CHILDREN = {
                                    "STRATUM_RENDER_PT_sampling_path_guiding"],
     "STRATUM_RENDER_PT_sampling_viewport": ["STRATUM_RENDER_PT_sampling_viewport_split"],
     "STRATUM_RENDER_PT_light_paths": ["STRATUM_RENDER_PT_light_paths_max_bounces",
+                                      "STRATUM_RENDER_PT_light_paths_clamping",
                                       "STRATUM_RENDER_PT_light_paths_roulette",
                                       "STRATUM_RENDER_PT_light_paths_direct_light",
                                       "STRATUM_RENDER_PT_light_paths_control_variate"],
@@ -84,7 +85,7 @@ def test_every_property_is_drawn_once(library: Any, scene_builder: Any) -> None:
     scene = scene_builder().scene
     drawn = [name for record in _draw_all(scene).values() for name in record.names()]
     expected = (set(blender_settings.PROPERTIES) | set(blender_settings.BLENDER_ONLY)
-                | set(blender_settings.VIEWPORT_PROPERTIES))
+                | set(blender_settings.VIEWPORT_PROPERTIES) | {"light_paths"})
     assert sorted(drawn) == sorted(expected)
 
 
@@ -204,7 +205,14 @@ def test_light_paths_grey_out_what_an_integrator_does_not_use(library: Any,
                     "radiosity_solver": radiosity,
                     "radiosity_tolerance": radiosity,
                     "radiosity_rays": radiosity,
+                    "light_paths": True,
                     "max_bounces": integrator not in ("ao", "direct", "radiosity"),
+                    "diffuse_bounces": integrator not in ("ao", "direct", "radiosity"),
+                    "glossy_bounces": integrator not in ("ao", "direct", "radiosity"),
+                    "transmission_bounces": integrator not in ("ao", "direct", "radiosity"),
+                    "transparent_max_bounces": paths,
+                    "clamp_direct": paths,
+                    "clamp_indirect": paths,
                     "rr_mode": paths,
                     "rr_min_depth": paths and rr_mode != "off",
                     "light_sampling": path_tracer,

@@ -40,7 +40,8 @@ def background_command(blender: str, scene: Path, *arguments: str,
 
 # The start of every inline script: its arguments are the JSON after "--"; the add-on is
 # registered from args["addon_parent"] and renders the opened scene, with args["overrides"]
-# set on scene.stratum and args["resolution"] (WxH at 100 %) when given.
+# set on scene.stratum (on scene.cycles for a Light Paths setting the scene takes from Cycles:
+# engine/light_paths.py) and args["resolution"] (WxH at 100 %) when given.
 _SCRIPT_START = r"""
 import json, os, sys, traceback
 args = json.loads(sys.argv[sys.argv.index("--") + 1])
@@ -53,8 +54,9 @@ try:
     stratum.register()
     scene = bpy.context.scene
     scene.render.engine = ENGINE_ID
+    from stratum.engine.light_paths import light_path_holder
     for name, value in args["overrides"].items():
-        setattr(scene.stratum, name, value)
+        setattr(*light_path_holder(scene, name), value)
     if args.get("resolution"):
         scene.render.resolution_x, scene.render.resolution_y = args["resolution"]
         scene.render.resolution_percentage = 100

@@ -6,6 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from .. import blender_settings
+from .light_paths import cycles_light_paths
 
 
 def render_size(scene: Any) -> tuple[int, int]:
@@ -39,7 +40,8 @@ def result_size(scene: Any) -> tuple[int, int]:
 
 def renderer_settings(scene: Any) -> dict[str, int | float | str]:
     """Native settings from the output resolution, border and film, and every scene.stratum
-    property (blender_settings.py says which setting comes from where); name -> value, the
+    property (blender_settings.py says which setting comes from where), the Light Paths ones
+    from Cycles' settings where the scene uses those (light_paths.py); name -> value, the
     Python type selecting set_int / set_float / set_string (a checkbox's bool as 0 or 1).
     The border and film settings are only sent when used, so a library without them still
     renders every other scene."""
@@ -52,7 +54,7 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
     if scene.render.film_transparent:
         extra["film_transparent"] = 1
     chosen = {name: library_value(getattr(s, name)) for name in blender_settings.PROPERTIES}
-    return {"width": width, "height": height} | chosen | extra
+    return {"width": width, "height": height} | chosen | cycles_light_paths(scene) | extra
 
 
 def library_value(value: Any) -> int | float | str:

@@ -14,6 +14,7 @@
 #include "integrators/camera_path_passes.h"
 #include "integrators/estimator_options.h"
 #include "integrators/guided_direction.h"
+#include "integrators/light_path_limits.h"
 #include "radiosity/radiosity_settings.h"
 #include "radiosity/radiosity_solution.h"
 #include "render_scene/render_scene.h"
@@ -36,6 +37,9 @@ struct IntegratorSettings {
     // Cycles' transparent_max_bounces (default 8 in 3.4 and 5.0): pass-throughs of Transparent
     // closures (and transparent-shadow surfaces) allowed per path; they are not bounces.
     uint32_t transparent_max_bounces = 8;
+    // Cycles' per-kind bounce limits and clamping (integrators/light_path_limits.h): unlimited
+    // and off by default, so that the estimators stay unbiased.
+    LightPathLimits light_paths;
     // Cycles' Film > Transparent: background seen directly (also through transparent closures)
     // gives alpha 0 instead of its radiance, and holdouts turn into alpha.
     bool film_transparent = false;

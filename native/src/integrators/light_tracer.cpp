@@ -79,12 +79,14 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
     const LightSet& lights = scene.lights();
     CameraPathPasses data(passes, settings_.mist);
     RayTrack track = RayTrack::camera(camera_ray);
+    const float clamp = settings_.light_paths.clamp_direct;
     for (uint32_t passed = 0;; ++passed) {
         SurfaceHit hit;
         ++rays;
         const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
-        const Rgb lamp = beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, kVisibleCamera);
-        L += lamp;
+        // What the camera sees directly is direct light (clamp_direct), as on a camera path.
+        const Rgb lamp = clamp_contribution(
+            beta * lights.lamp_radiance(origin, dir, found ? hit.t : t_max, kVisibleCamera), clamp);
         data.emitted(lamp, true);
         if (!found) {
             if (data.pending())
@@ -92,7 +94,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
             if (settings_.film_transparent) {
                 transparency += beta.average();
             } else {
-                L += beta * scene.background(dir);
+                L += clamp_contribution(beta * scene.background(dir), clamp);
             }
             break;
         }
@@ -102,7 +104,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
         if (!holdout.is_black()) transparency += (holdout * beta).average();
         if (hit.holdout) break;
-        L += beta * closures.emission();
+        L += clamp_contribution(beta * closures.emission(), clamp);
         // Straight on through Transparent closures (not a bounce), as a camera path goes on.
         const Rgb pass = closures.transparency();
         if (pass.is_black() || passed >= settings_.transparent_max_bounces) break;
@@ -153,6 +155,12 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
     RayTrack track;                       // ray lengths; no footprint (light paths have no pixel)
     bool first_hit = true;
     const uint32_t max_passes = settings_.transparent_max_bounces;
+    // The per-kind bounce limits (integrators/light_path_limits.h) read along the camera path this
+    // particle's connection at depth d makes: its scatterings are the connection's and those of
+    // the vertices at depths d−1 .. 1, whose counts must stay within the limits; the first hit's
+    // scattering toward the lamp is the camera path's last, which no limit stops (a light sample).
+    const LightPathLimits& limits = settings_.light_paths;
+    BounceCounts beyond_first;
 
     for (uint32_t vertex = 0;; ++vertex) {
         SurfaceHit hit;
@@ -171,7 +179,7 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
         const ClosureSet& closures = sp.closures;
         const Frame frame = Frame::from_normal(sp.ns);
         const Vec3 wo = frame.to_local(arrival);
-        const uint32_t kinds = depth == 0 ? first_kinds : ClosureSet::kAllKinds;
+        const uint32_t kinds = depth == 0 ? first_kinds : beyond_first.kinds_within(limits);
 
         // Camera connection (6.8–6.9): the scattering of this vertex toward the lens.
         if (closures.has_non_delta() && !hit.holdout && (hit.visibility & kVisibleCamera) &&
@@ -220,7 +228,9 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
             // A scattering past the cap would lead to a vertex that may not connect; the light
             // lights only the kinds its visibility allows at the first vertex.
             if (depth >= settings_.max_bounces) break;
-            if (!(kinds & scatter_kind_bit(bs.kind))) break;
+            if (depth == 0 && !(first_kinds & scatter_kind_bit(bs.kind))) break;
+            if (depth > 0) beyond_first.scatter(bs.kind);
+            if (beyond_first.exhausted(settings_.max_bounces, limits)) break;
             // The adjoint scattering weight f(ω_o, ω_l) |ω_l·n_s| |ω_o·n_g| / (|ω_l·n_g| p), by the
             // same evaluation as the connection; delta lobes (mirror, refraction) keep the sampled
             // weight with the shading-normal correction.
@@ -261,6 +271,11 @@ float LightTracer::sky_probability(const RenderScene& scene) {
 
 std::vector<std::string> LightTracer::notices(const Scene& scene) const {
     std::vector<std::string> out;
+    if (settings_.light_paths.clamp_indirect > 0.0f) {
+        out.emplace_back(
+            "light tracing does not clamp indirect light: clamping scales a camera sample's contributions, and "
+            "a particle's splat is none (clamp_direct still applies to what the camera sees directly)");
+    }
     if (scene.camera && scene.camera->type == CameraType::Orthographic) {
         out.emplace_back(
             "light tracing cannot connect to an orthographic camera: only what the camera sees directly is "

@@ -6,6 +6,11 @@
 // |-------------------------|-----------------------------------------------------------------|
 // | max_bounces             | as the path tracer: at most max_bounces + 1 scattering vertices |
 // |                         | per path; a camera connection is its vertex's scattering        |
+// | diffuse_bounces, glossy_ | the camera path's limits per kind (light_path_limits.h), read   |
+// | bounces, transmission_  | along it: the connection's and the particle's scatterings after |
+// | bounces                 | its first hit count                                             |
+// | clamp_direct            | what the camera sees directly; clamp_indirect is not applied    |
+// |                         | (a notice says so): a splat is no camera sample                 |
 // | transparent_max_bounces | Transparent pass-throughs per particle (not bounces), and per   |
 // |                         | connection ray                                                  |
 // | film_transparent        | camera-ray part: background seen directly gives alpha 0         |

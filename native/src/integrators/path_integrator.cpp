@@ -77,7 +77,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     RayQuery query{camera_ray.time, kVisibleCamera};
     // Cycles' PATH_RAY_TRANSPARENT_BACKGROUND: only camera and transparent vertices so far.
     bool camera_visible_path = true;
-    uint32_t bounce = 0, transparent_bounce = 0;
+    BounceCounts bounces;  // scatterings so far, by kind (integrators/light_path_limits.h)
+    uint32_t transparent_bounce = 0;
+    const LightPathLimits& limits = settings_.light_paths;
     const LightSet& lights = scene.lights();
     const LightSelection selection = settings_.light_selection;
     const uint32_t tree_splits = settings_.light_tree_splits;
@@ -113,9 +115,11 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                                         std::max(lamp_t * lamp_t, 1e-30f);
                     w = hit_weight(scatter_pdf, lamp_pdf * scale);
                 }
-                L += beta * lamp * w;
-                records.add_found(beta * lamp * w, beta * lamp);
-                data.emitted(beta * lamp * w, camera_visible_path);
+                const Rgb found_lamp =
+                    clamp_contribution(beta * lamp * w, emission_clamp(limits, bounces.total()));
+                L += found_lamp;
+                records.add_found(found_lamp, beta * lamp);
+                data.emitted(found_lamp, camera_visible_path);
             }
         }
         if (!found) {
@@ -130,8 +134,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             const float w = hit_weight(scatter_pdf, light_pdf_matters(scatter_pdf) && lights.environment()
                                                         ? lights.environment_pdf(dir, selection)
                                                         : 0.0f);
-            L += beta * scene.background(dir) * w;
-            records.add_found(beta * scene.background(dir) * w, beta * scene.background(dir));
+            const Rgb found_background =
+                clamp_contribution(beta * scene.background(dir) * w, emission_clamp(limits, bounces.total()));
+            L += found_background;
+            records.add_found(found_background, beta * scene.background(dir));
             break;
         }
         const Vec3 wo_world = -dir;
@@ -157,12 +163,15 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                                                    hit.position, selection, settings_.triangle_sampling,
                                                    tree_splits)
                     : 0.0f;
-            L += beta * emission * hit_weight(scatter_pdf, light_pdf);
-            records.add_found(beta * emission * hit_weight(scatter_pdf, light_pdf), beta * emission);
+            const Rgb found_emission =
+                clamp_contribution(beta * emission * hit_weight(scatter_pdf, light_pdf),
+                                   emission_clamp(limits, bounces.total()));
+            L += found_emission;
+            records.add_found(found_emission, beta * emission);
         }
-        if (bounce > settings_.max_bounces) {
-            // Past the last bounce Cycles still follows transparent closures to collect the
-            // emission behind them (PATH_RAY_TERMINATE_AFTER_TRANSPARENT): continue straight on
+        if (bounces.exhausted(settings_.max_bounces, limits)) {
+            // Past the last bounce (of any kind) Cycles still follows transparent closures to collect
+            // the emission behind them (PATH_RAY_TERMINATE_AFTER_TRANSPARENT): continue straight on
             // with their summed weight, the expectation of picking the transparent closure.
             const Rgb pass = closures.transparency();
             if (pass.is_black() || ++transparent_bounce > settings_.transparent_max_bounces) break;
@@ -224,8 +233,11 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                                 ? mis_weight(settings_.mis_heuristic, ls.pdf,
                                              guide.active() ? guide.mixed_pdf(f.pdf, ls.wi) : f.pdf)
                                 : 1.0f;
-                        L += beta * f.value * transmittance * ls.radiance * (w / ls.pdf);
-                        records.add(beta * f.value * transmittance * ls.radiance * (w / ls.pdf));
+                        const Rgb sampled_light =
+                            clamp_contribution(beta * f.value * transmittance * ls.radiance * (w / ls.pdf),
+                                               light_sample_clamp(limits, bounces.total()));
+                        L += sampled_light;
+                        records.add(sampled_light);
                     }
                 }
             }
@@ -277,7 +289,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             scatter_origin = hit.position;
             scatter_normal = sp.ns;
             float survive = 1.0f;
-            if (settings_.rr_mode != RouletteMode::Off && bounce >= settings_.rr_min_depth) {
+            if (settings_.rr_mode != RouletteMode::Off && bounces.total() >= settings_.rr_min_depth) {
                 // (5.5): survival = throughput, or the closures' albedo (then β stays constant
                 // along a Lambertian path, 5.6). A terminated path's continued term is 0, so
                 // the control variate's subtraction goes with it.
@@ -294,7 +306,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                 records.skip();
             else
                 records.push(hit.position, wi, beta);
-            ++bounce;
+            bounces.scatter(bs.kind);
         }
         query.visibility = ray_visibility(bs.kind, query.visibility);
         origin = offset_ray_origin(hit.position, below ? -sp.ng : sp.ng);

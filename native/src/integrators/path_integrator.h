@@ -3,22 +3,29 @@
 // roulette 5.5–5.6; the control variate 5.17–5.18), over materials that are mixtures of
 // closures (bsdf/closure_set.h).
 //
-// | parameter               | meaning |
-// |-------------------------|---------|
-// | max_bounces             | Cycles' meaning: vertices 0..max_bounces scatter; 0 = direct lighting only |
-// | light_sampling          | bsdf: emission found by scattered rays only (5.2); nee: by light samples, a hit
-// counts only after the camera or a delta scatter (5.16); mis: both, weighted | | mis_heuristic           |
-// balance / power (β = 2) / max, for every emission a scattered ray hits (lamps, emissive triangles,
-// environment) and every light sample | | light_selection         | the light choice distribution of NEE
-// (lights/light_set.h) | | rr_mode, rr_min_depth   | Russian roulette from bounce rr_min_depth on: off,
-// survival min(1, max β), or min(1, max albedo estimate) | | control_variate         | L_a: each vertex adds
-// β L_a ρ_L and subtracts β L_a f_L cos/p (÷ survival) for its Lambertian closures (ρ_L exact); 0 = off | |
-// transparent_max_bounces | Transparent pass-throughs per path (and per shadow ray); not bounces | |
-// film_transparent        | background seen through camera/transparent rays gives alpha 0 | | hemisphere |
-// distribution diffuse lobes sample directions from (sampling/hemisphere.h) |
-// | use_guiding, guiding_training_samples, guiding_bsdf_fraction | path guiding: directions from
-// f · closures + (1 − f) · the tree learned from the first training samples (integrators/guided_direction.h)
-// |
+// | parameter          | meaning                                                                 |
+// |--------------------|-------------------------------------------------------------------------|
+// | max_bounces        | Cycles' meaning: vertices 0..max_bounces scatter; 0 = direct light only |
+// | diffuse_bounces,   | the same per kind, with clamp_direct and clamp_indirect: Cycles' Light  |
+// | glossy_bounces,    | Paths (integrators/light_path_limits.h)                                 |
+// | transmission_...   |                                                                         |
+// | light_sampling     | bsdf: emission found by scattered rays only (5.2); nee: by light        |
+// |                    | samples, a hit counts only after the camera or a delta scatter (5.16);  |
+// |                    | mis: both, weighted                                                     |
+// | mis_heuristic      | balance / power (β = 2) / max, for every emission a scattered ray hits  |
+// |                    | (lamps, emissive triangles, environment) and every light sample         |
+// | light_selection    | the light choice distribution of NEE (lights/light_set.h)               |
+// | rr_mode,           | Russian roulette from bounce rr_min_depth on: off, survival             |
+// | rr_min_depth       | min(1, max β), or min(1, max albedo estimate)                           |
+// | control_variate    | L_a: each vertex adds β L_a ρ_L and subtracts β L_a f_L cos/p           |
+// |                    | (÷ survival) for its Lambertian closures (ρ_L exact); 0 = off; not      |
+// |                    | clamped                                                                 |
+// | transparent_max_   | Transparent pass-throughs per path (and per shadow ray); not bounces    |
+// | bounces            |                                                                         |
+// | film_transparent   | background seen through camera/transparent rays gives alpha 0           |
+// | hemisphere         | distribution diffuse lobes sample directions from (sampling/hemisphere.h) |
+// | use_guiding, ...   | path guiding: directions from f · closures + (1 − f) · the tree learned |
+// |                    | from the first training samples (integrators/guided_direction.h)        |
 //
 // Cycles conventions followed (Cycles 3.4 and 4.x `integrator/intersect_closest.h`,
 // `shade_surface.h`, `shade_shadow.h`, `film/accumulate.h`):

@@ -370,6 +370,48 @@ const SettingSpec kSettings[] = {
      .kind = SettingKind::Choice,
      .choices = &guiding_split_choices,
      STRATUM_ENUM(estimator.guiding_split, GuidingSplit)},
+    {.info = {"diffuse_bounces", "Diffuse",
+              "Maximum number of diffuse reflection bounces, bounded by Max Bounces, as Cycles' "
+              "diffuse_bounces"},
+     .kind = SettingKind::Int,
+     .minimum = 0,
+     .maximum = kMaxBounces,
+     STRATUM_UINT(estimator.light_paths.diffuse)},
+    {.info = {"glossy_bounces", "Glossy",
+              "Maximum number of glossy and mirror reflection bounces, bounded by Max Bounces, as "
+              "Cycles' glossy_bounces"},
+     .kind = SettingKind::Int,
+     .minimum = 0,
+     .maximum = kMaxBounces,
+     STRATUM_UINT(estimator.light_paths.glossy)},
+    {.info = {"transmission_bounces", "Transmission",
+              "Maximum number of refraction bounces, bounded by Max Bounces, as Cycles' "
+              "transmission_bounces"},
+     .kind = SettingKind::Int,
+     .minimum = 0,
+     .maximum = kMaxBounces,
+     STRATUM_UINT(estimator.light_paths.transmission)},
+    {.info = {"transparent_max_bounces", "Transparent",
+              "Maximum number of transparent surfaces a path (and each shadow ray) passes through; "
+              "they are not bounces. As Cycles' transparent_max_bounces"},
+     .kind = SettingKind::Int,
+     .minimum = 0,
+     .maximum = kMaxBounces,
+     STRATUM_UINT(estimator.transparent_max_bounces)},
+    {.info = {"clamp_direct", "Direct Light",
+              "Clamps each direct light contribution so that the mean of its channels is at most this "
+              "(0 = off). Biased: removes fireflies by darkening. As Cycles' sample_clamp_direct"},
+     .kind = SettingKind::Float,
+     .minimum = 0.0,
+     .maximum = 1e8,
+     STRATUM_FLOAT(estimator.light_paths.clamp_direct)},
+    {.info = {"clamp_indirect", "Indirect Light",
+              "Clamps each indirect light contribution so that the mean of its channels is at most "
+              "this (0 = off). Biased: removes fireflies by darkening. As Cycles' sample_clamp_indirect"},
+     .kind = SettingKind::Float,
+     .minimum = 0.0,
+     .maximum = 1e8,
+     STRATUM_FLOAT(estimator.light_paths.clamp_indirect)},
 };
 
 #undef STRATUM_UINT

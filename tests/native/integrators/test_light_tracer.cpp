@@ -36,6 +36,7 @@ struct Options {
     const char* integrator = "light";
     int64_t samples = 32;
     int64_t max_bounces = 12;
+    int64_t diffuse_bounces = 1024, glossy_bounces = 1024;
     int64_t seed = 1;
     int64_t threads = 0;
     int64_t crop_x = 0, crop_y = 0, crop_width = 0, crop_height = 0;
@@ -49,6 +50,8 @@ Image render_image(StratumScene* scene, const Options& o) {
                                       {"height", kSize},
                                       {"samples", o.samples},
                                       {"max_bounces", o.max_bounces},
+                                      {"diffuse_bounces", o.diffuse_bounces},
+                                      {"glossy_bounces", o.glossy_bounces},
                                       {"seed", o.seed},
                                       {"threads", o.threads},
                                       {"crop_x", o.crop_x},
@@ -347,6 +350,29 @@ TEST(LightTracer, PrincipledCornellBoxMatchesThePathTracer) {
     Options path;
     path.integrator = "path";
     expect_agree(estimate(scene, {}), estimate(scene, path), "Cornell box");
+    stratum_scene_destroy(scene);
+}
+
+// Cycles' per-kind limits read along the camera path: a particle's connection counts its own
+// scattering and the particle's after the first hit. A diffuse sphere around a rough glossy
+// panel under an area lamp: paths mix diffuse and glossy scatterings in every order, and each
+// pair of limits removes different ones (the path tracer applies them as Cycles does).
+TEST(LightTracer, PerKindBounceLimitsMatchThePathTracer) {
+    StratumScene* scene = sphere_with_light(area_light(20.0f), 0.7f);
+    StratumMaterialDesc glossy = diffuse(0.9f, 0.8f, 0.7f);
+    glossy.model = STRATUM_MATERIAL_GLOSSY;
+    glossy.roughness = 0.4f;
+    add_rectangle(scene, glossy, -0.4f, 0.4f, -0.4f, 0.4f, -0.5f, true);
+    for (const auto& [diffuse_limit, glossy_limit] :
+         {std::pair<int64_t, int64_t>{1, 1024}, {1024, 0}, {0, 1}}) {
+        Options light, path;
+        path.integrator = "path";
+        light.diffuse_bounces = path.diffuse_bounces = diffuse_limit;
+        light.glossy_bounces = path.glossy_bounces = glossy_limit;
+        const std::string what =
+            "diffuse " + std::to_string(diffuse_limit) + ", glossy " + std::to_string(glossy_limit);
+        expect_agree(estimate(scene, light), estimate(scene, path), what.c_str());
+    }
     stratum_scene_destroy(scene);
 }
 
