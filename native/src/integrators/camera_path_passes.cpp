@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "integrators/light_path_limits.h"
 #include "integrators/ray_offset.h"
 #include "sampling/hemisphere.h"
 #include "scene/visibility.h"
@@ -30,7 +31,7 @@ CameraPathPasses::CameraPathPasses(PassValues& passes, const MistSettings& mist)
                      passes.wants(Pass::TransmissionColor)) {}
 
 void CameraPathPasses::surface(const SurfaceHit& hit, Vec3 ns, Vec3 wo_world, const ClosureSet& closures,
-                               Rgb beta, bool camera_visible) {
+                               Rgb beta, bool camera_visible, float emission_clamp) {
     const bool local_wanted =
         (colors_wanted_ && camera_visible) || (features_pending_ && closures.has_non_delta());
     const Vec3 wo = local_wanted ? Frame::from_normal(ns).to_local(wo_world) : Vec3{};
@@ -40,7 +41,7 @@ void CameraPathPasses::surface(const SurfaceHit& hit, Vec3 ns, Vec3 wo_world, co
         glossy_color_ += beta * c.glossy;
         transmission_color_ += beta * c.transmission;
     }
-    if (direct_ && camera_visible) emit_ += beta * closures.emission();
+    if (direct_ && camera_visible) emit_ += clamp_contribution(beta * closures.emission(), emission_clamp);
     if (mist_wanted_ && camera_visible) add_mist(hit.position, beta * (Rgb(1.0f) - closures.transparency()));
     if (data_pending_ && camera_visible) {
         write_first_surface(hit);

@@ -59,8 +59,11 @@ public:
     // A surface the path meets (`hit`) with shading normal `ns`; `beta` is the path's
     // throughput up to it and `camera_visible` whether only transparent pass-throughs came before.
     // `wo_world` points from the surface toward the viewer.
+    // `emission_clamp`: the clamp of the light the surface's emission adds (clamp_contribution's
+    // limit), so that Emit holds what Combined holds of it, as Cycles writes every pass after its
+    // clamp; 0 = none.
     void surface(const SurfaceHit& hit, Vec3 ns, Vec3 wo_world, const ClosureSet& closures, Rgb beta,
-                 bool camera_visible);
+                 bool camera_visible, float emission_clamp = 0.0f);
     // A surface without closures (the AO integrator's): white albedo, opaque.
     void plain_surface(const SurfaceHit& hit, Vec3 ns);
     // Lamp radiance the path collects (times β and its MIS weight), camera-visible or not.
@@ -73,7 +76,8 @@ public:
     bool wants_ao() const { return passes_.wants(Pass::Ao); }
     void ao(const RenderScene& scene, Vec3 position, Vec3 ns, Vec3 ng, Vec2 u, Rgb weight, float time,
             float distance, uint64_t& rays);
-    // The path leaves the scene; `background` (times β) is what it collects there.
+    // The path leaves the scene; `background` (times β, clamped as Combined takes it) is what it
+    // collects there.
     void miss(Rgb background, bool camera_visible);
     // Whether the path still has something to write (cheap test before computing arguments).
     bool pending() const { return data_pending_ || features_pending_ || direct_ || mist_wanted_; }

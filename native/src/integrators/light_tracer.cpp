@@ -90,7 +90,10 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         data.emitted(lamp, true);
         if (!found) {
             if (data.pending())
-                data.miss(settings_.film_transparent ? Rgb(0.0f) : beta * scene.background(dir), true);
+                data.miss(settings_.film_transparent
+                              ? Rgb(0.0f)
+                              : clamp_contribution(beta * scene.background(dir), clamp),
+                          true);
             if (settings_.film_transparent) {
                 transparency += beta.average();
             } else {
@@ -100,7 +103,7 @@ RadianceSample LightTracer::estimate(const RenderScene& scene, const Sampler& sa
         }
         const ShadingPoint sp = build_closures(scene, hit, -dir, track.at(hit.t));
         const ClosureSet& closures = sp.closures;
-        data.surface(hit, sp.ns, -dir, closures, beta, true);
+        data.surface(hit, sp.ns, -dir, closures, beta, true, clamp);
         const Rgb holdout = hit.holdout ? Rgb(1.0f) : closures.holdout();
         if (!holdout.is_black()) transparency += (holdout * beta).average();
         if (hit.holdout) break;
@@ -273,7 +276,8 @@ std::vector<std::string> LightTracer::notices(const Scene& scene) const {
     std::vector<std::string> out;
     if (settings_.light_paths.clamp_indirect > 0.0f) {
         out.emplace_back(
-            "light tracing does not clamp indirect light: clamping scales a camera sample's contributions, and "
+            "light tracing does not clamp indirect light: clamping scales a camera sample's contributions, "
+            "and "
             "a particle's splat is none (clamp_direct still applies to what the camera sees directly)");
     }
     if (scene.camera && scene.camera->type == CameraType::Orthographic) {

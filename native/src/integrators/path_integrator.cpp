@@ -125,7 +125,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         if (!found) {
             const bool transparent_film = camera_visible_path && settings_.film_transparent;
             if (data.pending())
-                data.miss(transparent_film ? Rgb(0.0f) : beta * scene.background(dir), camera_visible_path);
+                data.miss(transparent_film ? Rgb(0.0f)
+                                           : clamp_contribution(beta * scene.background(dir),
+                                                                emission_clamp(limits, bounces.total())),
+                          camera_visible_path);
             if (transparent_film) {
                 transparency += beta.average();
                 break;
@@ -144,7 +147,8 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         const RayReach reach = track.at(hit.t);
         const ShadingPoint sp = build_closures(scene, hit, wo_world, reach);
         const ClosureSet& closures = sp.closures;
-        data.surface(hit, sp.ns, wo_world, closures, beta, camera_visible_path);
+        data.surface(hit, sp.ns, wo_world, closures, beta, camera_visible_path,
+                     emission_clamp(limits, bounces.total()));
         if (camera_visible_path && data.wants_ao())
             data.ao(scene, hit.position, sp.ns, sp.ng,
                     sampler.get_2d(pixel, bounce_dimension(vertex, kDimBsdfDirection)),

@@ -6,6 +6,7 @@
 
 #include "bsdf/bsdf.h"
 #include "integrators/camera_path_passes.h"
+#include "integrators/light_path_limits.h"
 #include "integrators/ray_offset.h"
 #include "integrators/shading_point.h"
 #include "sampling/dimensions.h"
@@ -51,9 +52,21 @@ std::vector<std::string> RadiosityIntegrator::notices(const Scene& scene) const 
         listed +=
             (listed.empty() ? "" : "; ") + std::string("material ") + std::to_string(m) + " (" + models + ")";
     }
-    if (listed.empty()) return {};
-    return {"radiosity treats every surface as diffuse: " + listed +
-            " rendered by its diffuse albedo alone, without its glossy, glass or transparent closures"};
+    std::vector<std::string> out;
+    if (!listed.empty())
+        out.push_back(
+            "radiosity treats every surface as diffuse: " + listed +
+            " rendered by its diffuse albedo alone, without its glossy, glass or transparent closures");
+    // The solve carries every diffuse interreflection; a sample's light is not split into
+    // contributions that could be counted or clamped as the path tracer's are.
+    const LightPathLimits& l = settings_.light_paths;
+    const LightPathLimits unlimited;
+    if (l.diffuse != unlimited.diffuse || l.clamp_direct > 0.0f || l.clamp_indirect > 0.0f)
+        out.emplace_back(
+            "radiosity solves every diffuse interreflection: diffuse_bounces, clamp_direct and "
+            "clamp_indirect do "
+            "not apply (choose the path tracer to have them)");
+    return out;
 }
 
 RadianceSample RadiosityIntegrator::estimate(const RenderScene& scene, const Sampler& sampler,
@@ -85,7 +98,6 @@ RadianceSample RadiosityIntegrator::estimate(const RenderScene& scene, const Sam
     }
     const Rgb emission = sp.closures.emission();
     L += emission;
-    data.emitted(emission, true);
     const Frame frame = Frame::from_normal(sp.ns);
     const Rgb albedo = sp.closures.colors(frame.to_local(wo)).diffuse;
     data.finish();

@@ -80,7 +80,7 @@ struct Passes {
 
 // Renders 16 x 16 at 8 samples with a box filter of width 1 (every sample inside its pixel).
 Passes render_passes(StratumScene* scene, const char* passes, const char* integrator = "path",
-                     const char* sampler = "random") {
+                     const char* sampler = "random", double clamp_direct = 0.0) {
     Passes out;
     StratumRenderer* r = nullptr;
     EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
@@ -94,6 +94,7 @@ Passes render_passes(StratumScene* scene, const char* passes, const char* integr
                                  {"mist_start", 0.0},
                                  {"mist_depth", kMistDepth},
                                  {"mist_falloff", 1.0},
+                                 {"clamp_direct", clamp_direct},
                                  {"passes", passes}}),
               "");
     EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
@@ -239,6 +240,41 @@ TEST(RenderPasses, PassesLeaveTheImageBitIdenticalAndAgreeAcrossIntegrators) {
         EXPECT_EQ(other.normal, with.normal) << integrator;
         EXPECT_EQ(other.denoising_normal, with.denoising_normal) << integrator;
         EXPECT_EQ(other.uv, with.uv) << integrator;
+    }
+    stratum_scene_destroy(scene);
+}
+
+// Cycles writes every light pass after its clamp (film_clamp_light before the pass writes), so
+// Emit and Env hold the clamped emission and background, as Combined does: with clamp_direct c
+// each is scaled to a channel sum of 3c. The plane's emission sums to 0.3 and the background to
+// 1.8; c = 0.05 halves the one and takes 1/12 of the other. Radiosity does not clamp: its Emit
+// is the emission itself, once.
+TEST(RenderPasses, EmitAndEnvHoldTheClampedValuesCombinedTakes) {
+    StratumScene* scene = make_plane_scene(STRATUM_MATERIAL_DIFFUSE);
+    ASSERT_NE(scene, nullptr) << stratum_last_error();
+    constexpr double kClamp = 0.05;
+    const float emission_scale =
+        3.0f * static_cast<float>(kClamp) / (kEmission[0] + kEmission[1] + kEmission[2]);
+    const float background_scale =
+        3.0f * static_cast<float>(kClamp) / (kBackground[0] + kBackground[1] + kBackground[2]);
+    for (const char* integrator : {"path", "light", "radiosity"}) {
+        const bool clamps = std::string(integrator) != "radiosity";
+        const Passes p = render_passes(scene, "Emit,Env", integrator, "random", clamps ? kClamp : 0.0);
+        for (int y = 0; y < kSize; ++y) {
+            for (int x = 0; x < kSize; ++x) {
+                const size_t i = static_cast<size_t>(y * kSize + x);
+                for (int c = 0; c < 3; ++c) {
+                    const bool plane = x < kSize / 2;
+                    const float emit = plane ? kEmission[c] * (clamps ? emission_scale : 1.0f) : 0.0f;
+                    const float env = plane ? 0.0f : kBackground[c] * (clamps ? background_scale : 1.0f);
+                    EXPECT_NEAR(p.emit[3 * i + c], emit, 1e-6f) << integrator << " " << x << ", " << y;
+                    EXPECT_NEAR(p.env[3 * i + c], env, 1e-6f) << integrator << " " << x << ", " << y;
+                    if (!plane && clamps) {
+                        EXPECT_NEAR(p.rgba[4 * i + c], env, 1e-6f) << integrator;
+                    }
+                }
+            }
+        }
     }
     stratum_scene_destroy(scene);
 }

@@ -290,6 +290,23 @@ TEST(RadiosityIntegrator, NamesTheMaterialsItRendersAsDiffuse) {
     stratum_scene_destroy(scene);
 }
 
+// The solve carries every diffuse interreflection, so the Light Paths settings that count or
+// clamp a path's contributions cannot apply: one notice says so when any is set, none otherwise
+// (the previous test's render has them at their neutral values and no notice).
+TEST(RadiosityIntegrator, SaysTheLightPathLimitsDoNotApply) {
+    StratumScene* scene = make_cornell_box();
+    ASSERT_NE(scene, nullptr) << stratum_last_error();
+    for (const Setting& limit :
+         {Setting("diffuse_bounces", 2), Setting("clamp_direct", 1.0), Setting("clamp_indirect", 10.0)}) {
+        const RenderOutput out =
+            render(scene, {{"width", 4}, {"height", 4}, {"samples", 1}, {"integrator", "radiosity"}, limit});
+        ASSERT_TRUE(out.error.empty()) << out.error;
+        EXPECT_NE(out.notices.find("radiosity solves every diffuse interreflection"), std::string::npos)
+            << limit.name << ": " << out.notices;
+    }
+    stratum_scene_destroy(scene);
+}
+
 // The solve checks cancel while it casts form-factor rays (every 64 patches) and while it
 // iterates (every 4,096 rows or shots): Esc during a long solve ends the render at once,
 // cancelled and without error (the 0.5 s of issue 12's cancel latency).
