@@ -10,6 +10,8 @@
 // `ior` is used by V2 only (V1 derives its IOR from `specular`, as Cycles 3.x does).
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 
 #include "bsdf/bump_shadowing.h"
@@ -116,6 +118,12 @@ const ClosureModel* find_closure_model(int32_t model);
 // that model is validated or shaded, and not while another thread reads the registry. False when
 // the value is out of range or taken.
 bool register_closure_model(int32_t model, const char* name, const ClosureModel& entry);
+
+// A microfacet lobe's roughness at a shading point (alpha = roughness^2): Filter Glossy raises
+// alpha to Material::min_alpha (Cycles bsdf_blur: alpha = max(alpha, r)); the host's otherwise.
+inline float blurred_roughness(float roughness, const Material& m) {
+    return m.min_alpha > 0.0f ? std::max(roughness, std::sqrt(m.min_alpha)) : roughness;
+}
 
 // Answers several models share.
 // A single lobe tinted by base_color: average(base_color) and base_color.

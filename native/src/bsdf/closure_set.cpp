@@ -69,6 +69,15 @@ Rgb ClosureSet::lambertian_value(Vec3 wo, Vec3 wi, HemisphereDistribution hemisp
     return sum;
 }
 
+void ClosureSet::apply(const ClosureFilter& filter) {
+    for (uint32_t i = 0; i < count_; ++i) {
+        Material& m = closures_[i].params;
+        m.min_alpha = filter.min_alpha;
+        m.no_glossy_reflection = filter.drop_reflection;
+        m.no_glossy_refraction = filter.drop_refraction;
+    }
+}
+
 void ClosureSet::set_smooth_normal(Vec3 smooth_normal_local) {
     perturbed_ = true;
     smooth_normal_ = smooth_normal_local;

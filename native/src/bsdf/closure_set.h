@@ -42,6 +42,14 @@ namespace stratum {
 
 inline constexpr uint32_t kMaxClosures = 8;
 
+// What a path changes of a shading point's closures (integrators/light_path_closures.h): Filter
+// Glossy's least microfacet alpha (0 = none) and the glossy lobes the caustics switches drop.
+struct ClosureFilter {
+    float min_alpha = 0.0f;
+    bool drop_reflection = false, drop_refraction = false;
+    bool active() const { return min_alpha > 0.0f || drop_reflection || drop_refraction; }
+};
+
 class ClosureSet {
 public:
     // Copies the first kMaxClosures closures (the API rejects more).
@@ -54,6 +62,8 @@ public:
     // The smooth shading normal in the local frame of the closures' normal (z); call only where
     // the two differ: bump shadowing applies then.
     void set_smooth_normal(Vec3 smooth_normal_local);
+    // Applies `filter` to every closure (Material::min_alpha, no_glossy_*); call finalize() after.
+    void apply(const ClosureFilter& filter);
 
     Rgb emission() const { return emission_; }
     Rgb holdout() const { return holdout_; }

@@ -16,6 +16,12 @@ float visible_normal_density(Vec3 wo, Vec3 h, float alpha) {
     return ggx_g1(wo, alpha) * cos_oh * ggx_d(h, alpha) / wo.z;
 }
 
+// The caustics switches drop the reflection or the refraction (Cycles 5.0 zeroes that tint;
+// 3.4 skips that closure of the pair): the closure goes when both are dropped.
+float glass_sample_weight(const Material& m) {
+    return m.no_glossy_reflection && m.no_glossy_refraction ? 0.0f : tint_sample_weight(m);
+}
+
 }  // namespace
 
 ClosureColors glass_colors(const Material& m, Vec3 wo) {
@@ -87,26 +93,33 @@ float glass_energy_scale(MicrofacetDistribution distribution, float cos_o, float
 }
 
 BsdfEval glass_eval(const Material& m, Vec3 wo, Vec3 wi) {
-    if (ggx_is_sharp(m.roughness) || wo.z <= 0.0f) return {Rgb(), 0.0f};
-    const DielectricEval e = dielectric_ggx_eval(wo, wi, ggx_alpha_from_roughness(m.roughness), m.ior);
-    const float scale = glass_energy_scale(m.distribution, wo.z, m.roughness, m.ior);
-    return {m.base_color * ((e.reflect_value + e.transmit_value) * scale), e.reflect_pdf + e.transmit_pdf};
+    const float roughness = blurred_roughness(m.roughness, m);
+    if (ggx_is_sharp(roughness) || wo.z <= 0.0f) return {Rgb(), 0.0f};
+    const DielectricEval e = dielectric_ggx_eval(wo, wi, ggx_alpha_from_roughness(roughness), m.ior);
+    const float scale = glass_energy_scale(m.distribution, wo.z, roughness, m.ior);
+    const float reflected = m.no_glossy_reflection ? 0.0f : e.reflect_value;
+    const float transmitted = m.no_glossy_refraction ? 0.0f : e.transmit_value;
+    return {m.base_color * ((reflected + transmitted) * scale), e.reflect_pdf + e.transmit_pdf};
 }
 
 bool glass_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out) {
     if (wo.z <= 0.0f) return false;
-    if (ggx_is_sharp(m.roughness)) {
+    const float roughness = blurred_roughness(m.roughness, m);
+    if (ggx_is_sharp(roughness)) {
         const float f = fresnel_dielectric(wo.z, m.ior);
+        // A dropped side (caustics switches) carries nothing: the path ends there.
         if (u_lobe < f) {
+            if (m.no_glossy_reflection) return false;
             *out = {Vec3(-wo.x, -wo.y, wo.z), m.base_color, 1.0f, true, ScatterKind::Glossy};
             return true;
         }
         Vec3 wi;
-        if (!refract_direction(wo, Vec3(0.0f, 0.0f, 1.0f), m.ior, &wi)) return false;
+        if (m.no_glossy_refraction || !refract_direction(wo, Vec3(0.0f, 0.0f, 1.0f), m.ior, &wi))
+            return false;
         *out = {wi, m.base_color, 1.0f, true, ScatterKind::Transmission};
         return true;
     }
-    const float alpha = ggx_alpha_from_roughness(m.roughness);
+    const float alpha = ggx_alpha_from_roughness(roughness);
     Vec3 wi;
     bool transmitted = false;
     if (!dielectric_ggx_sample(wo, alpha, m.ior, u_lobe, u, &wi, &transmitted)) return false;
@@ -121,9 +134,9 @@ const ClosureModel kGlassClosure{
                HemisphereDistribution /*hemisphere*/) { return glass_eval(m, wo, wi); },
     .sample = [](const Material& m, Vec3 wo, float u_lobe, Vec2 u, BsdfSample* out,
                  HemisphereDistribution /*hemisphere*/) { return glass_sample(m, wo, u_lobe, u, out); },
-    .is_delta = [](const Material& m) { return ggx_is_sharp(m.roughness); },
+    .is_delta = [](const Material& m) { return ggx_is_sharp(blurred_roughness(m.roughness, m)); },
     .has_transmission = &answer_true,
-    .sample_weight = &tint_sample_weight,
+    .sample_weight = &glass_sample_weight,
     .albedo_estimate = &tint_albedo_estimate,
     .colors = &glass_colors,
     .kinds_above = scatter_kind_bit(ScatterKind::Glossy),

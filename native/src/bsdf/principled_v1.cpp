@@ -20,8 +20,11 @@ struct LobesV1 {
     float specular_weight;  // 1 - final transmission
     // Transmission (Cycles 3.4: two closures weighted by the Fresnel of the shading normal).
     float glass_weight, glass_eta, glass_fresnel;  // final transmission, relative IOR, F(cos_o)
-    bool glass_sharp;                              // roughness below Cycles' sharp threshold
-    float clearcoat;                               // 0.25 Clearcoat; 0 = no clearcoat lobe
+    // The pair's reflection and refraction weights, glass_weight F and glass_weight (1 - F), or 0
+    // where a caustics switch drops that closure of the pair.
+    float glass_reflect, glass_refract;
+    bool glass_sharp;  // roughness below Cycles' sharp threshold
+    float clearcoat;   // 0.25 Clearcoat; 0 = no clearcoat lobe
     float clearcoat_alpha;
     // Lobe selection, cumulative in this order: diffuse, specular, glass reflection, glass
     // refraction, clearcoat (the last takes the rest).
@@ -39,18 +42,22 @@ LobesV1 setup(const Material& m, Vec3 wo) {
     l.glass_weight = transmission * (1.0f - metallic);
     if (l.glass_weight <= kClosureCutoff) l.glass_weight = 0.0f;
     l.specular_weight = 1.0f - l.glass_weight;
-    l.has_specular = specular > kClosureCutoff || metallic > kClosureCutoff;
-    l.alpha = ggx_alpha_from_roughness(m.roughness);
+    // Cycles 3.4 skips the specular and clearcoat closures when reflective caustics are dropped.
+    l.has_specular = (specular > kClosureCutoff || metallic > kClosureCutoff) && !m.no_glossy_reflection;
+    l.alpha = ggx_alpha_from_roughness(blurred_roughness(m.roughness, m));
     l.ior = 2.0f / (1.0f - safe_sqrt(0.08f * specular)) - 1.0f;
     l.f0 = f0_from_ior(l.ior);  // equals 0.08 specular
     l.cspec0 = Rgb(0.08f * specular) * (1.0f - metallic) + m.base_color * metallic;
     l.glass_eta = std::max(m.ior, 1e-5f);
     // Fresnel terms of absent lobes are not computed: their weights are 0 whatever they are.
     l.glass_fresnel = l.glass_weight > 0.0f ? fresnel_dielectric(wo.z, l.glass_eta) : 0.0f;
-    l.glass_sharp = ggx_is_sharp(m.roughness);
-    l.clearcoat = m.coat > kClosureCutoff ? 0.25f * m.coat : 0.0f;
+    l.glass_reflect = m.no_glossy_reflection ? 0.0f : l.glass_weight * l.glass_fresnel;
+    l.glass_refract = m.no_glossy_refraction ? 0.0f : l.glass_weight * (1.0f - l.glass_fresnel);
+    l.glass_sharp = ggx_is_sharp(blurred_roughness(m.roughness, m));
+    l.clearcoat = m.coat > kClosureCutoff && !m.no_glossy_reflection ? 0.25f * m.coat : 0.0f;
     // GTR1 needs alpha < 1 (ln alpha^2 in its normalisation).
-    l.clearcoat_alpha = std::clamp(sqr(std::clamp(m.coat_roughness, 0.0f, 1.0f)), 1e-3f, 0.999f);
+    l.clearcoat_alpha =
+        std::clamp(sqr(std::clamp(blurred_roughness(m.coat_roughness, m), 0.0f, 1.0f)), 1e-3f, 0.999f);
     // Cycles weights lobe selection by the closure weight times, for the specular, the average
     // Fresnel colour seen from wo at normal incidence on the microfacets (h = n).
     const float weight_diffuse = std::max(l.diffuse_color.average(), 0.0f);
@@ -59,9 +66,8 @@ LobesV1 setup(const Material& m, Vec3 wo) {
         const float fh = (fresnel_dielectric(wo.z, l.ior) - l.f0) / (1.0f - l.f0);
         weight_specular = l.specular_weight * (l.cspec0 * (1.0f - fh) + Rgb(fh)).average();
     }
-    const float weight_reflect = l.glass_weight * l.glass_fresnel;
-    const float weight_refract =
-        l.glass_weight * (1.0f - l.glass_fresnel) * std::max(m.base_color.average(), 0.0f);
+    const float weight_reflect = l.glass_reflect;
+    const float weight_refract = l.glass_refract * std::max(m.base_color.average(), 0.0f);
     const float weight_clearcoat = l.clearcoat > 0.0f ? l.clearcoat * fresnel_dielectric(wo.z, 1.5f) : 0.0f;
     const float total = weight_diffuse + weight_specular + weight_reflect + weight_refract + weight_clearcoat;
     const float inv = total > 0.0f ? 1.0f / total : 0.0f;
@@ -143,7 +149,7 @@ BsdfEval eval_lobes(const LobesV1& l, const Material& m, Vec3 wo, Vec3 wi,
     if (wi.z < 0.0f) {
         if (l.glass_weight > 0.0f && !l.glass_sharp) {
             const Refraction r = refraction(l, wo, wi);
-            e.value = m.base_color * (l.glass_weight * (1.0f - l.glass_fresnel) * r.value);
+            e.value = m.base_color * (l.glass_refract * r.value);
             e.pdf = l.refract_probability * r.pdf;
         }
         return e;
@@ -158,8 +164,8 @@ BsdfEval eval_lobes(const LobesV1& l, const Material& m, Vec3 wo, Vec3 wi,
     if (l.glass_weight > 0.0f && !l.glass_sharp) {
         // The glass pair's reflection closure: GGX with Fresnel 1 (cspec0 white), weight F(cos_o).
         const Vec3 h = normalize(wo + wi);
-        e.value += Rgb(l.glass_weight * l.glass_fresnel * ggx_d(h, l.alpha) *
-                       ggx_g2_separable(wo, wi, l.alpha) / (4.0f * wo.z));
+        e.value +=
+            Rgb(l.glass_reflect * ggx_d(h, l.alpha) * ggx_g2_separable(wo, wi, l.alpha) / (4.0f * wo.z));
         e.pdf += l.reflect_probability * ggx_reflection_pdf(wo, wi, l.alpha);
     }
     if (l.clearcoat > 0.0f) {
@@ -213,13 +219,13 @@ bool principled_v1_sample(const Material& m, Vec3 wo, float u_lobe, Vec2 u, Bsdf
         const bool reflect = u_lobe < reflect_end;
         const float probability = reflect ? l.reflect_probability : l.refract_probability;
         if (reflect) {
-            *out = {Vec3(-wo.x, -wo.y, wo.z), Rgb(l.glass_weight * l.glass_fresnel / probability),
-                    probability, true, ScatterKind::Glossy};
+            *out = {Vec3(-wo.x, -wo.y, wo.z), Rgb(l.glass_reflect / probability), probability, true,
+                    ScatterKind::Glossy};
             return true;
         }
         if (!refract_direction(wo, Vec3(0.0f, 0.0f, 1.0f), l.glass_eta, &wi)) return false;
-        *out = {wi, m.base_color * (l.glass_weight * (1.0f - l.glass_fresnel) / probability), probability,
-                true, ScatterKind::Transmission};
+        *out = {wi, m.base_color * (l.glass_refract / probability), probability, true,
+                ScatterKind::Transmission};
         return true;
     } else if (u_lobe < reflect_end) {
         if (!ggx_sample_reflection(wo, l.alpha, u, &wi)) return false;

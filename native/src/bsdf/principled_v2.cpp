@@ -24,6 +24,10 @@ struct LobesV2 {
     float coat_albedo;  // Cycles' albedo estimate of the coat lobe, F_v of the coat
     Rgb base_scale;     // what the coat lets through to every layer below, for this wo
     float probability_metal, probability_specular, probability_glass, probability_coat;  // diffuse: rest
+    // The caustics switches (Cycles 5.0): without reflection the coat, metal and dielectric
+    // specular layers are skipped (and attenuate nothing below), the glass reflects nothing;
+    // without refraction the glass transmits nothing.
+    bool reflect, refract;
 };
 
 // Kulla & Conty 2017: with single-scattering albedo E(mu) and average E_avg, the missing energy
@@ -45,10 +49,12 @@ float specular_eta(const Material& m) {
 LobesV2 setup(const Material& m, Vec3 wo) {
     LobesV2 l;
     l.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
-    l.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+    l.reflect = !m.no_glossy_reflection;
+    l.refract = !m.no_glossy_refraction;
+    l.roughness = std::clamp(blurred_roughness(m.roughness, m), 0.0f, 1.0f);
     l.alpha = ggx_alpha_from_roughness(l.roughness);
     l.eta = specular_eta(m);
-    l.has_specular = l.eta > 1.0f;
+    l.has_specular = l.eta > 1.0f && l.reflect;
     const bool multiscatter = m.distribution == MicrofacetDistribution::MultiscatterGgx;
     const float e = std::max(ggx_albedo_unit_fresnel(wo.z, l.roughness), 1e-4f);
     const float e_avg = ggx_average_albedo_unit_fresnel(l.roughness);
@@ -90,14 +96,16 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     // whose albedo estimate F_v removes that share from everything below, then Beer absorption
     // by coat_tint over the refracted path length 1/cos_t through a unit-thick coat.
     l.coat = std::clamp(m.coat, 0.0f, 1.0f);
-    l.coat_alpha = ggx_alpha_from_roughness(m.coat_roughness);
+    const float coat_roughness = std::clamp(blurred_roughness(m.coat_roughness, m), 0.0f, 1.0f);
+    l.coat_alpha = ggx_alpha_from_roughness(coat_roughness);
     l.coat_eta = std::max(std::max(m.coat_ior, 1e-5f), 1.0f / std::max(m.coat_ior, 1e-5f));
     l.base_scale = Rgb(1.0f);
     l.coat_albedo = 0.0f;
     if (l.coat > 0.0f && l.coat_eta > 1.0f) {
-        l.coat_albedo = std::min(
-            ggx_visible_fresnel_dielectric(wo.z, std::clamp(m.coat_roughness, 0.0f, 1.0f), l.coat_eta), 1.0f);
-        l.base_scale = Rgb(1.0f - l.coat * l.coat_albedo);
+        if (l.reflect) {
+            l.coat_albedo = std::min(ggx_visible_fresnel_dielectric(wo.z, coat_roughness, l.coat_eta), 1.0f);
+            l.base_scale = Rgb(1.0f - l.coat * l.coat_albedo);
+        }
         const float cos_t = safe_sqrt(1.0f - (1.0f - wo.z * wo.z) / (l.coat_eta * l.coat_eta));
         const float depth = 1.0f / std::max(cos_t, 1e-4f);
         const Rgb tint(std::pow(std::clamp(m.coat_tint.r, 0.0f, 1.0f), depth),
@@ -108,7 +116,8 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     // Lobe selection proportional to each lobe's albedo estimate for this wo.
     const float sw = schlick_weight(wo.z);
     const float below = l.base_scale.average();
-    const float weight_metal = below * l.metallic * (l.metal_f0 * (1.0f - sw) + Rgb(sw)).average();
+    const float weight_metal =
+        l.reflect ? below * l.metallic * (l.metal_f0 * (1.0f - sw) + Rgb(sw)).average() : 0.0f;
     const float opaque = (1.0f - l.metallic) * (1.0f - l.transmission) * below;
     const float weight_specular = opaque * l.specular_albedo;
     const float weight_diffuse = opaque * (1.0f - l.layer_albedo) * std::max(m.base_color.average(), 0.0f);
@@ -116,7 +125,8 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     const float glass_fresnel = l.transmission > 0.0f ? fresnel_dielectric(wo.z, l.glass_eta) : 0.0f;
     const float weight_glass =
         below * (1.0f - l.metallic) * l.transmission *
-        (glass_fresnel + (1.0f - glass_fresnel) * std::max(m.base_color.average(), 0.0f));
+        ((l.reflect ? glass_fresnel : 0.0f) +
+         (l.refract ? (1.0f - glass_fresnel) * std::max(m.base_color.average(), 0.0f) : 0.0f));
     const float weight_coat = l.coat * l.coat_albedo;
     const float total = weight_metal + weight_specular + weight_diffuse + weight_glass + weight_coat;
     l.probability_metal = total > 0.0f ? weight_metal / total : 0.0f;
@@ -135,7 +145,9 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi,
         const DielectricEval g = dielectric_ggx_eval(wo, wi, l.alpha, l.glass_eta);
         const float w = (1.0f - l.metallic) * l.transmission *
                         glass_energy_scale(m.distribution, wo.z, l.roughness, l.glass_eta);
-        e.value += (Rgb(g.reflect_value) + m.base_color * g.transmit_value) * l.base_scale * w;
+        const float reflected = l.reflect ? g.reflect_value : 0.0f;
+        const float transmitted = l.refract ? g.transmit_value : 0.0f;
+        e.value += (Rgb(reflected) + m.base_color * transmitted) * l.base_scale * w;
         e.pdf += l.probability_glass * (g.reflect_pdf + g.transmit_pdf);
     }
     if (wi.z <= 0.0f) return e;
@@ -151,7 +163,7 @@ BsdfEval eval_lobes(const LobesV2& l, const Material& m, Vec3 wo, Vec3 wi,
         // D G2 / (4 cos_o) = f cos_i without Fresnel.
         const float microfacet =
             ggx_d(h, l.alpha) * ggx_g2_height_correlated(wo, wi, l.alpha) / (4.0f * wo.z);
-        if (l.metallic > 0.0f) {
+        if (l.metallic > 0.0f && l.reflect) {
             const float sw = schlick_weight(cos_ih);
             e.value += (l.metal_f0 * (1.0f - sw) + Rgb(sw)) * l.metal_scale * l.base_scale *
                        (l.metallic * microfacet);

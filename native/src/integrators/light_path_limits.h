@@ -32,6 +32,9 @@ namespace stratum {
 struct LightPathLimits {
     uint32_t diffuse = 1024, glossy = 1024, transmission = 1024;
     float clamp_direct = 0.0f, clamp_indirect = 0.0f;
+    // Filter Glossy and the caustics switches (integrators/light_path_closures.h): off.
+    float filter_glossy = 0.0f;
+    bool caustics_reflective = true, caustics_refractive = true;
 };
 
 // The scatterings a path has made, by kind (transparent pass-throughs are not counted here).

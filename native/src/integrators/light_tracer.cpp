@@ -274,6 +274,13 @@ float LightTracer::sky_probability(const RenderScene& scene) {
 
 std::vector<std::string> LightTracer::notices(const Scene& scene) const {
     std::vector<std::string> out;
+    const LightPathLimits& paths = settings_.light_paths;
+    if (paths.filter_glossy > 0.0f || !paths.caustics_reflective || !paths.caustics_refractive) {
+        out.emplace_back(
+            "light tracing does not apply filter_glossy or the caustics switches: they change a camera "
+            "path's closures by what the path did before, which a particle cannot know; every glossy "
+            "lobe is taken unblurred");
+    }
     if (settings_.light_paths.clamp_indirect > 0.0f) {
         out.emplace_back(
             "light tracing does not clamp indirect light: clamping scales a camera sample's contributions, "

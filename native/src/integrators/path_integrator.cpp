@@ -5,6 +5,7 @@
 
 #include "integrators/camera_path_passes.h"
 #include "integrators/guided_direction.h"
+#include "integrators/light_path_closures.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
@@ -78,6 +79,8 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     // Cycles' PATH_RAY_TRANSPARENT_BACKGROUND: only camera and transparent vertices so far.
     bool camera_visible_path = true;
     BounceCounts bounces;  // scatterings so far, by kind (integrators/light_path_limits.h)
+    // What the path changes of its next closures: Filter Glossy, caustics (light_path_closures.h).
+    PathClosureState closure_state;
     uint32_t transparent_bounce = 0;
     const LightPathLimits& limits = settings_.light_paths;
     const LightSet& lights = scene.lights();
@@ -145,7 +148,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         }
         const Vec3 wo_world = -dir;
         const RayReach reach = track.at(hit.t);
-        const ShadingPoint sp = build_closures(scene, hit, wo_world, reach);
+        const ShadingPoint sp = build_closures(scene, hit, wo_world, reach, closure_state.filter(limits));
         const ClosureSet& closures = sp.closures;
         data.surface(hit, sp.ns, wo_world, closures, beta, camera_visible_path,
                      emission_clamp(limits, bounces.total()));
@@ -311,6 +314,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             else
                 records.push(hit.position, wi, beta);
             bounces.scatter(bs.kind);
+            closure_state.scatter(bs.kind, bs.pdf, bs.delta);
         }
         query.visibility = ray_visibility(bs.kind, query.visibility);
         origin = offset_ray_origin(hit.position, below ? -sp.ng : sp.ng);

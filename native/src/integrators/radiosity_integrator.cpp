@@ -58,14 +58,15 @@ std::vector<std::string> RadiosityIntegrator::notices(const Scene& scene) const 
             "radiosity treats every surface as diffuse: " + listed +
             " rendered by its diffuse albedo alone, without its glossy, glass or transparent closures");
     // The solve carries every diffuse interreflection; a sample's light is not split into
-    // contributions that could be counted or clamped as the path tracer's are.
+    // contributions that could be counted or clamped as the path tracer's are, and it has no
+    // glossy lobe that Filter Glossy or the caustics switches could change.
     const LightPathLimits& l = settings_.light_paths;
     const LightPathLimits unlimited;
-    if (l.diffuse != unlimited.diffuse || l.clamp_direct > 0.0f || l.clamp_indirect > 0.0f)
+    if (l.diffuse != unlimited.diffuse || l.clamp_direct > 0.0f || l.clamp_indirect > 0.0f ||
+        l.filter_glossy > 0.0f || !l.caustics_reflective || !l.caustics_refractive)
         out.emplace_back(
-            "radiosity solves every diffuse interreflection: diffuse_bounces, clamp_direct and "
-            "clamp_indirect do "
-            "not apply (choose the path tracer to have them)");
+            "radiosity solves every diffuse interreflection: diffuse_bounces, clamp_direct, clamp_indirect, "
+            "filter_glossy and the caustics switches do not apply (choose the path tracer to have them)");
     return out;
 }
 

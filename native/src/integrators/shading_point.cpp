@@ -5,7 +5,8 @@
 
 namespace stratum {
 
-ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world, RayReach reach) {
+ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world, RayReach reach,
+                            const ClosureFilter& filter) {
     ShadingPoint sp{scene.closure_set(hit.material_id), hit.geometric_normal, hit.shading_normal, false};
     Vec3 smooth = hit.shading_normal;
     // The set was finalized from the material as stored (RenderScene::closure_set); only a changed parameter
@@ -48,6 +49,10 @@ ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec
             m.ior = 1.0f / std::max(m.ior, 1e-5f);
             changed = true;
         }
+    }
+    if (filter.active()) {
+        sp.closures.apply(filter);
+        changed = true;
     }
     if (changed) sp.closures.finalize();
     return sp;

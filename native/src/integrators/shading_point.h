@@ -23,8 +23,10 @@ struct ShadingPoint {
 };
 
 // wo_world: unit direction from the hit toward the ray's origin; `reach`, what the hit's node
-// programs see of the ray (RayTrack::at on camera paths).
-ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world, RayReach reach);
+// programs see of the ray (RayTrack::at on camera paths); `filter`, what the path changes of the
+// closures (Filter Glossy, caustics: integrators/light_path_closures.h).
+ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world, RayReach reach,
+                            const ClosureFilter& filter = {});
 
 // A path's ray as Cycles tracks it for sd->ray_length and sd->dP: the distance travelled since the
 // path last scattered when the ray starts (transparent surfaces passed through count, as Cycles

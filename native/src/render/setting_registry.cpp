@@ -412,6 +412,28 @@ const SettingSpec kSettings[] = {
      .minimum = 0.0,
      .maximum = 1e8,
      STRATUM_FLOAT(estimator.light_paths.clamp_indirect)},
+    {.info = {"filter_glossy", "Filter Glossy",
+              "Widens glossy lobes met after blurry bounces: each microfacet lobe's alpha becomes at least "
+              "0.5 sqrt(1 - p/this), p the path's least scattering pdf so far (0 = off). Biased: removes "
+              "fireflies of caustics by blurring them. As Cycles' blur_glossy"},
+     .kind = SettingKind::Float,
+     .minimum = 0.0,
+     .maximum = 10.0,
+     STRATUM_FLOAT(estimator.light_paths.filter_glossy)},
+    {.info = {"caustics_reflective", "Reflective Caustics",
+              "Path tracing: 1 = glossy reflection after a diffuse bounce; 0 drops those lobes (biased: "
+              "no light through mirrors onto diffuse surfaces). As Cycles' caustics_reflective"},
+     .kind = SettingKind::Int,
+     .minimum = 0,
+     .maximum = 1,
+     STRATUM_BOOL(estimator.light_paths.caustics_reflective)},
+    {.info = {"caustics_refractive", "Refractive Caustics",
+              "Path tracing: 1 = glossy refraction after a diffuse bounce; 0 drops those lobes (biased: "
+              "no light through glass onto diffuse surfaces). As Cycles' caustics_refractive"},
+     .kind = SettingKind::Int,
+     .minimum = 0,
+     .maximum = 1,
+     STRATUM_BOOL(estimator.light_paths.caustics_refractive)},
 };
 
 #undef STRATUM_UINT

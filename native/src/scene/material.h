@@ -42,6 +42,11 @@ struct Material {
     Rgb coat_tint{1.0f};
     // The shadowing term where the shading point's normal was perturbed (bsdf/bump_shadowing.h).
     BumpShadowing bump_shadowing = BumpShadowing::None;
+    // What a path changes of the closures at one shading point (never the host; Cycles' Light
+    // Paths, integrators/light_path_closures.h): Filter Glossy's least alpha of every microfacet
+    // lobe (bsdf_blur), and the glossy reflection / refraction lobes the caustics switches drop.
+    float min_alpha = 0.0f;
+    bool no_glossy_reflection = false, no_glossy_refraction = false;
 };
 
 }  // namespace stratum
