@@ -23,7 +23,7 @@ PROPERTIES: tuple[str, ...] = (
     "adaptive_metric", "sampler",
     "hemisphere", "seed", "integrator", "ao_distance", "max_bounces",
     "diffuse_bounces", "glossy_bounces", "transmission_bounces", "transparent_max_bounces",
-    "clamp_direct", "clamp_indirect",
+    "clamp_direct", "clamp_indirect", "filter_glossy", "caustics_reflective", "caustics_refractive",
     "light_sampling", "mis_heuristic", "triangle_sampling", "light_selection",
     "light_tree_splits", "rr_mode",
     "rr_min_depth", "control_variate", "filter_type", "filter_width", "threads",
@@ -81,11 +81,15 @@ CYCLES_LIGHT_PATHS: dict[str, str] = {
     "transparent_max_bounces": "transparent_max_bounces",
     "clamp_direct": "sample_clamp_direct",
     "clamp_indirect": "sample_clamp_indirect",
+    "filter_glossy": "blur_glossy",
+    "caustics_reflective": "caustics_reflective",
+    "caustics_refractive": "caustics_refractive",
 }
 
 # scene.stratum.light_paths: where the Light Paths settings come from. Stratum's own default to
-# unbiased rendering (no per-kind limit below the total, no clamping); Cycles' defaults clamp
-# indirect light at 10 and stop diffuse and glossy paths after 4 bounces. A file whose Cycles
+# unbiased rendering (no per-kind limit below the total, no clamping, no Filter Glossy, caustics
+# on); Cycles' defaults clamp indirect light at 10, blur glossy lobes after blurry bounces
+# (blur_glossy 1) and stop diffuse and glossy paths after 4 bounces. A file whose Cycles
 # Light Paths were set (saved with a value, scene.cycles.is_property_set) was tuned for Cycles,
 # and Auto renders it with them; a new scene, or one never tuned, renders unbiased.
 LIGHT_PATHS_SOURCES: tuple[tuple[str, str, str], ...] = (
@@ -119,10 +123,16 @@ UI_DEFAULTS: dict[str, int | float | str] = {
 
 
 
+# Integer settings of range 0..1 named as Cycles names its checkboxes without use_.
+SWITCHES = frozenset({"caustics_reflective", "caustics_refractive"})
+
+
 def is_switch(setting: Setting) -> bool:
-    """A use_* integer setting of range 0..1, whose property is a checkbox (BoolProperty) as
-    Cycles' use_* switches are; the engine sends its value as 0 or 1 (engine/frame.py)."""
-    return (setting.kind == SettingKind.INT and setting.name.startswith("use_")
+    """A use_* (or SWITCHES) integer setting of range 0..1, whose property is a checkbox
+    (BoolProperty) as Cycles' switches are; the engine sends its value as 0 or 1
+    (engine/frame.py)."""
+    return (setting.kind == SettingKind.INT
+            and (setting.name.startswith("use_") or setting.name in SWITCHES)
             and (setting.minimum, setting.maximum) == (0, 1))
 
 

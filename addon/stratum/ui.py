@@ -272,6 +272,9 @@ class STRATUM_RENDER_PT_light_paths(StratumButtonsPanel, bpy.types.Panel):
 MAX_BOUNCES = (("max_bounces", "Total"), ("diffuse_bounces", "Diffuse"),
                ("glossy_bounces", "Glossy"), ("transmission_bounces", "Transmission"))
 CLAMPING = (("clamp_direct", "Direct Light"), ("clamp_indirect", "Indirect Light"))
+# Cycles' Caustics subpanel: (setting, label).
+CAUSTICS = (("filter_glossy", "Filter Glossy"), ("caustics_reflective", "Reflective"),
+            ("caustics_refractive", "Refractive"))
 
 
 class STRATUM_RENDER_PT_light_paths_max_bounces(StratumButtonsPanel, bpy.types.Panel):
@@ -303,6 +306,22 @@ class STRATUM_RENDER_PT_light_paths_clamping(StratumButtonsPanel, bpy.types.Pane
         col = layout.column(align=True)
         col.active = settings.integrator not in NO_LIGHT_PATHS | FINAL_GATHER
         for name, text in CLAMPING:
+            col.prop(*light_path_holder(context.scene, name), text=text)
+
+
+class STRATUM_RENDER_PT_light_paths_caustics(StratumButtonsPanel, bpy.types.Panel):
+    """Cycles' Caustics: Filter Glossy and the reflective and refractive caustics switches,
+    biased by design (their tooltips say so); what the path tracer applies (the light tracer
+    and radiosity say in a notice that they do not)."""
+
+    bl_label = "Caustics"
+    bl_parent_id = "STRATUM_RENDER_PT_light_paths"
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout, settings = _settings_layout(self, context)
+        col = layout.column()
+        col.active = settings.integrator not in NO_BOUNCE_LIMIT | {"light"}
+        for name, text in CAUSTICS:
             col.prop(*light_path_holder(context.scene, name), text=text)
 
 
@@ -394,6 +413,7 @@ classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_light_paths,
     STRATUM_RENDER_PT_light_paths_max_bounces,
     STRATUM_RENDER_PT_light_paths_clamping,
+    STRATUM_RENDER_PT_light_paths_caustics,
     STRATUM_RENDER_PT_light_paths_roulette,
     STRATUM_RENDER_PT_light_paths_direct_light,
     STRATUM_RENDER_PT_light_paths_control_variate,

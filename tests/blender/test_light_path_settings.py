@@ -18,7 +18,8 @@ from panel_layout import draw_panel
 
 CYCLES_DEFAULTS = {"max_bounces": 12, "diffuse_bounces": 4, "glossy_bounces": 4,
                    "transmission_bounces": 12, "transparent_max_bounces": 8,
-                   "clamp_direct": 0.0, "clamp_indirect": 10.0}
+                   "clamp_direct": 0.0, "clamp_indirect": 10.0, "filter_glossy": 1.0,
+                   "caustics_reflective": 1, "caustics_refractive": 1}
 
 
 def _light_paths(settings: dict[str, Any]) -> dict[str, Any]:
@@ -56,8 +57,11 @@ def test_cycles_source_takes_cycles_defaults_of_an_untouched_scene(library: Any,
     assert _light_paths(renderer_settings(scene)) == pytest.approx(CYCLES_DEFAULTS)
     scene.cycles.sample_clamp_indirect = 0.5
     scene.cycles.transparent_max_bounces = 3
+    scene.cycles.blur_glossy = 0.25
+    scene.cycles.caustics_refractive = False
     sent = renderer_settings(scene)
     assert sent["clamp_indirect"] == pytest.approx(0.5) and sent["transparent_max_bounces"] == 3
+    assert sent["filter_glossy"] == pytest.approx(0.25) and sent["caustics_refractive"] == 0
     with library.Renderer(library.Scene()) as renderer:
         for name in blender_settings.CYCLES_LIGHT_PATHS:
             renderer.set(name, sent[name])
@@ -67,10 +71,12 @@ def test_the_panels_draw_the_settings_in_use(library: Any, scene_builder: Any) -
     """Max Bounces and Clamping show Stratum's properties, or Cycles' where those render (what
     the user edits is what renders)."""
     scene = scene_builder().basic().scene
-    panels = (ui.STRATUM_RENDER_PT_light_paths_max_bounces, ui.STRATUM_RENDER_PT_light_paths_clamping)
+    panels = (ui.STRATUM_RENDER_PT_light_paths_max_bounces, ui.STRATUM_RENDER_PT_light_paths_clamping,
+              ui.STRATUM_RENDER_PT_light_paths_caustics)
     own = [name for panel in panels for name in draw_panel(panel, scene).names()]
     assert own == ["max_bounces", "diffuse_bounces", "glossy_bounces", "transmission_bounces",
-                   "transparent_max_bounces", "clamp_direct", "clamp_indirect"]
+                   "transparent_max_bounces", "clamp_direct", "clamp_indirect", "filter_glossy",
+                   "caustics_reflective", "caustics_refractive"]
     scene.stratum.light_paths = "CYCLES"
     cycles = [name for panel in panels for name in draw_panel(panel, scene).names()]
     assert cycles == [blender_settings.CYCLES_LIGHT_PATHS[name] for name in own]

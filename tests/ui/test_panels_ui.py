@@ -19,7 +19,8 @@ OPENED = ("STRATUM_RENDER_PT_sampling", "STRATUM_RENDER_PT_sampling_viewport",
           "STRATUM_RENDER_PT_sampling_render", "STRATUM_RENDER_PT_sampling_denoising",
           "STRATUM_RENDER_PT_sampling_advanced", "STRATUM_RENDER_PT_sampling_lights",
           "STRATUM_RENDER_PT_light_paths", "STRATUM_RENDER_PT_light_paths_max_bounces",
-          "STRATUM_RENDER_PT_light_paths_clamping", "STRATUM_RENDER_PT_light_paths_roulette",
+          "STRATUM_RENDER_PT_light_paths_clamping", "STRATUM_RENDER_PT_light_paths_caustics",
+          "STRATUM_RENDER_PT_light_paths_roulette",
           "STRATUM_RENDER_PT_light_paths_direct_light",
           "STRATUM_RENDER_PT_light_paths_control_variate")
 

@@ -22,8 +22,11 @@ def cycles_light_paths(scene: Any) -> dict[str, int | float]:
     renders with Stratum's own)."""
     if not uses_cycles_light_paths(scene):
         return {}
-    return {setting: getattr(scene.cycles, name)
-            for setting, name in blender_settings.CYCLES_LIGHT_PATHS.items()}
+    values = {setting: getattr(scene.cycles, name)
+              for setting, name in blender_settings.CYCLES_LIGHT_PATHS.items()}
+    # Cycles' caustics checkboxes: the library's 0..1 integer settings.
+    return {setting: int(value) if isinstance(value, bool) else value
+            for setting, value in values.items()}
 
 
 def light_path_holder(scene: Any, name: str) -> tuple[Any, str]:
