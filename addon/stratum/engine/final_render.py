@@ -14,7 +14,7 @@ import numpy as np
 from .. import blender_versions, native, properties
 from ..export.sync import export_scene
 from . import denoise
-from .frame import renderer_settings, result_size
+from .frame import layer_samples, renderer_settings, result_size
 from .render_passes import ResultPasses
 
 POLL_MS = 100
@@ -130,6 +130,7 @@ def render_frame(engine: Any, depsgraph: Any) -> None:
             f"the native library could not be loaded when the add-on was enabled "
             f"({properties.load_error}); enable the add-on again")
     settings = renderer_settings(scene)
+    settings["samples"] = layer_samples(scene, depsgraph.view_layer, int(settings["samples"]))
     denoising = denoise.prepare_final(engine, scene, settings)
     passes = ResultPasses(engine, depsgraph.view_layer, scene.world)
     passes.configure(settings)

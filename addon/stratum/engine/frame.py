@@ -57,6 +57,19 @@ def renderer_settings(scene: Any) -> dict[str, int | float | str]:
     return {"width": width, "height": height} | chosen | cycles_light_paths(scene) | extra
 
 
+def layer_samples(scene: Any, view_layer: Any | None, samples: int) -> int:
+    """The samples an F12 render of `view_layer` takes, Cycles' rule (blender/sync.cpp
+    sync_view_layer, session.cpp): the layer's own (View Layer > Use > Samples, 0 = none) unless
+    scene.cycles.use_layer_samples is 'IGNORE'; with 'BOUNDED' only when fewer than `samples`.
+    Blender's own setting read as Cycles reads it, whatever scene.stratum.light_paths says; the
+    viewport takes its own samples (viewport.py)."""
+    own = int(getattr(view_layer, "samples", 0) or 0)
+    mode = str(getattr(getattr(scene, "cycles", None), "use_layer_samples", "USE"))
+    if own <= 0 or mode == "IGNORE" or (mode == "BOUNDED" and own >= samples):
+        return samples
+    return own
+
+
 def library_value(value: Any) -> int | float | str:
     """A property's value as the library takes it: a checkbox (blender_settings.is_switch) as
     0 or 1, the integer setting it is; anything else as it is."""

@@ -121,7 +121,7 @@ class ViewportSession:
                  new_renderer: Callable[[Any], Any] = native.Renderer) -> None:
         _sessions.add(self)
         self._freed = False
-        self._sync = SceneSync(new_scene, require_camera=False)
+        self._sync = SceneSync(new_scene, require_camera=False, viewport=True)
         self._new_renderer = new_renderer
         self._lanes: list[_Lane] = []
         self._retired: list[_Lane] = []  # cancelled lanes of a replaced scene, to close

@@ -200,11 +200,13 @@ def _single_closure(closures: list[Closure]) -> native.Material | None:
 
 class MaterialTable:
     """Assigns native material ids, once per Blender material (plus one default), and the
-    textures they bind, once per image."""
+    textures they bind, once per image. With an `override` (the view layer's material
+    override), every slot and the default are that material."""
 
-    def __init__(self, scene: Any, summary: ExportSummary) -> None:
+    def __init__(self, scene: Any, summary: ExportSummary, override: Any | None = None) -> None:
         self._scene = scene
         self._summary = summary
+        self._override = override
         self.ids: dict[int, int] = {}  # original material pointer -> native id
         self.sent: dict[int, SentMaterial] = {}  # native id -> what it was made from
         self._default: int | None = None
@@ -231,6 +233,8 @@ class MaterialTable:
         return self._default
 
     def id_for(self, material: Any | None) -> int:
+        if self._override is not None:
+            material = self._override
         if material is None:
             return self.default_id()
         original = getattr(material, "original", material) or material

@@ -22,6 +22,7 @@ from .common import ExportCancelled, ExportError, ExportSummary
 from .geometry import LIGHT_ID, object_geometry
 from .instances import InstanceFlags, Placement
 from .materials import MaterialTable
+from .meshes import GEOMETRY_TYPES
 from .object_sync import ExportedObjects
 from .unsupported import UnsupportedObjects
 
@@ -41,6 +42,7 @@ class Geometry:
     unsupported: UnsupportedObjects
     summary: ExportSummary
     should_stop: Callable[[], bool] | None
+    surfaces: bool = True  # the view layer's Filter > Surfaces (view_layer.py)
 
 
 def row_template(ob: Any, ident: tuple[int, int], parent: Any | None, geometry: Geometry,
@@ -50,8 +52,12 @@ def row_template(ob: Any, ident: tuple[int, int], parent: Any | None, geometry: 
     g = geometry
     found = g.objects.get(ident)
     if found is None:
-        found = (-1, 0) if g.unsupported.skip(ob) else \
-            object_geometry(ob, g.depsgraph, g.scene, g.materials, g.mesh_ids, g.summary)
+        if not g.surfaces and ob.type in GEOMETRY_TYPES:
+            found = (-1, 0)
+        elif g.unsupported.skip(ob):
+            found = (-1, 0)
+        else:
+            found = object_geometry(ob, g.depsgraph, g.scene, g.materials, g.mesh_ids, g.summary)
         g.objects[ident] = found
         # A big mesh takes a tenth of a second or more to read out of Blender: Esc is honoured
         # after each one, not only every 256 instances.

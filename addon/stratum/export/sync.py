@@ -79,6 +79,7 @@ from .object_sync import ExportedObjects, RowSignature, object_edits
 from .placements import LIGHT_ROW, UNSEEN, Geometry, place, row_template
 from .unsupported import UnsupportedObjects
 from .updates import Changes, IdUpdate, collect_updates, sort_updates
+from .view_layer import ViewLayerFilter, view_layer_filter
 from .world import (
     Environment,
     WorldProgram,
@@ -109,18 +110,21 @@ class _Exported:
     shutter: tuple[bool, float, str]  # motion.shutter_settings
     world_program: tuple[Any, ...] | None = None  # WorldProgram.key()
     world_program_id: int | None = None
+    layer: tuple[Any, ...] = ()  # ViewLayerFilter.key()
 
 
 class SceneSync:
     """The native scene of a depsgraph, kept in step with it. Each full() fills a new scene
     from new_scene() and closes the previous one (renderers made from that keep rendering
     what it held). require_camera=False (the viewport, which sets its own view's camera): a
-    scene without an active camera is exported without one instead of being an error."""
+    scene without an active camera is exported without one instead of being an error.
+    viewport=True: the view layer's filter as Cycles' viewport applies it (view_layer.py)."""
 
     def __init__(self, new_scene: Callable[[], Any] = native.Scene,
-                 require_camera: bool = True) -> None:
+                 require_camera: bool = True, viewport: bool = False) -> None:
         self._new_scene = new_scene
         self._require_camera = require_camera
+        self._viewport = viewport
         self._scene: Any | None = None
         self._exported: _Exported | None = None
         self._stale = "nothing was exported yet"
@@ -158,8 +162,11 @@ class SceneSync:
         self._scene = scene = self._new_scene()
         summary = ExportSummary()
         bl_scene = _evaluated_scene(depsgraph)
-        materials = MaterialTable(scene, summary)
-        motion = shutter_transforms(depsgraph, bl_scene, frame_set, summary.warn)
+        layer = self._layer(depsgraph)
+        world_scene = layer.world or bl_scene
+        materials = MaterialTable(scene, summary, _evaluated(layer.material_override, depsgraph))
+        motion = shutter_transforms(depsgraph, bl_scene, frame_set, summary.warn) \
+            if layer.motion_blur else None
 
         try:
             # Blender clamps lens to >= 1 mm, so a zero focal length comes only from files
@@ -170,18 +177,18 @@ class SceneSync:
         except native.StratumError as exc:
             raise ExportError(f"Camera '{bl_scene.camera.name}': {exc}") from exc
         try:
-            background = convert_world(bl_scene, summary)
+            background = convert_world(world_scene, summary)
             scene.set_background(background)
-            environment = convert_environment(bl_scene, summary)
+            environment = convert_environment(world_scene, summary)
             if environment is not None:
                 scene.set_environment(environment.rgb, environment.strength,
                                       environment.rotation)
-            world_program = convert_world_program(bl_scene, summary)
+            world_program = convert_world_program(world_scene, summary)
             world_program_id = None
             if world_program is not None:
                 world_program_id = _send_world_program(scene, world_program, None)
         except native.StratumError as exc:
-            raise ExportError(f"World '{getattr(bl_scene.world, 'name', '')}': {exc}") from exc
+            raise ExportError(f"World '{getattr(world_scene.world, 'name', '')}': {exc}") from exc
 
         exported = ExportedObjects(motion_blur=motion is not None)
         flags = InstanceFlags(getattr(depsgraph, "view_layer", None))
@@ -232,7 +239,7 @@ class SceneSync:
             if template is UNSEEN:
                 template = row_template(ob, ident, parent, Geometry(
                     objects, mesh_ids, depsgraph, scene, materials, unsupported, summary,
-                    should_stop), flags)
+                    should_stop, layer.surfaces), flags)
                 templates[signature] = template
             if template is LIGHT_ROW:
                 visibility = flags.get(ob, ident, parent).visibility
@@ -255,10 +262,10 @@ class SceneSync:
         summary.textures = materials.textures.count
         self._exported = _Exported(exported, materials,
                                    comparable(camera) if camera is not None else (),
-                                   original_pointer(bl_scene.world), background, environment,
+                                   original_pointer(world_scene.world), background, environment,
                                    shutter_settings(bl_scene),
                                    world_program.key() if world_program is not None else None,
-                                   world_program_id)
+                                   world_program_id, layer.key())
         self._stale = ""
         summary.export_seconds = time.perf_counter() - start
         return summary
@@ -291,10 +298,13 @@ class SceneSync:
         bl_scene = _evaluated_scene(depsgraph)
         if changes.scene and shutter_settings(bl_scene) != exported.shutter:
             raise FullExportNeeded(f"Scene '{bl_scene.name}': its motion blur settings changed")
+        layer = self._layer(depsgraph)
+        if layer.key() != exported.layer:
+            raise FullExportNeeded("View layer: its filter or overrides changed")
         scene = self.scene
         edits = object_edits(depsgraph, changes, exported.objects, scene, summary)
         edits += _material_edits(depsgraph, changes, exported.materials, summary)
-        edits += _world_edits(bl_scene, changes, exported, scene, summary)
+        edits += _world_edits(layer.world or bl_scene, changes, exported, scene, summary)
         camera = self._camera(bl_scene, depsgraph)
         if camera is not None and comparable(camera) != exported.camera:
             exported.camera = comparable(camera)
@@ -302,6 +312,9 @@ class SceneSync:
                                     partial(scene.set_camera, camera)))
         return edits
 
+
+    def _layer(self, depsgraph: Any) -> ViewLayerFilter:
+        return view_layer_filter(getattr(depsgraph, "view_layer", None), self._viewport)
 
     def _camera(self, bl_scene: Any, depsgraph: Any) -> native.Camera | None:
         if bl_scene.camera is None and not self._require_camera:
@@ -323,6 +336,13 @@ def export_scene(
 
 def _evaluated_scene(depsgraph: Any) -> Any:
     return depsgraph.scene_eval if hasattr(depsgraph, "scene_eval") else depsgraph.scene
+
+
+def _evaluated(data: Any | None, depsgraph: Any) -> Any | None:
+    """The depsgraph's evaluated copy of a data-block (as object slots hold them)."""
+    if data is None or not hasattr(data, "evaluated_get"):
+        return data
+    return data.evaluated_get(depsgraph)
 
 
 def _material_edits(depsgraph: Any, changes: Changes, materials: MaterialTable,
