@@ -96,7 +96,8 @@ BsdfEval glass_eval(const Material& m, Vec3 wo, Vec3 wi) {
     const float roughness = blurred_roughness(m.roughness, m);
     if (ggx_is_sharp(roughness) || wo.z <= 0.0f) return {Rgb(), 0.0f};
     const DielectricEval e = dielectric_ggx_eval(wo, wi, ggx_alpha_from_roughness(roughness), m.ior);
-    const float scale = glass_energy_scale(m.distribution, wo.z, roughness, m.ior);
+    // Compensated for the host roughness (Cycles sets it up before Filter Glossy blurs alpha).
+    const float scale = glass_energy_scale(m.distribution, wo.z, m.roughness, m.ior);
     const float reflected = m.no_glossy_reflection ? 0.0f : e.reflect_value;
     const float transmitted = m.no_glossy_refraction ? 0.0f : e.transmit_value;
     return {m.base_color * ((reflected + transmitted) * scale), e.reflect_pdf + e.transmit_pdf};

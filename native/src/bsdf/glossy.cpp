@@ -26,7 +26,9 @@ BsdfEval glossy_eval(const Material& m, Vec3 wo, Vec3 wi) {
     const float alpha = ggx_alpha_from_roughness(roughness);
     const Vec3 h = normalize(wo + wi);
     const float f = ggx_d(h, alpha) * ggx_g2_height_correlated(wo, wi, alpha) / (4.0f * wo.z);
-    return {m.base_color * (f * energy_scale(m, roughness, wo.z)), ggx_reflection_pdf(wo, wi, alpha)};
+    // The energy compensation is the host roughness's: Cycles 4.x+ computes it when the closure is
+    // set up, before Filter Glossy blurs the lobe (bsdf_blur changes alpha only).
+    return {m.base_color * (f * energy_scale(m, m.roughness, wo.z)), ggx_reflection_pdf(wo, wi, alpha)};
 }
 
 bool glossy_sample(const Material& m, Vec3 wo, Vec2 u, BsdfSample* out) {

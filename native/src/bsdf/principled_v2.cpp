@@ -10,6 +10,8 @@ namespace {
 
 struct LobesV2 {
     float metallic;
+    // roughness: the host's, which the layer albedos and energy compensation read (Cycles sets
+    // them up before Filter Glossy blurs); alpha: the lobes' own, blurred.
     float roughness, alpha;
     bool has_specular;      // dielectric layer present (eta != 1)
     float eta;              // relative IOR of the dielectric layer
@@ -51,8 +53,8 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     l.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
     l.reflect = !m.no_glossy_reflection;
     l.refract = !m.no_glossy_refraction;
-    l.roughness = std::clamp(blurred_roughness(m.roughness, m), 0.0f, 1.0f);
-    l.alpha = ggx_alpha_from_roughness(l.roughness);
+    l.roughness = std::clamp(m.roughness, 0.0f, 1.0f);
+    l.alpha = ggx_alpha_from_roughness(blurred_roughness(l.roughness, m));
     l.eta = specular_eta(m);
     l.has_specular = l.eta > 1.0f && l.reflect;
     const bool multiscatter = m.distribution == MicrofacetDistribution::MultiscatterGgx;
@@ -96,8 +98,8 @@ LobesV2 setup(const Material& m, Vec3 wo) {
     // whose albedo estimate F_v removes that share from everything below, then Beer absorption
     // by coat_tint over the refracted path length 1/cos_t through a unit-thick coat.
     l.coat = std::clamp(m.coat, 0.0f, 1.0f);
-    const float coat_roughness = std::clamp(blurred_roughness(m.coat_roughness, m), 0.0f, 1.0f);
-    l.coat_alpha = ggx_alpha_from_roughness(coat_roughness);
+    const float coat_roughness = std::clamp(m.coat_roughness, 0.0f, 1.0f);
+    l.coat_alpha = ggx_alpha_from_roughness(blurred_roughness(coat_roughness, m));
     l.coat_eta = std::max(std::max(m.coat_ior, 1e-5f), 1.0f / std::max(m.coat_ior, 1e-5f));
     l.base_scale = Rgb(1.0f);
     l.coat_albedo = 0.0f;
