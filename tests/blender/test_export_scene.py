@@ -16,7 +16,7 @@ import pytest
 from stratum import native
 from stratum.engine import StratumRenderEngine, frame
 from stratum.export.images import blender_ocio_config
-from stratum.export.sync import export_scene
+from stratum.export.sync import SceneSync, export_scene
 
 V4 = bpy.app.version >= (4, 0, 0)
 
@@ -365,6 +365,24 @@ def test_motion_blur_moving_objects_only(scene_builder: Any, recording_scene: An
     # CENTER: shutter [frame - 0.25, frame + 0.25] around frame 1
     assert (start[0, 3], end[0, 3]) == pytest.approx((0.75, 1.25))
     assert b.scene.frame_current == 1 and moving.matrix_world.translation.x == pytest.approx(1.0)
+
+
+def test_motion_blur_needs_the_layers_switch_and_a_final_render(scene_builder: Any,
+                                                                recording_scene: Any) -> None:
+    """Cycles: motion blur = the scene's and the view layer's use_motion_blur, F12 only (its
+    viewport renders none)."""
+    b = scene_builder()
+    b.camera()
+    moving = b.mesh_object("Moving")
+    driver = moving.driver_add("location", 0).driver
+    driver.type = "SCRIPTED"
+    driver.expression = "frame"
+    b.scene.frame_set(1)
+    b.scene.render.use_motion_blur = True
+    b.scene.render.motion_blur_shutter = 0.5
+    assert SceneSync(lambda: recording_scene, viewport=True).full(b.depsgraph()).moving_instances == 0
+    b.scene.view_layers[0].use_motion_blur = False
+    assert export_scene(b.depsgraph(), recording_scene).moving_instances == 0
 
 
 def test_light_visibility_shadow_and_spread(scene_builder: Any, recording_scene: Any) -> None:

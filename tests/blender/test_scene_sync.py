@@ -277,6 +277,10 @@ def _move_a_vertex() -> None:
     (_light_falloff_on_the_light, "Light 'Light': its nodes now depend on the distance"),
     # A full export sends instances every ray sees, not held out, after all others.
     (lambda: setattr(bpy.data.objects["Right"], "visible_glossy", False), "Object 'Right'"),
+    # The view layer's Filter and overrides change what a full export sends (view_layer.py).
+    (lambda: setattr(bpy.context.view_layer, "use_sky", False), "View layer"),
+    (lambda: setattr(bpy.context.view_layer, "material_override", bpy.data.materials["Red"]),
+     "View layer"),
 ])
 def test_what_edits_cannot_express_asks_for_a_full_export(scene_builder: Any, library: Any,
                                                           edit: Callable[[], None],
