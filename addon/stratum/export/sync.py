@@ -40,7 +40,9 @@ scene can only take by being built anew, or what a fresh export would send diffe
     instance change with motion blur on (its shutter transforms need other frames evaluated);
   * the motion blur settings; a material's image textures or their UV layer, or an image
     one textures with (textures are part of the native scene's structure);
-  * the world losing its environment image (a native scene has no call to drop one).
+  * the world losing its environment image (a native scene has no call to drop one);
+  * the view layer's Filter or overrides (view_layer.py: Environment, Surfaces, material and
+    world override, motion blur), which decide what a full export sends.
 Until full() runs again after that, every update() asks for it.
 """
 
