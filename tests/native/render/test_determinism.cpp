@@ -208,6 +208,42 @@ TEST(Determinism, EverySamplerAndIntegratorRepeatsOneImageForAnyThreadCount) {
     stratum_scene_destroy(scene);
 }
 
+// Filter Glossy and the caustics switches change a path's closures by what it did before
+// (integrators/light_path_closures.h): a function of the path alone, so the image is the same
+// for any thread count; it must differ from the image without them for the test to say
+// something (the box has a glass sphere and glossy Principled walls).
+TEST(Determinism, FilterGlossyAndCausticsRepeatOneImageForAnyThreadCount) {
+    StratumScene* scene = cornell_box();
+    ASSERT_FALSE(::testing::Test::HasFailure());
+    for (const char* sampler : {"random", "sobol"}) {
+        const Settings base{{"width", 16},      {"height", 16}, {"samples", 8},
+                            {"max_bounces", 6}, {"seed", 3},    {"sampler", sampler}};
+        Settings plain = base;
+        plain.emplace_back("threads", 1);
+        const RenderOutput unfiltered = render(scene, plain);
+        ASSERT_TRUE(unfiltered.error.empty()) << unfiltered.error;
+        std::vector<float> first;
+        for (int i = 0; i < 3; ++i) {
+            Settings settings = base;
+            settings.emplace_back("threads", kThreadCounts[i]);
+            settings.emplace_back("filter_glossy", 1.0);
+            settings.emplace_back("caustics_reflective", 0);
+            settings.emplace_back("caustics_refractive", 0);
+            const RenderOutput out = render(scene, settings);
+            ASSERT_TRUE(out.error.empty()) << sampler << ": " << out.error;
+            if (i == 0) {
+                first = out.rgba;
+                EXPECT_NE(first, unfiltered.rgba) << sampler << ": the switches changed nothing";
+                continue;
+            }
+            size_t differing = 0;
+            for (size_t k = 0; k < first.size(); ++k) differing += out.rgba[k] != first[k];
+            EXPECT_EQ(differing, 0u) << sampler << ": " << kThreadCounts[i] << " threads";
+        }
+    }
+    stratum_scene_destroy(scene);
+}
+
 // Path guiding learns between passes from records counted in integers (guiding/guiding_tree.h),
 // so its tree, and the image, are the same for any thread count: the trained tree must differ
 // from the untrained one (nodes > 2) for the comparison to say something about the training.
