@@ -8,9 +8,11 @@
 
 #include "bsdf/closure_set.h"
 #include "integrators/light_path_closures.h"
+#include "render_helpers.h"
 #include "stratum/stratum.h"
 
 using namespace stratum;
+using namespace stratum_test;
 
 namespace {
 
@@ -125,4 +127,24 @@ TEST(ClosureFilter, CausticsSwitchesDropGlossyReflectionAndRefractionLobes) {
     EXPECT_TRUE(value(v1_metal, near_mirror).is_black());
     const ClosureSet v1 = filtered(model(STRATUM_MATERIAL_PRINCIPLED_V1, base, 0.3f), {0.0f, true, true});
     EXPECT_FALSE(value(v1, up).is_black());
+}
+
+// A particle cannot know what the camera path before its vertex did: the light tracer says once
+// that it applies neither, and only when one of them is set.
+TEST(PathClosureState, TheLightTracerSaysItAppliesNeither) {
+    IntegratingSphere s = make_closed_sphere(0.5f, 1.0f);
+    ASSERT_NE(s.scene, nullptr) << stratum_last_error();
+    const Setting light("integrator", "light");
+    const RenderOutput plain = render(s.scene, {{"width", 4}, {"height", 4}, {"samples", 1}, light});
+    ASSERT_TRUE(plain.error.empty()) << plain.error;
+    EXPECT_EQ(plain.notices.find("filter_glossy"), std::string::npos) << plain.notices;
+    for (const Setting& set : {Setting("filter_glossy", 1.0), Setting("caustics_reflective", 0),
+                               Setting("caustics_refractive", 0)}) {
+        const RenderOutput out = render(s.scene, {{"width", 4}, {"height", 4}, {"samples", 1}, light, set});
+        ASSERT_TRUE(out.error.empty()) << out.error;
+        EXPECT_NE(out.notices.find("does not apply filter_glossy or the caustics switches"),
+                  std::string::npos)
+            << set.name << ": " << out.notices;
+    }
+    stratum_scene_destroy(s.scene);
 }

@@ -296,8 +296,9 @@ TEST(RadiosityIntegrator, NamesTheMaterialsItRendersAsDiffuse) {
 TEST(RadiosityIntegrator, SaysTheLightPathLimitsDoNotApply) {
     StratumScene* scene = make_cornell_box();
     ASSERT_NE(scene, nullptr) << stratum_last_error();
-    for (const Setting& limit :
-         {Setting("diffuse_bounces", 2), Setting("clamp_direct", 1.0), Setting("clamp_indirect", 10.0)}) {
+    for (const Setting& limit : {Setting("diffuse_bounces", 2), Setting("clamp_direct", 1.0),
+                                 Setting("clamp_indirect", 10.0), Setting("filter_glossy", 1.0),
+                                 Setting("caustics_reflective", 0), Setting("caustics_refractive", 0)}) {
         const RenderOutput out =
             render(scene, {{"width", 4}, {"height", 4}, {"samples", 1}, {"integrator", "radiosity"}, limit});
         ASSERT_TRUE(out.error.empty()) << out.error;
