@@ -89,6 +89,8 @@ def test_switches_are_use_settings_of_range_0_to_1(native: Any) -> None:
     0 or 1; film_transparent (0/1, not use_*) comes from Blender's own checkbox and stays an
     integer setting, and a use_* setting of a wider range is a number."""
     assert blender_settings.is_switch(native.setting("use_adaptive_sampling"))
+    # Cycles' caustics checkboxes, named without use_.
+    assert blender_settings.is_switch(native.setting("caustics_reflective"))
     assert not blender_settings.is_switch(native.setting("film_transparent"))
     assert not blender_settings.is_switch(native.setting("adaptive_min_samples"))
     assert blender_settings.is_switch(_int_setting(native, "use_x", 0, 1))
