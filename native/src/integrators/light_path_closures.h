@@ -6,8 +6,8 @@
 // | quantity           | definition                                                                |
 // |--------------------|---------------------------------------------------------------------------|
 // | min_ray_pdf        | the least solid-angle pdf of the path's non-transparent scatterings so far |
-// |                    | (the mixture pdf of the sampled direction; delta samples do not count;    |
-// |                    | infinity at the camera)                                                    |
+// |                    | (the closures' mixture pdf of the sampled direction, unguided; delta      |
+// |                    | samples do not count; infinity at the camera)                              |
 // | blur r             | 0.5 sqrt(1 - min_ray_pdf / filter_glossy) when min_ray_pdf < filter_glossy,|
 // |                    | else none (filter_glossy 0 = off): every microfacet lobe's alpha >= r      |
 // | after diffuse      | the last non-transparent scattering was diffuse (Cycles' PATH_RAY_DIFFUSE)|

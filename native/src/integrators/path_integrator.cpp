@@ -314,7 +314,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             else
                 records.push(hit.position, wi, beta);
             bounces.scatter(bs.kind);
-            closure_state.scatter(bs.kind, bs.pdf, bs.delta);
+            // Filter Glossy reads the closures' own pdf, not the guided mixture's (as Cycles).
+            const bool unguided = guide.active() && !bs.delta && limits.filter_glossy > 0.0f;
+            closure_state.scatter(
+                bs.kind, unguided ? closures.eval(wo, bs.wi, settings_.hemisphere).pdf : bs.pdf, bs.delta);
         }
         query.visibility = ray_visibility(bs.kind, query.visibility);
         origin = offset_ray_origin(hit.position, below ? -sp.ng : sp.ng);
