@@ -39,6 +39,8 @@ check: build lint
 	$(PY) -m pytest tests/python -q -m "not long"
 	$(PY) -m pytest tests/blender -q -m smoke
 
+# The slowest tests of each pytest stage, printed at its end: where make test's 45 minutes go.
+DURATIONS ?= --durations=15 --durations-min=5
 # corpus-asan after sanitize, which builds the binary it replays with.
 test: build lint test-native-statistical test-python test-blender test-wheels test-package test-ui sanitize corpus-asan \
       fuzz-smoke
@@ -55,16 +57,16 @@ test-native-statistical: build
 	cd $(BUILD) && ctest --output-on-failure -j2 -LE long -R '$(SANITIZE_SKIP)'
 
 test-python: build
-	$(PY) -m pytest tests/python -q
+	$(PY) -m pytest tests/python -q $(DURATIONS)
 
 # The same Blender tests in Blender 3.4 (Debian, `blender -b`) and in the bpy wheel (4.5/5.0).
 test-blender: test-blender-3 test-blender-wheel test-corpus test-sessions
 
 test-blender-3: build
-	$(BLENDER_BG) --python tests/blender/run_in_blender.py -- tests/blender -q
+	$(BLENDER_BG) --python tests/blender/run_in_blender.py -- tests/blender -q $(DURATIONS)
 
 test-blender-wheel: build
-	$(PY) -m pytest tests/blender -q
+	$(PY) -m pytest tests/blender -q $(DURATIONS)
 
 # The smoke matrix of the LTS lines (issue 33): the bpy 4.2 and 4.5 wheels, one venv per
 # scripts/requirements-bpy-<line>.txt (scripts/setup_wheels.sh, run by scripts/setup.sh): the
@@ -80,7 +82,7 @@ WHEEL_TESTS := tests/blender/test_cycles_agreement.py tests/blender/test_feature
 test-wheels: build
 	status=0; for line in $(WHEEL_LINES); do \
 		echo "== bpy $$line wheel"; \
-		.venv-bpy-$$line/bin/python tests/blender/run_in_blender.py -- $(WHEEL_TESTS) -q || status=1; \
+		.venv-bpy-$$line/bin/python tests/blender/run_in_blender.py -- $(WHEEL_TESTS) -q $(DURATIONS) || status=1; \
 	done; exit $$status
 
 # The zip users install (docs/packaging.md): dist/stratum-<version>-linux-x64.zip, the add-on
@@ -92,12 +94,12 @@ package: build
 # into fresh user configurations of Blender 3.4 and of the bpy wheels (5.0, 4.2, 4.5), renders,
 # upgrades, uninstalls (tests/package). ~2 min.
 test-package: build
-	$(PY) -m pytest tests/package -q
+	$(PY) -m pytest tests/package -q $(DURATIONS)
 
 # Blender 3.4 with its UI on a virtual display (xvfb-run): the Rendered viewport as a user
 # drives it, and what must not crash it (tests/ui). ~5 min.
 test-ui: build
-	$(PY) -m pytest tests/ui -q
+	$(PY) -m pytest tests/ui -q $(DURATIONS)
 
 # The hostile-scene corpus (issue 12): every case in Blender 3.4 and in the bpy wheel, each in
 # worker subprocesses so that a crash fails one case; table in out/corpus/outcomes.md. ~30 s.
