@@ -21,9 +21,9 @@ using scene_file::numbers;
 using scene_file::read_numbers;
 
 constexpr const char* kFormat = "stratum-scene";
-// Version 2: the renderer's inputs take 128 registers of a program (100 before; version 1 files
-// still load, api/scene_file_programs.h).
-constexpr int kVersion = 2;
+// Version 2: the renderer's inputs take 128 registers of a program (100 before); version 3: 144
+// (the Light Path node's). Older files still load (api/scene_file_programs.h).
+constexpr int kVersion = 3;
 
 json rgb(Rgb c) { return json::array({c.r, c.g, c.b}); }
 json matrix(const Transform& t) {
