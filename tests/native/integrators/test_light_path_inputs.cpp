@@ -8,6 +8,7 @@
 #include <stratum/stratum.h>
 
 #include <array>
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -316,6 +317,23 @@ TEST(LightPathInputs, TheWorldsLightSampleHasNoRayKind) {
         const double want = c == 2 ? 0.0 : 0.5;
         EXPECT_NEAR(s.mean, want, 5.0 * s.standard_error + 1e-6) << "channel " << c;
     }
+}
+
+// A scene file keeps a world program that reads the node (by its id; the map is baked again on
+// loading): the loaded scene's camera still sees Is Camera Ray 1, which the map (baked without
+// it) does not hold.
+TEST(LightPathInputs, ASceneFileKeepsTheWorldsProgram) {
+    stratum_test::SceneHandle h;
+    const uint32_t program = add_program(
+        h.scene, {{{STRATUM_INPUT_IS_CAMERA_RAY}, {STRATUM_INPUT_RAY_DEPTH}, {STRATUM_INPUT_IS_SHADOW_RAY}}});
+    ASSERT_EQ(stratum_scene_set_background_program(h.scene, program, kInputs, 16, 8), STRATUM_OK);
+    const std::string path = ::testing::TempDir() + "light_path_world.json";
+    ASSERT_EQ(stratum_scene_save(h.scene, path.c_str()), STRATUM_OK) << stratum_last_error();
+    StratumScene* loaded = nullptr;
+    ASSERT_EQ(stratum_scene_load(path.c_str(), &loaded), STRATUM_OK) << stratum_last_error();
+    expect_every_pixel(loaded, {1.0f, 1.0f, 0.0f});
+    stratum_scene_destroy(loaded);
+    std::remove(path.c_str());
 }
 
 // Light tracing and radiosity do not follow Cycles' camera paths: one notice names the programs
