@@ -187,3 +187,34 @@ def test_a_script_node_warns_and_its_consumer_reads_its_own_value() -> None:
     assert warnings[0].startswith("Script 'Script': OSL scripts are not supported")
     assert warnings[0].endswith("using the value of 'Strength'")
     assert evaluate(c, register, 1) == pytest.approx([0.6])
+
+
+# ---- Light Path ----------------------------------------------------------------------------------
+
+LIGHT_PATH_3_4 = ("Is Camera Ray", "Is Shadow Ray", "Is Diffuse Ray", "Is Glossy Ray",
+                  "Is Singular Ray", "Is Reflection Ray", "Is Transmission Ray", "Ray Length",
+                  "Ray Depth", "Diffuse Depth", "Glossy Depth", "Transparent Depth",
+                  "Transmission Depth")
+LIGHT_PATH_5_0 = (*LIGHT_PATH_3_4[:7], "Is Volume Scatter Ray", *LIGHT_PATH_3_4[7:],
+                  "Portal Depth")
+
+
+def light_path(outputs: tuple[str, ...]) -> Node:
+    return Node("ShaderNodeLightPath", "Light Path", (), [Socket(name) for name in outputs])
+
+
+@pytest.mark.parametrize(("version", "outputs"), [(V3, LIGHT_PATH_3_4), (V5, LIGHT_PATH_5_0)])
+def test_light_path_outputs_are_the_renderers_path_inputs(version: tuple[int, int, int],
+                                                          outputs: tuple[str, ...]) -> None:
+    # Each output reads its own renderer input, unchanged: no node in between, in materials and
+    # in the world alike.
+    for world in (False, True):
+        for k, output in enumerate(outputs):
+            c, register, warnings = compile_into(light_path(outputs), output,
+                                                 Socket("Strength", 0.5), version, world=world)
+            assert warnings == []
+            name = output.lower().replace(" ", "_").removeprefix("is_")
+            name = "is_" + name if output.startswith("Is ") else name
+            assert register == native.SHADER_INPUTS[name][0], output
+            value = float(k + 1)
+            assert evaluate(c, register, 1, **{name: value}) == pytest.approx([value])

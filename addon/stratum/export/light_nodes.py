@@ -6,10 +6,11 @@ lamp emits, evaluated with sd->ray_length the distance from the lit point to the
 lamp (FLT_MAX for a sun). Node trees whose emission does not depend on where the lamp is seen
 (constants, Blackbody for a colour temperature, Math, Mix, ramps) are evaluated once here with
 the native node program and fold into the lamp's colour. One whose program reads the ray length
-and nothing else of the shading point (a Light Falloff, Cycles' way to change a lamp's falloff)
-becomes a LampProgram, which the renderer runs at each distance
-(native.Scene.set_light_program). One that reads more (a Texture Coordinate, a Fresnel, a gobo
-texture) is not supported: one warning, and the lamp renders without its nodes."""
+and the Light Path node and nothing else of the shading point (a Light Falloff, Cycles' way to
+change a lamp's falloff; Is Camera Ray, for a lamp that lights but is not seen) becomes a
+LampProgram, which the renderer runs at each distance and path (native.Scene.set_light_program).
+One that reads more (a Texture Coordinate, a Fresnel, a gobo texture) is not supported: one
+warning, and the lamp renders without its nodes."""
 
 from __future__ import annotations
 
@@ -44,6 +45,15 @@ def _renderer_inputs(program: native.ShaderProgram) -> set[int]:
     return {r for n in program.nodes for r in n.inputs if r < native.SHADER_INPUT_REGISTERS}
 
 
+# What a lamp's program may read: the distance, and the Light Path node's outputs (the renderer
+# fills them as Cycles' emission evaluation does: no ray kind, Ray Depth the path's depth + 1).
+_LAMP_INPUTS = frozenset(native.SHADER_INPUTS[name][0] for name in (
+    "ray_length", "is_camera_ray", "is_shadow_ray", "is_diffuse_ray", "is_glossy_ray",
+    "is_singular_ray", "is_reflection_ray", "is_transmission_ray", "is_volume_scatter_ray",
+    "ray_depth", "diffuse_depth", "glossy_depth", "transparent_depth", "transmission_depth",
+    "portal_depth"))
+
+
 def node_emission(ob: Any, summary: ExportSummary) -> Rgb | LampProgram | None:
     """The factor a light's node tree puts on its colour: an RGB when it is the same wherever the
     lamp is seen, a LampProgram when it depends on the distance only, or None when the light has
@@ -72,7 +82,7 @@ def node_emission(ob: Any, summary: ExportSummary) -> Rgb | LampProgram | None:
         summary.warn(f"Light '{ob.name}': {message}")
     program = c.builder.program
     reads = _renderer_inputs(program)
-    if reads == {native.SHADER_INPUTS["ray_length"][0]}:
+    if reads and reads <= _LAMP_INPUTS:
         return LampProgram(program, register)
     if reads:
         summary.warn(f"Light '{ob.name}': its nodes depend on where the light is seen (texture "

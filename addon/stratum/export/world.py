@@ -3,7 +3,9 @@
 Supported: World Output <- Background (Color, Strength) with Color either a value or linked
 from an Environment Texture node (equirectangular projection) whose Vector input is unlinked
 (the ray direction) or a Mapping node that only turns about Z, fed by Texture Coordinate
-"Generated" (the ray direction in a world). The image's pixels are taken from Blender
+"Generated" (the ray direction in a world). Backgrounds mixed by Mix and Add Shaders (a Light
+Path output on a Mix Shader's Fac: a world the camera sees and another that lights) become the
+world's program. The image's pixels are taken from Blender
 (`image.pixels`): float images hold scene-linear values; byte images hold values in their
 colour space. Only images whose colour space is linear are converted exactly; any other
 colour space gives a warning (OCIO conversion is pending) and its pixels are used as Blender
@@ -85,12 +87,7 @@ def _mapping_rotation(node: Any) -> np.ndarray | None:
 
 
 def _background_node(scene: Any) -> Any | None:
-    world = scene.world
-    if world is None or not uses_nodes(world):
-        return None
-    output = active_output(world.node_tree, "ShaderNodeOutputWorld")
-    surface = output.inputs.get("Surface") if output is not None else None
-    node = linked_from(surface) if surface is not None else None
+    node = _world_root(scene)
     return node if node is not None and node.bl_idname == "ShaderNodeBackground" else None
 
 
@@ -127,6 +124,8 @@ def convert_world(scene: Any, summary: ExportSummary) -> Rgb:
     node = linked_from(surface) if surface is not None else None
     if node is None:
         return (0.0, 0.0, 0.0)  # as Cycles: nothing connected renders black
+    if node.bl_idname in _SHADER_MIXES:
+        return (0.0, 0.0, 0.0)  # a mix of Backgrounds: convert_world_program's program replaces it
     if node.bl_idname != "ShaderNodeBackground":
         summary.warn(f"World '{world.name}': shader node '{node.name}' ({node.bl_idname}) is "
                      "not supported; using the world colour (constant background only)")
@@ -164,21 +163,69 @@ def _uses_program(background: Any) -> bool:
     return color.is_linked and _environment_node(background) is None
 
 
-def convert_world_program(scene: Any, summary: ExportSummary) -> WorldProgram | None:
-    """The world's node program (Background Color x Strength at each direction), or None when
-    the world is a constant or an environment image."""
-    background = _background_node(scene)
-    if background is None or not _uses_program(background):
+# Shader nodes that combine Backgrounds in a world (Cycles sums the weighted background closures):
+# the usual way to show the camera one world and light the scene with another (Light Path).
+_SHADER_MIXES = ("ShaderNodeMixShader", "ShaderNodeAddShader")
+
+
+def _world_root(scene: Any) -> Any | None:
+    """The shader node on the world's output: a Background, or a Mix or Add Shader."""
+    world = scene.world
+    if world is None or not uses_nodes(world):
         return None
+    output = active_output(world.node_tree, "ShaderNodeOutputWorld")
+    surface = output.inputs.get("Surface") if output is not None else None
+    return linked_from(surface) if surface is not None else None
+
+
+def _radiance(compiler: Any, node: Any | None, warn: Any) -> int:
+    """Register of the radiance (three registers) of the shader `node` of a world: a
+    Background's Color x Strength, a Mix Shader's (1 - saturate(Fac)) A + saturate(Fac) B (as
+    Cycles' svm_node_mix_closure), an Add Shader's A + B; nothing linked is black."""
+    from ..shaders.nodes.math_nodes import color_times, math_node
+
+    builder = compiler.builder
+    zero, one = builder.constant(0.0), builder.constant(1.0)
+    if node is None:
+        return builder.constant((0.0, 0.0, 0.0))
+    if node.bl_idname == "ShaderNodeBackground":
+        return color_times(compiler, compiler.value(node.inputs["Color"], "color"),
+                           compiler.value(node.inputs["Strength"], "float"))
+    if node.bl_idname == "ShaderNodeAddShader":
+        a, b = (_radiance(compiler, linked_from(node.inputs[k]), warn) for k in (0, 1))
+        return builder.combine(*(math_node(compiler, a + k, b + k, zero, "ADD") for k in range(3)))
+    if node.bl_idname == "ShaderNodeMixShader":
+        fac = compiler.value(node.inputs[0], "float")
+        saturated = math_node(compiler, fac, one, zero, "MULTIPLY", clamp=True)
+        rest = math_node(compiler, one, saturated, zero, "SUBTRACT")
+        a, b = (_radiance(compiler, linked_from(node.inputs[k]), warn) for k in (1, 2))
+        kept = [math_node(compiler, a + k, rest, zero, "MULTIPLY") for k in range(3)]
+        return builder.combine(*(math_node(compiler, b + k, saturated, kept[k], "MULTIPLY_ADD")
+                                 for k in range(3)))
+    warn(f"shader node '{node.name}' ({node.bl_idname}) inside a mix of Backgrounds is not "
+         "supported; it adds nothing")
+    return builder.constant((0.0, 0.0, 0.0))
+
+
+def convert_world_program(scene: Any, summary: ExportSummary) -> WorldProgram | None:
+    """The world's node program (Background Color x Strength at each direction, or a mix of
+    Backgrounds), or None when the world is a constant or an environment image."""
+    root = _world_root(scene)
+    mixed = root is not None and root.bl_idname in _SHADER_MIXES
+    if not mixed:
+        background = _background_node(scene)
+        if background is None or not _uses_program(background):
+            return None
     from ..shaders.nodes import NodeCompiler
-    from ..shaders.nodes.math_nodes import color_times
 
     world = scene.world
-    compiler = NodeCompiler(tuple(bpy.app.version), lambda node, message: summary.warn(
-        f"World '{world.name}': {message}"), world=True)
-    color = compiler.value(background.inputs["Color"], "color")
-    strength = compiler.value(background.inputs["Strength"], "float")
-    register = color_times(compiler, color, strength)
+
+    def warn(message: str) -> None:
+        summary.warn(f"World '{world.name}': {message}")
+
+    compiler = NodeCompiler(tuple(bpy.app.version), lambda node, message: warn(message),
+                            world=True)
+    register = _radiance(compiler, root, warn)
     if compiler.images:
         summary.warn(f"World '{world.name}': image textures inside the world's nodes are not "
                      "supported; they read black")

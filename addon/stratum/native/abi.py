@@ -76,8 +76,14 @@ SHADER_INPUTS = {
     # mesh attribute slot k: colour (3) at 80 + 5k, alpha at + 3, Fac at + 4
     "attribute0": (80, 5), "attribute1": (85, 5), "attribute2": (90, 5), "attribute3": (95, 5),
     "triangle": (100, 9), "mikktspace_tangent": (109, 3), "normal_transform": (112, 9),
+    # Cycles' Light Path node: the ray kinds (0 or 1) and the depths
+    "is_camera_ray": (121, 1), "is_shadow_ray": (122, 1), "is_diffuse_ray": (123, 1),
+    "is_glossy_ray": (124, 1), "is_singular_ray": (125, 1), "is_reflection_ray": (126, 1),
+    "is_transmission_ray": (127, 1), "is_volume_scatter_ray": (128, 1), "ray_depth": (129, 1),
+    "diffuse_depth": (130, 1), "glossy_depth": (131, 1), "transparent_depth": (132, 1),
+    "transmission_depth": (133, 1), "portal_depth": (134, 1),
 }
-SHADER_INPUT_REGISTERS = 128
+SHADER_INPUT_REGISTERS = 144
 # stratum_scene_set_light_program's program id that removes a lamp's program.
 NO_PROGRAM = 0xFFFFFFFF
 ATTRIBUTE_SLOTS = 4

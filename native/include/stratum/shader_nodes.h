@@ -92,8 +92,32 @@ typedef enum StratumShaderInput {
      * positive scale, as Cycles' object_normal_transform before it normalises) takes its X, Y
      * and Z axes: n = x X + y Y + z Z for an object-space (x, y, z). The identity in the world. */
     STRATUM_INPUT_NORMAL_TRANSFORM = 112,
-    /* 121 to 127 are free for inputs to come. */
-    STRATUM_SHADER_INPUT_REGISTERS = 128
+    /* 1 each: Cycles' Light Path node (kernel/svm/light_path.h), what the path that reaches the
+     * point is. The ray kinds are 1 or 0: the kind of the ray that arrived (CAMERA until the
+     * first scattering, transparent pass-throughs keep the kind), SHADOW on a shadow ray's
+     * transparent surfaces; 0 each where Cycles evaluates with its EMISSION flag alone (a lamp,
+     * a light sample of the world). The depths count scatterings as Cycles' path state does
+     * (RAY_DEPTH all but transparent pass-throughs; DIFFUSE diffuse reflections; GLOSSY glossy
+     * and mirror reflections; TRANSMISSION refractions; TRANSPARENT pass-throughs, on a shadow
+     * ray those it crossed too), RAY_DEPTH plus one on shadow rays, lamps and the world. Stratum
+     * has no volumes and no Ray Portal: VOLUME_SCATTER and PORTAL_DEPTH are 0. docs/cycles_models.md
+     * "Light Path node" has the value in each context. */
+    STRATUM_INPUT_IS_CAMERA_RAY = 121,
+    STRATUM_INPUT_IS_SHADOW_RAY = 122,
+    STRATUM_INPUT_IS_DIFFUSE_RAY = 123,
+    STRATUM_INPUT_IS_GLOSSY_RAY = 124,
+    STRATUM_INPUT_IS_SINGULAR_RAY = 125,
+    STRATUM_INPUT_IS_REFLECTION_RAY = 126,
+    STRATUM_INPUT_IS_TRANSMISSION_RAY = 127,
+    STRATUM_INPUT_IS_VOLUME_SCATTER_RAY = 128,
+    STRATUM_INPUT_RAY_DEPTH = 129,
+    STRATUM_INPUT_DIFFUSE_DEPTH = 130,
+    STRATUM_INPUT_GLOSSY_DEPTH = 131,
+    STRATUM_INPUT_TRANSPARENT_DEPTH = 132,
+    STRATUM_INPUT_TRANSMISSION_DEPTH = 133,
+    STRATUM_INPUT_PORTAL_DEPTH = 134,
+    /* 135 to 143 are free for inputs to come. */
+    STRATUM_SHADER_INPUT_REGISTERS = 144
 } StratumShaderInput;
 
 /* One node: `type`, its enumerations in `modes` (what each means: docs/shader_nodes.md), the
@@ -171,7 +195,10 @@ STRATUM_API StratumStatus stratum_scene_bind_program(StratumScene* scene,
  * the background colour and any environment image. The renderer bakes it into an environment
  * of `width` x `height` texels (equirectangular, each the mean of 2 x 2 directions in it, or of
  * 16 x 16 next to a sharp feature such as a sun disc; width 4 to 16384, height 2 to 8192), which
- * is then looked up and importance-sampled as an image. */
+ * is then looked up and importance-sampled as an image. A program that reads the Light Path
+ * node's inputs is baked with Cycles' importance-map state (no ray kind, RAY_DEPTH 1, the other
+ * depths 0), which only chooses light samples' directions: the program itself then runs for
+ * each ray that leaves the scene and each light sample, with their Light Path inputs. */
 STRATUM_API StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t program_id,
                                                                uint32_t register_index, uint32_t width,
                                                                uint32_t height);
@@ -181,10 +208,11 @@ STRATUM_API StratumStatus stratum_scene_set_background_program(StratumScene* sce
  * Nodes: the Emission's Color x Strength). The program runs wherever the lamp's emission is used:
  * for a point it lights and for a ray that meets it, with RAY_LENGTH the distance between that
  * point (or the ray's origin) and the point on the lamp, FLT_MAX for a sun (Cycles' ls->t); light
- * tracing applies it where a particle first lands. Its other inputs are those of no object (0,
- * attributes' alpha 1, NORMAL_TRANSFORM the identity): a program that reads any other renderer
- * input is refused. Each channel is at least 0 (a NaN reads 0). The lamp's power, by which lights
- * are chosen, stays its own. program_id STRATUM_NO_PROGRAM removes the lamp's program; a later
+ * tracing applies it where a particle first lands. The Light Path node's inputs are those of
+ * Cycles' emission evaluation (no ray kind, RAY_DEPTH the path's depth + 1). Its other inputs are
+ * those of no object (0, attributes' alpha 1, NORMAL_TRANSFORM the identity): a program that
+ * reads any other renderer input is refused. Each channel is at least 0 (a NaN reads 0). The lamp's power, by
+ * which lights are chosen, stays its own. program_id STRATUM_NO_PROGRAM removes the lamp's program; a later
  * call replaces it. */
 #define STRATUM_NO_PROGRAM 0xFFFFFFFFu
 STRATUM_API StratumStatus stratum_scene_set_light_program(StratumScene* scene, uint32_t light_id,

@@ -1,5 +1,6 @@
 #include "api/scene_file.h"
 
+#include <algorithm>
 #include <array>
 #include <filesystem>
 #include <fstream>
@@ -21,9 +22,9 @@ using scene_file::numbers;
 using scene_file::read_numbers;
 
 constexpr const char* kFormat = "stratum-scene";
-// Version 2: the renderer's inputs take 128 registers of a program (100 before; version 1 files
-// still load, api/scene_file_programs.h).
-constexpr int kVersion = 2;
+// Version 2: the renderer's inputs take 128 registers of a program (100 before); version 3: 144
+// (the Light Path node's). Older files still load (api/scene_file_programs.h).
+constexpr int kVersion = 3;
 
 json rgb(Rgb c) { return json::array({c.r, c.g, c.b}); }
 json matrix(const Transform& t) {
@@ -177,6 +178,12 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                             {"strength", e.strength},
                             {"rotation", e.rotation},
                             {"rgb", e.rgb}};
+        // A world program that reads the Light Path node runs per ray beside its map: saved by
+        // its id, and baked again (to the same map) when the file loads.
+        const auto program = std::find(scene.programs.begin(), scene.programs.end(), e.program);
+        if (e.program && program != scene.programs.end())
+            j["environment"]["program"] = {{"program", program - scene.programs.begin()},
+                                           {"register", e.program_color}};
     }
     if (!scene.textures.empty()) {
         // Textures are saved as the renderer holds them (RGBA, rows bottom to top: linear, or
@@ -416,6 +423,14 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             }
         }
         if ((status = load_programs(j, scene, version)) != STRATUM_OK) return entry_point_failed(status);
+        if (j.contains("environment") && j.at("environment").contains("program")) {
+            const json& e = j.at("environment");
+            const json& p = e.at("program");
+            if ((status = stratum_scene_set_background_program(
+                     scene, field<uint32_t>(p, "program"), field<uint32_t>(p, "register"),
+                     field<uint32_t>(e, "width"), field<uint32_t>(e, "height"))) != STRATUM_OK)
+                return entry_point_failed(status);
+        }
         return STRATUM_OK;
     } catch (const std::exception& e) {
         *error = std::string("malformed scene: ") + e.what();

@@ -60,13 +60,18 @@ void save_programs(const Scene& scene, json& j) {
 
 namespace {
 
-// The input registers of version 1 files (STRATUM_SHADER_INPUT_REGISTERS was 100 then).
-constexpr uint32_t kVersion1Inputs = 100;
+// The input registers of a version `version` file (STRATUM_SHADER_INPUT_REGISTERS then).
+uint32_t file_inputs(int version) {
+    if (version == 1) return 100;
+    if (version == 2) return 128;
+    return STRATUM_SHADER_INPUT_REGISTERS;
+}
 
 // A register number of a version `version` file, as today's layout numbers it.
 uint32_t moved(uint32_t reg, int version) {
-    if (version != 1 || reg < kVersion1Inputs) return reg;
-    return reg - kVersion1Inputs + STRATUM_SHADER_INPUT_REGISTERS;
+    const uint32_t inputs = file_inputs(version);
+    if (reg < inputs) return reg;
+    return reg - inputs + STRATUM_SHADER_INPUT_REGISTERS;
 }
 
 }  // namespace
@@ -112,9 +117,9 @@ StratumStatus load_programs(const json& j, StratumScene* scene, int version) {
             nodes.push_back(n);
         }
         auto registers = numbers<float>(p, "registers");
-        if (version == 1 && registers.size() >= kVersion1Inputs)
-            registers.insert(registers.begin() + kVersion1Inputs,
-                             STRATUM_SHADER_INPUT_REGISTERS - kVersion1Inputs, 0.0f);
+        const uint32_t inputs = file_inputs(version);
+        if (inputs < STRATUM_SHADER_INPUT_REGISTERS && registers.size() >= inputs)
+            registers.insert(registers.begin() + inputs, STRATUM_SHADER_INPUT_REGISTERS - inputs, 0.0f);
         const auto data = numbers<float>(p, "data");
         const StratumShaderProgramDesc d{nodes.data(),     static_cast<uint32_t>(nodes.size()),
                                          registers.data(), static_cast<uint32_t>(registers.size()),

@@ -12,9 +12,9 @@ namespace stratum {
 
 void save_programs(const Scene& scene, nlohmann::json& file);
 // After the file's materials, meshes and textures are loaded. `version` is the file's: a
-// version 1 file was written when the renderer's inputs took the first 100 registers, so its
-// programs' own registers (and every register number at or above 100) move up to follow the
-// 128 of today.
+// version 1 file was written when the renderer's inputs took the first 100 registers, a version
+// 2 file when they took 128, so its programs' own registers (and every register number at or
+// above that count) move up to follow the 144 of today.
 StratumStatus load_programs(const nlohmann::json& file, StratumScene* scene, int version);
 
 }  // namespace stratum

@@ -10,6 +10,7 @@
 #include "api/scene_handle.h"
 #include "api/shader_program_validation.h"
 #include "render_scene/world_baking.h"
+#include "shading/light_path_state.h"
 #include "shading/program_layout.h"
 #include "stratum/stratum.h"
 
@@ -50,6 +51,20 @@ static_assert(stratum::shader_input::kAttribute3 == STRATUM_INPUT_ATTRIBUTE_3);
 static_assert(stratum::shader_input::kTriangle == STRATUM_INPUT_TRIANGLE);
 static_assert(stratum::shader_input::kMikktspaceTangent == STRATUM_INPUT_MIKKTSPACE_TANGENT);
 static_assert(stratum::shader_input::kNormalTransform == STRATUM_INPUT_NORMAL_TRANSFORM);
+static_assert(stratum::shader_input::kIsCameraRay == STRATUM_INPUT_IS_CAMERA_RAY);
+static_assert(stratum::shader_input::kIsShadowRay == STRATUM_INPUT_IS_SHADOW_RAY);
+static_assert(stratum::shader_input::kIsDiffuseRay == STRATUM_INPUT_IS_DIFFUSE_RAY);
+static_assert(stratum::shader_input::kIsGlossyRay == STRATUM_INPUT_IS_GLOSSY_RAY);
+static_assert(stratum::shader_input::kIsSingularRay == STRATUM_INPUT_IS_SINGULAR_RAY);
+static_assert(stratum::shader_input::kIsReflectionRay == STRATUM_INPUT_IS_REFLECTION_RAY);
+static_assert(stratum::shader_input::kIsTransmissionRay == STRATUM_INPUT_IS_TRANSMISSION_RAY);
+static_assert(stratum::shader_input::kIsVolumeScatterRay == STRATUM_INPUT_IS_VOLUME_SCATTER_RAY);
+static_assert(stratum::shader_input::kRayDepth == STRATUM_INPUT_RAY_DEPTH);
+static_assert(stratum::shader_input::kDiffuseDepth == STRATUM_INPUT_DIFFUSE_DEPTH);
+static_assert(stratum::shader_input::kGlossyDepth == STRATUM_INPUT_GLOSSY_DEPTH);
+static_assert(stratum::shader_input::kTransparentDepth == STRATUM_INPUT_TRANSPARENT_DEPTH);
+static_assert(stratum::shader_input::kTransmissionDepth == STRATUM_INPUT_TRANSMISSION_DEPTH);
+static_assert(stratum::shader_input::kPortalDepth == STRATUM_INPUT_PORTAL_DEPTH);
 static_assert(stratum::shader_input::kAttributeSlots == STRATUM_ATTRIBUTE_SLOTS);
 static_assert(stratum::shader_input::kCount == STRATUM_SHADER_INPUT_REGISTERS);
 
@@ -140,6 +155,11 @@ StratumStatus stratum_scene_set_background_program(StratumScene* scene, uint32_t
                     " registers");
         // Baked outside the scene's lock: a large map takes a while, and renders may be reading.
         stratum::Environment e = stratum::bake_environment(*program, textures, register_index, width, height);
+        if (stratum::reads_light_path(*program)) {
+            e.program = program;
+            e.program_color = register_index;
+            e.program_textures = textures;
+        }
         scene->live->edit(stratum::LiveScene::Part::World,
                           [&](stratum::Scene& s) { s.environment = std::move(e); });
         return STRATUM_OK;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "api/validation.h"
+#include "shading/light_path_state.h"
 #include "shading/node_registry.h"
 
 namespace stratum {
@@ -147,11 +148,14 @@ LightProgram validate_light_program(uint32_t light_id, uint32_t program_id, uint
         for (size_t k = 0; k < n.inputs.size(); ++k) {
             if (entry.input_widths[k] == 0 || n.inputs[k] >= kShaderInputRegisters) continue;
             const bool ray_length = entry.input_widths[k] == 1 && n.inputs[k] == shader_input::kRayLength;
-            require(ray_length, "program " + std::to_string(program_id) + " node " + std::to_string(i) +
-                                    " (" + entry.name + ") reads renderer input register " +
-                                    std::to_string(n.inputs[k]) +
-                                    "; a light's program may read only RAY_LENGTH (" +
-                                    std::to_string(shader_input::kRayLength) + ")");
+            const bool light_path = entry.input_widths[k] == 1 && is_light_path_input(n.inputs[k]);
+            require(ray_length || light_path,
+                    "program " + std::to_string(program_id) + " node " + std::to_string(i) + " (" +
+                        entry.name + ") reads renderer input register " + std::to_string(n.inputs[k]) +
+                        "; a light's program may read only RAY_LENGTH (" +
+                        std::to_string(shader_input::kRayLength) + ") and the Light Path node's (" +
+                        std::to_string(shader_input::kIsCameraRay) + " to " +
+                        std::to_string(shader_input::kPortalDepth) + ")");
         }
     }
     return {light_id, program_id, register_index};

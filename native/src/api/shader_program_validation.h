@@ -18,7 +18,8 @@ std::shared_ptr<const ShaderProgram> validate_shader_program(const StratumShader
 ProgramBinding validate_program_binding(const StratumProgramBinding& binding, const Scene& scene);
 
 // A lamp's program (stratum_scene_set_light_program): the light and program exist, the three
-// registers lie in the program, and no node reads a renderer input other than RAY_LENGTH.
+// registers lie in the program, and no node reads a renderer input other than RAY_LENGTH and the
+// Light Path node's.
 LightProgram validate_light_program(uint32_t light_id, uint32_t program_id, uint32_t register_index,
                                     const Scene& scene);
 

@@ -59,6 +59,9 @@ public:
         }
     }
     uint32_t total() const { return total_; }
+    uint32_t diffuse() const { return diffuse_; }
+    uint32_t glossy() const { return glossy_; }
+    uint32_t transmission() const { return transmission_; }
     // The kinds (scatter_kind_bit) of which one more scattering keeps the count within its limit.
     uint32_t kinds_within(const LightPathLimits& limits) const {
         uint32_t kinds = 0;

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "integrators/camera_path_passes.h"
+#include "integrators/light_path_readers.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
@@ -175,7 +176,9 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
             throughput *= d2 / (d2 + e.soft_radius * e.soft_radius);
         }
         // A lamp's program (its node tree) at the distance the particle travelled from the lamp.
-        if (first_hit && e.program) throughput *= e.program->scale(length(hit.position - e.position));
+        // A lamp's program sees the Light Path inputs of direct light (notices()).
+        if (first_hit && e.program)
+            throughput *= e.program->scale(length(hit.position - e.position), kDirectLightPath);
         first_hit = false;
         const Vec3 arrival = -dir;  // toward the light
         const ShadingPoint sp = build_closures(scene, hit, arrival, track.at(hit.t));
@@ -227,7 +230,7 @@ void LightTracer::trace_light_path(const RenderScene& scene, const Sampler& samp
             throughput *= bs.weight;
             track.pass_through(hit.t);
         } else {
-            track.scatter(hit.t);
+            track.scatter(hit.t, 0u);  // a particle's ray has no Cycles kind (notices())
             // A scattering past the cap would lead to a vertex that may not connect; the light
             // lights only the kinds its visibility allows at the first vertex.
             if (depth >= settings_.max_bounces) break;
@@ -306,6 +309,7 @@ std::vector<std::string> LightTracer::notices(const Scene& scene) const {
             "light tracing does not apply the refraction factor eta^2 to particles: what is seen through "
             "refracting (glass, transmission) surfaces is too bright or too dark by that factor");
     }
+    if (const std::string lp = light_path_notice(scene, "light tracing"); !lp.empty()) out.push_back(lp);
     // RenderScene makes lights only of static emissive triangles (a moving triangle has no single
     // position to sample); camera and BSDF rays still find moving ones, particles never leave them.
     for (const Instance& inst : scene.instances) {

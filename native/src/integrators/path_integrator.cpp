@@ -102,12 +102,14 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         // of whatever the ray hits, if the lamp is visible to this kind of ray. A camera ray takes
         // it whole (no light sample competes); a scattered ray is MIS-weighted against the NEE
         // sample that could have found the same direction (delta scattering: NEE could not).
+        // What the Light Path node sees of the path as the ray arrives (Cycles' path state).
+        const LightPathState arriving = track.at(0.0f, bounces, transparent_bounce).path;
         {
             float lamp_pdf = 0.0f, lamp_t = 0.0f;
             const Rgb lamp = lights.lamp_radiance(
                 origin, dir, found ? hit.t : t_max,
                 camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility, &lamp_pdf, &lamp_t,
-                selection, scatter_origin, scatter_normal, tree_splits);
+                selection, scatter_origin, scatter_normal, tree_splits, arriving.emission());
             if (!lamp.is_black()) {
                 float w = 1.0f;
                 if (!camera_visible_path && scatter_pdf > 0.0f) {
@@ -127,9 +129,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         }
         if (!found) {
             const bool transparent_film = camera_visible_path && settings_.film_transparent;
+            const Rgb background = scene.background(dir, arriving.background());
             if (data.pending())
                 data.miss(transparent_film ? Rgb(0.0f)
-                                           : clamp_contribution(beta * scene.background(dir),
+                                           : clamp_contribution(beta * background,
                                                                 emission_clamp(limits, bounces.total())),
                           camera_visible_path);
             if (transparent_film) {
@@ -141,13 +144,13 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                                                         ? lights.environment_pdf(dir, selection)
                                                         : 0.0f);
             const Rgb found_background =
-                clamp_contribution(beta * scene.background(dir) * w, emission_clamp(limits, bounces.total()));
+                clamp_contribution(beta * background * w, emission_clamp(limits, bounces.total()));
             L += found_background;
-            records.add_found(found_background, beta * scene.background(dir));
+            records.add_found(found_background, beta * background);
             break;
         }
         const Vec3 wo_world = -dir;
-        const RayReach reach = track.at(hit.t);
+        const RayReach reach = track.at(hit.t, bounces, transparent_bounce);
         const ShadingPoint sp = build_closures(scene, hit, wo_world, reach, closure_state.filter(limits));
         const ClosureSet& closures = sp.closures;
         data.surface(hit, sp.ns, wo_world, closures, beta, camera_visible_path,
@@ -205,10 +208,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         std::array<LightSample, LightTree::kMaxCut> light_samples;
         const uint32_t light_sample_count =
             settings_.light_sampling != LightSampling::Bsdf && closures.has_non_delta()
-                ? lights.sample_cut(hit.position, sp.ns,
-                                    sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
-                                    sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)),
-                                    light_samples.data(), selection, settings_.triangle_sampling, tree_splits)
+                ? lights.sample_cut(
+                      hit.position, sp.ns, sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
+                      sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), light_samples.data(),
+                      selection, settings_.triangle_sampling, tree_splits, reach.path.emission())
                 : 0u;
         for (uint32_t s = 0; s < light_sample_count; ++s) {
             const LightSample& ls = light_samples[s];
@@ -230,9 +233,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     if (ls.visibility & kVisibleShadow) {
                         const uint32_t left =
                             max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
-                        transmittance =
-                            shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
-                                                 {query.time, kVisibleShadow}, left, rays, reach.footprint);
+                        transmittance = shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
+                                                             {query.time, kVisibleShadow}, left, rays,
+                                                             reach.footprint, reach.path);
                     }
                     if (!transmittance.is_black()) {
                         const float w =
@@ -290,7 +293,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             if (++transparent_bounce > settings_.transparent_max_bounces) break;
             track.pass_through(hit.t);
         } else {
-            track.scatter(hit.t);
+            track.scatter(hit.t, light_path_rays(bs.kind, bs.delta, track.rays));
             camera_visible_path = false;
             scatter_pdf = bs.delta ? 0.0f : bs.pdf;
             scatter_origin = hit.position;

@@ -7,6 +7,7 @@
 
 #include "bsdf/closure_set.h"
 #include "scene/visibility.h"
+#include "shading/light_path_state.h"
 
 namespace stratum {
 
@@ -21,6 +22,25 @@ inline uint32_t ray_visibility(ScatterKind kind, uint32_t previous) {
             return kVisibleTransmission;
         case ScatterKind::Transparent:
             break;  // a pass-through keeps the kind of the ray that arrived
+    }
+    return previous;
+}
+
+// The kind of a ray scattered by a lobe of this kind (delta: a smooth lobe), as Cycles'
+// path_state_next sets the path flag (LightPathRay bits): a reflection is REFLECT and DIFFUSE or
+// GLOSSY, a refraction TRANSMIT and GLOSSY, a smooth one also SINGULAR. A transparent
+// pass-through keeps the arriving ray's kind.
+inline uint32_t light_path_rays(ScatterKind kind, bool delta, uint32_t previous) {
+    const uint32_t singular = delta ? uint32_t{kLightPathSingular} : 0u;
+    switch (kind) {
+        case ScatterKind::Diffuse:
+            return kLightPathReflection | kLightPathDiffuse;
+        case ScatterKind::Glossy:
+            return kLightPathReflection | kLightPathGlossy | singular;
+        case ScatterKind::Transmission:
+            return kLightPathTransmission | kLightPathGlossy | singular;
+        case ScatterKind::Transparent:
+            break;
     }
     return previous;
 }

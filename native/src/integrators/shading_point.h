@@ -12,6 +12,7 @@
 #pragma once
 
 #include "bsdf/closure_set.h"
+#include "integrators/light_path_limits.h"
 #include "render_scene/render_scene.h"
 
 namespace stratum {
@@ -28,26 +29,38 @@ struct ShadingPoint {
 ShadingPoint build_closures(const RenderScene& scene, const SurfaceHit& hit, Vec3 wo_world, RayReach reach,
                             const ClosureFilter& filter = {});
 
-// A path's ray as Cycles tracks it for sd->ray_length and sd->dP: the distance travelled since the
-// path last scattered when the ray starts (transparent surfaces passed through count, as Cycles
-// continues the same ray past them), and the compact differential at the ray's origin and its
-// spread per unit distance (a camera ray's, which Cycles keeps through every bounce).
+// A path's ray as Cycles tracks it for sd->ray_length, sd->dP and the Light Path node: the
+// distance travelled since the path last scattered when the ray starts (transparent surfaces
+// passed through count, as Cycles continues the same ray past them), the compact differential at
+// the ray's origin and its spread per unit distance (a camera ray's, which Cycles keeps through
+// every bounce), and the ray's kind (LightPathRay bits: CAMERA until the first scattering, then
+// the last scattering's; a pass-through keeps it, as path_state_next keeps the visibility bits).
 struct RayTrack {
     float travelled = 0.0f, dp = 0.0f, dd = 0.0f;
+    uint32_t rays = 0;
 
     // Cycles starts a camera ray at its near clip point (kernel/camera/camera.h moves ray->P by
     // nearclip along the ray), so its lengths count from there, t_min along ours.
-    static RayTrack camera(const CameraRay& ray) { return {-ray.t_min, ray.dp, ray.dd}; }
-    // What the programs of a hit t along the ray see.
-    RayReach at(float t) const { return {travelled + t, dp + t * dd}; }
-    // The next ray starts at the hit t along this one: past a transparent surface, or scattered.
+    static RayTrack camera(const CameraRay& ray) { return {-ray.t_min, ray.dp, ray.dd, kLightPathCamera}; }
+    // What the programs of a hit t along the ray see, with the path's depths zero.
+    RayReach at(float t) const { return {travelled + t, dp + t * dd, LightPathState{rays}}; }
+    // The same on a path that has scattered `bounces` times and passed `transparent` transparent
+    // surfaces (Cycles' path state as the hit receives it).
+    RayReach at(float t, const BounceCounts& bounces, uint32_t transparent) const {
+        return {travelled + t, dp + t * dd,
+                LightPathState{rays, bounces.total(), bounces.diffuse(), bounces.glossy(), transparent,
+                               bounces.transmission()}};
+    }
+    // The next ray starts at the hit t along this one: past a transparent surface, or scattered
+    // (light_path_rays: the kind of the scattered ray).
     void pass_through(float t) {
         travelled += t;
         dp += t * dd;
     }
-    void scatter(float t) {
+    void scatter(float t, uint32_t scattered_rays) {
         travelled = 0.0f;
         dp += t * dd;
+        rays = scattered_rays;
     }
 };
 

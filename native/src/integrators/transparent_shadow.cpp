@@ -6,7 +6,7 @@
 namespace stratum {
 
 Rgb shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float t_max, const RayQuery& query,
-                         uint32_t max_surfaces, uint64_t& rays, float footprint) {
+                         uint32_t max_surfaces, uint64_t& rays, float footprint, const LightPathState& path) {
     // Every surface blocks when no material has a Transparent closure: any hit decides, which
     // Embree answers without searching for the closest one or shading it.
     if (!scene.has_transparent_closures()) {
@@ -27,7 +27,8 @@ Rgb shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float 
         if (crossed >= max_surfaces) return Rgb(0.0f);
         // Built (and textured) as for shading, so alpha cut-outs shadow as they look.
         transmittance *=
-            build_closures(scene, hit, -dir, {travelled + hit.t, footprint}).closures.transparency();
+            build_closures(scene, hit, -dir, {travelled + hit.t, footprint, path.shadow(crossed)})
+                .closures.transparency();
         travelled += hit.t;
         if (transmittance.is_black()) return transmittance;
         const Vec3 ng = dot(hit.geometric_normal, dir) > 0.0f ? hit.geometric_normal : -hit.geometric_normal;

@@ -6,6 +6,9 @@
 // |------------|----------------------------------------------------------------------------|
 // | RAY_LENGTH | the distance from the point being lit (or the ray's origin) to the point on |
 // |            | the lamp; FLT_MAX for a lamp at infinity (Cycles' ls->t and sd->ray_length) |
+// | Light Path | the path's state as Cycles' PATH_RAY_EMISSION evaluation sees it (no ray    |
+// |            | kind, one bounce further: LightPathState::emission), for a light sample and |
+// |            | for a ray that meets the lamp alike                                         |
 // | the others | those of a point on no object (write_objectless_inputs); the C ABI refuses a |
 // |            | program that reads one                                                      |
 //
@@ -20,6 +23,7 @@
 #include <vector>
 
 #include "core/math.h"
+#include "shading/light_path_state.h"
 #include "shading/shader_program.h"
 
 namespace stratum {
@@ -30,8 +34,9 @@ public:
     LampProgram(std::shared_ptr<const ShaderProgram> program, uint32_t register_index,
                 std::vector<std::shared_ptr<const Texture>> textures, bool at_infinity);
 
-    // The factor on the lamp's radiance at `distance` from the point on the lamp.
-    Rgb scale(float distance) const;
+    // The factor on the lamp's radiance at `distance` from the point on the lamp, for the
+    // Light Path inputs `path` (already the emission's: LightPathState::emission).
+    Rgb scale(float distance, const LightPathState& path) const;
 
 private:
     std::shared_ptr<const ShaderProgram> program_;

@@ -176,7 +176,7 @@ uint32_t LightSet::choose(float u, LightSelection selection) const {
 }
 
 bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, LightSelection selection,
-                      TriangleSampling triangle) const {
+                      TriangleSampling triangle, const LightPathState& path) const {
     if (lights_.empty()) return false;
     float choice = 0.0f;
     const uint32_t index = choose(u_choice, p, n, selection, &choice);
@@ -184,19 +184,22 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
     if (!lights_[index]->sample(p, n, u, triangle, out)) return false;
     out->pdf *= choice;
     out->visibility = visibility_[index];
-    if (programs_[index]) out->radiance = out->radiance * programs_[index]->scale(out->distance);
+    if (programs_[index]) out->radiance = out->radiance * programs_[index]->scale(out->distance, path);
+    if (world_program_ && index == environment_index_)
+        out->radiance = world_program_->radiance(out->wi, path);
     return true;
 }
 
 uint32_t LightSet::sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out,
-                              LightSelection selection, TriangleSampling triangle, uint32_t max_cut) const {
+                              LightSelection selection, TriangleSampling triangle, uint32_t max_cut,
+                              const LightPathState& path) const {
     if (max_cut <= 1 || resolve(selection) != LightSelection::Tree)
-        return sample(p, n, u_choice, u, out, selection, triangle) ? 1u : 0u;
+        return sample(p, n, u_choice, u, out, selection, triangle, path) ? 1u : 0u;
     if (lights_.empty()) return 0;
     const TreeCache& state = tree_state();
     const float infinite_total = static_cast<float>(state.infinite.size()) * state.infinite_probability;
     // A light at infinity is one choice as in choose(); the tree's share is split.
-    if (u_choice < infinite_total) return sample(p, n, u_choice, u, out, selection, triangle) ? 1u : 0u;
+    if (u_choice < infinite_total) return sample(p, n, u_choice, u, out, selection, triangle, path) ? 1u : 0u;
     if (!state.tree_has_lights) return 0;
     const float share = 1.0f - infinite_total;
     const float u_tree = std::min((u_choice - infinite_total) / share, kOneMinusEpsilon);
@@ -225,7 +228,7 @@ uint32_t LightSet::sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSampl
         if (!lights_[index]->sample(p, n, u_point, triangle, &ls)) continue;
         ls.pdf *= share * pmf;
         ls.visibility = visibility_[index];
-        if (programs_[index]) ls.radiance = ls.radiance * programs_[index]->scale(ls.distance);
+        if (programs_[index]) ls.radiance = ls.radiance * programs_[index]->scale(ls.distance, path);
         ++count;
     }
     return count;
@@ -238,8 +241,8 @@ float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit, 
 }
 
 Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf, float* t_out,
-                            LightSelection selection, Vec3 choice_point, Vec3 choice_normal,
-                            uint32_t max_cut) const {
+                            LightSelection selection, Vec3 choice_point, Vec3 choice_normal, uint32_t max_cut,
+                            const LightPathState& path) const {
     uint32_t nearest_lamp = 0;
     bool found = false;
     Rgb radiance(0.0f);
@@ -268,7 +271,7 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
                    ? probability(nearest_lamp, choice_point, choice_normal, selection, max_cut) * nearest_pdf
                    : 0.0f;
     if (t_out) *t_out = nearest;
-    if (found && programs_[nearest_lamp]) radiance = radiance * programs_[nearest_lamp]->scale(nearest);
+    if (found && programs_[nearest_lamp]) radiance = radiance * programs_[nearest_lamp]->scale(nearest, path);
     return radiance;
 }
 

@@ -53,6 +53,7 @@
 #include "lights/light.h"
 #include "lights/light_selection.h"
 #include "lights/light_tree.h"
+#include "lights/world_program.h"
 
 namespace stratum {
 
@@ -78,6 +79,13 @@ public:
     // stays the light's own: a program moves no choice among lights (never biased, at worst
     // noisier where it brightens a lamp).
     void set_program(uint32_t index, std::shared_ptr<const LampProgram> program);
+    // The environment's values from the world's program (lights/world_program.h), which reads
+    // the Light Path node: sample() and sample_cut() give its radiance for their `path`, the map
+    // only chooses directions. Set after add_environment.
+    void set_world_program(std::shared_ptr<const WorldProgram> program) {
+        world_program_ = std::move(program);
+    }
+    const WorldProgram* world_program() const { return world_program_.get(); }
     // scene_radius: radius of a sphere bounding the scene, to give the sun and the environment a
     // power.
     void finalize(float scene_radius);
@@ -122,14 +130,18 @@ public:
     // Chooses a light with u_choice and samples it with u for the shading point p of normal n
     // (unit; 0 when it has none); out->pdf includes the choice. `triangle` is how a point on a
     // chosen emissive triangle is taken (n shapes it: lights/emissive_triangle.h).
+    // `path`: the Light Path inputs the lamps' and the world's programs see (the light sample's:
+    // LightPathState::emission of the shading point's path).
     bool sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out,
                 LightSelection selection = LightSelection::Mixed,
-                TriangleSampling triangle = TriangleSampling::SolidAngle) const;
+                TriangleSampling triangle = TriangleSampling::SolidAngle,
+                const LightPathState& path = kDirectLightPath) const;
     // sample() with the tree's splitting (header): up to LightTree::kMaxCut light samples into
     // out[], one per cut node whose light was sampled; returns their count. Exactly sample()
     // when max_cut is 1 or `selection` is not the tree.
     uint32_t sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, LightSelection selection,
-                        TriangleSampling triangle, uint32_t max_cut) const;
+                        TriangleSampling triangle, uint32_t max_cut,
+                        const LightPathState& path = kDirectLightPath) const;
     // Light tracing: chooses a light with u_choice by `selection` and emits a particle from it
     // (the lights' sample_emission); out->weight is divided by the choice probability, so it
     // estimates the scene's total emitted flux. The sun and the environment shine over the
@@ -150,9 +162,11 @@ public:
     // which sample() at `origin` picks that direction, for MIS; under `tree` the choice is the
     // one at (choice_point, choice_normal), the vertex whose NEE the pdf is compared with.
     // *t (if not null) = the distance to the lamp.
+    // `path`: the Light Path inputs the lamp's program sees (LightPathState::emission).
     Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
                       float* t = nullptr, LightSelection selection = LightSelection::Mixed,
-                      Vec3 choice_point = {}, Vec3 choice_normal = {}, uint32_t max_cut = 1) const;
+                      Vec3 choice_point = {}, Vec3 choice_normal = {}, uint32_t max_cut = 1,
+                      const LightPathState& path = kDirectLightPath) const;
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
     // No shading point is needed: under `tree` a light at infinity has the fixed p_inf.
     const EnvironmentLight* environment() const { return environment_; }
@@ -167,6 +181,7 @@ private:
     std::vector<uint32_t> object_;                              // object of each light
     std::vector<uint32_t> visibility_;                          // StratumVisibility bits of each light
     std::vector<std::shared_ptr<const LampProgram>> programs_;  // of each light, or null
+    std::shared_ptr<const WorldProgram> world_program_;         // of the environment, or null
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)
     LampBvh lamp_bvh_;                      // over hittable_lamps_ (its items number them)
     std::vector<double> power_;             // Φ_j, set by finalize()

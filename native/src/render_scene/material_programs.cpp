@@ -125,6 +125,7 @@ void write_surface_inputs(const SurfaceHit& hit, const ProgramInputs& in, float*
     r[shader_input::kObjectRandom] = in.object_random;
     r[shader_input::kRayLength] = in.reach.length;
     r[shader_input::kPixelFootprint] = in.reach.footprint;
+    in.reach.path.write(r);
     r[shader_input::kObjectIndex] = static_cast<float>(hit.object_pass_index);
     r[shader_input::kMaterialIndex] = static_cast<float>(hit.material_pass_index);
     put(r, shader_input::kObjectColor, Vec3(in.object_color.r, in.object_color.g, in.object_color.b));

@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "scene/scene.h"
+#include "shading/light_path_state.h"
 #include "shading/program_binding.h"
 #include "shading/shader_program.h"
 
@@ -33,10 +34,12 @@ namespace stratum {
 struct SurfaceHit;
 
 // What the programs see of the ray that reached a surface point, besides the hit: Cycles'
-// sd->ray_length and sd->dP (StratumShaderInput's RAY_LENGTH and PIXEL_FOOTPRINT).
+// sd->ray_length and sd->dP (StratumShaderInput's RAY_LENGTH and PIXEL_FOOTPRINT), and the path's
+// kind and depths the Light Path node reads (its other outputs).
 struct RayReach {
     float length = 0.0f;     // from where the path last scattered, transparent surfaces counted
     float footprint = 0.0f;  // the compact ray differential at the point; 0 off camera paths
+    LightPathState path;     // all 0 where no integrator tracks a path (light tracing, radiosity)
 };
 
 // What a shading point's program inputs are made from, besides the hit.

@@ -207,6 +207,9 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
         for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = saturating_product(Rgb(e.rgb[i]), e.strength).r;
         lights_.add_environment(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation),
                                 light_object++);
+        if (e.program)
+            lights_.set_world_program(
+                std::make_shared<const WorldProgram>(e.program, e.program_color, e.program_textures));
     }
     // The sun's selection weight needs a scene size: the radius of the bounding box's sphere.
     // Rotation is interpolated, so a moving box can bulge past both end boxes; the bound only

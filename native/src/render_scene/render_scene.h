@@ -153,6 +153,12 @@ public:
         const EnvironmentLight* env = lights_.environment();
         return env ? env->radiance(dir) : background_;
     }
+    // The same for a ray of a path in state `path` (LightPathState::background): a world program
+    // that reads the Light Path node runs for it (lights/world_program.h).
+    Rgb background(Vec3 dir, const LightPathState& path) const {
+        const WorldProgram* program = lights_.world_program();
+        return program ? program->radiance(dir, path) : background(dir);
+    }
 
 private:
     struct InstanceData {

@@ -8,26 +8,6 @@
 
 namespace stratum {
 
-void write_world_inputs(Vec3 d, float* r) {
-    write_objectless_inputs(r);
-    const auto put = [&](uint32_t at, Vec3 v) {
-        r[at] = v.x;
-        r[at + 1] = v.y;
-        r[at + 2] = v.z;
-    };
-    put(shader_input::kPosition, d);
-    put(shader_input::kNormal, -d);
-    put(shader_input::kTrueNormal, -d);
-    put(shader_input::kIncoming, -d);
-    put(shader_input::kGenerated, d);
-    put(shader_input::kObject, d);
-    put(shader_input::kObjectNormal, -d);
-    put(shader_input::kReflection, d);
-    put(shader_input::kObjectColor, Vec3(1.0f, 1.0f, 1.0f));
-    r[shader_input::kObjectAlpha] = 1.0f;
-    r[shader_input::kRayLength] = std::numeric_limits<float>::infinity();
-}
-
 namespace {
 
 Vec3 texel_direction(double col, double row, uint32_t width, uint32_t height) {
@@ -45,6 +25,9 @@ void radiance(const ShaderProgram& program, const ShaderEvalContext& context, Sh
               uint32_t color, Vec3 d, double* sum, double weight) {
     std::copy(program.registers.begin(), program.registers.end(), r.data());
     write_world_inputs(d, r.data());
+    // Cycles bakes its importance map with PATH_RAY_EMISSION and no path (kernel/bake/bake.h):
+    // no ray kind, Ray Depth 0 + 1, the other depths 0.
+    kDirectLightPath.write(r.data());
     evaluate(program, context, r);
     for (int k = 0; k < 3; ++k) {
         const float v = r[color + k];

@@ -1,11 +1,14 @@
 // The world's node program baked into an equirectangular environment image, which the
 // renderer then looks up and importance-samples as any environment (lights/environment_light.h).
+// A program that reads the Light Path node is baked with Cycles' importance-map state (no ray
+// kind, Ray Depth 1) and runs again for each ray (lights/world_program.h).
 #pragma once
 
 #include <cstdint>
 #include <memory>
 #include <vector>
 
+#include "lights/world_program.h"
 #include "scene/scene.h"
 #include "shading/shader_program.h"
 
@@ -20,9 +23,5 @@ namespace stratum {
 Environment bake_environment(const ShaderProgram& program,
                              const std::vector<std::shared_ptr<const Texture>>& textures, uint32_t color,
                              uint32_t width, uint32_t height);
-
-// Writes the input registers a world program reads for direction `d` (unit): POSITION, and
-// (what Cycles' background shader sees) normals and INCOMING = -d, GENERATED and OBJECT = d.
-void write_world_inputs(Vec3 d, float* registers);
 
 }  // namespace stratum

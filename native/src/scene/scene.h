@@ -14,6 +14,7 @@
 #include "scene/material.h"
 #include "scene/visibility.h"
 #include "shading/program_binding.h"
+#include "shading/shader_program.h"
 #include "texture/texture.h"
 #include "texture/texture_binding.h"
 
@@ -104,6 +105,11 @@ struct Environment {
     uint32_t width = 0, height = 0;
     float strength = 1.0f;
     std::array<float, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1};  // world to environment, row-major
+    // The world program the image was baked from, kept when it reads the Light Path node: it then
+    // runs for each ray that leaves the scene (lights/world_program.h); null otherwise.
+    std::shared_ptr<const ShaderProgram> program;
+    uint32_t program_color = 0;  // the register of its colour
+    std::vector<std::shared_ptr<const Texture>> program_textures;
 };
 
 struct Scene {

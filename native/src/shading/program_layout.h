@@ -47,9 +47,24 @@ inline constexpr uint32_t kAttribute3 = 95;
 inline constexpr uint32_t kTriangle = 100;
 inline constexpr uint32_t kMikktspaceTangent = 109;
 inline constexpr uint32_t kNormalTransform = 112;
+// Cycles' Light Path node (shading/light_path_state.h): eight 0/1 ray kinds, then the depths.
+inline constexpr uint32_t kIsCameraRay = 121;
+inline constexpr uint32_t kIsShadowRay = 122;
+inline constexpr uint32_t kIsDiffuseRay = 123;
+inline constexpr uint32_t kIsGlossyRay = 124;
+inline constexpr uint32_t kIsSingularRay = 125;
+inline constexpr uint32_t kIsReflectionRay = 126;
+inline constexpr uint32_t kIsTransmissionRay = 127;
+inline constexpr uint32_t kIsVolumeScatterRay = 128;
+inline constexpr uint32_t kRayDepth = 129;
+inline constexpr uint32_t kDiffuseDepth = 130;
+inline constexpr uint32_t kGlossyDepth = 131;
+inline constexpr uint32_t kTransparentDepth = 132;
+inline constexpr uint32_t kTransmissionDepth = 133;
+inline constexpr uint32_t kPortalDepth = 134;
 inline constexpr uint32_t kAttributeSlots = 4;
 inline constexpr uint32_t kAttributeWidth = 5;
-inline constexpr uint32_t kCount = 128;
+inline constexpr uint32_t kCount = 144;
 }  // namespace shader_input
 
 }  // namespace stratum

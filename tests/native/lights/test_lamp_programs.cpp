@@ -234,7 +234,7 @@ TEST(LampPrograms, TheSceneFileKeepsALampsProgram) {
     stratum_scene_destroy(loaded);
     EXPECT_EQ(read_file(a), read_file(b));
     const nlohmann::json lights = nlohmann::json::parse(read_file(a)).at("programs").at("lights");
-    EXPECT_EQ(lights, nlohmann::json::parse(R"([{"light": 0, "program": 0, "register": 133}])"));
+    EXPECT_EQ(lights, nlohmann::json::parse(R"([{"light": 0, "program": 0, "register": 149}])"));
     EXPECT_EQ(after.rgba, before);
     std::remove(a.c_str());
     std::remove(b.c_str());

@@ -203,11 +203,12 @@ std::string read_file(const std::string& path) {
     return text.str();
 }
 
-// A scene file of version 1 numbered a program's own registers from 100: the same scene written
-// that way (today's file with every register number at or above 128 moved down by 28 and the
-// registers 100 to 127 left out) loads as the scene itself, evaluates alike and saves as today's.
-TEST(ProgramInputs, AVersion1SceneFilesProgramsMoveToTodaysRegisters) {
-    constexpr uint32_t kInputs = STRATUM_SHADER_INPUT_REGISTERS, kOldInputs = 100;
+// A scene file of version 1 numbered a program's own registers from 100, one of version 2 from
+// 128: the same scene written that way (today's file with every register number at or above 144
+// moved down and the registers between left out) loads as the scene itself, evaluates alike and
+// saves as today's.
+TEST(ProgramInputs, OlderSceneFilesProgramsMoveToTodaysRegisters) {
+    constexpr uint32_t kInputs = STRATUM_SHADER_INPUT_REGISTERS;
     stratum_test::SceneHandle h;
     StratumMaterialDesc emitter = stratum_test::diffuse_grey(0.0f);
     emitter.model = STRATUM_MATERIAL_EMISSION;
@@ -225,36 +226,41 @@ TEST(ProgramInputs, AVersion1SceneFilesProgramsMoveToTodaysRegisters) {
     const StratumProgramBinding b{0, 0, STRATUM_PROGRAM_EMISSION, 0, kInputs + 1};
     ASSERT_EQ(stratum_scene_bind_program(h.scene, &b), STRATUM_OK) << stratum_last_error();
     const std::string today = ::testing::TempDir() + "program_inputs_today.json";
-    const std::string old = ::testing::TempDir() + "program_inputs_version1.json";
+    const std::string old = ::testing::TempDir() + "program_inputs_old.json";
     const std::string again = ::testing::TempDir() + "program_inputs_again.json";
     ASSERT_EQ(stratum_scene_save(h.scene, today.c_str()), STRATUM_OK) << stratum_last_error();
 
-    nlohmann::json file = nlohmann::json::parse(read_file(today));
-    ASSERT_EQ(file.at("version"), 2);
-    file["version"] = 1;
-    const auto old_number = [&](uint32_t reg) { return reg >= kInputs ? reg - kInputs + kOldInputs : reg; };
-    for (nlohmann::json& program : file.at("programs").at("programs")) {
-        for (nlohmann::json& row : program.at("nodes")) {
-            for (size_t k = 7; k < 25; ++k) row[k] = old_number(row[k].get<uint32_t>());  // inputs, outputs
+    for (const auto& [version, old_inputs] : {std::pair{1, 100u}, std::pair{2, 128u}}) {
+        nlohmann::json file = nlohmann::json::parse(read_file(today));
+        ASSERT_EQ(file.at("version"), 3);
+        file["version"] = version;
+        const auto old_number = [&](uint32_t reg) {
+            return reg >= kInputs ? reg - kInputs + old_inputs : reg;
+        };
+        for (nlohmann::json& program : file.at("programs").at("programs")) {
+            for (nlohmann::json& row : program.at("nodes")) {
+                for (size_t k = 7; k < 25; ++k)
+                    row[k] = old_number(row[k].get<uint32_t>());  // inputs, outputs
+            }
+            nlohmann::json& regs = program.at("registers");
+            regs.erase(regs.begin() + old_inputs, regs.begin() + kInputs);
         }
-        nlohmann::json& regs = program.at("registers");
-        regs.erase(regs.begin() + kOldInputs, regs.begin() + kInputs);
-    }
-    for (nlohmann::json& binding : file.at("programs").at("bindings"))
-        binding["register"] = old_number(binding.at("register").get<uint32_t>());
-    std::ofstream(old) << file.dump();
+        for (nlohmann::json& binding : file.at("programs").at("bindings"))
+            binding["register"] = old_number(binding.at("register").get<uint32_t>());
+        std::ofstream(old) << file.dump();
 
-    StratumScene* loaded = nullptr;
-    ASSERT_EQ(stratum_scene_load(old.c_str(), &loaded), STRATUM_OK) << stratum_last_error();
-    std::vector<float> inputs(kInputs, 0.0f);
-    inputs[STRATUM_INPUT_GENERATED] = 0.25f;
-    float out = 0.0f;
-    ASSERT_EQ(stratum_scene_evaluate_program(loaded, 0, inputs.data(), kInputs + 1, 1, &out), STRATUM_OK)
-        << stratum_last_error();
-    EXPECT_EQ(out, 6.25f);
-    ASSERT_EQ(stratum_scene_save(loaded, again.c_str()), STRATUM_OK);
-    stratum_scene_destroy(loaded);
-    EXPECT_EQ(read_file(again), read_file(today));
+        StratumScene* loaded = nullptr;
+        ASSERT_EQ(stratum_scene_load(old.c_str(), &loaded), STRATUM_OK) << stratum_last_error();
+        std::vector<float> inputs(kInputs, 0.0f);
+        inputs[STRATUM_INPUT_GENERATED] = 0.25f;
+        float out = 0.0f;
+        ASSERT_EQ(stratum_scene_evaluate_program(loaded, 0, inputs.data(), kInputs + 1, 1, &out), STRATUM_OK)
+            << stratum_last_error();
+        EXPECT_EQ(out, 6.25f) << "version " << version;
+        ASSERT_EQ(stratum_scene_save(loaded, again.c_str()), STRATUM_OK);
+        stratum_scene_destroy(loaded);
+        EXPECT_EQ(read_file(again), read_file(today)) << "version " << version;
+    }
     for (const std::string& path : {today, old, again}) std::remove(path.c_str());
 }
 

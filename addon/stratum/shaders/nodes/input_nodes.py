@@ -1,6 +1,6 @@
 """Nodes that read the shading point or hold constants: Texture Coordinate, Geometry, Object
-Info, UV Map, Attribute, Color Attribute, Camera Data, Wireframe, Tangent, Value, RGB, Separate
-XYZ and Combine XYZ.
+Info, UV Map, Attribute, Color Attribute, Camera Data, Wireframe, Tangent, Light Path, Value, RGB,
+Separate XYZ and Combine XYZ.
 
 | node (bl_idname)        | outputs -> renderer input (native.SHADER_INPUTS)                     |
 |-------------------------|-----------------------------------------------------------------------|
@@ -20,6 +20,10 @@ XYZ and Combine XYZ.
 | ShaderNodeTangent       | Tangent (native tangent): radial about X, Y or Z from `generated`,    |
 |                         | through `normal_transform`; UV map: `mikktspace_tangent`, of the one  |
 |                         | UV map a mesh carries (another map named: export/geometry.py warns)  |
+| ShaderNodeLightPath     | each output its renderer input (`is_camera_ray` ... `portal_depth`,  |
+|                         | Ray Length `ray_length`): what the integrator fills in, as Cycles'    |
+|                         | path state in each context; 5.0's Is Volume Scatter Ray and Portal    |
+|                         | Depth too (both 0: Stratum has no volumes nor Ray Portal)             |
 | ShaderNodeScript        | not supported (OSL): SCRIPT_UNSUPPORTED, and the consuming socket's  |
 |                         | own value, as Cycles without OSL drops the node and its links         |
 
@@ -107,6 +111,26 @@ def camera_data(c: NodeCompiler, node: Any) -> dict[str, int]:
     vector, depth, distance = c.builder.node("camera_data", (), (c.builder.input("camera"),),
                                              (3, 1, 1))
     return {"View Vector": vector, "View Z Depth": depth, "View Distance": distance}
+
+
+# Light Path's outputs (3.4's, and 5.0's two more) and the renderer inputs that hold them.
+LIGHT_PATH_OUTPUTS = {
+    "Is Camera Ray": "is_camera_ray", "Is Shadow Ray": "is_shadow_ray",
+    "Is Diffuse Ray": "is_diffuse_ray", "Is Glossy Ray": "is_glossy_ray",
+    "Is Singular Ray": "is_singular_ray", "Is Reflection Ray": "is_reflection_ray",
+    "Is Transmission Ray": "is_transmission_ray", "Is Volume Scatter Ray": "is_volume_scatter_ray",
+    "Ray Length": "ray_length", "Ray Depth": "ray_depth", "Diffuse Depth": "diffuse_depth",
+    "Glossy Depth": "glossy_depth", "Transparent Depth": "transparent_depth",
+    "Transmission Depth": "transmission_depth", "Portal Depth": "portal_depth",
+}
+
+
+@translator("ShaderNodeLightPath")
+def light_path(c: NodeCompiler, node: Any) -> dict[str, int]:
+    # The renderer's own inputs: Cycles' node reads the path state and sd->ray_length, which a
+    # Bump's offset points do not move.
+    return {out.name: c.builder.input(LIGHT_PATH_OUTPUTS[out.name]) for out in node.outputs
+            if out.name in LIGHT_PATH_OUTPUTS}
 
 
 @translator("ShaderNodeWireframe")
