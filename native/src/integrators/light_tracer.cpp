@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "integrators/camera_path_passes.h"
+#include "integrators/linking_notice.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
@@ -273,7 +274,8 @@ std::vector<std::string> LightTracer::notices(const Scene& scene) const {
     std::vector<std::string> out;
     if (settings_.light_paths.clamp_indirect > 0.0f) {
         out.emplace_back(
-            "light tracing does not clamp indirect light: clamping scales a camera sample's contributions, and "
+            "light tracing does not clamp indirect light: clamping scales a camera sample's contributions, "
+            "and "
             "a particle's splat is none (clamp_direct still applies to what the camera sees directly)");
     }
     if (scene.camera && scene.camera->type == CameraType::Orthographic) {
@@ -309,6 +311,7 @@ std::vector<std::string> LightTracer::notices(const Scene& scene) const {
             break;
         }
     }
+    if (const auto linking = unsupported_linking_notice(scene, "light tracing")) out.push_back(*linking);
     if (scene.lights.size() > 0) {
         for (const LightParams& l : scene.lights) {
             if (make_light(l)->emits_from_its_centre()) {

@@ -11,6 +11,7 @@
 #include "integrators/transparent_shadow.h"
 #include "lights/light_registry.h"
 #include "sampling/dimensions.h"
+#include "sampling/hash.h"
 #include "scene/visibility.h"
 
 namespace stratum {
@@ -79,6 +80,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     bool camera_visible_path = true;
     BounceCounts bounces;  // scatterings so far, by kind (integrators/light_path_limits.h)
     uint32_t transparent_bounce = 0;
+    // Light linking's receiver of forward emission: the surface of the last scattering (Cycles'
+    // mis_ray_object); camera rays see every emitter (lights/light_set.h EmitterLinkFilter).
+    uint8_t receiver_set = 0;
     const LightPathLimits& limits = settings_.light_paths;
     const LightSet& lights = scene.lights();
     const LightSelection selection = settings_.light_selection;
@@ -95,6 +99,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         SurfaceHit hit;
         ++rays;
         const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
+        const EmitterLinkFilter link{!camera_visible_path, receiver_set};
         // Lamps have no geometry: the emitting face of an area lamp is met analytically, in front
         // of whatever the ray hits, if the lamp is visible to this kind of ray. A camera ray takes
         // it whole (no light sample competes); a scattered ray is MIS-weighted against the NEE
@@ -104,7 +109,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             const Rgb lamp = lights.lamp_radiance(
                 origin, dir, found ? hit.t : t_max,
                 camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility, &lamp_pdf, &lamp_t,
-                selection, scatter_origin, scatter_normal, tree_splits);
+                selection, scatter_origin, scatter_normal, tree_splits, link);
             if (!lamp.is_black()) {
                 float w = 1.0f;
                 if (!camera_visible_path && scatter_pdf > 0.0f) {
@@ -156,7 +161,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             if (hit.holdout) break;
         }
         const Rgb emission = closures.emission();
-        if (!emission.is_black()) {
+        if (!emission.is_black() && link.accepts(hit.links)) {
             const float light_pdf =
                 light_pdf_matters(scatter_pdf) && hit.emissive_light != kNoLight
                     ? lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin, scatter_normal,
@@ -207,7 +212,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             const LightSample& ls = light_samples[s];
             const float side = dot(ls.wi, sp.ng);
             const uint32_t kinds = lit_kinds(ls.visibility);
-            if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) && kinds != 0) {
+            const LightLinks& emitter = lights.links(ls.light);
+            if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) && kinds != 0 &&
+                emitter.lights(hit.links.receiver_light_set)) {
                 const Vec3 wi_local = frame.to_local(ls.wi);
                 // A direction on the other side of the shading normal than of the true surface
                 // cannot be reached by light: the shading hemisphere must agree with ng.
@@ -223,9 +230,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     if (ls.visibility & kVisibleShadow) {
                         const uint32_t left =
                             max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
-                        transmittance =
-                            shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
-                                                 {query.time, kVisibleShadow}, left, rays, reach.footprint);
+                        transmittance = shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
+                                                             {query.time, kVisibleShadow}, left, rays,
+                                                             reach.footprint, emitter.shadow_set_membership);
                     }
                     if (!transmittance.is_black()) {
                         const float w =
@@ -288,6 +295,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             scatter_pdf = bs.delta ? 0.0f : bs.pdf;
             scatter_origin = hit.position;
             scatter_normal = sp.ns;
+            receiver_set = hit.links.receiver_light_set;
             float survive = 1.0f;
             if (settings_.rr_mode != RouletteMode::Off && bounces.total() >= settings_.rr_min_depth) {
                 // (5.5): survival = throughput, or the closures' albedo (then β stays constant
@@ -313,6 +321,18 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         dir = wi;
         t_min = 0.0f;
         t_max = kInfinity;
+        if (bs.kind != ScatterKind::Transparent && lights.has_shadow_linking()) {
+            const uint32_t left = max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
+            const ScatteredRay ray{origin,         dir,
+                                   query,          track,
+                                   receiver_set,   hash_more(pixel.sample_key, vertex),
+                                   scatter_pdf,    scatter_origin,
+                                   scatter_normal, left};
+            const Rgb found_linked = clamp_contribution(beta * shadow_linked_emission(scene, ray, rays),
+                                                        emission_clamp(limits, bounces.total()));
+            L += found_linked;
+            records.add(found_linked);
+        }
     }
     data.finish();
     records.flush();

@@ -6,6 +6,7 @@
 
 #include "bsdf/bsdf.h"
 #include "integrators/camera_path_passes.h"
+#include "integrators/linking_notice.h"
 #include "integrators/ray_offset.h"
 #include "integrators/shading_point.h"
 #include "sampling/dimensions.h"
@@ -51,9 +52,13 @@ std::vector<std::string> RadiosityIntegrator::notices(const Scene& scene) const 
         listed +=
             (listed.empty() ? "" : "; ") + std::string("material ") + std::to_string(m) + " (" + models + ")";
     }
-    if (listed.empty()) return {};
-    return {"radiosity treats every surface as diffuse: " + listed +
-            " rendered by its diffuse albedo alone, without its glossy, glass or transparent closures"};
+    std::vector<std::string> out;
+    if (!listed.empty())
+        out.push_back(
+            "radiosity treats every surface as diffuse: " + listed +
+            " rendered by its diffuse albedo alone, without its glossy, glass or transparent closures");
+    if (const auto linking = unsupported_linking_notice(scene, "radiosity")) out.push_back(*linking);
+    return out;
 }
 
 RadianceSample RadiosityIntegrator::estimate(const RenderScene& scene, const Sampler& sampler,

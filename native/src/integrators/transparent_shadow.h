@@ -10,6 +10,9 @@
 // | max_surfaces   | transparent surfaces that may be crossed (transparent_max_bounces left)|
 // | footprint      | the shaded point's footprint (Cycles gives a shadow ray sd->dP and no  |
 // |                | spread): what the crossed surfaces' programs see as PIXEL_FOOTPRINT    |
+// | shadow_sets    | the light's shadow_set_membership (shadow linking, scene/light_links.h):|
+// |                | surfaces whose blocker set is not in it are passed as if absent         |
+// |                | (Cycles' intersection_skip_shadow_link), not counted in max_surfaces    |
 #pragma once
 
 #include <cstdint>
@@ -20,6 +23,7 @@ namespace stratum {
 
 // Returns the transmittance (0 when blocked); `rays` counts the rays traced.
 Rgb shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float t_max, const RayQuery& query,
-                         uint32_t max_surfaces, uint64_t& rays, float footprint = 0.0f);
+                         uint32_t max_surfaces, uint64_t& rays, float footprint = 0.0f,
+                         uint64_t shadow_sets = kAllLinkSets);
 
 }  // namespace stratum

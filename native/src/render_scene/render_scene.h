@@ -46,6 +46,7 @@ struct SurfaceHit {
     uint32_t placement = 0;             // the traced placement (RenderScene::program_inputs)
     uint32_t triangle = 0;              // the triangle of the placement's mesh
     std::array<Vec3, 3> vertices{};     // the triangle's corners in world space (at the ray's time)
+    LightLinks links;                   // the instance's light and shadow linking sets
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;
@@ -167,6 +168,7 @@ private:
         float random;                          // Object Info: Random, colour and alpha
         Rgb color;
         float alpha;  // per triangle, kNoLight if not emissive; empty if none
+        LightLinks links;
     };
     static bool is_moving(const Instance& inst);
     // Whether Embree can trace the placement under the current ray-origin limit.
