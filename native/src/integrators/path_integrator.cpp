@@ -100,13 +100,16 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         ++rays;
         const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
         const EmitterLinkFilter link{!camera_visible_path, receiver_set};
+        // The lights NEE chose among at the last scattering (light linking: those lighting its
+        // surface), whose probabilities the MIS weights of what this ray finds take.
+        const LightSet& forward_lights = camera_visible_path ? lights : scene.lights_for(receiver_set);
         // Lamps have no geometry: the emitting face of an area lamp is met analytically, in front
         // of whatever the ray hits, if the lamp is visible to this kind of ray. A camera ray takes
         // it whole (no light sample competes); a scattered ray is MIS-weighted against the NEE
         // sample that could have found the same direction (delta scattering: NEE could not).
         {
             float lamp_pdf = 0.0f, lamp_t = 0.0f;
-            const Rgb lamp = lights.lamp_radiance(
+            const Rgb lamp = forward_lights.lamp_radiance(
                 origin, dir, found ? hit.t : t_max,
                 camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility, &lamp_pdf, &lamp_t,
                 selection, scatter_origin, scatter_normal, tree_splits, link);
@@ -137,7 +140,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             }
             // The environment is also sampled by NEE: MIS against it, as for emissive triangles.
             const float w = hit_weight(scatter_pdf, light_pdf_matters(scatter_pdf) && lights.environment()
-                                                        ? lights.environment_pdf(dir, selection)
+                                                        ? forward_lights.environment_pdf(dir, selection)
                                                         : 0.0f);
             const Rgb found_background =
                 clamp_contribution(beta * scene.background(dir) * w, emission_clamp(limits, bounces.total()));
@@ -164,9 +167,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         if (!emission.is_black() && link.accepts(hit.links)) {
             const float light_pdf =
                 light_pdf_matters(scatter_pdf) && hit.emissive_light != kNoLight
-                    ? lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin, scatter_normal,
-                                                   hit.position, selection, settings_.triangle_sampling,
-                                                   tree_splits)
+                    ? forward_lights.emissive_triangle_pdf(
+                          scene.light_index_for(receiver_set, hit.emissive_light), scatter_origin,
+                          scatter_normal, hit.position, selection, settings_.triangle_sampling, tree_splits)
                     : 0.0f;
             const Rgb found_emission =
                 clamp_contribution(beta * emission * hit_weight(scatter_pdf, light_pdf),
@@ -200,21 +203,21 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         // Next-event estimation (textbook 5.7–5.16), MIS-weighted against BSDF sampling. Lights
         // below the surface count only for closures that transmit.
         // With the tree's splitting (light_tree_splits > 1) one sample per cut node, summed.
+        // Light linking: among the lights that light this surface (RenderScene::lights_for).
+        const LightSet& nee_lights = scene.lights_for(hit.links.receiver_light_set);
         std::array<LightSample, LightTree::kMaxCut> light_samples;
         const uint32_t light_sample_count =
             settings_.light_sampling != LightSampling::Bsdf && closures.has_non_delta()
-                ? lights.sample_cut(hit.position, sp.ns,
-                                    sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
-                                    sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)),
-                                    light_samples.data(), selection, settings_.triangle_sampling, tree_splits)
+                ? nee_lights.sample_cut(
+                      hit.position, sp.ns, sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
+                      sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), light_samples.data(),
+                      selection, settings_.triangle_sampling, tree_splits)
                 : 0u;
         for (uint32_t s = 0; s < light_sample_count; ++s) {
             const LightSample& ls = light_samples[s];
             const float side = dot(ls.wi, sp.ng);
             const uint32_t kinds = lit_kinds(ls.visibility);
-            const LightLinks& emitter = lights.links(ls.light);
-            if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) && kinds != 0 &&
-                emitter.lights(hit.links.receiver_light_set)) {
+            if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) && kinds != 0) {
                 const Vec3 wi_local = frame.to_local(ls.wi);
                 // A direction on the other side of the shading normal than of the true surface
                 // cannot be reached by light: the shading hemisphere must agree with ng.
@@ -230,9 +233,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     if (ls.visibility & kVisibleShadow) {
                         const uint32_t left =
                             max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
-                        transmittance = shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
-                                                             {query.time, kVisibleShadow}, left, rays,
-                                                             reach.footprint, emitter.shadow_set_membership);
+                        transmittance = shadow_transmittance(
+                            scene, o, shadow.direction, shadow.t_max, {query.time, kVisibleShadow}, left,
+                            rays, reach.footprint, nee_lights.links(ls.light).shadow_set_membership);
                     }
                     if (!transmittance.is_black()) {
                         const float w =

@@ -12,17 +12,19 @@ Rgb PathIntegrator::shadow_linked_emission(const RenderScene& scene, const Scatt
                                            uint64_t& rays) const {
     const ShadowLinkedEmitter e = pick_shadow_linked_emitter(scene, ray, rays);
     if (e.met == 0) return Rgb(0.0f);
-    const LightSet& lights = scene.lights();
+    // The lights NEE chose among at the scattering vertex (light linking: those lighting it).
+    const LightSet& lights = scene.lights_for(ray.receiver_set);
     const LightSelection selection = settings_.light_selection;
     float light_pdf = 0.0f;
     if (light_pdf_matters(ray.scatter_pdf) && e.light != kNoLight) {
+        const uint32_t index = scene.light_index_for(ray.receiver_set, e.light);
         if (e.lamp) {
             // As lamp_radiance gives it: NEE's choice at the vertex × the lamp's solid-angle pdf.
-            light_pdf = lights.probability(e.light, ray.scatter_origin, ray.scatter_normal, selection,
+            light_pdf = lights.probability(index, ray.scatter_origin, ray.scatter_normal, selection,
                                            settings_.light_tree_splits) *
                         e.solid_angle_pdf;
         } else {
-            light_pdf = lights.emissive_triangle_pdf(e.light, ray.scatter_origin, ray.scatter_normal,
+            light_pdf = lights.emissive_triangle_pdf(index, ray.scatter_origin, ray.scatter_normal,
                                                      e.position, selection, settings_.triangle_sampling,
                                                      settings_.light_tree_splits);
         }

@@ -11,6 +11,11 @@ namespace stratum {
 
 uint32_t LightSet::add(std::unique_ptr<const Light> light, uint32_t object, uint32_t visibility,
                        const LightLinks& links) {
+    return add_shared(std::move(light), object, visibility, links);
+}
+
+uint32_t LightSet::add_shared(std::shared_ptr<const Light> light, uint32_t object, uint32_t visibility,
+                              const LightLinks& links) {
     const auto index = static_cast<uint32_t>(lights_.size());
     if (object >= object_links_.size()) object_links_.resize(object + 1);
     object_links_[object] = links;
@@ -39,7 +44,25 @@ uint32_t LightSet::add_environment(EnvironmentLight environment, uint32_t object
     return environment_index_;
 }
 
+LightSet LightSet::lighting(uint8_t receiver_set, std::vector<uint32_t>* index_of) const {
+    LightSet subset;
+    index_of->assign(lights_.size(), kNoLightIndex);
+    for (uint32_t i = 0; i < lights_.size(); ++i) {
+        if (!links(i).lights(receiver_set)) continue;
+        const uint32_t k = subset.add_shared(lights_[i], object_[i], visibility_[i], links(i));
+        subset.programs_[k] = programs_[i];
+        if (environment_ && i == environment_index_) {
+            subset.environment_ = environment_;
+            subset.environment_index_ = k;
+        }
+        (*index_of)[i] = k;
+    }
+    subset.finalize(scene_radius_);
+    return subset;
+}
+
 void LightSet::finalize(float scene_radius) {
+    scene_radius_ = scene_radius;
     std::vector<double> power(lights_.size());
     for (size_t i = 0; i < lights_.size(); ++i) power[i] = lights_[i]->power(scene_radius);
     power_ = power;

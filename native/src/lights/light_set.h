@@ -97,6 +97,14 @@ public:
     // scene_radius: radius of a sphere bounding the scene, to give the sun and the environment a
     // power.
     void finalize(float scene_radius);
+    // Light linking: the finalized set of the lights that light receiver set `receiver_set`
+    // (every light of this one whose links light it: lamps, triangles, the environment), with
+    // their objects, visibility, links and programs, sharing the light models. NEE at a surface
+    // of that set chooses among these only (Cycles builds a light tree per receiver set): a
+    // receiver lit by few of many lights does not spend its samples on the others. *index_of
+    // (this set's size) gets each light's index in the subset, or kNoLightIndex.
+    LightSet lighting(uint8_t receiver_set, std::vector<uint32_t>* index_of) const;
+    static constexpr uint32_t kNoLightIndex = 0xffffffffu;
 
     bool empty() const { return lights_.empty(); }
     size_t size() const { return lights_.size(); }
@@ -205,7 +213,11 @@ public:
     uint32_t delta_light_count() const { return delta_lights_; }
 
 private:
-    std::vector<std::unique_ptr<const Light>> lights_;
+    // Shared with the sets lighting() makes.
+    std::vector<std::shared_ptr<const Light>> lights_;
+    uint32_t add_shared(std::shared_ptr<const Light> light, uint32_t object, uint32_t visibility,
+                        const LightLinks& links);
+    float scene_radius_ = 1.0f;
     std::vector<uint32_t> object_;          // object of each light
     std::vector<uint32_t> visibility_;      // StratumVisibility bits of each light
     std::vector<LightLinks> object_links_;  // of each light object

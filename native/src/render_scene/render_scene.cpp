@@ -226,6 +226,18 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
         bounds_radius_ = std::max(1.0f, 0.5f * length(world.hi - world.lo));
     }
     lights_.finalize(bounds_radius_);
+    for (uint32_t set = 0; set <= kMaxLinkSet; ++set) {
+        receiver_lights_[set].reset();
+        receiver_index_[set].clear();
+    }
+    if (lights_.has_light_linking()) {
+        for (const InstanceData& g : instances_) {
+            const uint8_t set = g.links.receiver_light_set;
+            if (receiver_lights_[set]) continue;
+            receiver_lights_[set] =
+                std::make_unique<const LightSet>(lights_.lighting(set, &receiver_index_[set]));
+        }
+    }
 }
 
 bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const std::atomic<bool>* cancel) {
