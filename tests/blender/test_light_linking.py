@@ -211,3 +211,23 @@ def test_no_linking_is_read_before_blender_4(library) -> None:
     _stratum(scene, 1, bounces=0, samples=1)
     image, _ = render_exr(scene, LINK_OUT / "no_linking.exr", RES)
     assert image.max() > 0.05
+
+
+@pytest.mark.skipif(not HAS_LINKING, reason="light linking exists from Blender 4.0 on")
+def test_a_linking_edit_asks_for_a_full_export(library) -> None:
+    from stratum.export.sync import SceneSync
+    from stratum.export.updates import IdUpdate
+
+    _spheres_scene()
+    lamp = bpy.data.objects["lamp"]
+    with SceneSync() as sync:
+        sync.full(bpy.context.evaluated_depsgraph_get())
+        unchanged = sync.update(bpy.context.evaluated_depsgraph_get(),
+                                [IdUpdate(lamp, True, False, False)])
+        assert not unchanged.needs_full, unchanged.reason
+        bpy.data.collections["receivers"].collection_objects[0].light_linking.link_state = \
+            "EXCLUDE"
+        depsgraph = bpy.context.evaluated_depsgraph_get()
+        depsgraph.update()
+        result = sync.update(depsgraph, [IdUpdate(lamp, True, False, False)])
+        assert result.needs_full and "linking changed" in result.reason
