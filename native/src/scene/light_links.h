@@ -32,9 +32,7 @@ struct LightLinks {
     uint64_t shadow_set_membership = kAllLinkSets;
 
     bool lights(uint8_t receiver_set) const { return (light_set_membership >> receiver_set) & 1u; }
-    bool blocked_by(uint8_t blocker_set) const { return (shadow_set_membership >> blocker_set) & 1u; }
     bool shadow_linked() const { return shadow_set_membership != kAllLinkSets; }
-    bool operator==(const LightLinks&) const = default;
 };
 
 }  // namespace stratum
