@@ -74,6 +74,7 @@ from .instances import (
     original_pointer,
     renderable,
 )
+from .light_linking import NO_LINKS, Links, linking_sets
 from .lights import ConvertedLight, convert_light
 from .materials import MaterialTable
 from .motion import instance_key, shutter_settings, shutter_transforms
@@ -113,6 +114,7 @@ class _Exported:
     world_program: tuple[Any, ...] | None = None  # WorldProgram.key()
     world_program_id: int | None = None
     layer: tuple[Any, ...] = ()  # ViewLayerFilter.key()
+    linking: tuple[Any, ...] | None = None  # LinkingSets.key(), None without linking
 
 
 class SceneSync:
@@ -208,6 +210,10 @@ class SceneSync:
         instancers: dict[int, int] = {}  # evaluated instancer pointer -> original pointer
         # Per placed row: (random_id, object colour RGBA), what Object Info reads.
         object_info: dict[int, tuple[int, tuple[float, ...]]] = {}
+        # Light and shadow linking (Blender 4.0+): the sets of every placed row and lamp.
+        link_sets = linking_sets(depsgraph)
+        row_links: dict[int, Links] = {}
+        light_links: dict[int, Links] = {}  # native light index -> links
         index = -1
         for index, instance in enumerate(depsgraph.object_instances):
             if should_stop is not None and index % 256 == 0 and should_stop():
@@ -249,6 +255,8 @@ class SceneSync:
                 exported.lights[index] = _add_light(ob.name, light, scene, summary, exported)
                 if light is not None:
                     exported.sent_lights.append(light.key())
+                    if link_sets is not None and exported.lights[index] is not None:
+                        light_links[exported.lights[index]] = link_sets.links(ob, parent)
             elif template is not None:
                 moved = motion.get(instance_key(instance, ob)) if motion else None
                 placed.append((index, *template, moved))
@@ -256,10 +264,14 @@ class SceneSync:
                 random_id = (instance.random_id & 0xFFFFFFFF) if is_instance else \
                     object_random_id(ob.name)
                 object_info[index] = (random_id, tuple(ob.color))
+                if link_sets is not None:
+                    row_links[index] = link_sets.links(ob, parent)
         unsupported.report(summary)
         matrices = instance_matrices(depsgraph, index + 1)
         place(placed, renderable(placed, matrices, summary), matrices, scene, summary, exported)
         _send_object_info(scene, exported, object_info, summary.instances)
+        if link_sets is not None:
+            _send_links(scene, exported, row_links, light_links, summary)
 
         summary.textures = materials.textures.count
         self._exported = _Exported(exported, materials,
@@ -267,7 +279,8 @@ class SceneSync:
                                    original_pointer(world_scene.world), background, environment,
                                    shutter_settings(bl_scene),
                                    world_program.key() if world_program is not None else None,
-                                   world_program_id, layer.key())
+                                   world_program_id, layer.key(),
+                                   link_sets.key() if link_sets is not None else None)
         self._stale = ""
         summary.export_seconds = time.perf_counter() - start
         return summary
@@ -303,6 +316,10 @@ class SceneSync:
         layer = self._layer(depsgraph)
         if layer.key() != exported.layer:
             raise FullExportNeeded("View layer: its filter or overrides changed")
+        if changes.objects or changes.collections or changes.scene:
+            link_sets = linking_sets(depsgraph)
+            if (link_sets.key() if link_sets is not None else None) != exported.linking:
+                raise FullExportNeeded("the light or shadow linking changed")
         scene = self.scene
         edits = object_edits(depsgraph, changes, exported.objects, scene, summary)
         edits += _material_edits(depsgraph, changes, exported.materials, summary)
@@ -412,6 +429,29 @@ def _send_object_info(scene: Any, exported: ExportedObjects,
         scene.set_instance_object_info(0, np.minimum(random, np.float32(1.0)), colors)
     except native.StratumError as exc:
         raise ExportError(f"Object Info: {exc}") from exc
+
+
+def _send_links(scene: Any, exported: ExportedObjects, row_links: dict[int, Links],
+               light_links: dict[int, Links], summary: ExportSummary) -> None:
+    """The light and shadow linking sets of every native instance and lamp, one call each."""
+    def columns(links: list[Links]) -> tuple[np.ndarray, ...]:
+        return (np.array([x.receiver_light_set for x in links], dtype=np.uint8),
+                np.array([x.blocker_shadow_set for x in links], dtype=np.uint8),
+                np.array([x.light_set_membership for x in links], dtype=np.uint64),
+                np.array([x.shadow_set_membership for x in links], dtype=np.uint64))
+
+    instances = [NO_LINKS] * summary.instances
+    for row, native_index in zip(exported.instance_rows.tolist(), exported.indices, strict=True):
+        if native_index >= 0:
+            instances[native_index] = row_links[row]
+    lights = [light_links.get(i, NO_LINKS) for i in range(summary.lights)]
+    try:
+        if instances:
+            scene.set_light_linking(False, 0, *columns(instances))
+        if lights:
+            scene.set_light_linking(True, 0, None, None, *columns(lights)[2:])
+    except native.StratumError as exc:
+        raise ExportError(f"Light linking: {exc}") from exc
 
 
 def _send_world_program(scene: Any, world: WorldProgram, program_id: int | None) -> int:

@@ -34,6 +34,11 @@ MODEL_CLOSURE = 1
 MODEL_SHADER_NODE = 2
 
 
+# StratumLinkTarget: what stratum_scene_set_light_linking sets.
+LINK_INSTANCES = 0
+LINK_LIGHTS = 1
+MAX_LINK_SET = 63
+
 # StratumSettingKind: how a render setting is set (stratum_renderer_set_int / _float / _string).
 class SettingKind(enum.IntEnum):
     INT = 0
@@ -334,6 +339,8 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
     p_u32 = ctypes.POINTER(ctypes.c_uint32)
     p_i32 = ctypes.POINTER(ctypes.c_int32)
     p_float = ctypes.POINTER(ctypes.c_float)
+    p_u8 = ctypes.POINTER(ctypes.c_uint8)
+    p_u64 = ctypes.POINTER(ctypes.c_uint64)
     return {
         "stratum_last_error": (p_char, []),
         "stratum_version": (p_char, []),
@@ -419,6 +426,8 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
                                                              p_float]),
         "stratum_scene_set_mesh_attribute": (c_int32, [p_void, c_uint32, c_uint32, c_int32,
                                                        p_float, c_uint32]),
+        "stratum_scene_set_light_linking": (c_int32, [p_void, c_int32, c_uint32, c_uint32, p_u8,
+                                                      p_u8, p_u64, p_u64]),
         # settings and passes
         "stratum_setting_count": (c_int32, []),
         "stratum_setting_info": (c_int32, [c_int32, ctypes.POINTER(_SettingInfo)]),

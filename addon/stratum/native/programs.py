@@ -13,6 +13,8 @@ from typing import Any
 import numpy as np
 
 from .abi import (
+    LINK_INSTANCES,
+    LINK_LIGHTS,
     PROGRAM_PARAMS,
     SHADER_INPUT_REGISTERS,
     _ProgramBinding,
@@ -160,6 +162,29 @@ def set_instance_object_info(lib: Any, handle: Any, first: int, random: Any, col
     _check(lib, lib.stratum_scene_set_instance_object_info(
         handle, _uint32(first, "first"), _uint32(count or 0, "count"), *pointers),
         "stratum_scene_set_instance_object_info")
+
+
+def set_light_linking(lib: Any, handle: Any, lights: bool, first: int, receiver: Any,
+                      blocker: Any, light_membership: Any, shadow_membership: Any) -> None:
+    arrays = []
+    count = None
+    for values, dtype, ctype in ((receiver, np.uint8, ctypes.c_uint8),
+                                 (blocker, np.uint8, ctypes.c_uint8),
+                                 (light_membership, np.uint64, ctypes.c_uint64),
+                                 (shadow_membership, np.uint64, ctypes.c_uint64)):
+        if values is None:
+            arrays.append(None)
+            continue
+        flat = np.ascontiguousarray(np.asarray(values, dtype=dtype).reshape(-1))
+        if count is not None and flat.size != count:
+            raise ValueError("light linking: the arrays describe different counts")
+        count = flat.size
+        arrays.append((flat, ctype))
+    pointers = [a[0].ctypes.data_as(ctypes.POINTER(a[1])) if a is not None else None
+                for a in arrays]
+    _check(lib, lib.stratum_scene_set_light_linking(
+        handle, LINK_LIGHTS if lights else LINK_INSTANCES, _uint32(first, "first"),
+        _uint32(count or 0, "count"), *pointers), "stratum_scene_set_light_linking")
 
 
 def set_mesh_attribute(lib: Any, handle: Any, mesh_id: int, slot: int, vector: bool,

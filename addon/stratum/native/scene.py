@@ -377,6 +377,17 @@ class Scene(_Handle):
         first .. first + n - 1; None leaves that part."""
         programs.set_instance_object_info(self._lib, self.handle, first, random, color)
 
+    def set_light_linking(self, lights: bool, first: int, receiver_light_set: np.ndarray | None,
+                          blocker_shadow_set: np.ndarray | None,
+                          light_set_membership: np.ndarray | None,
+                          shadow_set_membership: np.ndarray | None) -> None:
+        """Light and shadow linking sets (ids 0..63) and memberships (64-bit masks) of
+        instances (lights False) or lamps (True: memberships only, the sets None) first ..
+        first + n - 1; None leaves that part (stratum_scene_set_light_linking)."""
+        programs.set_light_linking(self._lib, self.handle, lights, first, receiver_light_set,
+                                   blocker_shadow_set, light_set_membership,
+                                   shadow_set_membership)
+
     def set_mesh_attribute(self, mesh_id: int, slot: int, vector: bool,
                            corner_rgba: np.ndarray) -> None:
         """A mesh attribute in slot 0..3: (triangles, 3, 4) RGBA per corner; `vector` when its

@@ -267,6 +267,23 @@ typedef struct StratumInstanceDesc {
 STRATUM_API StratumStatus stratum_scene_set_instance_object_info(StratumScene* scene, uint32_t first,
                                                                  uint32_t count, const float* random,
                                                                  const float* color);
+/* Light linking and shadow linking (Blender 4.0+, Cycles' definitions): the sets Blender's
+ * depsgraph gives objects (receiver_light_set, blocker_shadow_set: ids 0..63, 0 the default set)
+ * and emitters (light_set_membership, shadow_set_membership: bit s = set s). An emitter lights a
+ * receiver iff bit receiver_light_set of its light_set_membership is set; an occluder blocks it
+ * iff bit blocker_shadow_set of its shadow_set_membership is set. Camera rays see every emitter.
+ * target STRATUM_LINK_INSTANCES sets instances first .. first + count - 1 (receivers, occluders,
+ * and the emitters their emissive materials make); STRATUM_LINK_LIGHTS sets lamps, which are
+ * emitters only: their receiver_light_set and blocker_shadow_set must be NULL. A NULL array
+ * leaves that field. Until set, set 0 and all memberships (no linking); stratum_scene_set_instance
+ * and stratum_scene_set_light keep them. */
+typedef enum StratumLinkTarget { STRATUM_LINK_INSTANCES = 0, STRATUM_LINK_LIGHTS = 1 } StratumLinkTarget;
+#define STRATUM_MAX_LINK_SET 63u
+STRATUM_API StratumStatus stratum_scene_set_light_linking(StratumScene* scene, int32_t target, uint32_t first,
+                                                          uint32_t count, const uint8_t* receiver_light_set,
+                                                          const uint8_t* blocker_shadow_set,
+                                                          const uint64_t* light_set_membership,
+                                                          const uint64_t* shadow_set_membership);
 /* Places an instance. A mesh placed many times is stored once (Embree instancing). */
 STRATUM_API StratumStatus stratum_scene_add_instance_ex(StratumScene* scene,
                                                         const StratumInstanceDesc* instance);

@@ -195,13 +195,16 @@ StratumStatus stratum_scene_set_instance(StratumScene* scene, uint32_t index,
             return stratum::validate_instance(*instance, s.meshes);
         });
         scene->live->edit_instance(index, [&](stratum::Instance& i) {
-            // Object Info's values are set apart (stratum_scene_set_instance_object_info).
+            // Object Info's values and the linking sets are set apart
+            // (stratum_scene_set_instance_object_info, stratum_scene_set_light_linking).
             const float random = i.random, alpha = i.alpha;
             const stratum::Rgb color = i.color;
+            const stratum::LightLinks links = i.links;
             i = validated;
             i.random = random;
             i.color = color;
             i.alpha = alpha;
+            i.links = links;
         });
         return STRATUM_OK;
     });
@@ -279,7 +282,10 @@ StratumStatus stratum_scene_set_light(StratumScene* scene, uint32_t index, const
             require(index < s.lights.size(), "light " + std::to_string(index) +
                                                  " does not exist (the scene has " +
                                                  std::to_string(s.lights.size()) + ")");
+            // The linking sets are set apart (stratum_scene_set_light_linking).
+            const stratum::LightLinks links = s.lights[index].links;
             s.lights[index] = l;
+            s.lights[index].links = links;
         });
         return STRATUM_OK;
     });

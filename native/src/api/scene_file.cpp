@@ -138,7 +138,10 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                   {"holdout", i.holdout ? 1 : 0},
                                   {"pass_index", i.pass_index},
                                   {"random", i.random},
-                                  {"color", {i.color.r, i.color.g, i.color.b, i.alpha}}});
+                                  {"color", {i.color.r, i.color.g, i.color.b, i.alpha}},
+                                  {"links",
+                                   {i.links.receiver_light_set, i.links.blocker_shadow_set,
+                                    i.links.light_set_membership, i.links.shadow_set_membership}}});
     }
     j["lights"] = json::array();
     for (const LightParams& l : scene.lights) {
@@ -151,7 +154,8 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                {"spot", {l.spot_size, l.spot_blend}},
                                {"transform", matrix(l.light_to_world)},
                                {"visibility", l.visibility},
-                               {"spread", l.spread}});
+                               {"spread", l.spread},
+                               {"links", {l.links.light_set_membership, l.links.shadow_set_membership}}});
     }
     if (scene.camera) {
         const CameraParams& c = *scene.camera;
@@ -315,10 +319,23 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             const float random = field_or(i, "random", 0.0f);
             float color[4] = {1.0f, 1.0f, 1.0f, 1.0f};
             if (i.contains("color")) read_numbers(i, "color", color);
-            if ((status = stratum_scene_set_instance_object_info(scene, instance_index++, 1, &random,
-                                                                 color)) != STRATUM_OK)
+            if ((status = stratum_scene_set_instance_object_info(scene, instance_index, 1, &random, color)) !=
+                STRATUM_OK)
                 return entry_point_failed(status);
+            // Files written before light linking: no links.
+            if (i.contains("links")) {
+                const uint8_t receiver = element<uint8_t>(i, "links", 0),
+                              blocker = element<uint8_t>(i, "links", 1);
+                const uint64_t light = element<uint64_t>(i, "links", 2),
+                               shadow = element<uint64_t>(i, "links", 3);
+                if ((status = stratum_scene_set_light_linking(scene, STRATUM_LINK_INSTANCES, instance_index,
+                                                              1, &receiver, &blocker, &light, &shadow)) !=
+                    STRATUM_OK)
+                    return entry_point_failed(status);
+            }
+            ++instance_index;
         }
+        uint32_t light_index = 0;
         for (const json& l : j.at("lights")) {
             StratumLightDesc d{};
             d.type = field<int32_t>(l, "type");
@@ -337,6 +354,15 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.spread = field_or(l, "spread", 0.0f);
             if ((status = stratum_scene_add_light(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
+            if (l.contains("links")) {
+                const uint64_t light = element<uint64_t>(l, "links", 0),
+                               shadow = element<uint64_t>(l, "links", 1);
+                if ((status = stratum_scene_set_light_linking(scene, STRATUM_LINK_LIGHTS, light_index, 1,
+                                                              nullptr, nullptr, &light, &shadow)) !=
+                    STRATUM_OK)
+                    return entry_point_failed(status);
+            }
+            ++light_index;
         }
         if (j.contains("camera")) {
             const json& c = j["camera"];

@@ -11,13 +11,14 @@
 #include <stdexcept>
 #include <string>
 #include <type_traits>
+#include <utility>
 #include <vector>
 
 namespace stratum::scene_file {
 
 using nlohmann::json;
 
-// `value` as T (float, int32_t or uint32_t); `what` names it in the error.
+// `value` as T (float or an integer type); `what` names it in the error.
 template <typename T>
 T number(const json& value, const std::string& what) {
     if constexpr (std::is_floating_point_v<T>) {
@@ -29,14 +30,17 @@ T number(const json& value, const std::string& what) {
         const bool in_range =
             value.is_number_unsigned()
                 ? value.get<uint64_t>() <= static_cast<uint64_t>(std::numeric_limits<T>::max())
-            : value.is_number_integer() ? value.get<int64_t>() >= std::numeric_limits<T>::min() &&
-                                              value.get<int64_t>() <= std::numeric_limits<T>::max()
-                                        : false;
+            : value.is_number_integer()
+                ? std::cmp_greater_equal(value.get<int64_t>(), std::numeric_limits<T>::min()) &&
+                      std::cmp_less_equal(value.get<int64_t>(), std::numeric_limits<T>::max())
+                : false;
         if (!in_range)
             throw std::runtime_error(what + " = " + value.dump() + " is not an integer in [" +
                                      std::to_string(std::numeric_limits<T>::min()) + ", " +
                                      std::to_string(std::numeric_limits<T>::max()) + "]");
-        return static_cast<T>(value.get<int64_t>());
+        // A uint64_t above INT64_MAX (a light linking membership) is read as unsigned.
+        return value.is_number_unsigned() ? static_cast<T>(value.get<uint64_t>())
+                                          : static_cast<T>(value.get<int64_t>());
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include "integrators/camera_path_passes.h"
 #include "integrators/light_path_readers.h"
+#include "integrators/linking_notice.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
@@ -324,6 +325,7 @@ std::vector<std::string> LightTracer::notices(const Scene& scene) const {
             break;
         }
     }
+    if (const auto linking = unsupported_linking_notice(scene, "light tracing")) out.push_back(*linking);
     if (scene.lights.size() > 0) {
         for (const LightParams& l : scene.lights) {
             if (make_light(l)->emits_from_its_centre()) {

@@ -12,6 +12,7 @@
 #include "integrators/transparent_shadow.h"
 #include "lights/light_registry.h"
 #include "sampling/dimensions.h"
+#include "sampling/hash.h"
 #include "scene/visibility.h"
 
 namespace stratum {
@@ -82,6 +83,9 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     // What the path changes of its next closures: Filter Glossy, caustics (light_path_closures.h).
     PathClosureState closure_state;
     uint32_t transparent_bounce = 0;
+    // Light linking's receiver of forward emission: the surface of the last scattering (Cycles'
+    // mis_ray_object); camera rays see every emitter (lights/light_set.h EmitterLinkFilter).
+    uint8_t receiver_set = 0;
     const LightPathLimits& limits = settings_.light_paths;
     const LightSet& lights = scene.lights();
     const LightSelection selection = settings_.light_selection;
@@ -98,6 +102,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         SurfaceHit hit;
         ++rays;
         const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
+        const EmitterLinkFilter link{!camera_visible_path, receiver_set};
+        // The lights NEE chose among at the last scattering (light linking: those lighting its
+        // surface), whose probabilities the MIS weights of what this ray finds take.
+        const LightSet& forward_lights = camera_visible_path ? lights : scene.lights_for(receiver_set);
         // Lamps have no geometry: the emitting face of an area lamp is met analytically, in front
         // of whatever the ray hits, if the lamp is visible to this kind of ray. A camera ray takes
         // it whole (no light sample competes); a scattered ray is MIS-weighted against the NEE
@@ -106,10 +114,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         const LightPathState arriving = track.at(0.0f, bounces, transparent_bounce).path;
         {
             float lamp_pdf = 0.0f, lamp_t = 0.0f;
-            const Rgb lamp = lights.lamp_radiance(
+            const Rgb lamp = forward_lights.lamp_radiance(
                 origin, dir, found ? hit.t : t_max,
                 camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility, &lamp_pdf, &lamp_t,
-                selection, scatter_origin, scatter_normal, tree_splits, arriving.emission());
+                selection, scatter_origin, scatter_normal, tree_splits, arriving.emission(), link);
             if (!lamp.is_black()) {
                 float w = 1.0f;
                 if (!camera_visible_path && scatter_pdf > 0.0f) {
@@ -141,7 +149,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             }
             // The environment is also sampled by NEE: MIS against it, as for emissive triangles.
             const float w = hit_weight(scatter_pdf, light_pdf_matters(scatter_pdf) && lights.environment()
-                                                        ? lights.environment_pdf(dir, selection)
+                                                        ? forward_lights.environment_pdf(dir, selection)
                                                         : 0.0f);
             const Rgb found_background =
                 clamp_contribution(beta * background * w, emission_clamp(limits, bounces.total()));
@@ -166,12 +174,12 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             if (hit.holdout) break;
         }
         const Rgb emission = closures.emission();
-        if (!emission.is_black()) {
+        if (!emission.is_black() && link.accepts(hit.links)) {
             const float light_pdf =
                 light_pdf_matters(scatter_pdf) && hit.emissive_light != kNoLight
-                    ? lights.emissive_triangle_pdf(hit.emissive_light, scatter_origin, scatter_normal,
-                                                   hit.position, selection, settings_.triangle_sampling,
-                                                   tree_splits)
+                    ? forward_lights.emissive_triangle_pdf(
+                          scene.light_index_for(receiver_set, hit.emissive_light), scatter_origin,
+                          scatter_normal, hit.position, selection, settings_.triangle_sampling, tree_splits)
                     : 0.0f;
             const Rgb found_emission =
                 clamp_contribution(beta * emission * hit_weight(scatter_pdf, light_pdf),
@@ -205,10 +213,12 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         // Next-event estimation (textbook 5.7–5.16), MIS-weighted against BSDF sampling. Lights
         // below the surface count only for closures that transmit.
         // With the tree's splitting (light_tree_splits > 1) one sample per cut node, summed.
+        // Light linking: among the lights that light this surface (RenderScene::lights_for).
+        const LightSet& nee_lights = scene.lights_for(hit.links.receiver_light_set);
         std::array<LightSample, LightTree::kMaxCut> light_samples;
         const uint32_t light_sample_count =
             settings_.light_sampling != LightSampling::Bsdf && closures.has_non_delta()
-                ? lights.sample_cut(
+                ? nee_lights.sample_cut(
                       hit.position, sp.ns, sampler.get_1d(pixel, bounce_dimension(vertex, kDimLightChoice)),
                       sampler.get_2d(pixel, bounce_dimension(vertex, kDimLightPoint)), light_samples.data(),
                       selection, settings_.triangle_sampling, tree_splits, reach.path.emission())
@@ -233,9 +243,10 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                     if (ls.visibility & kVisibleShadow) {
                         const uint32_t left =
                             max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
-                        transmittance = shadow_transmittance(scene, o, shadow.direction, shadow.t_max,
-                                                             {query.time, kVisibleShadow}, left, rays,
-                                                             reach.footprint, reach.path);
+                        transmittance = shadow_transmittance(
+                            scene, o, shadow.direction, shadow.t_max, {query.time, kVisibleShadow}, left,
+                            rays, reach.footprint, reach.path,
+                            nee_lights.links(ls.light).shadow_set_membership);
                     }
                     if (!transmittance.is_black()) {
                         const float w =
@@ -298,6 +309,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             scatter_pdf = bs.delta ? 0.0f : bs.pdf;
             scatter_origin = hit.position;
             scatter_normal = sp.ns;
+            receiver_set = hit.links.receiver_light_set;
             float survive = 1.0f;
             if (settings_.rr_mode != RouletteMode::Off && bounces.total() >= settings_.rr_min_depth) {
                 // (5.5): survival = throughput, or the closures' albedo (then β stays constant
@@ -327,6 +339,19 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         dir = wi;
         t_min = 0.0f;
         t_max = kInfinity;
+        if (bs.kind != ScatterKind::Transparent && lights.has_shadow_linking()) {
+            const uint32_t left = max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
+            const ScatteredRay ray{origin,         dir,
+                                   query,          track,
+                                   receiver_set,   hash_more(pixel.sample_key, vertex),
+                                   scatter_pdf,    scatter_origin,
+                                   scatter_normal, left,
+                                   bounces,        transparent_bounce};
+            const Rgb found_linked = clamp_contribution(beta * shadow_linked_emission(scene, ray, rays),
+                                                        emission_clamp(limits, bounces.total()));
+            L += found_linked;
+            records.add(found_linked);
+        }
     }
     data.finish();
     records.flush();

@@ -8,6 +8,7 @@
 #include "integrators/camera_path_passes.h"
 #include "integrators/light_path_limits.h"
 #include "integrators/light_path_readers.h"
+#include "integrators/linking_notice.h"
 #include "integrators/ray_offset.h"
 #include "integrators/shading_point.h"
 #include "sampling/dimensions.h"
@@ -69,6 +70,7 @@ std::vector<std::string> RadiosityIntegrator::notices(const Scene& scene) const 
             "radiosity solves every diffuse interreflection: diffuse_bounces, clamp_direct, clamp_indirect, "
             "filter_glossy and the caustics switches do not apply (choose the path tracer to have them)");
     if (const std::string lp = light_path_notice(scene, "radiosity"); !lp.empty()) out.push_back(lp);
+    if (const auto linking = unsupported_linking_notice(scene, "radiosity")) out.push_back(*linking);
     return out;
 }
 

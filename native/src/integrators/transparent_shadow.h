@@ -13,6 +13,9 @@
 // | path           | the shaded point's Light Path state: the k-th surface crossed (from 0) |
 // |                | sees path.shadow(k) (Cycles' shade_shadow: PATH_RAY_SHADOW alone, one  |
 // |                | bounce further, the transparent depth counting the surfaces crossed)   |
+// | shadow_sets    | the light's shadow_set_membership (shadow linking, scene/light_links.h):|
+// |                | surfaces whose blocker set is not in it are passed as if absent         |
+// |                | (Cycles' intersection_skip_shadow_link), not counted in max_surfaces    |
 #pragma once
 
 #include <cstdint>
@@ -24,6 +27,6 @@ namespace stratum {
 // Returns the transmittance (0 when blocked); `rays` counts the rays traced.
 Rgb shadow_transmittance(const RenderScene& scene, Vec3 origin, Vec3 dir, float t_max, const RayQuery& query,
                          uint32_t max_surfaces, uint64_t& rays, float footprint = 0.0f,
-                         const LightPathState& path = {});
+                         const LightPathState& path = {}, uint64_t shadow_sets = kAllLinkSets);
 
 }  // namespace stratum

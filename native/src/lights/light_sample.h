@@ -20,6 +20,7 @@ struct LightSample {
     // StratumVisibility bits of the light (DIFFUSE / GLOSSY / TRANSMISSION: which vertices it
     // lights; SHADOW: whether occluders block it).
     uint32_t visibility = kVisibleAll;
+    uint32_t light = 0;  // the light's index in its LightSet (its links: LightSet::links)
 };
 
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();

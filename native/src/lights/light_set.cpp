@@ -9,8 +9,21 @@
 
 namespace stratum {
 
-uint32_t LightSet::add(std::unique_ptr<const Light> light, uint32_t object, uint32_t visibility) {
+uint32_t LightSet::add(std::unique_ptr<const Light> light, uint32_t object, uint32_t visibility,
+                       const LightLinks& links) {
+    return add_shared(std::move(light), object, visibility, links);
+}
+
+uint32_t LightSet::add_shared(std::shared_ptr<const Light> light, uint32_t object, uint32_t visibility,
+                              const LightLinks& links) {
     const auto index = static_cast<uint32_t>(lights_.size());
+    if (object >= object_links_.size()) object_links_.resize(object + 1);
+    object_links_[object] = links;
+    has_light_linking_ = has_light_linking_ || links.light_set_membership != kAllLinkSets;
+    if (links.shadow_linked()) {
+        has_shadow_linking_ = true;
+        blocking_all_linked_ &= links.shadow_set_membership;
+    }
     if (light->is_hittable_lamp()) hittable_lamps_.push_back(index);
     if (light->is_delta()) ++delta_lights_;
     lights_.push_back(std::move(light));
@@ -31,7 +44,26 @@ uint32_t LightSet::add_environment(EnvironmentLight environment, uint32_t object
     return environment_index_;
 }
 
+LightSet LightSet::lighting(uint8_t receiver_set, std::vector<uint32_t>* index_of) const {
+    LightSet subset;
+    index_of->assign(lights_.size(), kNoLightIndex);
+    for (uint32_t i = 0; i < lights_.size(); ++i) {
+        if (!links(i).lights(receiver_set)) continue;
+        const uint32_t k = subset.add_shared(lights_[i], object_[i], visibility_[i], links(i));
+        subset.programs_[k] = programs_[i];
+        if (environment_ && i == environment_index_) {
+            subset.environment_ = environment_;
+            subset.environment_index_ = k;
+            subset.world_program_ = world_program_;
+        }
+        (*index_of)[i] = k;
+    }
+    subset.finalize(scene_radius_);
+    return subset;
+}
+
 void LightSet::finalize(float scene_radius) {
+    scene_radius_ = scene_radius;
     std::vector<double> power(lights_.size());
     for (size_t i = 0; i < lights_.size(); ++i) power[i] = lights_[i]->power(scene_radius);
     power_ = power;
@@ -184,6 +216,7 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
     if (!lights_[index]->sample(p, n, u, triangle, out)) return false;
     out->pdf *= choice;
     out->visibility = visibility_[index];
+    out->light = index;
     if (programs_[index]) out->radiance = out->radiance * programs_[index]->scale(out->distance, path);
     if (world_program_ && index == environment_index_)
         out->radiance = world_program_->radiance(out->wi, path);
@@ -228,6 +261,7 @@ uint32_t LightSet::sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSampl
         if (!lights_[index]->sample(p, n, u_point, triangle, &ls)) continue;
         ls.pdf *= share * pmf;
         ls.visibility = visibility_[index];
+        ls.light = index;
         if (programs_[index]) ls.radiance = ls.radiance * programs_[index]->scale(ls.distance, path);
         ++count;
     }
@@ -242,7 +276,7 @@ float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit, 
 
 Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf, float* t_out,
                             LightSelection selection, Vec3 choice_point, Vec3 choice_normal, uint32_t max_cut,
-                            const LightPathState& path) const {
+                            const LightPathState& path, const EmitterLinkFilter& link) const {
     uint32_t nearest_lamp = 0;
     bool found = false;
     Rgb radiance(0.0f);
@@ -252,7 +286,7 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
     // the same distance the first by index (so a tie is met again at t = nearest, inclusive).
     lamp_bvh_.visit(origin, dir, nearest, [&](uint32_t item) {
         const uint32_t i = hittable_lamps_[item];
-        if (!(visibility_[i] & visibility)) return;
+        if (!(visibility_[i] & visibility) || !link.accepts(links(i))) return;
         const float limit = found ? std::nextafter(nearest, std::numeric_limits<float>::infinity()) : nearest;
         float t, solid_angle_pdf;
         Rgb L;

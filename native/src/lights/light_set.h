@@ -54,8 +54,21 @@
 #include "lights/light_selection.h"
 #include "lights/light_tree.h"
 #include "lights/world_program.h"
+#include "scene/light_links.h"
 
 namespace stratum {
+
+// Which emitters (lamps, emissive surfaces) a forward ray may find under light and shadow
+// linking (scene/light_links.h). Camera rays (inactive filter) see every emitter; another ray
+// only emitters that light the receiver set of its last scattering vertex and are not
+// shadow-linked (those it finds through the dedicated pass, integrators/shadow_linking.h).
+struct EmitterLinkFilter {
+    bool active = false;
+    uint8_t receiver_set = 0;
+    bool accepts(const LightLinks& emitter) const {
+        return !active || (emitter.lights(receiver_set) && !emitter.shadow_linked());
+    }
+};
 
 class LightSet {
 public:
@@ -65,12 +78,15 @@ public:
 
     // `object` groups lights that belong to one scene object (the triangles of one emissive
     // mesh); every Blender lamp is an object of its own. `visibility` (StratumVisibility bits)
-    // is copied into every LightSample of the light. Returns the index of the added light.
-    uint32_t add(std::unique_ptr<const Light> light, uint32_t object, uint32_t visibility = kVisibleAll);
+    // is copied into every LightSample of the light. `links`: the object's memberships as an
+    // emitter (scene/light_links.h; the same for every light of one object). Returns the index
+    // of the added light.
+    uint32_t add(std::unique_ptr<const Light> light, uint32_t object, uint32_t visibility = kVisibleAll,
+                 const LightLinks& links = {});
     template <std::derived_from<Light> L>
-    uint32_t add(L light, uint32_t object, uint32_t visibility = kVisibleAll) {
+    uint32_t add(L light, uint32_t object, uint32_t visibility = kVisibleAll, const LightLinks& links = {}) {
         static_assert(!std::same_as<L, EnvironmentLight>, "the environment goes through add_environment");
-        return add(std::make_unique<const L>(std::move(light)), object, visibility);
+        return add(std::make_unique<const L>(std::move(light)), object, visibility, links);
     }
     // The environment (at most one): a light like the others, which background() also looks up.
     uint32_t add_environment(EnvironmentLight environment, uint32_t object);
@@ -89,6 +105,14 @@ public:
     // scene_radius: radius of a sphere bounding the scene, to give the sun and the environment a
     // power.
     void finalize(float scene_radius);
+    // Light linking: the finalized set of the lights that light receiver set `receiver_set`
+    // (every light of this one whose links light it: lamps, triangles, the environment), with
+    // their objects, visibility, links and programs, sharing the light models. NEE at a surface
+    // of that set chooses among these only (Cycles builds a light tree per receiver set): a
+    // receiver lit by few of many lights does not spend its samples on the others. *index_of
+    // (this set's size) gets each light's index in the subset, or kNoLightIndex.
+    LightSet lighting(uint8_t receiver_set, std::vector<uint32_t>* index_of) const;
+    static constexpr uint32_t kNoLightIndex = 0xffffffffu;
 
     bool empty() const { return lights_.empty(); }
     size_t size() const { return lights_.size(); }
@@ -100,6 +124,15 @@ public:
                    : (lights_.size() > kAutoTreeLights ? LightSelection::Tree : LightSelection::Mixed);
     }
     uint32_t visibility(uint32_t index) const { return visibility_[index]; }
+    // Light `index`'s memberships as an emitter (scene/light_links.h); the world has none.
+    const LightLinks& links(uint32_t index) const { return object_links_[object_[index]]; }
+    // Whether some light lights only some receivers, or has its shadows cast by some occluders
+    // only (is shadow-linked).
+    bool has_light_linking() const { return has_light_linking_; }
+    bool has_shadow_linking() const { return has_shadow_linking_; }
+    // The shadow sets whose occluders block every shadow-linked light (their memberships' AND):
+    // past an opaque one of these no shadow-linked light can be seen (integrators/shadow_linking.h).
+    uint64_t shadow_sets_blocking_all_linked() const { return blocking_all_linked_; }
     // Power Φ_j of light `index` (W; the sun's and the environment's through the scene's
     // cross-section), as the selection distributions use it.
     double power(uint32_t index) const { return power_[index]; }
@@ -162,11 +195,29 @@ public:
     // which sample() at `origin` picks that direction, for MIS; under `tree` the choice is the
     // one at (choice_point, choice_normal), the vertex whose NEE the pdf is compared with.
     // *t (if not null) = the distance to the lamp.
-    // `path`: the Light Path inputs the lamp's program sees (LightPathState::emission).
+    // `path`: the Light Path inputs the lamp's program sees (LightPathState::emission); `link`:
+    // the lamps a forward ray may find under light and shadow linking (EmitterLinkFilter); the
+    // others are passed through.
     Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
                       float* t = nullptr, LightSelection selection = LightSelection::Mixed,
                       Vec3 choice_point = {}, Vec3 choice_normal = {}, uint32_t max_cut = 1,
-                      const LightPathState& path = kDirectLightPath) const;
+                      const LightPathState& path = kDirectLightPath,
+                      const EmitterLinkFilter& link = {}) const;
+    // Calls f(index, t, radiance, solid_angle_pdf) for every lamp with visibility bit
+    // `visibility` whose emitting face the ray (dir unit) meets before t_max, in no set order;
+    // radiance includes the lamp's program (seeing `path`), solid_angle_pdf is Light::intersect's.
+    template <typename F>
+    void visit_lamp_hits(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, const LightPathState& path,
+                         F&& f) const {
+        lamp_bvh_.visit(origin, dir, t_max, [&](uint32_t item) {
+            const uint32_t i = hittable_lamps_[item];
+            if (!(visibility_[i] & visibility)) return;
+            float t, solid_angle_pdf;
+            Rgb L;
+            if (!lights_[i]->intersect(origin, dir, t_max, &t, &L, &solid_angle_pdf)) return;
+            f(i, t, programs_[i] ? L * programs_[i]->scale(t, path) : L, solid_angle_pdf);
+        });
+    }
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
     // No shading point is needed: under `tree` a light at infinity has the fixed p_inf.
     const EnvironmentLight* environment() const { return environment_; }
@@ -177,9 +228,16 @@ public:
     uint32_t delta_light_count() const { return delta_lights_; }
 
 private:
-    std::vector<std::unique_ptr<const Light>> lights_;
-    std::vector<uint32_t> object_;                              // object of each light
-    std::vector<uint32_t> visibility_;                          // StratumVisibility bits of each light
+    // Shared with the sets lighting() makes.
+    std::vector<std::shared_ptr<const Light>> lights_;
+    uint32_t add_shared(std::shared_ptr<const Light> light, uint32_t object, uint32_t visibility,
+                        const LightLinks& links);
+    float scene_radius_ = 1.0f;
+    std::vector<uint32_t> object_;          // object of each light
+    std::vector<uint32_t> visibility_;      // StratumVisibility bits of each light
+    std::vector<LightLinks> object_links_;  // of each light object
+    bool has_light_linking_ = false, has_shadow_linking_ = false;
+    uint64_t blocking_all_linked_ = kAllLinkSets;
     std::vector<std::shared_ptr<const LampProgram>> programs_;  // of each light, or null
     std::shared_ptr<const WorldProgram> world_program_;         // of the environment, or null
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)

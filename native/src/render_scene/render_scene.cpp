@@ -130,7 +130,8 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel, Bv
                               {},
                               inst.random,
                               inst.color,
-                              inst.alpha});
+                              inst.alpha,
+                              inst.links});
     }
     build_lights(scene, cancel);
     const std::string error =
@@ -187,11 +188,12 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
             g.emissive_light[t] =
                 lights_.add(EmissiveTriangle(m.point(mesh.positions[tri[0]]), m.point(mesh.positions[tri[1]]),
                                              m.point(mesh.positions[tri[2]]), e),
-                            object);
+                            object, kVisibleAll, g.links);
         }
     }
     const uint32_t first_lamp = static_cast<uint32_t>(lights_.size());
-    for (const LightParams& l : scene.lights) lights_.add(make_light(l), light_object++, l.visibility);
+    for (const LightParams& l : scene.lights)
+        lights_.add(make_light(l), light_object++, l.visibility, l.links);
     for (const LightProgram& p : scene.light_programs) {
         const uint32_t index = first_lamp + p.light_id;
         // A light that gives no bounds lies at infinity (lights/light.h).
@@ -227,6 +229,18 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
         bounds_radius_ = std::max(1.0f, 0.5f * length(world.hi - world.lo));
     }
     lights_.finalize(bounds_radius_);
+    for (uint32_t set = 0; set <= kMaxLinkSet; ++set) {
+        receiver_lights_[set].reset();
+        receiver_index_[set].clear();
+    }
+    if (lights_.has_light_linking()) {
+        for (const InstanceData& g : instances_) {
+            const uint8_t set = g.links.receiver_light_set;
+            if (receiver_lights_[set]) continue;
+            receiver_lights_[set] =
+                std::make_unique<const LightSet>(lights_.lighting(set, &receiver_index_[set]));
+        }
+    }
 }
 
 bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const std::atomic<bool>* cancel) {
@@ -266,6 +280,7 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
         g.random = inst.random;
         g.color = inst.color;
         g.alpha = inst.alpha;
+        g.links = inst.links;
         moved.push_back(placement);
     }
     if (changes.materials) {
@@ -371,6 +386,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->visibility = g.visibility;
     hit->holdout = g.holdout;
     hit->object_pass_index = g.pass_index;
+    hit->links = g.links;
     hit->material_pass_index = materials_[hit->material_id].pass_index;
     hit->t = h.t;
     hit->object_position =

@@ -46,6 +46,7 @@ struct SurfaceHit {
     uint32_t placement = 0;             // the traced placement (RenderScene::program_inputs)
     uint32_t triangle = 0;              // the triangle of the placement's mesh
     std::array<Vec3, 3> vertices{};     // the triangle's corners in world space (at the ray's time)
+    LightLinks links;                   // the instance's light and shadow linking sets
 };
 
 inline constexpr uint32_t kNoLight = 0xffffffffu;
@@ -127,6 +128,17 @@ public:
         return embree_.occluded(origin, direction, t_min, t_max, query.time, query.visibility);
     }
     const LightSet& lights() const { return lights_; }
+    // Light linking: the lights that light surfaces of receiver set `receiver_set`
+    // (LightSet::lighting; all lights without light linking), which NEE at such a surface
+    // chooses among and whose probabilities the MIS weights of the emission a ray scattered
+    // there finds are; and the index there of light `index` of lights() (LightSet::kNoLightIndex
+    // when it does not light the set).
+    const LightSet& lights_for(uint8_t receiver_set) const {
+        return receiver_lights_[receiver_set] ? *receiver_lights_[receiver_set] : lights_;
+    }
+    uint32_t light_index_for(uint8_t receiver_set, uint32_t index) const {
+        return receiver_lights_[receiver_set] ? receiver_index_[receiver_set][index] : index;
+    }
     // Whether any material has a Transparent closure: only then can a shadow ray pass a surface,
     // so without one a shadow ray needs Embree's any-hit query alone, not the closest surface.
     bool has_transparent_closures() const { return has_transparent_closures_; }
@@ -173,6 +185,7 @@ private:
         float random;                          // Object Info: Random, colour and alpha
         Rgb color;
         float alpha;  // per triangle, kNoLight if not emissive; empty if none
+        LightLinks links;
     };
     static bool is_moving(const Instance& inst);
     // Whether Embree can trace the placement under the current ray-origin limit.
@@ -202,6 +215,10 @@ private:
     float limit_ = 0.0f;                         // the ray-origin limit the BVH was built for
     EmbreeScene embree_;
     LightSet lights_;
+    // Per receiver set some instance has, when some light links (lights_for): its lights and the
+    // index map from lights_.
+    std::array<std::unique_ptr<const LightSet>, kMaxLinkSet + 1> receiver_lights_;
+    std::array<std::vector<uint32_t>, kMaxLinkSet + 1> receiver_index_;
     Rgb background_;
     BvhLayout bvh_ = BvhLayout::Static;
     bool has_motion_ = false;

@@ -11,6 +11,7 @@
 
 #include "core/math.h"
 #include "scene/camera.h"
+#include "scene/light_links.h"
 #include "scene/material.h"
 #include "scene/visibility.h"
 #include "shading/program_binding.h"
@@ -79,6 +80,8 @@ struct Instance {
     float random = 0.0f;
     Rgb color{1.0f};
     float alpha = 1.0f;
+    // Light and shadow linking as receiver, occluder and emitter (stratum_scene_set_light_linking).
+    LightLinks links;
 };
 
 // A light as the host describes it (StratumLightDesc). size_x, size_y, spot_size, spot_blend and
@@ -97,6 +100,9 @@ struct LightParams {
     Transform light_to_world;
     uint32_t visibility = kVisibleAll;  // StratumVisibility bits (0 at the ABI reads as all)
     float spread = kPi;                 // area lights: Cycles' spread, (0, pi]
+    // As an emitter (its memberships; a lamp is no receiver or occluder here): set apart by
+    // stratum_scene_set_light_linking.
+    LightLinks links;
 };
 
 // An equirectangular environment image (see lights/environment_light.h for the mapping).
