@@ -51,6 +51,7 @@
 #pragma once
 
 #include "integrators/integrator.h"
+#include "integrators/shadow_catcher.h"
 
 namespace stratum {
 
@@ -67,8 +68,15 @@ public:
     RadianceSample estimate(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                             const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;
+    bool splits_shadow_catchers() const override { return true; }
+    bool writes_light_groups() const override { return true; }
 
 private:
+    // One path of the camera sample: the main path, or the catcher-only copy of one that split at
+    // a shadow catcher (integrators/shadow_catcher.h).
+    RadianceSample trace(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+                         const CameraRay& ray, PassValues& passes, uint64_t& rays,
+                         ShadowCatcherPath& catcher) const;
     // MIS weight of emission a scattered ray hits (scatter_pdf 0 after a camera or delta
     // vertex) against the light sample that could have drawn it (light_pdf 0: none could).
     float hit_weight(float scatter_pdf, float light_pdf) const;

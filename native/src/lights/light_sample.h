@@ -20,6 +20,8 @@ struct LightSample {
     // StratumVisibility bits of the light (DIFFUSE / GLOSSY / TRANSMISSION: which vertices it
     // lights; SHADOW: whether occluders block it).
     uint32_t visibility = kVisibleAll;
+    // The light group of the light (LightSet::set_lightgroup; 0 = none).
+    uint32_t lightgroup = 0;
 };
 
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();

@@ -16,6 +16,7 @@ uint32_t LightSet::add(std::unique_ptr<const Light> light, uint32_t object, uint
     lights_.push_back(std::move(light));
     object_.push_back(object);
     visibility_.push_back(visibility);
+    lightgroup_.push_back(0);
     programs_.push_back(nullptr);
     return index;
 }
@@ -27,7 +28,9 @@ void LightSet::set_program(uint32_t index, std::shared_ptr<const LampProgram> pr
 uint32_t LightSet::add_environment(EnvironmentLight environment, uint32_t object) {
     auto light = std::make_unique<const EnvironmentLight>(std::move(environment));
     environment_ = light.get();
-    environment_index_ = add(std::move(light), object);
+    // The world lights everything, the catcher-only copy of a camera path too (Cycles 5.0 forces
+    // its light's is_shadow_catcher; in 3.4 the background light keeps the default, true).
+    environment_index_ = add(std::move(light), object, trace_visibility(kVisibleAll | kVisibleShadowCatcher));
     return environment_index_;
 }
 
@@ -184,6 +187,7 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
     if (!lights_[index]->sample(p, n, u, triangle, out)) return false;
     out->pdf *= choice;
     out->visibility = visibility_[index];
+    out->lightgroup = lightgroup_[index];
     if (programs_[index]) out->radiance = out->radiance * programs_[index]->scale(out->distance);
     return true;
 }
@@ -225,6 +229,7 @@ uint32_t LightSet::sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSampl
         if (!lights_[index]->sample(p, n, u_point, triangle, &ls)) continue;
         ls.pdf *= share * pmf;
         ls.visibility = visibility_[index];
+        ls.lightgroup = lightgroup_[index];
         if (programs_[index]) ls.radiance = ls.radiance * programs_[index]->scale(ls.distance);
         ++count;
     }
@@ -238,8 +243,8 @@ float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit, 
 }
 
 Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf, float* t_out,
-                            LightSelection selection, Vec3 choice_point, Vec3 choice_normal,
-                            uint32_t max_cut) const {
+                            LightSelection selection, Vec3 choice_point, Vec3 choice_normal, uint32_t max_cut,
+                            uint32_t* lightgroup) const {
     uint32_t nearest_lamp = 0;
     bool found = false;
     Rgb radiance(0.0f);
@@ -268,6 +273,7 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
                    ? probability(nearest_lamp, choice_point, choice_normal, selection, max_cut) * nearest_pdf
                    : 0.0f;
     if (t_out) *t_out = nearest;
+    if (lightgroup) *lightgroup = found ? lightgroup_[nearest_lamp] : 0;
     if (found && programs_[nearest_lamp]) radiance = radiance * programs_[nearest_lamp]->scale(nearest);
     return radiance;
 }

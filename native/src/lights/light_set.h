@@ -78,6 +78,10 @@ public:
     // stays the light's own: a program moves no choice among lights (never biased, at worst
     // noisier where it brightens a lamp).
     void set_program(uint32_t index, std::shared_ptr<const LampProgram> program);
+    // Puts light `index` in light group `group` (0 = none, the default): LightSample::lightgroup and
+    // lamp_radiance's *lightgroup give it (film/light_groups.h).
+    void set_lightgroup(uint32_t index, uint32_t group) { lightgroup_[index] = group; }
+    uint32_t lightgroup(uint32_t index) const { return lightgroup_[index]; }
     // scene_radius: radius of a sphere bounding the scene, to give the sun and the environment a
     // power.
     void finalize(float scene_radius);
@@ -149,10 +153,11 @@ public:
     // BSDF-scattered rays find them. *pdf (if not null) = the pdf (choice × solid angle) with
     // which sample() at `origin` picks that direction, for MIS; under `tree` the choice is the
     // one at (choice_point, choice_normal), the vertex whose NEE the pdf is compared with.
-    // *t (if not null) = the distance to the lamp.
+    // *t (if not null) = the distance to the lamp; *lightgroup (if not null) = its light group.
     Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
                       float* t = nullptr, LightSelection selection = LightSelection::Mixed,
-                      Vec3 choice_point = {}, Vec3 choice_normal = {}, uint32_t max_cut = 1) const;
+                      Vec3 choice_point = {}, Vec3 choice_normal = {}, uint32_t max_cut = 1,
+                      uint32_t* lightgroup = nullptr) const;
     // The environment (at most one), or null; its pdf (choice × solid angle) for direction wi.
     // No shading point is needed: under `tree` a light at infinity has the fixed p_inf.
     const EnvironmentLight* environment() const { return environment_; }
@@ -166,6 +171,7 @@ private:
     std::vector<std::unique_ptr<const Light>> lights_;
     std::vector<uint32_t> object_;                              // object of each light
     std::vector<uint32_t> visibility_;                          // StratumVisibility bits of each light
+    std::vector<uint32_t> lightgroup_;                          // light group of each light (0 none)
     std::vector<std::shared_ptr<const LampProgram>> programs_;  // of each light, or null
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)
     LampBvh lamp_bvh_;                      // over hittable_lamps_ (its items number them)
