@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "render_helpers.h"
@@ -152,5 +153,24 @@ TEST(LightGroups, ALightGroupAboveTheLimitIsRefusedByName) {
     lamp.lightgroup = 65;
     EXPECT_EQ(stratum_scene_add_light(scene, &lamp), STRATUM_ERROR_INVALID_ARGUMENT);
     EXPECT_NE(std::string(stratum_last_error()).find("light lightgroup = 65"), std::string::npos);
+    stratum_scene_destroy(scene);
+}
+
+TEST(LightGroups, AnIntegratorThatWritesNoneSaysSoAndLeavesThemBlack) {
+    StratumScene* scene = two_group_scene(true);
+    StratumRenderer* r = nullptr;
+    ASSERT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
+    ASSERT_EQ(apply_settings(
+                  r, {{"width", 4}, {"height", 4}, {"samples", 1}, {"integrator", "ao"}, {"lightgroups", 1}}),
+              "");
+    ASSERT_TRUE(render_to_end(r)) << stratum_last_error();
+    const char* notices = nullptr;
+    ASSERT_EQ(stratum_renderer_notices(r, &notices), STRATUM_OK);
+    EXPECT_NE(std::string(notices ? notices : "").find("writes no light groups"), std::string::npos)
+        << notices;
+    std::vector<float> group(4 * 4 * 3, -1.0f);
+    ASSERT_EQ(stratum_renderer_read_lightgroup(r, 1, group.data(), group.size()), STRATUM_OK);
+    for (float v : group) EXPECT_EQ(v, 0.0f);
+    stratum_renderer_destroy(r);
     stratum_scene_destroy(scene);
 }
