@@ -41,6 +41,10 @@ FROM_BLENDER: dict[str, str] = {
     "crop_height": "(scene.render.border_max_y − border_min_y) × height, with use_border",
     "film_transparent": "scene.render.film_transparent",
     "passes": "the view layer's pass toggles (View Layer > Passes; engine/render_passes.py)",
+    "lightgroups": "the view layer's light groups (View Layer > Light Groups; "
+                   "engine/render_passes.py): one Combined_<name> pass each",
+    "lightgroup_split_emission": "the running Blender: 1 before 3.5 (Cycles then still wrote "
+                                 "emission after a shadow catcher split to light groups)",
     "mist_start": "scene.world.mist_settings.start, with the Mist pass",
     "mist_depth": "scene.world.mist_settings.depth, with the Mist pass",
     "mist_falloff": "scene.world.mist_settings.falloff (quadratic 2, linear 1, inverse quadratic "

@@ -144,6 +144,13 @@ def render_pass_name(name: str, version: Version) -> str:
 # ---- Cycles' evaluation per release: lights and closures ----------------------------------------
 
 
+def lightgroups_take_split_emission(version: Version) -> bool:
+    """Cycles before 3.5 still writes emission met after a shadow catcher split to the light
+    groups (film_write_emission_or_background_pass); 3.5's fix of T103403 (cycles commit
+    8a2966181) skips it, as it always skipped NEE there."""
+    return not _since(version, 3, 5)
+
+
 def spot_light_model(version: Version) -> str:
     """The native spot light: Cycles 3.x multiplies the spot's falloff by the cosine to its
     axis ("spot_v1"), 4.0 and later do not ("spot")."""

@@ -400,6 +400,63 @@ class STRATUM_RENDER_PT_performance(StratumButtonsPanel, bpy.types.Panel):
 
 
 # In Cycles' order: a subpanel after its parent, siblings top to bottom.
+def _draw_lightgroup(layout: bpy.types.UILayout, owner: Any, view_layer: Any) -> None:
+    """Cycles' Light Group field: the owner's group, searched among the view layer's, with a
+    button that adds a typed name the view layer lacks."""
+    row = layout.row(align=True)
+    row.use_property_decorate = False
+    sub = row.column(align=True)
+    sub.prop_search(owner, "lightgroup", view_layer, "lightgroups", text="Light Group",
+                    results_are_suggestions=True)
+    sub = row.column(align=True)
+    sub.enabled = bool(owner.lightgroup) and not any(
+        group.name == owner.lightgroup for group in view_layer.lightgroups)
+    sub.operator("scene.view_layer_add_lightgroup", icon="ADD", text="").name = owner.lightgroup
+
+
+class STRATUM_OBJECT_PT_catcher_and_lightgroup(bpy.types.Panel):
+    """Object > Shadow Catcher and Light Group (Cycles' Visibility > Mask and Shading > Light
+    Group): what integrators/shadow_catcher.h and the light group passes read."""
+
+    bl_label = "Shadow Catcher and Light Group"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "object"
+    bl_options = {"DEFAULT_CLOSED"}
+    COMPAT_ENGINES = {ENGINE_ID}
+
+    @classmethod
+    def poll(cls, context: bpy.types.Context) -> bool:
+        return context.engine in cls.COMPAT_ENGINES and getattr(context, "object", None) is not None
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        ob = context.object
+        layout.prop(ob, "is_shadow_catcher")
+        _draw_lightgroup(layout, ob, context.view_layer)
+
+
+class STRATUM_WORLD_PT_lightgroup(bpy.types.Panel):
+    """World > Light Group (Cycles' World > Settings > Light Group)."""
+
+    bl_label = "Light Group"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "world"
+    bl_options = {"DEFAULT_CLOSED"}
+    COMPAT_ENGINES = {ENGINE_ID}
+
+    @classmethod
+    def poll(cls, context: bpy.types.Context) -> bool:
+        return context.engine in cls.COMPAT_ENGINES and getattr(context, "world", None) is not None
+
+    def draw(self, context: bpy.types.Context) -> None:
+        layout = self.layout
+        layout.use_property_split = True
+        _draw_lightgroup(layout, context.world, context.view_layer)
+
+
 classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_library,
     STRATUM_RENDER_PT_sampling,
@@ -419,6 +476,11 @@ classes: tuple[type, ...] = (
     STRATUM_RENDER_PT_light_paths_control_variate,
     STRATUM_RENDER_PT_film,
     STRATUM_RENDER_PT_performance,
+)
+# Stratum's panels in other contexts than render.
+other_panels: tuple[type, ...] = (
+    STRATUM_OBJECT_PT_catcher_and_lightgroup,
+    STRATUM_WORLD_PT_lightgroup,
 )
 
 
@@ -445,7 +507,7 @@ def compatible_builtin_panels() -> list[type]:
 
 def register() -> None:
     bpy.utils.register_class(StratumPreferences)
-    for cls in classes:
+    for cls in (*classes, *other_panels):
         bpy.utils.register_class(cls)
     for panel in compatible_builtin_panels():
         if ENGINE_ID not in panel.COMPAT_ENGINES:
@@ -458,6 +520,6 @@ def unregister() -> None:
         panel = _patched.pop()
         if hasattr(panel, "COMPAT_ENGINES"):
             panel.COMPAT_ENGINES.discard(ENGINE_ID)
-    for cls in (*reversed(classes), StratumPreferences):
+    for cls in (*reversed(other_panels), *reversed(classes), StratumPreferences):
         if getattr(cls, "is_registered", True):
             bpy.utils.unregister_class(cls)

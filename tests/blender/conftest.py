@@ -99,6 +99,7 @@ class RecordingScene:
         self.lights: list[Any] = []
         self.camera: Any = None
         self.background: Any = None
+        self.world_lightgroup = 0
         self.environment: Any = None
         self.textures: list[Any] = []
         self.bindings: list[Any] = []
@@ -141,6 +142,9 @@ class RecordingScene:
 
     def set_background(self, rgb: Any) -> None:
         self.background = tuple(rgb)
+
+    def set_world_lightgroup(self, lightgroup: int) -> None:
+        self.world_lightgroup = lightgroup
 
     def set_environment(self, rgb: Any, strength: float = 1.0, rotation: Any = None) -> None:
         self.environment = {"rgb": np.array(rgb), "strength": strength, "rotation": rotation}

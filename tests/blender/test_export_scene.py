@@ -332,6 +332,38 @@ def test_visibility_and_holdout_reach_the_instances(scene_builder: Any,
     assert names[9].holdout  # through its collection's view-layer holdout
 
 
+def test_shadow_catchers_and_light_groups_reach_instances_lights_and_world(
+        scene_builder: Any, recording_scene: Any) -> None:
+    b = scene_builder()
+    b.camera()
+    world = b.world()
+    view_layer = bpy.context.view_layer
+    for group in ("key", "fill"):
+        view_layer.lightgroups.add(name=group)
+    catcher = b.mesh_object("Catcher")
+    catcher.is_shadow_catcher = True
+    glowing = b.mesh_object("Glowing", location=(3.0, 0.0, 0.0))
+    glowing.lightgroup = "fill"
+    stray = b.mesh_object("Stray", location=(6.0, 0.0, 0.0))
+    stray.lightgroup = "no such group"
+    lamp = b.point_light()
+    lamp.lightgroup = "key"
+    lamp.is_shadow_catcher = False
+    world.lightgroup = "fill"
+    export_scene(b.depsgraph(), recording_scene)
+    names = {}
+    for position, (_, matrix) in enumerate(recording_scene.instances):
+        names[round(float(matrix[0, 3]))] = recording_scene.instance_descs.get(position)
+    assert names[0].visibility == native.VISIBLE_ALL | native.VISIBLE_SHADOW_CATCHER
+    assert names[0].lightgroup == 0
+    # Light groups are numbered in the view layer's order from 1; a name it lacks is none.
+    assert names[3].lightgroup == 2 and names[3].visibility == native.VISIBLE_ALL
+    assert names[6] is None  # in no group the view layer has: a plain instance
+    (light,) = recording_scene.lights
+    assert light.lightgroup == 1 and not light.visibility & native.VISIBLE_SHADOW_CATCHER
+    assert recording_scene.world_lightgroup == 2
+
+
 def test_excluded_and_render_disabled_collections_are_not_rendered(
         scene_builder: Any, library: Any) -> None:
     b = scene_builder().basic()
@@ -404,7 +436,10 @@ def test_light_visibility_shadow_and_spread(scene_builder: Any, recording_scene:
     assert summary.lights == 1  # the point light is seen by no ray
     (panel,) = recording_scene.lights
     camera = native.VISIBLE_CAMERA if ob.visible_camera else 0  # Blender's default differs
-    assert panel.visibility == camera | native.VISIBLE_GLOSSY | native.VISIBLE_TRANSMISSION
+    # A light's Shadow Catcher flag (on by default): it lights shadow catchers.
+    assert ob.is_shadow_catcher
+    assert panel.visibility == camera | native.VISIBLE_GLOSSY | native.VISIBLE_TRANSMISSION | \
+        native.VISIBLE_SHADOW_CATCHER
     assert panel.spread == pytest.approx(math.radians(30.0))
 
 

@@ -36,6 +36,9 @@ class PassSpec:
     # MOTION_PASS). Written, not left to Blender, which fills a new Vector pass with its
     # "unknown speed" 10000 (PASS_VECTOR_MAX) that the Vector Blur node would smear.
     native: bool = True
+    # k > 0: Cycles' light group pass "Combined_<name>" of the view layer's k-th light group,
+    # the native light group k (renderer.read_lightgroup), not a pass of the `passes` setting.
+    lightgroup: int = 0
 
     @property
     def result_name(self) -> str:
@@ -63,6 +66,7 @@ TOGGLES: tuple[tuple[str, str, tuple[PassSpec, ...]], ...] = (
                                             PassSpec("Denoising Albedo", 3, "RGB", "COLOR"))),
     ("stratum", "use_pass_sample_count", (PassSpec("Debug Sample Count", 1, "X", "VALUE"),)),
     ("stratum", "use_pass_error", (PassSpec("Stratum Error", 3, "RGB", "COLOR"),)),
+    ("stratum", "use_pass_shadow_catcher", (PassSpec("Shadow Catcher", 3, "RGB", "COLOR"),)),
 )
 
 
@@ -84,21 +88,32 @@ class StratumViewLayerSettings(bpy.types.PropertyGroup):
         description="Stratum Error: each pixel's estimated standard error of the mean (RGB), "
                     "from the spread of its samples; valid for independent samples (random)",
         default=False)
+    use_pass_shadow_catcher: BoolProperty(  # type: ignore[valid-type]
+        name="Shadow Catcher",
+        description="Shadow Catcher: the light on shadow catchers over their light without the "
+                    "other objects, to multiply a background plate by (Cycles' pass); with it, "
+                    "Combined holds the objects without the catchers' shadows",
+        default=False)
 
 
 def enabled_passes(view_layer: Any) -> list[PassSpec]:
-    """The passes besides Combined that the view layer's toggles ask for, in TOGGLES order."""
+    """The passes besides Combined that the view layer's toggles ask for, in TOGGLES order,
+    then one per light group of the view layer (Cycles' "Combined_<name>", RGB, in their
+    order; export/instances.py lightgroup_numbers numbers them alike)."""
     owners = {"view_layer": view_layer, "stratum": getattr(view_layer, "stratum", None)}
     chosen: list[PassSpec] = []
     for owner, prop, specs in TOGGLES:
         if owners[owner] is not None and getattr(owners[owner], prop, False):
             chosen.extend(specs)
+    groups = getattr(view_layer, "lightgroups", None) or ()
+    chosen.extend(PassSpec(f"Combined_{group.name}", 3, "RGB", "COLOR", lightgroup=k)
+                  for k, group in enumerate(groups, start=1))
     return chosen
 
 
 def native_setting(specs: list[PassSpec]) -> str:
     """The native `passes` setting for these passes."""
-    return ",".join(spec.name for spec in specs if spec.native)
+    return ",".join(spec.name for spec in specs if spec.native and not spec.lightgroup)
 
 
 # Blender's mist falloff -> the exponent Cycles raises the mist to (blender/sync.cpp).
@@ -135,9 +150,14 @@ class ResultPasses:
         as the denoiser's guides, without repeats), and the world's mist settings with Mist."""
         current = [name for name in str(settings.get("passes", "")).split(",") if name]
         wanted = current + [spec.name for spec in self.specs
-                            if spec.native and spec.name not in current]
+                            if spec.native and not spec.lightgroup and spec.name not in current]
         if wanted:
             settings["passes"] = ",".join(wanted)
+        lightgroups = sum(1 for spec in self.specs if spec.lightgroup)
+        if lightgroups:
+            settings["lightgroups"] = lightgroups
+            settings["lightgroup_split_emission"] = int(
+                blender_versions.lightgroups_take_split_emission(bpy.app.version))
         if self.world is not None and any(spec.name == "Mist" for spec in self.specs):
             settings.update(mist_settings(self.world.mist_settings))
 
@@ -148,7 +168,9 @@ class ResultPasses:
             render_pass = layer.passes.find_by_name(spec.result_name, "")
             if render_pass is None:
                 continue
-            if spec.native:
+            if spec.lightgroup:
+                write_rect(render_pass, renderer.read_lightgroup(spec.lightgroup))
+            elif spec.native:
                 write_rect(render_pass, renderer.read_pass(spec.name))
             else:
                 width, height = renderer.image_size
@@ -204,10 +226,37 @@ class STRATUM_VIEWLAYER_PT_passes_data(bpy.types.Panel):
         col.prop(view_layer, "use_pass_emit", text="Emission")
         col.prop(view_layer, "use_pass_environment")
         col.prop(view_layer, "use_pass_ambient_occlusion", text="Ambient Occlusion")
+        col.prop(view_layer.stratum, "use_pass_shadow_catcher")
         col = layout.column(heading="Stratum", align=True)
         col.prop(view_layer.stratum, "use_pass_denoising_data")
         col.prop(view_layer.stratum, "use_pass_sample_count")
         col.prop(view_layer.stratum, "use_pass_error")
+
+
+class STRATUM_VIEWLAYER_PT_passes_lightgroups(bpy.types.Panel):
+    """The view layer's light groups (Cycles' Light Groups panel): one Combined_<name> pass
+    each, of the lights, emissive objects and world whose Light Group names it."""
+
+    bl_label = "Light Groups"
+    bl_space_type = "PROPERTIES"
+    bl_region_type = "WINDOW"
+    bl_context = "view_layer"
+    bl_parent_id = "VIEWLAYER_PT_layer_passes"
+    bl_options = {"DEFAULT_CLOSED"}
+    COMPAT_ENGINES = {ENGINE_ID}
+
+    @classmethod
+    def poll(cls, context: Any) -> bool:
+        return context.engine in cls.COMPAT_ENGINES and hasattr(context.view_layer, "lightgroups")
+
+    def draw(self, context: Any) -> None:
+        view_layer = context.view_layer
+        row = self.layout.row()
+        row.template_list("UI_UL_list", "lightgroups", view_layer, "lightgroups", view_layer,
+                          "active_lightgroup_index", rows=2)
+        col = row.column(align=True)
+        col.operator("scene.view_layer_add_lightgroup", icon="ADD", text="")
+        col.operator("scene.view_layer_remove_lightgroup", icon="REMOVE", text="")
 
 
 # Blender's view-layer panels Stratum shows: the layer itself and the Passes panel its own
@@ -226,9 +275,12 @@ def register() -> None:
             engines.add(ENGINE_ID)
             _patched.append(panel)
     bpy.utils.register_class(STRATUM_VIEWLAYER_PT_passes_data)
+    bpy.utils.register_class(STRATUM_VIEWLAYER_PT_passes_lightgroups)
 
 
 def unregister() -> None:
+    if getattr(STRATUM_VIEWLAYER_PT_passes_lightgroups, "is_registered", True):
+        bpy.utils.unregister_class(STRATUM_VIEWLAYER_PT_passes_lightgroups)
     if getattr(STRATUM_VIEWLAYER_PT_passes_data, "is_registered", True):
         bpy.utils.unregister_class(STRATUM_VIEWLAYER_PT_passes_data)
     while _patched:

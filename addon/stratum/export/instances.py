@@ -21,12 +21,14 @@ class ObjectFlags(NamedTuple):
     visibility: int  # native VISIBLE_* bits
     holdout: bool
     pass_index: int  # Object > Relations > Pass Index (the IndexOB pass)
+    lightgroup: int = 0  # its emission's light group (lightgroup_number)
 
     @property
     def plain(self) -> bool:
-        """Seen by every ray, not held out, pass index 0: full() sends those in bulk, after
-        all others."""
-        return self.visibility == native.VISIBLE_ALL and not self.holdout and self.pass_index == 0
+        """Seen by every ray, not held out, pass index 0, in no light group: full() sends
+        those in bulk, after all others."""
+        return (self.visibility == native.VISIBLE_ALL and not self.holdout
+                and self.pass_index == 0 and self.lightgroup == 0)
 
 
 # (row, mesh id, object name, triangles, flags, (open, close) or None)
@@ -60,12 +62,20 @@ def original_pointer(ob: Any | None) -> int:
     return (getattr(ob, "original", None) or ob).as_pointer()
 
 
+def lightgroup_numbers(view_layer: Any) -> dict[str, int]:
+    """The native light group of each of the view layer's light groups (Cycles' Combined_<name>
+    passes, in its order): 1, 2, ...; a name not listed is in none (0)."""
+    groups = getattr(view_layer, "lightgroups", None) or ()
+    return {group.name: k for k, group in enumerate(groups, start=1)}
+
+
 class InstanceFlags:
     """ObjectFlags per (object identity, instancer), cached: 10 000 instances of one object
     should not read its properties 10 000 times."""
 
     def __init__(self, view_layer: Any) -> None:
         self._view_layer = view_layer
+        self._lightgroups = lightgroup_numbers(view_layer)
         self._cache: dict[tuple[tuple[int, int], int], ObjectFlags] = {}
 
     def get(self, ob: Any, ident: tuple[int, int], parent: Any | None) -> ObjectFlags:
@@ -73,14 +83,18 @@ class InstanceFlags:
         found = self._cache.get(key)
         if found is None:
             # Cycles (blender/object.cpp): an instance is visible to the rays both it and its
-            # instancer are visible to, and held out if either is; its pass index is its own
-            # object's.
+            # instancer are visible to, held out if either is and a shadow catcher if either
+            # is; its pass index is its own object's.
             visibility = object_visibility(ob)
             held_out = holdout(ob, self._view_layer)
             if parent is not None:
-                visibility &= object_visibility(parent)
+                catcher = (visibility | object_visibility(parent)) & native.VISIBLE_SHADOW_CATCHER
+                visibility = (visibility & object_visibility(parent)) | catcher
                 held_out = held_out or holdout(parent, self._view_layer)
-            found = ObjectFlags(visibility, held_out, int(getattr(ob, "pass_index", 0)))
+            # Cycles: the object's light group, else its instancer's.
+            group = getattr(ob, "lightgroup", "") or getattr(parent, "lightgroup", "")
+            found = ObjectFlags(visibility, held_out, int(getattr(ob, "pass_index", 0)),
+                                self._lightgroups.get(group, 0))
             self._cache[key] = found
         return found
 

@@ -51,11 +51,15 @@ MIN_SPREAD = 1e-3
 
 
 def object_visibility(ob: Any) -> int:
-    """StratumVisibility bits of an object's ray visibility."""
+    """StratumVisibility bits of an object's ray visibility, and VISIBLE_SHADOW_CATCHER for
+    Object > Visibility > Shadow Catcher (on a light: it lights shadow catchers, Blender's
+    default)."""
     bits = 0
     for attr, bit in _RAY_VISIBILITY:
         if getattr(ob, attr, True):
             bits |= bit
+    if getattr(ob, "is_shadow_catcher", False):
+        bits |= native.VISIBLE_SHADOW_CATCHER
     return bits
 
 
@@ -83,13 +87,13 @@ class ConvertedLight:
 
 
 def convert_light(ob: Any, matrix_world: Any, visibility: int,
-                  summary: ExportSummary) -> ConvertedLight | None:
-    """A native light and its program, or None (skipped: with a warning when it cannot be
-    rendered)."""
+                  summary: ExportSummary, lightgroup: int = 0) -> ConvertedLight | None:
+    """A native light (in native light group `lightgroup`) and its program, or None (skipped:
+    with a warning when it cannot be rendered)."""
     light = ob.data
     if not cast_shadow(light):
         visibility &= ~native.VISIBLE_SHADOW
-    if visibility & ~native.VISIBLE_SHADOW == 0:
+    if visibility & native.VISIBLE_ALL & ~native.VISIBLE_SHADOW == 0:
         return None  # seen by no ray: contributes nothing (native 0 would mean "all")
     kind = light.type
     reason = _unrenderable(light, kind)
@@ -107,7 +111,10 @@ def convert_light(ob: Any, matrix_world: Any, visibility: int,
         color = (min(color[0] * factor[0], FLT_MAX), min(color[1] * factor[1], FLT_MAX),
                  min(color[2] * factor[2], FLT_MAX))
     native_light = _native_light(ob, matrix_world, visibility, color, summary)
-    return ConvertedLight(native_light, program) if native_light is not None else None
+    if native_light is None:
+        return None
+    native_light.lightgroup = lightgroup
+    return ConvertedLight(native_light, program)
 
 
 def _native_light(ob: Any, matrix_world: Any, visibility: int, color: Rgb,

@@ -102,9 +102,10 @@ def object_edits(depsgraph: Any, changes: Changes, exported: ExportedObjects, sc
         changed = every_object or ident[0] in changes.objects or signature[1] in changes.objects
         if ob.type == "LIGHT":
             if changed or original_pointer(ob.data) in changes.light_data:
-                visibility = flags.get(ob, ident, parent).visibility
+                light_flags = flags.get(ob, ident, parent)
                 lights.append((row, ob.name,
-                               convert_light(ob, instance.matrix_world, visibility, summary)))
+                               convert_light(ob, instance.matrix_world, light_flags.visibility,
+                                             summary, light_flags.lightgroup)))
         elif changed and row in exported.positions:
             reflagged[exported.positions[row]] = flags.get(ob, ident, parent)
     if rows != exported.rows:

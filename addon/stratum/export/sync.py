@@ -70,6 +70,7 @@ from .common import (
 from .instances import (
     InstanceFlags,
     Placement,
+    lightgroup_numbers,
     object_random_id,
     original_pointer,
     renderable,
@@ -183,6 +184,8 @@ class SceneSync:
         try:
             background = convert_world(world_scene, summary)
             scene.set_background(background)
+            groups = lightgroup_numbers(getattr(depsgraph, "view_layer", None))
+            scene.set_world_lightgroup(groups.get(getattr(world_scene.world, "lightgroup", ""), 0))
             environment = convert_environment(world_scene, summary)
             if environment is not None:
                 scene.set_environment(environment.rgb, environment.strength,
@@ -250,8 +253,9 @@ class SceneSync:
                     should_stop, layer.surfaces), flags)
                 templates[signature] = template
             if template is LIGHT_ROW:
-                visibility = flags.get(ob, ident, parent).visibility
-                light = convert_light(ob, instance.matrix_world, visibility, summary)
+                light_flags = flags.get(ob, ident, parent)
+                light = convert_light(ob, instance.matrix_world, light_flags.visibility, summary,
+                                      light_flags.lightgroup)
                 exported.lights[index] = _add_light(ob.name, light, scene, summary, exported)
                 if light is not None:
                     exported.sent_lights.append(light.key())

@@ -99,6 +99,10 @@ VISIBLE_GLOSSY = 4
 VISIBLE_TRANSMISSION = 8
 VISIBLE_SHADOW = 16
 VISIBLE_ALL = 31
+# Not a ray kind: object.is_shadow_catcher (an instance is a catcher; a light lights catchers).
+VISIBLE_SHADOW_CATCHER = 32
+# STRATUM_MAX_LIGHT_GROUPS: light groups are numbered 1..this (0 = none).
+MAX_LIGHT_GROUPS = 64
 
 MICROFACET_GGX = 0
 MICROFACET_MULTISCATTER_GGX = 1
@@ -205,6 +209,7 @@ class _InstanceDesc(ctypes.Structure):
         ("visibility", ctypes.c_uint32),
         ("holdout", ctypes.c_int32),
         ("pass_index", ctypes.c_uint32),
+        ("lightgroup", ctypes.c_uint32),
     ]
 
 
@@ -268,6 +273,7 @@ class _LightDesc(ctypes.Structure):
         ("spot_blend", ctypes.c_float),
         ("visibility", ctypes.c_uint32),
         ("spread", ctypes.c_float),
+        ("lightgroup", ctypes.c_uint32),
     ]
 
 
@@ -365,6 +371,7 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
         "stratum_scene_add_light": (c_int32, [p_void, ctypes.POINTER(_LightDesc)]),
         "stratum_scene_set_camera": (c_int32, [p_void, ctypes.POINTER(_CameraDesc)]),
         "stratum_scene_set_background": (c_int32, [p_void, p_float]),
+        "stratum_scene_set_world_lightgroup": (c_int32, [p_void, c_uint32]),
         "stratum_scene_set_environment": (c_int32, [p_void, p_float, c_uint32, c_uint32,
                                                     ctypes.c_float, p_float]),
         # live edits
@@ -435,4 +442,5 @@ def function_signatures() -> dict[str, tuple[Any, list[Any]]]:
         "stratum_pass_count": (c_int32, []),
         "stratum_pass_info": (c_int32, [c_int32, pp_char, p_i32, pp_char]),
         "stratum_renderer_read_pass": (c_int32, [p_void, p_char, p_float, ctypes.c_size_t]),
+        "stratum_renderer_read_lightgroup": (c_int32, [p_void, c_uint32, p_float, ctypes.c_size_t]),
     }

@@ -17,6 +17,7 @@ from .abi import (
     TEXTURE_LINEAR,
     TEXTURE_REPEAT,
     VISIBLE_ALL,
+    VISIBLE_SHADOW_CATCHER,
 )
 from .models import closure_model, light_type
 
@@ -91,6 +92,7 @@ class Instance:
     visibility: int = VISIBLE_ALL
     holdout: bool = False
     pass_index: int = 0  # Object > Relations > Pass Index (the IndexOB pass)
+    lightgroup: int = 0  # its emission's light group: 0 none, k in 1..MAX_LIGHT_GROUPS
 
 
 @dataclass
@@ -105,8 +107,10 @@ class Light:
     transform: Sequence[float] | np.ndarray = IDENTITY_TRANSFORM
     spot_size: float = math.pi  # full cone angle (spot lights)
     spot_blend: float = 0.0
-    visibility: int = VISIBLE_ALL
+    # Blender's lights light shadow catchers (object.is_shadow_catcher is on for them).
+    visibility: int = VISIBLE_ALL | VISIBLE_SHADOW_CATCHER
     spread: float = math.pi  # area lights
+    lightgroup: int = 0  # 0 none, k in 1..MAX_LIGHT_GROUPS
 
 
 @dataclass

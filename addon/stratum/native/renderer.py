@@ -198,6 +198,17 @@ class Renderer(_Handle):
                "stratum_renderer_read_pass")
         return out
 
+    def read_lightgroup(self, group: int) -> np.ndarray:
+        """Copies the current RGB of light group `group` (1..the setting `lightgroups`) as a
+        (height, width, 3) float32 array, row 0 at the bottom as in read_pixels."""
+        width, height = self.image_size
+        out = np.empty((height, width, 3), dtype=np.float32)
+        _check(self._lib,
+               self._lib.stratum_renderer_read_lightgroup(self.handle, group, _float_ptr(out),
+                                                          out.size),
+               "stratum_renderer_read_lightgroup")
+        return out
+
     def write_image(self, path: str | os.PathLike[str]) -> None:
         _check(self._lib,
                self._lib.stratum_renderer_write_image(self.handle, os.fsencode(path)),

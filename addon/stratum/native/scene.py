@@ -69,6 +69,7 @@ def _instance_desc(instance: Instance) -> _InstanceDesc:
     desc.visibility = _uint32(instance.visibility, "instance visibility")
     desc.holdout = 1 if instance.holdout else 0
     desc.pass_index = _uint32(instance.pass_index, "instance pass_index")
+    desc.lightgroup = _uint32(instance.lightgroup, "instance lightgroup")
     return desc
 
 
@@ -404,6 +405,13 @@ class Scene(_Handle):
             raise ValueError("background: expected 3 floats (linear RGB)")
         _check(self._lib, self._lib.stratum_scene_set_background(self.handle, _float_ptr(c)),
                "stratum_scene_set_background")
+
+    def set_world_lightgroup(self, lightgroup: int) -> None:
+        """The light group of the world (0 none, k in 1..MAX_LIGHT_GROUPS)."""
+        _check(self._lib,
+               self._lib.stratum_scene_set_world_lightgroup(self.handle,
+                                                           _uint32(lightgroup, "world lightgroup")),
+               "stratum_scene_set_world_lightgroup")
 
     def set_environment(self, rgb: np.ndarray, strength: float = 1.0,
                         rotation: Sequence[float] | np.ndarray | None = None) -> None:

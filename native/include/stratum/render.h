@@ -121,6 +121,10 @@ STRATUM_API StratumStatus stratum_pass_info(int32_t index, const char** name, in
  * rows bottom to top. A pass the render does not hold is STRATUM_ERROR_INVALID_ARGUMENT. */
 STRATUM_API StratumStatus stratum_renderer_read_pass(const StratumRenderer* r, const char* name, float* out,
                                                      size_t count);
+/* Copies the current RGB of light group `group` (1..the int setting `lightgroups`; Cycles'
+ * "Combined_<name>" passes): width*height*3 floats, rows bottom to top. */
+STRATUM_API StratumStatus stratum_renderer_read_lightgroup(const StratumRenderer* r, uint32_t group,
+                                                           float* out, size_t count);
 /* Writes the current image (EXR linear, or PNG/other by extension via OpenImageIO). */
 STRATUM_API StratumStatus stratum_renderer_write_image(const StratumRenderer* r, const char* path);
 

@@ -242,7 +242,11 @@ typedef enum StratumVisibility {
     STRATUM_VISIBLE_GLOSSY = 4,
     STRATUM_VISIBLE_TRANSMISSION = 8,
     STRATUM_VISIBLE_SHADOW = 16,
-    STRATUM_VISIBLE_ALL = 31
+    STRATUM_VISIBLE_ALL = 31,
+    /* Not a ray kind: Blender's Object > Visibility > Shadow Catcher (object.is_shadow_catcher).
+       On an instance: the object is a Cycles shadow catcher. On a light: it lights the
+       catcher-only copy of a camera path (Blender sets it on lights by default). */
+    STRATUM_VISIBLE_SHADOW_CATCHER = 32
 } StratumVisibility;
 
 typedef struct StratumInstanceDesc {
@@ -255,7 +259,13 @@ typedef struct StratumInstanceDesc {
     int32_t holdout;         /* 1: Cycles' Object > Visibility > Holdout */
     uint32_t pass_index;     /* appended: Object > Relations > Pass Index, what the IndexOB pass
                                 holds; at most STRATUM_MAX_PASS_INDEX */
+    uint32_t lightgroup;     /* appended: the light group of the object's emission, 0 = none, k in
+                                1..STRATUM_MAX_LIGHT_GROUPS = group k (see stratum_renderer_read_lightgroup) */
 } StratumInstanceDesc;
+
+/* Cycles' light groups (view_layer.lightgroups): a render writes one RGB pass per group, the
+ * light each group's emitters (lights, emissive objects, the world) contribute. */
+#define STRATUM_MAX_LIGHT_GROUPS 64u
 
 /* Pass indices are stored in float passes: every integer up to 2^24 is exact there. */
 #define STRATUM_MAX_PASS_INDEX 16777216u
@@ -310,11 +320,12 @@ typedef struct StratumLightDesc {
     /* Appended fields (spot lights only; ignored otherwise). */
     float spot_size;  /* full cone angle in radians, (0, pi] */
     float spot_blend; /* [0, 1]: smoothstep falloff over this fraction of (1 - cos(spot_size/2)) */
-    /* Appended fields: visibility 0 reads as STRATUM_VISIBLE_ALL. */
+    /* Appended fields: visibility 0 reads as STRATUM_VISIBLE_ALL | STRATUM_VISIBLE_SHADOW_CATCHER. */
     uint32_t visibility; /* StratumVisibility bits: CAMERA (area lights seen by camera rays),
                             DIFFUSE / GLOSSY / TRANSMISSION (lit by it at such a vertex), SHADOW
                             (Cycles' cast_shadow) */
     float spread;        /* area lights: Cycles' spread in radians, (0, pi]; 0 reads as pi */
+    uint32_t lightgroup; /* appended: 0 = none, k = light group k (STRATUM_MAX_LIGHT_GROUPS) */
 } StratumLightDesc;
 
 STRATUM_API StratumStatus stratum_scene_add_light(StratumScene* scene, const StratumLightDesc* light);
@@ -356,6 +367,9 @@ typedef struct StratumCameraDesc {
 STRATUM_API StratumStatus stratum_scene_set_camera(StratumScene* scene, const StratumCameraDesc* camera);
 /* Constant background radiance (Blender world colour x strength). */
 STRATUM_API StratumStatus stratum_scene_set_background(StratumScene* scene, const float rgb[3]);
+/* The light group of the world (background or environment): 0 = none, k = group k (at most
+ * STRATUM_MAX_LIGHT_GROUPS); 0 until set. A live edit of the world. */
+STRATUM_API StratumStatus stratum_scene_set_world_lightgroup(StratumScene* scene, uint32_t lightgroup);
 /* Environment image (Blender World: Background <- Environment Texture, equirectangular): it
  * replaces the constant background and is importance-sampled as a light. rgb: width*height*3
  * linear RGB floats (copied), rows top (+Z) to bottom, each >= 0 and finite; the radiance is

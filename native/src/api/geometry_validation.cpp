@@ -194,6 +194,7 @@ Instance validate_instance(const StratumInstanceDesc& d, const std::vector<Mesh>
     }
     inst.visibility = validate_visibility(d.visibility, "instance visibility");
     inst.holdout = d.holdout == 1;
+    inst.lightgroup = validate_lightgroup(d.lightgroup, "instance lightgroup");
     inst.pass_index = validate_pass_index(d.pass_index, "instance pass_index");
     return inst;
 }

@@ -180,6 +180,22 @@ StratumStatus stratum_renderer_read_pixels(const StratumRenderer* r, float* rgba
     });
 }
 
+StratumStatus stratum_renderer_read_lightgroup(const StratumRenderer* r, uint32_t group, float* out,
+                                               size_t count) {
+    return guarded("stratum_renderer_read_lightgroup", [&] {
+        require(r && out, "renderer or out is NULL");
+        const size_t pixels = static_cast<size_t>(r->renderer.width()) * r->renderer.height();
+        require(pixels > 0, "nothing rendered yet: call stratum_renderer_start first");
+        require(count == pixels * 3, "buffer holds " + std::to_string(count) +
+                                         " floats, a light group needs " + std::to_string(pixels * 3) +
+                                         " (width*height*3)");
+        require(r->renderer.read_lightgroup(group, out), "this render does not hold light group " +
+                                                             std::to_string(group) +
+                                                             " (groups are 1..the setting 'lightgroups')");
+        return STRATUM_OK;
+    });
+}
+
 StratumStatus stratum_renderer_read_pass(const StratumRenderer* r, const char* name, float* out,
                                          size_t count) {
     return guarded("stratum_renderer_read_pass", [&] {

@@ -173,6 +173,16 @@ StratumStatus stratum_scene_set_background(StratumScene* scene, const float rgb[
     });
 }
 
+StratumStatus stratum_scene_set_world_lightgroup(StratumScene* scene, uint32_t lightgroup) {
+    return guarded("stratum_scene_set_world_lightgroup", [&] {
+        require(scene != nullptr, "scene is NULL");
+        const uint32_t group = stratum::validate_lightgroup(lightgroup, "world lightgroup");
+        scene->live->edit(stratum::LiveScene::Part::World,
+                          [&](stratum::Scene& s) { s.world_lightgroup = group; });
+        return STRATUM_OK;
+    });
+}
+
 StratumStatus stratum_scene_set_environment(StratumScene* scene, const float* rgb, uint32_t width,
                                             uint32_t height, float strength, const float rotation[9]) {
     return guarded("stratum_scene_set_environment", [&] {

@@ -139,6 +139,7 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                   {"pass_index", i.pass_index},
                                   {"random", i.random},
                                   {"color", {i.color.r, i.color.g, i.color.b, i.alpha}},
+                                  {"lightgroup", i.lightgroup},
                                   {"links",
                                    {i.links.receiver_light_set, i.links.blocker_shadow_set,
                                     i.links.light_set_membership, i.links.shadow_set_membership}}});
@@ -155,6 +156,7 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                                {"transform", matrix(l.light_to_world)},
                                {"visibility", l.visibility},
                                {"spread", l.spread},
+                               {"lightgroup", l.lightgroup},
                                {"links", {l.links.light_set_membership, l.links.shadow_set_membership}}});
     }
     if (scene.camera) {
@@ -175,6 +177,7 @@ std::string save_scene_file(const Scene& scene, const char* path) {
                        {"longitude", {c.longitude_min, c.longitude_max}}};
     }
     j["background"] = rgb(scene.background);
+    j["world_lightgroup"] = scene.world_lightgroup;
     if (scene.environment) {
         const Environment& e = *scene.environment;
         j["environment"] = {{"width", e.width},
@@ -313,6 +316,8 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             d.visibility = field_or(i, "visibility", static_cast<uint32_t>(STRATUM_VISIBLE_ALL));
             d.holdout = field_or<int32_t>(i, "holdout", 0);
             d.pass_index = field_or(i, "pass_index", static_cast<uint32_t>(0));
+            // Files written before light groups: none.
+            d.lightgroup = field_or(i, "lightgroup", 0u);
             if ((status = stratum_scene_add_instance_ex(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
             // Files written before Object Info: random 0, colour white.
@@ -352,6 +357,7 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
             // Absent in older files: 0 reads as all rays and as spread pi.
             d.visibility = field_or(l, "visibility", 0u);
             d.spread = field_or(l, "spread", 0.0f);
+            d.lightgroup = field_or(l, "lightgroup", 0u);
             if ((status = stratum_scene_add_light(scene, &d)) != STRATUM_OK)
                 return entry_point_failed(status);
             if (l.contains("links")) {
@@ -393,7 +399,9 @@ StratumStatus load_scene_file(const char* path, StratumScene* scene, std::string
         }
         float bg[3];
         read_numbers(j, "background", bg);
-        if ((status = stratum_scene_set_background(scene, bg)) != STRATUM_OK)
+        if ((status = stratum_scene_set_background(scene, bg)) != STRATUM_OK ||
+            (status = stratum_scene_set_world_lightgroup(scene, field_or(j, "world_lightgroup", 0u))) !=
+                STRATUM_OK)
             return entry_point_failed(status);
         if (j.contains("environment")) {
             const json& e = j.at("environment");

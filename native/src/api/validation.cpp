@@ -15,7 +15,9 @@ namespace stratum {
 static_assert(kVisibleCamera == STRATUM_VISIBLE_CAMERA && kVisibleDiffuse == STRATUM_VISIBLE_DIFFUSE &&
               kVisibleGlossy == STRATUM_VISIBLE_GLOSSY &&
               kVisibleTransmission == STRATUM_VISIBLE_TRANSMISSION &&
-              kVisibleShadow == STRATUM_VISIBLE_SHADOW && kVisibleAll == STRATUM_VISIBLE_ALL);
+              kVisibleShadow == STRATUM_VISIBLE_SHADOW && kVisibleAll == STRATUM_VISIBLE_ALL &&
+              kVisibleShadowCatcher == STRATUM_VISIBLE_SHADOW_CATCHER);
+static_assert(kMaxLightGroups == STRATUM_MAX_LIGHT_GROUPS);
 
 using namespace abi_checks;
 
@@ -193,10 +195,18 @@ SceneMaterial validate_closure_material(const StratumClosureDesc* closures, uint
 }
 
 uint32_t validate_visibility(uint32_t bits, const char* what) {
-    if ((bits & ~static_cast<uint32_t>(STRATUM_VISIBLE_ALL)) != 0)
+    if ((bits & ~static_cast<uint32_t>(STRATUM_VISIBLE_ALL | STRATUM_VISIBLE_SHADOW_CATCHER)) != 0)
         throw ValidationError(std::string(what) + " = " + std::to_string(bits) +
-                              " has bits outside STRATUM_VISIBLE_ALL (31)");
+                              " has bits outside STRATUM_VISIBLE_ALL | STRATUM_VISIBLE_SHADOW_CATCHER (63)");
     return bits;
+}
+
+uint32_t validate_lightgroup(uint32_t group, const char* what) {
+    if (group > STRATUM_MAX_LIGHT_GROUPS)
+        throw ValidationError(std::string(what) + " = " + std::to_string(group) +
+                              " is above STRATUM_MAX_LIGHT_GROUPS (" +
+                              std::to_string(STRATUM_MAX_LIGHT_GROUPS) + ")");
+    return group;
 }
 
 LightParams validate_light(const StratumLightDesc& d) {
@@ -224,8 +234,10 @@ LightParams validate_light(const StratumLightDesc& d) {
         }
     }
     l.light_to_world = validate_transform(d.transform, "light transform");
-    l.visibility = d.visibility == 0 ? static_cast<uint32_t>(STRATUM_VISIBLE_ALL)
-                                     : validate_visibility(d.visibility, "light visibility");
+    l.visibility = d.visibility == 0
+                       ? static_cast<uint32_t>(STRATUM_VISIBLE_ALL | STRATUM_VISIBLE_SHADOW_CATCHER)
+                       : validate_visibility(d.visibility, "light visibility");
+    l.lightgroup = validate_lightgroup(d.lightgroup, "light lightgroup");
     return l;
 }
 

@@ -33,6 +33,8 @@ SceneMaterial validate_closure_material(const StratumClosureDesc* closures, uint
 Mesh validate_mesh(const StratumMeshDesc& desc, uint32_t material_count);
 // Ray-visibility bits (STRATUM_VISIBLE_*) of an instance or a light; `what` names them.
 uint32_t validate_visibility(uint32_t bits, const char* what);
+// A light group (0 none, 1..STRATUM_MAX_LIGHT_GROUPS); `what` names it.
+uint32_t validate_lightgroup(uint32_t group, const char* what);
 // meshes: the scene's meshes (mesh_id must index one; its bounds limit the placement).
 // An object's or material's pass index (the IndexOB / IndexMA passes); `what` names it.
 uint32_t validate_pass_index(uint32_t pass_index, const std::string& what);

@@ -10,12 +10,16 @@ namespace {
 
 bool is_finite(const Rgb& c) { return std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b); }
 
-// The passes a film holds: those asked for, and the Error pass's sums of squares when it tracks
-// prefixes (its error estimate scales them).
-std::vector<Pass> film_passes(std::span<const Pass> passes, bool track_prefixes) {
+// The passes a film holds: those asked for, the Error pass's sums of squares when it tracks
+// prefixes (its error estimate scales them), and the Shadow Catcher pass's sums when Combined
+// is read from them.
+std::vector<Pass> film_passes(std::span<const Pass> passes, bool track_prefixes, CatcherCombined catcher) {
     std::vector<Pass> out(passes.begin(), passes.end());
-    if (track_prefixes && std::find(out.begin(), out.end(), Pass::Error) == out.end())
-        out.push_back(Pass::Error);
+    const auto add = [&](Pass pass) {
+        if (std::find(out.begin(), out.end(), pass) == out.end()) out.push_back(pass);
+    };
+    if (track_prefixes) add(Pass::Error);
+    if (catcher != CatcherCombined::Off) add(Pass::ShadowCatcher);
     return out;
 }
 
@@ -35,7 +39,7 @@ double independent_variance(FilmSum sum, FilmSum sum_sq, double n) {
 
 }  // namespace
 
-FilmLayout::FilmLayout(std::span<const Pass> passes) {
+FilmLayout::FilmLayout(std::span<const Pass> passes, uint32_t lightgroups) {
     slots_.fill(kAbsent);
     for (const Pass pass : passes) {
         if (pass == Pass::Combined || slots_[index(pass)] != kAbsent) continue;
@@ -47,15 +51,24 @@ FilmLayout::FilmLayout(std::span<const Pass> passes) {
         sum_channels_ += stored_channels(info);
         published_channels_ += info.channels;
     }
+    lightgroups_ = lightgroups;
+    lightgroup_sample_offset_ = sample_channels_;
+    lightgroup_sum_offset_ = sum_channels_;
+    lightgroup_published_offset_ = published_channels_;
+    sample_channels_ += 3 * lightgroups;
+    sum_channels_ += 3 * lightgroups;
+    published_channels_ += 3 * lightgroups;
 }
 
 Film::Film(const PixelRegion& region, uint32_t frame_width, uint32_t frame_height, const PixelFilter& filter,
-           std::span<const Pass> passes, bool light_paths, bool track_prefixes)
+           std::span<const Pass> passes, bool light_paths, bool track_prefixes, CatcherCombined catcher,
+           uint32_t lightgroups)
     : region_(region),
       frame_width_(frame_width),
       frame_height_(frame_height),
       filter_(filter),
-      layout_(film_passes(passes, track_prefixes)),
+      catcher_(catcher),
+      layout_(film_passes(passes, track_prefixes, catcher), lightgroups),
       sums_(region.pixel_count() * sums_stride(), 0),
       counts_(region.pixel_count(), 0),
       splat_sums_(light_paths ? 3 * region.pixel_count() : 0, 0),
@@ -64,8 +77,9 @@ Film::Film(const PixelRegion& region, uint32_t frame_width, uint32_t frame_heigh
       estimates_(tracks_prefixes() ? region.pixel_count() : 0),
       published_(region.pixel_count() * published_stride(), 0.0f) {}
 
-double Film::bytes_per_pixel(std::span<const Pass> passes, bool light_paths, bool track_prefixes) {
-    const FilmLayout layout(film_passes(passes, track_prefixes));
+double Film::bytes_per_pixel(std::span<const Pass> passes, bool light_paths, bool track_prefixes,
+                             CatcherCombined catcher, uint32_t lightgroups) {
+    const FilmLayout layout(film_passes(passes, track_prefixes, catcher), lightgroups);
     const bool prefixes = layout.has(Pass::Error);
     return (4.0 + layout.sum_channels()) * sizeof(FilmSum) +
            (4.0 + layout.published_channels()) * sizeof(float) + sizeof(uint32_t) +
@@ -154,6 +168,9 @@ bool Film::add_sample(FilmSum* sums, uint32_t sample_index, Rgb radiance, float 
             case PassKind::Average:
                 for (uint32_t c = 0; c < e.channels; ++c) sum[c] += fixed(value[c]);
                 break;
+            case PassKind::ShadowCatcher:
+                for (uint32_t c = 0; c < kShadowCatcherSums; ++c) sum[c] += fixed(value[c]);
+                break;
             case PassKind::FirstSample:
                 if (sample_index == 0)
                     for (uint32_t c = 0; c < e.channels; ++c) sum[c] = fixed(value[c]);
@@ -168,6 +185,9 @@ bool Film::add_sample(FilmSum* sums, uint32_t sample_index, Rgb radiance, float 
                 break;
         }
     }
+    FilmSum* groups = sums + 4 + layout_.lightgroup_sum_offset();
+    const float* group_values = values + layout_.lightgroup_sample_offset();
+    for (uint32_t c = 0; c < 3 * layout_.lightgroups(); ++c) groups[c] += fixed(group_values[c]);
     return clamped;
 }
 
@@ -234,10 +254,28 @@ void Film::publish_pixel(size_t p, double n, const FilmSum* splats) {
             case PassKind::StandardError:
                 for (uint32_t c = 0; c < e.channels; ++c) out[c] = saturate_to_float(standard_error(p, c));
                 break;
+            case PassKind::ShadowCatcher: {
+                std::array<double, kShadowCatcherSums> means;
+                for (uint32_t c = 0; c < kShadowCatcherSums; ++c)
+                    means[c] = from_fixed(s[c]) / camera_samples;
+                const Rgb pass = shadow_catcher_pass(Rgb(px[0], px[1], px[2]), px[3], means.data());
+                out[0] = pass.r;
+                out[1] = pass.g;
+                out[2] = pass.b;
+                // Cycles shows the matte as Combined (its shadow catcher ratio reads Combined
+                // first, so Combined is replaced after it).
+                if (catcher_ != CatcherCombined::Off)
+                    std::ranges::copy(matte_combined(catcher_, pass, means.data()), px);
+                break;
+            }
             case PassKind::Radiance:
                 break;
         }
     }
+    const FilmSum* groups = sum + 4 + layout_.lightgroup_sum_offset();
+    float* group_out = px + 4 + layout_.lightgroup_published_offset();
+    for (uint32_t c = 0; c < 3 * layout_.lightgroups(); ++c)
+        group_out[c] = saturate_to_float(from_fixed(groups[c]) / camera_samples);
 }
 
 void Film::publish(uint32_t x0, uint32_t x1, uint32_t y0, uint32_t y1) {
@@ -265,6 +303,16 @@ bool Film::read(Pass pass, float* out) const {
     std::unique_lock lock(published_mutex_);
     for (size_t p = 0; p < region_.pixel_count(); ++p)
         std::copy_n(&published_[p * stride + first], channels, out + p * channels);
+    return true;
+}
+
+bool Film::read_lightgroup(uint32_t group, float* out) const {
+    if (group == 0 || group > layout_.lightgroups()) return false;
+    const uint32_t stride = published_stride();
+    const uint32_t first = 4 + layout_.lightgroup_published_offset() + 3 * (group - 1);
+    std::unique_lock lock(published_mutex_);
+    for (size_t p = 0; p < region_.pixel_count(); ++p)
+        std::copy_n(&published_[p * stride + first], 3, out + p * 3);
     return true;
 }
 

@@ -38,6 +38,7 @@
 // exchange of sums between renders does not carry them.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdint>
@@ -49,9 +50,11 @@
 
 #include "core/math.h"
 #include "film/error_estimate.h"
+#include "film/light_groups.h"
 #include "film/passes.h"
 #include "film/pixel_filter.h"
 #include "film/pixel_region.h"
+#include "film/shadow_catcher_film.h"
 #include "scene/camera.h"
 
 namespace stratum {
@@ -83,7 +86,8 @@ inline double from_fixed(FilmSum s) { return static_cast<double>(s) / kFixedScal
 
 // Where the channels of each enabled pass (other than Combined) sit: among the values an
 // integrator writes per camera sample, among the doubles the film sums per pixel (after
-// Combined's 4), and among the floats it publishes per pixel (after Combined's 4).
+// Combined's 4), and among the floats it publishes per pixel (after Combined's 4). After the
+// passes come the light groups' RGB (film/light_groups.h), 3 channels per group in each.
 class FilmLayout {
 public:
     struct Entry {
@@ -94,7 +98,7 @@ public:
     };
 
     FilmLayout() { slots_.fill(kAbsent); }
-    explicit FilmLayout(std::span<const Pass> passes);
+    explicit FilmLayout(std::span<const Pass> passes, uint32_t lightgroups = 0);
     bool has(Pass pass) const { return pass == Pass::Combined || slots_[index(pass)] != kAbsent; }
     // The placement of a held pass other than Combined (only for has(pass)).
     const Entry& entry(Pass pass) const { return entries_[slots_[index(pass)]]; }
@@ -104,6 +108,11 @@ public:
     // Doubles summed and floats published per pixel besides Combined's 4.
     uint32_t sum_channels() const { return sum_channels_; }
     uint32_t published_channels() const { return published_channels_; }
+    // The light groups (group k = 1..lightgroups()) and where their first channel sits.
+    uint32_t lightgroups() const { return lightgroups_; }
+    uint32_t lightgroup_sample_offset() const { return lightgroup_sample_offset_; }
+    uint32_t lightgroup_sum_offset() const { return lightgroup_sum_offset_; }
+    uint32_t lightgroup_published_offset() const { return lightgroup_published_offset_; }
 
 private:
     static constexpr uint32_t kAbsent = ~0u;
@@ -112,6 +121,8 @@ private:
     std::array<Entry, kPasses.size()> entries_{};
     uint32_t count_ = 0;
     uint32_t sample_channels_ = 0, sum_channels_ = 0, published_channels_ = 0;
+    uint32_t lightgroups_ = 0;
+    uint32_t lightgroup_sample_offset_ = 0, lightgroup_sum_offset_ = 0, lightgroup_published_offset_ = 0;
 };
 
 // The extra pass values of one camera sample, written by the integrator. Passes the render did
@@ -123,11 +134,27 @@ public:
     PassValues(const FilmLayout* layout, float* values, const Camera* camera = nullptr)
         : layout_(layout), values_(values), camera_(camera) {}
     bool wants(Pass pass) const {
-        return layout_ && pass != Pass::Combined && layout_->has(pass) &&
+        return layout_ && !lightgroups_only_ && pass != Pass::Combined && layout_->has(pass) &&
                sample_channels(pass_info(pass)) > 0;
     }
     // Whether any pass the integrator writes is held.
-    bool any() const { return layout_ && layout_->extra_channels() > 0; }
+    bool any() const { return layout_ && !lightgroups_only_ && layout_->extra_channels() > 0; }
+    // The same values, of which only the light groups take writes (for the catcher-only copy of a
+    // path, integrators/shadow_catcher.h, whose other passes are the main path's).
+    PassValues lightgroups_only() const {
+        PassValues v = *this;
+        v.lightgroups_only_ = true;
+        return v;
+    }
+    // Adds `value` to light group `group` (1..layout lightgroups(); 0 = none, and groups the film
+    // does not hold, take nothing).
+    void add_lightgroup(uint32_t group, Rgb value) {
+        if (!layout_ || group == 0 || group > layout_->lightgroups()) return;
+        float* out = values_ + layout_->lightgroup_sample_offset() + 3 * (group - 1);
+        out[0] += value.r;
+        out[1] += value.g;
+        out[2] += value.b;
+    }
     const Camera* camera() const { return camera_; }
     void write(Pass pass, Vec3 v) {
         if (!wants(pass) || pass_info(pass).channels != 3) return;
@@ -140,11 +167,17 @@ public:
         if (!wants(pass) || pass_info(pass).channels != 1) return;
         values_[layout_->entry(pass).sample_offset] = v;
     }
+    void write(const ShadowCatcherSample& sample) {
+        if (!wants(Pass::ShadowCatcher)) return;
+        const auto v = sample.values();
+        std::copy(v.begin(), v.end(), values_ + layout_->entry(Pass::ShadowCatcher).sample_offset);
+    }
 
 private:
     const FilmLayout* layout_ = nullptr;
     float* values_ = nullptr;
     const Camera* camera_ = nullptr;
+    bool lightgroups_only_ = false;
 };
 
 // One light path's contribution to one pixel of the rendered region.
@@ -156,12 +189,16 @@ struct Splat {
 class Film {
 public:
     // `passes`: the passes besides Combined; `light_paths`: whether splats will be added;
-    // `track_prefixes`: keep the prefix sums of error estimates (always with the Error pass).
+    // `track_prefixes`: keep the prefix sums of error estimates (always with the Error pass);
+    // `catcher`: what Combined shows of a scene with shadow catchers (not Off: the film holds the
+    // Shadow Catcher pass's sums, film/shadow_catcher_film.h); `lightgroups`: the light groups'
+    // passes it holds (film/light_groups.h).
     Film(const PixelRegion& region, uint32_t frame_width, uint32_t frame_height, const PixelFilter& filter,
-         std::span<const Pass> passes, bool light_paths, bool track_prefixes = false);
+         std::span<const Pass> passes, bool light_paths, bool track_prefixes = false,
+         CatcherCombined catcher = CatcherCombined::Off, uint32_t lightgroups = 0);
     // The memory a film of these passes takes per pixel (for the renderer's memory budget).
-    static double bytes_per_pixel(std::span<const Pass> passes, bool light_paths,
-                                  bool track_prefixes = false);
+    static double bytes_per_pixel(std::span<const Pass> passes, bool light_paths, bool track_prefixes = false,
+                                  CatcherCombined catcher = CatcherCombined::Off, uint32_t lightgroups = 0);
 
     const PixelRegion& region() const { return region_; }
     uint32_t frame_width() const { return frame_width_; }
@@ -170,6 +207,7 @@ public:
     const FilmLayout& layout() const { return layout_; }
     bool has_light_paths() const { return !splat_sums_.empty(); }
     bool tracks_prefixes() const { return !prefix_sums_.empty(); }
+    CatcherCombined catcher_combined() const { return catcher_; }
 
     // A copy of the pixel's sums: the thread adds a pass's samples to it and stores it back with
     // store_sums only if the pass completed (a pixel cancelled mid-pass keeps its previous sum).
@@ -210,6 +248,9 @@ public:
     // The published values of `pass` (its channels per pixel, rows bottom to top); false when
     // the film does not hold the pass. out holds region().pixel_count() * channels floats.
     bool read(Pass pass, float* out) const;
+    // The published RGB of light group `group` (1..layout().lightgroups()); false when the film
+    // does not hold it. out holds region().pixel_count() * 3 floats.
+    bool read_lightgroup(uint32_t group, float* out) const;
 
     // The sample indices [begin, end) every pixel's sums hold (set by the renderer as passes end).
     void set_sample_range(uint32_t begin, uint32_t end) {
@@ -236,6 +277,7 @@ private:
     PixelRegion region_;
     uint32_t frame_width_, frame_height_;
     PixelFilter filter_;
+    CatcherCombined catcher_;
     FilmLayout layout_;
     uint32_t published_stride() const { return 4 + layout_.published_channels(); }
 

@@ -6,8 +6,10 @@
 // | bytes (native byte order)                       | content                                  |
 // |-------------------------------------------------|------------------------------------------|
 // | 8                                               | kMagic "STRMSUMS"                        |
-// | 10 × u32                                        | version, region x y w h, frame w h,      |
-// |                                                 | light paths (0/1), sample begin, end     |
+// | 11 × u32                                        | version, region x y w h, frame w h,      |
+// |                                                 | light paths (0/1), sample begin, end,    |
+// |                                                 | what Combined shows of shadow catchers,  |
+// |                                                 | light groups                             |
 // | u32 + u32 per pass                              | the passes besides Combined, in order    |
 // | u32 per pixel                                   | camera samples summed                    |
 // | 16 per sum (__int128), sums_stride() per pixel  | camera sums                              |
@@ -27,8 +29,8 @@ namespace stratum {
 namespace {
 
 constexpr char kMagic[8] = {'S', 'T', 'R', 'M', 'S', 'U', 'M', 'S'};
-constexpr uint32_t kVersion = 1;
-constexpr size_t kHeaderWords = 10;
+constexpr uint32_t kVersion = 2;
+constexpr size_t kHeaderWords = 12;
 
 // Copies into bytes sized in advance (vector::insert of raw bytes trips GCC 12's bounds warnings).
 class Writer {
@@ -79,10 +81,18 @@ std::vector<uint8_t> Film::sums_bytes() const {
                              (sums_.size() + splat_sums_.size()) * sizeof(FilmSum));
     Writer w(out);
     w.put(kMagic, sizeof kMagic);
-    const uint32_t header[kHeaderWords] = {
-        kVersion,       region_.x,    region_.y,     region_.width,
-        region_.height, frame_width_, frame_height_, has_light_paths() ? 1u : 0u,
-        sample_begin_,  sample_end_};
+    const uint32_t header[kHeaderWords] = {kVersion,
+                                           region_.x,
+                                           region_.y,
+                                           region_.width,
+                                           region_.height,
+                                           frame_width_,
+                                           frame_height_,
+                                           has_light_paths() ? 1u : 0u,
+                                           sample_begin_,
+                                           sample_end_,
+                                           static_cast<uint32_t>(catcher_),
+                                           layout_.lightgroups()};
     w.put(header, sizeof header);
     const uint32_t passes = static_cast<uint32_t>(entries.size());
     w.put(&passes, sizeof passes);
@@ -113,7 +123,8 @@ std::unique_ptr<Film> Film::from_sums_bytes(std::span<const uint8_t> bytes, std:
     const PixelRegion region{h[1], h[2], h[3], h[4]};
     const uint32_t frame_width = h[5], frame_height = h[6];
     if (region.width == 0 || region.height == 0 || h[7] > 1 || h[8] > h[9] ||
-        uint64_t{region.x} + region.width > frame_width ||
+        h[10] > static_cast<uint32_t>(CatcherCombined::MatteWithShadowOverBackground) ||
+        h[11] > kMaxLightGroups || uint64_t{region.x} + region.width > frame_width ||
         uint64_t{region.y} + region.height > frame_height) {
         *error = "film sums with an inconsistent header (region, frame or sample range)";
         return nullptr;
@@ -136,7 +147,13 @@ std::unique_ptr<Film> Film::from_sums_bytes(std::span<const uint8_t> bytes, std:
     }
     const bool light_paths = h[7] == 1;
     // The sizes the header implies, checked before a film of that size is allocated.
-    const FilmLayout layout(passes);
+    const auto catcher = static_cast<CatcherCombined>(h[10]);
+    if (catcher != CatcherCombined::Off &&
+        std::find(passes.begin(), passes.end(), Pass::ShadowCatcher) == passes.end()) {
+        *error = "film sums of a shadow catcher's matte without the Shadow Catcher pass's sums";
+        return nullptr;
+    }
+    const FilmLayout layout(passes, h[11]);
     const uint64_t pixels = region.pixel_count();
     const uint64_t expected = pixels * (sizeof(uint32_t) + (4 + layout.sum_channels()) * sizeof(FilmSum) +
                                         (light_paths ? 3 * sizeof(FilmSum) : 0));
@@ -148,7 +165,7 @@ std::unique_ptr<Film> Film::from_sums_bytes(std::span<const uint8_t> bytes, std:
     }
     // The filter only shapes new samples and splats; a film made from sums publishes them.
     auto film = std::make_unique<Film>(region, frame_width, frame_height, PixelFilter(FilterType::Box, 1.0f),
-                                       passes, light_paths);
+                                       passes, light_paths, false, catcher, h[11]);
     in.read(film->counts_.data(), film->counts_.size() * sizeof(uint32_t));
     in.read(film->sums_.data(), film->sums_.size() * sizeof(FilmSum));
     in.read(film->splat_sums_.data(), film->splat_sums_.size() * sizeof(FilmSum));
@@ -164,6 +181,8 @@ std::string Film::add_sums(const Film& other) {
         frame_width_ != other.frame_width_ || frame_height_ != other.frame_height_)
         return "the sums are of another frame or border region";
     if (has_light_paths() != other.has_light_paths()) return "the sums are of another integrator";
+    if (catcher_ != other.catcher_) return "the sums show shadow catchers otherwise (another film setting)";
+    if (layout_.lightgroups() != other.layout_.lightgroups()) return "the sums are of other light groups";
     const auto ea = layout_.entries(), eb = other.layout_.entries();
     if (ea.size() != eb.size() || !std::equal(ea.begin(), ea.end(), eb.begin(),
                                               [](const auto& x, const auto& y) { return x.pass == y.pass; }))
@@ -185,6 +204,8 @@ std::string Film::add_sums(const Film& other) {
                 to = e.kind == PassKind::FirstSample ? (other_holds_first ? from : to) : to + from;
             }
         }
+        for (uint32_t c = 0; c < 3 * layout_.lightgroups(); ++c)
+            sum[4 + layout_.lightgroup_sum_offset() + c] += add[4 + layout_.lightgroup_sum_offset() + c];
         counts_[p] += other.counts_[p];
     }
     for (size_t i = 0; i < splat_sums_.size(); ++i) splat_sums_[i] += other.splat_sums_[i];

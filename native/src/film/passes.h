@@ -13,6 +13,8 @@
 // | StandardError | per RGB channel, the estimated standard error of the mean of Combined's   |
 // |               | camera samples, sqrt(G·(Σx²/n − x̄²)/(n − 1)), from the sums of squares   |
 // |               | the film keeps and the gain G of film/error_estimate.h (0 below 2 samples) |
+// | ShadowCatcher | Cycles' Shadow Catcher: from the sums of the catcher-only light, the matte |
+// |               | and the splits of the camera samples (film/shadow_catcher_film.h)         |
 //
 // Average and FirstSample passes are written by the integrator (PassValues::write); the film
 // derives SampleCount and StandardError itself. Adding a pass: a line here (at the end: the
@@ -25,7 +27,7 @@
 
 namespace stratum {
 
-enum class PassKind : uint8_t { Radiance, Average, FirstSample, SampleCount, StandardError };
+enum class PassKind : uint8_t { Radiance, Average, FirstSample, SampleCount, StandardError, ShadowCatcher };
 
 struct PassInfo {
     const char* name;
@@ -53,7 +55,8 @@ enum class Pass : uint32_t {
     MaterialIndex,
     DiffuseColor,
     GlossyColor,
-    TransmissionColor
+    TransmissionColor,
+    ShadowCatcher
 };
 
 // Cycles' Depth of a camera ray that meets nothing (kernel/film/read.h: a stored 0 reads 1e10).
@@ -109,15 +112,22 @@ inline constexpr std::array kPasses = {
     PassInfo{"TransCol", 3, PassKind::Average,
              "Cycles' Transmission Color: the transmission closures' colour (glass: its refraction share) of "
              "the surfaces a camera ray meets before its first bounce, times the path's throughput"},
+    PassInfo{"Shadow Catcher", 3, PassKind::ShadowCatcher,
+             "Cycles' Shadow Catcher: the light on shadow catchers with every object there over their light "
+             "with only catchers there (0 in full shadow, 1 unshadowed), alpha-overed on white"},
 };
 
 inline constexpr const PassInfo& pass_info(Pass pass) { return kPasses[static_cast<uint32_t>(pass)]; }
 // Channels the integrator writes per camera sample (Average and FirstSample passes), and
 // doubles the film keeps per pixel for the pass.
+// The Shadow Catcher pass sums kShadowCatcherSums values per sample (film/shadow_catcher_film.h).
+inline constexpr uint32_t kShadowCatcherSums = 11;
 inline constexpr uint32_t sample_channels(const PassInfo& info) {
+    if (info.kind == PassKind::ShadowCatcher) return kShadowCatcherSums;
     return info.kind == PassKind::Average || info.kind == PassKind::FirstSample ? info.channels : 0;
 }
 inline constexpr uint32_t stored_channels(const PassInfo& info) {
+    if (info.kind == PassKind::ShadowCatcher) return kShadowCatcherSums;
     return info.kind == PassKind::SampleCount ? 0 : info.channels;
 }
 // The pass of this name, or false.

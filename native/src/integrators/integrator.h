@@ -40,6 +40,9 @@ struct IntegratorSettings {
     // Cycles' per-kind bounce limits and clamping (integrators/light_path_limits.h): unlimited
     // and off by default, so that the estimators stay unbiased.
     LightPathLimits light_paths;
+    // Light groups (integrators/light_group_writer.h): whether emission met after a shadow
+    // catcher split still reaches them, as in Cycles 3.x (4.x+ writes none).
+    bool lightgroup_split_emission = false;
     // Cycles' Film > Transparent: background seen directly (also through transparent closures)
     // gives alpha 0 instead of its radiance, and holdouts turn into alpha.
     bool film_transparent = false;
@@ -115,6 +118,13 @@ public:
                                   uint64_t& rays) const {
         (void)scene, (void)sampler, (void)camera, (void)film, (void)path, (void)splats, (void)rays;
     }
+    // Whether camera paths split at shadow catchers (integrators/shadow_catcher.h) and write the
+    // Shadow Catcher pass's sums; an integrator that does not renders catchers as plain objects
+    // (the renderer says so: unsplit_catcher_notices).
+    virtual bool splits_shadow_catchers() const { return false; }
+    // Whether it writes the light groups' passes (film/light_groups.h); an integrator that does
+    // not leaves them black (the renderer says so).
+    virtual bool writes_light_groups() const { return false; }
     // What this estimator cannot render in `scene` and why (e.g. BSDF sampling alone never
     // finds a point light): one sentence each, shown to the user; the render still runs.
     virtual std::vector<std::string> notices(const Scene& scene) const {

@@ -5,10 +5,12 @@
 
 #include "integrators/camera_path_passes.h"
 #include "integrators/guided_direction.h"
+#include "integrators/light_group_writer.h"
 #include "integrators/light_path_closures.h"
 #include "integrators/ray_offset.h"
 #include "integrators/ray_visibility.h"
 #include "integrators/shading_point.h"
+#include "integrators/shadow_catcher.h"
 #include "integrators/transparent_shadow.h"
 #include "lights/light_registry.h"
 #include "sampling/dimensions.h"
@@ -69,6 +71,22 @@ std::vector<std::string> PathIntegrator::notices(const Scene& scene) const {
 RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler& sampler,
                                         const PixelSample& pixel, const CameraRay& camera_ray,
                                         PassValues& passes, uint64_t& rays) const {
+    ShadowCatcherPath catcher = ShadowCatcherPath::main(scene.has_shadow_catcher());
+    const RadianceSample sample = trace(scene, sampler, pixel, camera_ray, passes, rays, catcher);
+    if (!catcher.active()) return sample;
+    Rgb catcher_light(0.0f);
+    if (catcher.split()) {
+        ShadowCatcherPath copy = catcher.copy();
+        PassValues groups_only = passes.lightgroups_only();
+        catcher_light = trace(scene, sampler, pixel, camera_ray, groups_only, rays, copy).radiance;
+    }
+    passes.write(catcher.sample(sample.radiance, sample.alpha, catcher_light));
+    return sample;
+}
+
+RadianceSample PathIntegrator::trace(const RenderScene& scene, const Sampler& sampler,
+                                     const PixelSample& pixel, const CameraRay& camera_ray,
+                                     PassValues& passes, uint64_t& rays, ShadowCatcherPath& catcher) const {
     Rgb L(0.0f), beta(1.0f);
     float transparency = 0.0f;  // Cycles' "transparent" film value: alpha = 1 - transparency
     Vec3 origin = camera_ray.origin, dir = camera_ray.direction;
@@ -93,15 +111,18 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
     const uint32_t max_shadow_surfaces = settings_.transparent_max_bounces;
     const float ambient = settings_.control_variate;  // L_a of the control variate (5.17)
     CameraPathPasses data(passes, settings_.mist);
+    LightGroupWriter groups(passes, catcher, settings_.lightgroup_split_emission);
     // Path guiding: this sample trains the tree while its index is below the training samples.
-    PathRecords records(guide_ && pixel.index < settings_.guiding_training_samples ? guide_.get() : nullptr);
+    PathRecords records(guide_ && pixel.index < settings_.guiding_training_samples && !catcher.is_copy()
+                            ? guide_.get()
+                            : nullptr);
 
     // `vertex` numbers every surface the path meets (bounces and pass-throughs), so each owns a
     // block of sample dimensions.
     for (uint32_t vertex = 0;; ++vertex) {
         SurfaceHit hit;
         ++rays;
-        const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, query);
+        const bool found = scene.intersect(origin, dir, t_min, t_max, &hit, catcher.query(query));
         const EmitterLinkFilter link{!camera_visible_path, receiver_set};
         // The lights NEE chose among at the last scattering (light linking: those lighting its
         // surface), whose probabilities the MIS weights of what this ray finds take.
@@ -114,10 +135,13 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         const LightPathState arriving = track.at(0.0f, bounces, transparent_bounce).path;
         {
             float lamp_pdf = 0.0f, lamp_t = 0.0f;
+            uint32_t lamp_group = 0;
             const Rgb lamp = forward_lights.lamp_radiance(
                 origin, dir, found ? hit.t : t_max,
-                camera_visible_path ? uint32_t{kVisibleCamera} : query.visibility, &lamp_pdf, &lamp_t,
-                selection, scatter_origin, scatter_normal, tree_splits, arriving.emission(), link);
+                catcher.ray_visibility_bits(camera_visible_path ? uint32_t{kVisibleCamera}
+                                                                : query.visibility),
+                &lamp_pdf, &lamp_t, selection, scatter_origin, scatter_normal, tree_splits,
+                arriving.emission(), link, &lamp_group);
             if (!lamp.is_black()) {
                 float w = 1.0f;
                 if (!camera_visible_path && scatter_pdf > 0.0f) {
@@ -131,6 +155,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                 const Rgb found_lamp =
                     clamp_contribution(beta * lamp * w, emission_clamp(limits, bounces.total()));
                 L += found_lamp;
+                groups.emission(lamp_group, found_lamp);
                 records.add_found(found_lamp, beta * lamp);
                 data.emitted(found_lamp, camera_visible_path);
             }
@@ -138,6 +163,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         if (!found) {
             const bool transparent_film = camera_visible_path && settings_.film_transparent;
             const Rgb background = scene.background(dir, arriving.background());
+            if (camera_visible_path) catcher.camera_miss(beta * background);
             if (data.pending())
                 data.miss(transparent_film ? Rgb(0.0f)
                                            : clamp_contribution(beta * background,
@@ -154,9 +180,12 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
             const Rgb found_background =
                 clamp_contribution(beta * background * w, emission_clamp(limits, bounces.total()));
             L += found_background;
+            groups.emission(scene.world_lightgroup(), found_background);
             records.add_found(found_background, beta * background);
             break;
         }
+        catcher.at_hit(hit, camera_visible_path, beta, transparency,
+                       scene.background(dir, arriving.background()), L);
         const Vec3 wo_world = -dir;
         const RayReach reach = track.at(hit.t, bounces, transparent_bounce);
         const ShadingPoint sp = build_closures(scene, hit, wo_world, reach, closure_state.filter(limits));
@@ -185,6 +214,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                 clamp_contribution(beta * emission * hit_weight(scatter_pdf, light_pdf),
                                    emission_clamp(limits, bounces.total()));
             L += found_emission;
+            groups.emission(hit.lightgroup, found_emission);
             records.add_found(found_emission, beta * emission);
         }
         if (bounces.exhausted(settings_.max_bounces, limits)) {
@@ -226,7 +256,8 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         for (uint32_t s = 0; s < light_sample_count; ++s) {
             const LightSample& ls = light_samples[s];
             const float side = dot(ls.wi, sp.ng);
-            const uint32_t kinds = lit_kinds(ls.visibility);
+            const uint32_t light_visibility = catcher.light_visibility(ls.visibility);
+            const uint32_t kinds = lit_kinds(light_visibility);
             if ((side > 0.0f || (side < 0.0f && closures.has_transmission())) && kinds != 0) {
                 const Vec3 wi_local = frame.to_local(ls.wi);
                 // A direction on the other side of the shading normal than of the true surface
@@ -240,13 +271,13 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                                                  ? ShadowRay{ls.wi, kInfinity}
                                                  : shadow_ray_to(o, hit.position + ls.wi * ls.distance);
                     Rgb transmittance(1.0f);
-                    if (ls.visibility & kVisibleShadow) {
+                    if (light_visibility & kVisibleShadow) {
                         const uint32_t left =
                             max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
                         transmittance = shadow_transmittance(
-                            scene, o, shadow.direction, shadow.t_max, {query.time, kVisibleShadow}, left,
-                            rays, reach.footprint, reach.path,
-                            nee_lights.links(ls.light).shadow_set_membership);
+                            scene, o, shadow.direction, shadow.t_max,
+                            catcher.query({query.time, kVisibleShadow}), left, rays, reach.footprint,
+                            reach.path, nee_lights.links(ls.light).shadow_set_membership);
                     }
                     if (!transmittance.is_black()) {
                         const float w =
@@ -258,6 +289,7 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
                             clamp_contribution(beta * f.value * transmittance * ls.radiance * (w / ls.pdf),
                                                light_sample_clamp(limits, bounces.total()));
                         L += sampled_light;
+                        groups.light_sample(ls.lightgroup, sampled_light);
                         records.add(sampled_light);
                     }
                 }
@@ -341,15 +373,26 @@ RadianceSample PathIntegrator::estimate(const RenderScene& scene, const Sampler&
         t_max = kInfinity;
         if (bs.kind != ScatterKind::Transparent && lights.has_shadow_linking()) {
             const uint32_t left = max_shadow_surfaces - std::min(max_shadow_surfaces, transparent_bounce);
-            const ScatteredRay ray{origin,         dir,
-                                   query,          track,
-                                   receiver_set,   hash_more(pixel.sample_key, vertex),
-                                   scatter_pdf,    scatter_origin,
-                                   scatter_normal, left,
-                                   bounces,        transparent_bounce};
-            const Rgb found_linked = clamp_contribution(beta * shadow_linked_emission(scene, ray, rays),
-                                                        emission_clamp(limits, bounces.total()));
+            const ScatteredRay ray{origin,
+                                   dir,
+                                   catcher.query(query),
+                                   catcher.query({query.time, kVisibleShadow}),
+                                   track,
+                                   receiver_set,
+                                   hash_more(pixel.sample_key, vertex),
+                                   scatter_pdf,
+                                   scatter_origin,
+                                   scatter_normal,
+                                   left,
+                                   bounces,
+                                   transparent_bounce};
+            uint32_t linked_group = 0;
+            const Rgb found_linked =
+                clamp_contribution(beta * shadow_linked_emission(scene, ray, rays, &linked_group),
+                                   emission_clamp(limits, bounces.total()));
             L += found_linked;
+            // Cycles writes the dedicated light as NEE (shade_dedicated_light.h): its emitter's group.
+            groups.light_sample(linked_group, found_linked);
             records.add(found_linked);
         }
     }

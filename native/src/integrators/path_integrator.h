@@ -51,6 +51,7 @@
 #pragma once
 
 #include "integrators/integrator.h"
+#include "integrators/shadow_catcher.h"
 #include "integrators/shadow_linking.h"
 
 namespace stratum {
@@ -68,14 +69,22 @@ public:
     RadianceSample estimate(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
                             const CameraRay& ray, PassValues& passes, uint64_t& rays) const override;
     std::vector<std::string> notices(const Scene& scene) const override;
+    bool splits_shadow_catchers() const override { return true; }
+    bool writes_light_groups() const override { return true; }
 
 private:
+    // One path of the camera sample: the main path, or the catcher-only copy of one that split at
+    // a shadow catcher (integrators/shadow_catcher.h).
+    RadianceSample trace(const RenderScene& scene, const Sampler& sampler, const PixelSample& pixel,
+                         const CameraRay& ray, PassValues& passes, uint64_t& rays,
+                         ShadowCatcherPath& catcher) const;
     // MIS weight of emission a scattered ray hits (scatter_pdf 0 after a camera or delta
     // vertex) against the light sample that could have drawn it (light_pdf 0: none could).
     float hit_weight(float scatter_pdf, float light_pdf) const;
     // Shadow linking's dedicated pass for the ray a vertex scattered (integrators/
     // shadow_linking.h): the emission it adds per unit throughput (clamped by the caller).
-    Rgb shadow_linked_emission(const RenderScene& scene, const ScatteredRay& ray, uint64_t& rays) const;
+    Rgb shadow_linked_emission(const RenderScene& scene, const ScatteredRay& ray, uint64_t& rays,
+                               uint32_t* lightgroup) const;
     // Whether hit_weight reads light_pdf's value: not after a camera or delta vertex, nor under
     // BSDF sampling alone. Evaluating the light pdf (for a triangle, its spherical view) is
     // skipped otherwise.

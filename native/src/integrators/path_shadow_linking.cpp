@@ -8,10 +8,11 @@
 
 namespace stratum {
 
-Rgb PathIntegrator::shadow_linked_emission(const RenderScene& scene, const ScatteredRay& ray,
-                                           uint64_t& rays) const {
+Rgb PathIntegrator::shadow_linked_emission(const RenderScene& scene, const ScatteredRay& ray, uint64_t& rays,
+                                           uint32_t* lightgroup) const {
     const ShadowLinkedEmitter e = pick_shadow_linked_emitter(scene, ray, rays);
     if (e.met == 0) return Rgb(0.0f);
+    *lightgroup = e.lightgroup;
     // The lights NEE chose among at the scattering vertex (light linking: those lighting it).
     const LightSet& lights = scene.lights_for(ray.receiver_set);
     const LightSelection selection = settings_.light_selection;
@@ -35,9 +36,9 @@ Rgb PathIntegrator::shadow_linked_emission(const RenderScene& scene, const Scatt
     if (e.casts_shadow) {
         const ShadowRay shadow = shadow_ray_to(ray.origin, e.position);
         const RayReach reach = ray.track.at(0.0f, ray.bounces, ray.transparent);
-        transmittance = shadow_transmittance(scene, ray.origin, shadow.direction, shadow.t_max,
-                                             {ray.query.time, kVisibleShadow}, ray.transparent_left, rays,
-                                             reach.footprint, reach.path, e.shadow_sets);
+        transmittance =
+            shadow_transmittance(scene, ray.origin, shadow.direction, shadow.t_max, ray.shadow_query,
+                                 ray.transparent_left, rays, reach.footprint, reach.path, e.shadow_sets);
     }
     return e.radiance * transmittance * weight;
 }

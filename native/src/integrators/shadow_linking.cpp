@@ -54,6 +54,7 @@ ShadowLinkedEmitter pick_shadow_linked_emitter(const RenderScene& scene, const S
                 e.position = hit.position;
                 e.t = t;
                 e.shadow_sets = hit.links.shadow_set_membership;
+                e.lightgroup = hit.lightgroup;
                 reservoir.offer(e);
             }
         }
@@ -82,6 +83,7 @@ ShadowLinkedEmitter pick_shadow_linked_emitter(const RenderScene& scene, const S
             e.shadow_sets = links.shadow_set_membership;
             e.casts_shadow = (lights.visibility(index) & kVisibleShadow) != 0;
             e.solid_angle_pdf = solid_angle_pdf;
+            e.lightgroup = lights.lightgroup(index);
             reservoir.offer(e);
         });
     return reservoir.pick;

@@ -12,7 +12,8 @@
 // | ScatteredRay     | meaning                                                                |
 // |------------------|------------------------------------------------------------------------|
 // | origin, dir      | the scattered ray (origin offset off the scattering surface)           |
-// | query            | its time and visibility kind                                           |
+// | query            | its time and visibility kind (a shadow catcher's copy: as it shifts it)|
+// | shadow_query     | the query of a shadow ray to the pick (the same shift)                 |
 // | track            | what the surfaces' programs see of it (RayTrack after the scattering)  |
 // | receiver_set     | receiver_light_set of the scattering surface: only emitters lighting it|
 // | seed             | the reservoir's random numbers (a hash of pixel, sample and vertex)    |
@@ -48,11 +49,12 @@ struct ShadowLinkedEmitter {
     uint64_t shadow_sets = kAllLinkSets;  // its shadow_set_membership
     bool casts_shadow = true;             // a lamp's SHADOW visibility bit (Cycles' cast_shadow)
     float solid_angle_pdf = 0.0f;         // a lamp's: Light::intersect's, for the MIS weight
+    uint32_t lightgroup = 0;              // its light group (film/light_groups.h; 0 = none)
 };
 
 struct ScatteredRay {
     Vec3 origin, dir;
-    RayQuery query;
+    RayQuery query, shadow_query;
     RayTrack track;
     uint8_t receiver_set = 0;
     uint64_t seed = 0;

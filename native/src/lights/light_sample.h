@@ -21,6 +21,8 @@ struct LightSample {
     // lights; SHADOW: whether occluders block it).
     uint32_t visibility = kVisibleAll;
     uint32_t light = 0;  // the light's index in its LightSet (its links: LightSet::links)
+    // The light group of the light (LightSet::set_lightgroup; 0 = none).
+    uint32_t lightgroup = 0;
 };
 
 inline constexpr float kInfinity = std::numeric_limits<float>::infinity();

@@ -29,6 +29,7 @@ uint32_t LightSet::add_shared(std::shared_ptr<const Light> light, uint32_t objec
     lights_.push_back(std::move(light));
     object_.push_back(object);
     visibility_.push_back(visibility);
+    lightgroup_.push_back(0);
     programs_.push_back(nullptr);
     return index;
 }
@@ -40,7 +41,9 @@ void LightSet::set_program(uint32_t index, std::shared_ptr<const LampProgram> pr
 uint32_t LightSet::add_environment(EnvironmentLight environment, uint32_t object) {
     auto light = std::make_unique<const EnvironmentLight>(std::move(environment));
     environment_ = light.get();
-    environment_index_ = add(std::move(light), object);
+    // The world lights everything, the catcher-only copy of a camera path too (Cycles 5.0 forces
+    // its light's is_shadow_catcher; in 3.4 the background light keeps the default, true).
+    environment_index_ = add(std::move(light), object, trace_visibility(kVisibleAll | kVisibleShadowCatcher));
     return environment_index_;
 }
 
@@ -51,6 +54,7 @@ LightSet LightSet::lighting(uint8_t receiver_set, std::vector<uint32_t>* index_o
         if (!links(i).lights(receiver_set)) continue;
         const uint32_t k = subset.add_shared(lights_[i], object_[i], visibility_[i], links(i));
         subset.programs_[k] = programs_[i];
+        subset.lightgroup_[k] = lightgroup_[i];
         if (environment_ && i == environment_index_) {
             subset.environment_ = environment_;
             subset.environment_index_ = k;
@@ -217,6 +221,7 @@ bool LightSet::sample(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSample* out, 
     out->pdf *= choice;
     out->visibility = visibility_[index];
     out->light = index;
+    out->lightgroup = lightgroup_[index];
     if (programs_[index]) out->radiance = out->radiance * programs_[index]->scale(out->distance, path);
     if (world_program_ && index == environment_index_)
         out->radiance = world_program_->radiance(out->wi, path);
@@ -262,6 +267,7 @@ uint32_t LightSet::sample_cut(Vec3 p, Vec3 n, float u_choice, Vec2 u, LightSampl
         ls.pdf *= share * pmf;
         ls.visibility = visibility_[index];
         ls.light = index;
+        ls.lightgroup = lightgroup_[index];
         if (programs_[index]) ls.radiance = ls.radiance * programs_[index]->scale(ls.distance, path);
         ++count;
     }
@@ -276,7 +282,8 @@ float LightSet::emissive_triangle_pdf(uint32_t index, Vec3 p, Vec3 n, Vec3 hit, 
 
 Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf, float* t_out,
                             LightSelection selection, Vec3 choice_point, Vec3 choice_normal, uint32_t max_cut,
-                            const LightPathState& path, const EmitterLinkFilter& link) const {
+                            const LightPathState& path, const EmitterLinkFilter& link,
+                            uint32_t* lightgroup) const {
     uint32_t nearest_lamp = 0;
     bool found = false;
     Rgb radiance(0.0f);
@@ -305,6 +312,7 @@ Rgb LightSet::lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibil
                    ? probability(nearest_lamp, choice_point, choice_normal, selection, max_cut) * nearest_pdf
                    : 0.0f;
     if (t_out) *t_out = nearest;
+    if (lightgroup) *lightgroup = found ? lightgroup_[nearest_lamp] : 0;
     if (found && programs_[nearest_lamp]) radiance = radiance * programs_[nearest_lamp]->scale(nearest, path);
     return radiance;
 }

@@ -102,6 +102,10 @@ public:
         world_program_ = std::move(program);
     }
     const WorldProgram* world_program() const { return world_program_.get(); }
+    // Puts light `index` in light group `group` (0 = none, the default): LightSample::lightgroup and
+    // lamp_radiance's *lightgroup give it (film/light_groups.h).
+    void set_lightgroup(uint32_t index, uint32_t group) { lightgroup_[index] = group; }
+    uint32_t lightgroup(uint32_t index) const { return lightgroup_[index]; }
     // scene_radius: radius of a sphere bounding the scene, to give the sun and the environment a
     // power.
     void finalize(float scene_radius);
@@ -194,15 +198,15 @@ public:
     // BSDF-scattered rays find them. *pdf (if not null) = the pdf (choice × solid angle) with
     // which sample() at `origin` picks that direction, for MIS; under `tree` the choice is the
     // one at (choice_point, choice_normal), the vertex whose NEE the pdf is compared with.
-    // *t (if not null) = the distance to the lamp.
+    // *t (if not null) = the distance to the lamp; *lightgroup (if not null) = its light group.
     // `path`: the Light Path inputs the lamp's program sees (LightPathState::emission); `link`:
     // the lamps a forward ray may find under light and shadow linking (EmitterLinkFilter); the
     // others are passed through.
     Rgb lamp_radiance(Vec3 origin, Vec3 dir, float t_max, uint32_t visibility, float* pdf = nullptr,
                       float* t = nullptr, LightSelection selection = LightSelection::Mixed,
                       Vec3 choice_point = {}, Vec3 choice_normal = {}, uint32_t max_cut = 1,
-                      const LightPathState& path = kDirectLightPath,
-                      const EmitterLinkFilter& link = {}) const;
+                      const LightPathState& path = kDirectLightPath, const EmitterLinkFilter& link = {},
+                      uint32_t* lightgroup = nullptr) const;
     // Calls f(index, t, radiance, solid_angle_pdf) for every lamp with visibility bit
     // `visibility` whose emitting face the ray (dir unit) meets before t_max, in no set order;
     // radiance includes the lamp's program (seeing `path`), solid_angle_pdf is Light::intersect's.
@@ -238,6 +242,7 @@ private:
     std::vector<LightLinks> object_links_;  // of each light object
     bool has_light_linking_ = false, has_shadow_linking_ = false;
     uint64_t blocking_all_linked_ = kAllLinkSets;
+    std::vector<uint32_t> lightgroup_;                          // light group of each light (0 none)
     std::vector<std::shared_ptr<const LampProgram>> programs_;  // of each light, or null
     std::shared_ptr<const WorldProgram> world_program_;         // of the environment, or null
     std::vector<uint32_t> hittable_lamps_;  // lamps with a surface rays meet (lamp_radiance)

@@ -54,6 +54,8 @@ struct RenderSettings {
     IntegratorSettings estimator;
     // The passes besides Combined.
     std::vector<Pass> passes;
+    // The light groups' passes (film/light_groups.h).
+    uint32_t lightgroups = 0;
     // The BVH layout: static (fastest to trace) or dynamic (fast to update after live edits).
     BvhLayout bvh = BvhLayout::Static;
 };

@@ -11,6 +11,7 @@
 
 #include "core/memory_budget.h"
 #include "integrators/integrator.h"
+#include "integrators/shadow_catcher.h"
 #include "sampling/sampler_registry.h"
 
 namespace stratum {
@@ -53,6 +54,12 @@ std::string Renderer::start() {
     clamped_samples_.store(0);
     std::unique_ptr<Integrator> integrator = settings_.integrator->create(settings_.estimator);
     for (const std::string& notice : integrator->notices(scene_)) add_notice(notice);
+    for (const std::string& notice :
+         unsplit_catcher_notices(scene_, *integrator, settings_.integrator->info.name))
+        add_notice(notice);
+    if (settings_.lightgroups > 0 && !integrator->writes_light_groups())
+        add_notice("the " + std::string(settings_.integrator->info.name) +
+                   " integrator writes no light groups (only 'path' does): their passes are black");
     // A scene already built keeps its build notices for every render of it.
     if (render_scene_)
         for (const std::string& notice : render_scene_->notices()) add_notice(notice);
@@ -60,7 +67,10 @@ std::string Renderer::start() {
     AdaptiveSampling adaptive;
     const std::string adaptive_error = resolve_adaptive(light_paths, first_sample, last_sample, &adaptive);
     if (!adaptive_error.empty()) return adaptive_error;
-    const std::string film_error = make_film(region, light_paths, adaptive.enabled);
+    const std::string film_error = make_film(
+        region, light_paths, adaptive.enabled,
+        catcher_combined_shown(scene_, *integrator, settings_.passes, settings_.estimator.film_transparent),
+        settings_.lightgroups);
     if (!film_error.empty()) return film_error;
     adaptive_ = adaptive;
     if (settings_.sampler->screen_space) adaptive_.block = kScreenBlock;
@@ -106,19 +116,21 @@ std::string Renderer::resolve_adaptive(uint64_t light_paths, uint32_t first_samp
     return {};
 }
 
-std::string Renderer::make_film(const PixelRegion& region, uint64_t light_paths, bool adaptive) {
+std::string Renderer::make_film(const PixelRegion& region, uint64_t light_paths, bool adaptive,
+                                CatcherCombined catcher, uint32_t lightgroups) {
     // The film of a 65536 x 20000 render asks for 63.5 GiB: refused here, naming the size, rather
     // than granted by overcommit and OOM-killed.
     const double film_bytes =
         static_cast<double>(region.pixel_count()) *
-        (Film::bytes_per_pixel(settings_.passes, light_paths > 0, adaptive) + (adaptive ? 1 : 0));
+        (Film::bytes_per_pixel(settings_.passes, light_paths > 0, adaptive, catcher, lightgroups) +
+         (adaptive ? 1 : 0));
     if (film_bytes > memory_budget_bytes())
         return "a " + std::to_string(region.width) + " x " + std::to_string(region.height) +
                " pixel render needs " + gib(film_bytes) + " for its film, more than half of this machine's " +
                gib(physical_memory_bytes()) + " of memory";
     film_ = std::make_unique<Film>(region, settings_.width, settings_.height,
                                    PixelFilter(settings_.filter_type, settings_.filter_width),
-                                   settings_.passes, light_paths > 0, adaptive);
+                                   settings_.passes, light_paths > 0, adaptive, catcher, lightgroups);
     return {};
 }
 
@@ -229,6 +241,9 @@ void Renderer::read_pixels(float* rgba) const {
 }
 
 bool Renderer::read_pass(Pass pass, float* out) const { return film_ && film_->read(pass, out); }
+bool Renderer::read_lightgroup(uint32_t group, float* out) const {
+    return film_ && film_->read_lightgroup(group, out);
+}
 
 std::vector<uint8_t> Renderer::sums_bytes(std::string* error) const {
     if (running()) {

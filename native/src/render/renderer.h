@@ -86,6 +86,8 @@ public:
     // The published values of a pass of the current (or last) render: width()*height() times
     // its channels, rows bottom to top. False when the render does not hold the pass.
     bool read_pass(Pass pass, float* out) const;
+    // Light group `group`'s RGB (1..the setting lightgroups); false when the film holds none.
+    bool read_lightgroup(uint32_t group, float* out) const;
     uint32_t width() const { return width_; }
     uint32_t height() const { return height_; }
     // The exact sums of the last render (film/film_exchange.cpp), or an error message in *error
@@ -106,7 +108,9 @@ private:
     std::string resolve_adaptive(uint64_t light_paths, uint32_t first_sample, uint32_t last_sample,
                                  AdaptiveSampling* out);
     // start(): the film of `region`, or an error message when it would not fit in memory.
-    std::string make_film(const PixelRegion& region, uint64_t light_paths, bool adaptive);
+    // `catcher`: what Combined shows of the scene's shadow catchers (film/shadow_catcher_film.h).
+    std::string make_film(const PixelRegion& region, uint64_t light_paths, bool adaptive,
+                          CatcherCombined catcher, uint32_t lightgroups);
     // start(): the progress of a render of `samples` sample indices that has not begun.
     void reset_progress(uint32_t samples);
     void join();

@@ -6,6 +6,7 @@
 #include <array>
 #include <limits>
 
+#include "film/light_groups.h"
 #include "film/pixel_filter.h"
 #include "guiding/guiding_tree.h"
 #include "integrators/estimator_options.h"
@@ -204,6 +205,20 @@ const SettingSpec kSettings[] = {
      .minimum = 0,
      .maximum = 1,
      STRATUM_BOOL(estimator.film_transparent)},
+    {.info = {"lightgroups", "Light Groups",
+              "Light group passes the render holds (Cycles' view-layer light groups): group k of lights, "
+              "instances and the world goes to pass k (stratum_renderer_read_lightgroup)"},
+     .kind = SettingKind::Int,
+     .minimum = 0,
+     .maximum = kMaxLightGroups,
+     STRATUM_UINT(lightgroups)},
+    {.info = {"lightgroup_split_emission", "Light Groups After Catcher Split",
+              "1: emission met after a camera path split at a shadow catcher still reaches the light groups "
+              "(Cycles 3.x); 0: it does not (Cycles 4.x and later)"},
+     .kind = SettingKind::Int,
+     .minimum = 0,
+     .maximum = 1,
+     STRATUM_BOOL(estimator.lightgroup_split_emission)},
     {.info = {"rr_min_depth", "Roulette Min Depth", "First bounce at which Russian roulette may end a path"},
      .kind = SettingKind::Int,
      .minimum = 0,

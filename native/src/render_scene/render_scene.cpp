@@ -118,7 +118,7 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel, Bv
         }
         placement_of_[index] = static_cast<uint32_t>(placements_.size());
         placements_.push_back({prototype_of[inst.mesh_id], inst.object_to_world, inst.object_to_world_end,
-                               moving, inst.visibility});
+                               moving, trace_visibility(inst.visibility)});
         if (moving) has_motion_ = true;
         instances_.push_back({&mesh,
                               inst.mesh_id,
@@ -131,13 +131,21 @@ RenderScene::RenderScene(const Scene& scene, const std::atomic<bool>* cancel, Bv
                               inst.random,
                               inst.color,
                               inst.alpha,
-                              inst.links});
+                              inst.links,
+                              inst.lightgroup});
     }
+    find_shadow_catchers();
     build_lights(scene, cancel);
     const std::string error =
         embree_.build(prototypes, placements_, limit_, cancel, bvh == BvhLayout::Static);
     if (error == EmbreeScene::kBuildCancelled) throw BuildCancelled();
     if (!error.empty()) throw std::runtime_error(error);
+}
+
+void RenderScene::find_shadow_catchers() {
+    has_shadow_catcher_ = std::ranges::any_of(instances_, [](const InstanceData& g) {
+        return !g.holdout && (g.visibility & kVisibleShadowCatcher);
+    });
 }
 
 bool RenderScene::is_moving(const Instance& inst) {
@@ -164,6 +172,7 @@ float RenderScene::origin_limit(const Scene& scene) const {
 
 void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* cancel) {
     lights_ = LightSet();
+    world_lightgroup_ = scene.world_lightgroup;
     std::vector<Rgb> emission(materials_.size());
     for (size_t m = 0; m < materials_.size(); ++m) emission[m] = material_emission(materials_[m]);
     // Light objects for the choice among lights: each static instance's emissive triangles form
@@ -185,15 +194,18 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
             if (g.emissive_light.empty()) g.emissive_light.assign(mesh.triangles.size(), kNoLight);
             const auto& tri = mesh.triangles[t];
             const Transform& m = g.object_to_world;
-            g.emissive_light[t] =
-                lights_.add(EmissiveTriangle(m.point(mesh.positions[tri[0]]), m.point(mesh.positions[tri[1]]),
-                                             m.point(mesh.positions[tri[2]]), e),
-                            object, kVisibleAll, g.links);
+            g.emissive_light[t] = lights_.add(
+                EmissiveTriangle(m.point(mesh.positions[tri[0]]), m.point(mesh.positions[tri[1]]),
+                                 m.point(mesh.positions[tri[2]]), e),
+                object, trace_visibility(kVisibleAll | (g.visibility & kVisibleShadowCatcher)), g.links);
+            lights_.set_lightgroup(g.emissive_light[t], g.lightgroup);
         }
     }
     const uint32_t first_lamp = static_cast<uint32_t>(lights_.size());
     for (const LightParams& l : scene.lights)
-        lights_.add(make_light(l), light_object++, l.visibility, l.links);
+        lights_.set_lightgroup(
+            lights_.add(make_light(l), light_object++, trace_visibility(l.visibility), l.links),
+            l.lightgroup);
     for (const LightProgram& p : scene.light_programs) {
         const uint32_t index = first_lamp + p.light_id;
         // A light that gives no bounds lies at infinity (lights/light.h).
@@ -207,8 +219,10 @@ void RenderScene::build_lights(const Scene& scene, const std::atomic<bool>* canc
         std::vector<float> rgb(e.rgb.size());
         // Saturating: a strength of 3e38 on a bright texel must not give an infinite sky.
         for (size_t i = 0; i < rgb.size(); ++i) rgb[i] = saturating_product(Rgb(e.rgb[i]), e.strength).r;
-        lights_.add_environment(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation),
-                                light_object++);
+        lights_.set_lightgroup(
+            lights_.add_environment(EnvironmentLight(std::move(rgb), e.width, e.height, e.rotation),
+                                    light_object++),
+            scene.world_lightgroup);
         if (e.program)
             lights_.set_world_program(
                 std::make_shared<const WorldProgram>(e.program, e.program_color, e.program_textures));
@@ -271,7 +285,7 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
         InstancePlacement& p = placements_[placement];
         p.start = inst.object_to_world;
         p.end = inst.object_to_world_end;
-        p.mask = inst.visibility;
+        p.mask = trace_visibility(inst.visibility);
         InstanceData& g = instances_[placement];
         g.object_to_world = inst.object_to_world;
         g.visibility = inst.visibility;
@@ -281,6 +295,7 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
         g.color = inst.color;
         g.alpha = inst.alpha;
         g.links = inst.links;
+        g.lightgroup = inst.lightgroup;
         moved.push_back(placement);
     }
     if (changes.materials) {
@@ -288,6 +303,7 @@ bool RenderScene::update(const Scene& scene, const SceneChanges& changes, const 
         textures_ = TextureBindings(scene);
         programs_ = MaterialPrograms(scene);
     }
+    find_shadow_catchers();
     if (changes.camera) set_camera(scene);
     if (changes.world) background_ = scene.background;
     // The light set depends on placed emitters, materials, lamps and world, not on the camera:
@@ -385,6 +401,7 @@ bool RenderScene::intersect(Vec3 origin, Vec3 direction, float t_min, float t_ma
     hit->emissive_light = g.emissive_light.empty() ? kNoLight : g.emissive_light[h.triangle];
     hit->visibility = g.visibility;
     hit->holdout = g.holdout;
+    hit->lightgroup = g.lightgroup;
     hit->object_pass_index = g.pass_index;
     hit->links = g.links;
     hit->material_pass_index = materials_[hit->material_id].pass_index;

@@ -37,6 +37,7 @@ struct SurfaceHit {
     uint32_t material_id = 0;           // scene material id
     uint32_t visibility = kVisibleAll;  // the instance's StratumVisibility bits
     bool holdout = false;               // the instance is a holdout
+    uint32_t lightgroup = 0;            // the light group of the instance's emission (0 none)
     uint32_t object_pass_index = 0;     // the instance's and the material's pass indices
     uint32_t material_pass_index = 0;   // (the IndexOB and IndexMA passes)
     float t = 0.0f;                     // distance along the ray (for LightSet::lamp_radiance's t_max)
@@ -153,6 +154,11 @@ public:
     // textures), and what their inputs are made of at a hit.
     const MaterialPrograms& programs() const { return programs_; }
     ProgramInputs program_inputs(const SurfaceHit& hit, Vec3 wo, bool backfacing, RayReach reach) const;
+    // True if some traced instance is a shadow catcher that is not a holdout (Cycles'
+    // has_shadow_catcher: only then do camera paths split, integrators/shadow_catcher.h).
+    bool has_shadow_catcher() const { return has_shadow_catcher_; }
+    // The light group of the world (background and environment; 0 none).
+    uint32_t world_lightgroup() const { return world_lightgroup_; }
     // True if some instance moves over the shutter (the renderer then samples ray times).
     bool has_motion() const { return has_motion_; }
     // A sphere bounding the scene's geometry (radius >= 1), over which the light tracer emits
@@ -186,12 +192,15 @@ private:
         Rgb color;
         float alpha;  // per triangle, kNoLight if not emissive; empty if none
         LightLinks links;
+        uint32_t lightgroup;
     };
     static bool is_moving(const Instance& inst);
     // Whether Embree can trace the placement under the current ray-origin limit.
     bool traceable_placement(const Instance& inst) const;
     // The largest |coordinate| a ray origin can have in `scene` (scene/scene_limits.h).
     float origin_limit(const Scene& scene) const;
+    // Sets has_shadow_catcher_ from the traced instances.
+    void find_shadow_catchers();
     // Lists the emissive triangles, lamps and environment, and the scene's bounding sphere.
     void build_lights(const Scene& scene, const std::atomic<bool>* cancel);
 
@@ -221,6 +230,8 @@ private:
     std::array<std::vector<uint32_t>, kMaxLinkSet + 1> receiver_index_;
     Rgb background_;
     BvhLayout bvh_ = BvhLayout::Static;
+    bool has_shadow_catcher_ = false;
+    uint32_t world_lightgroup_ = 0;
     bool has_motion_ = false;
     Vec3 bounds_center_{0.0f, 0.0f, 0.0f};
     float bounds_radius_ = 1.0f;

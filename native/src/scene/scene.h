@@ -82,6 +82,8 @@ struct Instance {
     float alpha = 1.0f;
     // Light and shadow linking as receiver, occluder and emitter (stratum_scene_set_light_linking).
     LightLinks links;
+    // Issue 34: the light group of its emission (0 none, k: group k; film/light_groups.h).
+    uint32_t lightgroup = 0;
 };
 
 // A light as the host describes it (StratumLightDesc). size_x, size_y, spot_size, spot_blend and
@@ -98,8 +100,10 @@ struct LightParams {
     float size_x = 1.0f, size_y = 1.0f;
     float spot_size = kPi, spot_blend = 0.0f;
     Transform light_to_world;
-    uint32_t visibility = kVisibleAll;  // StratumVisibility bits (0 at the ABI reads as all)
-    float spread = kPi;                 // area lights: Cycles' spread, (0, pi]
+    // StratumVisibility bits (0 at the ABI reads as these): a Blender lamp lights shadow catchers.
+    uint32_t visibility = kVisibleAll | kVisibleShadowCatcher;
+    uint32_t lightgroup = 0;  // 0 none, k: light group k (film/light_groups.h)
+    float spread = kPi;       // area lights: Cycles' spread, (0, pi]
     // As an emitter (its memberships; a lamp is no receiver or occluder here): set apart by
     // stratum_scene_set_light_linking.
     LightLinks links;
@@ -126,6 +130,7 @@ struct Scene {
     std::optional<CameraParams> camera;
     Rgb background{0.0f};
     std::optional<Environment> environment;  // replaces the background when present
+    uint32_t world_lightgroup = 0;           // 0 none, k: light group k (film/light_groups.h)
     // Image textures (shared: copies of a Scene share the pixels) and the material parameters
     // they drive; at most one binding per (material, closure, parameter).
     std::vector<std::shared_ptr<const Texture>> textures;

@@ -269,8 +269,8 @@ TEST(InstanceVisibility, AbiValidatesInstancesByName) {
     stratum_scene_add_material(scene, &grey, nullptr);
     const StratumMeshDesc mesh{pos, 3, tri, 1, nullptr, nullptr, mats};
     ASSERT_EQ(stratum_scene_add_mesh(scene, &mesh, nullptr), STRATUM_OK);
-    d.visibility = 32;
-    EXPECT_NE(error(d).find("instance visibility = 32"), std::string::npos) << error(d);
+    d.visibility = 64;
+    EXPECT_NE(error(d).find("instance visibility = 64"), std::string::npos) << error(d);
     d.visibility = 31;
     d.holdout = 2;
     EXPECT_NE(error(d).find("instance holdout = 2"), std::string::npos) << error(d);

@@ -163,9 +163,9 @@ TEST(AreaLightSpread, LightVisibilityReachesTheSamples) {
     light.strength = 1;
     light.size_x = light.size_y = 1;
     std::copy(kIdentity, kIdentity + 16, light.transform);
-    light.visibility = 32;
+    light.visibility = 64;
     EXPECT_EQ(stratum_scene_add_light(scene, &light), STRATUM_ERROR_INVALID_ARGUMENT);
-    EXPECT_NE(std::string(stratum_last_error()).find("light visibility = 32"), std::string::npos)
+    EXPECT_NE(std::string(stratum_last_error()).find("light visibility = 64"), std::string::npos)
         << stratum_last_error();
     light.visibility = 0;
     light.spread = 4.0f;
