@@ -5,8 +5,10 @@ tests/blender/run_in_blender.py -- tests/blender/test_feature_agreement.py`) and
 5.0 wheel (`.venv/bin/python -m pytest tests/blender/test_feature_agreement.py`).
 
 Cases (scenes/features/make_features.py describes the scenes): materials, lights, world, the
-three scenes of camera.blend (dof, ortho, motion), instancing and procedural (issue 18's
-procedural materials). Each is rendered at RES x RES
+three scenes of camera.blend (dof, ortho, motion), instancing, procedural (issue 18's
+procedural materials), sky, and the two scenes of light_paths.blend (issue 34; described by
+scenes/features/make_light_paths.py: light_paths renders with the file's own Cycles Light Paths
+values, TUNED_LIGHT_PATHS). Each is rendered at RES x RES
 by Cycles and by Stratum with the shared peer settings of agreement.py (CPU, same
 samples, MAX_BOUNCES for every bounce kind, Blackman-Harris 1.5 px, no denoising, adaptive
 sampling, clamping or glossy blur), seeds 1 and 2, SPP[case] samples per seed. Asserted:
@@ -51,6 +53,7 @@ from pathlib import Path
 import bpy
 import numpy as np
 import pytest
+from stratum.blender_settings import CYCLES_LIGHT_PATHS
 
 from agreement import (
     K_SIGMA,
@@ -90,7 +93,14 @@ CASES = {
     "instancing": ("instancing.blend", None, 256),
     "procedural": ("procedural.blend", None, 512),
     "sky": ("sky.blend", None, 512),
+    "light_paths": ("light_paths.blend", "light_paths", 512),
+    "environment_off": ("light_paths.blend", "environment_off", 128),
 }
+# Cases whose file carries Cycles' Light Paths values as a file tuned for Cycles does (per-kind
+# bounces, clamping, Filter Glossy, caustics): both engines render with the file's values, Cycles
+# from scene.cycles and Stratum through light_paths 'CYCLES', instead of the peer settings'
+# unlimited, unclamped ones.
+TUNED_LIGHT_PATHS = {"light_paths"}
 
 
 # ---- rendering -----------------------------------------------------------------------------
@@ -114,11 +124,18 @@ def _render_two_seeds(case: str, engine: str) -> Renders:
     """The case rendered by `engine` with seeds SEEDS; EXRs in
     FEATURE_OUT/<case>_<engine>_seed<seed>.exr."""
     spp = CASES[case][2]
-    configure = configure_cycles if engine == "cycles" else configure_stratum
-    return render_two_seeds(f"{case}_{engine}",
-                            lambda scene, seed: configure(scene, seed, samples=spp,
-                                                          max_bounces=MAX_BOUNCES),
-                            FEATURE_OUT, lambda: _open_case(case))
+    peer = configure_cycles if engine == "cycles" else configure_stratum
+
+    def configure(scene: bpy.types.Scene, seed: int) -> None:
+        tuned = {name: getattr(scene.cycles, name) for name in CYCLES_LIGHT_PATHS.values()}
+        peer(scene, seed, samples=spp, max_bounces=MAX_BOUNCES)
+        if case in TUNED_LIGHT_PATHS:
+            for name, value in tuned.items():
+                setattr(scene.cycles, name, value)
+            if engine == "stratum":
+                scene.stratum.light_paths = "CYCLES"
+
+    return render_two_seeds(f"{case}_{engine}", configure, FEATURE_OUT, lambda: _open_case(case))
 
 
 # ---- FLIP --------------------------------------------------------------------------------------
