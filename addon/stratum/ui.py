@@ -7,8 +7,8 @@ from typing import Any
 import bpy
 
 from . import native, properties
-from .engine.light_paths import light_path_holder
 from .engine_id import ENGINE_ID
+from .light_path_source import light_path_holder
 from .version import __version__
 
 # Contexts whose built-in panels Stratum reuses.
@@ -279,7 +279,7 @@ CAUSTICS = (("filter_glossy", "Filter Glossy"), ("caustics_reflective", "Reflect
 
 class STRATUM_RENDER_PT_light_paths_max_bounces(StratumButtonsPanel, bpy.types.Panel):
     """Cycles' Max Bounces: the total, per kind, and transparent pass-throughs (Stratum's own
-    or Cycles', as Light Paths > Settings says: engine/light_paths.py)."""
+    or Cycles', as Light Paths > Settings says: light_path_source.py)."""
 
     bl_label = "Max Bounces"
     bl_parent_id = "STRATUM_RENDER_PT_light_paths"

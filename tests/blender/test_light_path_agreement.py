@@ -27,7 +27,7 @@ caustics on the floor are the fireflies clamping exists for, clamped at 1.
 
 Cycles renders with the values set in scene.cycles; Stratum renders the same file with
 scene.stratum.light_paths = 'CYCLES', so the values reach it the way a file tuned for Cycles
-does (engine/light_paths.py).
+does (light_path_source.py).
 """
 
 from __future__ import annotations

@@ -41,7 +41,7 @@ def background_command(blender: str, scene: Path, *arguments: str,
 # The start of every inline script: its arguments are the JSON after "--"; the add-on is
 # registered from args["addon_parent"] and renders the opened scene, with args["overrides"]
 # set on scene.stratum (on scene.cycles for a Light Paths setting the scene takes from Cycles:
-# engine/light_paths.py) and args["resolution"] (WxH at 100 %) when given.
+# light_path_source.py) and args["resolution"] (WxH at 100 %) when given.
 _SCRIPT_START = r"""
 import json, os, sys, traceback
 args = json.loads(sys.argv[sys.argv.index("--") + 1])
@@ -54,7 +54,7 @@ try:
     stratum.register()
     scene = bpy.context.scene
     scene.render.engine = ENGINE_ID
-    from stratum.engine.light_paths import light_path_holder
+    from stratum.light_path_source import light_path_holder
     for name, value in args["overrides"].items():
         setattr(*light_path_holder(scene, name), value)
     if args.get("resolution"):

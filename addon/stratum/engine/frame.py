@@ -6,7 +6,7 @@ from __future__ import annotations
 from typing import Any
 
 from .. import blender_settings
-from .light_paths import cycles_light_paths
+from ..light_path_source import cycles_light_paths
 
 
 def render_size(scene: Any) -> tuple[int, int]:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from .. import blender_settings
+from . import blender_settings
 
 
 def uses_cycles_light_paths(scene: Any) -> bool:
