@@ -176,10 +176,13 @@ TEST(ShadowCatcher, MatteWithShadowOverTheBackgroundFollowsCyclesReadOut) {
 }
 
 // The catcher's sums follow the film's exchange: sample ranges rendered apart and added give the
-// whole render's Combined and Shadow Catcher pass bit for bit, and the thread count changes
-// nothing. A grey world makes every pixel noisy (environment light samples).
+// whole render's Combined, Shadow Catcher and light-group passes bit for bit, and the thread count
+// changes nothing (issue 34, acceptance 2: determinism and the Dask merge with the switches on).
+// Every other Light Paths switch is on too: per-kind limits, both clamps, Filter Glossy, no
+// caustics. A grey world makes every pixel noisy (environment light samples).
 TEST(ShadowCatcher, SplitSampleRangesAndThreadCountsGiveTheSameBits) {
     StratumScene* scene = catcher_scene({.background = 0.5f});
+    ASSERT_EQ(stratum_scene_set_world_lightgroup(scene, 1), STRATUM_OK);
     const auto run = [&](int64_t offset, int64_t count, int64_t threads, std::vector<uint8_t>* sums) {
         StratumRenderer* r = nullptr;
         EXPECT_EQ(stratum_renderer_create(scene, &r), STRATUM_OK);
@@ -190,6 +193,15 @@ TEST(ShadowCatcher, SplitSampleRangesAndThreadCountsGiveTheSameBits) {
                                      {"threads", threads},
                                      {"sample_offset", offset},
                                      {"sample_count", count},
+                                     {"diffuse_bounces", 2},
+                                     {"glossy_bounces", 1},
+                                     {"transmission_bounces", 1},
+                                     {"clamp_direct", 2.0},
+                                     {"clamp_indirect", 0.5},
+                                     {"filter_glossy", 1.0},
+                                     {"caustics_reflective", 0},
+                                     {"caustics_refractive", 0},
+                                     {"lightgroups", 1},
                                      {"passes", "Shadow Catcher"}}),
                   "");
         EXPECT_TRUE(render_to_end(r)) << stratum_last_error();
@@ -204,7 +216,11 @@ TEST(ShadowCatcher, SplitSampleRangesAndThreadCountsGiveTheSameBits) {
         EXPECT_EQ(stratum_renderer_read_pixels(r, rgba.data(), rgba.size()), STRATUM_OK);
         EXPECT_EQ(stratum_renderer_read_pass(r, "Shadow Catcher", catcher.data(), catcher.size()),
                   STRATUM_OK);
+        std::vector<float> group(kSize * kSize * 3);
+        EXPECT_EQ(stratum_renderer_read_lightgroup(r, 1, group.data(), group.size()), STRATUM_OK)
+            << stratum_last_error();
         rgba.insert(rgba.end(), catcher.begin(), catcher.end());
+        rgba.insert(rgba.end(), group.begin(), group.end());
         return rgba;
     };
     std::vector<uint8_t> whole_sums, first, second, threaded_sums;
