@@ -108,8 +108,8 @@ TEST(ClosureFilter, CausticsSwitchesDropGlossyReflectionAndRefractionLobes) {
     // Smooth glass: a sampled dropped side ends the path (nothing to carry).
     const ClosureSet sharp = filtered(model(STRATUM_MATERIAL_GLASS, Rgb(1.0f), 0.0f), {0.0f, false, true});
     BsdfSample s;
-    EXPECT_FALSE(sharp.sample(kWo, 0.99f, Vec2(0.5f, 0.5f), &s, HemisphereDistribution::Cosine));
-    ASSERT_TRUE(sharp.sample(kWo, 0.0f, Vec2(0.5f, 0.5f), &s, HemisphereDistribution::Cosine));
+    EXPECT_FALSE(sharp.sample(kWo, 0.99f, Vec2{0.5f, 0.5f}, &s, HemisphereDistribution::Cosine));
+    ASSERT_TRUE(sharp.sample(kWo, 0.0f, Vec2{0.5f, 0.5f}, &s, HemisphereDistribution::Cosine));
     EXPECT_GT(s.wi.z, 0.0f);
     // Principled 4.x: a metal reflects nothing; a dielectric is its diffuse base alone, no longer
     // darkened by the specular layer it lost (Cycles 5.0 skips the layer and its attenuation).

@@ -234,8 +234,10 @@ TEST(ProgramInputs, OlderSceneFilesProgramsMoveToTodaysRegisters) {
         nlohmann::json file = nlohmann::json::parse(read_file(today));
         ASSERT_EQ(file.at("version"), 3);
         file["version"] = version;
+        // A structured binding is not captured by a lambda before C++20's P1091 (clang 14).
+        const uint32_t inputs_then = old_inputs;
         const auto old_number = [&](uint32_t reg) {
-            return reg >= kInputs ? reg - kInputs + old_inputs : reg;
+            return reg >= kInputs ? reg - kInputs + inputs_then : reg;
         };
         for (nlohmann::json& program : file.at("programs").at("programs")) {
             for (nlohmann::json& row : program.at("nodes")) {
