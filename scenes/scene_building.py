@@ -140,6 +140,23 @@ def uniform_world(scene: bpy.types.Scene, color: Vec) -> None:
         bg.inputs["Strength"].default_value = 1.0
 
 
+def feature_render_settings(scene: bpy.types.Scene, res: int) -> None:
+    """The feature scenes' stored render settings: Cycles (Stratum is chosen at render time),
+    res x res at 100 %, an opaque film, the Standard view transform at exposure 0, 64 samples
+    and no denoising (tests/blender/test_feature_agreement.py sets the sampling it compares)."""
+    r = scene.render
+    r.engine = "CYCLES"
+    r.resolution_x = r.resolution_y = res
+    r.resolution_percentage = 100
+    r.film_transparent = False
+    scene.view_settings.view_transform = "Standard"
+    scene.view_settings.look = "None"
+    scene.view_settings.exposure = 0.0
+    scene.view_settings.gamma = 1.0
+    scene.cycles.samples = 64
+    scene.cycles.use_denoising = False
+
+
 def png_render_settings(scene: bpy.types.Scene, width: int, height: int) -> None:
     """width x height at 100 %, square pixels, RGB PNG output, an opaque film, and the Standard
     view transform on an sRGB display, so a PNG is the plain sRGB encoding of linear."""

@@ -38,7 +38,13 @@ import numpy as np
 
 # Blender does not put a --python script's folder on sys.path; scene_building.py is one up.
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_building import aim, emission, node_material, output_path
+from scene_building import (
+    aim,
+    emission,
+    feature_render_settings,
+    node_material,
+    output_path,
+)
 
 RES = 64
 RNG = np.random.default_rng(5)
@@ -51,22 +57,8 @@ def reset(scene_name):
     bpy.ops.wm.read_factory_settings(use_empty=True)
     scene = bpy.context.scene
     scene.name = scene_name
-    setup_render(scene)
+    feature_render_settings(scene, RES)
     return scene
-
-
-def setup_render(scene):
-    r = scene.render
-    r.engine = "CYCLES"
-    r.resolution_x = r.resolution_y = RES
-    r.resolution_percentage = 100
-    r.film_transparent = False
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-    scene.view_settings.exposure = 0.0
-    scene.view_settings.gamma = 1.0
-    scene.cycles.samples = 64
-    scene.cycles.use_denoising = False
 
 
 def principled(name, color, roughness=0.5, metallic=0.0, **inputs):
@@ -490,7 +482,7 @@ def build_camera(folder):
     scenes = {"dof": first}
     for name in ("ortho", "motion"):
         scene = bpy.data.scenes.new(name)
-        setup_render(scene)
+        feature_render_settings(scene, RES)
         scene.world = world
         scenes[name] = scene
     for scene in scenes.values():

@@ -33,23 +33,9 @@ import sys
 import bpy
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from scene_building import aim, node_material, output_path
+from scene_building import aim, feature_render_settings, node_material, output_path
 
 RES = 64
-
-
-def setup_render(scene):
-    r = scene.render
-    r.engine = "CYCLES"
-    r.resolution_x = r.resolution_y = RES
-    r.resolution_percentage = 100
-    r.film_transparent = False
-    scene.view_settings.view_transform = "Standard"
-    scene.view_settings.look = "None"
-    scene.view_settings.exposure = 0.0
-    scene.view_settings.gamma = 1.0
-    scene.cycles.samples = 64
-    scene.cycles.use_denoising = False
 
 
 def link(scene, obj):
@@ -185,7 +171,7 @@ def camera(scene, location, target, lens):
 
 
 def build_light_paths(scene):
-    setup_render(scene)
+    feature_render_settings(scene, RES)
     c = scene.cycles
     c.max_bounces = 8
     c.diffuse_bounces = 2
@@ -234,7 +220,7 @@ def build_light_paths(scene):
 
 
 def build_environment_off(scene):
-    setup_render(scene)
+    feature_render_settings(scene, RES)
     world = bpy.data.worlds.new("eo_world")
     world.use_nodes = True
     bg = next(n for n in world.node_tree.nodes if n.type == "BACKGROUND")

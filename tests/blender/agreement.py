@@ -100,6 +100,25 @@ def add_camera(scene: bpy.types.Scene, lens_mm: float, location: tuple[float, fl
     scene.camera = camera
 
 
+def image_world(scene: bpy.types.Scene, name: str, rgba: np.ndarray) -> bpy.types.World:
+    """The scene's world: a float image of rgba ((h, w, 4), rows bottom (nadir) to top, as
+    Blender stores them) through an Environment Texture with Closest lookup into the Background
+    node's Color (texels compare exactly between the engines)."""
+    h, w = rgba.shape[:2]
+    image = bpy.data.images.new(name, w, h, alpha=True, float_buffer=True)
+    image.pixels.foreach_set(rgba.reshape(-1))
+    image.update()
+    world = bpy.data.worlds.new(name)
+    world.use_nodes = True
+    nodes = world.node_tree.nodes
+    env = nodes.new("ShaderNodeTexEnvironment")
+    env.image = image
+    env.interpolation = "Closest"
+    world.node_tree.links.new(env.outputs["Color"], nodes["Background"].inputs["Color"])
+    scene.world = world
+    return world
+
+
 def add_top_ortho_camera(scene: bpy.types.Scene, scale: float = 2.0,
                          height: float = 3.0) -> None:
     """The scene's camera: orthographic, `scale` wide, at (0, 0, height) looking down -Z (the

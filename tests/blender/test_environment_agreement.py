@@ -47,6 +47,7 @@ from agreement import (
     assert_agreement,
     configure_cycles,
     configure_stratum,
+    image_world,
     new_scene,
     render_two_seeds,
     stratum_available,
@@ -83,18 +84,10 @@ def _environment_pixels() -> np.ndarray:
 
 def _environment_scene(variant: str = "unmapped") -> bpy.types.Scene:
     scene = new_scene(RES)
-    image = bpy.data.images.new("sky", ENV_W, ENV_H, alpha=True, float_buffer=True)
-    image.pixels.foreach_set(_environment_pixels().reshape(-1))
-    image.update()
-    world = bpy.data.worlds.new("sky")
-    world.use_nodes = True
+    world = image_world(scene, "sky", _environment_pixels())
     nodes = world.node_tree.nodes
-    env = nodes.new("ShaderNodeTexEnvironment")
-    env.image = image
-    env.interpolation = "Closest"
-    background = nodes["Background"]
-    background.inputs["Strength"].default_value = STRENGTH
-    world.node_tree.links.new(env.outputs["Color"], background.inputs["Color"])
+    env = nodes["Environment Texture"]
+    nodes["Background"].inputs["Strength"].default_value = STRENGTH
     if variant == "mapping":
         coords = nodes.new("ShaderNodeTexCoord")
         mapping = nodes.new("ShaderNodeMapping")
@@ -102,7 +95,6 @@ def _environment_scene(variant: str = "unmapped") -> bpy.types.Scene:
         mapping.inputs["Rotation"].default_value = (0.0, 0.0, MAPPING_Z)
         world.node_tree.links.new(coords.outputs["Generated"], mapping.inputs["Vector"])
         world.node_tree.links.new(mapping.outputs["Vector"], env.inputs["Vector"])
-    scene.world = world
 
     add_diffuse_floor(scene, 20.0)
     # Looks down local -Z: Rx(90) turns it to +Y, Rz(-60) then to 30 degrees left of +X.

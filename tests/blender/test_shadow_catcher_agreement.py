@@ -42,6 +42,7 @@ from agreement import (
     assert_agreement,
     configure_cycles,
     configure_stratum,
+    image_world,
     new_scene,
     stratum_available,
 )
@@ -72,18 +73,7 @@ def _catcher_scene(case: str) -> bpy.types.Scene:
     scene = new_scene(RES)
     scene.render.film_transparent = True
     set_multilayer_exr(scene.render.image_settings)
-    image = bpy.data.images.new("hdri", ENV_W, ENV_H, alpha=True, float_buffer=True)
-    image.pixels.foreach_set(_environment_pixels().reshape(-1))
-    image.update()
-    world = bpy.data.worlds.new("hdri")
-    world.use_nodes = True
-    nodes = world.node_tree.nodes
-    env = nodes.new("ShaderNodeTexEnvironment")
-    env.image = image
-    env.interpolation = "Closest"
-    world.node_tree.links.new(env.outputs["Color"], nodes["Background"].inputs["Color"])
-    world.lightgroup = "sky"
-    scene.world = world
+    image_world(scene, "hdri", _environment_pixels()).lightgroup = "sky"
 
     add_diffuse_floor(scene, 4.0)
     bpy.data.objects["floor"].is_shadow_catcher = True

@@ -30,17 +30,10 @@ StratumScene* two_group_scene(bool lamp2_seen) {
     stratum_scene_add_material(scene, &grey, &grey_mat);
     stratum_scene_add_material(scene, &glow, &glow_mat);
     const auto add = [&](const float(&corners)[12], uint32_t material, uint32_t group) {
-        const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
-        const uint32_t mats[] = {material, material};
-        const StratumMeshDesc mesh{corners, 4, triangles, 2, nullptr, nullptr, mats};
-        uint32_t mesh_id = 0;
-        EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, &mesh_id), STRATUM_OK);
         StratumInstanceDesc d{};
-        d.mesh_id = mesh_id;
-        std::copy(kIdentity, kIdentity + 16, d.transform);
         d.visibility = STRATUM_VISIBLE_ALL;
         d.lightgroup = group;
-        EXPECT_EQ(stratum_scene_add_instance_ex(scene, &d), STRATUM_OK) << stratum_last_error();
+        EXPECT_TRUE(add_quad_instance(scene, corners, material, d)) << stratum_last_error();
     };
     const float floor[12] = {-3, -3, 0, 3, -3, 0, 3, 3, 0, -3, 3, 0};
     const float wall[12] = {2, -3, 0, 2, 3, 0, 2, 3, 2, 2, -3, 2};

@@ -66,14 +66,29 @@ inline bool add_mesh_instance(StratumScene* scene, const SphereMesh& m, uint32_t
 }
 
 // Adds the quad `corners` (four vertices x, y, z in order around it; two triangles 0-1-2 and
-// 0-2-3) with material id `material`, and one instance of it at the origin.
-inline bool add_quad_instance(StratumScene* scene, const float (&corners)[12], uint32_t material) {
+// 0-2-3) with material id `material` as a mesh; false if the scene refuses it.
+inline bool add_quad_mesh(StratumScene* scene, const float (&corners)[12], uint32_t material,
+                          uint32_t* mesh_id) {
     const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
     const uint32_t mats[] = {material, material};
     const StratumMeshDesc mesh{corners, 4, triangles, 2, nullptr, nullptr, mats};
+    return stratum_scene_add_mesh(scene, &mesh, mesh_id) == STRATUM_OK;
+}
+
+// The quad and one instance of it at the origin.
+inline bool add_quad_instance(StratumScene* scene, const float (&corners)[12], uint32_t material) {
     uint32_t mesh_id = 0;
-    return stratum_scene_add_mesh(scene, &mesh, &mesh_id) == STRATUM_OK &&
+    return add_quad_mesh(scene, corners, material, &mesh_id) &&
            stratum_scene_add_instance(scene, mesh_id, kIdentity) == STRATUM_OK;
+}
+
+// The quad and one static instance of it at the origin whose other fields (visibility,
+// holdout, light group, ...) are `instance`'s; its mesh_id and transform are set here.
+inline bool add_quad_instance(StratumScene* scene, const float (&corners)[12], uint32_t material,
+                              StratumInstanceDesc instance) {
+    if (!add_quad_mesh(scene, corners, material, &instance.mesh_id)) return false;
+    std::copy(kIdentity, kIdentity + 16, instance.transform);
+    return stratum_scene_add_instance_ex(scene, &instance) == STRATUM_OK;
 }
 
 // A horizontal square of half side `half` at height z, facing +Z, centred on the Z axis.

@@ -26,16 +26,9 @@ constexpr uint64_t kAll = ~uint64_t{0};
 bool add_square(StratumScene* scene, float z, float half, bool down, uint32_t material, uint32_t visibility) {
     const float corners_up[12] = {-half, -half, z, half, -half, z, half, half, z, -half, half, z};
     const float corners_down[12] = {-half, -half, z, -half, half, z, half, half, z, half, -half, z};
-    const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
-    const uint32_t mats[] = {material, material};
-    const StratumMeshDesc mesh{down ? corners_down : corners_up, 4, triangles, 2, nullptr, nullptr, mats};
-    uint32_t mesh_id = 0;
-    if (stratum_scene_add_mesh(scene, &mesh, &mesh_id) != STRATUM_OK) return false;
     StratumInstanceDesc d{};
-    d.mesh_id = mesh_id;
-    std::copy(kIdentity, kIdentity + 16, d.transform);
     d.visibility = visibility;
-    return stratum_scene_add_instance_ex(scene, &d) == STRATUM_OK;
+    return add_quad_instance(scene, down ? corners_down : corners_up, material, d);
 }
 
 enum class Emitter { Mesh, PointLamp };

@@ -63,17 +63,9 @@ uint32_t add_program(StratumScene* scene, const std::array<Channel, 3>& channels
 // A horizontal square at height z of material `material`, seen by the rays of `visibility`.
 void add_sheet(StratumScene* scene, float z, uint32_t material, uint32_t visibility) {
     const float corners[12] = {-10, -10, z, 10, -10, z, 10, 10, z, -10, 10, z};
-    const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
-    const uint32_t materials[] = {material, material};
-    const StratumMeshDesc mesh{corners, 4, triangles, 2, nullptr, nullptr, materials};
-    uint32_t mesh_id = 0;
-    ASSERT_EQ(stratum_scene_add_mesh(scene, &mesh, &mesh_id), STRATUM_OK);
     StratumInstanceDesc inst{};
-    inst.mesh_id = mesh_id;
-    std::copy(stratum_test::kIdentity, stratum_test::kIdentity + 16, inst.transform);
-    std::copy(stratum_test::kIdentity, stratum_test::kIdentity + 16, inst.transform_end);
     inst.visibility = visibility;
-    ASSERT_EQ(stratum_scene_add_instance_ex(scene, &inst), STRATUM_OK) << stratum_last_error();
+    ASSERT_TRUE(stratum_test::add_quad_instance(scene, corners, material, inst)) << stratum_last_error();
 }
 
 uint32_t add_material(StratumScene* scene, StratumMaterialDesc m) {

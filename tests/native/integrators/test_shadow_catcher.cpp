@@ -35,17 +35,10 @@ StratumScene* catcher_scene(const SceneOptions& o = {}) {
     const StratumMaterialDesc occluder = diffuse_grey(0.5f);
     EXPECT_EQ(stratum_scene_add_material(scene, &occluder, &occluder_mat), STRATUM_OK);
     const auto add = [&](const float(&corners)[12], uint32_t material, uint32_t visibility, bool holdout) {
-        const uint32_t triangles[] = {0, 1, 2, 0, 2, 3};
-        const uint32_t mats[] = {material, material};
-        const StratumMeshDesc mesh{corners, 4, triangles, 2, nullptr, nullptr, mats};
-        uint32_t mesh_id = 0;
-        EXPECT_EQ(stratum_scene_add_mesh(scene, &mesh, &mesh_id), STRATUM_OK);
         StratumInstanceDesc d{};
-        d.mesh_id = mesh_id;
-        std::copy(kIdentity, kIdentity + 16, d.transform);
         d.visibility = visibility;
         d.holdout = holdout ? 1 : 0;
-        EXPECT_EQ(stratum_scene_add_instance_ex(scene, &d), STRATUM_OK) << stratum_last_error();
+        EXPECT_TRUE(add_quad_instance(scene, corners, material, d)) << stratum_last_error();
     };
     const float floor_corners[12] = {-2, -2, 0, 2, -2, 0, 2, 2, 0, -2, 2, 0};
     add(floor_corners, floor_mat, STRATUM_VISIBLE_ALL | STRATUM_VISIBLE_SHADOW_CATCHER, o.catcher_holdout);
