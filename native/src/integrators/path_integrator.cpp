@@ -184,8 +184,8 @@ RadianceSample PathIntegrator::trace(const RenderScene& scene, const Sampler& sa
             records.add_found(found_background, beta * background);
             break;
         }
-        catcher.at_hit(hit, camera_visible_path, beta, transparency,
-                       scene.background(dir, arriving.background()), L);
+        if (catcher.splits_at(hit, camera_visible_path))
+            catcher.split_here(beta, transparency, scene.background(dir, arriving.background()), L);
         const Vec3 wo_world = -dir;
         const RayReach reach = track.at(hit.t, bounces, transparent_bounce);
         const ShadingPoint sp = build_closures(scene, hit, wo_world, reach, closure_state.filter(limits));

@@ -28,11 +28,7 @@ std::vector<std::string> unsplit_catcher_notices(const Scene& scene, const Integ
             "them): Combined shows them, and the Shadow Catcher pass is 1"};
 }
 
-void ShadowCatcherPath::at_hit(const SurfaceHit& hit, bool camera_visible_path, Rgb beta, float transparency,
-                               Rgb background, Rgb& L) {
-    if (role_ == Role::Off || split_ || !camera_visible_path || hit.holdout ||
-        !(hit.visibility & kVisibleShadowCatcher))
-        return;
+void ShadowCatcherPath::split_here(Rgb beta, float transparency, Rgb background, Rgb& L) {
     split_ = true;
     if (role_ == Role::Copy) {
         L = Rgb(0.0f);

@@ -60,12 +60,17 @@ public:
     bool is_copy() const { return role_ == Role::Copy; }
     bool split() const { return split_; }
 
-    // At a surface hit: splits there when the conditions above hold. The main path records its
-    // matte (the light `L` so far, the transparency so far plus the throughput β's mean, Cycles'
+    // Whether the path splits at this surface hit: the conditions above.
+    bool splits_at(const SurfaceHit& hit, bool camera_visible_path) const {
+        return role_ != Role::Off && !split_ && camera_visible_path && !hit.holdout &&
+               (hit.visibility & kVisibleShadowCatcher);
+    }
+    // The split, where splits_at says so. The main path records its matte (the light `L` so far,
+    // the transparency so far plus the throughput β's mean, Cycles'
     // film_write_shadow_catcher_bounce_data) and the background along the ray (the Background pass
-    // the copy writes at the split); the copy drops `L` and sees only catchers from here on.
-    void at_hit(const SurfaceHit& hit, bool camera_visible_path, Rgb beta, float transparency, Rgb background,
-                Rgb& L);
+    // the copy writes at the split; asked for only here, as a world program may run for it); the
+    // copy drops `L` and sees only catchers from here on.
+    void split_here(Rgb beta, float transparency, Rgb background, Rgb& L);
     // A camera-visible ray of the main path left the scene: β × the background it saw.
     void camera_miss(Rgb seen) {
         if (role_ == Role::Main) background_ += seen;
