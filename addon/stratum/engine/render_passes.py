@@ -22,6 +22,7 @@ from bpy.props import BoolProperty, PointerProperty
 
 from .. import blender_versions
 from ..engine_id import ENGINE_ID
+from ..export.instances import lightgroup_numbers
 
 
 @dataclass(frozen=True)
@@ -99,15 +100,14 @@ class StratumViewLayerSettings(bpy.types.PropertyGroup):
 def enabled_passes(view_layer: Any) -> list[PassSpec]:
     """The passes besides Combined that the view layer's toggles ask for, in TOGGLES order,
     then one per light group of the view layer (Cycles' "Combined_<name>", RGB, in their
-    order; export/instances.py lightgroup_numbers numbers them alike)."""
+    order, numbered as the export numbers the emitters' groups: lightgroup_numbers)."""
     owners = {"view_layer": view_layer, "stratum": getattr(view_layer, "stratum", None)}
     chosen: list[PassSpec] = []
     for owner, prop, specs in TOGGLES:
         if owners[owner] is not None and getattr(owners[owner], prop, False):
             chosen.extend(specs)
-    groups = getattr(view_layer, "lightgroups", None) or ()
-    chosen.extend(PassSpec(f"Combined_{group.name}", 3, "RGB", "COLOR", lightgroup=k)
-                  for k, group in enumerate(groups, start=1))
+    chosen.extend(PassSpec(f"Combined_{name}", 3, "RGB", "COLOR", lightgroup=k)
+                  for name, k in lightgroup_numbers(view_layer).items())
     return chosen
 
 
